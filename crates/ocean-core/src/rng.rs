@@ -1,0 +1,1 @@
+//! The project's seeded random generator. TO BE WRITTEN (helper: waves).

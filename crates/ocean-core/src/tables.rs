@@ -1,0 +1,1 @@
+//! Tables precomputed from the Fresnel term. TO BE WRITTEN (helper: fresnel).

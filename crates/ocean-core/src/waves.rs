@@ -1,0 +1,1 @@
+//! FFT wave synthesis. TO BE WRITTEN (helper: waves).
