@@ -37,3 +37,19 @@ pub struct SpectrumParams {
     /// Gravitational acceleration, m/s².
     pub gravity: f64,
 }
+
+impl Default for SpectrumParams {
+    fn default() -> Self {
+        Self {
+            kind: SpectrumKind::Jonswap,
+            wind_speed: 10.0,
+            wind_direction: 0.0,
+            fetch_m: 100e3,
+            depth_m: f64::INFINITY,
+            peak_enhancement: 3.3,
+            phillips_amplitude: 8.1e-3 / std::f64::consts::TAU,
+            phillips_small_wave_m: 0.01,
+            gravity: crate::GRAVITY,
+        }
+    }
+}
