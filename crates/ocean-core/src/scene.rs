@@ -307,7 +307,7 @@ impl Scene {
         check_range("ocean.wind_speed", o.wind_speed, 0.0, 200.0)?;
         check_finite("ocean.wind_direction_deg", o.wind_direction_deg)?;
         check_positive("ocean.fetch_km", o.fetch_km)?;
-        if !(o.depth_m > 0.0) {
+        if o.depth_m.is_nan() || o.depth_m <= 0.0 {
             return bad(
                 "ocean.depth_m",
                 format!("must be > 0 or inf (deep water), got {}", o.depth_m),
@@ -342,7 +342,7 @@ impl Scene {
         if c.position == c.look_at {
             return bad("camera.look_at", "must differ from camera.position".into());
         }
-        if !(c.fov_y_deg > 0.0 && c.fov_y_deg < 180.0) {
+        if c.fov_y_deg.is_nan() || c.fov_y_deg <= 0.0 || c.fov_y_deg >= 180.0 {
             return bad(
                 "camera.fov_y_deg",
                 format!("must be in (0, 180) degrees, got {}", c.fov_y_deg),
@@ -361,7 +361,7 @@ impl Scene {
             check_colour("sun.color", s.color)?;
             check_range("sun.intensity", s.intensity, 0.0, f64::MAX)?;
         }
-        if !(self.water.ior > 0.0 && self.water.ior.is_finite()) {
+        if !self.water.ior.is_finite() || self.water.ior <= 0.0 {
             return bad("water.ior", format!("must be finite and > 0, got {}", self.water.ior));
         }
         for (i, obj) in self.objects.iter().enumerate() {
@@ -449,7 +449,7 @@ fn key_position(text: &str, path: &str) -> Option<(usize, usize)> {
             DeValue::Table(t) => table = t,
             DeValue::Array(a) if i + 1 < parts.len() => {
                 let idx: usize = parts[i + 1].parse().ok()?;
-                let elem = a.iter().nth(idx)?;
+                let elem = a.get(idx)?;
                 best = Some(elem.span().start);
                 match elem.get_ref() {
                     DeValue::Table(t) => table = t,
