@@ -1,1 +1,55 @@
-fn main() {}
+//! `ocean`: the command-line program. One module per subcommand; each returns an
+//! `anyhow::Result` whose message a user can act on, printed without a backtrace.
+
+mod fresnel;
+mod heightfield;
+mod output;
+mod render;
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+use ocean_core::scene::Scene;
+
+/// Ocean renderer after Hu et al. 2004: a deterministic CPU oracle and a wgpu real-time path.
+#[derive(Parser, Debug)]
+#[command(name = "ocean", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Render a scene to PNG (8-bit sRGB) or EXR (linear HDR).
+    Render(render::Args),
+    /// Print the exact Fresnel term (eq. 2) as CSV, or write the 2D Fresnel texture as EXR.
+    Fresnel(fresnel::Args),
+    /// Write the displacement map of a scene's ocean at a time as EXR.
+    Heightfield(heightfield::Args),
+}
+
+/// Loads a scene file, or the built-in default scene when none is given.
+pub(crate) fn load_scene(path: Option<&PathBuf>) -> anyhow::Result<Scene> {
+    Ok(match path {
+        Some(p) => Scene::load(p)?,
+        None => Scene::builtin(),
+    })
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Render(a) => render::run(a),
+        Command::Fresnel(a) => fresnel::run(a),
+        Command::Heightfield(a) => heightfield::run(a),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::FAILURE
+        }
+    }
+}

@@ -1,0 +1,111 @@
+//! `ocean fresnel`: the exact Fresnel term of eq. 2 (seed 000) as CSV, or the 2D Fresnel
+//! texture of §5.1 as EXR (DESIGN.md's contracts).
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+use anyhow::{Context, bail};
+use ocean_core::fresnel::{fresnel_exact, fresnel_schlick};
+use ocean_core::tables::{FresnelTexture, TextureMapping};
+
+use crate::output::{Channel, encode_exr, require_extension, write_atomic};
+
+/// Arguments of `ocean fresnel`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// Relative index of refraction η = η_t/η_i (water from air: 1.333; from below: 0.75).
+    #[arg(long)]
+    eta: f64,
+    /// Step of the incidence angle in degrees for the CSV (0 to 90 inclusive).
+    #[arg(long, default_value_t = 1.0)]
+    step_deg: f64,
+    /// Write the N×N 2D Fresnel texture instead of the CSV (needs -o FILE.exr).
+    #[arg(long, value_name = "N")]
+    table: Option<usize>,
+    /// Map the texture as the paper prints it (V = (s−0.5, t−0.5, …), about ±30° only)
+    /// instead of the whole hemisphere.
+    #[arg(long, requires = "table")]
+    paper_half_range: bool,
+    /// Output file for --table.
+    #[arg(short, long, requires = "table")]
+    output: Option<PathBuf>,
+}
+
+/// The largest texture side accepted: 8192² RGBA f32 is 1 GiB.
+const MAX_TABLE: usize = 8192;
+
+/// Runs `ocean fresnel`.
+pub fn run(args: Args) -> anyhow::Result<()> {
+    if !(args.eta > 0.0 && args.eta.is_finite()) {
+        bail!("--eta must be finite and > 0, got {}", args.eta);
+    }
+    match args.table {
+        Some(n) => write_table(&args, n),
+        None => {
+            print!("{}", csv(args.eta, args.step_deg)?);
+            Ok(())
+        }
+    }
+}
+
+/// The CSV `theta_deg,cos_theta,exact,schlick`, θ = 0, step, 2·step, … up to 90 degrees.
+/// Values use Rust's shortest round-trip formatting.
+fn csv(eta: f64, step_deg: f64) -> anyhow::Result<String> {
+    if !(step_deg > 0.0 && step_deg <= 90.0) {
+        bail!("--step-deg must be in (0, 90], got {step_deg}");
+    }
+    let mut out = String::from("theta_deg,cos_theta,exact,schlick\n");
+    // θ from an integer count, not by accumulation, so the last row is exactly 90 when the
+    // step divides 90; the tolerance absorbs the rounding of 90/step.
+    let steps = (90.0 / step_deg * (1.0 + 1e-12)).floor() as usize;
+    for i in 0..=steps {
+        let theta_deg = (i as f64 * step_deg).min(90.0);
+        let cos_theta = theta_deg.to_radians().cos().max(0.0);
+        let exact = fresnel_exact(cos_theta, eta);
+        let schlick = fresnel_schlick(cos_theta, eta);
+        writeln!(out, "{theta_deg},{cos_theta},{exact},{schlick}")?;
+    }
+    Ok(out)
+}
+
+fn write_table(args: &Args, n: usize) -> anyhow::Result<()> {
+    if !(1..=MAX_TABLE).contains(&n) {
+        bail!("--table must be between 1 and {MAX_TABLE}, got {n}");
+    }
+    let path = args.output.as_ref().context("--table N needs -o FILE.exr")?;
+    require_extension(path, "exr")?;
+    let mapping = if args.paper_half_range {
+        TextureMapping::PaperHalfRange
+    } else {
+        TextureMapping::Hemisphere
+    };
+    let tex = FresnelTexture::new(n, args.eta, mapping)?;
+    let channel = |c: usize| tex.texels().iter().map(|t| t[c]).collect::<Vec<f32>>();
+    let channels = ["R", "G", "B", "A"]
+        .iter()
+        .enumerate()
+        .map(|(c, name)| Channel { name, data: channel(c) })
+        .collect();
+    write_atomic(path, &encode_exr(n, n, channels)?)?;
+    eprintln!("wrote {} ({n}×{n}, η = {}, {:?} mapping)", path.display(), args.eta, mapping);
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn csv_rows_cover_0_to_90() {
+        let text = csv(1.333, 1.0).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines[0], "theta_deg,cos_theta,exact,schlick");
+        assert_eq!(lines.len(), 92);
+        assert!(lines[1].starts_with("0,1,"));
+        assert!(lines[91].starts_with("90,"));
+        let text = csv(1.333, 7.0).unwrap();
+        assert!(text.lines().last().unwrap().starts_with("84,"));
+        assert!(csv(1.333, 0.0).is_err());
+        assert!(csv(1.333, f64::NAN).is_err());
+    }
+}

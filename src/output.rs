@@ -1,0 +1,75 @@
+//! Output files: written under a temporary name beside the target and renamed into place, so
+//! an interrupted or failed run never leaves a broken file behind.
+
+use std::io::{Cursor, Write};
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, bail};
+
+/// Writes `bytes` to `path` atomically (temporary file in the same folder, then rename).
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
+    let file_name = path
+        .file_name()
+        .with_context(|| format!("output path {} has no file name", path.display()))?;
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    if !dir.is_dir() {
+        bail!("cannot write {}: folder {} does not exist", path.display(), dir.display());
+    }
+    let tmp = dir.join(format!(".{}.tmp-{}", file_name.to_string_lossy(), std::process::id()));
+    let result = (|| -> std::io::Result<()> {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(bytes)?;
+        f.sync_all()?;
+        std::fs::rename(&tmp, path)
+    })();
+    if let Err(e) = result {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(e).with_context(|| format!("cannot write {}", path.display()));
+    }
+    Ok(())
+}
+
+/// One named f32 channel of an image, row-major (x fastest), top row first.
+pub struct Channel<'a> {
+    /// EXR channel name.
+    pub name: &'a str,
+    /// width × height samples.
+    pub data: Vec<f32>,
+}
+
+/// Encodes named f32 channels as a single-layer EXR (lossless ZIP compression) in memory.
+pub fn encode_exr(
+    width: usize,
+    height: usize,
+    channels: Vec<Channel<'_>>,
+) -> anyhow::Result<Vec<u8>> {
+    use exr::prelude::*;
+    let list: Vec<AnyChannel<FlatSamples>> = channels
+        .into_iter()
+        .map(|c| {
+            debug_assert_eq!(c.data.len(), width * height);
+            AnyChannel::new(c.name, FlatSamples::F32(c.data))
+        })
+        .collect();
+    let layer = Layer::new(
+        (width, height),
+        LayerAttributes::named("ocean"),
+        Encoding::SMALL_LOSSLESS,
+        AnyChannels::sort(list.into()),
+    );
+    let mut buf = Cursor::new(Vec::new());
+    Image::from_layer(layer).write().to_buffered(&mut buf).context("cannot encode EXR")?;
+    Ok(buf.into_inner())
+}
+
+/// Checks that an output path ends in the given extension (case-insensitive).
+pub fn require_extension(path: &Path, ext: &str) -> anyhow::Result<()> {
+    let ok = path.extension().is_some_and(|e| e.eq_ignore_ascii_case(ext));
+    if !ok {
+        bail!("output {} must end in .{ext}", path.display());
+    }
+    Ok(())
+}

@@ -1,0 +1,191 @@
+//! The command line's contracts (DESIGN.md): CSV and EXR layouts, exit codes, clear errors,
+//! no output file on failure.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn ocean(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_ocean"))
+        .args(args)
+        .env("RUST_BACKTRACE", "0")
+        .output()
+        .expect("the ocean binary runs")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Reads every f32 channel of a single-layer EXR as (name, samples).
+fn read_exr(path: &Path) -> (usize, usize, Vec<(String, Vec<f32>)>) {
+    use exr::prelude::*;
+    let image = read_all_flat_layers_from_file(path).expect("a readable EXR");
+    let layer = &image.layer_data[0];
+    let size = layer.size;
+    let channels = layer
+        .channel_data
+        .list
+        .iter()
+        .map(|c| {
+            let data = match &c.sample_data {
+                FlatSamples::F32(v) => v.clone(),
+                other => panic!("channel {} is not f32: {other:?}", c.name),
+            };
+            (c.name.to_string(), data)
+        })
+        .collect();
+    (size.0, size.1, channels)
+}
+
+#[test]
+fn fresnel_csv_contract() {
+    let o = ocean(&["fresnel", "--eta", "1.333"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = String::from_utf8(o.stdout).expect("utf-8");
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some("theta_deg,cos_theta,exact,schlick"));
+    let rows: Vec<Vec<f64>> =
+        lines.map(|l| l.split(',').map(|v| v.parse().expect("a number")).collect()).collect();
+    assert_eq!(rows.len(), 91);
+    for (i, r) in rows.iter().enumerate() {
+        assert_eq!(r.len(), 4);
+        assert_eq!(r[0], i as f64);
+        assert_eq!(r[1], (i as f64).to_radians().cos().max(0.0), "cos printed to round-trip");
+        assert!((0.0..=1.0).contains(&r[2]) && (0.0..=1.0).contains(&r[3]));
+    }
+    // Normal incidence: ((η − 1)/(η + 1))² = 0.0204 for water.
+    assert!((rows[0][2] - 0.02040).abs() < 5e-5, "{}", rows[0][2]);
+    assert_eq!(rows[90][2], 1.0);
+    let o = ocean(&["fresnel", "--eta", "1.333", "--step-deg", "0.5"]);
+    assert_eq!(String::from_utf8_lossy(&o.stdout).lines().count(), 182);
+}
+
+#[test]
+fn fresnel_rejects_bad_eta_without_panicking() {
+    for bad in ["0", "-1", "nan", "inf"] {
+        let o = ocean(&["fresnel", "--eta", bad]);
+        assert_eq!(o.status.code(), Some(1), "--eta {bad}");
+        assert!(stderr(&o).contains("--eta"), "{}", stderr(&o));
+        assert!(!stderr(&o).contains("panicked"));
+    }
+}
+
+#[test]
+fn fresnel_table_exr_contract() {
+    let dir = tempfile::tempdir().expect("a temp dir");
+    let path = dir.path().join("f.exr");
+    let o = ocean(&["fresnel", "--eta", "1.333", "--table", "16", "-o", path.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (w, h, channels) = read_exr(&path);
+    assert_eq!((w, h), (16, 16));
+    let names: Vec<&str> = channels.iter().map(|c| c.0.as_str()).collect();
+    assert_eq!(names, ["A", "B", "G", "R"]);
+    let get = |n: &str| &channels.iter().find(|c| c.0 == n).unwrap().1;
+    let (r, g, b, a) = (get("R"), get("G"), get("B"), get("A"));
+    let n = 16usize;
+    for j in 0..n {
+        for i in 0..n {
+            let idx = j * n + i;
+            let x = 2.0 * (i as f64 + 0.5) / n as f64 - 1.0;
+            let y = 2.0 * (j as f64 + 0.5) / n as f64 - 1.0;
+            let r2 = x * x + y * y;
+            let (ex, ey, ez) = if r2 <= 1.0 {
+                (x, y, (1.0 - r2).sqrt())
+            } else {
+                (x / r2.sqrt(), y / r2.sqrt(), 0.0)
+            };
+            assert!((r[idx] as f64 - ex).abs() < 1e-6, "R at ({i},{j})");
+            assert!((g[idx] as f64 - ey).abs() < 1e-6, "G at ({i},{j})");
+            assert!((b[idx] as f64 - ez).abs() < 1e-6, "B at ({i},{j})");
+            assert!((0.0..=1.0).contains(&a[idx]));
+        }
+    }
+}
+
+#[test]
+fn fresnel_table_needs_an_exr_output() {
+    let dir = tempfile::tempdir().expect("a temp dir");
+    let png = dir.path().join("f.png");
+    let o = ocean(&["fresnel", "--eta", "1.333", "--table", "16", "-o", png.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(!png.exists());
+    let o = ocean(&["fresnel", "--eta", "1.333", "--table", "0", "-o", "x.exr"]);
+    assert_eq!(o.status.code(), Some(1));
+    let o = ocean(&["fresnel", "--eta", "1.333", "--table", "16"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+}
+
+#[test]
+fn bad_scene_names_file_line_key_and_writes_nothing() {
+    let dir = tempfile::tempdir().expect("a temp dir");
+    let out = dir.path().join("h.exr");
+    let cases = [
+        ("[ocean]\nwind_speed = 5.0\nresolutoin = 64\n", "3:1", "resolutoin"),
+        ("[ocean]\nresolution = \"big\"\n", "2:", "resolution"),
+        ("[ocean]\nresolution = 0\n", "2:1", "ocean.resolution"),
+        ("[camera]\nfov_y_deg = -5\n", "2:1", "camera.fov_y_deg"),
+        ("[ocean]\nwind_speed = nan\n", "2:1", "ocean.wind_speed"),
+    ];
+    for (text, position, key) in cases {
+        let scene = dir.path().join("bad.toml");
+        std::fs::write(&scene, text).unwrap();
+        let o = ocean(&["heightfield", scene.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{text:?}: {err}");
+        assert!(err.contains(&format!("bad.toml:{position}")), "{text:?}: {err}");
+        assert!(err.contains(key), "{text:?}: {err}");
+        assert!(!err.contains("panicked"), "{err}");
+        assert!(!out.exists(), "no output may be written on error");
+    }
+    let o = ocean(&["heightfield", "/nonexistent/scene.toml", "-o", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("/nonexistent/scene.toml"));
+}
+
+#[test]
+fn heightfield_exr_contract() {
+    let dir = tempfile::tempdir().expect("a temp dir");
+    let scene = dir.path().join("s.toml");
+    std::fs::write(&scene, "[ocean]\nresolution = 32\npatch_size_m = 64.0\nchoppiness = 1.0\n")
+        .unwrap();
+    let out = dir.path().join("h.exr");
+    let o = ocean(&[
+        "heightfield",
+        scene.to_str().unwrap(),
+        "--time",
+        "3.5",
+        "--seed",
+        "9",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (w, h, channels) = read_exr(&out);
+    assert_eq!((w, h), (32, 32));
+    let mut names: Vec<&str> = channels.iter().map(|c| c.0.as_str()).collect();
+    names.sort_unstable();
+    assert_eq!(names, ["disp_x", "disp_z", "height", "jacobian", "slope_x", "slope_z"]);
+    for (name, data) in &channels {
+        assert!(data.iter().all(|v| v.is_finite()), "{name} has non-finite values");
+    }
+    let height = &channels.iter().find(|c| c.0 == "height").unwrap().1;
+    assert!(height.iter().any(|&v| v != 0.0), "a 10 m/s sea is not flat");
+
+    // Same scene, time and seed: the same bytes (the synthesis is deterministic); another
+    // seed: another sea.
+    let again = dir.path().join("h2.exr");
+    let args = |o: &str, seed: &str| {
+        ocean(&["heightfield", scene.to_str().unwrap(), "--time", "3.5", "--seed", seed, "-o", o])
+    };
+    assert!(args(again.to_str().unwrap(), "9").status.success());
+    assert_eq!(std::fs::read(&out).unwrap(), std::fs::read(&again).unwrap());
+    assert!(args(again.to_str().unwrap(), "10").status.success());
+    assert_ne!(std::fs::read(&out).unwrap(), std::fs::read(&again).unwrap());
+}
+
+#[test]
+fn render_says_not_yet_and_exits_1() {
+    let o = ocean(&["render", "-o", "/nonexistent-dir/never.png"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("not implemented yet"), "{}", stderr(&o));
+}
