@@ -37,7 +37,8 @@ impl Dispersion {
                 reason: "must be finite and > 0".into(),
             });
         }
-        if !(depth_m > 0.0) {
+        // NaN fails both tests.
+        if depth_m.is_nan() || depth_m <= 0.0 {
             return Err(Error::InvalidParameter {
                 name: "depth_m",
                 value: depth_m,
