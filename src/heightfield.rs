@@ -1,7 +1,13 @@
-//! `ocean heightfield`: the displacement map of a scene's ocean at a time, as EXR.
-//! TO BE WRITTEN once the waves module lands.
+//! `ocean heightfield`: the displacement map of a scene's ocean at a time, as EXR
+//! (DESIGN.md: N×N, pixel (i, j) at x = i·L/N, z = j·L/N, channels `height`, `disp_x`,
+//! `disp_z`, `slope_x`, `slope_z`, `jacobian`).
 
 use std::path::PathBuf;
+
+use anyhow::bail;
+use ocean_core::waves::Synthesizer;
+
+use crate::output::{Channel, encode_exr, require_extension, write_atomic};
 
 /// Arguments of `ocean heightfield`.
 #[derive(clap::Args, Debug)]
@@ -9,7 +15,7 @@ pub struct Args {
     /// Scene file (TOML); the built-in default scene when omitted.
     scene: Option<PathBuf>,
     /// Time in seconds (overrides the scene's `ocean.time_s`).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     time: Option<f64>,
     /// Seed of the random amplitudes (overrides the scene's `ocean.seed`).
     #[arg(long)]
@@ -20,6 +26,31 @@ pub struct Args {
 }
 
 /// Runs `ocean heightfield`.
-pub fn run(_args: Args) -> anyhow::Result<()> {
-    anyhow::bail!("not yet")
+pub fn run(args: Args) -> anyhow::Result<()> {
+    require_extension(&args.output, "exr")?;
+    let mut scene = crate::load_scene(args.scene.as_ref())?;
+    if let Some(t) = args.time {
+        if !t.is_finite() {
+            bail!("--time must be finite, got {t}");
+        }
+        scene.ocean.time_s = t;
+    }
+    if let Some(s) = args.seed {
+        scene.ocean.seed = s;
+    }
+    let ocean = &scene.ocean;
+    let modes = ocean.displacement_modes()?;
+    let n = modes.resolution();
+    let maps = Synthesizer::<f32>::new(n)?.synthesize(&modes, ocean.time_s, ocean.choppiness)?;
+    let channels =
+        maps.fields().iter().map(|(name, data)| Channel { name, data: data.to_vec() }).collect();
+    write_atomic(&args.output, &encode_exr(n, n, channels)?)?;
+    eprintln!(
+        "wrote {} ({n}×{n}, L = {} m, t = {} s, seed {})",
+        args.output.display(),
+        ocean.patch_size_m,
+        ocean.time_s,
+        ocean.seed
+    );
+    Ok(())
 }

@@ -78,18 +78,20 @@ impl Oracle {
     }
 
     fn fields(&self, x: f64, z: f64) -> [f64; 6] {
-        let mut s = [0.0; 8]; // h, Dx, Dz, hx, hz, Dxx, Dzz, Dxz (before λ)
+        let mut s = [0.0; 8]; // h, Dx, Dz, hx, hz, Dxx, Dzz, Dxz (before χ)
         for &(kx, kz, k, ht) in &self.terms {
             let c = ht * Complex::cis(self.sign * (kx * x + kz * z));
             let i_c = Complex::new(-c.im, c.re); // i·c
             s[0] += c.re;
-            s[1] += (-i_c * (kx / k)).re;
-            s[2] += (-i_c * (kz / k)).re;
+            // D = χ Σ i k/|k| h̃ e^{ik·x} (χ = choppiness > 0 moves samples towards the
+            // crests, as a Gerstner wave does); ∂Dx/∂x = χ Σ (i kx/k)(i kx) h̃ e^{ik·x}.
+            s[1] += (i_c * (kx / k)).re;
+            s[2] += (i_c * (kz / k)).re;
             s[3] += (i_c * kx).re;
             s[4] += (i_c * kz).re;
-            s[5] += (c * (kx * kx / k)).re;
-            s[6] += (c * (kz * kz / k)).re;
-            s[7] += (c * (kx * kz / k)).re;
+            s[5] -= (c * (kx * kx / k)).re;
+            s[6] -= (c * (kz * kz / k)).re;
+            s[7] -= (c * (kx * kz / k)).re;
         }
         let l = self.lambda;
         let j = (1.0 + l * s[5]) * (1.0 + l * s[6]) - (l * s[7]) * (l * s[7]);
@@ -244,7 +246,7 @@ fn fft_synthesis_matches_the_direct_sum() {
         let mut s64 = Synthesizer::<f64>::new(n).expect("synthesizer");
         let mut s32 = Synthesizer::<f32>::new(n).expect("synthesizer");
         let points = sample_points(n, 64, n as u64);
-        for &(t, lambda) in &[(0.0, 0.0), (3.7, -0.9), (1.0e4, 1.3)] {
+        for &(t, lambda) in &[(0.0, 0.0), (3.7, 0.9), (1.0e4, -1.3)] {
             let expected = grid_expected(&Oracle::new(&modes, t, lambda, 1.0), &points, n, l);
             let e64 =
                 rel_errors(&s64.synthesize(&modes, t, lambda).expect("maps"), &points, &expected);
@@ -269,7 +271,7 @@ fn fft_synthesis_matches_the_direct_sum() {
 
 #[test]
 fn fft_vs_direct_comparator_rejects_wrong_maps() {
-    let (n, l, t, lambda) = (48, 100.0, 3.7, -0.9);
+    let (n, l, t, lambda) = (48, 100.0, 3.7, 0.9);
     let modes = build(n, l, 7, Dispersion::deep(G));
     let points = sample_points(n, 64, 1);
     let expected = grid_expected(&Oracle::new(&modes, t, lambda, 1.0), &points, n, l);
@@ -478,7 +480,7 @@ fn query_equals_the_maps_at_grid_points() {
     let (n, l, t) = (32, 100.0, 4.0);
     let modes = build(n, l, 13, Dispersion::deep(G));
     let mut synth = Synthesizer::<f64>::new(n).expect("s");
-    for lambda in [0.0, -0.7] {
+    for lambda in [0.0, 0.7] {
         let maps = synth.synthesize(&modes, t, lambda).expect("m");
         let query = SurfaceQuery::new(&modes, t, lambda).expect("q");
         let points: Vec<(usize, usize)> =
@@ -513,7 +515,7 @@ fn query_equals_the_maps_at_grid_points() {
 fn query_is_the_band_limited_interpolant() {
     // The same waves on a grid twice as fine: the density is cut to the coarse band, and the
     // modes are keyed by (n, m), so the fine grid holds exactly the coarse grid's waves.
-    let (n, l, t, lambda) = (32, 100.0, 6.0, -0.6);
+    let (n, l, t, lambda) = (32, 100.0, 6.0, 0.6);
     let coarse = build(n, l, 17, Dispersion::deep(G));
     let f = phillips(WIND, AMPLITUDE);
     let half = (n / 2) as f64;
@@ -558,7 +560,7 @@ fn query_is_the_band_limited_interpolant() {
 
 #[test]
 fn height_at_inverts_the_displacement() {
-    let (n, l, t, lambda) = (32, 100.0, 8.0, -0.8);
+    let (n, l, t, lambda) = (32, 100.0, 8.0, 0.8);
     let modes = build(n, l, 23, Dispersion::deep(G));
     let maps = Synthesizer::<f64>::new(n).expect("s").synthesize(&modes, t, lambda).expect("m");
     let min_j = maps.jacobian.iter().copied().fold(f64::INFINITY, f64::min);
@@ -595,7 +597,7 @@ fn height_at_inverts_the_displacement() {
 
 #[test]
 fn normal_at_is_the_gradient_of_height_at() {
-    let (n, l, t, lambda) = (32, 100.0, 8.0, -0.8);
+    let (n, l, t, lambda) = (32, 100.0, 8.0, 0.8);
     let modes = build(n, l, 23, Dispersion::deep(G));
     let query = SurfaceQuery::new(&modes, t, lambda).expect("q");
     let delta = 1e-4;
@@ -832,14 +834,14 @@ fn huge_time_and_folding_choppiness_stay_finite() {
     let (n, l) = (32, 100.0);
     let modes = build(n, l, 19, Dispersion::deep(G));
     let mut synth = Synthesizer::<f64>::new(n).expect("s");
-    let maps = synth.synthesize(&modes, 1.0e9, -0.5).expect("m");
+    let maps = synth.synthesize(&modes, 1.0e9, 0.5).expect("m");
     assert!(maps.fields().iter().all(|(_, f)| f.iter().all(|v| v.is_finite())));
     // The phase is exact to f64 at 1e9 s: the direct sum agrees with the FFT there too.
     let points = sample_points(n, 16, 3);
-    let expected = grid_expected(&Oracle::new(&modes, 1.0e9, -0.5, 1.0), &points, n, l);
+    let expected = grid_expected(&Oracle::new(&modes, 1.0e9, 0.5, 1.0), &points, n, l);
     assert!(worst(&rel_errors(&maps, &points, &expected)) < 1e-12);
 
-    let lambda = -4.0;
+    let lambda = 4.0;
     let maps = synth.synthesize(&modes, 2.0, lambda).expect("m");
     let (argmin, min_j) = maps
         .jacobian
@@ -874,7 +876,7 @@ fn huge_time_and_folding_choppiness_stay_finite() {
 
 #[test]
 fn resolution_2048_works() {
-    let (n, l, t, lambda) = (2048, 1000.0, 7.0, -0.5);
+    let (n, l, t, lambda) = (2048, 1000.0, 7.0, 0.5);
     let modes = build(n, l, 1, Dispersion::deep(G));
     let maps = Synthesizer::<f32>::new(n).expect("s").synthesize(&modes, t, lambda).expect("m");
     assert!(maps.fields().iter().all(|(_, f)| f.iter().all(|v| v.is_finite())));
@@ -962,4 +964,32 @@ fn synthesis_is_deterministic() {
     let mut out = WaveMaps::<f32>::new(3, 1.0);
     reused.synthesize_into(&a, 12.3, -1.1, &mut out).expect("m");
     assert_eq!(bits(&first), bits(&out));
+}
+
+/// Pearson correlation of two equally long fields.
+fn correlation(a: &[f64], b: &[f64]) -> f64 {
+    let n = a.len() as f64;
+    let (ma, mb) = (a.iter().sum::<f64>() / n, b.iter().sum::<f64>() / n);
+    let cov: f64 = a.iter().zip(b).map(|(x, y)| (x - ma) * (y - mb)).sum();
+    let va: f64 = a.iter().map(|x| (x - ma) * (x - ma)).sum();
+    let vb: f64 = b.iter().map(|y| (y - mb) * (y - mb)).sum();
+    cov / (va * vb).sqrt()
+}
+
+#[test]
+fn positive_choppiness_sharpens_crests() {
+    // Samples bunch up (J < 1) where the surface is high, as in a Gerstner wave: for one mode
+    // h = A cos kx, J = 1 − χ A k cos kx, so J and h are perfectly anti-correlated; for a
+    // random sea the correlation stays clearly negative. The old sign (Tessendorf's λ = +χ)
+    // gives the opposite and is the negative control.
+    let (n, l) = (64, 100.0);
+    let modes = build(n, l, 5, Dispersion::deep(G));
+    let mut synth = Synthesizer::<f64>::new(n).expect("s");
+    let sharp = synth.synthesize(&modes, 4.0, 1.0).expect("m");
+    let c = correlation(&sharp.height, &sharp.jacobian);
+    println!("corr(h, J) at choppiness +1: {c:.3}");
+    assert!(c < -0.3, "positive choppiness must put the bunching on the crests: {c}");
+    let inverted = synth.synthesize(&modes, 4.0, -1.0).expect("m");
+    let c = correlation(&inverted.height, &inverted.jacobian);
+    assert!(c > 0.3, "negative control: the opposite sign sharpens troughs: {c}");
 }

@@ -11,7 +11,9 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use crate::spectrum::{SpectrumKind, SpectrumParams};
+use crate::dispersion::Dispersion;
+use crate::spectrum::{SpectrumKind, SpectrumParams, WaveSpectrum};
+use crate::waves::{ModeParams, OceanParams, OceanSurface, WaveModes};
 
 /// The built-in default scene (open sea at late afternoon with a buoy and a rock).
 pub const DEFAULT_SCENE_TOML: &str = include_str!("../../../reference/scenes/default.toml");
@@ -157,6 +159,46 @@ impl Ocean {
             phillips_small_wave_m: self.phillips_small_wave_m,
             gravity: crate::GRAVITY,
         }
+    }
+}
+
+impl Ocean {
+    /// The dispersion relation of this sea (depth, loop period).
+    pub fn dispersion(&self) -> crate::Result<Dispersion> {
+        Dispersion::new(crate::GRAVITY, self.depth_m, self.loop_period_s)
+    }
+
+    /// The spectrum of this sea.
+    pub fn wave_spectrum(&self) -> crate::Result<WaveSpectrum> {
+        WaveSpectrum::new(self.spectrum_params())
+    }
+
+    /// The parameters of the displacement map / bump map pair (seed 000 §2.1).
+    pub fn ocean_params(&self) -> crate::Result<OceanParams> {
+        Ok(OceanParams {
+            patch_size_m: self.patch_size_m,
+            displacement_resolution: self.resolution as usize,
+            bump_ratio: self.bump_patch_divisor as usize,
+            bump_resolution: self.bump_resolution as usize,
+            seed: self.seed,
+            dispersion: self.dispersion()?,
+        })
+    }
+
+    /// The random amplitudes of the displacement map alone (what `ocean heightfield` writes).
+    pub fn displacement_modes(&self) -> crate::Result<WaveModes> {
+        let spectrum = self.wave_spectrum()?;
+        WaveModes::new(
+            &ModeParams::new(self.patch_size_m, self.resolution as usize, self.seed),
+            self.dispersion()?,
+            |kx, kz| spectrum.density(kx, kz),
+        )
+    }
+
+    /// The displacement map and bump map modes of this sea.
+    pub fn surface(&self) -> crate::Result<OceanSurface> {
+        let spectrum = self.wave_spectrum()?;
+        OceanSurface::new(&self.ocean_params()?, |kx, kz| spectrum.density(kx, kz))
     }
 }
 
@@ -324,6 +366,20 @@ impl Scene {
         }
         if o.bump_patch_divisor == 0 {
             return bad("ocean.bump_patch_divisor", "must be ≥ 1, got 0".into());
+        }
+        // The bump map holds the waves the displacement map cannot: those from index
+        // ⌈N_d / 2r⌉ of its own lattice up to its Nyquist N_b / 2 (waves::surface).
+        let first_bump_index = o.resolution.div_ceil(2 * o.bump_patch_divisor);
+        if o.bump_resolution <= 2 * first_bump_index {
+            return bad(
+                "ocean.bump_resolution",
+                format!(
+                    "must exceed {} (2·⌈resolution / (2·bump_patch_divisor)⌉), else the bump \
+                     map holds no wave finer than the displacement map's; got {}",
+                    2 * first_bump_index,
+                    o.bump_resolution
+                ),
+            );
         }
         check_range("ocean.choppiness", o.choppiness, 0.0, 10.0)?;
         check_finite("ocean.time_s", o.time_s)?;

@@ -167,7 +167,9 @@ impl SurfaceQuery {
             dzz += m.kz * m.kz * m.inv_k * c.re;
             dxz += m.kx * m.kz * m.inv_k * c.re;
         }
-        let lambda = self.choppiness;
+        // λ = −choppiness: positive choppiness moves samples towards the crests (see the
+        // synthesis module, "Sign of D").
+        let lambda = -self.choppiness;
         let (dxx, dzz, dxz) = (lambda * dxx, lambda * dzz, lambda * dxz);
         SurfaceSample {
             height: h,

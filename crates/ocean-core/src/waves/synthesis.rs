@@ -14,9 +14,12 @@
 //! and `jacobian` J = (1 + Dxx)(1 + Dzz) − Dxz², evaluated per sample in T as written (no
 //! fused multiply-add). The surface point of sample (x, z) is (x + Dx, h, z + Dz).
 //!
-//! Sign of D: this is Tessendorf's formula as written. With it a positive λ pulls the
-//! samples towards the *troughs* (for h = cos kx, D = λ sin kx, J = 1 + λk cos kx is smallest
-//! in the troughs); sharp crests and crest folding, as in a Gerstner wave, need λ < 0.
+//! Sign of D: λ = −`choppiness`. Tessendorf's formula as written, x + λD with λ > 0, pulls
+//! the samples towards the *troughs* (for h = cos kx, D = sin kx, J = 1 + λk cos kx is
+//! smallest in the troughs), which sharpens troughs, not crests. A user's `choppiness > 0`
+//! must give sharp crests and crest folding as a Gerstner wave does (seed 002), so the
+//! synthesis uses λ = −choppiness: for h = cos kx the displacement is −choppiness·sin kx,
+//! towards the crest, and J = 1 − choppiness·k·cos kx is smallest on the crests.
 //!
 //! Packing: each multiplier is even or odd in k and real or imaginary, so M·h̃ is Hermitian
 //! and its inverse FFT real; two such spectra Â, B̂ go through one complex transform as
@@ -289,22 +292,24 @@ impl<T: MapFloat> Synthesizer<T> {
 
         use Spectrum::*;
         if choppiness == 0.0 {
-            self.transform_pair(modes, choppiness, Height, None);
+            self.transform_pair(modes, 0.0, Height, None);
             unpack(&self.work, &mut out.height, None);
-            self.transform_pair(modes, choppiness, SlopeX, Some(SlopeZ));
+            self.transform_pair(modes, 0.0, SlopeX, Some(SlopeZ));
             unpack(&self.work, &mut out.slope_x, Some(&mut out.slope_z));
             out.disp_x.fill(T::zero());
             out.disp_z.fill(T::zero());
             out.jacobian.fill(T::one());
             return Ok(());
         }
-        self.transform_pair(modes, choppiness, Height, Some(DispX));
+        // λ of the table above; see "Sign of D".
+        let lambda = -choppiness;
+        self.transform_pair(modes, lambda, Height, Some(DispX));
         unpack(&self.work, &mut out.height, Some(&mut out.disp_x));
-        self.transform_pair(modes, choppiness, DispZ, Some(DispXDz));
+        self.transform_pair(modes, lambda, DispZ, Some(DispXDz));
         unpack(&self.work, &mut out.disp_z, Some(&mut self.disp_x_dz));
-        self.transform_pair(modes, choppiness, SlopeX, Some(SlopeZ));
+        self.transform_pair(modes, lambda, SlopeX, Some(SlopeZ));
         unpack(&self.work, &mut out.slope_x, Some(&mut out.slope_z));
-        self.transform_pair(modes, choppiness, DispXDx, Some(DispZDz));
+        self.transform_pair(modes, lambda, DispXDx, Some(DispZDz));
         let one = T::one();
         for ((j, c), &dxz) in out.jacobian.iter_mut().zip(&self.work).zip(&self.disp_x_dz) {
             let (dxx, dzz) = (c.re, c.im);
