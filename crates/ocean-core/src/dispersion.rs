@@ -37,7 +37,7 @@ impl Dispersion {
                 reason: "must be finite and > 0".into(),
             });
         }
-        if !(depth_m > 0.0) {
+        if depth_m.is_nan() || depth_m <= 0.0 {
             return Err(Error::InvalidParameter {
                 name: "depth_m",
                 value: depth_m,
@@ -149,7 +149,7 @@ mod tests {
     #[test]
     fn deep_and_finite_depth_agree_with_closed_forms() {
         let deep = Dispersion::deep(G);
-        let shallow = Dispersion::new(G, 5.0, 0.0).unwrap();
+        let shallow = Dispersion::new(G, 5.0, 0.0).expect("valid depth");
         for &k in &[1e-6, 1e-3, 0.01, 0.1, 1.0, 10.0, 1e3] {
             let w_deep = (G * k).sqrt();
             assert!((deep.omega(k) - w_deep).abs() <= 1e-15 * w_deep);
@@ -166,7 +166,7 @@ mod tests {
 
     #[test]
     fn group_velocity_matches_a_central_difference() {
-        for d in [Dispersion::deep(G), Dispersion::new(G, 5.0, 0.0).unwrap()] {
+        for d in [Dispersion::deep(G), Dispersion::new(G, 5.0, 0.0).expect("valid depth")] {
             for &k in &[0.01, 0.1, 0.5, 2.0, 30.0] {
                 let h = 1e-6 * k;
                 let fd = (d.omega(k + h) - d.omega(k - h)) / (2.0 * h);
@@ -178,7 +178,7 @@ mod tests {
 
     #[test]
     fn looping_quantises_and_repeats() {
-        let d = Dispersion::new(G, f64::INFINITY, 20.0).unwrap();
+        let d = Dispersion::new(G, f64::INFINITY, 20.0).expect("valid loop period");
         let omega0 = TAU / 20.0;
         for &k in &[0.01, 0.1, 1.0, 7.0] {
             let w = d.omega(k);
