@@ -14,7 +14,7 @@ use crate::output::{Channel, encode_exr, require_extension, write_atomic};
 #[derive(clap::Args, Debug)]
 pub struct Args {
     /// Relative index of refraction η = η_t/η_i (water from air: 1.333; from below: 0.75).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     eta: f64,
     /// Step of the incidence angle in degrees for the CSV (0 to 90 inclusive).
     #[arg(long, default_value_t = 1.0)]
@@ -60,7 +60,9 @@ fn csv(eta: f64, step_deg: f64) -> anyhow::Result<String> {
     let steps = (90.0 / step_deg * (1.0 + 1e-12)).floor() as usize;
     for i in 0..=steps {
         let theta_deg = (i as f64 * step_deg).min(90.0);
-        let cos_theta = theta_deg.to_radians().cos().max(0.0);
+        // cos(π/2) rounds to 6.1e-17, not 0; grazing incidence is printed as exactly 0 so
+        // that the last row is the limit F = 1 that eq. 2 gives there.
+        let cos_theta = if theta_deg == 90.0 { 0.0 } else { theta_deg.to_radians().cos() };
         let exact = fresnel_exact(cos_theta, eta);
         let schlick = fresnel_schlick(cos_theta, eta);
         writeln!(out, "{theta_deg},{cos_theta},{exact},{schlick}")?;

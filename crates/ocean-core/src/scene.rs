@@ -262,30 +262,62 @@ impl Default for Water {
     }
 }
 
-/// An `[[objects]]` entry.
+/// What an object is (`kind = "sphere"` or `"box"`; terrain and meshes may come).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ObjectKind {
+    /// A sphere: needs `radius`.
+    Sphere,
+    /// An axis-aligned box: needs `size`.
+    Box,
+}
+
+/// An `[[objects]]` entry. A flat table rather than a serde-tagged enum: serde buffers a
+/// tagged enum's fields and loses their positions, and a user's error must name the line.
+/// [`Scene::validate`] checks that each kind has exactly the keys it needs; [`Object::shape`]
+/// gives the typed view.
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
-#[serde(tag = "kind", rename_all = "lowercase", deny_unknown_fields)]
-pub enum Object {
-    /// A sphere.
+#[serde(deny_unknown_fields)]
+pub struct Object {
+    /// What the object is.
+    pub kind: ObjectKind,
+    /// Centre, m.
+    pub center: [f64; 3],
+    /// Radius, m (spheres).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub radius: Option<f64>,
+    /// Edge lengths, m (boxes).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub size: Option<[f64; 3]>,
+    /// Linear RGB albedo.
+    #[serde(default = "default_object_color")]
+    pub color: [f64; 3],
+}
+
+/// The typed shape of a validated [`Object`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Shape {
+    /// A sphere of this radius, m.
     Sphere {
-        /// Centre, m.
-        center: [f64; 3],
         /// Radius, m.
         radius: f64,
-        /// Linear RGB albedo.
-        #[serde(default = "default_object_color")]
-        color: [f64; 3],
     },
-    /// An axis-aligned box.
+    /// An axis-aligned box with these edge lengths, m.
     Box {
-        /// Centre, m.
-        center: [f64; 3],
         /// Edge lengths, m.
         size: [f64; 3],
-        /// Linear RGB albedo.
-        #[serde(default = "default_object_color")]
-        color: [f64; 3],
     },
+}
+
+impl Object {
+    /// The shape, or `None` if the object lacks its kind's key (a scene that passed
+    /// [`Scene::validate`] never does).
+    pub fn shape(&self) -> Option<Shape> {
+        match self.kind {
+            ObjectKind::Sphere => self.radius.map(|radius| Shape::Sphere { radius }),
+            ObjectKind::Box => self.size.map(|size| Shape::Box { size }),
+        }
+    }
 }
 
 fn default_object_color() -> [f64; 3] {
@@ -324,7 +356,7 @@ impl Scene {
                 source_name: source.clone(),
                 line,
                 column,
-                key: None,
+                key: e.span().and_then(|s| key_at_offset(text, s.start)),
                 message: e.message().trim().to_string(),
             }
         })?;
@@ -422,19 +454,23 @@ impl Scene {
         }
         for (i, obj) in self.objects.iter().enumerate() {
             let key = |f: &str| format!("objects.{i}.{f}");
-            match obj {
-                Object::Sphere { center, radius, color } => {
-                    check_vec(&key("center"), *center)?;
-                    check_positive(&key("radius"), *radius)?;
-                    check_colour(&key("color"), *color)?;
-                }
-                Object::Box { center, size, color } => {
-                    check_vec(&key("center"), *center)?;
+            check_vec(&key("center"), obj.center)?;
+            check_colour(&key("color"), obj.color)?;
+            let (needs, forbids) = match obj.kind {
+                ObjectKind::Sphere => ("radius", obj.size.is_some().then_some("size")),
+                ObjectKind::Box => ("size", obj.radius.is_some().then_some("radius")),
+            };
+            if let Some(f) = forbids {
+                return bad(&key(f), format!("a {:?} has no `{f}` (it takes `{needs}`)", obj.kind));
+            }
+            match obj.shape() {
+                Some(Shape::Sphere { radius }) => check_positive(&key("radius"), radius)?,
+                Some(Shape::Box { size }) => {
                     for s in size {
-                        check_positive(&key("size"), *s)?;
+                        check_positive(&key("size"), s)?;
                     }
-                    check_colour(&key("color"), *color)?;
                 }
+                None => return bad(&key(needs), format!("a {:?} needs `{needs}`", obj.kind)),
             }
         }
         Ok(())
@@ -488,6 +524,47 @@ fn line_column(text: &str, offset: usize) -> (usize, usize) {
     (line, text[line_start..offset].chars().count() + 1)
 }
 
+/// The dotted key path whose key or value covers a byte offset (the innermost one), so that
+/// a serde error, which knows only a span, can name its key.
+fn key_at_offset(text: &str, offset: usize) -> Option<String> {
+    use toml::de::{DeTable, DeValue};
+    // A `[table]` header's span does not cover its body, so tables are always searched;
+    // leaves match when their key or value covers the offset.
+    fn walk(table: &DeTable<'_>, offset: usize, path: &mut Vec<String>) -> bool {
+        for (k, v) in table.iter() {
+            let here = k.span().contains(&offset) || v.span().contains(&offset);
+            path.push(k.get_ref().to_string());
+            let found = match v.get_ref() {
+                DeValue::Table(t) => walk(t, offset, path) || here,
+                DeValue::Array(a) => {
+                    let mut inside = false;
+                    for (i, elem) in a.iter().enumerate() {
+                        path.push(i.to_string());
+                        inside = match elem.get_ref() {
+                            DeValue::Table(t) => walk(t, offset, path),
+                            _ => false,
+                        } || elem.span().contains(&offset);
+                        if inside {
+                            break;
+                        }
+                        path.pop();
+                    }
+                    inside || here
+                }
+                _ => here,
+            };
+            if found {
+                return true;
+            }
+            path.pop();
+        }
+        false
+    }
+    let doc = DeTable::parse(text).ok()?;
+    let mut path = Vec::new();
+    walk(doc.get_ref(), offset, &mut path).then(|| path.join("."))
+}
+
 /// The position of a dotted key path (`ocean.resolution`, `objects.1.radius`) in the
 /// document: the key itself, or the table header when the key is absent (a defaulted value
 /// can still be inconsistent with others).
@@ -499,7 +576,10 @@ fn key_position(text: &str, path: &str) -> Option<(usize, usize)> {
     let parts: Vec<&str> = path.split('.').collect();
     let mut i = 0;
     while i < parts.len() {
-        let (k, v) = table.iter().find(|(k, _)| k.get_ref().as_ref() == parts[i])?;
+        // An absent key (a defaulted or missing value) is reported at its table.
+        let Some((k, v)) = table.iter().find(|(k, _)| k.get_ref().as_ref() == parts[i]) else {
+            break;
+        };
         best = Some(k.span().start);
         match v.get_ref() {
             DeValue::Table(t) => table = t,
@@ -556,8 +636,13 @@ mod tests {
 
     #[test]
     fn wrong_type_is_located() {
-        let (line, _, _, msg) = err("[ocean]\n\nresolution = \"big\"\n");
+        let (line, _, key, msg) = err("[ocean]\n\nresolution = \"big\"\n");
         assert_eq!(line, 3);
+        assert_eq!(key.as_deref(), Some("ocean.resolution"));
+        let (line, _, key, _) =
+            err("[[objects]]\nkind = \"sphere\"\ncenter = [0,0,0]\nradius = \"x\"\n");
+        assert_eq!(line, 4);
+        assert_eq!(key.as_deref(), Some("objects.0.radius"));
         assert!(msg.contains("invalid type") || msg.contains("expected"), "{msg}");
     }
 
@@ -588,13 +673,20 @@ mod tests {
         .unwrap();
         assert!(s.ocean.depth_m.is_infinite());
         assert_eq!(s.ocean.spectrum, SpectrumKind::Tma);
-        assert!(matches!(s.objects[0], Object::Box { .. }));
+        assert!(matches!(s.objects[0].shape(), Some(Shape::Box { .. })));
         let (_, _, _, msg) = err("[[objects]]\nkind = \"cone\"\n");
         assert!(msg.contains("cone"), "{msg}");
         let (line, _, _, msg) =
             err("[[objects]]\nkind = \"sphere\"\ncenter = [0,0,0]\nradius = 1\nradus = 2\n");
         assert!(msg.contains("radus"), "{msg}");
-        assert!(line >= 1);
+        assert_eq!(line, 5);
+        let (line, _, key, _) = err("[[objects]]\nkind = \"sphere\"\ncenter = [0,0,0]\n");
+        assert_eq!(key.as_deref(), Some("objects.0.radius"));
+        assert_eq!(line, 1);
+        let (line, _, key, _) =
+            err("[[objects]]\nkind = \"box\"\ncenter = [0,0,0]\nsize = [1,1,1]\nradius = 2\n");
+        assert_eq!(key.as_deref(), Some("objects.0.radius"));
+        assert_eq!(line, 5);
     }
 
     #[test]
