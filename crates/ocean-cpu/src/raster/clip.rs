@@ -11,12 +11,21 @@
 //! One more plane, `w ≥ W_MIN`, comes first: the view volume alone admits the point
 //! (0, 0, 0, 0), whose perspective divide is 0/0. No real camera puts a vertex there.
 //!
-//! Algorithm: Sutherland–Hodgman, one plane at a time in the fixed order of [`PLANES`]. A new
-//! vertex on an edge is always interpolated *from the inside vertex towards the outside one*,
-//! `v = inside + t · (outside − inside)` with `t = d_in / (d_in − d_out)`, on every component
-//! (clip position and varyings, linearly in clip space, as a GPU does). So an edge shared by
-//! two triangles is cut at bit-identical points whichever way round each triangle walks it,
-//! and the two triangles stay watertight.
+//! Algorithm: Sutherland–Hodgman, one plane at a time in the fixed order of `PLANES` (w; x and
+//! y; near and far). A new vertex on an edge is always interpolated *from the inside vertex
+//! towards the outside one*, `v = (1 − t) · inside + t · outside` with
+//! `t = d_in / (d_in − d_out)`, on every component (clip position and varyings, linearly in
+//! clip space, as a GPU does). So an edge shared by two triangles is cut at bit-identical
+//! points whichever way round each triangle walks it, and the two triangles stay watertight.
+//!
+//! Accuracy, for triangles of any size: the coordinate that the plane fixes is then set
+//! exactly (`x = w` on the right plane, `w = W_MIN` on the w plane, …) because its interpolated
+//! value can cancel catastrophically (a ±1e30 triangle cut at x = w = 1). Once the w plane has
+//! made every w positive, the weighted-sum form builds w from positive terms, and after the x
+//! and y planes every |x|, |y| ≤ w, so later cuts build x and y without cancellation either:
+//! the final polygon satisfies every plane to within a few ulp relative to its own w.
+//! (Mesa interpolates `inside + t · (outside − inside)` and does not pin the coordinate; the
+//! two agree to rounding for triangles of ordinary size.)
 
 use super::Vertex;
 
@@ -24,18 +33,51 @@ use super::Vertex;
 /// `b / w` (summed over three vertices) finite in f32; real cameras have w ≥ the near distance.
 pub const W_MIN: f32 = 1e-30;
 
-/// Signed distance to one clip plane; the inside is `d ≥ 0`.
-type PlaneDistance = fn(&[f32; 4]) -> f32;
+/// Largest magnitude of a clip coordinate the clipper accepts (2^125 ≈ 4.3e37); a triangle
+/// with a larger one is dropped. Below it no distance (≤ 2^126), difference of distances
+/// (≤ 2^127) or interpolated component can overflow f32; above it, clipping could produce
+/// infinities. Realistic inputs are many orders of magnitude smaller.
+pub const MAX_CLIP_COORD: f32 = (1u128 << 125) as f32;
 
-/// The clip planes, in the order they are applied.
-pub const PLANES: [PlaneDistance; 7] = [
-    |p| p[3] - W_MIN, // w ≥ W_MIN
-    |p| p[3] - p[0],  // x ≤ w (right)
-    |p| p[3] + p[0],  // −w ≤ x (left)
-    |p| p[3] - p[1],  // y ≤ w (top: NDC y is up)
-    |p| p[3] + p[1],  // −w ≤ y (bottom)
-    |p| p[2],         // 0 ≤ z (near)
-    |p| p[3] - p[2],  // z ≤ w (far)
+/// One clip plane: the signed distance of a clip position (inside is `d ≥ 0`), and the exact
+/// value of the coordinate a point on the plane has.
+#[derive(Clone, Copy)]
+struct Plane {
+    distance: fn(&[f32; 4]) -> f32,
+    put_on_plane: fn(&mut [f32; 4]),
+}
+
+/// The clip planes, in the order they are applied: w first (it makes every later w positive),
+/// then x and y (they bound x and y by w before z is cut), then near and far.
+const PLANES: [Plane; 7] = [
+    Plane {
+        distance: |p| p[3] - W_MIN, // w ≥ W_MIN
+        put_on_plane: |p| p[3] = W_MIN,
+    },
+    Plane {
+        distance: |p| p[3] - p[0], // x ≤ w (right)
+        put_on_plane: |p| p[0] = p[3],
+    },
+    Plane {
+        distance: |p| p[3] + p[0], // −w ≤ x (left)
+        put_on_plane: |p| p[0] = -p[3],
+    },
+    Plane {
+        distance: |p| p[3] - p[1], // y ≤ w (top: NDC y is up)
+        put_on_plane: |p| p[1] = p[3],
+    },
+    Plane {
+        distance: |p| p[3] + p[1], // −w ≤ y (bottom)
+        put_on_plane: |p| p[1] = -p[3],
+    },
+    Plane {
+        distance: |p| p[2], // 0 ≤ z (near)
+        put_on_plane: |p| p[2] = 0.0,
+    },
+    Plane {
+        distance: |p| p[3] - p[2], // z ≤ w (far)
+        put_on_plane: |p| p[2] = p[3],
+    },
 ];
 
 /// Most vertices a clipped triangle can have: each plane adds at most one.
@@ -55,12 +97,16 @@ impl<const V: usize> Polygon<V> {
         Self { vertices, len: 3 }
     }
 
+    fn empty() -> Self {
+        Self { vertices: [Vertex::ZERO; MAX_POLYGON], len: 0 }
+    }
+
     /// The vertices, in the winding of the input triangle.
     pub fn vertices(&self) -> &[Vertex<V>] {
         &self.vertices[..self.len]
     }
 
-    /// The triangle fan `(v0, v_i, v_i+1)`: same winding as the input triangle. Empty if the
+    /// The triangle fan `(v0, v_i, v_i+1)`, in the winding of the input triangle. Empty if the
     /// polygon has fewer than three vertices.
     pub fn fan(self) -> impl Iterator<Item = [Vertex<V>; 3]> {
         let v = self.vertices;
@@ -72,81 +118,66 @@ impl<const V: usize> Polygon<V> {
         self.vertices[self.len] = v;
         self.len += 1;
     }
-
-    fn empty() -> Self {
-        let mut p = Self::from_triangle([Vertex::ZERO; 3]);
-        p.len = 0;
-        p
-    }
 }
 
-/// Clips a triangle to the view volume. Returns an empty polygon when nothing is left, when a
-/// clip coordinate is NaN or infinite, or when clipping overflowed f32 (inputs beyond ~1e38).
+/// Clips a triangle to the view volume. Returns an empty polygon when nothing is left, or when
+/// a clip coordinate is NaN or beyond ±[`MAX_CLIP_COORD`] (infinities included).
 pub fn clip_triangle<const V: usize>(tri: [Vertex<V>; 3]) -> Polygon<V> {
-    if tri.iter().any(|v| v.clip.iter().any(|c| !c.is_finite())) {
+    let acceptable = |c: &f32| c.abs() <= MAX_CLIP_COORD; // false for NaN too
+    if !tri.iter().all(|v| v.clip.iter().all(acceptable)) {
         return Polygon::empty();
-    }
-
-    // Out-codes: bit k set when the vertex is outside plane k.
-    let outcode = |v: &Vertex<V>| -> u32 {
-        PLANES
-            .iter()
-            .enumerate()
-            .map(|(k, d)| u32::from(d(&v.clip) < 0.0) << k)
-            .fold(0, |a, b| a | b)
-    };
-    let codes = tri.map(|v| outcode(&v));
-    if codes[0] & codes[1] & codes[2] != 0 {
-        return Polygon::empty(); // all three outside one plane
     }
     let mut poly = Polygon::from_triangle(tri);
-    let straddled = codes[0] | codes[1] | codes[2];
-    if straddled == 0 {
-        return poly;
-    }
-
-    for (k, distance) in PLANES.iter().enumerate() {
-        if straddled & (1 << k) == 0 {
-            continue;
-        }
-        poly = clip_polygon(&poly, *distance);
-        if poly.len < 3 {
+    for plane in &PLANES {
+        // Tested on the current polygon, not the input: a new vertex may lie outside a plane
+        // that every input vertex was inside (the w plane's new vertices, whose x, y, z carry
+        // cancellation error, are the case in point).
+        let inside = poly.vertices().iter().filter(|v| (plane.distance)(&v.clip) >= 0.0).count();
+        if inside == 0 {
             return Polygon::empty();
         }
+        if inside < poly.len {
+            poly = clip_polygon(&poly, plane);
+            if poly.len < 3 {
+                return Polygon::empty();
+            }
+        }
     }
-    if poly.vertices().iter().any(|v| v.clip.iter().any(|c| !c.is_finite())) {
-        return Polygon::empty();
-    }
+    debug_assert!(
+        poly.vertices().iter().all(|v| v.clip.iter().all(|c| c.is_finite()) && v.clip[3] > 0.0),
+        "clipping stays finite below MAX_CLIP_COORD and keeps w > 0"
+    );
     poly
 }
 
 /// One Sutherland–Hodgman step against one plane.
-fn clip_polygon<const V: usize>(poly: &Polygon<V>, distance: PlaneDistance) -> Polygon<V> {
+fn clip_polygon<const V: usize>(poly: &Polygon<V>, plane: &Plane) -> Polygon<V> {
     let src = poly.vertices();
     let mut out = Polygon::empty();
     for (i, cur) in src.iter().enumerate() {
         let next = &src[(i + 1) % src.len()];
-        let d_cur = distance(&cur.clip);
-        let d_next = distance(&next.clip);
+        let d_cur = (plane.distance)(&cur.clip);
+        let d_next = (plane.distance)(&next.clip);
         if d_cur >= 0.0 {
             out.push(*cur);
         }
         if (d_cur >= 0.0) != (d_next >= 0.0) {
             let (inside, outside, d_in, d_out) =
                 if d_cur >= 0.0 { (cur, next, d_cur, d_next) } else { (next, cur, d_next, d_cur) };
-            out.push(interpolate(inside, outside, d_in / (d_in - d_out)));
+            let mut v = interpolate(inside, outside, d_in / (d_in - d_out));
+            (plane.put_on_plane)(&mut v.clip);
+            out.push(v);
         }
     }
     out
 }
 
-/// `inside + t · (outside − inside)` on every component.
+/// `(1 − t) · inside + t · outside` on every component.
 fn interpolate<const V: usize>(inside: &Vertex<V>, outside: &Vertex<V>, t: f32) -> Vertex<V> {
     debug_assert!((0.0..=1.0).contains(&t), "t = {t}");
+    let s = 1.0 - t;
     Vertex {
-        clip: std::array::from_fn(|c| inside.clip[c] + t * (outside.clip[c] - inside.clip[c])),
-        varyings: std::array::from_fn(|c| {
-            inside.varyings[c] + t * (outside.varyings[c] - inside.varyings[c])
-        }),
+        clip: std::array::from_fn(|c| s * inside.clip[c] + t * outside.clip[c]),
+        varyings: std::array::from_fn(|c| s * inside.varyings[c] + t * outside.varyings[c]),
     }
 }

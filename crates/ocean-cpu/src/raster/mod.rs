@@ -3,8 +3,8 @@
 //! Pipeline, per triangle, in submission order:
 //!
 //! 1. **Clip** in clip space to `w ≥ W_MIN`, `−w ≤ x, y ≤ w`, `0 ≤ z ≤ w` ([`clip`]); varyings
-//!    of new vertices are interpolated linearly in clip space. A triangle with a NaN or infinite
-//!    clip coordinate is dropped. The clipped convex polygon is fanned from its first vertex.
+//!    of new vertices are interpolated linearly in clip space. A triangle with a NaN, infinite or
+//!    enormous (beyond ±[`clip::MAX_CLIP_COORD`] ≈ 4e37) clip coordinate is dropped. The clipped convex polygon is fanned from its first vertex.
 //! 2. **Viewport transform** of wgpu on Vulkan: NDC x right, y up, z in [0, 1];
 //!    `x_fb = (x/w + 1)·W/2`, `y_fb = (1 − y/w)·H/2` (framebuffer y down), `z_fb = z/w`
 //!    ([`fixed_point::to_framebuffer`] has the exact order of operations).
