@@ -9,8 +9,10 @@
 //!   `i0` and `i0 + 1` each wrapped; same for t with `β`. The weighted sum is [`bilinear`].
 //!
 //! Integer texel coordinates are formed in i64 from the floored f32, exactly for any
-//! |u| < 2^63 (saturating beyond; a NaN coordinate reads texel 0, with NaN weights when
-//! linear). Like a GPU, large coordinates lose sub-texel precision in f32 before this point.
+//! |u| < 2^63 (saturating beyond), so any finite `s·W` gives a finite result and never panics.
+//! A NaN coordinate, or one whose `s·W` overflows to infinity, reads texel 0 (nearest) or
+//! returns NaN (linear: NaN weights). Like a GPU, large coordinates lose sub-texel precision
+//! in f32 before this point.
 //!
 //! Only one filter applies: level 0 is the only level, and a sampler whose `mag_filter` and
 //! `min_filter` differ would pick one by the derivative-based λ, which the CPU does not have.
