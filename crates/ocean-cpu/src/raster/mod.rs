@@ -2,42 +2,45 @@
 //!
 //! Pipeline, per triangle, in submission order:
 //!
-//! 1. **Clip** in clip space to `w ≥ W_MIN`, `−w ≤ x, y ≤ w`, `0 ≤ z ≤ w` ([`clip`]); varyings
+//! 1. **Clip** in clip space to `w ≥ W_MIN`, `−w ≤ x, y ≤ w`, `0 ≤ z ≤ w` (`clip.rs`); varyings
 //!    of new vertices are interpolated linearly in clip space. A triangle with a NaN, infinite or
-//!    enormous (beyond ±[`clip::MAX_CLIP_COORD`] ≈ 4e37) clip coordinate is dropped. The clipped convex polygon is fanned from its first vertex.
+//!    enormous (beyond ±[`MAX_CLIP_COORD`] ≈ 4e37) clip coordinate is dropped. The clipped convex polygon is fanned from its first vertex.
 //! 2. **Viewport transform** of wgpu on Vulkan: NDC x right, y up, z in [0, 1];
 //!    `x_fb = (x/w + 1)·W/2`, `y_fb = (1 − y/w)·H/2` (framebuffer y down), `z_fb = z/w`
-//!    ([`fixed_point::to_framebuffer`] has the exact order of operations).
-//! 3. **Snap** x_fb, y_fb to 1/256 pixel, round half to even ([`fixed_point`]).
+//!    (`fixed_point.rs` has the exact order of operations).
+//! 3. **Snap** x_fb, y_fb to 1/256 pixel, round half to even (`fixed_point.rs`).
 //! 4. **Cull** on the sign of the snapped area ([`FrontFace`] documents the winding); zero-area
 //!    triangles are dropped.
 //! 5. **Coverage**: pixel (x, y) is sampled at its centre (x + ½, y + ½); exact i64 edge
-//!    functions with the top-left rule ([`edge`]).
+//!    functions with the top-left rule (`edge.rs`).
 //! 6. **Interpolation**: barycentrics in f32 from the edge functions, depth linear in screen
-//!    space, varyings perspective-correct (the formulas are on `band::shade_pixel`).
+//!    space, varyings perspective-correct (the formulas are on `shade_pixel` in `band.rs`).
 //! 7. **Depth test** on the f32 depth buffer, **shading** by a closure (which may discard),
 //!    **blending** into the f32 RGBA target.
 //!
-//! Parallelism: the target is split into bands of [`band::BAND_ROWS`] rows; each band draws the
+//! Parallelism: the target is split into bands of [`BAND_ROWS`] rows; each band draws the
 //! triangles that overlap it, in submission order, on whatever rayon thread runs it. Bands are
 //! disjoint and floats are never reduced across them, so the image is bit-identical for any
 //! number of threads. Triangle setup runs in parallel too and is collected in order. The draw
 //! runs on the current rayon pool (use `ThreadPool::install` to choose one).
 
-pub mod band;
-pub mod clip;
-pub mod edge;
-pub mod fixed_point;
-pub mod setup;
+mod band;
+mod clip;
+mod edge;
+mod fixed_point;
+mod setup;
 mod state;
 mod target;
 
 use rayon::prelude::*;
 
+pub use band::BAND_ROWS;
+pub use clip::{MAX_CLIP_COORD, W_MIN};
+pub use fixed_point::SUBPIXEL_BITS;
 pub use state::{BlendMode, CompareFunction, CullMode, FrontFace, RasterState};
 pub use target::RenderTarget;
 
-use band::{BAND_ROWS, Band, raster_band};
+use band::{Band, raster_band};
 use setup::{TriangleSetup, setup_triangle};
 
 /// A vertex as a vertex shader outputs it: the clip-space position (`@builtin(position)`) and
