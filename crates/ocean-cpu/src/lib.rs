@@ -1,1 +1,12 @@
-//! placeholder
+//! The deterministic software renderer of `ocean`: the correctness oracle for the wgpu path.
+//!
+//! Everything here follows the Vulkan rules as Mesa's lavapipe implements them (see the
+//! "Determinism contract" in the project's DESIGN.md), and every result is a pure function of
+//! its inputs: bit-identical across runs and across any number of rayon threads.
+//!
+//! - [`raster`]: triangle rasterizer (clipping, 8-bit sub-pixel snapping, top-left fill rule,
+//!   perspective-correct varyings, f32 depth test), parallel over disjoint row bands.
+//! - [`sampler`]: `textureSample` / `textureSampleLevel` on a 2D f32 texture, level 0.
+
+pub mod raster;
+pub mod sampler;
