@@ -12,9 +12,11 @@
 //! - h(x, t) = Σ_k h̃(k, t) exp(i k·x) — no 1/N² factor (it is folded into h̃), so an inverse
 //!   FFT without normalisation computes it.
 
+pub mod camera;
 pub mod dispersion;
 pub mod error;
 pub mod fresnel;
+pub mod plan;
 pub mod rng;
 pub mod scene;
 pub mod spectrum;
