@@ -15,6 +15,7 @@
 pub mod camera;
 pub mod dispersion;
 pub mod error;
+pub mod frame;
 pub mod fresnel;
 pub mod plan;
 pub mod rng;

@@ -1,0 +1,299 @@
+//! The uniforms of the frame's render passes (`objects`, `shadow`, `water`), defined once
+//! here and declared with the same names in WGSL (`shaders/shared/frame.wgsl`); a test
+//! compares sizes and offsets with the naga-parsed declaration.
+//!
+//! Every position a shader sees is camera-relative (see [`crate::camera`]); the only absolute
+//! coordinates that reach f32 are the eye's height and the eye's position modulo each wave
+//! patch (reduced in f64), which is what tiling the maps needs.
+
+use bytemuck::{Pod, Zeroable};
+use glam::{DMat4, DVec3, DVec4};
+
+use crate::camera::{Camera, to_cols_f32};
+use crate::plan::{FramePlan, Pass};
+use crate::scene::{Object, Scene, Shape};
+
+/// Phong exponent s of the sun's specular term (seed 000 §5.3: "s is specified before
+/// rendering"); 400 gives a glitter path a few degrees wide.
+pub const SUN_SPECULAR_EXPONENT: f32 = 400.0;
+/// Scale of the reflection-map lookup shift by the bump value (§5.2, Fig. 5), in texture
+/// units per unit of normal tilt.
+pub const REFLECTION_DISTORTION: f32 = 0.04;
+/// The same for the refraction map.
+pub const REFRACTION_DISTORTION: f32 = 0.03;
+/// Diffuse extinction coefficient K of clear ocean water, 1/m (Jerlov type II, ~0.1 /m at
+/// 500 nm); used by eq. 4's fog-from-depth and the water-volume colour.
+pub const WATER_EXTINCTION_PER_M: f32 = 0.12;
+/// Colour of deep water seen from above (linear RGB radiance at sun intensity 1), the
+/// C_deep_water of eq. 4.
+pub const DEEP_WATER_COLOR: [f32; 3] = [0.004, 0.016, 0.028];
+
+/// Uniforms of the `objects`, `shadow` and `water` stages (WGSL `FrameUniforms`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct FrameUniforms {
+    /// Camera-relative view-projection (reversed-Z infinite).
+    pub view_proj: [[f32; 4]; 4],
+    /// Camera-relative orthographic view-projection of the sun's shadow map (depth 0 near
+    /// the sun, 1 far, `Less`).
+    pub sun_view_proj: [[f32; 4]; 4],
+    /// (eye height above the mean sea plane, m; 0; 0; 0).
+    pub eye: [f32; 4],
+    /// (eye.x mod L_d, eye.z mod L_d, eye.x mod L_b, eye.z mod L_b), m: the eye's position in
+    /// the displacement and bump tiles.
+    pub patch_origin: [f32; 4],
+    /// (1/L_d, 1/L_b, ½ texel of the displacement map 0.5/N_d, ½ texel of the bump map).
+    pub patch_scale: [f32; 4],
+    /// Unit direction towards the sun (xyz); w = 1 when the sun lights the scene, else 0.
+    pub sun_dir: [f32; 4],
+    /// Sun colour × intensity (rgb); w = Phong exponent s.
+    pub sun_radiance: [f32; 4],
+    /// Deep-water colour (rgb); w = extinction K, 1/m.
+    pub water_color: [f32; 4],
+    /// (η of the water, reflection distortion, refraction distortion, refraction y-scale).
+    pub water_params: [f32; 4],
+    /// (width, height, 1/width, 1/height) of the main view, pixels.
+    pub viewport: [f32; 4],
+    /// 1.0 or 0.0: (waves, reflection map, refraction map, shadow map) present.
+    pub passes: [f32; 4],
+    /// Irradiance-like ambient light from the sky on an upward surface, divided by π (rgb),
+    /// for the objects' diffuse shading; w unused.
+    pub sky_ambient: [f32; 4],
+}
+
+/// Vertex of the objects' meshes (WGSL `ObjectVertex`): camera-relative position, unit normal,
+/// linear albedo.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct ObjectVertex {
+    /// Position − eye, m.
+    pub position: [f32; 3],
+    /// Unit normal.
+    pub normal: [f32; 3],
+    /// Linear RGB albedo.
+    pub color: [f32; 3],
+}
+
+/// Tessellation of a sphere: latitude bands × longitude segments.
+pub const SPHERE_BANDS: u32 = 24;
+/// Longitude segments of a sphere.
+pub const SPHERE_SEGMENTS: u32 = 48;
+
+/// Triangles (three vertices each) of every object, camera-relative, counter-clockwise seen
+/// from outside.
+pub fn object_triangles(objects: &[Object], eye: DVec3) -> Vec<[ObjectVertex; 3]> {
+    let mut tris = Vec::new();
+    for o in objects {
+        let c = DVec3::from_array(o.center);
+        let color = o.color.map(|v| v as f32);
+        let vertex = |p: DVec3, n: DVec3| ObjectVertex {
+            position: (p - eye).as_vec3().to_array(),
+            normal: n.as_vec3().to_array(),
+            color,
+        };
+        match o.shape() {
+            Some(Shape::Sphere { radius }) => {
+                let point = |b: u32, s: u32| {
+                    let theta = std::f64::consts::PI * b as f64 / SPHERE_BANDS as f64;
+                    let phi = std::f64::consts::TAU * s as f64 / SPHERE_SEGMENTS as f64;
+                    DVec3::new(theta.sin() * phi.cos(), theta.cos(), -theta.sin() * phi.sin())
+                };
+                for b in 0..SPHERE_BANDS {
+                    for s in 0..SPHERE_SEGMENTS {
+                        let (n00, n01) = (point(b, s), point(b, s + 1));
+                        let (n10, n11) = (point(b + 1, s), point(b + 1, s + 1));
+                        let v = |n: DVec3| vertex(c + n * radius, n);
+                        if b > 0 {
+                            tris.push([v(n00), v(n10), v(n01)]);
+                        }
+                        if b + 1 < SPHERE_BANDS {
+                            tris.push([v(n01), v(n10), v(n11)]);
+                        }
+                    }
+                }
+            }
+            Some(Shape::Box { size }) => {
+                let h = DVec3::from_array(size) * 0.5;
+                // Each face: normal axis and the two in-face axes in counter-clockwise order.
+                for (n, u, w) in [
+                    (DVec3::X, DVec3::NEG_Z, DVec3::Y),
+                    (DVec3::NEG_X, DVec3::Z, DVec3::Y),
+                    (DVec3::Y, DVec3::X, DVec3::NEG_Z),
+                    (DVec3::NEG_Y, DVec3::X, DVec3::Z),
+                    (DVec3::Z, DVec3::X, DVec3::Y),
+                    (DVec3::NEG_Z, DVec3::NEG_X, DVec3::Y),
+                ] {
+                    let corner = |a: f64, b: f64| c + (n + u * a + w * b) * h;
+                    let q = [
+                        corner(-1.0, -1.0),
+                        corner(1.0, -1.0),
+                        corner(1.0, 1.0),
+                        corner(-1.0, 1.0),
+                    ];
+                    tris.push([vertex(q[0], n), vertex(q[1], n), vertex(q[2], n)]);
+                    tris.push([vertex(q[0], n), vertex(q[2], n), vertex(q[3], n)]);
+                }
+            }
+            None => {}
+        }
+    }
+    tris
+}
+
+/// The sun's orthographic shadow camera: looks along −sun_dir at the bounding sphere of the
+/// objects above the water (camera-relative), depth 0 at the sphere's sun-side and 1 behind.
+/// `None` without such objects.
+pub fn sun_view_proj(objects: &[Object], eye: DVec3, sun_dir: DVec3) -> Option<DMat4> {
+    let mut lo = DVec3::splat(f64::INFINITY);
+    let mut hi = DVec3::splat(f64::NEG_INFINITY);
+    for o in objects {
+        let half = match o.shape()? {
+            Shape::Sphere { radius } => DVec3::splat(radius),
+            Shape::Box { size } => DVec3::from_array(size) * 0.5,
+        };
+        let c = DVec3::from_array(o.center);
+        if c.y + half.y <= 0.0 {
+            continue;
+        }
+        lo = lo.min(c - half);
+        hi = hi.max(c + half);
+    }
+    if !lo.is_finite() {
+        return None;
+    }
+    let centre = 0.5 * (lo + hi) - eye;
+    // The shadow can fall on the water as far as the objects' height above it, along the sun.
+    let radius = 0.5 * (hi - lo).length() + hi.y.max(0.0) / sun_dir.y.max(0.05);
+    let d = sun_dir.normalize();
+    let right = if d.cross(DVec3::Y).length_squared() > 1e-12 {
+        d.cross(DVec3::Y).normalize()
+    } else {
+        DVec3::X
+    };
+    let up = right.cross(d);
+    let fwd = -d;
+    // View: rows right, up, −fwd, relative to the sphere's centre; ortho: x,y/radius, depth
+    // (−z_view + radius)/(2 radius) ∈ [0, 1].
+    let view = DMat4::from_cols(
+        DVec4::new(right.x, up.x, -fwd.x, 0.0),
+        DVec4::new(right.y, up.y, -fwd.y, 0.0),
+        DVec4::new(right.z, up.z, -fwd.z, 0.0),
+        DVec4::W,
+    ) * DMat4::from_translation(-centre);
+    let proj = DMat4::from_cols(
+        DVec4::new(1.0 / radius, 0.0, 0.0, 0.0),
+        DVec4::new(0.0, 1.0 / radius, 0.0, 0.0),
+        DVec4::new(0.0, 0.0, -0.5 / radius, 0.0),
+        DVec4::new(0.0, 0.0, 0.5, 1.0),
+    );
+    Some(proj * view)
+}
+
+impl FrameUniforms {
+    /// The uniforms of a scene's frame for a camera and plan.
+    pub fn new(scene: &Scene, camera: &Camera, plan: &FramePlan) -> Self {
+        let o = &scene.ocean;
+        let eye = camera.eye;
+        let l_d = o.patch_size_m;
+        let l_b = o.patch_size_m / o.bump_patch_divisor as f64;
+        let (sun_dir, sun_radiance, sun_on) = match &scene.sun {
+            Some(s) => {
+                let d = DVec3::from_array(s.direction).normalize();
+                let on = d.y > 0.0 && s.intensity > 0.0;
+                let rad = DVec3::from_array(s.color) * s.intensity;
+                (d, rad, on)
+            }
+            None => (DVec3::Y, DVec3::ZERO, false),
+        };
+        let shadow = sun_view_proj(&scene.objects, eye, sun_dir).unwrap_or(DMat4::IDENTITY);
+        let flag = |p: Pass| if plan.runs(p) { 1.0 } else { 0.0 };
+        let eta = scene.water.ior as f32;
+        FrameUniforms {
+            view_proj: to_cols_f32(camera.view_proj()),
+            sun_view_proj: to_cols_f32(shadow),
+            eye: [eye.y as f32, 0.0, 0.0, 0.0],
+            patch_origin: [
+                eye.x.rem_euclid(l_d) as f32,
+                eye.z.rem_euclid(l_d) as f32,
+                eye.x.rem_euclid(l_b) as f32,
+                eye.z.rem_euclid(l_b) as f32,
+            ],
+            patch_scale: [
+                (1.0 / l_d) as f32,
+                (1.0 / l_b) as f32,
+                (0.5 / o.resolution as f64) as f32,
+                (0.5 / o.bump_resolution as f64) as f32,
+            ],
+            sun_dir: [
+                sun_dir.x as f32,
+                sun_dir.y as f32,
+                sun_dir.z as f32,
+                if sun_on { 1.0 } else { 0.0 },
+            ],
+            sun_radiance: [
+                sun_radiance.x as f32,
+                sun_radiance.y as f32,
+                sun_radiance.z as f32,
+                SUN_SPECULAR_EXPONENT,
+            ],
+            water_color: [
+                DEEP_WATER_COLOR[0],
+                DEEP_WATER_COLOR[1],
+                DEEP_WATER_COLOR[2],
+                WATER_EXTINCTION_PER_M,
+            ],
+            water_params: [eta, REFLECTION_DISTORTION, REFRACTION_DISTORTION, 1.0 / eta],
+            viewport: [
+                camera.width as f32,
+                camera.height as f32,
+                1.0 / camera.width as f32,
+                1.0 / camera.height as f32,
+            ],
+            passes: [
+                flag(Pass::Waves),
+                flag(Pass::ReflectionMap),
+                flag(Pass::RefractionMap),
+                flag(Pass::ShadowMap),
+            ],
+            sky_ambient: [0.0; 4],
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::ObjectKind;
+
+    #[test]
+    fn meshes_are_closed_and_outward() {
+        let objects = [
+            Object {
+                kind: ObjectKind::Sphere,
+                center: [1.0, 2.0, 3.0],
+                radius: Some(2.0),
+                size: None,
+                color: [1.0; 3],
+            },
+            Object {
+                kind: ObjectKind::Box,
+                center: [-10.0, 0.0, 0.0],
+                radius: None,
+                size: Some([1.0, 2.0, 3.0]),
+                color: [1.0; 3],
+            },
+        ];
+        let tris = object_triangles(&objects, DVec3::ZERO);
+        // Divergence theorem: Σ (centroid · area-normal)/3 = volume, positive when every face
+        // winds counter-clockwise seen from outside.
+        let mut volume = [0.0f64; 2];
+        for t in &tris {
+            let p = t.map(|v| DVec3::from(v.position.map(f64::from)));
+            let which = usize::from(p[0].x < -5.0);
+            volume[which] += p[0].dot(p[1].cross(p[2])) / 6.0;
+        }
+        let sphere = 4.0 / 3.0 * std::f64::consts::PI * 8.0;
+        assert!((volume[0] / sphere - 1.0).abs() < 0.02, "{volume:?}");
+        assert!((volume[1] - 6.0).abs() < 1e-5, "{volume:?}");
+    }
+}

@@ -1,0 +1,109 @@
+// Stage `objects`: the scene's spheres and boxes, lit by the sun and the sky, drawn three
+// ways (seed 000 §2.2, §5.2):
+// - vs_main / fs_main: the main view;
+// - vs_reflect / fs_reflect: mirrored in the plane y = 0 and seen from the eye, the parts
+//   above the water only — the reflection map (alpha = coverage);
+// - vs_refract / fs_refract: the parts under the water, scaled along y by 1/η (the apparent
+//   depth of a flat interface seen from above), fogged by eq. 4 — the refraction map.
+// CPU mirror: crates/ocean-cpu/src/shaders/objects.rs.
+
+// #import shared/frame.wgsl
+
+@group(0) @binding(0) var<uniform> frame: FrameUniforms;
+
+struct ObjectVertex {
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) color: vec3<f32>,
+}
+
+struct VertexOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) normal: vec3<f32>,
+    @location(1) color: vec3<f32>,
+    // Camera-relative position of the point as drawn (mirrored or scaled).
+    @location(2) rel: vec3<f32>,
+    // Height of the original point above the mean sea plane, m.
+    @location(3) world_y: f32,
+}
+
+const INV_PI: f32 = 0.31830988618;
+
+// Lambert: albedo/π · (E_sun cos θ + π·ambient).
+fn shade(normal: vec3<f32>, color: vec3<f32>) -> vec3<f32> {
+    let n = unit(normal);
+    let cos_sun = max(dot3(n, frame.sun_dir.xyz), 0.0) * frame.sun_dir.w;
+    let direct = frame.sun_radiance.xyz * (cos_sun * INV_PI);
+    return color * (direct + frame.sky_ambient.xyz);
+}
+
+@vertex
+fn vs_main(v: ObjectVertex) -> VertexOut {
+    var out: VertexOut;
+    out.clip = transform_point(frame.view_proj, v.position);
+    out.normal = v.normal;
+    out.color = v.color;
+    out.rel = v.position;
+    out.world_y = v.position.y + frame.eye.x;
+    return out;
+}
+
+@fragment
+fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
+    return vec4<f32>(shade(in.normal, in.color), 1.0);
+}
+
+@vertex
+fn vs_reflect(v: ObjectVertex) -> VertexOut {
+    // World y → −y; camera-relative: y_rel → −y_rel − 2·eye_height.
+    let mirrored = vec3<f32>(v.position.x, -v.position.y - 2.0 * frame.eye.x, v.position.z);
+    var out: VertexOut;
+    out.clip = transform_point(frame.view_proj, mirrored);
+    out.normal = vec3<f32>(v.normal.x, -v.normal.y, v.normal.z);
+    out.color = v.color;
+    out.rel = mirrored;
+    out.world_y = v.position.y + frame.eye.x;
+    return out;
+}
+
+@fragment
+fn fs_reflect(in: VertexOut) -> @location(0) vec4<f32> {
+    // Only what is above the water is reflected.
+    if (in.world_y < 0.0) {
+        discard;
+    }
+    // The mirrored normal lit by the mirrored sun is the original normal lit by the sun.
+    let n = vec3<f32>(in.normal.x, -in.normal.y, in.normal.z);
+    return vec4<f32>(shade(n, in.color), 1.0);
+}
+
+@vertex
+fn vs_refract(v: ObjectVertex) -> VertexOut {
+    // World y → y/η (apparent depth); camera-relative: y_rel → (y_rel + eye_height)/η − eye.
+    let world_y = v.position.y + frame.eye.x;
+    let scaled = vec3<f32>(v.position.x, world_y * frame.water_params.w - frame.eye.x, v.position.z);
+    var out: VertexOut;
+    out.clip = transform_point(frame.view_proj, scaled);
+    out.normal = v.normal;
+    out.color = v.color;
+    out.rel = scaled;
+    out.world_y = world_y;
+    return out;
+}
+
+@fragment
+fn fs_refract(in: VertexOut) -> @location(0) vec4<f32> {
+    // Only what is under the water is seen through it.
+    if (in.world_y > 0.0) {
+        discard;
+    }
+    // Eq. 4: C = α(d)·C_deep + (1 − α(d))·C_obj, α = 1 − e^{−K d}, d the path length in the
+    // water from the (apparent) point towards the eye: the part of the segment below y = 0.
+    let depth_below = -(in.rel.y + frame.eye.x);
+    let height_above = max(frame.eye.x, 0.0);
+    let dist = sqrt(dot3(in.rel, in.rel));
+    let d = dist * (depth_below / (depth_below + height_above));
+    let fog = 1.0 - exp(-frame.water_color.w * d);
+    let obj = shade(in.normal, in.color);
+    return vec4<f32>(frame.water_color.xyz * fog + obj * (1.0 - fog), 1.0);
+}

@@ -1,0 +1,148 @@
+// Stage `water`: the final pass of seed 000 (§2.3, §5, eq. 3),
+//   C_water = F·C_reflect + (1 − F)·C_refract + A_shadow·C_specular,
+// on the near/far patch mesh (§3): the vertex shader displaces the mesh by the displacement
+// map (§5.4; the weight w forces the near patch's boundary and the far patch flat), the
+// fragment shader bumps the normal with the bump map (§5), looks the Fresnel term and the
+// bumped view vector up in the 2D Fresnel texture (§5.1, §5.3), shifts the reflection- and
+// refraction-map lookups by the bump (§5.2), and adds the sun's Phong highlight attenuated
+// by the shadow map (§5.3). The environment (sky) is reflected analytically along the bumped
+// reflection direction; the reflection map adds the mirrored objects over it by coverage.
+// Seen from below (camera under the water) the surface reflects the water volume and
+// transmits the sky through Snell's window, with F for η⁻¹ (total internal reflection).
+// CPU mirror: crates/ocean-cpu/src/shaders/water.rs.
+
+// #import shared/frame.wgsl
+// #import shared/preetham.wgsl
+
+@group(0) @binding(0) var<uniform> frame: FrameUniforms;
+// (disp_x, height, disp_z, jacobian) of the displacement map.
+@group(0) @binding(1) var displacement: texture_2d<f32>;
+// (slope_x, slope_z, 0, 0) of the displacement map.
+@group(0) @binding(2) var displacement_slopes: texture_2d<f32>;
+// (slope_x, slope_z, height, jacobian) of the bump map.
+@group(0) @binding(3) var bump: texture_2d<f32>;
+// The 2D Fresnel textures for η (seen from above) and η⁻¹ (from below): RGB = local view
+// vector, A = F.
+@group(0) @binding(4) var fresnel_above: texture_2d<f32>;
+@group(0) @binding(5) var fresnel_below: texture_2d<f32>;
+@group(0) @binding(6) var reflection_map: texture_2d<f32>;
+@group(0) @binding(7) var refraction_map: texture_2d<f32>;
+@group(0) @binding(8) var shadow_map: texture_2d<f32>;
+@group(0) @binding(9) var wrap_linear: sampler;
+@group(0) @binding(10) var clamp_linear: sampler;
+
+struct WaterVertex {
+    // Position on the sea plane relative to the eye, (x, z), m.
+    @location(0) pos: vec2<f32>,
+    // Displacement weight: 1 inside the near patch, 0 on its boundary and the far patch.
+    @location(1) weight: f32,
+}
+
+struct VertexOut {
+    @builtin(position) clip: vec4<f32>,
+    // Camera-relative position of the displaced surface point.
+    @location(0) rel: vec3<f32>,
+    @location(1) uv_d: vec2<f32>,
+    @location(2) uv_b: vec2<f32>,
+    @location(3) weight: f32,
+}
+
+// Bias of the shadow-map depth comparison (depth units of the sun's ortho projection).
+const SHADOW_BIAS: f32 = 0.002;
+
+@vertex
+fn vs_main(v: WaterVertex) -> VertexOut {
+    // Texel (i, j) of an N×N map holds the sample at (i, j)·L/N: u = x/L + ½/N.
+    let uv_d = (v.pos + frame.patch_origin.xy) * frame.patch_scale.x + frame.patch_scale.z;
+    let uv_b = (v.pos + frame.patch_origin.zw) * frame.patch_scale.y + frame.patch_scale.w;
+    let d = textureSampleLevel(displacement, wrap_linear, uv_d, 0.0) * (v.weight * frame.passes.x);
+    let rel = vec3<f32>(v.pos.x + d.x, d.y - frame.eye.x, v.pos.y + d.z);
+    var out: VertexOut;
+    out.clip = transform_point(frame.view_proj, rel);
+    out.rel = rel;
+    out.uv_d = uv_d;
+    out.uv_b = uv_b;
+    out.weight = v.weight;
+    return out;
+}
+
+// 1 where the sun reaches the point, 0 where the shadow map holds something nearer the sun.
+fn sun_visibility(rel: vec3<f32>) -> f32 {
+    if (frame.passes.w == 0.0) {
+        return 1.0;
+    }
+    let s = transform_point(frame.sun_view_proj, rel);
+    let u = s.x * 0.5 + 0.5;
+    let v = 0.5 - s.y * 0.5;
+    if (u < 0.0 || u >= 1.0 || v < 0.0 || v >= 1.0) {
+        return 1.0;
+    }
+    let size = vec2<f32>(textureDimensions(shadow_map));
+    let texel = vec2<i32>(i32(floor(u * size.x)), i32(floor(v * size.y)));
+    let occluder = textureLoad(shadow_map, texel, 0).x;
+    if (occluder < s.z - SHADOW_BIAS) {
+        return 0.0;
+    }
+    return 1.0;
+}
+
+@fragment
+fn fs_main(in: VertexOut, @builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
+    // Bumped normal (§5): the slopes of the displacement map (faded with w like the
+    // displacement itself) plus those of the bump map.
+    let sd = textureSample(displacement_slopes, wrap_linear, in.uv_d).xy * (in.weight * frame.passes.x);
+    let sb = textureSample(bump, wrap_linear, in.uv_b).xy * frame.passes.x;
+    let n = unit(vec3<f32>(-(sd.x + sb.x), 1.0, -(sd.y + sb.y)));
+    // (du, dv) of §5: the horizontal components of the bumped unit normal.
+    let du = n.x;
+    let dv = n.z;
+    let view = unit(-in.rel);
+    let screen = frag.xy * frame.viewport.zw;
+    if (view.y >= 0.0) {
+        // Fresnel bump mapping (§5.1, Fig. 4): the view vector bumped by (−du, −dv), on the
+        // whole-hemisphere texture (x, y) ∈ [−1, 1]² ↦ [0, 1]².
+        let st = vec2<f32>(view.x - du, view.z - dv) * 0.5 + 0.5;
+        let fres = textureSample(fresnel_above, clamp_linear, st);
+        let f = fres.w;
+        // Reflection (§4.2, §5.2): sky along the bumped reflection direction, mirrored
+        // objects from the reflection map shifted by the bump, over it by coverage.
+        let vn = dot3(view, n);
+        var r = n * (2.0 * vn) - view;
+        r.y = max(r.y, 0.0);
+        let sky = sky_radiance(unit(r + vec3<f32>(0.0, 1e-6, 0.0)));
+        let refl = textureSample(reflection_map, clamp_linear, screen + vec2<f32>(du, dv) * frame.water_params.y);
+        let a_refl = refl.w * frame.passes.y;
+        let c_reflect = sky * (1.0 - a_refl) + refl.xyz * a_refl;
+        // Refraction (§5.2, eq. 4): the fogged objects under the water, over the water
+        // volume colour.
+        let refr = textureSample(refraction_map, clamp_linear, screen + vec2<f32>(du, dv) * frame.water_params.z);
+        let a_refr = refr.w * frame.passes.z;
+        let c_refract = frame.water_color.xyz * (1.0 - a_refr) + refr.xyz * a_refr;
+        // Specular (§5.3): (V·R)^s with V the bumped view vector stored in the texture's RGB
+        // (local z = world y) and R the sun's reflection about (0, 1, 0).
+        let vb = vec3<f32>(fres.x, fres.z, fres.y);
+        let r_sun = vec3<f32>(-frame.sun_dir.x, frame.sun_dir.y, -frame.sun_dir.z);
+        let cos_spec = max(dot3(vb, r_sun), 0.0);
+        let spec = frame.sun_radiance.xyz * (pow(cos_spec, frame.sun_radiance.w) * frame.sun_dir.w);
+        let shadow = sun_visibility(in.rel);
+        let c = c_reflect * f + c_refract * (1.0 - f) + spec * shadow;
+        return vec4<f32>(c, 1.0);
+    }
+    // From below: the normal facing the eye is (n.x, −n.y, n.z), its horizontal part again
+    // (du, dv); F for η⁻¹ (1 beyond the critical angle: total internal reflection).
+    let st = vec2<f32>(view.x - du, view.z - dv) * 0.5 + 0.5;
+    let f = textureSample(fresnel_below, clamp_linear, st).w;
+    // Snell's window: the transmitted ray leaves upwards through the normal (n.x, n.y, n.z),
+    // η_i/η_t = η (water to air).
+    let eta = frame.water_params.x;
+    let i = -view;
+    let cos_i = -dot3(i, n);
+    let k = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
+    var sky = vec3<f32>(0.0, 0.0, 0.0);
+    if (k > 0.0) {
+        let t = i * eta + n * (eta * cos_i - sqrt(k));
+        sky = sky_radiance(unit(vec3<f32>(t.x, max(t.y, 0.0) + 1e-6, t.z)));
+    }
+    let c = frame.water_color.xyz * f + sky * (1.0 - f);
+    return vec4<f32>(c, 1.0);
+}
