@@ -96,6 +96,12 @@ impl Dispersion {
             // ω = sqrt(g k): dω/dk = ω / (2k).
             return 0.5 * (g / k).sqrt();
         }
+        if kh < 1e-8 {
+            // Shallow-water limit: ω = k sqrt(g h) (1 − (kh)²/6 + …), so dω/dk = sqrt(g h) to
+            // 1e-16; the general form below would divide by an ω that underflows to 0 for
+            // k < 1e-150.
+            return (g * h).sqrt();
+        }
         // 2ω dω/dk = g (tanh(kh) + kh sech²(kh)).
         let t = kh.tanh();
         let sech2 = 1.0 - t * t;
@@ -174,6 +180,15 @@ mod tests {
                 let cg = d.group_velocity(k);
                 assert!((fd - cg).abs() < 1e-7 * cg, "k={k} fd={fd} cg={cg}");
             }
+        }
+    }
+
+    #[test]
+    fn group_velocity_is_finite_for_tiny_k() {
+        let d = Dispersion::new(G, 5.0, 0.0).unwrap();
+        for k in [1e-300, 1e-160, 1e-12, 1e-9] {
+            let cg = d.group_velocity(k);
+            assert!((cg - (G * 5.0).sqrt()).abs() < 1e-9, "k={k}: {cg}");
         }
     }
 
