@@ -77,8 +77,12 @@ fn sun_visibility(rel: vec3<f32>) -> f32 {
     if (u < 0.0 || u >= 1.0 || v < 0.0 || v >= 1.0) {
         return 1.0;
     }
-    let size = vec2<f32>(textureDimensions(shadow_map));
-    let texel = vec2<i32>(i32(floor(u * size.x)), i32(floor(v * size.y)));
+    let dims = vec2<i32>(textureDimensions(shadow_map));
+    // u < 1 can still round to u·size = size: clamp to the last texel.
+    let texel = vec2<i32>(
+        min(i32(floor(u * f32(dims.x))), dims.x - 1),
+        min(i32(floor(v * f32(dims.y))), dims.y - 1),
+    );
     let occluder = textureLoad(shadow_map, texel, 0).x;
     if (occluder < s.z - SHADOW_BIAS) {
         return 0.0;
@@ -132,15 +136,16 @@ fn fs_main(in: VertexOut, @builtin(position) frag: vec4<f32>) -> @location(0) ve
     // (du, dv); F for η⁻¹ (1 beyond the critical angle: total internal reflection).
     let st = vec2<f32>(view.x - du, view.z - dv) * 0.5 + 0.5;
     let f = textureSample(fresnel_below, clamp_linear, st).w;
-    // Snell's window: the transmitted ray leaves upwards through the normal (n.x, n.y, n.z),
-    // η_i/η_t = η (water to air).
+    // Snell's window: the ray i from the eye meets the surface from below (the normal facing
+    // it is −n) and leaves into the air, η_i/η_t = η (water to air):
+    // t = η i + (η cos θ_i − cos θ_t)(−n), cos θ_i = i·n, cos² θ_t = 1 − η² sin² θ_i.
     let eta = frame.water_params.x;
     let i = -view;
-    let cos_i = -dot3(i, n);
+    let cos_i = dot3(i, n);
     let k = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
     var sky = vec3<f32>(0.0, 0.0, 0.0);
     if (k > 0.0) {
-        let t = i * eta + n * (eta * cos_i - sqrt(k));
+        let t = i * eta + n * (sqrt(k) - eta * cos_i);
         sky = sky_radiance(unit(vec3<f32>(t.x, max(t.y, 0.0) + 1e-6, t.z)));
     }
     let c = frame.water_color.xyz * f + sky * (1.0 - f);

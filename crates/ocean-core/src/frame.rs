@@ -61,6 +61,21 @@ pub struct FrameUniforms {
     pub sky_ambient: [f32; 4],
 }
 
+/// Uniforms of the `fresnel_table` stage (WGSL `FresnelTableUniforms`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct FresnelTableUniforms {
+    /// η of the table: the water's index for the surface seen from above, its inverse from
+    /// below.
+    pub eta: f32,
+    /// N of the N×N table.
+    pub size: u32,
+    /// 0: the whole hemisphere (DESIGN.md), 1: the paper's half range.
+    pub mapping: u32,
+    /// Padding to 16 bytes.
+    pub pad: u32,
+}
+
 /// Vertex of the objects' meshes (WGSL `ObjectVertex`): camera-relative position, unit normal,
 /// linear albedo.
 #[repr(C)]

@@ -8,5 +8,7 @@
 //!   perspective-correct varyings, f32 depth test), parallel over disjoint row bands.
 //! - [`sampler`]: `textureSample` / `textureSampleLevel` on a 2D f32 texture, level 0.
 
+pub mod frame;
 pub mod raster;
 pub mod sampler;
+pub mod shaders;

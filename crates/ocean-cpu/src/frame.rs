@@ -1,0 +1,290 @@
+//! The frame of Hu et al. 2004 on the CPU: runs a [`FramePlan`] pass by pass with the shader
+//! mirrors and the rasterizer, keeping every intermediate map for the tests and the GPU
+//! cross-check.
+
+use std::time::{Duration, Instant};
+
+use ocean_core::camera::Camera;
+use ocean_core::frame::{FrameUniforms, FresnelTableUniforms, ObjectVertex, object_triangles};
+use ocean_core::plan::{FramePlan, Pass};
+use ocean_core::scene::Scene;
+use ocean_core::waves::{Synthesizer, WaveMaps};
+
+use crate::raster::{self, BlendMode, CompareFunction, RasterState, RenderTarget, Vertex};
+use crate::sampler::Texture2D;
+use crate::shaders::{fresnel_table, objects, shadow, water};
+
+/// Side of the 2D Fresnel textures (the error table in the README: 256² is within 2e-3 of
+/// eq. 2 up to 76° from the normal).
+pub const FRESNEL_TABLE_SIZE: u32 = 256;
+/// Side of the sun's shadow map.
+pub const SHADOW_MAP_SIZE: u32 = 1024;
+
+/// Errors of the CPU renderer.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// The scene's physics could not be set up.
+    #[error(transparent)]
+    Core(#[from] ocean_core::Error),
+    /// The image is larger than a render target may be.
+    #[error("image {width}×{height} exceeds the largest render target ({max}² pixels)")]
+    TooLarge {
+        /// Width asked for.
+        width: u32,
+        /// Height asked for.
+        height: u32,
+        /// The limit.
+        max: u32,
+    },
+}
+
+/// Every map a frame produced: the final HDR image and each intermediate.
+pub struct FrameBuffers {
+    /// (disp_x, height, disp_z, jacobian) of the displacement map.
+    pub displacement: Texture2D,
+    /// (slope_x, slope_z, 0, 0) of the displacement map.
+    pub displacement_slopes: Texture2D,
+    /// (slope_x, slope_z, height, jacobian) of the bump map.
+    pub bump: Texture2D,
+    /// Fresnel texture for η (surface seen from above).
+    pub fresnel_above: Texture2D,
+    /// Fresnel texture for 1/η (seen from below).
+    pub fresnel_below: Texture2D,
+    /// Depth of the objects from the sun (R channel).
+    pub shadow_map: Texture2D,
+    /// Mirrored objects above the water, alpha = coverage.
+    pub reflection_map: Texture2D,
+    /// Fogged objects under the water, alpha = coverage.
+    pub refraction_map: Texture2D,
+    /// The frame, linear HDR RGBA.
+    pub hdr: RenderTarget,
+    /// The frame's uniforms.
+    pub uniforms: FrameUniforms,
+    /// Wall time of each pass that ran, in order.
+    pub timings: Vec<(Pass, Duration)>,
+}
+
+/// An empty 1×1 texture bound where a skipped pass would have left its map: the shaders
+/// multiply what they read from it by 0 (the plan's pass flags).
+fn empty() -> Texture2D {
+    Texture2D::new(1, 1, vec![[0.0; 4]])
+}
+
+fn target_texture(t: RenderTarget) -> Texture2D {
+    Texture2D::new(t.width, t.height, t.color)
+}
+
+/// The wave maps packed as the water stage binds them.
+fn wave_textures(maps: &WaveMaps<f32>) -> (Texture2D, Texture2D) {
+    let n = maps.resolution() as u32;
+    let k = maps.height.len();
+    let disp = (0..k).map(|i| [maps.disp_x[i], maps.height[i], maps.disp_z[i], maps.jacobian[i]]);
+    let slopes = (0..k).map(|i| [maps.slope_x[i], maps.slope_z[i], 0.0, 0.0]);
+    (Texture2D::new(n, n, disp.collect()), Texture2D::new(n, n, slopes.collect()))
+}
+
+/// The water mesh of a view: (vertices, triangles).
+pub type WaterMesh = (Vec<water::WaterVertex>, Vec<[u32; 3]>);
+
+/// Draws the objects' triangles with one of the objects stage's entry-point pairs.
+fn draw_objects(
+    target: &mut RenderTarget,
+    state: &RasterState,
+    tris: &[[ObjectVertex; 3]],
+    u: &FrameUniforms,
+    vs: fn(&ObjectVertex, &FrameUniforms) -> objects::VertexOut,
+    fs: fn(&objects::VertexOut, &FrameUniforms) -> Option<[f32; 4]>,
+) {
+    let verts: Vec<[Vertex<{ objects::VARYINGS }>; 3]> = tris
+        .iter()
+        .map(|t| {
+            t.map(|v| {
+                let o = vs(&v, u);
+                Vertex::new(o.clip, o.varyings())
+            })
+        })
+        .collect();
+    raster::draw(target, state, &verts, |frag| {
+        fs(&objects::VertexOut::from_varyings(&frag.varyings), u)
+    });
+}
+
+/// Reversed-Z depth state of the views from the eye: `Greater`, cleared to 0.
+fn eye_state() -> RasterState {
+    RasterState { depth_compare: CompareFunction::Greater, ..RasterState::default() }
+}
+
+/// Renders a frame of a validated scene by its plan. `sky_radiance` is the sky stage's
+/// radiance of a world direction; `water_mesh` gives the near/far patch mesh of the view;
+/// `on_pass` is called as each pass starts (progress reporting).
+pub fn render(
+    scene: &Scene,
+    plan: &FramePlan,
+    sky_radiance: &(dyn Fn([f32; 3]) -> [f32; 3] + Sync),
+    draw_sky: &dyn Fn(&mut RenderTarget),
+    water_mesh: &dyn Fn(&Camera) -> WaterMesh,
+    on_pass: &mut dyn FnMut(Pass),
+) -> Result<FrameBuffers, Error> {
+    let camera = Camera::from_scene(&scene.camera)?;
+    let (w, h) = (camera.width, camera.height);
+    if w > RenderTarget::MAX_SIZE || h > RenderTarget::MAX_SIZE {
+        return Err(Error::TooLarge { width: w, height: h, max: RenderTarget::MAX_SIZE });
+    }
+    let u = FrameUniforms::new(scene, &camera, plan);
+    let mut timings = Vec::new();
+    let mut timed = |pass: Pass, start: Instant| timings.push((pass, start.elapsed()));
+
+    // waves
+    let (mut displacement, mut displacement_slopes, mut bump) = (empty(), empty(), empty());
+    if plan.runs(Pass::Waves) {
+        on_pass(Pass::Waves);
+        let t0 = Instant::now();
+        let surface = scene.ocean.surface()?;
+        let t = scene.ocean.time_s;
+        let chop = scene.ocean.choppiness;
+        let d = Synthesizer::<f32>::new(surface.displacement.resolution())?.synthesize(
+            &surface.displacement,
+            t,
+            chop,
+        )?;
+        (displacement, displacement_slopes) = wave_textures(&d);
+        let b = Synthesizer::<f32>::new(surface.bump.resolution())?.synthesize(
+            &surface.bump,
+            t,
+            chop,
+        )?;
+        let n = b.resolution() as u32;
+        bump = Texture2D::new(
+            n,
+            n,
+            (0..b.height.len())
+                .map(|i| [b.slope_x[i], b.slope_z[i], b.height[i], b.jacobian[i]])
+                .collect(),
+        );
+        timed(Pass::Waves, t0);
+    }
+
+    // fresnel_table
+    on_pass(Pass::FresnelTable);
+    let t0 = Instant::now();
+    let table = |eta: f32| {
+        fresnel_table::dispatch(&FresnelTableUniforms {
+            eta,
+            size: FRESNEL_TABLE_SIZE,
+            mapping: 0,
+            pad: 0,
+        })
+    };
+    let fresnel_above = table(u.water_params[0]);
+    let fresnel_below = table(1.0 / u.water_params[0]);
+    timed(Pass::FresnelTable, t0);
+
+    let tris = object_triangles(&scene.objects, camera.eye);
+
+    // shadow_map
+    let mut shadow_map = empty();
+    if plan.runs(Pass::ShadowMap) {
+        on_pass(Pass::ShadowMap);
+        let t0 = Instant::now();
+        let mut target = RenderTarget::new(SHADOW_MAP_SIZE, SHADOW_MAP_SIZE);
+        target.clear_color([1.0, 0.0, 0.0, 0.0]);
+        target.clear_depth(1.0);
+        let verts: Vec<[Vertex<0>; 3]> = tris
+            .iter()
+            .map(|t| t.map(|v| Vertex::new(shadow::vs_main(v.position, &u), [])))
+            .collect();
+        raster::draw(&mut target, &RasterState::default(), &verts, |f| {
+            Some(shadow::fs_main(f.frag_coord))
+        });
+        shadow_map = target_texture(target);
+        timed(Pass::ShadowMap, t0);
+    }
+
+    // reflection_map, refraction_map
+    let mut object_map = |pass: Pass, vs, fs| {
+        on_pass(pass);
+        let t0 = Instant::now();
+        let mut target = RenderTarget::new(w, h);
+        target.clear_depth(0.0);
+        draw_objects(&mut target, &eye_state(), &tris, &u, vs, fs);
+        let _ = t0;
+        target_texture(target)
+    };
+    let mut reflection_map = empty();
+    if plan.runs(Pass::ReflectionMap) {
+        let t0 = Instant::now();
+        reflection_map = object_map(Pass::ReflectionMap, objects::vs_reflect, objects::fs_reflect);
+        timed(Pass::ReflectionMap, t0);
+    }
+    let mut refraction_map = empty();
+    if plan.runs(Pass::RefractionMap) {
+        let t0 = Instant::now();
+        refraction_map = object_map(Pass::RefractionMap, objects::vs_refract, objects::fs_refract);
+        timed(Pass::RefractionMap, t0);
+    }
+
+    // sky
+    let mut hdr = RenderTarget::new(w, h);
+    hdr.clear_depth(0.0);
+    on_pass(Pass::Sky);
+    let t0 = Instant::now();
+    draw_sky(&mut hdr);
+    timed(Pass::Sky, t0);
+
+    // objects
+    if plan.runs(Pass::Objects) {
+        on_pass(Pass::Objects);
+        let t0 = Instant::now();
+        draw_objects(&mut hdr, &eye_state(), &tris, &u, objects::vs_main, |o, u| {
+            Some(objects::fs_main(o, u))
+        });
+        timed(Pass::Objects, t0);
+    }
+
+    // water
+    on_pass(Pass::Water);
+    let t0 = Instant::now();
+    let bindings = water::Bindings {
+        frame: &u,
+        displacement: &displacement,
+        displacement_slopes: &displacement_slopes,
+        bump: &bump,
+        fresnel_above: &fresnel_above,
+        fresnel_below: &fresnel_below,
+        reflection_map: &reflection_map,
+        refraction_map: &refraction_map,
+        shadow_map: &shadow_map,
+        sky_radiance,
+    };
+    let (mesh_vertices, mesh_triangles) = water_mesh(&camera);
+    let verts: Vec<Vertex<{ water::VARYINGS }>> = mesh_vertices
+        .iter()
+        .map(|v| {
+            let o = water::vs_main(v, &bindings);
+            Vertex::new(o.clip, o.varyings())
+        })
+        .collect();
+    let state = RasterState { blend: BlendMode::Replace, ..eye_state() };
+    raster::draw_indexed(&mut hdr, &state, &verts, &mesh_triangles, |frag| {
+        Some(water::fs_main(
+            &water::VertexOut::from_varyings(&frag.varyings),
+            frag.frag_coord,
+            &bindings,
+        ))
+    });
+    timed(Pass::Water, t0);
+
+    Ok(FrameBuffers {
+        displacement,
+        displacement_slopes,
+        bump,
+        fresnel_above,
+        fresnel_below,
+        shadow_map,
+        reflection_map,
+        refraction_map,
+        hdr,
+        uniforms: u,
+        timings,
+    })
+}

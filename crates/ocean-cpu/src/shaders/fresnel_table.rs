@@ -1,0 +1,49 @@
+//! CPU mirror of `shaders/fresnel_table.wgsl`: the 2D Fresnel texture computed in f32 texel
+//! by texel, as the compute shader does. (ocean-core's `tables::FresnelTexture` builds the
+//! same table in f64 and is the reference the tests hold this against.)
+
+use ocean_core::frame::FresnelTableUniforms;
+
+use crate::sampler::Texture2D;
+
+/// Eq. 2 as the WGSL writes it: ocean-core's generic `fresnel_exact` in f32 takes the same
+/// branches in the same order for c ∈ [0, 1] and η > 0.
+pub fn fresnel_exact(c: f32, eta: f32) -> f32 {
+    ocean_core::fresnel::fresnel_exact(c, eta)
+}
+
+/// `view_vector(s, t)`.
+pub fn view_vector(s: f32, t: f32, params: &FresnelTableUniforms) -> [f32; 3] {
+    if params.mapping == 1 {
+        let x = s - 0.5;
+        let y = t - 0.5;
+        return [x, y, (1.0 - x * x - y * y).max(0.0).sqrt()];
+    }
+    let x = 2.0 * s - 1.0;
+    let y = 2.0 * t - 1.0;
+    let r2 = x * x + y * y;
+    if r2 > 1.0 {
+        let r = r2.sqrt();
+        return [x / r, y / r, 0.0];
+    }
+    [x, y, (1.0 - r2).max(0.0).sqrt()]
+}
+
+/// `main(id)`: the texel at `id`, or `None` outside the table.
+pub fn main(id: [u32; 3], params: &FresnelTableUniforms) -> Option<[f32; 4]> {
+    if id[0] >= params.size || id[1] >= params.size {
+        return None;
+    }
+    let n = params.size as f32;
+    let s = (id[0] as f32 + 0.5) / n;
+    let t = (id[1] as f32 + 0.5) / n;
+    let v = view_vector(s, t, params);
+    Some([v[0], v[1], v[2], fresnel_exact(v[2], params.eta)])
+}
+
+/// Runs the stage over the whole table (the dispatch), row-major texels.
+pub fn dispatch(params: &FresnelTableUniforms) -> Texture2D {
+    let n = params.size;
+    let texels = (0..n * n).map(|k| main([k % n, k / n, 0], params).unwrap_or([0.0; 4])).collect();
+    Texture2D::new(n, n, texels)
+}

@@ -1,0 +1,15 @@
+//! CPU mirror of `shaders/shadow.wgsl`: depth of the objects seen from the sun.
+
+use ocean_core::frame::FrameUniforms;
+
+use super::common::transform_point;
+
+/// `vs_main(position)`: the clip position in the sun's orthographic view.
+pub fn vs_main(position: [f32; 3], frame: &FrameUniforms) -> [f32; 4] {
+    transform_point(&frame.sun_view_proj, position)
+}
+
+/// `fs_main(frag)`: the fragment's depth in the red channel.
+pub fn fs_main(frag_coord: [f32; 4]) -> [f32; 4] {
+    [frag_coord[2], 0.0, 0.0, 0.0]
+}
