@@ -4,6 +4,7 @@
 mod fresnel;
 mod heightfield;
 mod output;
+mod plan;
 mod render;
 
 use std::path::PathBuf;
@@ -28,6 +29,8 @@ enum Command {
     Fresnel(fresnel::Args),
     /// Write the displacement map of a scene's ocean at a time as EXR.
     Heightfield(heightfield::Args),
+    /// Print the passes a scene's frame runs, and why each is in or out.
+    Plan(plan::Args),
 }
 
 /// Loads a scene file, or the built-in default scene when none is given.
@@ -44,6 +47,7 @@ fn main() -> ExitCode {
         Command::Render(a) => render::run(a),
         Command::Fresnel(a) => fresnel::run(a),
         Command::Heightfield(a) => heightfield::run(a),
+        Command::Plan(a) => plan::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
