@@ -47,7 +47,7 @@ fn render_calm(ior: f64) -> (Scene, FrameBuffers) {
         "[ocean]\nwind_speed = 0.0\n[water]\nior = {ior}\n[camera]\nposition = [0.0, 10.0, 0.0]\n\
          look_at = [0.0, 0.0, -40.0]\nfov_y_deg = 70.0\nwidth = 160\nheight = 90\n"
     );
-    let scene = Scene::from_toml(&text, SceneSource::Text).unwrap();
+    let scene = Scene::from_toml(&text, SceneSource::Text).expect("valid scene");
     let plan = FramePlan::new(&scene, OutputKind::Hdr);
     let sky = |_: [f32; 3]| [1.0f32; 3];
     let frame = render(&scene, &plan, &sky, &|_: &mut RenderTarget| {}, &grid, &mut |_| {})
@@ -67,9 +67,9 @@ struct Comparison {
 /// Reads F back from every water pixel well below the horizon and compares it with the f64
 /// table lookup and with eq. 2 for η = 1.333.
 fn compare(scene: &Scene, frame: &FrameBuffers) -> Comparison {
-    let camera = Camera::from_scene(&scene.camera).unwrap();
+    let camera = Camera::from_scene(&scene.camera).expect("valid camera");
     let table = FresnelTexture::new(FRESNEL_TABLE_SIZE as usize, 1.333, TextureMapping::Hemisphere)
-        .unwrap();
+        .expect("valid table");
     let w = frame.uniforms.water_color[0] as f64;
     let (width, height) = (camera.width, camera.height);
     let mut c = Comparison {

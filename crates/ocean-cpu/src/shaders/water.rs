@@ -1,4 +1,5 @@
 //! CPU mirror of `shaders/water.wgsl`: the final pass of seed 000, eq. 3.
+#![expect(clippy::manual_range_contains, reason = "mirrors the WGSL comparisons one to one")]
 
 use ocean_core::frame::FrameUniforms;
 
