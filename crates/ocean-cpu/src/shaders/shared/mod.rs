@@ -1,0 +1,5 @@
+//! Mirrors of `shaders/shared/*.wgsl`: functions several stages import.
+
+pub mod camera;
+pub mod fullscreen;
+pub mod preetham;
