@@ -30,6 +30,8 @@
 @group(0) @binding(8) var shadow_map: texture_2d<f32>;
 @group(0) @binding(9) var wrap_linear: sampler;
 @group(0) @binding(10) var clamp_linear: sampler;
+// The sky the water reflects (shared/preetham.wgsl).
+@group(1) @binding(0) var<uniform> sky: SkyUniforms;
 
 struct WaterVertex {
     // Position on the sea plane relative to the eye, (x, z), m.
@@ -91,7 +93,7 @@ fn sun_visibility(rel: vec3<f32>) -> f32 {
 }
 
 @fragment
-fn fs_main(in: VertexOut, @builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
+fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     // Bumped normal (§5): the slopes of the displacement map (faded with w like the
     // displacement itself) plus those of the bump map.
     let sd = textureSample(displacement_slopes, wrap_linear, in.uv_d).xy * (in.weight * frame.passes.x);
@@ -101,7 +103,8 @@ fn fs_main(in: VertexOut, @builtin(position) frag: vec4<f32>) -> @location(0) ve
     let du = n.x;
     let dv = n.z;
     let view = unit(-in.rel);
-    let screen = frag.xy * frame.viewport.zw;
+    // In the fragment stage `clip` is the fragment's position: (x + 0.5, y + 0.5, depth, 1/w).
+    let screen = in.clip.xy * frame.viewport.zw;
     if (view.y >= 0.0) {
         // Fresnel bump mapping (§5.1, Fig. 4): the view vector bumped by (−du, −dv), on the
         // whole-hemisphere texture (x, y) ∈ [−1, 1]² ↦ [0, 1]².
@@ -113,10 +116,10 @@ fn fs_main(in: VertexOut, @builtin(position) frag: vec4<f32>) -> @location(0) ve
         let vn = dot3(view, n);
         var r = n * (2.0 * vn) - view;
         r.y = max(r.y, 0.0);
-        let sky = sky_radiance(unit(r + vec3<f32>(0.0, 1e-6, 0.0)));
+        let sky_r = sky_radiance(sky, unit(r + vec3<f32>(0.0, 1e-6, 0.0)));
         let refl = textureSample(reflection_map, clamp_linear, screen + vec2<f32>(du, dv) * frame.water_params.y);
         let a_refl = refl.w * frame.passes.y;
-        let c_reflect = sky * (1.0 - a_refl) + refl.xyz * a_refl;
+        let c_reflect = sky_r * (1.0 - a_refl) + refl.xyz * a_refl;
         // Refraction (§5.2, eq. 4): the fogged objects under the water, over the water
         // volume colour.
         let refr = textureSample(refraction_map, clamp_linear, screen + vec2<f32>(du, dv) * frame.water_params.z);
@@ -143,11 +146,11 @@ fn fs_main(in: VertexOut, @builtin(position) frag: vec4<f32>) -> @location(0) ve
     let i = -view;
     let cos_i = dot3(i, n);
     let k = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
-    var sky = vec3<f32>(0.0, 0.0, 0.0);
+    var sky_t = vec3<f32>(0.0, 0.0, 0.0);
     if (k > 0.0) {
         let t = i * eta + n * (sqrt(k) - eta * cos_i);
-        sky = sky_radiance(unit(vec3<f32>(t.x, max(t.y, 0.0) + 1e-6, t.z)));
+        sky_t = sky_radiance(sky, unit(vec3<f32>(t.x, max(t.y, 0.0) + 1e-6, t.z)));
     }
-    let c = frame.water_color.xyz * f + sky * (1.0 - f);
+    let c = frame.water_color.xyz * f + sky_t * (1.0 - f);
     return vec4<f32>(c, 1.0);
 }

@@ -13,6 +13,15 @@ pub enum Error {
         /// What the allowed range is and why.
         reason: String,
     },
+    /// A stage's WGSL source could not be assembled: unknown stage, unknown or cyclic
+    /// `// #import`.
+    #[error("WGSL source of stage `{stage}`: {reason}")]
+    ShaderSource {
+        /// The stage whose source was requested.
+        stage: String,
+        /// What is wrong.
+        reason: String,
+    },
 }
 
 /// Shorthand for results of this crate.

@@ -1,6 +1,8 @@
 //! Physics and data of the `ocean` renderer, with no GPU: scene description, wave spectra,
 //! dispersion, seeded random amplitudes, FFT wave synthesis (Tessendorf / Hu et al. 2004 eq. 1),
-//! the exact Fresnel term (Hu et al. eq. 2) and the tables built from it.
+//! the exact Fresnel term (Hu et al. eq. 2) and the tables built from it, the Preetham daylight
+//! sky, and what the render stages share with the GPU: the embedded WGSL sources and the
+//! `#[repr(C)]` uniform structs.
 //!
 //! Conventions used throughout (one place):
 //! - SI units: metres, seconds, radians. y is up, the mean sea plane is y = 0; the horizontal
@@ -13,6 +15,7 @@
 //!   FFT without normalisation computes it.
 
 pub mod camera;
+pub mod camera_uniforms;
 pub mod dispersion;
 pub mod error;
 pub mod frame;
@@ -20,8 +23,11 @@ pub mod fresnel;
 pub mod plan;
 pub mod rng;
 pub mod scene;
+pub mod shader_source;
+pub mod sky;
 pub mod spectrum;
 pub mod tables;
+pub mod tonemap;
 pub mod waves;
 
 pub use error::{Error, Result};

@@ -267,8 +267,7 @@ pub fn render(
     let state = RasterState { blend: BlendMode::Replace, ..eye_state() };
     raster::draw_indexed(&mut hdr, &state, &verts, &mesh_triangles, |frag| {
         Some(water::fs_main(
-            &water::VertexOut::from_varyings(&frag.varyings),
-            frag.frag_coord,
+            &water::VertexOut::from_fragment(frag.frag_coord, &frag.varyings),
             &bindings,
         ))
     });

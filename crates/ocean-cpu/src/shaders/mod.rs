@@ -1,8 +1,17 @@
-//! CPU mirrors of the WGSL stages in `shaders/`, one module per stage, same entry points,
-//! names and order of operations (DESIGN.md, "One name per stage").
+//! One Rust module per WGSL stage (`shaders/<stage>.wgsl` ↔ `shaders/<stage>.rs`), and one per
+//! shared WGSL file (`shaders/shared/<name>.wgsl` ↔ [`shared`]`::<name>`).
+//!
+//! Each mirror keeps the WGSL entry points' names and signatures (`vs_main`, `fs_main`), the
+//! same variable names and the same order of operations, in f32, so the two files read side by
+//! side. WGSL uniforms become `&` parameters after the shader's own inputs. Vector expressions
+//! are written per component, with the WGSL built-ins of [`wgsl`]. No `mul_add` (the WGSL uses
+//! no `fma`), no fast-math.
 
-pub mod common;
 pub mod fresnel_table;
 pub mod objects;
 pub mod shadow;
+pub mod shared;
+pub mod sky;
+pub mod tonemap;
 pub mod water;
+pub mod wgsl;

@@ -3,7 +3,7 @@
 
 use ocean_core::frame::{FrameUniforms, ObjectVertex};
 
-use super::common::{add3, dot3, mul3, scale3, transform_point, unit, xyz};
+use super::shared::frame::{add3, dot3, mul3, scale3, transform_point, unit, xyz};
 
 /// `VertexOut` of objects.wgsl (clip position and the varyings, in declaration order).
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -2,7 +2,7 @@
 
 use ocean_core::frame::FrameUniforms;
 
-use super::common::transform_point;
+use super::shared::frame::transform_point;
 
 /// `vs_main(position)`: the clip position in the sun's orthographic view.
 pub fn vs_main(position: [f32; 3], frame: &FrameUniforms) -> [f32; 4] {

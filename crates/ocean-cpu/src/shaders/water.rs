@@ -3,7 +3,7 @@
 
 use ocean_core::frame::FrameUniforms;
 
-use super::common::{add3, dot3, scale3, transform_point, unit, xyz};
+use super::shared::frame::{add3, dot3, scale3, transform_point, unit, xyz};
 use crate::sampler::{
     AddressMode, FilterMode, Sampler, Texture2D, texture_sample, texture_sample_level,
 };
@@ -84,10 +84,10 @@ impl VertexOut {
         [r[0], r[1], r[2], d[0], d[1], b[0], b[1], self.weight]
     }
 
-    /// The struct from interpolated varyings (clip unused).
-    pub fn from_varyings(v: &[f32; VARYINGS]) -> Self {
+    /// The fragment stage's input: `clip` is the fragment's position (frag_coord).
+    pub fn from_fragment(frag_coord: [f32; 4], v: &[f32; VARYINGS]) -> Self {
         Self {
-            clip: [0.0; 4],
+            clip: frag_coord,
             rel: [v[0], v[1], v[2]],
             uv_d: [v[3], v[4]],
             uv_b: [v[5], v[6]],
@@ -138,8 +138,8 @@ fn sun_visibility(rel: [f32; 3], b: &Bindings<'_>) -> f32 {
     1.0
 }
 
-/// `fs_main(in, frag)`.
-pub fn fs_main(input: &VertexOut, frag_coord: [f32; 4], b: &Bindings<'_>) -> [f32; 4] {
+/// `fs_main(in)`; `input.clip` is the fragment's position.
+pub fn fs_main(input: &VertexOut, b: &Bindings<'_>) -> [f32; 4] {
     let f = b.frame;
     let sdt = texture_sample(b.displacement_slopes, &WRAP_LINEAR, input.uv_d);
     let wd = input.weight * f.passes[0];
@@ -150,7 +150,7 @@ pub fn fs_main(input: &VertexOut, frag_coord: [f32; 4], b: &Bindings<'_>) -> [f3
     let du = n[0];
     let dv = n[2];
     let view = unit([-input.rel[0], -input.rel[1], -input.rel[2]]);
-    let screen = [frag_coord[0] * f.viewport[2], frag_coord[1] * f.viewport[3]];
+    let screen = [input.clip[0] * f.viewport[2], input.clip[1] * f.viewport[3]];
     if view[1] >= 0.0 {
         let st = [(view[0] - du) * 0.5 + 0.5, (view[2] - dv) * 0.5 + 0.5];
         let fres = texture_sample(b.fresnel_above, &CLAMP_LINEAR, st);

@@ -1,0 +1,6 @@
+//! Mirrors of `shaders/shared/*.wgsl`: functions several stages import.
+
+pub mod camera;
+pub mod frame;
+pub mod fullscreen;
+pub mod preetham;

@@ -1,0 +1,59 @@
+//! Mirror of `shaders/sky.wgsl`: the daylight sky, one full-screen triangle at the far plane.
+
+use crate::raster::{
+    BlendMode, CompareFunction, CullMode, FrontFace, RasterState, RenderTarget, Vertex, draw,
+};
+use crate::shaders::shared::camera::{CameraUniforms, view_ray};
+use crate::shaders::shared::fullscreen::fullscreen_position;
+use crate::shaders::shared::preetham::{SkyUniforms, sky_radiance, sun_disc};
+
+/// `VertexOut` of `sky.wgsl`: in the fragment stage `position` is `@builtin(position)`
+/// (pixel centre x + 0.5, y + 0.5, depth, 1/w).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VertexOut {
+    /// `@builtin(position)`.
+    pub position: [f32; 4],
+}
+
+/// The pipeline state of the `sky` pass: it is drawn first, as the background, so it neither
+/// tests nor writes depth; no blending. The GPU pipeline uses the same (`depth_compare:
+/// Always`, `depth_write_enabled: false`, or no depth attachment).
+pub const RASTER_STATE: RasterState = RasterState {
+    front_face: FrontFace::Ccw,
+    cull_mode: CullMode::None,
+    depth_compare: CompareFunction::Always,
+    depth_write: false,
+    blend: BlendMode::Replace,
+};
+
+/// `vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOut`.
+pub fn vs_main(vertex_index: u32) -> VertexOut {
+    VertexOut { position: fullscreen_position(vertex_index) }
+}
+
+/// `fs_main(in: VertexOut) -> @location(0) vec4<f32>`: linear HDR radiance, alpha 1.
+pub fn fs_main(input: &VertexOut, camera: &CameraUniforms, sky: &SkyUniforms) -> [f32; 4] {
+    let dir = view_ray(camera, [input.position[0], input.position[1]]);
+    let sky_rgb = sky_radiance(sky, dir);
+    let sun_rgb = sun_disc(sky, dir);
+    let radiance: [f32; 3] = std::array::from_fn(|i| sky_rgb[i] + sun_rgb[i]);
+    [radiance[0], radiance[1], radiance[2], 1.0]
+}
+
+/// Draws the `sky` pass into `target` with the rasterizer: vertices 0, 1, 2 through
+/// [`vs_main`], every covered pixel through [`fs_main`], [`RASTER_STATE`].
+///
+/// `camera.viewport` must describe `target` (checked in debug builds).
+pub fn render_sky(target: &mut RenderTarget, camera: &CameraUniforms, sky: &SkyUniforms) {
+    debug_assert!(
+        camera.viewport[0] == target.width as f32 && camera.viewport[1] == target.height as f32,
+        "camera viewport {:?} does not match the {}x{} target",
+        camera.viewport,
+        target.width,
+        target.height
+    );
+    let triangle: [Vertex<0>; 3] = [0, 1, 2].map(|i| Vertex::new(vs_main(i).position, []));
+    draw(target, &RASTER_STATE, &[triangle], |frag| {
+        Some(fs_main(&VertexOut { position: frag.frag_coord }, camera, sky))
+    });
+}
