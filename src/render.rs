@@ -1,8 +1,14 @@
-//! `ocean render`: the frame of Hu et al. 2004 on the CPU oracle or the GPU.
+//! `ocean render`: the frame of Hu et al. 2004 on the CPU oracle (the GPU path comes with
+//! issue 4), written as 8-bit sRGB PNG or linear HDR EXR.
 
 use std::path::PathBuf;
+use std::time::{Duration, Instant};
 
-use anyhow::bail;
+use anyhow::{Context, bail};
+use indicatif::{ProgressBar, ProgressStyle};
+use ocean_core::plan::{OutputKind, Pass};
+
+use crate::output::{Channel, encode_exr, write_atomic};
 
 /// Arguments of `ocean render`.
 #[derive(clap::Args, Debug)]
@@ -16,7 +22,7 @@ pub struct Args {
     #[arg(short, long, default_value = "ocean.png")]
     output: PathBuf,
     /// Time of the frame in seconds (overrides the scene's `ocean.time_s`).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     time: Option<f64>,
     /// Image size WIDTHxHEIGHT (overrides the scene's camera).
     #[arg(long)]
@@ -32,15 +38,99 @@ enum Backend {
     Gpu,
 }
 
+/// Parses `WIDTHxHEIGHT`.
+fn parse_size(s: &str) -> anyhow::Result<(u32, u32)> {
+    let (w, h) = s
+        .split_once(['x', 'X', '×'])
+        .with_context(|| format!("--size must be WIDTHxHEIGHT, e.g. 1280x720, got {s:?}"))?;
+    let parse = |v: &str| -> anyhow::Result<u32> {
+        let n: u32 = v.trim().parse().with_context(|| format!("--size: {v:?} is not a number"))?;
+        if n == 0 || n > ocean_core::scene::MAX_IMAGE_SIDE {
+            bail!("--size: each side must be 1..={}, got {n}", ocean_core::scene::MAX_IMAGE_SIDE);
+        }
+        Ok(n)
+    };
+    Ok((parse(w)?, parse(h)?))
+}
+
 /// Runs `ocean render`.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    // Validate what can be validated now, so the command's contract is already honest.
-    let _scene = crate::load_scene(args.scene.as_ref())?;
-    bail!(
-        "`ocean render` is not implemented yet (the CPU renderer is issue 3, the GPU path issue 4); \
-         `ocean heightfield -o h.exr` and `ocean fresnel --eta 1.333` work today \
-         (requested backend {:?}, output {})",
-        args.backend,
-        args.output.display()
-    )
+    let kind = match args.output.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase)
+    {
+        Some(e) if e == "png" => OutputKind::Ldr,
+        Some(e) if e == "exr" => OutputKind::Hdr,
+        _ => bail!("output {} must end in .png or .exr", args.output.display()),
+    };
+    let mut scene = crate::load_scene(args.scene.as_ref())?;
+    if let Some(t) = args.time {
+        if !t.is_finite() {
+            bail!("--time must be finite, got {t}");
+        }
+        scene.ocean.time_s = t;
+    }
+    if let Some(s) = &args.size {
+        (scene.camera.width, scene.camera.height) = parse_size(s)?;
+    }
+    if let Backend::Gpu = args.backend {
+        bail!(
+            "the GPU back end is not implemented yet (issue 4); use --backend cpu (the default)"
+        );
+    }
+
+    // A progress bar only for renders that take over a second.
+    let start = Instant::now();
+    let mut bar: Option<ProgressBar> = None;
+    let total = Pass::ALL.len() as u64;
+    let mut on_pass = |pass: Pass| {
+        if bar.is_none() && start.elapsed() > Duration::from_secs(1) {
+            let b = ProgressBar::new(total);
+            b.set_style(
+                ProgressStyle::with_template("{elapsed:>4} [{bar:30}] {msg}")
+                    .unwrap_or_else(|_| ProgressStyle::default_bar()),
+            );
+            bar = Some(b);
+        }
+        if let Some(b) = &bar {
+            b.set_message(pass.name());
+            b.set_position(Pass::ALL.iter().position(|p| *p == pass).unwrap_or(0) as u64);
+        }
+    };
+    let rendered = ocean_cpu::render_scene(&scene, kind, &mut on_pass)?;
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    let bytes = match kind {
+        OutputKind::Ldr => {
+            let rgba = rendered.ldr.context("the plan has no tonemap pass")?;
+            let img = image::RgbaImage::from_raw(w, h, rgba).context("image size")?;
+            let mut buf = std::io::Cursor::new(Vec::new());
+            img.write_to(&mut buf, image::ImageFormat::Png).context("cannot encode PNG")?;
+            buf.into_inner()
+        }
+        OutputKind::Hdr => {
+            let px = &rendered.buffers.hdr.color;
+            let channel = |c: usize| px.iter().map(|p| p[c]).collect::<Vec<f32>>();
+            let channels = ["R", "G", "B", "A"]
+                .iter()
+                .enumerate()
+                .map(|(c, name)| Channel { name, data: channel(c) })
+                .collect();
+            encode_exr(w as usize, h as usize, channels)?
+        }
+    };
+    write_atomic(&args.output, &bytes)?;
+    let passes: Vec<String> = rendered
+        .buffers
+        .timings
+        .iter()
+        .map(|(p, d)| format!("{} {:.0} ms", p.name(), d.as_secs_f64() * 1e3))
+        .collect();
+    eprintln!(
+        "wrote {} ({w}×{h}, CPU, {:.2} s: {})",
+        args.output.display(),
+        start.elapsed().as_secs_f64(),
+        passes.join(", ")
+    );
+    Ok(())
 }

@@ -216,6 +216,8 @@ pub struct Camera {
     pub width: u32,
     /// Image height, pixels.
     pub height: u32,
+    /// Exposure multiplier applied before tonemapping (8-bit output only).
+    pub exposure: f64,
 }
 
 impl Default for Camera {
@@ -226,6 +228,7 @@ impl Default for Camera {
             fov_y_deg: 55.0,
             width: 1280,
             height: 720,
+            exposure: 1.0,
         }
     }
 }
@@ -238,13 +241,21 @@ pub struct Sun {
     pub direction: [f64; 3],
     /// Linear RGB colour.
     pub color: [f64; 3],
-    /// Radiance scale.
+    /// Radiance of the sun's disc and scale of its light (scene units; the sky's zenith is
+    /// ~0.3–0.5 at the default sky scale).
     pub intensity: f64,
+    /// Atmospheric turbidity T of the Preetham sky (2 = very clear, 10 = hazy).
+    pub turbidity: f64,
 }
 
 impl Default for Sun {
     fn default() -> Self {
-        Self { direction: [0.3, 0.25, -1.0], color: [1.0, 0.9, 0.75], intensity: 20.0 }
+        Self {
+            direction: [0.3, 0.25, -1.0],
+            color: [1.0, 0.9, 0.75],
+            intensity: 5.0,
+            turbidity: crate::sky::DEFAULT_TURBIDITY,
+        }
     }
 }
 
@@ -436,6 +447,7 @@ impl Scene {
                 format!("must be in (0, 180) degrees, got {}", c.fov_y_deg),
             );
         }
+        check_range("camera.exposure", c.exposure, 0.0, 1e6)?;
         for (k, n) in [("camera.width", c.width), ("camera.height", c.height)] {
             if !(1..=MAX_IMAGE_SIDE).contains(&n) {
                 return bad(k, format!("must be between 1 and {MAX_IMAGE_SIDE}, got {n}"));
@@ -448,6 +460,12 @@ impl Scene {
             }
             check_colour("sun.color", s.color)?;
             check_range("sun.intensity", s.intensity, 0.0, f64::MAX)?;
+            check_range(
+                "sun.turbidity",
+                s.turbidity,
+                crate::sky::TURBIDITY_MIN,
+                crate::sky::TURBIDITY_MAX,
+            )?;
         }
         if !self.water.ior.is_finite() || self.water.ior <= 0.0 {
             return bad("water.ior", format!("must be finite and > 0, got {}", self.water.ior));

@@ -125,12 +125,28 @@ pub fn render(
     water_mesh: &dyn Fn(&Camera) -> WaterMesh,
     on_pass: &mut dyn FnMut(Pass),
 ) -> Result<FrameBuffers, Error> {
+    render_with(scene, plan, sky_radiance, draw_sky, water_mesh, &|_| {}, on_pass)
+}
+
+/// [`render`], with `customise` applied to the frame's uniforms before any pass (the sky's
+/// ambient term, which depends on the sky model the caller chose).
+pub fn render_with(
+    scene: &Scene,
+    plan: &FramePlan,
+    sky_radiance: &(dyn Fn([f32; 3]) -> [f32; 3] + Sync),
+    draw_sky: &dyn Fn(&mut RenderTarget),
+    water_mesh: &dyn Fn(&Camera) -> WaterMesh,
+    customise: &dyn Fn(&mut FrameUniforms),
+    on_pass: &mut dyn FnMut(Pass),
+) -> Result<FrameBuffers, Error> {
     let camera = Camera::from_scene(&scene.camera)?;
     let (w, h) = (camera.width, camera.height);
     if w > RenderTarget::MAX_SIZE || h > RenderTarget::MAX_SIZE {
         return Err(Error::TooLarge { width: w, height: h, max: RenderTarget::MAX_SIZE });
     }
-    let u = FrameUniforms::new(scene, &camera, plan);
+    let mut u = FrameUniforms::new(scene, &camera, plan);
+    customise(&mut u);
+    let u = u;
     let mut timings = Vec::new();
     let mut timed = |pass: Pass, start: Instant| timings.push((pass, start.elapsed()));
 
@@ -203,11 +219,9 @@ pub fn render(
     // reflection_map, refraction_map
     let mut object_map = |pass: Pass, vs, fs| {
         on_pass(pass);
-        let t0 = Instant::now();
         let mut target = RenderTarget::new(w, h);
         target.clear_depth(0.0);
         draw_objects(&mut target, &eye_state(), &tris, &u, vs, fs);
-        let _ = t0;
         target_texture(target)
     };
     let mut reflection_map = empty();
@@ -286,4 +300,27 @@ pub fn render(
         uniforms: u,
         timings,
     })
+}
+
+/// A stand-in water mesh until the near/far patches are wired: a 256 × 256 grid of 8 m cells
+/// around the eye (±1 km), displaced everywhere.
+pub fn fallback_mesh(_camera: &Camera) -> WaterMesh {
+    let (n, cell) = (256u32, 8.0f32);
+    let half = n as f32 * cell / 2.0;
+    let mut vertices = Vec::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            let pos = [i as f32 * cell - half, j as f32 * cell - half];
+            vertices.push(water::WaterVertex { pos, weight: 1.0 });
+        }
+    }
+    let at = |i: u32, j: u32| j * (n + 1) + i;
+    let mut triangles = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            triangles.push([at(i, j), at(i, j + 1), at(i + 1, j)]);
+            triangles.push([at(i + 1, j), at(i, j + 1), at(i + 1, j + 1)]);
+        }
+    }
+    (vertices, triangles)
 }

@@ -12,5 +12,8 @@
 
 pub mod frame;
 pub mod raster;
+pub mod render;
 pub mod sampler;
 pub mod shaders;
+
+pub use render::{Rendered, render_ldr, render_scene};

@@ -1,0 +1,97 @@
+//! The CPU renderer's entry points: a scene in, the frame's maps and picture out. Wires the
+//! Preetham sky (stage `sky`), the near/far patch mesh and the tonemap into [`frame::render`].
+
+use glam::DVec3;
+use ocean_core::camera::Camera;
+use ocean_core::camera_uniforms::CameraUniforms;
+use ocean_core::frame::FrameUniforms;
+use ocean_core::plan::{FramePlan, OutputKind, Pass};
+use ocean_core::scene::{Scene, Sun};
+use ocean_core::sky::{PreethamSky, SkyParams};
+use ocean_core::tonemap::TonemapUniforms;
+
+use crate::frame::{self, Error, FrameBuffers, WaterMesh};
+use crate::shaders::shared::preetham;
+use crate::shaders::{sky, tonemap};
+
+/// A rendered frame.
+pub struct Rendered {
+    /// The plan it ran.
+    pub plan: FramePlan,
+    /// Every map and the HDR picture.
+    pub buffers: FrameBuffers,
+    /// The 8-bit sRGB RGBA picture, when the plan tonemaps.
+    pub ldr: Option<Vec<u8>>,
+}
+
+/// The sky of a scene: its sun, or, without one, the default sun's sky at zero intensity (the
+/// daylight sky without a disc or sunlight).
+pub fn sky_of(scene: &Scene) -> Result<PreethamSky, Error> {
+    let default = Sun { intensity: 0.0, ..Sun::default() };
+    let sun = scene.sun.as_ref().unwrap_or(&default);
+    Ok(PreethamSky::new(SkyParams::new(sun.direction, sun.turbidity, sun.color, sun.intensity)?))
+}
+
+/// The sky's mean radiance weighted by cos θ over the upper hemisphere, i.e. the irradiance of
+/// an upward surface divided by π: the objects' ambient term. A fixed 32 × 64 midpoint grid
+/// in (cos² θ, φ) — uniform in projected solid angle — so it is deterministic.
+pub fn sky_ambient(sky: &PreethamSky) -> [f32; 4] {
+    let (rows, cols) = (32, 64);
+    let mut sum = DVec3::ZERO;
+    for i in 0..rows {
+        let cos2 = (i as f64 + 0.5) / rows as f64;
+        let (cos_t, sin_t) = (cos2.sqrt(), (1.0 - cos2).sqrt());
+        for j in 0..cols {
+            let phi = std::f64::consts::TAU * (j as f64 + 0.5) / cols as f64;
+            let d = [sin_t * phi.cos(), cos_t, sin_t * phi.sin()];
+            sum += DVec3::from_array(sky.sky_radiance(d));
+        }
+    }
+    let mean = sum / (rows * cols) as f64;
+    [mean.x as f32, mean.y as f32, mean.z as f32, 0.0]
+}
+
+/// The near/far patch mesh of a view, in the water stage's vertex format.
+pub fn water_mesh(scene: &Scene, camera: &Camera) -> WaterMesh {
+    let _ = scene;
+    crate::frame::fallback_mesh(camera)
+}
+
+/// Renders a validated scene; `on_pass` is called as each pass starts.
+pub fn render_scene(
+    scene: &Scene,
+    output: OutputKind,
+    on_pass: &mut dyn FnMut(Pass),
+) -> Result<Rendered, Error> {
+    let plan = FramePlan::new(scene, output);
+    let camera = Camera::from_scene(&scene.camera)?;
+    let preetham_sky = sky_of(scene)?;
+    let sky_u = preetham_sky.uniforms();
+    let camera_u = CameraUniforms::new(
+        camera.view_proj().to_cols_array_2d(),
+        [0.0; 3],
+        camera.width,
+        camera.height,
+    )?;
+    let ambient = sky_ambient(&preetham_sky);
+    let sky_radiance = |d: [f32; 3]| preetham::sky_radiance(&sky_u, d);
+    let draw_sky = |t: &mut crate::raster::RenderTarget| sky::render_sky(t, &camera_u, &sky_u);
+    let mesh = |c: &Camera| water_mesh(scene, c);
+    let customise = |u: &mut FrameUniforms| u.sky_ambient = ambient;
+    let buffers =
+        frame::render_with(scene, &plan, &sky_radiance, &draw_sky, &mesh, &customise, on_pass)?;
+    let ldr = if plan.runs(Pass::Tonemap) {
+        on_pass(Pass::Tonemap);
+        let t = TonemapUniforms::new(scene.camera.exposure)?;
+        Some(tonemap::tonemap_to_rgba8(&buffers.hdr.color, camera.width, camera.height, &t))
+    } else {
+        None
+    };
+    Ok(Rendered { plan, buffers, ldr })
+}
+
+/// The 8-bit sRGB RGBA picture of a scene (row-major, top row first).
+pub fn render_ldr(scene: &Scene) -> Result<Vec<u8>, Error> {
+    let r = render_scene(scene, OutputKind::Ldr, &mut |_| {})?;
+    Ok(r.ldr.unwrap_or_default())
+}
