@@ -749,6 +749,7 @@ fn invalid_parameters_are_errors_that_name_the_parameter() {
                 assert!(!reason.is_empty());
             }
             Ok(_) => panic!("{kind:?}: {expected_name} should be rejected"),
+            Err(other) => panic!("{kind:?}: wrong error {other}"),
         }
     }
     // Negative controls: the defaults, and parameters a kind does not use, are accepted.
