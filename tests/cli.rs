@@ -185,8 +185,36 @@ fn heightfield_exr_contract() {
 }
 
 #[test]
-fn render_says_not_yet_and_exits_1() {
-    let o = ocean(&["render", "-o", "/nonexistent-dir/never.png"]);
+fn render_writes_png_and_exr_and_rejects_bad_input() {
+    let dir = tempfile::tempdir().expect("a temp dir");
+    let png = dir.path().join("o.png");
+    let o = ocean(&["render", "--size", "64x36", "-o", png.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let img = image::open(&png).expect("a PNG").to_rgba8();
+    assert_eq!(img.dimensions(), (64, 36));
+    let exr = dir.path().join("o.exr");
+    let o = ocean(&["render", "--size", "64x36", "--time", "3", "-o", exr.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (w, h, channels) = read_exr(&exr);
+    assert_eq!((w, h), (64, 36));
+    assert_eq!(channels.len(), 4);
+    assert!(channels.iter().all(|(_, d)| d.iter().all(|v| v.is_finite())));
+    // Nothing is written on an error, and no error panics.
+    let never = dir.path().join("never.png");
+    for args in [
+        vec!["render", "--size", "0x10", "-o"],
+        vec!["render", "--size", "big", "-o"],
+        vec!["render", "--time", "nan", "-o"],
+        vec!["render", "--backend", "gpu", "-o"],
+        vec!["render", "/nonexistent.toml", "-o"],
+    ] {
+        let mut a = args.clone();
+        a.push(never.to_str().unwrap());
+        let o = ocean(&a);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {}", stderr(&o));
+        assert!(!stderr(&o).contains("panicked"), "{args:?}");
+        assert!(!never.exists(), "{args:?} wrote a file");
+    }
+    let o = ocean(&["render", "-o", dir.path().join("x.jpg").to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1));
-    assert!(stderr(&o).contains("not implemented yet"), "{}", stderr(&o));
 }
