@@ -216,7 +216,8 @@ pub struct Camera {
     pub width: u32,
     /// Image height, pixels.
     pub height: u32,
-    /// Exposure multiplier applied before tonemapping (8-bit output only).
+    /// Exposure multiplier applied before tonemapping (8-bit output only). The default 0.6
+    /// undoes the pre-exposure of Narkowicz's ACES fit, giving the original ACES curve.
     pub exposure: f64,
 }
 
@@ -228,7 +229,7 @@ impl Default for Camera {
             fov_y_deg: 55.0,
             width: 1280,
             height: 720,
-            exposure: 1.0,
+            exposure: 0.6,
         }
     }
 }
