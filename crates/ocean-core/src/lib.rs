@@ -1,6 +1,7 @@
 //! Physics and data of the `ocean` renderer, with no GPU: scene description, wave spectra,
 //! dispersion, seeded random amplitudes, FFT wave synthesis (Tessendorf / Hu et al. 2004 eq. 1),
-//! the exact Fresnel term (Hu et al. eq. 2) and the tables built from it.
+//! the exact Fresnel term (Hu et al. eq. 2) and the tables built from it, and the view-dependent
+//! water mesh (near and far patches, §3).
 //!
 //! Conventions used throughout (one place):
 //! - SI units: metres, seconds, radians. y is up, the mean sea plane is y = 0; the horizontal
@@ -15,6 +16,7 @@
 pub mod dispersion;
 pub mod error;
 pub mod fresnel;
+pub mod geometry;
 pub mod rng;
 pub mod scene;
 pub mod spectrum;
