@@ -23,18 +23,18 @@ fn two_sum(a: f64, b: f64) -> (f64, f64) {
 
 /// The exact sign of a sum of f64 terms (Shewchuk's Grow-Expansion: the expansion's most
 /// significant non-zero component has the sign of the sum).
-fn exact_sign(terms: &[f64]) -> i32 {
-    let mut e: Vec<f64> = Vec::new();
+fn exact_sign(terms: &[f64; 6]) -> i32 {
+    let mut e = [0.0f64; 6];
+    let mut len = 0;
     for &t in terms {
         let mut q = t;
-        let mut h = Vec::with_capacity(e.len() + 1);
-        for &c in &e {
-            let (s, err) = two_sum(q, c);
-            h.push(err);
+        for c in e.iter_mut().take(len) {
+            let (s, err) = two_sum(q, *c);
+            *c = err;
             q = s;
         }
-        h.push(q);
-        e = h;
+        e[len] = q;
+        len += 1;
     }
     e.iter().rev().find(|&&c| c != 0.0).map_or(0, |&c| if c > 0.0 { 1 } else { -1 })
 }
@@ -49,11 +49,8 @@ fn orient_up(a: [f32; 2], b: [f32; 2], c: [f32; 2]) -> i32 {
 
 /// Whether `p` lies strictly inside the segment a–b (exactly).
 fn strictly_inside(p: [f32; 2], a: [f32; 2], b: [f32; 2]) -> bool {
-    if orient_up(a, b, p) != 0 || p == a || p == b {
-        return false;
-    }
     let between = |k: usize| (a[k].min(b[k]) <= p[k]) && (p[k] <= a[k].max(b[k]));
-    between(0) && between(1)
+    between(0) && between(1) && p != a && p != b && orient_up(a, b, p) == 0
 }
 
 #[test]
@@ -678,6 +675,7 @@ fn degenerate_inputs_are_errors() {
         PatchParams { split_threshold: f64::NAN, ..PatchParams::default() },
         PatchParams { far_ring_ratio: 1.0, ..PatchParams::default() },
         PatchParams { far_segments: 7, ..PatchParams::default() },
+        PatchParams { far_segments: 8, ..PatchParams::default() },
         PatchParams { far_max_radius: 10.0, ..PatchParams::default() },
         PatchParams::for_grid(f64::NAN),
     ];
@@ -695,4 +693,50 @@ fn degenerate_inputs_are_errors() {
         let mesh = ok(eye, fwd, FRAC_PI_2, 1.0).unwrap();
         check_conforming(&mesh.vertices, &mesh.indices).unwrap();
     }
+}
+
+#[test]
+fn random_views_and_parameters_stay_conforming() {
+    // A deterministic spread of eyes (anywhere inside a grid cell), yaws, heights and
+    // parameter sets, including the smallest near patch (4 cells) and a coarse far grid.
+    let sets = [
+        PatchParams::default(),
+        PatchParams::for_grid(200.0),
+        PatchParams::for_ocean(1000.0, 256),
+        PatchParams { weight_taper_m: 0.0, boundary_segments: 1, ..PatchParams::for_grid(0.25) },
+        PatchParams { far_segments: 16, far_ring_ratio: 1.5, ..PatchParams::for_grid(2.0) },
+        PatchParams { far_segments: 16, ..PatchParams::for_grid(200.0) },
+        PatchParams { split_threshold: 0.5, far_segments: 1024, ..PatchParams::default() },
+    ];
+    let mut state = 0x9e37_79b9_7f4a_7c15u64;
+    let mut uniform = || {
+        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut checked = 0;
+    for params in &sets {
+        for _ in 0..12 {
+            let g = params.grid_spacing_m;
+            let eye = [
+                (uniform() - 0.5) * 2e5 * g,
+                (uniform() * 2.0 - 1.0) * 10f64.powf(uniform() * 4.5 - 0.5),
+                (uniform() - 0.5) * 2e5 * g,
+            ];
+            let cam = Camera {
+                fov_y: (10.0 + 110.0 * uniform()).to_radians(),
+                ..Camera::new(eye, 360.0 * uniform(), 180.0 * uniform() - 90.0)
+            };
+            let mesh = cam.mesh(params);
+            if let Err(e) = check_conforming(&mesh.vertices, &mesh.indices) {
+                panic!("{params:?} {cam:?}: {e}");
+            }
+            // The zip adds one triangle per boundary vertex and one per ring vertex.
+            assert_eq!(
+                mesh.stitch_triangles,
+                4 * params.boundary_segments as usize + params.far_segments as usize
+            );
+            checked += 1;
+        }
+    }
+    println!("{checked} random meshes conforming");
 }

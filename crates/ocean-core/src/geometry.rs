@@ -32,6 +32,7 @@ pub use mesh::{MeshSummary, WaterMesh};
 pub use near::NearPatch;
 pub use params::{
     DEFAULT_NEAR_SIZE_M, MAX_HEIGHT_M, MAX_NEAR_LEVELS, PatchParams, STITCH_CLEARANCE,
+    stitch_radius,
 };
 
 use crate::Result;

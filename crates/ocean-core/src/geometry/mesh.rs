@@ -4,26 +4,29 @@
 //! **Stitching.** Seed 000 culls the far triangles inside the near patch and moves the inner
 //! vertices of the straddling ones onto its boundary; unless those land exactly on the near
 //! patch's boundary vertices that leaves T-junctions. Here instead:
-//! - every far ring whose inscribed circle does not clear the near patch's circumscribed
-//!   circle (about the eye) [`STITCH_CLEARANCE`] times over is dropped: the first kept ring
-//!   k₀ is the smallest k ≥ 1 with ρ_k·H·cos(π/M) ≥ 3·r_corner;
+//! - every far ring inside [`STITCH_CLEARANCE`] times the radius [`stitch_radius`] (about
+//!   the eye) is dropped: the first kept ring k₀ is the smallest k ≥ 1 with ρ_k·H at least
+//!   that (about 1.9 × the near patch's half-size for the defaults);
 //! - ring k₀ is kept whole (all M vertices), and the annulus between the near patch's
 //!   boundary polygon (its fixed `4·boundary_segments` vertices, the very same vertex
 //!   indices) and ring k₀'s polygon is triangulated by zipping the two vertex loops in order
 //!   of azimuth about the eye: each step adds the triangle whose new vertex comes first. Both
-//!   loops are convex and surround the eye, and the clearance keeps every triangle
-//!   counter-clockwise (checked with `debug_assert!`; the tests check it exactly);
+//!   loops are convex and surround the eye, and [`stitch_radius`] makes every triangle
+//!   counter-clockwise (checked with `debug_assert!`; the tests check it exactly), so the
+//!   strip covers the annulus exactly once;
 //! - rows k₀ … R−1 follow, each with its precomputed cells.
 //!
 //! The union is then one conforming triangulation: the near and strip triangles share the
 //! boundary vertices by index, the strip and the rows share ring k₀ by index, and every far
 //! cell edge is shared by index. All far and strip vertices have weight 0.
 
-use std::f64::consts::{PI, TAU};
+#[cfg(test)]
+use std::f64::consts::PI;
+use std::f64::consts::TAU;
 
 use super::far::{FarPatch, PlacedFarPatch};
 use super::near::NearPatch;
-use super::params::{PatchParams, STITCH_CLEARANCE, invalid};
+use super::params::{PatchParams, STITCH_CLEARANCE, invalid, stitch_radius};
 use super::{WaterVertex, effective_height};
 use crate::Result;
 
@@ -151,16 +154,13 @@ impl WaterMesh {
         let m = patch.segments();
         let rings = patch.ring_radii();
         let h = far.height_m();
-        // The eye relative to the reference point, and the near patch's corner radius.
+        // The eye relative to the reference point, and where the first far ring must be.
         let eye_rel = [eye[0] - near.origin[0], eye[2] - near.origin[1]];
-        let half = 0.5 * near.size_m;
-        let corner = [-half, half]
-            .iter()
-            .flat_map(|&x| [-half, half].map(|z| (x - eye_rel[0]).hypot(z - eye_rel[1])))
-            .fold(0.0, f64::max);
-        let chord = (PI / f64::from(m)).cos();
+        let needed = stitch_radius(0.5 * near.size_m, eye_rel, m).ok_or_else(|| {
+            invalid("far_segments", f64::from(m), "too coarse to stitch to the near patch".into())
+        })?;
         let first = (1..rings.len())
-            .find(|&k| rings[k] * h * chord >= STITCH_CLEARANCE * corner)
+            .find(|&k| rings[k] * h >= STITCH_CLEARANCE * needed)
             .filter(|&k| k + 1 < rings.len())
             .ok_or_else(|| {
                 invalid(
@@ -296,5 +296,88 @@ fn zip(inner: &[(f64, u32)], outer: &[(f64, u32)], out: &mut Vec<[u32; 3]>) {
             out.push([at(outer, k).1, at(outer, k + 1).1, at(inner, i).1]);
             k += 1;
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Zips a square's boundary (`per_side` edges per side) to a ring of `m` vertices at
+    /// radius `r` about `eye`; returns the smallest orientation (y of (b − a) × (c − a)).
+    fn worst_orientation(
+        half: f64,
+        per_side: i32,
+        eye: [f64; 2],
+        m: u32,
+        r: f64,
+        phase: f64,
+    ) -> f64 {
+        let mut pts: Vec<[f64; 2]> = Vec::new();
+        for side in 0..4 {
+            for k in 0..per_side {
+                let s = -half + 2.0 * half * f64::from(k) / f64::from(per_side);
+                pts.push(match side {
+                    0 => [-half, s],
+                    1 => [s, half],
+                    2 => [half, -s],
+                    _ => [-s, -half],
+                });
+            }
+        }
+        let inner_n = pts.len() as u32;
+        for j in 0..m {
+            let phi = TAU * f64::from(j) / f64::from(m) + phase;
+            pts.push([eye[0] + r * phi.sin(), eye[1] + r * phi.cos()]);
+        }
+        let by_azimuth = |ids: std::ops::Range<u32>| {
+            let mut l: Vec<(f64, u32)> = ids
+                .map(|i| {
+                    let p = pts[i as usize];
+                    let a = (p[0] - eye[0]).atan2(p[1] - eye[1]);
+                    (if a < 0.0 { a + TAU } else { a }, i)
+                })
+                .collect();
+            l.sort_by(|a, b| a.0.total_cmp(&b.0));
+            l
+        };
+        let mut out = Vec::new();
+        zip(&by_azimuth(0..inner_n), &by_azimuth(inner_n..inner_n + m), &mut out);
+        assert_eq!(out.len(), (inner_n + m) as usize);
+        out.iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| pts[i as usize]);
+                (b[1] - a[1]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[1] - a[1])
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    #[test]
+    fn stitch_radius_keeps_the_zip_counter_clockwise() {
+        for (half, per_side, eye, m) in [
+            (2.0, 4, [0.5, 0.5], 16),
+            (2.0, 1, [-0.5, 0.3], 16),
+            (256.0, 64, [0.5, -0.5], 128),
+            (256.0, 64, [0.0, 0.0], 16),
+        ] {
+            let needed = stitch_radius(half, eye, m).expect("stitchable");
+            for scale in [1.0, 1.25, 3.0, 1e3] {
+                for phase in 0..20 {
+                    let phase = f64::from(phase) * 0.05;
+                    let worst = worst_orientation(half, per_side, eye, m, needed * scale, phase);
+                    assert!(worst > 0.0, "half {half} eye {eye:?} M {m} ×{scale}: {worst}");
+                }
+            }
+        }
+        // Negative control: the plain clearance of the corners is not enough.
+        let (half, eye, m) = (2.0, [0.5, 0.5], 16);
+        let corner = 2.5f64.hypot(2.5) / (PI / 16.0).cos();
+        let worst = (0..40)
+            .map(|p| worst_orientation(half, 4, eye, m, 1.001 * corner, f64::from(p) * 0.01))
+            .fold(f64::INFINITY, f64::min);
+        assert!(worst <= 0.0, "{worst}");
+        assert!(stitch_radius(half, eye, m).unwrap() > corner);
+        // And no radius works when a ring step plus the corner angle reach 90°.
+        assert!(stitch_radius(256.0, [0.0, 0.0], 4).is_none());
     }
 }

@@ -18,10 +18,9 @@ pub const MAX_NEAR_LEVELS: u32 = 15;
 /// (`far_max_radius · H`) would approach f32's range.
 pub const MAX_HEIGHT_M: f64 = 1.0e6;
 
-/// How far the far patch's first kept ring must lie outside the near patch: its inscribed
-/// circle has at least this many times the radius of the near patch's circumscribed circle
-/// about the eye. The stitch between the two (see `mesh.rs`) relies on it.
-pub const STITCH_CLEARANCE: f64 = 3.0;
+/// Safety factor on the radius the far patch's first kept ring needs for the stitch to be
+/// valid ([`stitch_radius`]): the ring is placed at least this much farther out.
+pub const STITCH_CLEARANCE: f64 = 1.25;
 
 /// Everything that shapes the water mesh. Lengths in metres; the far patch's radii are in
 /// units of the viewpoint height H (the far patch is built once for H = 1 and scaled).
@@ -51,6 +50,7 @@ pub struct PatchParams {
     pub boundary_segments: u32,
     /// Width of the band inside the near patch's boundary over which the displacement weight
     /// ramps linearly from 0 (on the boundary) to 1; 0 makes every vertex off the boundary 1.
+    /// Default S/16, so that the waves fade out over several triangles rather than one.
     pub weight_taper_m: f64,
     /// Smallest viewpoint height used: H = max(|eye.y|, min_height_m). Under water the mesh
     /// is the one for the mirrored eye above the surface (the surface seen from below).
@@ -91,7 +91,7 @@ impl PatchParams {
             max_depth: 2 * levels,
             split_threshold: 0.05,
             boundary_segments: 64.min(1 << levels),
-            weight_taper_m: DEFAULT_NEAR_SIZE_M / 16.0,
+            weight_taper_m: grid_spacing_m * f64::from(1u32 << levels) / 16.0,
             min_height_m: 0.5,
             far_segments: 128,
             far_ring_ratio: 1.05,
@@ -178,11 +178,11 @@ impl PatchParams {
             ));
         }
         let m = self.far_segments;
-        if m < 8 || !m.is_multiple_of(2) || m > 1 << 16 {
+        if m < 16 || !m.is_multiple_of(2) || m > 1 << 16 {
             return Err(invalid(
                 "far_segments",
                 f64::from(m),
-                "must be even, from 8 to 65536".into(),
+                "must be even, from 16 to 65536".into(),
             ));
         }
         let q = self.far_ring_ratio;
@@ -210,18 +210,30 @@ impl PatchParams {
                 format!("times the largest height {MAX_HEIGHT_M} m must stay below 1e30 m"),
             ));
         }
-        let near_size = self.grid_spacing_m * power;
-        // The first kept far ring must clear the near patch by STITCH_CLEARANCE at the lowest
-        // height, with one more ring beyond it; the eye is at most half a cell off centre.
-        let corner = std::f64::consts::SQRT_2 * (0.5 * near_size + 0.5 * self.grid_spacing_m);
-        let reach = self.far_max_radius / q * self.min_height_m * (PI / f64::from(m)).cos();
-        if reach < STITCH_CLEARANCE * corner {
+        // The first kept far ring must be far enough out for the stitch at the lowest height,
+        // with one more ring beyond it, for the worst eye position (half a cell off centre).
+        let half = 0.5 * self.grid_spacing_m * power;
+        let off = 0.5 * self.grid_spacing_m;
+        let Some(needed) = stitch_radius(half, [off, off], m) else {
+            return Err(invalid(
+                "far_segments",
+                f64::from(m),
+                format!(
+                    "is too coarse to stitch to a near patch of {} cells: an outer step of \
+                     360°/M plus the corner's angle off the side's normal reaches 90°",
+                    power
+                ),
+            ));
+        };
+        let reach = self.far_max_radius / q * self.min_height_m;
+        if reach < STITCH_CLEARANCE * needed {
             return Err(invalid(
                 "far_max_radius",
                 self.far_max_radius,
                 format!(
-                    "times min_height_m must reach well past the near patch ({} m needed)",
-                    STITCH_CLEARANCE * corner * q / (PI / f64::from(m)).cos() / self.min_height_m
+                    "times min_height_m must reach past the near patch: at least {} (units of \
+                     H)",
+                    STITCH_CLEARANCE * needed * q / self.min_height_m
                 ),
             ));
         }
@@ -245,6 +257,39 @@ impl Layout {
     pub fn boundary_step(&self) -> i32 {
         (2 * self.half_cells) >> self.boundary_level
     }
+}
+
+/// The smallest radius about the eye at which a ring of `segments` vertices can be zipped to
+/// the boundary of the square [−half, half]² (the eye at `eye` inside it) with every
+/// triangle counter-clockwise; `None` when no radius can.
+///
+/// Zipping by azimuth (`mesh.rs`), a triangle with its base on the ring has its apex, a
+/// boundary vertex, inside the ring's chord once the ring's inscribed radius ρ·cos(π/M)
+/// exceeds the farthest corner. A triangle with its base on a side s of the square (at
+/// distance D_s from the eye, corners at most θ_s off its normal as seen from the eye) has
+/// its apex, a ring vertex, within one ring step 2π/M of the base's end in azimuth, hence at
+/// most θ_s + 2π/M off the normal, and beyond the side's line once
+/// ρ·cos(θ_s + 2π/M) > D_s. A triangulation of the annulus whose triangles are all
+/// counter-clockwise covers it exactly once.
+pub fn stitch_radius(half: f64, eye: [f64; 2], segments: u32) -> Option<f64> {
+    let step = 2.0 * PI / f64::from(segments);
+    let corner = [-half, half]
+        .iter()
+        .flat_map(|&x| [-half, half].map(|z| (x - eye[0]).hypot(z - eye[1])))
+        .fold(0.0, f64::max);
+    let mut needed = corner / (0.5 * step).cos();
+    // Sides x = ±half (along z) and z = ±half (along x).
+    for (normal, along) in [(eye[0], eye[1]), (eye[1], eye[0])] {
+        let reach_along = (half + along.abs()).max(half - along.abs());
+        for distance in [half - normal, half + normal] {
+            let theta = (reach_along / distance).atan() + step;
+            if distance <= 0.0 || distance.is_nan() || theta >= 0.5 * PI - 1e-3 {
+                return None;
+            }
+            needed = needed.max(distance / theta.cos());
+        }
+    }
+    Some(needed)
 }
 
 pub(crate) fn invalid(name: &'static str, value: f64, reason: String) -> Error {
