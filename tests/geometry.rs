@@ -25,8 +25,7 @@ fn two_sum(a: f64, b: f64) -> (f64, f64) {
 /// significant non-zero component has the sign of the sum).
 fn exact_sign(terms: &[f64; 6]) -> i32 {
     let mut e = [0.0f64; 6];
-    let mut len = 0;
-    for &t in terms {
+    for (len, &t) in terms.iter().enumerate() {
         let mut q = t;
         for c in e.iter_mut().take(len) {
             let (s, err) = two_sum(q, *c);
@@ -34,7 +33,6 @@ fn exact_sign(terms: &[f64; 6]) -> i32 {
             q = s;
         }
         e[len] = q;
-        len += 1;
     }
     e.iter().rev().find(|&&c| c != 0.0).map_or(0, |&c| if c > 0.0 { 1 } else { -1 })
 }

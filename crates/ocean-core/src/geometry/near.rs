@@ -254,13 +254,13 @@ impl NearPatch {
         }
 
         // Leaves in depth-first order, left child first; vertices numbered on first use.
-        let mut index_of: HashMap<[i32; 2], u32> = HashMap::new();
+        let mut index_of = VertexIndex::new(h);
         let mut vertices = Vec::new();
         let mut indices = Vec::new();
         let mut deepest_level = 0;
         let taper_cells = params.weight_taper_m / g;
         let mut vertex = |p: [i32; 2], vertices: &mut Vec<WaterVertex>| {
-            *index_of.entry(p).or_insert_with(|| {
+            index_of.get_or_insert(p, || {
                 vertices.push(WaterVertex {
                     pos: [(f64::from(p[0]) * g) as f32, (f64::from(p[1]) * g) as f32],
                     weight: near_weight(h - p[0].abs().max(p[1].abs()), taper_cells),
@@ -295,7 +295,7 @@ impl NearPatch {
                     2 => [h, -s],
                     _ => [-s, -h],
                 };
-                let i = index_of.get(&p).copied();
+                let i = index_of.get(p);
                 boundary.push(i.expect("the bintree subdivides the boundary exactly"));
             }
         }
@@ -314,6 +314,48 @@ impl NearPatch {
             boundary,
             deepest_level,
         })
+    }
+}
+
+/// Vertex numbers by grid point: a dense table up to 2^22 grid points, a hash map beyond.
+enum VertexIndex {
+    Dense { half: i32, ids: Vec<u32> },
+    Sparse(HashMap<[i32; 2], u32>),
+}
+
+impl VertexIndex {
+    fn new(half: i32) -> Self {
+        let side = 2 * i64::from(half) + 1;
+        if side * side <= 1 << 22 {
+            Self::Dense { half, ids: vec![NONE; (side * side) as usize] }
+        } else {
+            Self::Sparse(HashMap::new())
+        }
+    }
+
+    fn slot(half: i32, p: [i32; 2]) -> usize {
+        let side = 2 * half as usize + 1;
+        (p[1] + half) as usize * side + (p[0] + half) as usize
+    }
+
+    fn get(&self, p: [i32; 2]) -> Option<u32> {
+        match self {
+            Self::Dense { half, ids } => Some(ids[Self::slot(*half, p)]).filter(|&i| i != NONE),
+            Self::Sparse(map) => map.get(&p).copied(),
+        }
+    }
+
+    fn get_or_insert(&mut self, p: [i32; 2], make: impl FnOnce() -> u32) -> u32 {
+        match self {
+            Self::Dense { half, ids } => {
+                let slot = &mut ids[Self::slot(*half, p)];
+                if *slot == NONE {
+                    *slot = make();
+                }
+                *slot
+            }
+            Self::Sparse(map) => *map.entry(p).or_insert_with(make),
+        }
     }
 }
 
@@ -358,6 +400,37 @@ mod tests {
         let near = NearPatch::build(&p, [0.0, 1e5, 0.0]).unwrap();
         assert_eq!(near.boundary.len(), 8);
         assert_eq!(near.indices.len(), 8);
+    }
+
+    #[test]
+    fn dense_and_sparse_vertex_indices_agree() {
+        let mut dense = VertexIndex::new(4);
+        let mut sparse = VertexIndex::Sparse(HashMap::new());
+        assert!(matches!(dense, VertexIndex::Dense { .. }));
+        assert!(matches!(VertexIndex::new(1 << 11), VertexIndex::Sparse(_)));
+        let points = [[-4, -4], [4, 4], [0, 0], [-4, 4], [3, -2], [0, 0], [4, 4]];
+        let (mut nd, mut ns) = (0, 0);
+        for p in points {
+            let a = dense.get_or_insert(p, || {
+                nd += 1;
+                nd - 1
+            });
+            let b = sparse.get_or_insert(p, || {
+                ns += 1;
+                ns - 1
+            });
+            assert_eq!(a, b);
+        }
+        assert_eq!(nd, 5);
+        for p in [[-4, -4], [1, 1], [3, -2], [4, -4]] {
+            assert_eq!(dense.get(p), sparse.get(p));
+        }
+        assert_eq!(dense.get([1, 1]), None);
+        // A patch big enough for the sparse table builds too.
+        let mut p = params(12, 64);
+        p.min_height_m = 1e5;
+        let near = NearPatch::build(&p, [0.0, 1e5, 0.0]).unwrap();
+        assert_eq!(near.boundary.len(), 256);
     }
 
     #[test]
