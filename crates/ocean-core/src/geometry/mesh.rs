@@ -34,9 +34,11 @@ use crate::Result;
 ///
 /// Vertex positions are world (x, z) relative to `origin` (camera-relative rendering adds
 /// `origin − camera` in f64, then draws in f32). For the displacement-map lookup use the grid
-/// index: the vertex's map coordinates are `(origin_cell mod N) · g + pos` (g = L/N), small
-/// numbers with no loss for an eye far from the world origin; near vertices land exactly on
-/// map samples.
+/// index rather than the world position: the vertex is at map sample coordinates
+/// s = (origin_cell mod N) + pos / g (g = L/N), small numbers with no loss for an eye far
+/// from the world origin. Near vertices have integer s: sample (i, j) of the map (at
+/// x = i·g) is texel (i, j), whose centre is at texture coordinate (i + ½)/N, so fetch with
+/// `textureLoad(s mod N)`, or sample at (s + ½)/N with repeat addressing.
 #[derive(Clone, Debug, PartialEq)]
 pub struct WaterMesh {
     /// The reference point c (world x, z), metres: the near patch's centre.

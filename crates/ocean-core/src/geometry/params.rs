@@ -62,8 +62,10 @@ pub struct PatchParams {
     /// Radius of the far patch's innermost precomputed ring, in units of H.
     pub far_min_radius: f64,
     /// Radius the far patch's outermost ring reaches at least, in units of H. The ring at
-    /// ρ·H is seen atan(1/ρ) below the horizon: 1e6 puts it within 1e-6 rad of the horizon,
-    /// a fraction of a pixel for any fov ≤ 120° on any screen up to 16384 pixels high.
+    /// ρ·H is seen atan(1/ρ) below the horizon: 1e6 puts it within 1e-6 rad of it. A pixel
+    /// row spans at least sin(fov_y)/height_px rad (the edge rows of a pinhole camera), so
+    /// the uncovered band is under half a pixel for fov_y from 2° to 120° on screens up to
+    /// 16384 pixels high. (The horizon itself is at infinity.)
     pub far_max_radius: f64,
 }
 
