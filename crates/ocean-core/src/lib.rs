@@ -1,8 +1,8 @@
 //! Physics and data of the `ocean` renderer, with no GPU: scene description, wave spectra,
 //! dispersion, seeded random amplitudes, FFT wave synthesis (Tessendorf / Hu et al. 2004 eq. 1),
 //! the exact Fresnel term (Hu et al. eq. 2) and the tables built from it, the Preetham daylight
-//! sky, and what the render stages share with the GPU: the embedded WGSL sources and the
-//! `#[repr(C)]` uniform structs.
+//! sky, the view-dependent water mesh (near and far patches, §3), and what the render stages
+//! share with the GPU: the embedded WGSL sources and the `#[repr(C)]` uniform structs.
 //!
 //! Conventions used throughout (one place):
 //! - SI units: metres, seconds, radians. y is up, the mean sea plane is y = 0; the horizontal
@@ -20,6 +20,7 @@ pub mod dispersion;
 pub mod error;
 pub mod frame;
 pub mod fresnel;
+pub mod geometry;
 pub mod plan;
 pub mod rng;
 pub mod scene;
