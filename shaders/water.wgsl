@@ -34,7 +34,8 @@
 @group(1) @binding(0) var<uniform> sky: SkyUniforms;
 
 struct WaterVertex {
-    // Position on the sea plane relative to the eye, (x, z), m.
+    // Position on the sea plane relative to the mesh's reference point c, (x, z), m
+    // (ocean-core's geometry::WaterVertex).
     @location(0) pos: vec2<f32>,
     // Displacement weight: 1 inside the near patch, 0 on its boundary and the far patch.
     @location(1) weight: f32,
@@ -58,7 +59,9 @@ fn vs_main(v: WaterVertex) -> VertexOut {
     let uv_d = (v.pos + frame.patch_origin.xy) * frame.patch_scale.x + frame.patch_scale.z;
     let uv_b = (v.pos + frame.patch_origin.zw) * frame.patch_scale.y + frame.patch_scale.w;
     let d = textureSampleLevel(displacement, wrap_linear, uv_d, 0.0) * (v.weight * frame.passes.x);
-    let rel = vec3<f32>(v.pos.x + d.x, d.y - frame.eye.x, v.pos.y + d.z);
+    // Camera-relative: c − eye (formed in f64 on the CPU) plus the vertex's offset from c.
+    let plane = v.pos + frame.mesh_offset.xy;
+    let rel = vec3<f32>(plane.x + d.x, d.y - frame.eye.x, plane.y + d.z);
     var out: VertexOut;
     out.clip = transform_point(frame.view_proj, rel);
     out.rel = rel;

@@ -55,8 +55,7 @@ fn parse_size(s: &str) -> anyhow::Result<(u32, u32)> {
 
 /// Runs `ocean render`.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let kind = match args.output.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase)
-    {
+    let kind = match args.output.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase) {
         Some(e) if e == "png" => OutputKind::Ldr,
         Some(e) if e == "exr" => OutputKind::Hdr,
         _ => bail!("output {} must end in .png or .exr", args.output.display()),
@@ -72,9 +71,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         (scene.camera.width, scene.camera.height) = parse_size(s)?;
     }
     if let Backend::Gpu = args.backend {
-        bail!(
-            "the GPU back end is not implemented yet (issue 4); use --backend cpu (the default)"
-        );
+        bail!("the GPU back end is not implemented yet (issue 4); use --backend cpu (the default)");
     }
 
     // A progress bar only for renders that take over a second.

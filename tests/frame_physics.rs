@@ -19,7 +19,7 @@ use ocean_cpu::shaders::water::WaterVertex;
 /// A 200 × 200 grid of 20 m cells around the eye (±2 km): triangles small enough that the
 /// interpolated f32 position of a surface point does not cancel (one spanning ±100 km loses
 /// ~1e5·6e-8 m of a 50 m distance: 1e-4 in the view direction, and F with it).
-fn grid(_: &Camera) -> WaterMesh {
+fn grid(camera: &Camera) -> Result<WaterMesh, ocean_cpu::frame::Error> {
     let (n, cell) = (200u32, 20.0f32);
     let half = n as f32 * cell / 2.0;
     let mut vertices = Vec::new();
@@ -39,7 +39,7 @@ fn grid(_: &Camera) -> WaterMesh {
             triangles.push([at(i + 1, j), at(i, j + 1), at(i + 1, j + 1)]);
         }
     }
-    (vertices, triangles)
+    Ok(WaterMesh { vertices, indices: triangles, origin: [camera.eye.x, camera.eye.z] })
 }
 
 fn render_calm(ior: f64) -> (Scene, FrameBuffers) {

@@ -5,6 +5,7 @@ struct FrameUniforms {
     sun_view_proj: mat4x4<f32>,
     eye: vec4<f32>,
     patch_origin: vec4<f32>,
+    mesh_offset: vec4<f32>,
     patch_scale: vec4<f32>,
     sun_dir: vec4<f32>,
     sun_radiance: vec4<f32>,

@@ -39,9 +39,13 @@ pub struct FrameUniforms {
     pub sun_view_proj: [[f32; 4]; 4],
     /// (eye height above the mean sea plane, m; 0; 0; 0).
     pub eye: [f32; 4],
-    /// (eye.x mod L_d, eye.z mod L_d, eye.x mod L_b, eye.z mod L_b), m: the eye's position in
-    /// the displacement and bump tiles.
+    /// (c.x mod L_d, c.z mod L_d, c.x mod L_b, c.z mod L_b), m: the water mesh's reference
+    /// point c in the displacement and bump tiles (reduced in f64). c sits on a displacement
+    /// grid point, so a near-patch vertex lands exactly on a map sample.
     pub patch_origin: [f32; 4],
+    /// (c.x − eye.x, c.z − eye.z, 0, 0), m: where the mesh's reference point is relative to
+    /// the eye (formed in f64).
+    pub mesh_offset: [f32; 4],
     /// (1/L_d, 1/L_b, ½ texel of the displacement map 0.5/N_d, ½ texel of the bump map).
     pub patch_scale: [f32; 4],
     /// Unit direction towards the sun (xyz); w = 1 when the sun lights the scene, else 0.
@@ -205,8 +209,9 @@ pub fn sun_view_proj(objects: &[Object], eye: DVec3, sun_dir: DVec3) -> Option<D
 }
 
 impl FrameUniforms {
-    /// The uniforms of a scene's frame for a camera and plan.
-    pub fn new(scene: &Scene, camera: &Camera, plan: &FramePlan) -> Self {
+    /// The uniforms of a scene's frame for a camera, a plan and the water mesh's reference
+    /// point `mesh_origin` (world x, z).
+    pub fn new(scene: &Scene, camera: &Camera, plan: &FramePlan, mesh_origin: [f64; 2]) -> Self {
         let o = &scene.ocean;
         let eye = camera.eye;
         let l_d = o.patch_size_m;
@@ -228,10 +233,16 @@ impl FrameUniforms {
             sun_view_proj: to_cols_f32(shadow),
             eye: [eye.y as f32, 0.0, 0.0, 0.0],
             patch_origin: [
-                eye.x.rem_euclid(l_d) as f32,
-                eye.z.rem_euclid(l_d) as f32,
-                eye.x.rem_euclid(l_b) as f32,
-                eye.z.rem_euclid(l_b) as f32,
+                mesh_origin[0].rem_euclid(l_d) as f32,
+                mesh_origin[1].rem_euclid(l_d) as f32,
+                mesh_origin[0].rem_euclid(l_b) as f32,
+                mesh_origin[1].rem_euclid(l_b) as f32,
+            ],
+            mesh_offset: [
+                (mesh_origin[0] - eye.x) as f32,
+                (mesh_origin[1] - eye.z) as f32,
+                0.0,
+                0.0,
             ],
             patch_scale: [
                 (1.0 / l_d) as f32,

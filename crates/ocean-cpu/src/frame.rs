@@ -83,8 +83,23 @@ fn wave_textures(maps: &WaveMaps<f32>) -> (Texture2D, Texture2D) {
     (Texture2D::new(n, n, disp.collect()), Texture2D::new(n, n, slopes.collect()))
 }
 
-/// The water mesh of a view: (vertices, triangles).
-pub type WaterMesh = (Vec<water::WaterVertex>, Vec<[u32; 3]>);
+/// The water mesh of a view: vertices relative to `origin` (world x, z; see
+/// `ocean_core::geometry::WaterMesh`), triangles counter-clockwise seen from above.
+#[derive(Clone, Debug, PartialEq)]
+pub struct WaterMesh {
+    /// The vertices.
+    pub vertices: Vec<water::WaterVertex>,
+    /// The triangles.
+    pub indices: Vec<[u32; 3]>,
+    /// The mesh's reference point (world x, z), m.
+    pub origin: [f64; 2],
+}
+
+impl From<ocean_core::geometry::WaterMesh> for WaterMesh {
+    fn from(m: ocean_core::geometry::WaterMesh) -> Self {
+        Self { vertices: m.vertices, indices: m.indices, origin: m.origin }
+    }
+}
 
 /// Draws the objects' triangles with one of the objects stage's entry-point pairs.
 fn draw_objects(
@@ -122,7 +137,7 @@ pub fn render(
     plan: &FramePlan,
     sky_radiance: &(dyn Fn([f32; 3]) -> [f32; 3] + Sync),
     draw_sky: &dyn Fn(&mut RenderTarget),
-    water_mesh: &dyn Fn(&Camera) -> WaterMesh,
+    water_mesh: &dyn Fn(&Camera) -> Result<WaterMesh, Error>,
     on_pass: &mut dyn FnMut(Pass),
 ) -> Result<FrameBuffers, Error> {
     render_with(scene, plan, sky_radiance, draw_sky, water_mesh, &|_| {}, on_pass)
@@ -135,7 +150,7 @@ pub fn render_with(
     plan: &FramePlan,
     sky_radiance: &(dyn Fn([f32; 3]) -> [f32; 3] + Sync),
     draw_sky: &dyn Fn(&mut RenderTarget),
-    water_mesh: &dyn Fn(&Camera) -> WaterMesh,
+    water_mesh: &dyn Fn(&Camera) -> Result<WaterMesh, Error>,
     customise: &dyn Fn(&mut FrameUniforms),
     on_pass: &mut dyn FnMut(Pass),
 ) -> Result<FrameBuffers, Error> {
@@ -144,7 +159,8 @@ pub fn render_with(
     if w > RenderTarget::MAX_SIZE || h > RenderTarget::MAX_SIZE {
         return Err(Error::TooLarge { width: w, height: h, max: RenderTarget::MAX_SIZE });
     }
-    let mut u = FrameUniforms::new(scene, &camera, plan);
+    let mesh = water_mesh(&camera)?;
+    let mut u = FrameUniforms::new(scene, &camera, plan, mesh.origin);
     customise(&mut u);
     let u = u;
     let mut timings = Vec::new();
@@ -270,8 +286,8 @@ pub fn render_with(
         shadow_map: &shadow_map,
         sky_radiance,
     };
-    let (mesh_vertices, mesh_triangles) = water_mesh(&camera);
-    let verts: Vec<Vertex<{ water::VARYINGS }>> = mesh_vertices
+    let verts: Vec<Vertex<{ water::VARYINGS }>> = mesh
+        .vertices
         .iter()
         .map(|v| {
             let o = water::vs_main(v, &bindings);
@@ -279,7 +295,7 @@ pub fn render_with(
         })
         .collect();
     let state = RasterState { blend: BlendMode::Replace, ..eye_state() };
-    raster::draw_indexed(&mut hdr, &state, &verts, &mesh_triangles, |frag| {
+    raster::draw_indexed(&mut hdr, &state, &verts, &mesh.indices, |frag| {
         Some(water::fs_main(
             &water::VertexOut::from_fragment(frag.frag_coord, &frag.varyings),
             &bindings,
@@ -300,27 +316,4 @@ pub fn render_with(
         uniforms: u,
         timings,
     })
-}
-
-/// A stand-in water mesh until the near/far patches are wired: a 256 × 256 grid of 8 m cells
-/// around the eye (±1 km), displaced everywhere.
-pub fn fallback_mesh(_camera: &Camera) -> WaterMesh {
-    let (n, cell) = (256u32, 8.0f32);
-    let half = n as f32 * cell / 2.0;
-    let mut vertices = Vec::new();
-    for j in 0..=n {
-        for i in 0..=n {
-            let pos = [i as f32 * cell - half, j as f32 * cell - half];
-            vertices.push(water::WaterVertex { pos, weight: 1.0 });
-        }
-    }
-    let at = |i: u32, j: u32| j * (n + 1) + i;
-    let mut triangles = Vec::new();
-    for j in 0..n {
-        for i in 0..n {
-            triangles.push([at(i, j), at(i, j + 1), at(i + 1, j)]);
-            triangles.push([at(i + 1, j), at(i, j + 1), at(i + 1, j + 1)]);
-        }
-    }
-    (vertices, triangles)
 }

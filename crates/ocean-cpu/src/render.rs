@@ -5,6 +5,7 @@ use glam::DVec3;
 use ocean_core::camera::Camera;
 use ocean_core::camera_uniforms::CameraUniforms;
 use ocean_core::frame::FrameUniforms;
+use ocean_core::geometry::PatchParams;
 use ocean_core::plan::{FramePlan, OutputKind, Pass};
 use ocean_core::scene::{Scene, Sun};
 use ocean_core::sky::{PreethamSky, SkyParams};
@@ -51,10 +52,17 @@ pub fn sky_ambient(sky: &PreethamSky) -> [f32; 4] {
     [mean.x as f32, mean.y as f32, mean.z as f32, 0.0]
 }
 
-/// The near/far patch mesh of a view, in the water stage's vertex format.
-pub fn water_mesh(scene: &Scene, camera: &Camera) -> WaterMesh {
-    let _ = scene;
-    crate::frame::fallback_mesh(camera)
+/// The near/far patch mesh of a view (seed 000 §3), for the scene's displacement grid.
+pub fn water_mesh(scene: &Scene, camera: &Camera) -> Result<WaterMesh, Error> {
+    let params = PatchParams::for_ocean(scene.ocean.patch_size_m, scene.ocean.resolution);
+    let mesh = ocean_core::geometry::WaterMesh::for_view(
+        &params,
+        camera.eye.to_array(),
+        camera.forward.to_array(),
+        camera.fov_y,
+        camera.aspect(),
+    )?;
+    Ok(mesh.into())
 }
 
 /// Renders a validated scene; `on_pass` is called as each pass starts.

@@ -50,14 +50,8 @@ pub struct Bindings<'a> {
     pub sky_radiance: &'a (dyn Fn([f32; 3]) -> [f32; 3] + Sync),
 }
 
-/// `WaterVertex`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct WaterVertex {
-    /// Position on the sea plane relative to the eye, (x, z), m.
-    pub pos: [f32; 2],
-    /// Displacement weight.
-    pub weight: f32,
-}
+/// `WaterVertex`: the vertex format is defined once, in ocean-core.
+pub use ocean_core::geometry::WaterVertex;
 
 /// `VertexOut`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -110,7 +104,8 @@ pub fn vs_main(v: &WaterVertex, b: &Bindings<'_>) -> VertexOut {
     let s = texture_sample_level(b.displacement, &WRAP_LINEAR, uv_d, 0.0);
     let w = v.weight * f.passes[0];
     let d = [s[0] * w, s[1] * w, s[2] * w, s[3] * w];
-    let rel = [v.pos[0] + d[0], d[1] - f.eye[0], v.pos[1] + d[2]];
+    let plane = [v.pos[0] + f.mesh_offset[0], v.pos[1] + f.mesh_offset[1]];
+    let rel = [plane[0] + d[0], d[1] - f.eye[0], plane[1] + d[2]];
     VertexOut { clip: transform_point(&f.view_proj, rel), rel, uv_d, uv_b, weight: v.weight }
 }
 
