@@ -14,6 +14,9 @@
 //! - `refraction_map`: holds the objects under the water with eq. 4's fog, coverage in alpha;
 //!   the water volume colour fills the rest. No object under the water → nothing to show.
 //! - `objects`: no objects, no pass.
+//! - `sky`: with the camera under the water the background is the water volume's colour (the
+//!   frame is cleared to it); the sky is still seen through the surface (Snell's window), which
+//!   the water pass evaluates analytically.
 //! - `tonemap`: an EXR output keeps linear HDR.
 
 use std::fmt;
@@ -150,7 +153,16 @@ impl FramePlan {
                     0 => (false, "nothing under the water: the water volume colour alone".into()),
                     n => (true, format!("{n} object(s) under the water")),
                 },
-                Pass::Sky => (true, "the background and the reflected environment".into()),
+                Pass::Sky => {
+                    if scene.camera.position[1] < 0.0 {
+                        (
+                            false,
+                            "camera under the water: the water volume fills the background".into(),
+                        )
+                    } else {
+                        (true, "the background".into())
+                    }
+                }
                 Pass::Objects => match scene.objects.len() {
                     0 => (false, "the scene has no objects".into()),
                     n => (true, format!("{n} object(s)")),

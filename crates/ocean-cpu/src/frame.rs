@@ -256,10 +256,15 @@ pub fn render_with(
     // sky
     let mut hdr = RenderTarget::new(w, h);
     hdr.clear_depth(0.0);
-    on_pass(Pass::Sky);
-    let t0 = Instant::now();
-    draw_sky(&mut hdr);
-    timed(Pass::Sky, t0);
+    if plan.runs(Pass::Sky) {
+        on_pass(Pass::Sky);
+        let t0 = Instant::now();
+        draw_sky(&mut hdr);
+        timed(Pass::Sky, t0);
+    } else {
+        // Under the water: the water volume is the background.
+        hdr.clear_color([u.water_color[0], u.water_color[1], u.water_color[2], 1.0]);
+    }
 
     // objects
     if plan.runs(Pass::Objects) {
