@@ -54,9 +54,11 @@ fn bench(c: &mut Criterion) {
     group.sample_size(10);
     for (w, h) in [(320u32, 180u32), (1280, 720)] {
         let s = scene(w, h);
-        group.bench_with_input(BenchmarkId::new("default_scene", format!("{w}x{h}")), &s, |b, s| {
-            b.iter(|| black_box(ocean_cpu::render_ldr(s).expect("render")))
-        });
+        group.bench_with_input(
+            BenchmarkId::new("default_scene", format!("{w}x{h}")),
+            &s,
+            |b, s| b.iter(|| black_box(ocean_cpu::render_ldr(s).expect("render"))),
+        );
     }
     group.finish();
 }
