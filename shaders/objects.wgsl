@@ -104,6 +104,8 @@ fn fs_refract(in: VertexOut) -> @location(0) vec4<f32> {
     let dist = sqrt(dot3(in.rel, in.rel));
     let d = dist * (depth_below / (depth_below + height_above));
     let fog = 1.0 - exp(-frame.water_color.w * d);
-    let obj = shade(in.normal, in.color);
+    // The light reaching the object is the downwelling irradiance at its depth, which falls
+    // as e^{−K z} (K is the diffuse extinction coefficient, §4.3).
+    let obj = shade(in.normal, in.color) * exp(-frame.water_color.w * -in.world_y);
     return vec4<f32>(frame.water_color.xyz * fog + obj * (1.0 - fog), 1.0);
 }

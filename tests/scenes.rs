@@ -19,7 +19,16 @@ fn reference_scenes_parse() {
         }
     }
     // A missing scene is a failure, not a pass over an empty folder.
-    for want in ["default", "calm", "storm", "shallow_reef", "phillips"] {
+    for want in [
+        "default",
+        "calm",
+        "storm",
+        "shallow_reef",
+        "phillips",
+        "grazing_sun",
+        "looking_down",
+        "underwater_object",
+    ] {
         assert!(names.iter().any(|n| n.as_deref() == Some(want)), "scene {want}.toml is missing");
     }
 }

@@ -116,7 +116,10 @@ pub fn fs_refract(input: &VertexOut, frame: &FrameUniforms) -> Option<[f32; 4]> 
     let dist = dot3(input.rel, input.rel).sqrt();
     let d = dist * (depth_below / (depth_below + height_above));
     let fog = 1.0 - (-frame.water_color[3] * d).exp();
-    let obj = shade(frame, input.normal, input.color);
+    let obj = scale3(
+        shade(frame, input.normal, input.color),
+        (-frame.water_color[3] * -input.world_y).exp(),
+    );
     let c = add3(scale3(xyz(frame.water_color), fog), scale3(obj, 1.0 - fog));
     Some([c[0], c[1], c[2], 1.0])
 }
