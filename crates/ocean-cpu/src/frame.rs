@@ -74,13 +74,22 @@ fn target_texture(t: RenderTarget) -> Texture2D {
     Texture2D::new(t.width, t.height, t.color)
 }
 
-/// The wave maps packed as the water stage binds them.
+/// The displacement map packed as the water stage binds it: (disp_x, height, disp_z,
+/// jacobian) and (slope_x, slope_z, 0, 0).
 fn wave_textures(maps: &WaveMaps<f32>) -> (Texture2D, Texture2D) {
     let n = maps.resolution() as u32;
     let k = maps.height.len();
     let disp = (0..k).map(|i| [maps.disp_x[i], maps.height[i], maps.disp_z[i], maps.jacobian[i]]);
     let slopes = (0..k).map(|i| [maps.slope_x[i], maps.slope_z[i], 0.0, 0.0]);
     (Texture2D::new(n, n, disp.collect()), Texture2D::new(n, n, slopes.collect()))
+}
+
+/// The bump map packed as the water stage binds it: (slope_x, slope_z, height, jacobian).
+fn bump_texture(maps: &WaveMaps<f32>) -> Texture2D {
+    let n = maps.resolution() as u32;
+    let texels = (0..maps.height.len())
+        .map(|i| [maps.slope_x[i], maps.slope_z[i], maps.height[i], maps.jacobian[i]]);
+    Texture2D::new(n, n, texels.collect())
 }
 
 /// The water mesh of a view: vertices relative to `origin` (world x, z; see
@@ -185,14 +194,7 @@ pub fn render_with(
             t,
             chop,
         )?;
-        let n = b.resolution() as u32;
-        bump = Texture2D::new(
-            n,
-            n,
-            (0..b.height.len())
-                .map(|i| [b.slope_x[i], b.slope_z[i], b.height[i], b.jacobian[i]])
-                .collect(),
-        );
+        bump = bump_texture(&b);
         timed(Pass::Waves, t0);
     }
 
