@@ -75,3 +75,12 @@ fn snap_to_grid(params: &PatchParams, eye_xz: [f64; 2]) -> Result<([i64; 2], [f6
     }
     Ok((cell, cell.map(|k| k as f64 * g)))
 }
+
+/// The near patch's square for an eye at (x, z) = `eye_xz`: its centre (the eye snapped to
+/// the displacement grid, world x, z) and half side, metres. The far patch and the stitch lie
+/// outside it.
+pub fn near_patch_square(params: &PatchParams, eye_xz: [f64; 2]) -> Result<([f64; 2], f64)> {
+    let layout = params.validate()?;
+    let (_, origin) = snap_to_grid(params, eye_xz)?;
+    Ok((origin, layout.grid * f64::from(layout.half_cells)))
+}

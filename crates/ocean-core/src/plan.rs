@@ -18,18 +18,36 @@
 //!   frame is cleared to it); the sky is still seen through the surface (Snell's window), which
 //!   the water pass evaluates analytically.
 //! - `tonemap`: an EXR output keeps linear HDR.
+//! - `cycle`: the loop's maps precomputed once and played cyclically (seed 000 §2.1) pay off
+//!   only over several frames of a looping sea; a single frame is synthesised at its t.
+//! - `far_patch`: the far rings and the stitch lie outside the near patch's square on the sea
+//!   plane (weight 0, flat); when the view's footprint on the plane lies inside that square
+//!   they are clipped whole and are not built.
+//! - per-pass object lists: an object whose box (mirrored for the reflection map, scaled by
+//!   1/η for the refraction map) lies outside the view frustum yields no fragment in that
+//!   pass and is culled from it; a pass left with no object is skipped. The shadow map keeps
+//!   every object above the water: a caster outside the view can shadow the visible water.
+//!
+//! [`FramePlan::full`] turns every one of these rules off (the `sky` and `tonemap` choices
+//! stay: they are what the picture shows, not work saved); the tests render both plans and
+//! compare the bits.
 
 use std::fmt;
 
+use glam::{DVec3, DVec4};
 use serde::Serialize;
 
+use crate::camera::{Camera, NEAR_PLANE_M};
+use crate::geometry::WaterMesh;
 use crate::scene::{Object, Scene, Shape};
 
 /// A pass of the frame, named as in DESIGN.md (the name of its stage, or of the map an
-/// object pass fills).
+/// object pass fills, or of the work it stands for: `cycle`, `far_patch`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Pass {
+    /// The maps of one loop period, precomputed and played cyclically (seed 000 §2.1).
+    Cycle,
     /// Displacement and bump maps of the sea at time t (stage `waves`).
     Waves,
     /// The 2D Fresnel texture (stage `fresnel_table`).
@@ -44,6 +62,8 @@ pub enum Pass {
     Sky,
     /// The objects in the main view (stage `objects`).
     Objects,
+    /// The far patch of the water mesh and its stitch to the near patch (seed 000 §3).
+    FarPatch,
     /// The water surface, eq. 3 (stage `water`).
     Water,
     /// HDR → 8-bit sRGB (stage `tonemap`).
@@ -52,7 +72,8 @@ pub enum Pass {
 
 impl Pass {
     /// Every pass, in execution order.
-    pub const ALL: [Pass; 9] = [
+    pub const ALL: [Pass; 11] = [
+        Pass::Cycle,
         Pass::Waves,
         Pass::FresnelTable,
         Pass::ShadowMap,
@@ -60,6 +81,7 @@ impl Pass {
         Pass::RefractionMap,
         Pass::Sky,
         Pass::Objects,
+        Pass::FarPatch,
         Pass::Water,
         Pass::Tonemap,
     ];
@@ -67,6 +89,7 @@ impl Pass {
     /// The pass's name in plans, labels and reports.
     pub fn name(self) -> &'static str {
         match self {
+            Pass::Cycle => "cycle",
             Pass::Waves => "waves",
             Pass::FresnelTable => "fresnel_table",
             Pass::ShadowMap => "shadow_map",
@@ -74,6 +97,7 @@ impl Pass {
             Pass::RefractionMap => "refraction_map",
             Pass::Sky => "sky",
             Pass::Objects => "objects",
+            Pass::FarPatch => "far_patch",
             Pass::Water => "water",
             Pass::Tonemap => "tonemap",
         }
@@ -104,55 +128,333 @@ pub struct PlannedPass {
     pub reason: String,
 }
 
-/// The ordered passes of a frame and the ones left out.
+/// Which objects (indices into the scene's `objects`) each object pass draws.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct PassObjects {
+    /// Casters of the sun's shadow map.
+    pub shadow_map: Vec<usize>,
+    /// Objects mirrored into the reflection map.
+    pub reflection_map: Vec<usize>,
+    /// Objects scaled and fogged into the refraction map.
+    pub refraction_map: Vec<usize>,
+    /// Objects in the main view.
+    pub objects: Vec<usize>,
+}
+
+impl PassObjects {
+    /// The list of an object pass (empty for the other passes).
+    pub fn of(&self, pass: Pass) -> &[usize] {
+        match pass {
+            Pass::ShadowMap => &self.shadow_map,
+            Pass::ReflectionMap => &self.reflection_map,
+            Pass::RefractionMap => &self.refraction_map,
+            Pass::Objects => &self.objects,
+            _ => &[],
+        }
+    }
+}
+
+/// The ordered passes of a frame, the ones left out, and what each object pass draws at what
+/// size.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
 pub struct FramePlan {
     /// The passes to run, in order.
     pub passes: Vec<PlannedPass>,
     /// The passes left out, with why.
     pub skipped: Vec<PlannedPass>,
+    /// The objects each object pass draws.
+    pub objects: PassObjects,
+    /// Side N of the N × N Fresnel textures (`[quality] fresnel_table_size`).
+    pub fresnel_table_size: u32,
+    /// Width and height of the reflection map, pixels (`[quality] reflection_map_scale` of the
+    /// viewport, at least 1).
+    pub reflection_map_size: [u32; 2],
 }
 
 /// The vertical extent of an object, m.
 fn y_range(o: &Object) -> (f64, f64) {
+    let (lo, hi) = bounds(o);
+    (lo.y, hi.y)
+}
+
+/// The axis-aligned box of an object (world, m).
+fn bounds(o: &Object) -> (DVec3, DVec3) {
     let half = match o.shape() {
-        Some(Shape::Sphere { radius }) => radius,
-        Some(Shape::Box { size }) => 0.5 * size[1],
-        None => 0.0,
+        Some(Shape::Sphere { radius }) => DVec3::splat(radius),
+        Some(Shape::Box { size }) => DVec3::from_array(size) * 0.5,
+        None => DVec3::ZERO,
     };
-    (o.center[1] - half, o.center[1] + half)
+    let c = DVec3::from_array(o.center);
+    (c - half, c + half)
+}
+
+/// Margin of the culling tests, pixels: a box must be this far outside the frustum's side
+/// planes to be culled. The renderers transform f32 positions with f32 matrices (relative
+/// error ~1e-7) and snap to 1/256 pixel; 4 pixels covers both with room to spare.
+const CULL_MARGIN_PX: f64 = 4.0;
+
+/// Whether the box [lo, hi] (world) is outside the camera's frustum: all eight corners beyond
+/// one side plane (widened by [`CULL_MARGIN_PX`]) or behind half the near plane. A box
+/// straddling a plane is kept, so this never culls what the rasterizer would draw.
+fn outside_view(camera: &Camera, lo: DVec3, hi: DVec3) -> bool {
+    let vp = camera.view_proj();
+    let mx = 1.0 + 2.0 * CULL_MARGIN_PX / f64::from(camera.width);
+    let my = 1.0 + 2.0 * CULL_MARGIN_PX / f64::from(camera.height);
+    let corners: Vec<DVec4> = (0..8)
+        .map(|i| {
+            let p = DVec3::new(
+                if i & 1 == 0 { lo.x } else { hi.x },
+                if i & 2 == 0 { lo.y } else { hi.y },
+                if i & 4 == 0 { lo.z } else { hi.z },
+            );
+            vp * (p - camera.eye).extend(1.0)
+        })
+        .collect();
+    let all = |f: &dyn Fn(&DVec4) -> bool| corners.iter().all(f);
+    all(&|c| c.x > mx * c.w)
+        || all(&|c| c.x < -mx * c.w)
+        || all(&|c| c.y > my * c.w)
+        || all(&|c| c.y < -my * c.w)
+        || all(&|c| c.w < 0.5 * NEAR_PLANE_M)
+}
+
+/// "#1 box" — how a reason names an object.
+fn object_name(i: usize, o: &Object) -> String {
+    let kind = match o.kind {
+        crate::scene::ObjectKind::Sphere => "sphere",
+        crate::scene::ObjectKind::Box => "box",
+    };
+    format!("#{i} {kind}")
+}
+
+/// Whether the view's footprint on the sea plane lies inside the near patch's square, so that
+/// the far patch and the stitch (outside the square, flat) are clipped whole. Returns the
+/// footprint's bounding box (min x, min z, max x, max z) and the square (centre, half side)
+/// when it does.
+fn footprint_inside_near_patch(scene: &Scene, camera: &Camera) -> Option<([f64; 4], [f64; 3])> {
+    let eye = camera.eye;
+    if eye.y == 0.0 {
+        return None;
+    }
+    // Corner rays of the frustum widened by the culling margin: all must meet the plane, and
+    // then the footprint is the convex hull of where they meet it.
+    let mx = 1.0 + 2.0 * CULL_MARGIN_PX / f64::from(camera.width);
+    let my = 1.0 + 2.0 * CULL_MARGIN_PX / f64::from(camera.height);
+    let mut bbox = [f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY];
+    for (sx, sy) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
+        let d = camera.ray_direction(sx * mx, sy * my);
+        // Towards the plane (a grazing ray hits it far out, beyond any near patch).
+        if d.y * eye.y >= 0.0 || d.y.is_nan() {
+            return None;
+        }
+        let t = -eye.y / d.y;
+        let p = eye + d * t;
+        if !p.is_finite() {
+            return None;
+        }
+        bbox = [bbox[0].min(p.x), bbox[1].min(p.z), bbox[2].max(p.x), bbox[3].max(p.z)];
+    }
+    let params = scene.patch_params();
+    let (c, half) = crate::geometry::near_patch_square(&params, [eye.x, eye.z]).ok()?;
+    // One grid cell inside the boundary: the footprint then clears the far patch by a cell.
+    let inner = half - params.grid_spacing_m;
+    let inside = bbox[0] > c[0] - inner
+        && bbox[2] < c[0] + inner
+        && bbox[1] > c[1] - inner
+        && bbox[3] < c[1] + inner;
+    inside.then_some((bbox, [c[0], c[1], half]))
+}
+
+/// How a plan is built: the number of frames it is for, and whether the pruning rules apply.
+#[derive(Clone, Copy, Debug)]
+struct Options {
+    frames: u64,
+    prune: bool,
 }
 
 impl FramePlan {
-    /// The plan of a validated scene.
+    /// The plan of one frame of a validated scene: every rule applied.
     pub fn new(scene: &Scene, output: OutputKind) -> Self {
-        let above = scene.objects.iter().filter(|o| y_range(o).1 > 0.0).count();
-        let below = scene.objects.iter().filter(|o| y_range(o).0 < 0.0).count();
+        Self::build(scene, output, Options { frames: 1, prune: true })
+    }
+
+    /// The plan of each of `frames` frames of an animation of the scene: as [`Self::new`],
+    /// and a looping sea precomputes its cycle when more than one frame is asked for.
+    pub fn for_frames(scene: &Scene, output: OutputKind, frames: u64) -> Self {
+        Self::build(scene, output, Options { frames, prune: true })
+    }
+
+    /// The plan with every pruning rule turned off: every pass the scene can use runs (the
+    /// cycle whenever the sea loops and has waves), the far patch is built and each object
+    /// pass draws every object that can show in it (above the water for the reflection and
+    /// shadow maps, below it for the refraction map). Its picture is the reference that the
+    /// pruned plan's must equal bit for bit (the cycle's only at its frame instants).
+    pub fn full(scene: &Scene, output: OutputKind) -> Self {
+        Self::build(scene, output, Options { frames: u64::MAX, prune: false })
+    }
+
+    fn build(scene: &Scene, output: OutputKind, opt: Options) -> Self {
+        let camera = Camera::from_scene(&scene.camera).ok();
+        let objs = &scene.objects;
+        let above: Vec<usize> = (0..objs.len()).filter(|&i| y_range(&objs[i]).1 > 0.0).collect();
+        let below: Vec<usize> = (0..objs.len()).filter(|&i| y_range(&objs[i]).0 < 0.0).collect();
+        // Per-pass culling: (kept, culled names).
+        let cull = |list: &[usize], image: &dyn Fn(DVec3, DVec3) -> (DVec3, DVec3)| {
+            let mut kept = Vec::new();
+            let mut culled = Vec::new();
+            for &i in list {
+                let (lo, hi) = bounds(&objs[i]);
+                let (lo, hi) = image(lo, hi);
+                match &camera {
+                    Some(c) if opt.prune && outside_view(c, lo, hi) => {
+                        culled.push(object_name(i, &objs[i]))
+                    }
+                    _ => kept.push(i),
+                }
+            }
+            (kept, culled)
+        };
+        let all: Vec<usize> = (0..objs.len()).collect();
+        let (in_view, culled_view) = cull(&all, &|lo, hi| (lo, hi));
+        // The reflection map draws the mirror image y → −y.
+        let (mirrored, culled_mirror) =
+            cull(&above, &|lo, hi| (DVec3::new(lo.x, -hi.y, lo.z), DVec3::new(hi.x, -lo.y, hi.z)));
+        // The refraction map draws the objects with y scaled by 1/η (vs_refract).
+        let inv_eta = 1.0 / scene.water.ior;
+        let (refracted, culled_refract) = cull(&below, &|lo, hi| {
+            (DVec3::new(lo.x, lo.y * inv_eta, lo.z), DVec3::new(hi.x, hi.y * inv_eta, hi.z))
+        });
+        let list_of = |names: &[String]| names.join(", ");
+
         let sun_up = scene.sun.as_ref().is_some_and(|s| s.direction[1] > 0.0 && s.intensity > 0.0);
-        let mut plan = FramePlan { passes: Vec::new(), skipped: Vec::new() };
+        let waves_on = scene.ocean.wind_speed > 0.0 || !opt.prune;
+        let looping = scene.ocean.loop_period_s > 0.0;
+        let far_hidden = camera
+            .as_ref()
+            .filter(|_| opt.prune)
+            .and_then(|c| footprint_inside_near_patch(scene, c));
+        let mut plan = FramePlan {
+            passes: Vec::new(),
+            skipped: Vec::new(),
+            objects: PassObjects::default(),
+            fresnel_table_size: scene.quality.fresnel_table_size,
+            reflection_map_size: [scene.camera.width, scene.camera.height].map(|side| {
+                ((f64::from(side) * scene.quality.reflection_map_scale).round() as u32).max(1)
+            }),
+        };
+        let full = "full plan: every pass the scene can use";
         for pass in Pass::ALL {
             let (run, reason) = match pass {
+                Pass::Cycle => match (looping, waves_on, opt.frames) {
+                    (false, _, _) => {
+                        (false, "loop_period_s = 0: the sea does not loop, nothing to cycle".into())
+                    }
+                    (true, false, _) => (false, "no wind: the sea is flat".into()),
+                    (true, true, 0..=1) => (
+                        false,
+                        "a single frame: synthesised at its time, no cyclic precompute".into(),
+                    ),
+                    (true, true, n) if opt.prune => (
+                        true,
+                        format!(
+                            "{n} frames of a {} s loop: its maps precomputed once, played cyclically",
+                            scene.ocean.loop_period_s
+                        ),
+                    ),
+                    (true, true, _) => (true, full.into()),
+                },
                 Pass::Waves => {
                     if scene.ocean.wind_speed > 0.0 {
                         (true, format!("wind {} m/s", scene.ocean.wind_speed))
+                    } else if !opt.prune {
+                        (true, full.into())
                     } else {
                         (false, "no wind: the sea is flat".to_string())
                     }
                 }
-                Pass::FresnelTable => (true, "the water pass looks F up in it".into()),
-                Pass::ShadowMap => match (sun_up, above) {
-                    (false, _) => (false, "no sun above the horizon: no specular to shadow".into()),
-                    (true, 0) => (false, "no object above the water casts a shadow".into()),
-                    (true, n) => (true, format!("{n} object(s) above the water under the sun")),
-                },
-                Pass::ReflectionMap => match above {
-                    0 => (false, "no object above the water: the sky alone is reflected".into()),
-                    n => (true, format!("{n} object(s) above the water")),
-                },
-                Pass::RefractionMap => match below {
-                    0 => (false, "nothing under the water: the water volume colour alone".into()),
-                    n => (true, format!("{n} object(s) under the water")),
-                },
+                Pass::FresnelTable => (
+                    true,
+                    format!(
+                        "the water pass looks F up in it ({0}×{0})",
+                        scene.quality.fresnel_table_size
+                    ),
+                ),
+                Pass::ShadowMap => {
+                    plan.objects.shadow_map = above.clone();
+                    match (sun_up || !opt.prune, above.len()) {
+                        (false, _) => {
+                            (false, "no sun above the horizon: no specular to shadow".into())
+                        }
+                        (true, 0) => (false, "no object above the water casts a shadow".into()),
+                        (true, n) if opt.prune => (
+                            true,
+                            format!("{n} object(s) above the water under the sun (in view or not)"),
+                        ),
+                        (true, _) => (true, full.into()),
+                    }
+                }
+                Pass::ReflectionMap => {
+                    plan.objects.reflection_map = mirrored.clone();
+                    let size = plan.reflection_map_size;
+                    match (above.len(), mirrored.len()) {
+                        (0, _) if opt.prune => {
+                            (false, "no object above the water: the sky alone is reflected".into())
+                        }
+                        (_, 0) if opt.prune => (
+                            false,
+                            format!(
+                                "every mirror image is outside the view ({}): the sky alone is \
+                                 reflected",
+                                list_of(&culled_mirror)
+                            ),
+                        ),
+                        (n, k) => (
+                            true,
+                            if !opt.prune {
+                                format!("{full} ({}×{})", size[0], size[1])
+                            } else if culled_mirror.is_empty() {
+                                format!("{n} object(s) above the water ({}×{})", size[0], size[1])
+                            } else {
+                                format!(
+                                    "{k} of {n} object(s) above the water ({}×{}); culled, mirror \
+                                     image outside the view: {}",
+                                    size[0],
+                                    size[1],
+                                    list_of(&culled_mirror)
+                                )
+                            },
+                        ),
+                    }
+                }
+                Pass::RefractionMap => {
+                    plan.objects.refraction_map = refracted.clone();
+                    match (below.len(), refracted.len()) {
+                        (0, _) if opt.prune => {
+                            (false, "nothing under the water: the water volume colour alone".into())
+                        }
+                        (_, 0) if opt.prune => (
+                            false,
+                            format!(
+                                "every refracted image is outside the view ({}): the water \
+                                 volume colour alone",
+                                list_of(&culled_refract)
+                            ),
+                        ),
+                        (_, _) if !opt.prune => (true, full.into()),
+                        (n, k) if culled_refract.is_empty() => {
+                            debug_assert_eq!(n, k);
+                            (true, format!("{n} object(s) under the water"))
+                        }
+                        (n, k) => (
+                            true,
+                            format!(
+                                "{k} of {n} object(s) under the water; culled, refracted image \
+                                 outside the view: {}",
+                                list_of(&culled_refract)
+                            ),
+                        ),
+                    }
+                }
                 Pass::Sky => {
                     if scene.camera.position[1] < 0.0 {
                         (
@@ -163,9 +465,43 @@ impl FramePlan {
                         (true, "the background".into())
                     }
                 }
-                Pass::Objects => match scene.objects.len() {
-                    0 => (false, "the scene has no objects".into()),
-                    n => (true, format!("{n} object(s)")),
+                Pass::Objects => {
+                    plan.objects.objects = in_view.clone();
+                    match (objs.len(), in_view.len()) {
+                        (0, _) if opt.prune => (false, "the scene has no objects".into()),
+                        (_, 0) if opt.prune => (
+                            false,
+                            format!("every object is outside the view ({})", list_of(&culled_view)),
+                        ),
+                        (_, _) if !opt.prune => (true, full.into()),
+                        (n, _) if culled_view.is_empty() => (true, format!("{n} object(s)")),
+                        (n, k) => (
+                            true,
+                            format!(
+                                "{k} of {n} object(s); culled, outside the view: {}",
+                                list_of(&culled_view)
+                            ),
+                        ),
+                    }
+                }
+                Pass::FarPatch => match far_hidden {
+                    Some((b, sq)) => (
+                        false,
+                        format!(
+                            "the view meets the sea in x ∈ [{:.1}, {:.1}], z ∈ [{:.1}, {:.1}] m, \
+                             inside the near patch ({:.0} m square about ({:.1}, {:.1})): the far \
+                             patch would be clipped whole",
+                            b[0],
+                            b[2],
+                            b[1],
+                            b[3],
+                            2.0 * sq[2],
+                            sq[0],
+                            sq[1]
+                        ),
+                    ),
+                    None if opt.prune => (true, "the view reaches beyond the near patch".into()),
+                    None => (true, full.into()),
                 },
                 Pass::Water => (true, "the sea surface, eq. 3".into()),
                 Pass::Tonemap => match output {
@@ -182,6 +518,28 @@ impl FramePlan {
     /// Whether the plan runs a pass.
     pub fn runs(&self, pass: Pass) -> bool {
         self.passes.iter().any(|p| p.name == pass)
+    }
+
+    /// The water mesh of this plan's frame (seed 000 §3): near and far patch, or the near
+    /// patch alone where the plan leaves the far patch out.
+    pub fn water_mesh(&self, scene: &Scene, camera: &Camera) -> crate::Result<WaterMesh> {
+        let params = scene.patch_params();
+        if self.runs(Pass::FarPatch) {
+            WaterMesh::for_view(
+                &params,
+                camera.eye.to_array(),
+                camera.forward.to_array(),
+                camera.fov_y,
+                camera.aspect(),
+            )
+        } else {
+            WaterMesh::near_only(&params, camera.eye.to_array())
+        }
+    }
+
+    /// The passes the full plan runs that this one leaves out.
+    pub fn pruned_from(&self, full: &FramePlan) -> Vec<Pass> {
+        full.passes.iter().map(|p| p.name).filter(|&p| !self.runs(p)).collect()
     }
 }
 
@@ -213,15 +571,82 @@ mod tests {
     }
 
     #[test]
-    fn builtin_scene_runs_every_pass_but_the_tonemap_for_exr() {
+    fn builtin_scene_runs_every_pass_but_the_cycle_and_the_tonemap_for_exr() {
         let s = Scene::builtin();
         let p = FramePlan::new(&s, OutputKind::Ldr);
-        assert!(p.skipped.is_empty(), "{p}");
+        let skipped: Vec<_> = p.skipped.iter().map(|p| p.name).collect();
+        assert_eq!(skipped, [Pass::Cycle], "{p}");
         let names: Vec<_> = p.passes.iter().map(|p| p.name).collect();
-        assert_eq!(names, Pass::ALL);
+        assert_eq!(names, Pass::ALL[1..]);
+        assert_eq!(p.objects.objects, [0, 1]);
         let p = FramePlan::new(&s, OutputKind::Hdr);
-        assert_eq!(p.skipped.len(), 1);
+        assert_eq!(p.skipped.len(), 2);
         assert!(!p.runs(Pass::Tonemap));
+        // The full plan of a scene that needs everything is the pruned one.
+        assert_eq!(FramePlan::full(&s, OutputKind::Ldr).passes.len(), 10);
+    }
+
+    #[test]
+    fn cycle_only_for_several_frames_of_a_looping_sea() {
+        let mut s = Scene::default();
+        s.ocean.loop_period_s = 20.0;
+        assert!(!FramePlan::new(&s, OutputKind::Ldr).runs(Pass::Cycle));
+        assert!(!FramePlan::for_frames(&s, OutputKind::Ldr, 1).runs(Pass::Cycle));
+        assert!(FramePlan::for_frames(&s, OutputKind::Ldr, 2).runs(Pass::Cycle));
+        assert!(FramePlan::full(&s, OutputKind::Ldr).runs(Pass::Cycle));
+        s.ocean.loop_period_s = 0.0;
+        assert!(!FramePlan::for_frames(&s, OutputKind::Ldr, 100).runs(Pass::Cycle));
+        assert!(!FramePlan::full(&s, OutputKind::Ldr).runs(Pass::Cycle));
+    }
+
+    #[test]
+    fn far_patch_is_left_out_only_when_the_footprint_is_inside_the_near_patch() {
+        let mut s = Scene::default();
+        // 25 m up, looking straight down: the footprint is ~±30 m, the near patch ±256 m.
+        s.camera.position = [3.0, 25.0, -7.0];
+        s.camera.look_at = [3.0, 0.0, -7.1];
+        let p = FramePlan::new(&s, OutputKind::Ldr);
+        assert!(!p.runs(Pass::FarPatch), "{p}");
+        assert!(FramePlan::full(&s, OutputKind::Ldr).runs(Pass::FarPatch));
+        // Same from below the water, looking up.
+        s.camera.position = [3.0, -25.0, -7.0];
+        s.camera.look_at = [3.0, 0.0, -7.1];
+        assert!(!FramePlan::new(&s, OutputKind::Ldr).runs(Pass::FarPatch));
+        // Higher up the footprint leaves the near patch; tilted up, the horizon shows.
+        s.camera.position = [3.0, 400.0, -7.0];
+        s.camera.look_at = [3.0, 0.0, -7.1];
+        assert!(FramePlan::new(&s, OutputKind::Ldr).runs(Pass::FarPatch));
+        s.camera.position = [0.0, 25.0, 0.0];
+        s.camera.look_at = [0.0, 20.0, -10.0];
+        assert!(FramePlan::new(&s, OutputKind::Ldr).runs(Pass::FarPatch));
+    }
+
+    #[test]
+    fn objects_are_culled_per_pass_and_named() {
+        let mut s = Scene::default();
+        // Camera at (0, 6, 30) looking along −z, slightly down.
+        let behind = Object { center: [0.0, 3.0, 80.0], ..sphere(0.0) };
+        let ahead = sphere(3.0);
+        // 400 m ahead the view spans y ≈ −224 … 192 m (it looks slightly down): an object at
+        // y = 208 is above it, its mirror image at y = −208 inside it.
+        let high = Object { center: [0.0, 208.0, -370.0], ..sphere(0.0) };
+        s.objects = vec![behind, ahead, high];
+        let p = FramePlan::new(&s, OutputKind::Ldr);
+        assert_eq!(p.objects.objects, [1], "{p}");
+        assert_eq!(p.objects.reflection_map, [1, 2], "{p}");
+        assert_eq!(p.objects.shadow_map, [0, 1, 2]);
+        let reason = &p.passes.iter().find(|q| q.name == Pass::Objects).unwrap().reason;
+        assert!(reason.contains("#0 sphere") && reason.contains("#2 sphere"), "{reason}");
+        let full = FramePlan::full(&s, OutputKind::Ldr);
+        assert_eq!(full.objects.objects, [0, 1, 2]);
+        // Everything behind the camera: no objects pass, no reflection map.
+        s.objects = vec![Object { center: [0.0, 3.0, 80.0], ..sphere(0.0) }];
+        let p = FramePlan::new(&s, OutputKind::Ldr);
+        assert!(!p.runs(Pass::Objects) && !p.runs(Pass::ReflectionMap), "{p}");
+        // A box straddling the view's edge is kept (negative control of the culling test).
+        // 40 m ahead the view's left edge is at x ≈ −37 m.
+        s.objects = vec![Object { center: [-37.0, 3.0, -10.0], ..sphere(0.0) }];
+        assert!(FramePlan::new(&s, OutputKind::Ldr).runs(Pass::Objects));
     }
 
     #[test]

@@ -12,6 +12,7 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use crate::dispersion::Dispersion;
+use crate::geometry::PatchParams;
 use crate::spectrum::{SpectrumKind, SpectrumParams, WaveSpectrum};
 use crate::waves::{ModeParams, OceanParams, OceanSurface, WaveModes};
 
@@ -81,6 +82,38 @@ pub struct Scene {
     pub water: Water,
     /// Objects above and below the water.
     pub objects: Vec<Object>,
+    /// Cost/accuracy knobs of the renderer (what `ocean report` measures).
+    pub quality: Quality,
+}
+
+/// Default side of the 2D Fresnel textures (README: 256² is within 2e-3 of eq. 2 up to 76°
+/// from the normal).
+pub const DEFAULT_FRESNEL_TABLE_SIZE: u32 = 256;
+
+/// The `[quality]` table: what a frame may trade for speed. The defaults are the settings the
+/// goldens were made with; `ocean report` measures each knob's error against its time.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Quality {
+    /// Side N of the N × N 2D Fresnel textures (whole hemisphere).
+    pub fresnel_table_size: u32,
+    /// Side of the reflection map as a fraction of the viewport's, in (0, 1]. The water pass
+    /// looks the map up at normalised screen coordinates, so a smaller map is a blurrier
+    /// reflection of the objects, not a shifted one.
+    pub reflection_map_scale: f64,
+    /// Near-patch refinement: a triangle is split while its hypotenuse subtends more than this
+    /// angle, radians (`geometry::PatchParams::split_threshold`).
+    pub lod_split_threshold: f64,
+}
+
+impl Default for Quality {
+    fn default() -> Self {
+        Self {
+            fresnel_table_size: DEFAULT_FRESNEL_TABLE_SIZE,
+            reflection_map_scale: 1.0,
+            lod_split_threshold: 0.05,
+        }
+    }
 }
 
 /// The `[ocean]` table.
@@ -199,6 +232,17 @@ impl Ocean {
     pub fn surface(&self) -> crate::Result<OceanSurface> {
         let spectrum = self.wave_spectrum()?;
         OceanSurface::new(&self.ocean_params()?, |kx, kz| spectrum.density(kx, kz))
+    }
+}
+
+impl Scene {
+    /// The water mesh's parameters: [`PatchParams::for_ocean`] of the displacement grid, with
+    /// the `[quality]` refinement threshold.
+    pub fn patch_params(&self) -> PatchParams {
+        PatchParams {
+            split_threshold: self.quality.lod_split_threshold,
+            ..PatchParams::for_ocean(self.ocean.patch_size_m, self.ocean.resolution)
+        }
     }
 }
 
@@ -468,6 +512,24 @@ impl Scene {
                 crate::sky::TURBIDITY_MAX,
             )?;
         }
+        let q = &self.quality;
+        if !(2..=crate::tables::MAX_TABLE_SIZE as u32).contains(&q.fresnel_table_size) {
+            return bad(
+                "quality.fresnel_table_size",
+                format!(
+                    "must be between 2 and {}, got {}",
+                    crate::tables::MAX_TABLE_SIZE,
+                    q.fresnel_table_size
+                ),
+            );
+        }
+        if !(q.reflection_map_scale > 0.0 && q.reflection_map_scale <= 1.0) {
+            return bad(
+                "quality.reflection_map_scale",
+                format!("must be in (0, 1], got {}", q.reflection_map_scale),
+            );
+        }
+        check_range("quality.lod_split_threshold", q.lod_split_threshold, 1e-4, 10.0)?;
         if !self.water.ior.is_finite() || self.water.ior <= 0.0 {
             return bad("water.ior", format!("must be finite and > 0, got {}", self.water.ior));
         }

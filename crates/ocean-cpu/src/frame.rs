@@ -7,16 +7,17 @@ use std::time::{Duration, Instant};
 use ocean_core::camera::Camera;
 use ocean_core::frame::{FrameUniforms, FresnelTableUniforms, ObjectVertex, object_triangles};
 use ocean_core::plan::{FramePlan, Pass};
-use ocean_core::scene::Scene;
-use ocean_core::waves::{Synthesizer, WaveMaps};
+use ocean_core::scene::{Object, Scene};
+use ocean_core::waves::{FrameCycle, Synthesizer, WaveMaps};
 
 use crate::raster::{self, BlendMode, CompareFunction, RasterState, RenderTarget, Vertex};
 use crate::sampler::Texture2D;
 use crate::shaders::{fresnel_table, objects, shadow, water};
 
-/// Side of the 2D Fresnel textures (the error table in the README: 256² is within 2e-3 of
-/// eq. 2 up to 76° from the normal).
-pub const FRESNEL_TABLE_SIZE: u32 = 256;
+/// Default side of the 2D Fresnel textures (the error table in the README: 256² is within 2e-3
+/// of eq. 2 up to 76° from the normal); a scene's `[quality] fresnel_table_size` and the plan
+/// choose the size a frame uses.
+pub const FRESNEL_TABLE_SIZE: u32 = ocean_core::scene::DEFAULT_FRESNEL_TABLE_SIZE;
 /// Side of the sun's shadow map.
 pub const SHADOW_MAP_SIZE: u32 = 1024;
 
@@ -139,7 +140,8 @@ fn eye_state() -> RasterState {
 }
 
 /// Renders a frame of a validated scene by its plan. `sky_radiance` is the sky stage's
-/// radiance of a world direction; `water_mesh` gives the near/far patch mesh of the view;
+/// radiance of a world direction; `water_mesh` gives the near/far patch mesh of the view (it
+/// should leave the far patch out where the plan does: `ocean_core::plan::water_mesh`);
 /// `on_pass` is called as each pass starts (progress reporting).
 pub fn render(
     scene: &Scene,
@@ -168,32 +170,41 @@ pub fn render_with(
     if w > RenderTarget::MAX_SIZE || h > RenderTarget::MAX_SIZE {
         return Err(Error::TooLarge { width: w, height: h, max: RenderTarget::MAX_SIZE });
     }
+    let mesh_start = Instant::now();
     let mesh = water_mesh(&camera)?;
+    let mesh_time = mesh_start.elapsed();
     let mut u = FrameUniforms::new(scene, &camera, plan, mesh.origin);
     customise(&mut u);
     let u = u;
     let mut timings = Vec::new();
     let mut timed = |pass: Pass, start: Instant| timings.push((pass, start.elapsed()));
 
-    // waves
+    // cycle, waves
     let (mut displacement, mut displacement_slopes, mut bump) = (empty(), empty(), empty());
     if plan.runs(Pass::Waves) {
-        on_pass(Pass::Waves);
-        let t0 = Instant::now();
+        let mut t0 = Instant::now();
         let surface = scene.ocean.surface()?;
         let t = scene.ocean.time_s;
         let chop = scene.ocean.choppiness;
-        let d = Synthesizer::<f32>::new(surface.displacement.resolution())?.synthesize(
-            &surface.displacement,
-            t,
-            chop,
-        )?;
+        let mut synth_d = Synthesizer::<f32>::new(surface.displacement.resolution())?;
+        let mut synth_b = Synthesizer::<f32>::new(surface.bump.resolution())?;
+        let (d, b) = if plan.runs(Pass::Cycle) {
+            // Cyclic playback: the loop's maps at F instants, the one nearest t shown.
+            on_pass(Pass::Cycle);
+            let d = FrameCycle::new(&surface.displacement, &mut synth_d, chop)?;
+            let b = FrameCycle::new(&surface.bump, &mut synth_b, chop)?;
+            timed(Pass::Cycle, t0);
+            t0 = Instant::now();
+            on_pass(Pass::Waves);
+            (d.frame_at(t).clone(), b.frame_at(t).clone())
+        } else {
+            on_pass(Pass::Waves);
+            (
+                synth_d.synthesize(&surface.displacement, t, chop)?,
+                synth_b.synthesize(&surface.bump, t, chop)?,
+            )
+        };
         (displacement, displacement_slopes) = wave_textures(&d);
-        let b = Synthesizer::<f32>::new(surface.bump.resolution())?.synthesize(
-            &surface.bump,
-            t,
-            chop,
-        )?;
         bump = bump_texture(&b);
         timed(Pass::Waves, t0);
     }
@@ -204,7 +215,7 @@ pub fn render_with(
     let table = |eta: f32| {
         fresnel_table::dispatch(&FresnelTableUniforms {
             eta,
-            size: FRESNEL_TABLE_SIZE,
+            size: plan.fresnel_table_size,
             mapping: 0,
             pad: 0,
         })
@@ -213,7 +224,12 @@ pub fn render_with(
     let fresnel_below = table(1.0 / u.water_params[0]);
     timed(Pass::FresnelTable, t0);
 
-    let tris = object_triangles(&scene.objects, camera.eye);
+    // The objects each pass draws (the plan culls per pass).
+    let tris_of = |pass: Pass| {
+        let objects: Vec<Object> =
+            plan.objects.of(pass).iter().map(|&i| scene.objects[i].clone()).collect();
+        object_triangles(&objects, camera.eye)
+    };
 
     // shadow_map
     let mut shadow_map = empty();
@@ -223,7 +239,7 @@ pub fn render_with(
         let mut target = RenderTarget::new(SHADOW_MAP_SIZE, SHADOW_MAP_SIZE);
         target.clear_color([1.0, 0.0, 0.0, 0.0]);
         target.clear_depth(1.0);
-        let verts: Vec<[Vertex<0>; 3]> = tris
+        let verts: Vec<[Vertex<0>; 3]> = tris_of(Pass::ShadowMap)
             .iter()
             .map(|t| t.map(|v| Vertex::new(shadow::vs_main(v.position, &u), [])))
             .collect();
@@ -235,23 +251,31 @@ pub fn render_with(
     }
 
     // reflection_map, refraction_map
-    let mut object_map = |pass: Pass, vs, fs| {
+    // Both are looked up at normalised screen coordinates, so they may be smaller than the
+    // viewport (the plan's reflection_map_size).
+    let mut object_map = |pass: Pass, size: [u32; 2], vs, fs| {
         on_pass(pass);
-        let mut target = RenderTarget::new(w, h);
+        let mut target = RenderTarget::new(size[0], size[1]);
         target.clear_depth(0.0);
-        draw_objects(&mut target, &eye_state(), &tris, &u, vs, fs);
+        draw_objects(&mut target, &eye_state(), &tris_of(pass), &u, vs, fs);
         target_texture(target)
     };
     let mut reflection_map = empty();
     if plan.runs(Pass::ReflectionMap) {
         let t0 = Instant::now();
-        reflection_map = object_map(Pass::ReflectionMap, objects::vs_reflect, objects::fs_reflect);
+        reflection_map = object_map(
+            Pass::ReflectionMap,
+            plan.reflection_map_size,
+            objects::vs_reflect,
+            objects::fs_reflect,
+        );
         timed(Pass::ReflectionMap, t0);
     }
     let mut refraction_map = empty();
     if plan.runs(Pass::RefractionMap) {
         let t0 = Instant::now();
-        refraction_map = object_map(Pass::RefractionMap, objects::vs_refract, objects::fs_refract);
+        refraction_map =
+            object_map(Pass::RefractionMap, [w, h], objects::vs_refract, objects::fs_refract);
         timed(Pass::RefractionMap, t0);
     }
 
@@ -272,9 +296,14 @@ pub fn render_with(
     if plan.runs(Pass::Objects) {
         on_pass(Pass::Objects);
         let t0 = Instant::now();
-        draw_objects(&mut hdr, &eye_state(), &tris, &u, objects::vs_main, |o, u| {
-            Some(objects::fs_main(o, u))
-        });
+        draw_objects(
+            &mut hdr,
+            &eye_state(),
+            &tris_of(Pass::Objects),
+            &u,
+            objects::vs_main,
+            |o, u| Some(objects::fs_main(o, u)),
+        );
         timed(Pass::Objects, t0);
     }
 
@@ -308,7 +337,8 @@ pub fn render_with(
             &bindings,
         ))
     });
-    timed(Pass::Water, t0);
+    // The water pass's time includes building its mesh (near patch, and far patch if planned).
+    timings.push((Pass::Water, t0.elapsed() + mesh_time));
 
     Ok(FrameBuffers {
         displacement,

@@ -16,4 +16,4 @@ pub mod render;
 pub mod sampler;
 pub mod shaders;
 
-pub use render::{Rendered, render_ldr, render_scene};
+pub use render::{Rendered, render_ldr, render_scene, render_scene_with_plan};

@@ -5,7 +5,6 @@ use glam::DVec3;
 use ocean_core::camera::Camera;
 use ocean_core::camera_uniforms::CameraUniforms;
 use ocean_core::frame::FrameUniforms;
-use ocean_core::geometry::PatchParams;
 use ocean_core::plan::{FramePlan, OutputKind, Pass};
 use ocean_core::scene::{Scene, Sun};
 use ocean_core::sky::{PreethamSky, SkyParams};
@@ -52,26 +51,29 @@ pub fn sky_ambient(sky: &PreethamSky) -> [f32; 4] {
     [mean.x as f32, mean.y as f32, mean.z as f32, 0.0]
 }
 
-/// The near/far patch mesh of a view (seed 000 §3), for the scene's displacement grid.
-pub fn water_mesh(scene: &Scene, camera: &Camera) -> Result<WaterMesh, Error> {
-    let params = PatchParams::for_ocean(scene.ocean.patch_size_m, scene.ocean.resolution);
-    let mesh = ocean_core::geometry::WaterMesh::for_view(
-        &params,
-        camera.eye.to_array(),
-        camera.forward.to_array(),
-        camera.fov_y,
-        camera.aspect(),
-    )?;
-    Ok(mesh.into())
+/// The near/far patch mesh of a view (seed 000 §3), for the scene's displacement grid and
+/// `[quality]`, without the far patch where the plan leaves it out.
+pub fn water_mesh(scene: &Scene, plan: &FramePlan, camera: &Camera) -> Result<WaterMesh, Error> {
+    Ok(plan.water_mesh(scene, camera)?.into())
 }
 
-/// Renders a validated scene; `on_pass` is called as each pass starts.
+/// Renders a validated scene by its single-frame plan; `on_pass` is called as each pass
+/// starts.
 pub fn render_scene(
     scene: &Scene,
     output: OutputKind,
     on_pass: &mut dyn FnMut(Pass),
 ) -> Result<Rendered, Error> {
-    let plan = FramePlan::new(scene, output);
+    render_scene_with_plan(scene, FramePlan::new(scene, output), on_pass)
+}
+
+/// Renders a validated scene by a given plan (e.g. [`FramePlan::full`], to compare with the
+/// pruned one).
+pub fn render_scene_with_plan(
+    scene: &Scene,
+    plan: FramePlan,
+    on_pass: &mut dyn FnMut(Pass),
+) -> Result<Rendered, Error> {
     let camera = Camera::from_scene(&scene.camera)?;
     let preetham_sky = sky_of(scene)?;
     let sky_u = preetham_sky.uniforms();
@@ -84,7 +86,7 @@ pub fn render_scene(
     let ambient = sky_ambient(&preetham_sky);
     let sky_radiance = |d: [f32; 3]| preetham::sky_radiance(&sky_u, d);
     let draw_sky = |t: &mut crate::raster::RenderTarget| sky::render_sky(t, &camera_u, &sky_u);
-    let mesh = |c: &Camera| water_mesh(scene, c);
+    let mesh = |c: &Camera| water_mesh(scene, &plan, c);
     let customise = |u: &mut FrameUniforms| u.sky_ambient = ambient;
     let buffers =
         frame::render_with(scene, &plan, &sky_radiance, &draw_sky, &mesh, &customise, on_pass)?;

@@ -265,6 +265,25 @@ impl WaterMesh {
         })
     }
 
+    /// The near patch alone, for a view whose footprint on the sea lies inside it (the plan's
+    /// `far_patch` rule): the far patch and the stitch would be clipped whole, so they are not
+    /// built. The far-ring fields are 0.
+    pub fn near_only(params: &PatchParams, eye: [f64; 3]) -> Result<Self> {
+        let near = NearPatch::build(params, eye)?;
+        Ok(Self {
+            origin: near.origin,
+            origin_cell: near.origin_cell,
+            near_vertices: near.vertices.len(),
+            near_triangles: near.indices.len(),
+            vertices: near.vertices,
+            indices: near.indices,
+            stitch_triangles: 0,
+            far_first_ring: 0,
+            far_inner_radius_m: 0.0,
+            far_outer_radius_m: 0.0,
+        })
+    }
+
     /// Vertex and triangle counts.
     pub fn summary(&self) -> MeshSummary {
         MeshSummary {
