@@ -148,6 +148,20 @@ impl<T: MapFloat> WaveMaps<T> {
         ]
     }
 
+    /// The foam mask: true where the surface folds or nearly folds, J < `threshold`
+    /// (Tessendorf 2001 §4.1: foam and spray where the Jacobian of the choppy displacement
+    /// drops towards 0; `threshold` = 0 marks exactly the folded samples, a small positive one
+    /// the crests about to fold). J is finite wherever the maps are, so the mask is total.
+    pub fn foam_mask(&self, threshold: f64) -> Vec<bool> {
+        self.jacobian.iter().map(|j| j.cast_to_f64() < threshold).collect()
+    }
+
+    /// The fraction of samples in the [`Self::foam_mask`].
+    pub fn foam_coverage(&self, threshold: f64) -> f64 {
+        let foam = self.jacobian.iter().filter(|j| j.cast_to_f64() < threshold).count();
+        foam as f64 / self.jacobian.len().max(1) as f64
+    }
+
     /// Bytes held by the six fields.
     pub fn byte_size(&self) -> usize {
         6 * self.resolution * self.resolution * std::mem::size_of::<T>()

@@ -12,20 +12,22 @@
 //! (0, 0, 0, 0), whose perspective divide is 0/0. No real camera puts a vertex there.
 //!
 //! Algorithm: Sutherland–Hodgman, one plane at a time in the fixed order of `PLANES` (w; x and
-//! y; near and far). A new vertex on an edge is always interpolated *from the inside vertex
-//! towards the outside one*, `v = (1 − t) · inside + t · outside` with
-//! `t = d_in / (d_in − d_out)`, on every component (clip position and varyings, linearly in
-//! clip space, as a GPU does). So an edge shared by two triangles is cut at bit-identical
-//! points whichever way round each triangle walks it, and the two triangles stay watertight.
+//! y; near and far). A new vertex on an edge is the point
+//! `v = (d_in · outside − d_out · inside) / (d_in − d_out)` on every component (clip position
+//! and varyings, linearly in clip space, as a GPU does), always with the inside vertex first,
+//! so an edge shared by two triangles is cut at bit-identical points whichever way round each
+//! triangle walks it, and the two triangles stay watertight.
 //!
-//! Accuracy, for triangles of any size: the coordinate that the plane fixes is then set
-//! exactly (`x = w` on the right plane, `w = W_MIN` on the w plane, …) because its interpolated
-//! value can cancel catastrophically (a ±1e30 triangle cut at x = w = 1). Once the w plane has
-//! made every w positive, the weighted-sum form builds w from positive terms, and after the x
-//! and y planes every |x|, |y| ≤ w, so later cuts build x and y without cancellation either:
-//! the final polygon satisfies every plane to within a few ulp relative to its own w.
-//! (Mesa interpolates `inside + t · (outside − inside)` and does not pin the coordinate; the
-//! two agree to rounding for triangles of ordinary size.)
+//! Accuracy, for triangles of any size: the numerator is formed from 2 × 2 determinants of the
+//! f32 inputs in f64 (exact products, see [`cut`]), so a cut point far smaller than the
+//! vertices it lies between (a ±1e30 triangle, or a far-patch vertex beside the eye, cut at
+//! x = w = 1) keeps its relative precision; the lerp `(1 − t)·inside + t·outside` in f32 loses
+//! everything below ulp(vertex) there (issue 5's stability table: a ±1e6 triangle's diagonal
+//! edge put 95 pixels of a 64 × 48 view on the wrong side). The coordinate that the plane fixes
+//! is then set exactly (`x = w` on the right plane, `w = W_MIN` on the w plane, …). (Mesa
+//! interpolates `inside + t · (outside − inside)` in f32 and does not pin the coordinate; the
+//! two agree to rounding for triangles of ordinary size: in the reference scenes' goldens,
+//! 1 to 5 pixels at the view's left and right edges moved by 1/255.)
 
 use super::Vertex;
 
@@ -39,11 +41,14 @@ pub const W_MIN: f32 = 1e-30;
 /// infinities. Realistic inputs are many orders of magnitude smaller.
 pub const MAX_CLIP_COORD: f32 = (1u128 << 125) as f32;
 
-/// One clip plane: the signed distance of a clip position (inside is `d ≥ 0`), and the exact
+/// One clip plane: the signed distance of a clip position (inside is `d ≥ 0`), the same
+/// distance as coefficients (d = a · p − offset, for the exact cut in [`cut`]), and the exact
 /// value of the coordinate a point on the plane has.
 #[derive(Clone, Copy)]
 struct Plane {
     distance: fn(&[f32; 4]) -> f32,
+    a: [f64; 4],
+    offset: f64,
     put_on_plane: fn(&mut [f32; 4]),
 }
 
@@ -52,30 +57,44 @@ struct Plane {
 const PLANES: [Plane; 7] = [
     Plane {
         distance: |p| p[3] - W_MIN, // w ≥ W_MIN
+        a: [0.0, 0.0, 0.0, 1.0],
+        offset: W_MIN as f64,
         put_on_plane: |p| p[3] = W_MIN,
     },
     Plane {
         distance: |p| p[3] - p[0], // x ≤ w (right)
+        a: [-1.0, 0.0, 0.0, 1.0],
+        offset: 0.0,
         put_on_plane: |p| p[0] = p[3],
     },
     Plane {
         distance: |p| p[3] + p[0], // −w ≤ x (left)
+        a: [1.0, 0.0, 0.0, 1.0],
+        offset: 0.0,
         put_on_plane: |p| p[0] = -p[3],
     },
     Plane {
         distance: |p| p[3] - p[1], // y ≤ w (top: NDC y is up)
+        a: [0.0, -1.0, 0.0, 1.0],
+        offset: 0.0,
         put_on_plane: |p| p[1] = p[3],
     },
     Plane {
         distance: |p| p[3] + p[1], // −w ≤ y (bottom)
+        a: [0.0, 1.0, 0.0, 1.0],
+        offset: 0.0,
         put_on_plane: |p| p[1] = -p[3],
     },
     Plane {
         distance: |p| p[2], // 0 ≤ z (near)
+        a: [0.0, 0.0, 1.0, 0.0],
+        offset: 0.0,
         put_on_plane: |p| p[2] = 0.0,
     },
     Plane {
         distance: |p| p[3] - p[2], // z ≤ w (far)
+        a: [0.0, 0.0, -1.0, 1.0],
+        offset: 0.0,
         put_on_plane: |p| p[2] = p[3],
     },
 ];
@@ -164,7 +183,8 @@ fn clip_polygon<const V: usize>(poly: &Polygon<V>, plane: &Plane) -> Polygon<V> 
         if (d_cur >= 0.0) != (d_next >= 0.0) {
             let (inside, outside, d_in, d_out) =
                 if d_cur >= 0.0 { (cur, next, d_cur, d_next) } else { (next, cur, d_next, d_cur) };
-            let mut v = interpolate(inside, outside, d_in / (d_in - d_out));
+            debug_assert!(d_in >= 0.0 && d_out < 0.0, "{d_in} {d_out}");
+            let mut v = cut(inside, outside, plane);
             (plane.put_on_plane)(&mut v.clip);
             out.push(v);
         }
@@ -172,12 +192,35 @@ fn clip_polygon<const V: usize>(poly: &Polygon<V>, plane: &Plane) -> Polygon<V> 
     out
 }
 
-/// `(1 − t) · inside + t · outside` on every component.
-fn interpolate<const V: usize>(inside: &Vertex<V>, outside: &Vertex<V>, t: f32) -> Vertex<V> {
-    debug_assert!((0.0..=1.0).contains(&t), "t = {t}");
-    let s = 1.0 - t;
+/// The point where the edge from `inside` to `outside` meets `plane`, on every component
+/// (clip position and varyings, linear in clip space):
+/// v = (d_in · outside − d_out · inside) / (d_in − d_out), d = a · p − offset.
+///
+/// The numerator is formed as Σ_k a_k (inside_k · outside_c − outside_k · inside_c) −
+/// offset · (outside_c − inside_c): each term a 2 × 2 determinant of f32 values, whose two
+/// products are exact in f64 (24 + 24 < 53 bits) and whose difference is rounded once. The
+/// plain lerp `(1 − t) · inside + t · outside` cancels catastrophically when the vertices are
+/// far larger than the cut point (an edge from (−1e6, −1e6) to (1e6, 1e6) cut at x = w = 1:
+/// the lerp's y is off by ~0.06, pixels at the view's edge; a far-patch vertex beside the eye
+/// has such ratios); the determinant form keeps the f64 relative precision of the result.
+fn cut<const V: usize>(inside: &Vertex<V>, outside: &Vertex<V>, plane: &Plane) -> Vertex<V> {
+    let (i, o) = (inside.clip.map(f64::from), outside.clip.map(f64::from));
+    let d_in = (0..4).map(|k| plane.a[k] * i[k]).sum::<f64>() - plane.offset;
+    let d_out = (0..4).map(|k| plane.a[k] * o[k]).sum::<f64>() - plane.offset;
+    let denominator = d_in - d_out;
+    let component = |ic: f64, oc: f64| {
+        let mut n = -plane.offset * (oc - ic);
+        for k in 0..4 {
+            if plane.a[k] != 0.0 {
+                n += plane.a[k] * (i[k] * oc - o[k] * ic);
+            }
+        }
+        (n / denominator) as f32
+    };
     Vertex {
-        clip: std::array::from_fn(|c| s * inside.clip[c] + t * outside.clip[c]),
-        varyings: std::array::from_fn(|c| s * inside.varyings[c] + t * outside.varyings[c]),
+        clip: std::array::from_fn(|c| component(i[c], o[c])),
+        varyings: std::array::from_fn(|c| {
+            component(f64::from(inside.varyings[c]), f64::from(outside.varyings[c]))
+        }),
     }
 }
