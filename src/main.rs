@@ -6,6 +6,7 @@ mod heightfield;
 mod output;
 mod plan;
 mod render;
+mod report;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -31,6 +32,9 @@ enum Command {
     Heightfield(heightfield::Args),
     /// Print the passes a scene's frame runs, and why each is in or out.
     Plan(plan::Args),
+    /// Measure each quality knob's error against its run time, what the planner saves, and
+    /// the numerical-stability table (CSV, SVG plot, report.md).
+    Report(report::Args),
 }
 
 /// Loads a scene file, or the built-in default scene when none is given.
@@ -48,6 +52,7 @@ fn main() -> ExitCode {
         Command::Fresnel(a) => fresnel::run(a),
         Command::Heightfield(a) => heightfield::run(a),
         Command::Plan(a) => plan::run(a),
+        Command::Report(a) => report::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,0 +1,900 @@
+//! `ocean report`: error against run time for each quality knob, what the planner saves on the
+//! reference scenes, and the numerical-stability table (issue 5).
+//!
+//! Writes into `--out-dir`: `error_vs_time.csv` (columns `knob,setting,error_metric,error,
+//! time_ms,backend`), `error_vs_time.svg` (log error against log time, one panel per knob)
+//! and `report.md` (the tables, the Pareto-optimal settings per knob, the planner and the
+//! stability tables).
+//!
+//! A knob is one entry of [`KNOBS`]: a name, what it varies, and a function that measures
+//! every setting against the best one and returns rows. A measurement on another back end
+//! (the GPU path) is one more entry whose rows carry its `backend`; the CSV, the plot and the
+//! Pareto tables group by (knob, metric, backend) already.
+//!
+//! Timings are medians of several runs of the same work in this process (5 with `--quick`,
+//! 7 without), after one untimed warm-up run; the machine is shared, so compare times within
+//! one report only.
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+use std::time::Instant;
+
+use anyhow::Context;
+use indicatif::{ProgressBar, ProgressStyle};
+use ocean_core::fresnel::{fresnel_exact, fresnel_schlick};
+use ocean_core::plan::{FramePlan, OutputKind, Pass};
+use ocean_core::scene::Scene;
+use ocean_core::tables::{FresnelTable1D, FresnelTexture, TextureMapping};
+use ocean_core::waves::{Synthesizer, WaveMaps};
+use ocean_cpu::raster::{self, BlendMode, CompareFunction, RasterState, RenderTarget, Vertex};
+use ocean_cpu::sampler::texture_sample;
+use ocean_cpu::shaders::shared::frame::unit;
+use ocean_cpu::shaders::water;
+
+use crate::output::write_atomic;
+
+/// Arguments of `ocean report`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// Fewer settings, smaller frames, 3 runs per timing: a few minutes on a 2-core machine.
+    #[arg(long)]
+    quick: bool,
+    /// Folder for error_vs_time.csv, error_vs_time.svg and report.md (created if missing).
+    #[arg(long, default_value = "report")]
+    out_dir: PathBuf,
+}
+
+/// One measured setting of a knob.
+#[derive(Clone, Debug)]
+struct Row {
+    knob: &'static str,
+    setting: String,
+    error_metric: &'static str,
+    error: f64,
+    time_ms: f64,
+    backend: &'static str,
+}
+
+/// What the measurements share: the size of the work and the progress bar.
+struct Ctx {
+    quick: bool,
+    runs: usize,
+    bar: ProgressBar,
+}
+
+impl Ctx {
+    /// Frame size of the image knobs.
+    fn frame_size(&self) -> (u32, u32) {
+        if self.quick { (320, 180) } else { (640, 360) }
+    }
+
+    /// Median wall time of `runs` calls of `f`, ms, and the last result.
+    fn time<T>(&self, mut f: impl FnMut() -> anyhow::Result<T>) -> anyhow::Result<(f64, T)> {
+        let mut times = Vec::with_capacity(self.runs);
+        let mut last = Some(f()?); // warm-up: caches, allocator, page faults
+        for _ in 0..self.runs {
+            let t0 = Instant::now();
+            last = Some(f()?);
+            times.push(t0.elapsed().as_secs_f64() * 1e3);
+        }
+        times.sort_by(f64::total_cmp);
+        Ok((times[times.len() / 2], last.context("at least one run")?))
+    }
+
+    /// Median wall times of `fs`, ms, and each one's last result, the calls interleaved
+    /// (f₀, f₁, …, f₀, f₁, …) after one untimed round, so that a burst of other work on the
+    /// machine slows every setting alike rather than one.
+    fn time_interleaved<T>(&self, fs: &mut [Work<'_, T>]) -> anyhow::Result<Vec<(f64, T)>> {
+        let mut last: Vec<T> = fs.iter_mut().map(|f| f()).collect::<anyhow::Result<_>>()?;
+        let mut times = vec![Vec::with_capacity(self.runs); fs.len()];
+        for _ in 0..self.runs {
+            for (i, f) in fs.iter_mut().enumerate() {
+                let t0 = Instant::now();
+                last[i] = f()?;
+                times[i].push(t0.elapsed().as_secs_f64() * 1e3);
+            }
+        }
+        Ok(times
+            .into_iter()
+            .zip(last)
+            .map(|(mut t, r)| {
+                t.sort_by(f64::total_cmp);
+                (t[t.len() / 2], r)
+            })
+            .collect())
+    }
+
+    fn step(&self, what: &str) {
+        self.bar.set_message(what.to_string());
+        self.bar.inc(1);
+    }
+}
+
+/// A knob of the report.
+struct Knob {
+    name: &'static str,
+    varies: &'static str,
+    /// Whether the settings form an ordered family (joined by lines in the plot).
+    ordered: bool,
+    /// How many progress steps `measure` takes.
+    steps: fn(&Ctx) -> u64,
+    measure: fn(&Ctx) -> anyhow::Result<Vec<Row>>,
+}
+
+/// Every knob, in report order. Add a back end or a knob here.
+const KNOBS: &[Knob] = &[
+    Knob {
+        name: "fresnel",
+        varies: "how F is evaluated: eq. 2 per pixel, the 2D texture (whole hemisphere) at \
+                 16² … 512², the paper's half-range texture, a 1D table in cos θ, Schlick; \
+                 error over the hemisphere of view directions and over the water pixels of the \
+                 default scene; time of the lookups of one 1280×720 frame",
+        ordered: false,
+        steps: |_| 1,
+        measure: fresnel_knob,
+    },
+    Knob {
+        name: "wave_resolution",
+        varies: "displacement-map resolution N at the default scene's L = 256 m: RMS height error \
+                 against the finest N at the coarsest grid's points (shared by every N, so the \
+                 error is what the coarser band leaves out); f32 synthesis time",
+        steps: |c| if c.quick { 5 } else { 6 },
+        ordered: true,
+        measure: wave_resolution_knob,
+    },
+    Knob {
+        name: "precision",
+        varies: "f32 against f64 synthesis of the default scene's displacement map (N = 256)",
+        steps: |_| 2,
+        ordered: true,
+        measure: precision_knob,
+    },
+    Knob {
+        name: "bump_resolution",
+        varies: "bump-map resolution (the default scene's 32 m bump tile): image error against \
+                 the finest, CPU frame time",
+        steps: |c| (if c.quick { 4 } else { 5 }) * (c.runs as u64 + 1),
+        ordered: true,
+        measure: bump_resolution_knob,
+    },
+    Knob {
+        name: "reflection_map_resolution",
+        varies: "reflection map side as a fraction of the viewport ([quality] \
+                 reflection_map_scale): image error against the full size, CPU frame time",
+        steps: |c| 4 * (c.runs as u64 + 1),
+        ordered: true,
+        measure: reflection_map_knob,
+    },
+    Knob {
+        name: "lod",
+        varies: "near-patch refinement threshold ([quality] lod_split_threshold, radians): \
+                 image error against the finest, CPU frame time",
+        steps: |c| (if c.quick { 5 } else { 6 }) * (c.runs as u64 + 1),
+        ordered: true,
+        measure: lod_knob,
+    },
+];
+
+const CPU: &str = "cpu";
+
+// ---------------------------------------------------------------------------------------------
+// fresnel
+
+/// The bumped local view vectors the water pass looks F up at, one per water pixel seen from
+/// above, for a CPU render of `scene`: water.wgsl's `fs_main` up to its texture lookup.
+fn frame_view_vectors(scene: &Scene) -> anyhow::Result<Vec<[f64; 3]>> {
+    let plan = FramePlan::new(scene, OutputKind::Hdr);
+    let rendered = ocean_cpu::render_scene_with_plan(scene, plan.clone(), &mut |_| {})?;
+    let fb = &rendered.buffers;
+    let camera = ocean_core::camera::Camera::from_scene(&scene.camera)?;
+    let mesh = ocean_cpu::render::water_mesh(scene, &plan, &camera)?;
+    let sky = |_: [f32; 3]| [0.0f32; 3];
+    let b = water::Bindings {
+        frame: &fb.uniforms,
+        displacement: &fb.displacement,
+        displacement_slopes: &fb.displacement_slopes,
+        bump: &fb.bump,
+        fresnel_above: &fb.fresnel_above,
+        fresnel_below: &fb.fresnel_below,
+        reflection_map: &fb.reflection_map,
+        refraction_map: &fb.refraction_map,
+        shadow_map: &fb.shadow_map,
+        sky_radiance: &sky,
+    };
+    let verts: Vec<Vertex<{ water::VARYINGS }>> = mesh
+        .vertices
+        .iter()
+        .map(|v| {
+            let o = water::vs_main(v, &b);
+            Vertex::new(o.clip, o.varyings())
+        })
+        .collect();
+    let state = RasterState {
+        depth_compare: CompareFunction::Greater,
+        blend: BlendMode::Replace,
+        ..RasterState::default()
+    };
+    let mut target = RenderTarget::new(camera.width, camera.height);
+    target.clear_depth(0.0);
+    target.clear_color([0.0; 4]);
+    let f = b.frame;
+    raster::draw_indexed(&mut target, &state, &verts, &mesh.indices, |frag| {
+        let input = water::VertexOut::from_fragment(frag.frag_coord, &frag.varyings);
+        // As fs_main: the bumped normal, the view vector, the texture coordinates.
+        let sdt = texture_sample(b.displacement_slopes, &water::WRAP_LINEAR, input.uv_d);
+        let wd = input.weight * f.passes[0];
+        let sbt = texture_sample(b.bump, &water::WRAP_LINEAR, input.uv_b);
+        let n = unit([
+            -(sdt[0] * wd + sbt[0] * f.passes[0]),
+            1.0,
+            -(sdt[1] * wd + sbt[1] * f.passes[0]),
+        ]);
+        let view = unit([-input.rel[0], -input.rel[1], -input.rel[2]]);
+        if view[1] < 0.0 {
+            return Some([0.0; 4]);
+        }
+        let st = [(view[0] - n[0]) * 0.5 + 0.5, (view[2] - n[2]) * 0.5 + 0.5];
+        Some([st[0], st[1], 1.0, 1.0])
+    });
+    Ok(target
+        .color
+        .iter()
+        .filter(|p| p[2] == 1.0)
+        .map(|p| TextureMapping::Hemisphere.view_vector(f64::from(p[0]), f64::from(p[1])))
+        .collect())
+}
+
+fn fresnel_knob(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
+    let eta = 1.333f64;
+    let rows_theta = if ctx.quick { 96 } else { 192 };
+    // The hemisphere: θ uniform (every grazing band sampled), weighted by sin θ for the RMS.
+    let mut hemisphere = Vec::new();
+    for k in 0..rows_theta {
+        let theta = (k as f64 + 0.5) * std::f64::consts::FRAC_PI_2 / rows_theta as f64;
+        for l in 0..4 * rows_theta {
+            let phi = (l as f64 + 0.5) * std::f64::consts::TAU / (4 * rows_theta) as f64;
+            let v = [theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos()];
+            hemisphere.push((v, theta.sin()));
+        }
+    }
+    let mut scene = Scene::builtin();
+    (scene.camera.width, scene.camera.height) = ctx.frame_size();
+    let pixels: Vec<([f64; 3], f64)> =
+        frame_view_vectors(&scene)?.into_iter().map(|v| (v, 1.0)).collect();
+    anyhow::ensure!(!pixels.is_empty(), "the default scene shows no water seen from above");
+
+    type Method = Box<dyn Fn([f64; 3]) -> f32>;
+    let mut methods: Vec<(String, Method)> = vec![(
+        "eq. 2 per pixel (f32)".into(),
+        Box::new(move |v: [f64; 3]| fresnel_exact(v[2] as f32, eta as f32)),
+    )];
+    for n in [16, 32, 64, 128, 256, 512] {
+        let t = FresnelTexture::new(n, eta, TextureMapping::Hemisphere)?;
+        methods.push((format!("2D texture {n}²"), Box::new(move |v| t.lookup_fresnel(v))));
+    }
+    let half = FresnelTexture::new(256, eta, TextureMapping::PaperHalfRange)?;
+    methods.push(("paper's half-range 256²".into(), Box::new(move |v| half.lookup_fresnel(v))));
+    let table = FresnelTable1D::new(256, eta)?;
+    methods.push(("1D table 256".into(), Box::new(move |v| table.lookup(v[2] as f32))));
+    methods.push((
+        "Schlick (f32)".into(),
+        Box::new(move |v: [f64; 3]| fresnel_schlick(v[2] as f32, eta as f32)),
+    ));
+
+    // DESIGN.md's tolerance table bounds the 256² texture within 76° of the normal.
+    let cos_76 = 76f64.to_radians().cos();
+    let within_76: Vec<([f64; 3], f64)> =
+        hemisphere.iter().copied().filter(|(v, _)| v[2] >= cos_76).collect();
+    let errors = |f: &Method, set: &[([f64; 3], f64)]| {
+        let (mut max, mut sum_w_e2, mut sum_w) = (0.0f64, 0.0, 0.0);
+        for &(v, w) in set {
+            let e = (f64::from(f(v)) - fresnel_exact(v[2], eta)).abs();
+            max = max.max(e);
+            sum_w_e2 += w * e * e;
+            sum_w += w;
+        }
+        (max, (sum_w_e2 / sum_w).sqrt())
+    };
+    let frame_lookups = 1280.0 * 720.0;
+    let mut rows = Vec::new();
+    for (name, f) in &methods {
+        let (ms, sum) =
+            ctx.time(|| Ok(hemisphere.iter().map(|&(v, _)| f64::from(f(v))).sum::<f64>()))?;
+        std::hint::black_box(sum);
+        let time_ms = ms * frame_lookups / hemisphere.len() as f64;
+        let (h_max, h_rms) = errors(f, &hemisphere);
+        let (p_max, p_rms) = errors(f, &pixels);
+        let (h76_max, _) = errors(f, &within_76);
+        for (metric, error) in [
+            ("max_abs_theta_le_76deg", h76_max),
+            ("max_abs_hemisphere", h_max),
+            ("rms_hemisphere", h_rms),
+            ("max_abs_frame_pixels", p_max),
+            ("rms_frame_pixels", p_rms),
+        ] {
+            rows.push(Row {
+                knob: "fresnel",
+                setting: name.clone(),
+                error_metric: metric,
+                error,
+                time_ms,
+                backend: CPU,
+            });
+        }
+    }
+    ctx.step("fresnel");
+    Ok(rows)
+}
+
+// ---------------------------------------------------------------------------------------------
+// wave_resolution, precision
+
+fn wave_resolution_knob(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
+    let base = Scene::builtin().ocean;
+    let sizes: &[usize] =
+        if ctx.quick { &[32, 64, 128, 256, 512] } else { &[32, 64, 128, 256, 512, 1024] };
+    let coarse = sizes[0];
+    let mut fields = Vec::new();
+    for &n in sizes {
+        let ocean = ocean_core::scene::Ocean { resolution: n as u32, ..base.clone() };
+        let modes = ocean.displacement_modes()?;
+        let mut synth = Synthesizer::<f32>::new(n)?;
+        let (ms, maps) =
+            ctx.time(|| Ok(synth.synthesize(&modes, ocean.time_s, ocean.choppiness)?))?;
+        // Heights at the coarsest grid's points, which every finer grid holds.
+        let stride = n / coarse;
+        let at: Vec<f64> = (0..coarse)
+            .flat_map(|j| (0..coarse).map(move |i| (i, j)))
+            .map(|(i, j)| f64::from(maps.height[maps.index(i * stride, j * stride)]))
+            .collect();
+        fields.push((n, ms, at));
+        ctx.step(&format!("wave_resolution {n}"));
+    }
+    let reference = fields.last().context("one size")?.2.clone();
+    Ok(fields
+        .into_iter()
+        .map(|(n, ms, at)| {
+            let e2 = at.iter().zip(&reference).map(|(a, b)| (a - b).powi(2)).sum::<f64>();
+            Row {
+                knob: "wave_resolution",
+                setting: format!("N = {n}"),
+                error_metric: "rms_height_m",
+                error: (e2 / at.len() as f64).sqrt(),
+                time_ms: ms,
+                backend: CPU,
+            }
+        })
+        .collect())
+}
+
+fn precision_knob(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
+    let ocean = Scene::builtin().ocean;
+    let modes = ocean.displacement_modes()?;
+    let n = modes.resolution();
+    let mut s64 = Synthesizer::<f64>::new(n)?;
+    let (ms64, m64): (f64, WaveMaps<f64>) =
+        ctx.time(|| Ok(s64.synthesize(&modes, ocean.time_s, ocean.choppiness)?))?;
+    ctx.step("precision f64");
+    let mut s32 = Synthesizer::<f32>::new(n)?;
+    let (ms32, m32): (f64, WaveMaps<f32>) =
+        ctx.time(|| Ok(s32.synthesize(&modes, ocean.time_s, ocean.choppiness)?))?;
+    ctx.step("precision f32");
+    let diff: Vec<f64> =
+        m32.height.iter().zip(&m64.height).map(|(a, b)| f64::from(*a) - b).collect();
+    let max = diff.iter().fold(0.0f64, |m, d| m.max(d.abs()));
+    let rms = (diff.iter().map(|d| d * d).sum::<f64>() / diff.len() as f64).sqrt();
+    let row = |setting: &str, metric, error, time_ms| Row {
+        knob: "precision",
+        setting: setting.into(),
+        error_metric: metric,
+        error,
+        time_ms,
+        backend: CPU,
+    };
+    Ok(vec![
+        row("f64 (N = 256)", "max_abs_height_m", 0.0, ms64),
+        row("f64 (N = 256)", "rms_height_m", 0.0, ms64),
+        row("f32 (N = 256)", "max_abs_height_m", max, ms32),
+        row("f32 (N = 256)", "rms_height_m", rms, ms32),
+    ])
+}
+
+// ---------------------------------------------------------------------------------------------
+// Image knobs
+
+/// A CPU frame: the 8-bit RGB picture and the linear HDR RGB.
+struct Frame {
+    rgb: Vec<u8>,
+    hdr: Vec<[f32; 4]>,
+    width: u32,
+    height: u32,
+}
+
+fn render_frame(scene: &Scene) -> anyhow::Result<Frame> {
+    let r = ocean_cpu::render_scene(scene, OutputKind::Ldr, &mut |_| {})?;
+    let ldr = r.ldr.context("the plan tonemaps")?;
+    Ok(Frame {
+        rgb: ldr.chunks(4).flat_map(|p| [p[0], p[1], p[2]]).collect(),
+        hdr: r.buffers.hdr.color,
+        width: scene.camera.width,
+        height: scene.camera.height,
+    })
+}
+
+/// FLIP mean (LDR, NVIDIA's ꟻLIP at its default 67 pixels per degree) and the RMSE of the
+/// linear HDR RGB between a test frame and the reference.
+fn image_errors(reference: &Frame, test: &Frame) -> (f64, f64) {
+    let a = nv_flip::FlipImageRgb8::with_data(reference.width, reference.height, &reference.rgb);
+    let b = nv_flip::FlipImageRgb8::with_data(test.width, test.height, &test.rgb);
+    let map = nv_flip::flip(a, b, nv_flip::DEFAULT_PIXELS_PER_DEGREE);
+    let flip_mean = f64::from(nv_flip::FlipPool::from_image(&map).mean());
+    let mut e2 = 0.0f64;
+    for (p, q) in reference.hdr.iter().zip(&test.hdr) {
+        for c in 0..3 {
+            e2 += (f64::from(p[c]) - f64::from(q[c])).powi(2);
+        }
+    }
+    (flip_mean, (e2 / (3 * reference.hdr.len()) as f64).sqrt())
+}
+
+/// A setting of an image knob: how it changes the scene.
+type SceneEdit = Box<dyn Fn(&mut Scene)>;
+
+/// A timed piece of work of [`Ctx::time_interleaved`].
+type Work<'a, T> = Box<dyn FnMut() -> anyhow::Result<T> + 'a>;
+
+/// Renders the default scene with each setting applied (the last is the reference) and
+/// returns the rows of both image metrics.
+fn image_knob(
+    ctx: &Ctx,
+    knob: &'static str,
+    settings: Vec<(String, SceneEdit)>,
+) -> anyhow::Result<Vec<Row>> {
+    let mut base = Scene::builtin();
+    (base.camera.width, base.camera.height) = ctx.frame_size();
+    let mut scenes = Vec::new();
+    for (name, apply) in &settings {
+        let mut scene = base.clone();
+        apply(&mut scene);
+        if let Err((key, msg)) = scene.validate() {
+            anyhow::bail!("{knob} {name}: {key}: {msg}");
+        }
+        scenes.push(scene);
+    }
+    let mut renders: Vec<Work<'_, Frame>> = scenes
+        .iter()
+        .map(|scene| {
+            let f: Work<'_, Frame> = Box::new(move || {
+                let frame = render_frame(scene);
+                ctx.step(knob);
+                frame
+            });
+            f
+        })
+        .collect();
+    let timed = ctx.time_interleaved(&mut renders)?;
+    drop(renders);
+    let frames: Vec<(String, f64, Frame)> = settings
+        .iter()
+        .zip(timed)
+        .map(|((name, _), (ms, frame))| (name.clone(), ms, frame))
+        .collect();
+    let reference = &frames.last().context("one setting")?.2;
+    let mut rows = Vec::new();
+    for (name, ms, frame) in &frames {
+        let (flip, rmse) = image_errors(reference, frame);
+        for (metric, error) in [("flip_mean", flip), ("rmse_linear", rmse)] {
+            rows.push(Row {
+                knob,
+                setting: name.clone(),
+                error_metric: metric,
+                error,
+                time_ms: *ms,
+                backend: CPU,
+            });
+        }
+    }
+    Ok(rows)
+}
+
+fn bump_resolution_knob(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
+    let sizes: &[u32] = if ctx.quick { &[64, 128, 256, 512] } else { &[64, 128, 256, 512, 1024] };
+    let settings = sizes
+        .iter()
+        .map(|&n| {
+            let apply: SceneEdit = Box::new(move |s: &mut Scene| s.ocean.bump_resolution = n);
+            (format!("{n}²"), apply)
+        })
+        .collect();
+    image_knob(ctx, "bump_resolution", settings)
+}
+
+fn reflection_map_knob(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
+    let settings = [0.125, 0.25, 0.5, 1.0]
+        .into_iter()
+        .map(|scale| {
+            let apply: SceneEdit =
+                Box::new(move |s: &mut Scene| s.quality.reflection_map_scale = scale);
+            (format!("{scale} × viewport"), apply)
+        })
+        .collect();
+    image_knob(ctx, "reflection_map_resolution", settings)
+}
+
+fn lod_knob(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
+    let thresholds: &[f64] = if ctx.quick {
+        &[0.4, 0.2, 0.1, 0.05, 0.025]
+    } else {
+        &[0.4, 0.2, 0.1, 0.05, 0.025, 0.0125]
+    };
+    let settings = thresholds
+        .iter()
+        .map(|&t| {
+            let apply: SceneEdit = Box::new(move |s: &mut Scene| s.quality.lod_split_threshold = t);
+            (format!("split {t} rad"), apply)
+        })
+        .collect();
+    image_knob(ctx, "lod", settings)
+}
+
+// ---------------------------------------------------------------------------------------------
+// Planner
+
+/// One reference scene's plan, the passes its pruning leaves out, and the frame times.
+struct PlannerRow {
+    scene: String,
+    pruned: Vec<Pass>,
+    culled: String,
+    full_ms: f64,
+    pruned_ms: f64,
+    differing: usize,
+}
+
+fn planner(ctx: &Ctx) -> anyhow::Result<Vec<PlannerRow>> {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("reference/scenes");
+    let mut paths: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .with_context(|| format!("cannot list {}", dir.display()))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    paths.sort();
+    let mut out = Vec::new();
+    for path in paths {
+        let mut scene = Scene::load(&path)?;
+        (scene.camera.width, scene.camera.height) = ctx.frame_size();
+        let pruned = FramePlan::new(&scene, OutputKind::Ldr);
+        let full = FramePlan::full(&scene, OutputKind::Ldr);
+        let frame = |plan: &FramePlan| -> anyhow::Result<Vec<[f32; 4]>> {
+            Ok(ocean_cpu::render_scene_with_plan(&scene, plan.clone(), &mut |_| {})?
+                .buffers
+                .hdr
+                .color)
+        };
+        let mut pair: Vec<Work<'_, Vec<[f32; 4]>>> =
+            vec![Box::new(|| frame(&full)), Box::new(|| frame(&pruned))];
+        let mut timed = ctx.time_interleaved(&mut pair)?.into_iter();
+        drop(pair);
+        let (full_ms, a) = timed.next().context("two plans")?;
+        let (pruned_ms, b) = timed.next().context("two plans")?;
+        let differing =
+            a.iter().zip(&b).filter(|(p, q)| p.map(f32::to_bits) != q.map(f32::to_bits)).count();
+        let o = &pruned.objects;
+        let culled = [
+            ("objects", o.objects.len(), full.objects.objects.len()),
+            ("reflection_map", o.reflection_map.len(), full.objects.reflection_map.len()),
+            ("refraction_map", o.refraction_map.len(), full.objects.refraction_map.len()),
+        ]
+        .iter()
+        .filter(|(_, k, n)| k < n)
+        .map(|(p, k, n)| format!("{p} {k}/{n}"))
+        .collect::<Vec<_>>()
+        .join(", ");
+        let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+        ctx.step(&format!("planner {name}"));
+        out.push(PlannerRow {
+            scene: name,
+            pruned: pruned.pruned_from(&full),
+            culled,
+            full_ms,
+            pruned_ms,
+            differing,
+        });
+    }
+    Ok(out)
+}
+
+// ---------------------------------------------------------------------------------------------
+// Output: CSV, Pareto, SVG, Markdown
+
+fn csv(rows: &[Row]) -> String {
+    let mut s = String::from("knob,setting,error_metric,error,time_ms,backend\n");
+    let quote = |v: &str| {
+        if v.contains([',', '"', '\n']) {
+            format!("\"{}\"", v.replace('"', "\"\""))
+        } else {
+            v.into()
+        }
+    };
+    for r in rows {
+        let _ = writeln!(
+            s,
+            "{},{},{},{:e},{:.4},{}",
+            r.knob,
+            quote(&r.setting),
+            r.error_metric,
+            r.error,
+            r.time_ms,
+            r.backend
+        );
+    }
+    s
+}
+
+/// The rows of `rows` not dominated by another (≤ error and ≤ time, one strictly).
+fn pareto<'a>(rows: &[&'a Row]) -> Vec<&'a Row> {
+    rows.iter()
+        .filter(|r| {
+            !rows.iter().any(|o| {
+                o.error <= r.error
+                    && o.time_ms <= r.time_ms
+                    && (o.error < r.error || o.time_ms < r.time_ms)
+            })
+        })
+        .copied()
+        .collect()
+}
+
+/// (knob, metric, backend) groups in first-seen order.
+fn groups(rows: &[Row]) -> Vec<(&'static str, &'static str, &'static str)> {
+    let mut g = Vec::new();
+    for r in rows {
+        let key = (r.knob, r.error_metric, r.backend);
+        if !g.contains(&key) {
+            g.push(key);
+        }
+    }
+    g
+}
+
+fn plot(rows: &[Row], path: &std::path::Path) -> anyhow::Result<()> {
+    use plotters::prelude::*;
+    let knobs: Vec<&str> = KNOBS.iter().map(|k| k.name).collect();
+    let root = SVGBackend::new(path, (1500, 900)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| anyhow::anyhow!("plot: {e}"))?;
+    let panels = root.split_evenly((2, knobs.len().div_ceil(2)));
+    let palette = [&BLUE, &RED, &GREEN, &MAGENTA, &CYAN, &BLACK];
+    for (panel, knob) in panels.iter().zip(&knobs) {
+        // Log axes need positive values: the reference (error 0) is left out of the plot.
+        let pts: Vec<&Row> =
+            rows.iter().filter(|r| r.knob == *knob && r.error > 0.0 && r.time_ms > 0.0).collect();
+        if pts.is_empty() {
+            continue;
+        }
+        let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+        for r in &pts {
+            (x0, x1) = (x0.min(r.time_ms), x1.max(r.time_ms));
+            (y0, y1) = (y0.min(r.error), y1.max(r.error));
+        }
+        // At least a decade on each axis, so that the log axes have labelled ticks.
+        let widen = |lo: f64, hi: f64| {
+            let (lo, hi) = (lo / 1.5, hi * 1.5);
+            let missing = (10.0 * lo / hi).max(1.0).sqrt();
+            (lo / missing, hi * missing)
+        };
+        let ((x0, x1), (y0, y1)) = (widen(x0, x1), widen(y0, y1));
+        let ordered = KNOBS.iter().any(|k| k.name == *knob && k.ordered);
+        let mut chart = ChartBuilder::on(panel)
+            .caption(*knob, ("sans-serif", 20))
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(70)
+            .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
+            .map_err(|e| anyhow::anyhow!("plot: {e}"))?;
+        chart
+            .configure_mesh()
+            .x_desc(if *knob == "fresnel" {
+                "time (ms per 1280×720 frame of lookups)"
+            } else {
+                "time (ms)"
+            })
+            .y_desc("error")
+            .y_label_formatter(&|v| format!("{v:.0e}"))
+            .draw()
+            .map_err(|e| anyhow::anyhow!("plot: {e}"))?;
+        let mut metrics: Vec<&str> = Vec::new();
+        for r in &pts {
+            if !metrics.contains(&r.error_metric) {
+                metrics.push(r.error_metric);
+            }
+        }
+        for (i, metric) in metrics.iter().enumerate() {
+            let color = palette[i % palette.len()];
+            let mut series: Vec<(f64, f64)> = pts
+                .iter()
+                .filter(|r| r.error_metric == *metric)
+                .map(|r| (r.time_ms, r.error))
+                .collect();
+            series.sort_by(|a, b| a.0.total_cmp(&b.0));
+            chart
+                .draw_series(series.iter().map(|&p| Circle::new(p, 4, color.filled())))
+                .map_err(|e| anyhow::anyhow!("plot: {e}"))?
+                .label(*metric)
+                .legend(move |(x, y)| Circle::new((x + 8, y), 4, color.filled()));
+            if ordered {
+                chart
+                    .draw_series(LineSeries::new(series, color.stroke_width(1)))
+                    .map_err(|e| anyhow::anyhow!("plot: {e}"))?;
+            }
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .draw()
+            .map_err(|e| anyhow::anyhow!("plot: {e}"))?;
+    }
+    root.present().map_err(|e| anyhow::anyhow!("plot: {e}"))?;
+    Ok(())
+}
+
+fn markdown(
+    args: &Args,
+    rows: &[Row],
+    planner: &[PlannerRow],
+    stability: &[ocean_cpu::stability::Case],
+    elapsed_s: f64,
+) -> String {
+    let mut s = String::new();
+    let command = if args.quick { "ocean report --quick" } else { "ocean report" };
+    let _ = writeln!(s, "# ocean report\n");
+    let _ = writeln!(
+        s,
+        "Made by `{command} --out-dir {}` in {elapsed_s:.0} s. Times are medians of {} runs on \
+         this machine (shared, so compare within this report only); image knobs render the \
+         default scene at {}×{} on the CPU oracle.\n",
+        args.out_dir.display(),
+        if args.quick { 5 } else { 7 },
+        if args.quick { 320 } else { 640 },
+        if args.quick { 180 } else { 360 },
+    );
+    let _ = writeln!(s, "## Pareto-optimal settings\n");
+    let _ = writeln!(
+        s,
+        "A setting is Pareto-optimal when no other setting of its knob is both as accurate and \
+         as fast (and better in one). The reference (error 0) is always on the front.\n"
+    );
+    let _ = writeln!(s, "| knob | metric | backend | Pareto-optimal settings (error @ ms) |");
+    let _ = writeln!(s, "|---|---|---|---|");
+    for (knob, metric, backend) in groups(rows) {
+        let g: Vec<&Row> = rows
+            .iter()
+            .filter(|r| r.knob == knob && r.error_metric == metric && r.backend == backend)
+            .collect();
+        let mut front = pareto(&g);
+        front.sort_by(|a, b| a.time_ms.total_cmp(&b.time_ms));
+        let list: Vec<String> = front
+            .iter()
+            .map(|r| format!("{} ({:.2e} @ {:.3})", r.setting, r.error, r.time_ms))
+            .collect();
+        let _ = writeln!(s, "| {knob} | {metric} | {backend} | {} |", list.join("; "));
+    }
+    for knob in KNOBS {
+        let _ = writeln!(s, "\n## {}\n\n{}.\n", knob.name, knob.varies);
+        let _ = writeln!(s, "| setting | metric | error | time (ms) | backend | Pareto |");
+        let _ = writeln!(s, "|---|---|---|---|---|---|");
+        for (k, metric, backend) in groups(rows).into_iter().filter(|g| g.0 == knob.name) {
+            let g: Vec<&Row> = rows
+                .iter()
+                .filter(|r| r.knob == k && r.error_metric == metric && r.backend == backend)
+                .collect();
+            let front = pareto(&g);
+            for r in &g {
+                let mark = if front.iter().any(|f| std::ptr::eq(*f, *r)) { "✓" } else { "" };
+                let _ = writeln!(
+                    s,
+                    "| {} | {} | {:.3e} | {:.3} | {} | {mark} |",
+                    r.setting, r.error_metric, r.error, r.time_ms, r.backend
+                );
+            }
+        }
+    }
+    let _ = writeln!(s, "\n## Planner: what pruning saves on the reference scenes\n");
+    let _ = writeln!(
+        s,
+        "Each scene rendered by `FramePlan::full` (every rule off) and by its pruned plan \
+         (`ocean plan SCENE` prints it with reasons); the pictures are compared bit for bit.\n"
+    );
+    let _ = writeln!(
+        s,
+        "| scene | left out | objects culled | full (ms) | pruned (ms) | saved (ms) | HDR pixels differing |"
+    );
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|");
+    for p in planner {
+        let names: Vec<&str> = p.pruned.iter().map(|q| q.name()).collect();
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {:.1} | {:.1} | {:.1} | {} |",
+            p.scene,
+            if names.is_empty() { "—".into() } else { names.join(", ") },
+            if p.culled.is_empty() { "—" } else { &p.culled },
+            p.full_ms,
+            p.pruned_ms,
+            p.full_ms - p.pruned_ms,
+            p.differing
+        );
+    }
+    let _ = writeln!(s, "\n## Numerical stability\n");
+    let _ = writeln!(
+        s,
+        "Each case: whether every value is finite, its distance from the f64 reference and the \
+         bound it must meet (where each bound comes from: `crates/ocean-cpu/src/stability.rs`; \
+         `tests/stability.rs` asserts every row).\n"
+    );
+    let _ = writeln!(s, "| group | case | finite | error | bound | metric | note | ok |");
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|");
+    let cell = |v: &str| v.replace('|', "\\|");
+    for c in stability {
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {:.2e} | {:.2e} | {} | {} | {} |",
+            c.group,
+            cell(&c.name),
+            if c.finite { "yes" } else { "NO" },
+            c.error,
+            c.bound,
+            cell(c.metric),
+            cell(&c.note),
+            if c.passes() { "✓" } else { "FAIL" }
+        );
+    }
+    s
+}
+
+/// Runs `ocean report`.
+pub fn run(args: Args) -> anyhow::Result<()> {
+    let start = Instant::now();
+    std::fs::create_dir_all(&args.out_dir)
+        .with_context(|| format!("cannot create {}", args.out_dir.display()))?;
+    let mut ctx =
+        Ctx { quick: args.quick, runs: if args.quick { 5 } else { 7 }, bar: ProgressBar::hidden() };
+    let scenes =
+        std::fs::read_dir(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("reference/scenes"))
+            .map(|d| d.count() as u64)
+            .unwrap_or(8);
+    let total = KNOBS.iter().map(|k| (k.steps)(&ctx)).sum::<u64>() + scenes + 1;
+    let bar = ProgressBar::new(total);
+    bar.set_style(
+        ProgressStyle::with_template("{elapsed:>4} [{bar:30}] {pos}/{len} {msg}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    ctx.bar = bar;
+    let mut rows = Vec::new();
+    for knob in KNOBS {
+        rows.extend((knob.measure)(&ctx).with_context(|| format!("knob {}", knob.name))?);
+    }
+    let planner = planner(&ctx)?;
+    let stability = ocean_cpu::stability::cases()?;
+    ctx.step("stability");
+    ctx.bar.finish_and_clear();
+
+    let csv_path = args.out_dir.join("error_vs_time.csv");
+    write_atomic(&csv_path, csv(&rows).as_bytes())?;
+    // plotters writes the SVG itself: into a temporary name, then renamed.
+    let svg_path = args.out_dir.join("error_vs_time.svg");
+    let tmp = args.out_dir.join(format!(".error_vs_time.svg.tmp-{}", std::process::id()));
+    plot(&rows, &tmp)?;
+    std::fs::rename(&tmp, &svg_path)
+        .with_context(|| format!("cannot write {}", svg_path.display()))?;
+    let md = markdown(&args, &rows, &planner, &stability, start.elapsed().as_secs_f64());
+    write_atomic(&args.out_dir.join("report.md"), md.as_bytes())?;
+    let failing = stability.iter().filter(|c| !c.passes()).count();
+    eprintln!(
+        "wrote {}, {} and report.md in {} ({:.0} s){}",
+        csv_path.display(),
+        svg_path.display(),
+        args.out_dir.display(),
+        start.elapsed().as_secs_f64(),
+        if failing > 0 { format!("; {failing} stability case(s) FAIL") } else { String::new() }
+    );
+    Ok(())
+}
