@@ -176,7 +176,9 @@ fn pack(@builtin(global_invocation_id) id: vec3<u32>) {
     let slopes = src[2u * plane + bin];
     let disp_x_dx_disp_z_dz = src[3u * plane + bin];
     let height = height_disp_x.x;
-    let disp_x = height_disp_x.y;
+    // With λ = 0 the imaginary part of the first array is only the round-off of the height's
+    // transform: ocean-core writes an exact 0 there, and so does this.
+    let disp_x = select(height_disp_x.y, 0.0, params.lambda == 0.0);
     let disp_z = disp_z_disp_x_dz.x;
     let disp_x_dz = disp_z_disp_x_dz.y;
     let jacobian = (1.0 + disp_x_dx_disp_z_dz.x) * (1.0 + disp_x_dx_disp_z_dz.y)
