@@ -127,7 +127,7 @@ impl Comparison {
             if x.to_bits() != y.to_bits() && d > 0.0 {
                 differing += 1;
             }
-            if !(d <= GPU_ABS + GPU_REL * f64::from(y).abs()) {
+            if d.is_nan() || d > GPU_ABS + GPU_REL * f64::from(y).abs() {
                 outside += 1;
             }
             if d > max_abs || d.is_nan() {
@@ -624,8 +624,9 @@ fn wrong_twiddles(mirror: &WavesMirror) -> Vec<[f32; 2]> {
 
 fn perturb_largest_h0(table: &mut [ocean_core::waves::uniforms::WaveModeData]) {
     let norm = |m: &ocean_core::waves::uniforms::WaveModeData| m.h0[0].hypot(m.h0[1]);
-    let largest =
-        (0..table.len()).max_by(|&a, &b| norm(&table[a]).total_cmp(&norm(&table[b]))).unwrap();
+    let largest = (0..table.len())
+        .max_by(|&a, &b| norm(&table[a]).total_cmp(&norm(&table[b])))
+        .expect("a non-empty table");
     table[largest].h0 = table[largest].h0.map(|v| v * 1.001);
 }
 

@@ -313,7 +313,7 @@ impl GpuWaves {
             .iter()
             .enumerate()
             .map(|(p, u)| {
-                let (src, dst) = if p % 2 == 0 { (&ping, &pong) } else { (&pong, &ping) };
+                let (src, dst) = if p.is_multiple_of(2) { (&ping, &pong) } else { (&pong, &ping) };
                 buffer_group(device, "ocean.waves.fft_pass", &pass_layout, &[u, src, dst])
             })
             .collect();
@@ -477,7 +477,7 @@ impl GpuWaves {
     /// The buffer that dispatch `index` (< [`Self::dispatch_count`] − 1) writes: `spectrum`
     /// (0) writes ping, FFT pass p (index p + 1) writes pong for even p, ping for odd p.
     pub fn output_of(&self, index: usize) -> WavesBuffer {
-        if index % 2 == 0 { WavesBuffer::Ping } else { WavesBuffer::Pong }
+        if index.is_multiple_of(2) { WavesBuffer::Ping } else { WavesBuffer::Pong }
     }
 
     /// Records dispatches `range` of the frame (0 = `spectrum`, 1 … 2·log₂N = the FFT passes,
