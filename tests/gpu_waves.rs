@@ -207,8 +207,7 @@ impl Gpu {
         GpuWaves::new(&self.device, modes).expect("GpuWaves")
     }
 
-    /// Runs dispatches 0 … `last` of a frame and reads back what the last one wrote (a buffer),
-    /// or the three textures when `last` is `pack`.
+    /// Runs a whole frame and reads back the three textures.
     fn run(&self, waves: &GpuWaves, t: f64, choppiness: f64) -> [Vec<[f32; 4]>; 3] {
         let mut encoder = self.device.create_command_encoder(&Default::default());
         waves.encode(&self.queue, &mut encoder, t, choppiness).expect("encode");
@@ -217,6 +216,7 @@ impl Gpu {
             .map(|w| waves.read_texture(&self.device, &self.queue, w).expect("readback"))
     }
 
+    /// Runs dispatches 0 … `last` (< pack) of a frame and reads back the buffer the last wrote.
     fn run_prefix(&self, waves: &GpuWaves, t: f64, choppiness: f64, last: usize) -> Vec<[f32; 2]> {
         waves.write_uniforms(&self.queue, t, choppiness).expect("uniforms");
         let mut encoder = self.device.create_command_encoder(&Default::default());
@@ -256,6 +256,19 @@ fn mirror_matches_ocean_core_synthesis() {
                 }
             }
         }
+    }
+}
+
+#[test]
+fn mirror_small_grids() {
+    // N = 2 holds only k = 0 and Nyquist bins (all zero); 4 and 8 have one or three rings.
+    for n in [2, 4, 8] {
+        let modes = build(n, Dispersion::deep(G));
+        let got = fields_of(&texels(&WavesMirror::new(&modes).unwrap().run(2.5, 1.3).unwrap()));
+        let want =
+            maps_fields(&Synthesizer::<f64>::new(n).unwrap().synthesize(&modes, 2.5, 1.3).unwrap());
+        let e = rel_errors(&got, &want);
+        assert!(worst(&e) <= SYNTHESIS_REL, "N={n}: {e:?}");
     }
 }
 
