@@ -11,12 +11,16 @@ use ocean_core::frame::{FrameUniforms, FresnelTableUniforms};
 use ocean_core::shader_source::{STAGES, embedded_files, stage_source};
 use ocean_core::sky::SkyUniforms;
 use ocean_core::tonemap::TonemapUniforms;
+use ocean_core::waves::uniforms::{FftPassUniforms, WaveModeData, WavesUniforms};
 
 /// The stages written so far; a missing file is a failure, not a pass over fewer files.
-const EXPECTED_STAGES: &[&str] = &["fresnel_table", "sky", "objects", "shadow", "water", "tonemap"];
+const EXPECTED_STAGES: &[&str] =
+    &["waves", "fresnel_table", "sky", "objects", "shadow", "water", "tonemap"];
 
-/// Compute stages (entry point `main`); the others render (`vs_main`, `fs_main`).
-const COMPUTE_STAGES: &[&str] = &["fresnel_table"];
+/// Compute stages and their entry points (named after what they do; `main` where a stage has
+/// one); the others render (`vs_main`, `fs_main`).
+const COMPUTE_STAGES: &[(&str, &[&str])] =
+    &[("waves", &["spectrum", "fft_rows", "fft_columns", "pack"]), ("fresnel_table", &["main"])];
 
 /// The stage's source, imports resolved, parsed and validated. Stages stay within WebGPU's
 /// baseline: no optional capabilities.
@@ -36,13 +40,18 @@ fn every_stage_parses_and_validates() {
     for stage in STAGES {
         let m = module(stage);
         // Render and post stages have the two entry points the CPU mirrors are named after;
-        // compute stages have `main`.
-        let wanted: &[(&str, naga::ShaderStage)] = if COMPUTE_STAGES.contains(stage) {
-            &[("main", naga::ShaderStage::Compute)]
-        } else {
-            &[("vs_main", naga::ShaderStage::Vertex), ("fs_main", naga::ShaderStage::Fragment)]
-        };
-        for &(name, kind) in wanted {
+        // compute stages the entry points listed in COMPUTE_STAGES.
+        let wanted: Vec<(&str, naga::ShaderStage)> =
+            match COMPUTE_STAGES.iter().find(|(s, _)| s == stage) {
+                Some((_, entries)) => {
+                    entries.iter().map(|&e| (e, naga::ShaderStage::Compute)).collect()
+                }
+                None => vec![
+                    ("vs_main", naga::ShaderStage::Vertex),
+                    ("fs_main", naga::ShaderStage::Fragment),
+                ],
+            };
+        for &(name, kind) in &wanted {
             assert!(
                 m.entry_points.iter().any(|e| e.name == name && e.stage == kind),
                 "{stage}.wgsl has no {kind:?} entry point `{name}`"
@@ -236,5 +245,26 @@ fn fresnel_table_uniforms_layout() {
         &module("fresnel_table"),
         "FresnelTableUniforms",
         fields!(FresnelTableUniforms: eta, size, mapping, pad),
+    );
+}
+
+#[test]
+fn waves_uniforms_layout() {
+    let waves = module("waves");
+    assert_layout::<WavesUniforms>(
+        &waves,
+        "WavesUniforms",
+        fields!(WavesUniforms: size, log2_size, time_ticks, time_remainder, lambda, pad0, pad1),
+    );
+    assert_layout::<FftPassUniforms>(
+        &waves,
+        "FftPassUniforms",
+        fields!(FftPassUniforms: stage, pad0, pad1, pad2),
+    );
+    // The storage table's element: its size is the array stride.
+    assert_layout::<WaveModeData>(
+        &waves,
+        "WaveMode",
+        fields!(WaveModeData: h0, k, phase_rate, inv_k, frequency),
     );
 }

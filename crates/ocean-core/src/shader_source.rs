@@ -21,10 +21,12 @@
 use crate::{Error, Result};
 
 /// The stages whose WGSL is present, in the order of `DESIGN.md`'s stage table.
-pub const STAGES: &[&str] = &["fresnel_table", "sky", "objects", "shadow", "water", "tonemap"];
+pub const STAGES: &[&str] =
+    &["waves", "fresnel_table", "sky", "objects", "shadow", "water", "tonemap"];
 
 /// `(stage, source)` for every stage in [`STAGES`].
 const STAGE_FILES: &[(&str, &str)] = &[
+    ("waves", include_str!("../../../shaders/waves.wgsl")),
     ("fresnel_table", include_str!("../../../shaders/fresnel_table.wgsl")),
     ("sky", include_str!("../../../shaders/sky.wgsl")),
     ("objects", include_str!("../../../shaders/objects.wgsl")),

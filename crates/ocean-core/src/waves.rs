@@ -15,6 +15,7 @@ pub mod modes;
 pub mod query;
 pub mod surface;
 pub mod synthesis;
+pub mod uniforms;
 
 pub use cycle::{FrameCycle, MAX_FRAME_CYCLE_BYTES};
 pub use modes::{Band, MAX_RESOLUTION, Mode, ModeParams, WaveModes, signed_index};

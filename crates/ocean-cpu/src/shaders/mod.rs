@@ -14,4 +14,5 @@ pub mod shared;
 pub mod sky;
 pub mod tonemap;
 pub mod water;
+pub mod waves;
 pub mod wgsl;

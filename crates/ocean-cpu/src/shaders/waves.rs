@@ -1,0 +1,336 @@
+//! CPU mirror of `shaders/waves.wgsl`: h̃(k, t) and the multiplied spectra, the radix-2
+//! Stockham inverse FFT pass by pass, and the packing into the three wave textures, in f32
+//! with the WGSL's operations in the WGSL's order (wrapping u32 arithmetic where the WGSL's
+//! integers wrap), the same twiddle table and the same mode table (ocean-core's
+//! `waves::uniforms`, which also documents the phase in integer turns and the FFT stages).
+//!
+//! Only `cos` and `sin` are not the GPU's: Rust's f32 functions here, the driver's on the GPU.
+//! ocean-core's `Synthesizer<f64>` is the reference both are held against.
+//!
+//! [`WavesMirror`] runs a whole frame; [`WavesMirror::run_traced`] hands out the ping-pong
+//! buffer after each dispatch, for pass-by-pass comparison with the GPU.
+
+use ocean_core::waves::WaveModes;
+use ocean_core::waves::uniforms::{
+    FftPassUniforms, WaveModeData, WavesUniforms, check_fft_size, fft_passes, fft_twiddles,
+    wave_mode_table,
+};
+
+use crate::sampler::Texture2D;
+
+/// `vec2<f32>`: a complex number, x the real part.
+pub type Vec2 = [f32; 2];
+
+/// `TAU`: f32(2π).
+pub const TAU: f32 = 6.283_185_5;
+/// `TURN_UNIT`: 2⁻²⁴.
+pub const TURN_UNIT: f32 = 5.960_464_5e-8;
+
+/// The four packed complex arrays of one frame, N² each.
+pub const ARRAYS: u32 = 4;
+
+/// `mul_hi(a, b)`: the high 32 bits of a·b from 16-bit halves.
+#[inline]
+pub fn mul_hi(a: u32, b: u32) -> u32 {
+    let a0 = a & 0xffff;
+    let a1 = a >> 16;
+    let b0 = b & 0xffff;
+    let b1 = b >> 16;
+    let p00 = a0 * b0;
+    let p01 = a0 * b1;
+    let p10 = a1 * b0;
+    let p11 = a1 * b1;
+    let mid = (p00 >> 16) + (p01 & 0xffff) + (p10 & 0xffff);
+    p11 + (p01 >> 16) + (p10 >> 16) + (mid >> 16)
+}
+
+/// `phase_turns(rate, frequency)`: frac(f·t) in turns, in [−½, ½].
+#[inline]
+pub fn phase_turns(rate: [u32; 2], frequency: f32, params: &WavesUniforms) -> f32 {
+    let ticks = params.time_ticks;
+    let turns_fixed = mul_hi(rate[0], ticks[0])
+        .wrapping_add(rate[1].wrapping_mul(ticks[0]))
+        .wrapping_add(rate[0].wrapping_mul(ticks[1]));
+    let coarse = ((turns_fixed.wrapping_add(128) as i32) >> 8) as f32 * TURN_UNIT;
+    let c = coarse + frequency * params.time_remainder;
+    c - (c + 0.5).floor()
+}
+
+/// `complex_mul(a, b)`.
+#[inline]
+pub fn complex_mul(a: Vec2, b: Vec2) -> Vec2 {
+    [a[0] * b[0] - a[1] * b[1], a[0] * b[1] + a[1] * b[0]]
+}
+
+/// `pack_pair(a, b)`: Â + iB̂.
+#[inline]
+pub fn pack_pair(a: Vec2, b: Vec2) -> Vec2 {
+    [a[0] - b[1], a[1] + b[0]]
+}
+
+#[inline]
+fn scale(v: Vec2, s: f32) -> Vec2 {
+    [v[0] * s, v[1] * s]
+}
+
+/// `spectrum(id)`: the four packed spectra of bin (id.x, id.y), written into `dst`.
+pub fn spectrum(id: [u32; 3], params: &WavesUniforms, modes: &[WaveModeData], dst: &mut [Vec2]) {
+    let n = params.size;
+    if id[0] >= n || id[1] >= n {
+        return;
+    }
+    let bin = id[1] * n + id[0];
+    let partner = ((n - id[1]) & (n - 1)) * n + ((n - id[0]) & (n - 1));
+    let mode = modes[bin as usize];
+    let h0_minus = modes[partner as usize].h0;
+    let theta = TAU * phase_turns(mode.phase_rate, mode.frequency, params);
+    let e = [theta.cos(), theta.sin()];
+    let a = complex_mul(mode.h0, e);
+    let b = complex_mul(h0_minus, e);
+    let h = [a[0] + b[0], a[1] - b[1]];
+
+    let kx = mode.k[0];
+    let kz = mode.k[1];
+    let inv_k = mode.inv_k;
+    let lambda = params.lambda;
+    let i_h = [-h[1], h[0]];
+    let minus_i_h = [h[1], -h[0]];
+    let disp_x = scale(minus_i_h, lambda * kx * inv_k);
+    let disp_z = scale(minus_i_h, lambda * kz * inv_k);
+    let slope_x = scale(i_h, kx);
+    let slope_z = scale(i_h, kz);
+    let disp_x_dx = scale(h, lambda * kx * kx * inv_k);
+    let disp_z_dz = scale(h, lambda * kz * kz * inv_k);
+    let disp_x_dz = scale(h, lambda * kx * kz * inv_k);
+
+    let plane = (n * n) as usize;
+    let bin = bin as usize;
+    dst[bin] = pack_pair(h, disp_x);
+    dst[plane + bin] = pack_pair(disp_z, disp_x_dz);
+    dst[2 * plane + bin] = pack_pair(slope_x, slope_z);
+    dst[3 * plane + bin] = pack_pair(disp_x_dx, disp_z_dz);
+}
+
+/// `butterfly(base, stride, j)` of the stage in `fft_pass`.
+#[expect(clippy::too_many_arguments, reason = "the WGSL's bindings become parameters")]
+#[inline]
+pub fn butterfly(
+    base: u32,
+    stride: u32,
+    j: u32,
+    params: &WavesUniforms,
+    fft_pass: &FftPassUniforms,
+    twiddles: &[Vec2],
+    src: &[Vec2],
+    dst: &mut [Vec2],
+) {
+    let half = params.size / 2;
+    let s = 1u32 << fft_pass.stage;
+    let q = j & (s - 1);
+    let a = src[(base + j * stride) as usize];
+    let b = src[(base + (j + half) * stride) as usize];
+    let w = twiddles[(j - q) as usize];
+    let d = [a[0] - b[0], a[1] - b[1]];
+    let out = 2 * j - q;
+    dst[(base + out * stride) as usize] = [a[0] + b[0], a[1] + b[1]];
+    dst[(base + (out + s) * stride) as usize] = complex_mul(d, w);
+}
+
+/// `fft_rows(id)`: id.x butterfly, id.y row, id.z array.
+pub fn fft_rows(
+    id: [u32; 3],
+    params: &WavesUniforms,
+    fft_pass: &FftPassUniforms,
+    twiddles: &[Vec2],
+    src: &[Vec2],
+    dst: &mut [Vec2],
+) {
+    let n = params.size;
+    if id[0] >= n / 2 || id[1] >= n || id[2] >= ARRAYS {
+        return;
+    }
+    butterfly(id[2] * n * n + id[1] * n, 1, id[0], params, fft_pass, twiddles, src, dst);
+}
+
+/// `fft_columns(id)`: id.x butterfly, id.y column, id.z array.
+pub fn fft_columns(
+    id: [u32; 3],
+    params: &WavesUniforms,
+    fft_pass: &FftPassUniforms,
+    twiddles: &[Vec2],
+    src: &[Vec2],
+    dst: &mut [Vec2],
+) {
+    let n = params.size;
+    if id[0] >= n / 2 || id[1] >= n || id[2] >= ARRAYS {
+        return;
+    }
+    butterfly(id[2] * n * n + id[1], n, id[0], params, fft_pass, twiddles, src, dst);
+}
+
+/// The three texels `pack(id)` stores: (displacement, displacement_slopes, bump), or `None`
+/// outside the map.
+pub fn pack(id: [u32; 3], params: &WavesUniforms, src: &[Vec2]) -> Option<[[f32; 4]; 3]> {
+    let n = params.size;
+    if id[0] >= n || id[1] >= n {
+        return None;
+    }
+    let bin = (id[1] * n + id[0]) as usize;
+    let plane = (n * n) as usize;
+    let height_disp_x = src[bin];
+    let disp_z_disp_x_dz = src[plane + bin];
+    let slopes = src[2 * plane + bin];
+    let disp_x_dx_disp_z_dz = src[3 * plane + bin];
+    let height = height_disp_x[0];
+    let disp_x = if params.lambda == 0.0 { 0.0 } else { height_disp_x[1] };
+    let disp_z = disp_z_disp_x_dz[0];
+    let disp_x_dz = disp_z_disp_x_dz[1];
+    let jacobian =
+        (1.0 + disp_x_dx_disp_z_dz[0]) * (1.0 + disp_x_dx_disp_z_dz[1]) - disp_x_dz * disp_x_dz;
+    Some([
+        [disp_x, height, disp_z, jacobian],
+        [slopes[0], slopes[1], 0.0, 0.0],
+        [slopes[0], slopes[1], height, jacobian],
+    ])
+}
+
+/// The three textures `pack` writes.
+#[derive(Clone, Debug, PartialEq)]
+pub struct WaveTextures {
+    /// (disp_x, height, disp_z, jacobian).
+    pub displacement: Texture2D,
+    /// (slope_x, slope_z, 0, 0).
+    pub displacement_slopes: Texture2D,
+    /// (slope_x, slope_z, height, jacobian).
+    pub bump: Texture2D,
+}
+
+/// Which dispatch produced a buffer handed to [`WavesMirror::run_traced`]'s callback.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Dispatch {
+    /// `spectrum` (into ping).
+    Spectrum,
+    /// `fft_rows` stage `.0`.
+    FftRows(u32),
+    /// `fft_columns` stage `.0`.
+    FftColumns(u32),
+}
+
+/// The stage's inputs for one [`WaveModes`] and the dispatches of a frame, as the GPU runs
+/// them.
+#[derive(Clone, Debug)]
+pub struct WavesMirror {
+    resolution: u32,
+    dispersion: ocean_core::dispersion::Dispersion,
+    modes: Vec<WaveModeData>,
+    twiddles: Vec<Vec2>,
+    passes: Vec<FftPassUniforms>,
+}
+
+impl WavesMirror {
+    /// The mode table and twiddles of `modes`.
+    ///
+    /// # Errors
+    /// N not a power of two (the radix-2 FFT of the GPU path).
+    pub fn new(modes: &WaveModes) -> ocean_core::Result<Self> {
+        let n = modes.resolution();
+        check_fft_size(n)?;
+        Ok(Self {
+            resolution: n as u32,
+            dispersion: *modes.dispersion(),
+            modes: wave_mode_table(modes),
+            twiddles: fft_twiddles(n),
+            passes: fft_passes(n),
+        })
+    }
+
+    /// The mode table (what the GPU uploads).
+    pub fn modes(&self) -> &[WaveModeData] {
+        &self.modes
+    }
+
+    /// Writable mode table: for negative controls (a perturbed h0).
+    pub fn modes_mut(&mut self) -> &mut [WaveModeData] {
+        &mut self.modes
+    }
+
+    /// The twiddle table (what the GPU uploads).
+    pub fn twiddles(&self) -> &[Vec2] {
+        &self.twiddles
+    }
+
+    /// Writable twiddle table: for negative controls (a wrong sign).
+    pub fn twiddles_mut(&mut self) -> &mut [Vec2] {
+        &mut self.twiddles
+    }
+
+    /// The uniforms of time `t` and `choppiness`.
+    ///
+    /// # Errors
+    /// See [`WavesUniforms::new`].
+    pub fn uniforms(&self, t: f64, choppiness: f64) -> ocean_core::Result<WavesUniforms> {
+        WavesUniforms::new(self.resolution as usize, &self.dispersion, t, choppiness)
+    }
+
+    /// The textures of time `t` with `choppiness`.
+    ///
+    /// # Errors
+    /// See [`WavesUniforms::new`].
+    pub fn run(&self, t: f64, choppiness: f64) -> ocean_core::Result<WaveTextures> {
+        Ok(self.run_traced(&self.uniforms(t, choppiness)?, &mut |_, _| {}))
+    }
+
+    /// Every dispatch of a frame with `params`; `on_dispatch` sees the buffer each spectrum
+    /// and FFT dispatch wrote (4·N² complex values, array f at f·N²).
+    pub fn run_traced(
+        &self,
+        params: &WavesUniforms,
+        on_dispatch: &mut dyn FnMut(Dispatch, &[Vec2]),
+    ) -> WaveTextures {
+        let n = params.size;
+        assert_eq!(n, self.resolution, "uniforms of another resolution");
+        let len = (ARRAYS * n * n) as usize;
+        let mut ping = vec![[0.0f32; 2]; len];
+        let mut pong = vec![[0.0f32; 2]; len];
+        for j in 0..n {
+            for i in 0..n {
+                spectrum([i, j, 0], params, &self.modes, &mut ping);
+            }
+        }
+        on_dispatch(Dispatch::Spectrum, &ping);
+        let stages = params.log2_size;
+        for (p, fft_pass) in self.passes.iter().enumerate() {
+            let rows = (p as u32) < stages;
+            for z in 0..ARRAYS {
+                for y in 0..n {
+                    for x in 0..n / 2 {
+                        let id = [x, y, z];
+                        if rows {
+                            fft_rows(id, params, fft_pass, &self.twiddles, &ping, &mut pong);
+                        } else {
+                            fft_columns(id, params, fft_pass, &self.twiddles, &ping, &mut pong);
+                        }
+                    }
+                }
+            }
+            std::mem::swap(&mut ping, &mut pong);
+            let which = if rows {
+                Dispatch::FftRows(fft_pass.stage)
+            } else {
+                Dispatch::FftColumns(fft_pass.stage)
+            };
+            on_dispatch(which, &ping);
+        }
+        let mut texels = [Vec::new(), Vec::new(), Vec::new()];
+        for j in 0..n {
+            for i in 0..n {
+                let t = pack([i, j, 0], params, &ping).unwrap_or([[0.0; 4]; 3]);
+                for (out, texel) in texels.iter_mut().zip(t) {
+                    out.push(texel);
+                }
+            }
+        }
+        let [displacement, displacement_slopes, bump] = texels.map(|t| Texture2D::new(n, n, t));
+        WaveTextures { displacement, displacement_slopes, bump }
+    }
+}

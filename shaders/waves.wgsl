@@ -1,0 +1,190 @@
+// Stage `waves`: the wave maps of seed 000 §2.1 (Tessendorf's eq. 1 and the fields derived
+// from it) on the GPU, every frame, from the h0(k) ocean-core drew:
+//
+//   spectrum     h~(k, t) = h0(k) e^{iωt} + conj(h0(−k) e^{iωt}) and the eight multiplied
+//                spectra, packed two per complex array (four N×N arrays in `dst`)
+//   fft_rows     one radix-2 Stockham stage along x of all four arrays (`src` → `dst`)
+//   fft_columns  the same along z
+//   pack         the maps as the water stage binds them: displacement (disp_x, height,
+//                disp_z, jacobian), displacement_slopes (slope_x, slope_z, 0, 0), bump
+//                (slope_x, slope_z, height, jacobian)
+//
+// A frame: spectrum into ping, log2(N) fft_rows then log2(N) fft_columns stages alternating
+// ping → pong → ping …, pack from ping (2·log2(N) passes is even). Conventions (unnormalised
+// inverse DFT, bin (n mod N, m mod N), the multipliers, λ = −choppiness, the pairs) are
+// ocean-core's (waves::synthesis); the phase in integer turns and the FFT stage formula are
+// documented in ocean-core's waves::uniforms. CPU mirror: crates/ocean-cpu/src/shaders/waves.rs.
+// Array layout: element (field f, bin) at f·N² + bin, bin = j·N + i (z row j, x column i).
+
+struct WavesUniforms {
+    size: u32,
+    log2_size: u32,
+    time_ticks: vec2<u32>,
+    time_remainder: f32,
+    lambda: f32,
+    pad0: u32,
+    pad1: u32,
+}
+
+struct WaveMode {
+    h0: vec2<f32>,
+    k: vec2<f32>,
+    phase_rate: vec2<u32>,
+    inv_k: f32,
+    frequency: f32,
+}
+
+struct FftPassUniforms {
+    stage: u32,
+    pad0: u32,
+    pad1: u32,
+    pad2: u32,
+}
+
+@group(0) @binding(0) var<uniform> params: WavesUniforms;
+@group(0) @binding(1) var<storage, read> modes: array<WaveMode>;
+@group(0) @binding(2) var<storage, read> twiddles: array<vec2<f32>>;
+@group(1) @binding(0) var<uniform> fft_pass: FftPassUniforms;
+@group(1) @binding(1) var<storage, read> src: array<vec2<f32>>;
+@group(1) @binding(2) var<storage, read_write> dst: array<vec2<f32>>;
+@group(2) @binding(0) var displacement: texture_storage_2d<rgba32float, write>;
+@group(2) @binding(1) var displacement_slopes: texture_storage_2d<rgba32float, write>;
+@group(2) @binding(2) var bump: texture_storage_2d<rgba32float, write>;
+
+// f32(2π).
+const TAU: f32 = 6.2831855;
+// 2^-24: one unit of the 24-bit turn count.
+const TURN_UNIT: f32 = 5.9604645e-8;
+
+// The high 32 bits of the 64-bit product a·b (WGSL has no 64-bit integers): 16-bit halves,
+// each partial product < 2^32, the middle column summed without overflow (< 3·2^16).
+fn mul_hi(a: u32, b: u32) -> u32 {
+    let a0 = a & 0xffffu;
+    let a1 = a >> 16u;
+    let b0 = b & 0xffffu;
+    let b1 = b >> 16u;
+    let p00 = a0 * b0;
+    let p01 = a0 * b1;
+    let p10 = a1 * b0;
+    let p11 = a1 * b1;
+    let mid = (p00 >> 16u) + (p01 & 0xffffu) + (p10 & 0xffffu);
+    return p11 + (p01 >> 16u) + (p10 >> 16u) + (mid >> 16u);
+}
+
+// frac(f·t) in turns, in [−½, ½]: the high word of Q·ticks mod 2^64 (wrapping u32
+// arithmetic), rounded to 24 bits and read as signed, plus the sub-tick term f·r.
+fn phase_turns(rate: vec2<u32>, frequency: f32) -> f32 {
+    let ticks = params.time_ticks;
+    let turns_fixed = mul_hi(rate.x, ticks.x) + rate.y * ticks.x + rate.x * ticks.y;
+    let coarse = f32(bitcast<i32>(turns_fixed + 128u) >> 8u) * TURN_UNIT;
+    let c = coarse + frequency * params.time_remainder;
+    return c - floor(c + 0.5);
+}
+
+// a·b of complex numbers (x = real part).
+fn complex_mul(a: vec2<f32>, b: vec2<f32>) -> vec2<f32> {
+    return vec2<f32>(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x);
+}
+
+// Â + iB̂ of two spectra whose inverse transforms are real.
+fn pack_pair(a: vec2<f32>, b: vec2<f32>) -> vec2<f32> {
+    return vec2<f32>(a.x - b.y, a.y + b.x);
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn spectrum(@builtin(global_invocation_id) id: vec3<u32>) {
+    let n = params.size;
+    if (id.x >= n || id.y >= n) {
+        return;
+    }
+    let bin = id.y * n + id.x;
+    let partner = ((n - id.y) & (n - 1u)) * n + ((n - id.x) & (n - 1u));
+    let mode = modes[bin];
+    let h0_minus = modes[partner].h0;
+    // The same rate at k and −k (same |k|), so h~(−k) = conj(h~(k)) bit for bit.
+    let theta = TAU * phase_turns(mode.phase_rate, mode.frequency);
+    let e = vec2<f32>(cos(theta), sin(theta));
+    let a = complex_mul(mode.h0, e);
+    let b = complex_mul(h0_minus, e);
+    let h = vec2<f32>(a.x + b.x, a.y - b.y);
+
+    let kx = mode.k.x;
+    let kz = mode.k.y;
+    let inv_k = mode.inv_k;
+    let lambda = params.lambda;
+    let i_h = vec2<f32>(-h.y, h.x);
+    let minus_i_h = vec2<f32>(h.y, -h.x);
+    let disp_x = minus_i_h * (lambda * kx * inv_k);
+    let disp_z = minus_i_h * (lambda * kz * inv_k);
+    let slope_x = i_h * kx;
+    let slope_z = i_h * kz;
+    let disp_x_dx = h * (lambda * kx * kx * inv_k);
+    let disp_z_dz = h * (lambda * kz * kz * inv_k);
+    let disp_x_dz = h * (lambda * kx * kz * inv_k);
+
+    let plane = n * n;
+    dst[bin] = pack_pair(h, disp_x);
+    dst[plane + bin] = pack_pair(disp_z, disp_x_dz);
+    dst[2u * plane + bin] = pack_pair(slope_x, slope_z);
+    dst[3u * plane + bin] = pack_pair(disp_x_dx, disp_z_dz);
+}
+
+// Butterfly j of the current stage on the line starting at `base` with element `stride`.
+fn butterfly(base: u32, stride: u32, j: u32) {
+    let half = params.size / 2u;
+    let s = 1u << fft_pass.stage;
+    let q = j & (s - 1u);
+    let a = src[base + j * stride];
+    let b = src[base + (j + half) * stride];
+    let w = twiddles[j - q];
+    let d = a - b;
+    let out = 2u * j - q;
+    dst[base + out * stride] = a + b;
+    dst[base + (out + s) * stride] = complex_mul(d, w);
+}
+
+// id.x: butterfly, id.y: row (z index j), id.z: array.
+@compute @workgroup_size(64, 1, 1)
+fn fft_rows(@builtin(global_invocation_id) id: vec3<u32>) {
+    let n = params.size;
+    if (id.x >= n / 2u || id.y >= n || id.z >= 4u) {
+        return;
+    }
+    butterfly(id.z * n * n + id.y * n, 1u, id.x);
+}
+
+// id.x: butterfly, id.y: column (x index i), id.z: array.
+@compute @workgroup_size(64, 1, 1)
+fn fft_columns(@builtin(global_invocation_id) id: vec3<u32>) {
+    let n = params.size;
+    if (id.x >= n / 2u || id.y >= n || id.z >= 4u) {
+        return;
+    }
+    butterfly(id.z * n * n + id.y, n, id.x);
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn pack(@builtin(global_invocation_id) id: vec3<u32>) {
+    let n = params.size;
+    if (id.x >= n || id.y >= n) {
+        return;
+    }
+    let bin = id.y * n + id.x;
+    let plane = n * n;
+    let height_disp_x = src[bin];
+    let disp_z_disp_x_dz = src[plane + bin];
+    let slopes = src[2u * plane + bin];
+    let disp_x_dx_disp_z_dz = src[3u * plane + bin];
+    let height = height_disp_x.x;
+    // With λ = 0 the imaginary part of the first array is only the round-off of the height's
+    // transform: ocean-core writes an exact 0 there, and so does this.
+    let disp_x = select(height_disp_x.y, 0.0, params.lambda == 0.0);
+    let disp_z = disp_z_disp_x_dz.x;
+    let disp_x_dz = disp_z_disp_x_dz.y;
+    let jacobian = (1.0 + disp_x_dx_disp_z_dz.x) * (1.0 + disp_x_dx_disp_z_dz.y)
+        - disp_x_dz * disp_x_dz;
+    let texel = vec2<i32>(id.xy);
+    textureStore(displacement, texel, vec4<f32>(disp_x, height, disp_z, jacobian));
+    textureStore(displacement_slopes, texel, vec4<f32>(slopes.x, slopes.y, 0.0, 0.0));
+    textureStore(bump, texel, vec4<f32>(slopes.x, slopes.y, height, jacobian));
+}
