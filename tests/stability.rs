@@ -3,7 +3,8 @@
 //! bound against the f64 reference. The bounds and where they come from are in that module's
 //! documentation; a negative control shows the comparison can fail.
 
-use ocean_cpu::stability::{Case, cases};
+use ocean_core::fresnel::{fresnel_exact, fresnel_schlick};
+use ocean_cpu::stability::{Case, cases, fresnel_check};
 
 #[test]
 fn every_extreme_case_is_finite_and_within_its_bound() {
@@ -40,4 +41,16 @@ fn a_case_beyond_its_bound_or_not_finite_fails() {
     assert!(!Case { error: 1.000001e-7, ..ok.clone() }.passes());
     assert!(!Case { finite: false, ..ok.clone() }.passes());
     assert!(!Case { error: f64::NAN, ..ok }.passes());
+}
+
+#[test]
+fn the_fresnel_bound_rejects_an_approximation() {
+    // Negative control of the Fresnel rows: eq. 2 meets the backward-stability bound where
+    // Schlick's approximation (3e-2 off at grazing angles) does not.
+    for c in [1e-3f32, 0.1, 0.5] {
+        let (e, b, _) = fresnel_check(fresnel_exact, c, 1.333);
+        assert!(e <= b, "eq. 2 at c = {c}: {e} > {b}");
+        let (e, b, _) = fresnel_check(fresnel_schlick, c, 1.333);
+        assert!(e > b, "Schlick at c = {c}: {e} ≤ {b}");
+    }
 }

@@ -71,10 +71,17 @@ pub fn cases() -> Result<Vec<Case>, Error> {
 // ---------------------------------------------------------------------------------------------
 // Fresnel
 
-/// (error, bound) of f32 eq. 2 at (c, η) (both f32) against f64 eq. 2: the module doc's
-/// backward-stability bound.
+/// (error, bound, finite) of f32 eq. 2 at (c, η) (both f32) against f64 eq. 2: the module
+/// doc's backward-stability bound.
 fn fresnel_point(c: f32, eta: f32) -> (f64, f64, bool) {
-    let got = fresnel_exact(c, eta);
+    fresnel_check(fresnel_exact, c, eta)
+}
+
+/// (error, bound, finite) of an f32 Fresnel function `f` at (c, η) against f64 eq. 2, with the
+/// module doc's backward-stability bound. Public so that a test can show that an
+/// approximation (Schlick's) fails it.
+pub fn fresnel_check(f: fn(f32, f32) -> f32, c: f32, eta: f32) -> (f64, f64, bool) {
+    let got = f(c, eta);
     let (c64, eta64) = (f64::from(c), f64::from(eta));
     let reference = fresnel_exact(c64, eta64);
     let ulp = |v: f64| (v.abs().max(f64::from(f32::MIN_POSITIVE))) * f64::from(f32::EPSILON);
