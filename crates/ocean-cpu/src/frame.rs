@@ -5,7 +5,10 @@
 use std::time::{Duration, Instant};
 
 use ocean_core::camera::Camera;
-use ocean_core::frame::{FrameUniforms, FresnelTableUniforms, ObjectVertex, object_triangles};
+use ocean_core::frame::{
+    FrameUniforms, FresnelTableUniforms, ObjectVertex, bump_texels, displacement_slope_texels,
+    displacement_texels, object_triangles,
+};
 use ocean_core::plan::{FramePlan, Pass};
 use ocean_core::scene::Scene;
 use ocean_core::waves::{Synthesizer, WaveMaps};
@@ -77,10 +80,10 @@ fn target_texture(t: RenderTarget) -> Texture2D {
 /// The wave maps packed as the water stage binds them.
 fn wave_textures(maps: &WaveMaps<f32>) -> (Texture2D, Texture2D) {
     let n = maps.resolution() as u32;
-    let k = maps.height.len();
-    let disp = (0..k).map(|i| [maps.disp_x[i], maps.height[i], maps.disp_z[i], maps.jacobian[i]]);
-    let slopes = (0..k).map(|i| [maps.slope_x[i], maps.slope_z[i], 0.0, 0.0]);
-    (Texture2D::new(n, n, disp.collect()), Texture2D::new(n, n, slopes.collect()))
+    (
+        Texture2D::new(n, n, displacement_texels(maps)),
+        Texture2D::new(n, n, displacement_slope_texels(maps)),
+    )
 }
 
 /// The water mesh of a view: vertices relative to `origin` (world x, z; see
@@ -186,13 +189,7 @@ pub fn render_with(
             chop,
         )?;
         let n = b.resolution() as u32;
-        bump = Texture2D::new(
-            n,
-            n,
-            (0..b.height.len())
-                .map(|i| [b.slope_x[i], b.slope_z[i], b.height[i], b.jacobian[i]])
-                .collect(),
-        );
+        bump = Texture2D::new(n, n, bump_texels(&b));
         timed(Pass::Waves, t0);
     }
 
