@@ -16,7 +16,8 @@ use crate::scene::{Object, Scene, Shape, Sun};
 use crate::sky::{PreethamSky, SkyParams};
 use crate::waves::WaveMaps;
 
-/// Phong exponent s of the sun's specular term (seed 000 §5.3: "s is specified before
+/// Phong exponent s of the sun's specular term, a whole number (the water stage raises to it
+/// by repeated multiplication, `pow_int`) (seed 000 §5.3: "s is specified before
 /// rendering"); 400 gives a glitter path a few degrees wide.
 pub const SUN_SPECULAR_EXPONENT: f32 = 400.0;
 /// Scale of the reflection-map lookup shift by the bump value (§5.2, Fig. 5), in texture
