@@ -1,6 +1,7 @@
 //! `ocean`: the command-line program. One module per subcommand; each returns an
 //! `anyhow::Result` whose message a user can act on, printed without a backtrace.
 
+mod compare;
 mod fresnel;
 mod heightfield;
 mod output;
@@ -31,6 +32,8 @@ enum Command {
     Heightfield(heightfield::Args),
     /// Print the passes a scene's frame runs, and why each is in or out.
     Plan(plan::Args),
+    /// Render a scene on the CPU oracle and on the GPU and compare every pass.
+    Compare(compare::Args),
 }
 
 /// Loads a scene file, or the built-in default scene when none is given.
@@ -48,6 +51,7 @@ fn main() -> ExitCode {
         Command::Fresnel(a) => fresnel::run(a),
         Command::Heightfield(a) => heightfield::run(a),
         Command::Plan(a) => plan::run(a),
+        Command::Compare(a) => compare::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
