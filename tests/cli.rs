@@ -247,7 +247,15 @@ fn gpu_without_an_adapter_says_what_to_do_and_writes_nothing() {
 fn gpu_or_skip(test: &str) -> bool {
     let dir = tempfile::tempdir().expect("a temp dir");
     let probe = dir.path().join("probe.png");
-    let o = ocean(&["render", "--backend", "gpu", "--size", "8x8", "-o", probe.to_str().unwrap()]);
+    let o = ocean(&[
+        "render",
+        "--backend",
+        "gpu",
+        "--size",
+        "8x8",
+        "-o",
+        probe.to_str().expect("utf-8 path"),
+    ]);
     if o.status.success() {
         return true;
     }

@@ -190,7 +190,8 @@ fn clip_polygon<const V: usize>(poly: &Polygon<V>, plane: &[f32; 4]) -> Option<P
             let v = ClipVertex { vertex: interpolate(&from.vertex, &to.vertex, t), made: true };
             // Off its own plane by more than rounding: the interpolation cancelled.
             let w = v.vertex.clip[3];
-            if !(distance(&v.vertex.clip, plane).abs() <= w * (1.0 / 1024.0)) || !out.push(v) {
+            let on_plane = distance(&v.vertex.clip, plane).abs() <= w * (1.0 / 1024.0); // NaN: no
+            if !on_plane || !out.push(v) {
                 return None;
             }
         }
