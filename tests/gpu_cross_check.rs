@@ -63,6 +63,9 @@ fn renderer() -> Option<Renderer> {
     }
 }
 
+/// The reference scenes, plus the default scene seen from under the water (the plan skips the
+/// sky; the water pass takes its branch for a surface seen from below, with Fresnel for 1/η
+/// and Snell's window).
 fn reference_scenes() -> Vec<(String, Scene)> {
     let mut paths: Vec<PathBuf> = std::fs::read_dir(root().join("reference/scenes"))
         .expect("reference/scenes")
@@ -70,7 +73,7 @@ fn reference_scenes() -> Vec<(String, Scene)> {
         .filter(|p| p.extension().is_some_and(|e| e == "toml"))
         .collect();
     paths.sort();
-    paths
+    let mut scenes: Vec<(String, Scene)> = paths
         .into_iter()
         .map(|p| {
             let mut s = Scene::load(&p).expect("reference scene");
@@ -78,14 +81,20 @@ fn reference_scenes() -> Vec<(String, Scene)> {
             s.camera.height = HEIGHT;
             (p.file_stem().expect("name").to_string_lossy().into_owned(), s)
         })
-        .collect()
+        .collect();
+    let mut under = Scene::builtin();
+    (under.camera.width, under.camera.height) = (WIDTH, HEIGHT);
+    under.camera.position = [0.0, -2.5, 20.0];
+    under.camera.look_at = [0.0, 25.0, -15.0];
+    scenes.push(("default_underwater".into(), under));
+    scenes
 }
 
 #[test]
 fn reference_scenes_match_the_cpu_oracle() {
     let Some(mut renderer) = renderer() else { return };
     let scenes = reference_scenes();
-    assert!(scenes.len() >= 5, "expected the reference scenes, found {}", scenes.len());
+    assert!(scenes.len() >= 6, "expected the reference scenes, found {}", scenes.len());
     let out = root().join("target/gpu-cross-check");
     let mut failures = Vec::new();
     for (name, scene) in &scenes {
@@ -106,6 +115,137 @@ fn reference_scenes_match_the_cpu_oracle() {
         "CPU and GPU differ beyond DESIGN.md's tolerances (images and JSON in {}):\n{}",
         out.display(),
         failures.join("\n")
+    );
+}
+
+/// A small deterministic generator for the raster test.
+struct Lcg(u64);
+
+impl Lcg {
+    fn unit(&mut self) -> f32 {
+        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (self.0 >> 40) as f32 / (1u64 << 24) as f32
+    }
+}
+
+/// The CPU rasterizer against lavapipe on random triangles, half of them cut by the view
+/// volume's planes (behind the eye, beside and beyond the viewport): every covered pixel's
+/// depth, 1/w and perspective-correct varyings agree bit for bit, in a 160×90 target (not a
+/// power of two, so the viewport transform's rounding shows). This pins the interpolation and
+/// clipping rules of `ocean_cpu::raster` to what the GPU does.
+#[test]
+fn rasterizer_matches_lavapipe_bit_for_bit() {
+    use ocean_cpu::raster::{BlendMode, CompareFunction, RasterState, RenderTarget, Vertex, draw};
+    use ocean_gpu::common::{Load, begin_render_pass, primitive, replace_target};
+    use ocean_gpu::texture::{GpuTexture, MAP_FORMAT, Readbacks, TexelData};
+    use wgpu::util::DeviceExt;
+
+    let Some(renderer) = renderer() else { return };
+    let gpu = renderer.gpu();
+    let mut rng = Lcg(7);
+    let mut tris: Vec<[Vertex<2>; 3]> = Vec::new();
+    for i in 0..400 {
+        let (spread, z_lo) = if i % 2 == 0 { (0.9, 0.0) } else { (3.0, -0.5) };
+        tris.push(std::array::from_fn(|_| {
+            let w = 0.2 + rng.unit() * 30.0;
+            let x = (rng.unit() * 2.0 - 1.0) * spread * w;
+            let y = (rng.unit() * 2.0 - 1.0) * spread * w;
+            let z = (z_lo + rng.unit() * (1.0 - 2.0 * z_lo)) * w;
+            Vertex::new([x, y, z, w], [rng.unit() * 200.0 - 100.0, rng.unit()])
+        }));
+    }
+    let (w, h) = (160u32, 90u32);
+    // CPU: no depth test, last triangle wins, as on the GPU without a depth buffer.
+    let state = RasterState {
+        depth_compare: CompareFunction::Always,
+        depth_write: false,
+        blend: BlendMode::Replace,
+        ..RasterState::default()
+    };
+    let mut cpu = RenderTarget::new(w, h);
+    draw(&mut cpu, &state, &tris, |f| {
+        Some([f.frag_coord[2], f.frag_coord[3], f.varyings[0], f.varyings[1]])
+    });
+    // GPU.
+    let d = &gpu.device;
+    let src = "struct VOut { @builtin(position) p: vec4<f32>, @location(0) a: vec2<f32> }\n\
+        @vertex fn vs(@location(0) pos: vec4<f32>, @location(1) a: vec2<f32>) -> VOut {\n\
+            var o: VOut; o.p = pos; o.a = a; return o; }\n\
+        @fragment fn fs(i: VOut) -> @location(0) vec4<f32> {\n\
+            return vec4<f32>(i.p.z, i.p.w, i.a.x, i.a.y); }\n";
+    let module = d.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("raster-check"),
+        source: wgpu::ShaderSource::Wgsl(src.into()),
+    });
+    let vertex_data: Vec<[f32; 6]> = tris
+        .iter()
+        .flatten()
+        .map(|v| [v.clip[0], v.clip[1], v.clip[2], v.clip[3], v.varyings[0], v.varyings[1]])
+        .collect();
+    let pipeline = d.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some("raster-check"),
+        layout: None,
+        vertex: wgpu::VertexState {
+            module: &module,
+            entry_point: Some("vs"),
+            compilation_options: Default::default(),
+            buffers: &[Some(wgpu::VertexBufferLayout {
+                array_stride: 24,
+                step_mode: wgpu::VertexStepMode::Vertex,
+                attributes: &wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x2],
+            })],
+        },
+        primitive: primitive(),
+        depth_stencil: None,
+        multisample: wgpu::MultisampleState::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: &module,
+            entry_point: Some("fs"),
+            compilation_options: Default::default(),
+            targets: &replace_target(MAP_FORMAT),
+        }),
+        multiview_mask: None,
+        cache: None,
+    });
+    let vertices = d.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("raster-check"),
+        contents: bytemuck::cast_slice(&vertex_data),
+        usage: wgpu::BufferUsages::VERTEX,
+    });
+    let target = GpuTexture::target(d, "raster-check", w, h, MAP_FORMAT);
+    let mut encoder = d.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+    {
+        let mut pass = begin_render_pass(
+            &mut encoder,
+            "raster-check",
+            &target.view,
+            Load::Clear([0.0; 4]),
+            None,
+            None,
+        );
+        pass.set_pipeline(&pipeline);
+        pass.set_vertex_buffer(0, vertices.slice(..));
+        pass.draw(0..vertex_data.len() as u32, 0..1);
+    }
+    let mut readback: Readbacks<()> = Readbacks::default();
+    readback.copy(d, &mut encoder, (), "raster-check", &target, MAP_FORMAT);
+    gpu.queue.submit([encoder.finish()]);
+    let data = readback.finish(gpu).expect("readback");
+    let TexelData::Float(g) = &data[0].1 else { panic!("a float target") };
+    let covered = cpu.color.iter().filter(|c| **c != [0.0; 4]).count();
+    let differing: Vec<usize> = (0..cpu.color.len())
+        .filter(|&i| (0..4).any(|k| cpu.color[i][k].to_bits() != g.texels[i][k].to_bits()))
+        .collect();
+    eprintln!("raster check: {covered} covered pixels, {} differ", differing.len());
+    assert!(covered > (w * h / 2) as usize, "the triangles cover the target");
+    assert!(
+        differing.is_empty(),
+        "{} of {} pixels differ, first at {:?}: cpu {:?} gpu {:?}",
+        differing.len(),
+        w * h,
+        differing.first().map(|&i| (i as u32 % w, i as u32 / w)),
+        differing.first().map(|&i| cpu.color[i]),
+        differing.first().map(|&i| g.texels[i])
     );
 }
 
