@@ -1,6 +1,7 @@
 //! `ocean`: the command-line program. One module per subcommand; each returns an
 //! `anyhow::Result` whose message a user can act on, printed without a backtrace.
 
+mod compare;
 mod fresnel;
 mod heightfield;
 mod output;
@@ -35,6 +36,8 @@ enum Command {
     /// Measure each quality knob's error against its run time, what the planner saves, and
     /// the numerical-stability table (CSV, SVG plot, report.md).
     Report(report::Args),
+    /// Render a scene on the CPU oracle and on the GPU and compare every pass.
+    Compare(compare::Args),
 }
 
 /// Loads a scene file, or the built-in default scene when none is given.
@@ -53,6 +56,7 @@ fn main() -> ExitCode {
         Command::Heightfield(a) => heightfield::run(a),
         Command::Plan(a) => plan::run(a),
         Command::Report(a) => report::run(a),
+        Command::Compare(a) => compare::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,12 +1,13 @@
-//! `ocean render`: the frame of Hu et al. 2004 on the CPU oracle (the GPU path comes with
-//! issue 4), written as 8-bit sRGB PNG or linear HDR EXR.
+//! `ocean render`: the frame of Hu et al. 2004 on the CPU oracle or on wgpu, written as 8-bit
+//! sRGB PNG or linear HDR EXR.
 
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 use anyhow::{Context, bail};
 use indicatif::{ProgressBar, ProgressStyle};
-use ocean_core::plan::{OutputKind, Pass};
+use ocean_core::plan::{FramePlan, OutputKind, Pass};
+use ocean_gpu::FrameMap;
 
 use crate::output::{Channel, encode_exr, write_atomic};
 
@@ -39,7 +40,7 @@ enum Backend {
 }
 
 /// Parses `WIDTHxHEIGHT`.
-fn parse_size(s: &str) -> anyhow::Result<(u32, u32)> {
+pub(crate) fn parse_size(s: &str) -> anyhow::Result<(u32, u32)> {
     let (w, h) = s
         .split_once(['x', 'X', '×'])
         .with_context(|| format!("--size must be WIDTHxHEIGHT, e.g. 1280x720, got {s:?}"))?;
@@ -70,12 +71,67 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if let Some(s) = &args.size {
         (scene.camera.width, scene.camera.height) = parse_size(s)?;
     }
-    if let Backend::Gpu = args.backend {
-        bail!("the GPU back end is not implemented yet (issue 4); use --backend cpu (the default)");
-    }
-
-    // A progress bar only for renders that take over a second.
+    let (w, h) = (scene.camera.width, scene.camera.height);
     let start = Instant::now();
+    let (ldr, hdr, passes, backend) = match args.backend {
+        Backend::Cpu => {
+            let r = render_cpu(&scene, kind, start)?;
+            let passes = r
+                .buffers
+                .timings
+                .iter()
+                .map(|(p, d)| format!("{} {:.0} ms", p.name(), d.as_secs_f64() * 1e3))
+                .collect();
+            (r.ldr, r.buffers.hdr.color, passes, "CPU".to_owned())
+        }
+        Backend::Gpu => {
+            let mut renderer = ocean_gpu::Renderer::new()?;
+            let plan = FramePlan::new(&scene, kind);
+            let f = renderer.run_with(&scene, &plan, ocean_gpu::Readback::Output)?;
+            let hdr = f.map(FrameMap::Hdr).map(|m| m.texels.clone()).unwrap_or_default();
+            let passes = f
+                .gpu_timings
+                .iter()
+                .map(|(p, d)| format!("{} {:.1} ms", p.name(), d.as_secs_f64() * 1e3))
+                .collect();
+            (f.ldr, hdr, passes, format!("GPU {}", f.adapter.name))
+        }
+    };
+    let bytes = match kind {
+        OutputKind::Ldr => {
+            let rgba = ldr.context("the plan has no tonemap pass")?;
+            let img = image::RgbaImage::from_raw(w, h, rgba).context("image size")?;
+            let mut buf = std::io::Cursor::new(Vec::new());
+            img.write_to(&mut buf, image::ImageFormat::Png).context("cannot encode PNG")?;
+            buf.into_inner()
+        }
+        OutputKind::Hdr => {
+            let channel = |c: usize| hdr.iter().map(|p| p[c]).collect::<Vec<f32>>();
+            let channels = ["R", "G", "B", "A"]
+                .iter()
+                .enumerate()
+                .map(|(c, name)| Channel { name, data: channel(c) })
+                .collect();
+            encode_exr(w as usize, h as usize, channels)?
+        }
+    };
+    write_atomic(&args.output, &bytes)?;
+    let passes: Vec<String> = passes;
+    eprintln!(
+        "wrote {} ({w}×{h}, {backend}, {:.2} s: {})",
+        args.output.display(),
+        start.elapsed().as_secs_f64(),
+        passes.join(", ")
+    );
+    Ok(())
+}
+
+/// The CPU render with a progress bar for renders that take over a second.
+fn render_cpu(
+    scene: &ocean_core::scene::Scene,
+    kind: OutputKind,
+    start: Instant,
+) -> anyhow::Result<ocean_cpu::Rendered> {
     let mut bar: Option<ProgressBar> = None;
     let total = Pass::ALL.len() as u64;
     let mut on_pass = |pass: Pass| {
@@ -92,42 +148,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             b.set_position(Pass::ALL.iter().position(|p| *p == pass).unwrap_or(0) as u64);
         }
     };
-    let rendered = ocean_cpu::render_scene(&scene, kind, &mut on_pass)?;
+    let rendered = ocean_cpu::render_scene(scene, kind, &mut on_pass)?;
     if let Some(b) = bar {
         b.finish_and_clear();
     }
-    let (w, h) = (scene.camera.width, scene.camera.height);
-    let bytes = match kind {
-        OutputKind::Ldr => {
-            let rgba = rendered.ldr.context("the plan has no tonemap pass")?;
-            let img = image::RgbaImage::from_raw(w, h, rgba).context("image size")?;
-            let mut buf = std::io::Cursor::new(Vec::new());
-            img.write_to(&mut buf, image::ImageFormat::Png).context("cannot encode PNG")?;
-            buf.into_inner()
-        }
-        OutputKind::Hdr => {
-            let px = &rendered.buffers.hdr.color;
-            let channel = |c: usize| px.iter().map(|p| p[c]).collect::<Vec<f32>>();
-            let channels = ["R", "G", "B", "A"]
-                .iter()
-                .enumerate()
-                .map(|(c, name)| Channel { name, data: channel(c) })
-                .collect();
-            encode_exr(w as usize, h as usize, channels)?
-        }
-    };
-    write_atomic(&args.output, &bytes)?;
-    let passes: Vec<String> = rendered
-        .buffers
-        .timings
-        .iter()
-        .map(|(p, d)| format!("{} {:.0} ms", p.name(), d.as_secs_f64() * 1e3))
-        .collect();
-    eprintln!(
-        "wrote {} ({w}×{h}, CPU, {:.2} s: {})",
-        args.output.display(),
-        start.elapsed().as_secs_f64(),
-        passes.join(", ")
-    );
-    Ok(())
+    Ok(rendered)
 }

@@ -10,10 +10,14 @@ use bytemuck::{Pod, Zeroable};
 use glam::{DMat4, DVec3, DVec4};
 
 use crate::camera::{Camera, to_cols_f32};
+use crate::geometry::{PatchParams, WaterMesh};
 use crate::plan::{FramePlan, Pass};
-use crate::scene::{Object, Scene, Shape};
+use crate::scene::{Object, Scene, Shape, Sun};
+use crate::sky::{PreethamSky, SkyParams};
+use crate::waves::WaveMaps;
 
-/// Phong exponent s of the sun's specular term (seed 000 §5.3: "s is specified before
+/// Phong exponent s of the sun's specular term, a whole number (the water stage raises to it
+/// by repeated multiplication, `pow_int`) (seed 000 §5.3: "s is specified before
 /// rendering"); 400 gives a glitter path a few degrees wide.
 pub const SUN_SPECULAR_EXPONENT: f32 = 400.0;
 /// Scale of the reflection-map lookup shift by the bump value (§5.2, Fig. 5), in texture
@@ -284,6 +288,67 @@ impl FrameUniforms {
             sky_ambient: [0.0; 4],
         }
     }
+}
+
+/// The sky of a scene: its sun, or, without one, the default sun's sky at zero intensity (the
+/// daylight sky without a disc or sunlight). Both back ends draw the `sky` stage and the
+/// water's reflections from it.
+pub fn scene_sky(scene: &Scene) -> crate::Result<PreethamSky> {
+    let default = Sun { intensity: 0.0, ..Sun::default() };
+    let sun = scene.sun.as_ref().unwrap_or(&default);
+    Ok(PreethamSky::new(SkyParams::new(sun.direction, sun.turbidity, sun.color, sun.intensity)?))
+}
+
+/// The sky's mean radiance weighted by cos θ over the upper hemisphere, i.e. the irradiance of
+/// an upward surface divided by π: the objects' ambient term ([`FrameUniforms::sky_ambient`]).
+/// A fixed 32 × 64 midpoint grid in (cos² θ, φ) — uniform in projected solid angle — so it is
+/// deterministic.
+pub fn sky_ambient(sky: &PreethamSky) -> [f32; 4] {
+    let (rows, cols) = (32, 64);
+    let mut sum = DVec3::ZERO;
+    for i in 0..rows {
+        let cos2 = (i as f64 + 0.5) / rows as f64;
+        let (cos_t, sin_t) = (cos2.sqrt(), (1.0 - cos2).sqrt());
+        for j in 0..cols {
+            let phi = std::f64::consts::TAU * (j as f64 + 0.5) / cols as f64;
+            let d = [sin_t * phi.cos(), cos_t, sin_t * phi.sin()];
+            sum += DVec3::from_array(sky.sky_radiance(d));
+        }
+    }
+    let mean = sum / (rows * cols) as f64;
+    [mean.x as f32, mean.y as f32, mean.z as f32, 0.0]
+}
+
+/// The near/far patch mesh of a view (seed 000 §3), for the scene's displacement grid.
+pub fn scene_water_mesh(scene: &Scene, camera: &Camera) -> crate::Result<WaterMesh> {
+    let params = PatchParams::for_ocean(scene.ocean.patch_size_m, scene.ocean.resolution);
+    WaterMesh::for_view(
+        &params,
+        camera.eye.to_array(),
+        camera.forward.to_array(),
+        camera.fov_y,
+        camera.aspect(),
+    )
+}
+
+/// Texels of the water stage's `displacement` binding: (disp_x, height, disp_z, jacobian),
+/// row-major as the maps are stored.
+pub fn displacement_texels(maps: &WaveMaps<f32>) -> Vec<[f32; 4]> {
+    (0..maps.height.len())
+        .map(|i| [maps.disp_x[i], maps.height[i], maps.disp_z[i], maps.jacobian[i]])
+        .collect()
+}
+
+/// Texels of the water stage's `displacement_slopes` binding: (slope_x, slope_z, 0, 0).
+pub fn displacement_slope_texels(maps: &WaveMaps<f32>) -> Vec<[f32; 4]> {
+    (0..maps.height.len()).map(|i| [maps.slope_x[i], maps.slope_z[i], 0.0, 0.0]).collect()
+}
+
+/// Texels of the water stage's `bump` binding: (slope_x, slope_z, height, jacobian).
+pub fn bump_texels(maps: &WaveMaps<f32>) -> Vec<[f32; 4]> {
+    (0..maps.height.len())
+        .map(|i| [maps.slope_x[i], maps.slope_z[i], maps.height[i], maps.jacobian[i]])
+        .collect()
 }
 
 #[cfg(test)]

@@ -5,7 +5,10 @@
 use std::time::{Duration, Instant};
 
 use ocean_core::camera::Camera;
-use ocean_core::frame::{FrameUniforms, FresnelTableUniforms, ObjectVertex, object_triangles};
+use ocean_core::frame::{
+    FrameUniforms, FresnelTableUniforms, ObjectVertex, bump_texels, displacement_slope_texels,
+    displacement_texels, object_triangles,
+};
 use ocean_core::plan::{FramePlan, Pass};
 use ocean_core::scene::{Object, Scene};
 use ocean_core::waves::{FrameCycle, Synthesizer, WaveMaps};
@@ -79,18 +82,10 @@ fn target_texture(t: RenderTarget) -> Texture2D {
 /// jacobian) and (slope_x, slope_z, 0, 0).
 fn wave_textures(maps: &WaveMaps<f32>) -> (Texture2D, Texture2D) {
     let n = maps.resolution() as u32;
-    let k = maps.height.len();
-    let disp = (0..k).map(|i| [maps.disp_x[i], maps.height[i], maps.disp_z[i], maps.jacobian[i]]);
-    let slopes = (0..k).map(|i| [maps.slope_x[i], maps.slope_z[i], 0.0, 0.0]);
-    (Texture2D::new(n, n, disp.collect()), Texture2D::new(n, n, slopes.collect()))
-}
-
-/// The bump map packed as the water stage binds it: (slope_x, slope_z, height, jacobian).
-fn bump_texture(maps: &WaveMaps<f32>) -> Texture2D {
-    let n = maps.resolution() as u32;
-    let texels = (0..maps.height.len())
-        .map(|i| [maps.slope_x[i], maps.slope_z[i], maps.height[i], maps.jacobian[i]]);
-    Texture2D::new(n, n, texels.collect())
+    (
+        Texture2D::new(n, n, displacement_texels(maps)),
+        Texture2D::new(n, n, displacement_slope_texels(maps)),
+    )
 }
 
 /// The water mesh of a view: vertices relative to `origin` (world x, z; see
@@ -205,7 +200,8 @@ pub fn render_with(
             )
         };
         (displacement, displacement_slopes) = wave_textures(&d);
-        bump = bump_texture(&b);
+        let n = b.resolution() as u32;
+        bump = Texture2D::new(n, n, bump_texels(&b));
         timed(Pass::Waves, t0);
     }
 

@@ -1,13 +1,11 @@
 //! The CPU renderer's entry points: a scene in, the frame's maps and picture out. Wires the
 //! Preetham sky (stage `sky`), the near/far patch mesh and the tonemap into [`frame::render`].
 
-use glam::DVec3;
 use ocean_core::camera::Camera;
 use ocean_core::camera_uniforms::CameraUniforms;
-use ocean_core::frame::FrameUniforms;
+use ocean_core::frame::{FrameUniforms, scene_sky, sky_ambient};
 use ocean_core::plan::{FramePlan, OutputKind, Pass};
-use ocean_core::scene::{Scene, Sun};
-use ocean_core::sky::{PreethamSky, SkyParams};
+use ocean_core::scene::Scene;
 use ocean_core::tonemap::TonemapUniforms;
 
 use crate::frame::{self, Error, FrameBuffers, WaterMesh};
@@ -22,33 +20,6 @@ pub struct Rendered {
     pub buffers: FrameBuffers,
     /// The 8-bit sRGB RGBA picture, when the plan tonemaps.
     pub ldr: Option<Vec<u8>>,
-}
-
-/// The sky of a scene: its sun, or, without one, the default sun's sky at zero intensity (the
-/// daylight sky without a disc or sunlight).
-pub fn sky_of(scene: &Scene) -> Result<PreethamSky, Error> {
-    let default = Sun { intensity: 0.0, ..Sun::default() };
-    let sun = scene.sun.as_ref().unwrap_or(&default);
-    Ok(PreethamSky::new(SkyParams::new(sun.direction, sun.turbidity, sun.color, sun.intensity)?))
-}
-
-/// The sky's mean radiance weighted by cos θ over the upper hemisphere, i.e. the irradiance of
-/// an upward surface divided by π: the objects' ambient term. A fixed 32 × 64 midpoint grid
-/// in (cos² θ, φ) — uniform in projected solid angle — so it is deterministic.
-pub fn sky_ambient(sky: &PreethamSky) -> [f32; 4] {
-    let (rows, cols) = (32, 64);
-    let mut sum = DVec3::ZERO;
-    for i in 0..rows {
-        let cos2 = (i as f64 + 0.5) / rows as f64;
-        let (cos_t, sin_t) = (cos2.sqrt(), (1.0 - cos2).sqrt());
-        for j in 0..cols {
-            let phi = std::f64::consts::TAU * (j as f64 + 0.5) / cols as f64;
-            let d = [sin_t * phi.cos(), cos_t, sin_t * phi.sin()];
-            sum += DVec3::from_array(sky.sky_radiance(d));
-        }
-    }
-    let mean = sum / (rows * cols) as f64;
-    [mean.x as f32, mean.y as f32, mean.z as f32, 0.0]
 }
 
 /// The near/far patch mesh of a view (seed 000 §3), for the scene's displacement grid and
@@ -75,7 +46,7 @@ pub fn render_scene_with_plan(
     on_pass: &mut dyn FnMut(Pass),
 ) -> Result<Rendered, Error> {
     let camera = Camera::from_scene(&scene.camera)?;
-    let preetham_sky = sky_of(scene)?;
+    let preetham_sky = scene_sky(scene)?;
     let sky_u = preetham_sky.uniforms();
     let camera_u = CameraUniforms::new(
         camera.view_proj().to_cols_array_2d(),

@@ -167,13 +167,16 @@ fn sample_linear(texture: &Texture2D, sampler: &Sampler, coords: [f32; 2]) -> [f
 /// with weights α along i and β along j, per channel:
 ///
 /// ```text
-/// lerp(a, b, w) = a + w · (b − a)
+/// lerp(a, b, w) = fma(w, b − a, a)            (one rounding for w·(b − a) + a)
 /// result = lerp(lerp(t00, t10, α), lerp(t01, t11, α), β)
 /// ```
 ///
 /// Two lerps along u then one along v, the form of gallivm's `lp_build_lerp_2d` that lavapipe
-/// uses (which may fuse the multiply-add; this contract does not). Lavapipe's exact order is
-/// not pinned down: the CPU↔GPU cross-check decides, and this is the one place to change it.
+/// uses; its multiply-add is fused (`llvm.fmuladd` on an FMA-capable CPU). Measured on
+/// lavapipe (Mesa 22.3.6, LLVM 15): this form reproduces `textureSampleLevel` of an
+/// `Rgba32Float` texture bit for bit on 16 384 of 16 384 random samples, `a + w·(b − a)`
+/// unfused on 66 % of them (up to 1 600 ULP off where b − a cancels). The texel coordinate
+/// `s·W − ½` is not fused (either form matched there). This is the one place to change it.
 #[inline]
 pub fn bilinear(
     t00: [f32; 4],
@@ -183,6 +186,6 @@ pub fn bilinear(
     alpha: f32,
     beta: f32,
 ) -> [f32; 4] {
-    let lerp = |a: f32, b: f32, w: f32| a + w * (b - a);
+    let lerp = |a: f32, b: f32, w: f32| w.mul_add(b - a, a);
     std::array::from_fn(|c| lerp(lerp(t00[c], t10[c], alpha), lerp(t01[c], t11[c], alpha), beta))
 }

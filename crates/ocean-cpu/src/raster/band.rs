@@ -57,21 +57,17 @@ pub fn raster_band<const V: usize, F>(
 }
 
 /// One covered pixel centre. The order of operations here is part of the contract (the GPU
-/// cross-check depends on it):
+/// cross-check depends on it; [`super::setup::Plane`] has lavapipe's plane setup):
 ///
 /// ```text
-/// e_i  = edge_i(pixel centre)                    exact i64, e0 + e1 + e2 = 2·area
-/// b_i  = (e_i as f32) · inv_area                 inv_area = 1 / (2·area as f32)
-/// z    = (b0·z0 + b1·z1) + b2·z2, clamped to [0, 1]   (screen-space linear, like Vulkan)
-/// f_i  = b_i · inv_w_i
-/// s    = (f0 + f1) + f2                          (= frag_coord.w, the interpolated 1/w)
-/// p_i  = f_i · (1 / s)
-/// v[k] = (p0·v0[k] + p1·v1[k]) + p2·v2[k]        (perspective-correct)
+/// z    = fma(dz/dy, y, fma(dz/dx, x, z0)), clamped to [0, 1]   (linear in screen space)
+/// s    = the same for 1/w                   (= frag_coord.w)
+/// v[k] = plane_k(x, y) · (1 / s)           plane_k of v[k]/w: perspective-correct
 /// ```
 ///
-/// The depth test runs before the shader (the shader cannot write depth and its result does
-/// not depend on whether it ran, so this equals the late test); a discarded fragment writes
-/// nothing.
+/// with x, y the integer pixel coordinates. The depth test runs before the shader (the shader
+/// cannot write depth and its result does not depend on whether it ran, so this equals the
+/// late test); a discarded fragment writes nothing.
 #[inline]
 fn shade_pixel<const V: usize, F>(
     x: i64,
@@ -84,26 +80,22 @@ fn shade_pixel<const V: usize, F>(
 ) where
     F: Fn(&FragmentInput<V>) -> Option<[f32; 4]>,
 {
-    let e = tri.edges.map(|edge| edge.at(x, y));
     debug_assert!(
-        e.iter().zip(&tri.edges).all(|(v, edge)| v - edge.bias >= 0),
+        tri.edges.iter().all(|edge| edge.at(x, y) - edge.bias >= 0),
         "pixel ({x}, {y}) is not covered"
     );
-    let b = e.map(|v| v as f32 * tri.inv_area);
-    let z = (b[0] * tri.z[0] + b[1] * tri.z[1]) + b[2] * tri.z[2];
+    let (xf, yf) = (x as f32, y as f32);
+    let z = tri.z.at(xf, yf);
     let frag_depth = z.clamp(0.0, 1.0);
     if !state.depth_compare.passes(frag_depth, *depth) {
         return;
     }
 
-    let f = [0, 1, 2].map(|i| b[i] * tri.inv_w[i]);
-    let s = (f[0] + f[1]) + f[2];
+    let s = tri.inv_w.at(xf, yf);
     let inv_s = 1.0 / s;
-    let p = f.map(|fi| fi * inv_s);
-    let [v0, v1, v2] = &tri.varyings;
     let input = FragmentInput {
-        frag_coord: [x as f32 + 0.5, y as f32 + 0.5, frag_depth, s],
-        varyings: std::array::from_fn(|k| (p[0] * v0[k] + p[1] * v1[k]) + p[2] * v2[k]),
+        frag_coord: [xf + 0.5, yf + 0.5, frag_depth, s],
+        varyings: std::array::from_fn(|k| tri.varyings[k].at(xf, yf) * inv_s),
         front_facing: tri.front_facing,
     };
     let Some(src) = shader(&input) else {

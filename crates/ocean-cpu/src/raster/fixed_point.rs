@@ -36,10 +36,14 @@ pub fn snap(coord_px: f32) -> i64 {
 /// A vertex after the perspective divide and the viewport transform.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ScreenVertex {
-    /// Framebuffer x, snapped.
+    /// Framebuffer x, snapped (coverage).
     pub x: i64,
-    /// Framebuffer y (down), snapped.
+    /// Framebuffer y (down), snapped (coverage).
     pub y: i64,
+    /// Framebuffer x before snapping (interpolation, [`super::setup`]).
+    pub x_win: f32,
+    /// Framebuffer y before snapping.
+    pub y_win: f32,
     /// Framebuffer depth: z_ndc (the viewport's depth range is [0, 1]).
     pub z: f32,
     /// 1 / w_clip.
@@ -47,29 +51,39 @@ pub struct ScreenVertex {
 }
 
 /// The perspective divide and the viewport transform of wgpu on Vulkan (viewport origin (0, H),
-/// extent (W, −H), depth range [0, 1]), in this order of operations:
+/// extent (W, −H), depth range [0, 1]), in lavapipe's order of operations:
 ///
 /// ```text
 /// inv_w = 1 / w
-/// x_fb = (x · inv_w) · (W/2) + W/2
-/// y_fb = (y · inv_w) · (−H/2) + H/2
+/// x_fb = fma(x · inv_w, W/2, W/2)          an input vertex (llvmpipe's JIT fuses)
+/// x_fb = (x · inv_w) · (W/2) + W/2         a vertex the clipper made (Mesa's C code)
+/// y_fb likewise with (−H/2, H/2)
 /// z_fb =  z · inv_w
 /// ```
 ///
-/// (Like llvmpipe's draw module, which multiplies by a reciprocal w; llvmpipe may fuse the
-/// multiply-add, the contract here does not.) Then x_fb, y_fb are snapped with [`snap`].
+/// Then x_fb, y_fb are snapped with [`snap`] for coverage; interpolation uses them unsnapped.
 #[inline]
-pub fn to_framebuffer(clip: [f32; 4], width: u32, height: u32) -> ScreenVertex {
+pub fn to_framebuffer(
+    clip: [f32; 4],
+    made_by_clipper: bool,
+    width: u32,
+    height: u32,
+) -> ScreenVertex {
     debug_assert!(clip[3] > 0.0, "vertex not clipped to w > 0: {clip:?}");
     let half_w = width as f32 * 0.5;
     let half_h = height as f32 * 0.5;
     let inv_w = 1.0 / clip[3];
-    let x_fb = (clip[0] * inv_w) * half_w + half_w;
-    let y_fb = (clip[1] * inv_w) * -half_h + half_h;
+    let (x_fb, y_fb) = if made_by_clipper {
+        ((clip[0] * inv_w) * half_w + half_w, (clip[1] * inv_w) * -half_h + half_h)
+    } else {
+        ((clip[0] * inv_w).mul_add(half_w, half_w), (clip[1] * inv_w).mul_add(-half_h, half_h))
+    };
     let z_fb = clip[2] * inv_w;
     ScreenVertex {
         x: snap(clamp_to_target(x_fb, width)),
         y: snap(clamp_to_target(y_fb, height)),
+        x_win: x_fb,
+        y_win: y_fb,
         z: z_fb,
         inv_w,
     }

@@ -2,19 +2,21 @@
 //!
 //! Pipeline, per triangle, in submission order:
 //!
-//! 1. **Clip** in clip space to `w ≥ W_MIN`, `−w ≤ x, y ≤ w`, `0 ≤ z ≤ w` (`clip.rs`); varyings
-//!    of new vertices are interpolated linearly in clip space. A triangle with a NaN, infinite or
-//!    enormous (beyond ±[`MAX_CLIP_COORD`] ≈ 4e37) clip coordinate is dropped. The clipped convex polygon is fanned from its first vertex.
+//! 1. **Clip** in clip space to `−w ≤ x, y ≤ w`, `0 ≤ z ≤ w` the way Mesa's draw module does
+//!    (`clip.rs`); varyings of new vertices are interpolated linearly in clip space. A triangle
+//!    with a NaN, infinite or enormous (beyond ±[`MAX_CLIP_COORD`] ≈ 4e37) clip coordinate is
+//!    dropped. The clipped convex polygon is fanned from its first vertex.
 //! 2. **Viewport transform** of wgpu on Vulkan: NDC x right, y up, z in [0, 1];
 //!    `x_fb = (x/w + 1)·W/2`, `y_fb = (1 − y/w)·H/2` (framebuffer y down), `z_fb = z/w`
-//!    (`fixed_point.rs` has the exact order of operations).
+//!    (`fixed_point.rs` has lavapipe's exact order of operations).
 //! 3. **Snap** x_fb, y_fb to 1/256 pixel, round half to even (`fixed_point.rs`).
 //! 4. **Cull** on the sign of the snapped area ([`FrontFace`] documents the winding); zero-area
 //!    triangles are dropped.
 //! 5. **Coverage**: pixel (x, y) is sampled at its centre (x + ½, y + ½); exact i64 edge
 //!    functions with the top-left rule (`edge.rs`).
-//! 6. **Interpolation**: barycentrics in f32 from the edge functions, depth linear in screen
-//!    space, varyings perspective-correct (the formulas are on `shade_pixel` in `band.rs`).
+//! 6. **Interpolation**: lavapipe's plane equations from the unsnapped positions, anchored at
+//!    pixel (0, 0) (`setup.rs`), depth linear in screen space, varyings perspective-correct
+//!    (the formulas are on `shade_pixel` in `band.rs`); bit for bit what lavapipe computes.
 //! 7. **Depth test** on the f32 depth buffer, **shading** by a closure (which may discard),
 //!    **blending** into the f32 RGBA target.
 //!

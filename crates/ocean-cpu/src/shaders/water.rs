@@ -109,6 +109,24 @@ pub fn vs_main(v: &WaterVertex, b: &Bindings<'_>) -> VertexOut {
     VertexOut { clip: transform_point(&f.view_proj, rel), rel, uv_d, uv_b, weight: v.weight }
 }
 
+/// `pow_int(x, n)`: x^n by binary exponentiation, multiplications in the WGSL's order.
+pub fn pow_int(x: f32, n: u32) -> f32 {
+    let mut result = 1.0;
+    let mut base = x;
+    let mut e = n;
+    loop {
+        if e & 1 == 1 {
+            result *= base;
+        }
+        e >>= 1;
+        if e == 0 {
+            break;
+        }
+        base *= base;
+    }
+    result
+}
+
 /// `sun_visibility(rel)`.
 fn sun_visibility(rel: [f32; 3], b: &Bindings<'_>) -> f32 {
     let f = b.frame;
@@ -172,7 +190,8 @@ pub fn fs_main(input: &VertexOut, b: &Bindings<'_>) -> [f32; 4] {
         let vb = [fres[0], fres[2], fres[1]];
         let r_sun = [-f.sun_dir[0], f.sun_dir[1], -f.sun_dir[2]];
         let cos_spec = dot3(vb, r_sun).max(0.0);
-        let spec = scale3(xyz(f.sun_radiance), cos_spec.powf(f.sun_radiance[3]) * f.sun_dir[3]);
+        let spec =
+            scale3(xyz(f.sun_radiance), pow_int(cos_spec, f.sun_radiance[3] as u32) * f.sun_dir[3]);
         let shadow = sun_visibility(input.rel, b);
         let c =
             add3(add3(scale3(c_reflect, fr), scale3(c_refract, 1.0 - fr)), scale3(spec, shadow));

@@ -1,0 +1,202 @@
+//! What the stage modules share: shader modules from the embedded WGSL, the fixed-function
+//! state the CPU rasterizer mirrors, bind-group-layout entries and uniform buffers.
+
+use wgpu::util::DeviceExt;
+
+use crate::device::Error;
+use crate::texture::DEPTH_FORMAT;
+
+/// The label of a stage's objects: `"ocean.<stage>"` (DESIGN.md, one name per stage).
+pub fn label(stage: &str) -> String {
+    format!("ocean.{stage}")
+}
+
+/// The shader module of `stage`, from `ocean_core::shader_source::stage_source` (imports
+/// resolved), labelled `"ocean.<stage>"`.
+///
+/// # Errors
+/// [`Error::Core`] if the source cannot be assembled (an unknown stage or import).
+pub fn shader_module(device: &wgpu::Device, stage: &str) -> Result<wgpu::ShaderModule, Error> {
+    let source = ocean_core::shader_source::stage_source(stage)?;
+    Ok(device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(&label(stage)),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    }))
+}
+
+/// Triangle lists, counter-clockwise front faces, no culling: the CPU's
+/// `RasterState::default()` (`ocean_cpu::raster::state`).
+pub fn primitive() -> wgpu::PrimitiveState {
+    wgpu::PrimitiveState {
+        topology: wgpu::PrimitiveTopology::TriangleList,
+        strip_index_format: None,
+        front_face: wgpu::FrontFace::Ccw,
+        cull_mode: None,
+        unclipped_depth: false,
+        polygon_mode: wgpu::PolygonMode::Fill,
+        conservative: false,
+    }
+}
+
+/// `Depth32Float` with the given test and writes.
+pub fn depth_state(compare: wgpu::CompareFunction, write: bool) -> wgpu::DepthStencilState {
+    wgpu::DepthStencilState {
+        format: DEPTH_FORMAT,
+        depth_write_enabled: Some(write),
+        depth_compare: Some(compare),
+        stencil: wgpu::StencilState::default(),
+        bias: wgpu::DepthBiasState::default(),
+    }
+}
+
+/// The views from the eye: reversed Z, `Greater`, depth writes (cleared to 0).
+pub fn eye_depth() -> wgpu::DepthStencilState {
+    depth_state(wgpu::CompareFunction::Greater, true)
+}
+
+/// One colour target without blending (the CPU's `BlendMode::Replace`).
+pub fn replace_target(format: wgpu::TextureFormat) -> [Option<wgpu::ColorTargetState>; 1] {
+    [Some(wgpu::ColorTargetState { format, blend: None, write_mask: wgpu::ColorWrites::ALL })]
+}
+
+/// A uniform-buffer entry of a bind group layout.
+pub fn uniform_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
+/// A `texture_2d<f32>` entry; `filterable` when a filtering sampler reads it.
+pub fn texture_entry(
+    binding: u32,
+    visibility: wgpu::ShaderStages,
+    filterable: bool,
+) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Float { filterable },
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
+        count: None,
+    }
+}
+
+/// A filtering sampler entry.
+pub fn sampler_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility,
+        ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+        count: None,
+    }
+}
+
+/// A uniform buffer holding `value`.
+pub fn uniform_buffer<T: bytemuck::Pod>(
+    device: &wgpu::Device,
+    label: &str,
+    value: &T,
+) -> wgpu::Buffer {
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(label),
+        contents: bytemuck::bytes_of(value),
+        usage: wgpu::BufferUsages::UNIFORM,
+    })
+}
+
+/// A bind group of buffers and views in binding order 0, 1, 2, …
+pub fn bind_group(
+    device: &wgpu::Device,
+    label: &str,
+    layout: &wgpu::BindGroupLayout,
+    resources: &[wgpu::BindingResource<'_>],
+) -> wgpu::BindGroup {
+    let entries: Vec<wgpu::BindGroupEntry<'_>> = resources
+        .iter()
+        .enumerate()
+        .map(|(i, r)| wgpu::BindGroupEntry { binding: i as u32, resource: r.clone() })
+        .collect();
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some(label),
+        layout,
+        entries: &entries,
+    })
+}
+
+/// A pipeline layout of the given bind group layouts.
+pub fn pipeline_layout(
+    device: &wgpu::Device,
+    label: &str,
+    groups: &[&wgpu::BindGroupLayout],
+) -> wgpu::PipelineLayout {
+    let groups: Vec<Option<&wgpu::BindGroupLayout>> = groups.iter().map(|g| Some(*g)).collect();
+    device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(label),
+        bind_group_layouts: &groups,
+        immediate_size: 0,
+    })
+}
+
+/// What a render pass does with its colour target first: clear to a colour (f32 values, held
+/// exactly by wgpu's f64 `Color`) or keep what an earlier pass drew.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Load<T> {
+    /// Clear to this value.
+    Clear(T),
+    /// Keep the contents.
+    Keep,
+}
+
+/// Begins a render pass on one colour target and an optional depth buffer.
+pub fn begin_render_pass<'e>(
+    encoder: &'e mut wgpu::CommandEncoder,
+    label: &str,
+    color: &wgpu::TextureView,
+    color_load: Load<[f32; 4]>,
+    depth: Option<(&wgpu::TextureView, Load<f32>)>,
+    timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
+) -> wgpu::RenderPass<'e> {
+    let load = match color_load {
+        Load::Clear(c) => wgpu::LoadOp::Clear(wgpu::Color {
+            r: f64::from(c[0]),
+            g: f64::from(c[1]),
+            b: f64::from(c[2]),
+            a: f64::from(c[3]),
+        }),
+        Load::Keep => wgpu::LoadOp::Load,
+    };
+    let depth_stencil_attachment = depth.map(|(view, l)| wgpu::RenderPassDepthStencilAttachment {
+        view,
+        depth_ops: Some(wgpu::Operations {
+            load: match l {
+                Load::Clear(d) => wgpu::LoadOp::Clear(d),
+                Load::Keep => wgpu::LoadOp::Load,
+            },
+            store: wgpu::StoreOp::Store,
+        }),
+        stencil_ops: None,
+    });
+    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some(label),
+        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+            view: color,
+            depth_slice: None,
+            resolve_target: None,
+            ops: wgpu::Operations { load, store: wgpu::StoreOp::Store },
+        })],
+        depth_stencil_attachment,
+        timestamp_writes,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    })
+}

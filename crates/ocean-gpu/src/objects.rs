@@ -1,0 +1,128 @@
+//! Stage `objects` (`shaders/objects.wgsl`): the scene's spheres and boxes with three pairs of
+//! entry points — `vs_main`/`fs_main` (main view, into the HDR frame), `vs_reflect`/`fs_reflect`
+//! (the reflection map) and `vs_refract`/`fs_refract` (the refraction map). Bindings: group 0,
+//! binding 0 = `FrameUniforms`. Vertices: ocean-core's `ObjectVertex` (36 bytes), drawn as a
+//! triangle list in the order `object_triangles` gives. State: reversed-Z `Greater` with depth
+//! writes, no blending, no culling (the CPU's `eye_state`).
+//! CPU mirror: `ocean-cpu/src/shaders/objects.rs`.
+
+use ocean_core::frame::ObjectVertex;
+
+use crate::common::{
+    Load, begin_render_pass, eye_depth, label, pipeline_layout, primitive, replace_target,
+    shader_module, uniform_entry,
+};
+use crate::device::Error;
+use crate::texture::MAP_FORMAT;
+
+/// Which pair of entry points.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ObjectsEntry {
+    /// `vs_main` / `fs_main`: the objects in the main view.
+    Main,
+    /// `vs_reflect` / `fs_reflect`: mirrored, above the water only.
+    Reflect,
+    /// `vs_refract` / `fs_refract`: scaled by 1/η, under the water only, fogged.
+    Refract,
+}
+
+impl ObjectsEntry {
+    fn entry_points(self) -> (&'static str, &'static str) {
+        match self {
+            Self::Main => ("vs_main", "fs_main"),
+            Self::Reflect => ("vs_reflect", "fs_reflect"),
+            Self::Refract => ("vs_refract", "fs_refract"),
+        }
+    }
+}
+
+/// The vertex buffer layout of `ObjectVertex`: position, normal, colour (Float32x3 each).
+pub const OBJECT_VERTEX_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+    array_stride: std::mem::size_of::<ObjectVertex>() as u64,
+    step_mode: wgpu::VertexStepMode::Vertex,
+    attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x3],
+};
+
+/// The stage's three pipelines.
+pub struct ObjectsStage {
+    main: wgpu::RenderPipeline,
+    reflect: wgpu::RenderPipeline,
+    refract: wgpu::RenderPipeline,
+    /// Group 0: the frame's uniforms.
+    pub frame_layout: wgpu::BindGroupLayout,
+}
+
+impl ObjectsStage {
+    /// Creates the pipelines `"ocean.objects"` (one per entry pair).
+    ///
+    /// # Errors
+    /// [`Error::Core`] if the WGSL cannot be assembled.
+    pub fn new(device: &wgpu::Device) -> Result<Self, Error> {
+        let name = label("objects");
+        let module = shader_module(device, "objects")?;
+        let frame_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some(&name),
+            entries: &[uniform_entry(0, wgpu::ShaderStages::VERTEX_FRAGMENT)],
+        });
+        let layout = pipeline_layout(device, &name, &[&frame_layout]);
+        let pipeline = |entry: ObjectsEntry| {
+            let (vs, fs) = entry.entry_points();
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(&name),
+                layout: Some(&layout),
+                vertex: wgpu::VertexState {
+                    module: &module,
+                    entry_point: Some(vs),
+                    compilation_options: Default::default(),
+                    buffers: &[Some(OBJECT_VERTEX_LAYOUT)],
+                },
+                primitive: primitive(),
+                depth_stencil: Some(eye_depth()),
+                multisample: wgpu::MultisampleState::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module: &module,
+                    entry_point: Some(fs),
+                    compilation_options: Default::default(),
+                    targets: &replace_target(MAP_FORMAT),
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        };
+        Ok(Self {
+            main: pipeline(ObjectsEntry::Main),
+            reflect: pipeline(ObjectsEntry::Reflect),
+            refract: pipeline(ObjectsEntry::Refract),
+            frame_layout,
+        })
+    }
+
+    /// Records one pass drawing `vertex_count` vertices of `vertices` with `entry` into
+    /// `target`/`depth`. The reflection and refraction maps start cleared (colour 0, depth 0);
+    /// the main view draws over the sky (`Load::Keep`).
+    #[expect(clippy::too_many_arguments, reason = "one argument per binding and attachment")]
+    pub fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        entry: ObjectsEntry,
+        frame: &wgpu::BindGroup,
+        vertices: &wgpu::Buffer,
+        vertex_count: u32,
+        target: &wgpu::TextureView,
+        depth: &wgpu::TextureView,
+        load: (Load<[f32; 4]>, Load<f32>),
+        timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
+    ) {
+        let name = label("objects");
+        let mut pass =
+            begin_render_pass(encoder, &name, target, load.0, Some((depth, load.1)), timestamps);
+        pass.set_pipeline(match entry {
+            ObjectsEntry::Main => &self.main,
+            ObjectsEntry::Reflect => &self.reflect,
+            ObjectsEntry::Refract => &self.refract,
+        });
+        pass.set_bind_group(0, frame, &[]);
+        pass.set_vertex_buffer(0, vertices.slice(..));
+        pass.draw(0..vertex_count, 0..1);
+    }
+}

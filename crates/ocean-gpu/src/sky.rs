@@ -1,0 +1,102 @@
+//! Stage `sky` (`shaders/sky.wgsl`): the Preetham sky behind everything, one full-screen
+//! triangle into the HDR frame. Bindings: group 0 = `CameraUniforms`, group 1 =
+//! `SkyUniforms`. CPU mirror: `ocean-cpu/src/shaders/sky.rs` (its `RASTER_STATE`: depth test
+//! `Always`, no depth writes, no blending — the same here).
+
+use ocean_core::camera_uniforms::CameraUniforms;
+use ocean_core::sky::SkyUniforms;
+
+use crate::common::{
+    Load, begin_render_pass, bind_group, depth_state, label, pipeline_layout, primitive,
+    replace_target, shader_module, uniform_buffer, uniform_entry,
+};
+use crate::device::Error;
+use crate::texture::MAP_FORMAT;
+
+/// The stage's pipeline.
+pub struct SkyStage {
+    pipeline: wgpu::RenderPipeline,
+    camera_layout: wgpu::BindGroupLayout,
+    sky_layout: wgpu::BindGroupLayout,
+}
+
+impl SkyStage {
+    /// Creates the pipeline `"ocean.sky"`.
+    ///
+    /// # Errors
+    /// [`Error::Core`] if the WGSL cannot be assembled.
+    pub fn new(device: &wgpu::Device) -> Result<Self, Error> {
+        let name = label("sky");
+        let module = shader_module(device, "sky")?;
+        let layout = |l: &str| {
+            device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some(l),
+                entries: &[uniform_entry(0, wgpu::ShaderStages::FRAGMENT)],
+            })
+        };
+        let camera_layout = layout("ocean.sky.camera");
+        let sky_layout = layout("ocean.sky.sky");
+        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some(&name),
+            layout: Some(&pipeline_layout(device, &name, &[&camera_layout, &sky_layout])),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: primitive(),
+            depth_stencil: Some(depth_state(wgpu::CompareFunction::Always, false)),
+            multisample: wgpu::MultisampleState::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs_main"),
+                compilation_options: Default::default(),
+                targets: &replace_target(MAP_FORMAT),
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        Ok(Self { pipeline, camera_layout, sky_layout })
+    }
+
+    /// Records the pass: clears the HDR frame to 0 and its depth to 0 (reversed Z), then draws
+    /// the sky.
+    #[expect(clippy::too_many_arguments, reason = "one argument per binding and attachment")]
+    pub fn encode(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        camera: &CameraUniforms,
+        sky: &SkyUniforms,
+        hdr: &wgpu::TextureView,
+        depth: &wgpu::TextureView,
+        timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
+    ) {
+        let name = label("sky");
+        let camera_group = bind_group(
+            device,
+            "ocean.sky.camera",
+            &self.camera_layout,
+            &[uniform_buffer(device, "ocean.sky.camera", camera).as_entire_binding()],
+        );
+        let sky_group = bind_group(
+            device,
+            "ocean.sky.sky",
+            &self.sky_layout,
+            &[uniform_buffer(device, "ocean.sky.sky", sky).as_entire_binding()],
+        );
+        let mut pass = begin_render_pass(
+            encoder,
+            &name,
+            hdr,
+            Load::Clear([0.0; 4]),
+            Some((depth, Load::Clear(0.0))),
+            timestamps,
+        );
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &camera_group, &[]);
+        pass.set_bind_group(1, &sky_group, &[]);
+        pass.draw(0..3, 0..1);
+    }
+}

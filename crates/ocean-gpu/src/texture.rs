@@ -1,0 +1,302 @@
+//! Textures of the frame and their readback.
+//!
+//! Formats (DESIGN.md, "Determinism contract"): every intermediate map is `Rgba32Float`, which
+//! lavapipe filters with full-float weights, as the CPU's sampler does; the shadow map is
+//! `R32Float` (the shadow stage writes depth to red; read back as (r, 0, 0, 0), the CPU's
+//! layout); the 8-bit output is `Rgba8Unorm`; depth is `Depth32Float`.
+//!
+//! Readback: `copy_texture_to_buffer` needs rows padded to
+//! `wgpu::COPY_BYTES_PER_ROW_ALIGNMENT` (256 bytes); [`Readbacks`] records the copies of a
+//! frame into its command encoder, maps every buffer after the one submission and strips the
+//! padding.
+
+use std::sync::{Arc, Mutex};
+
+use crate::device::{Error, Gpu};
+
+/// Format of the wave maps, Fresnel tables, reflection/refraction maps and the HDR frame.
+pub const MAP_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+/// Format of the shadow map (depth in red).
+pub const SHADOW_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
+/// Format of the tonemapped output.
+pub const LDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+/// Format of every depth buffer.
+pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+/// A 2D texture with its default view.
+#[derive(Debug)]
+pub struct GpuTexture {
+    /// The texture.
+    pub texture: wgpu::Texture,
+    /// A view of its only level.
+    pub view: wgpu::TextureView,
+    /// Width, texels.
+    pub width: u32,
+    /// Height, texels.
+    pub height: u32,
+}
+
+impl GpuTexture {
+    /// A `width × height` texture of `format` with `usage`.
+    pub fn new(
+        device: &wgpu::Device,
+        label: &str,
+        width: u32,
+        height: u32,
+        format: wgpu::TextureFormat,
+        usage: wgpu::TextureUsages,
+    ) -> Self {
+        let texture = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some(label),
+            size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage,
+            view_formats: &[],
+        });
+        let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
+        Self { texture, view, width, height }
+    }
+
+    /// A colour target of `format` that the frame samples and reads back.
+    pub fn target(
+        device: &wgpu::Device,
+        label: &str,
+        width: u32,
+        height: u32,
+        format: wgpu::TextureFormat,
+    ) -> Self {
+        let usage = wgpu::TextureUsages::RENDER_ATTACHMENT
+            | wgpu::TextureUsages::TEXTURE_BINDING
+            | wgpu::TextureUsages::COPY_SRC;
+        Self::new(device, label, width, height, format, usage)
+    }
+
+    /// A depth buffer.
+    pub fn depth(device: &wgpu::Device, label: &str, width: u32, height: u32) -> Self {
+        Self::new(
+            device,
+            label,
+            width,
+            height,
+            DEPTH_FORMAT,
+            wgpu::TextureUsages::RENDER_ATTACHMENT,
+        )
+    }
+
+    /// An `Rgba32Float` texture holding `texels` (row-major, row 0 first), which the frame
+    /// samples, reads back and may overwrite (copy or storage).
+    ///
+    /// # Panics
+    /// If `texels` does not hold `width · height` texels (a bug in the caller).
+    pub fn upload_map(
+        gpu: &Gpu,
+        label: &str,
+        width: u32,
+        height: u32,
+        texels: &[[f32; 4]],
+    ) -> Self {
+        assert_eq!(texels.len(), width as usize * height as usize, "{label}: texel count");
+        let t = Self::new(&gpu.device, label, width, height, MAP_FORMAT, map_usage());
+        gpu.queue.write_texture(
+            t.texture.as_image_copy(),
+            bytemuck::cast_slice(texels),
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(width * 16),
+                rows_per_image: Some(height),
+            },
+            wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
+        );
+        t
+    }
+
+    /// The 1×1 zero `Rgba32Float` texture bound where a skipped pass would have left its map
+    /// (the CPU binds the same; the shaders multiply what they read from it by 0).
+    pub fn empty_map(gpu: &Gpu, label: &str) -> Self {
+        Self::upload_map(gpu, label, 1, 1, &[[0.0; 4]])
+    }
+}
+
+/// Usage of a map that a stage writes (copy or storage), the frame samples and the tests read
+/// back.
+pub fn map_usage() -> wgpu::TextureUsages {
+    wgpu::TextureUsages::TEXTURE_BINDING
+        | wgpu::TextureUsages::STORAGE_BINDING
+        | wgpu::TextureUsages::COPY_DST
+        | wgpu::TextureUsages::COPY_SRC
+}
+
+/// An `Rgba32Float` map read back from the GPU: the layout of ocean-cpu's `Texture2D`
+/// (row-major, texel (i, j) at `j · width + i`, row 0 at the top).
+#[derive(Clone, Debug, PartialEq)]
+pub struct FloatMap {
+    /// Width, texels.
+    pub width: u32,
+    /// Height, texels.
+    pub height: u32,
+    /// `width · height` texels.
+    pub texels: Vec<[f32; 4]>,
+}
+
+/// What a readback holds.
+#[derive(Clone, Debug, PartialEq)]
+pub enum TexelData {
+    /// A float texture (`R32Float` as (r, 0, 0, 0)).
+    Float(FloatMap),
+    /// `Rgba8Unorm` bytes, 4 per pixel, row-major.
+    Rgba8(Vec<u8>),
+}
+
+/// One texture copy waiting for its buffer to be mapped.
+struct Pending<K> {
+    key: K,
+    label: String,
+    buffer: wgpu::Buffer,
+    width: u32,
+    height: u32,
+    bytes_per_texel: u32,
+    padded_row: u32,
+    format: wgpu::TextureFormat,
+}
+
+/// The texture copies of one submission.
+pub struct Readbacks<K> {
+    pending: Vec<Pending<K>>,
+}
+
+impl<K> Default for Readbacks<K> {
+    fn default() -> Self {
+        Self { pending: Vec::new() }
+    }
+}
+
+impl<K: Copy> Readbacks<K> {
+    /// Records a copy of `texture` (of `format`: [`MAP_FORMAT`], [`SHADOW_FORMAT`] or
+    /// [`LDR_FORMAT`]) into `encoder`, to be read back under `key`.
+    ///
+    /// # Panics
+    /// On another format (a bug in the caller).
+    pub fn copy(
+        &mut self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        key: K,
+        label: &str,
+        texture: &GpuTexture,
+        format: wgpu::TextureFormat,
+    ) {
+        let bytes_per_texel = match format {
+            MAP_FORMAT => 16,
+            SHADOW_FORMAT | LDR_FORMAT => 4,
+            other => panic!("no readback for {other:?}"),
+        };
+        let row = texture.width * bytes_per_texel;
+        let padded_row =
+            row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+        let buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(&format!("ocean.readback.{label}")),
+            size: u64::from(padded_row) * u64::from(texture.height),
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        encoder.copy_texture_to_buffer(
+            texture.texture.as_image_copy(),
+            wgpu::TexelCopyBufferInfo {
+                buffer: &buffer,
+                layout: wgpu::TexelCopyBufferLayout {
+                    offset: 0,
+                    bytes_per_row: Some(padded_row),
+                    rows_per_image: Some(texture.height),
+                },
+            },
+            wgpu::Extent3d {
+                width: texture.width,
+                height: texture.height,
+                depth_or_array_layers: 1,
+            },
+        );
+        self.pending.push(Pending {
+            key,
+            label: label.to_owned(),
+            buffer,
+            width: texture.width,
+            height: texture.height,
+            bytes_per_texel,
+            padded_row,
+            format,
+        });
+    }
+
+    /// Maps every buffer (after the encoder that holds the copies was submitted) and returns
+    /// the texels, in the order of the copies.
+    ///
+    /// # Errors
+    /// [`Error::Readback`] if a buffer cannot be mapped.
+    pub fn finish(self, gpu: &Gpu) -> Result<Vec<(K, TexelData)>, Error> {
+        type MapResult = Arc<Mutex<Option<Result<(), wgpu::BufferAsyncError>>>>;
+        let results: Vec<MapResult> = self
+            .pending
+            .iter()
+            .map(|p| {
+                let slot: MapResult = Arc::new(Mutex::new(None));
+                let s = Arc::clone(&slot);
+                p.buffer.slice(..).map_async(wgpu::MapMode::Read, move |r| {
+                    if let Ok(mut g) = s.lock() {
+                        *g = Some(r);
+                    }
+                });
+                slot
+            })
+            .collect();
+        gpu.wait()?;
+        let mut out = Vec::with_capacity(self.pending.len());
+        for (p, slot) in self.pending.into_iter().zip(results) {
+            let fail = |message: String| Error::Readback { what: p.label.clone(), message };
+            let status = slot.lock().map_err(|_| fail("poisoned lock".into()))?.take();
+            match status {
+                Some(Ok(())) => {}
+                Some(Err(e)) => return Err(fail(e.to_string())),
+                None => return Err(fail("the buffer was not mapped after the wait".into())),
+            }
+            let data = {
+                let view =
+                    p.buffer.slice(..).get_mapped_range().map_err(|e| fail(e.to_string()))?;
+                let row = (p.width * p.bytes_per_texel) as usize;
+                let rows = (0..p.height as usize)
+                    .map(|y| &view[y * p.padded_row as usize..y * p.padded_row as usize + row]);
+                match p.format {
+                    LDR_FORMAT => TexelData::Rgba8(rows.flatten().copied().collect()),
+                    SHADOW_FORMAT => {
+                        let texels = rows
+                            .flat_map(|r| r.chunks_exact(4))
+                            .map(|c| [f32::from_le_bytes([c[0], c[1], c[2], c[3]]), 0.0, 0.0, 0.0])
+                            .collect();
+                        TexelData::Float(FloatMap { width: p.width, height: p.height, texels })
+                    }
+                    _ => {
+                        let texels = rows
+                            .flat_map(|r| r.chunks_exact(16))
+                            .map(|c| {
+                                std::array::from_fn(|k| {
+                                    f32::from_le_bytes([
+                                        c[4 * k],
+                                        c[4 * k + 1],
+                                        c[4 * k + 2],
+                                        c[4 * k + 3],
+                                    ])
+                                })
+                            })
+                            .collect();
+                        TexelData::Float(FloatMap { width: p.width, height: p.height, texels })
+                    }
+                }
+            };
+            p.buffer.unmap();
+            out.push((p.key, data));
+        }
+        Ok(out)
+    }
+}

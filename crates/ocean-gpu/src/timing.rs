@@ -1,0 +1,142 @@
+//! GPU time per pass from timestamp queries (`Features::TIMESTAMP_QUERY`): each compute or
+//! render pass of the frame writes a timestamp at its beginning and end; a [`Pass`] made of
+//! several GPU passes (two Fresnel tables) gets the sum. Without the feature every call is a
+//! no-op and [`PassTimer::finish`] returns nothing.
+
+use std::time::Duration;
+
+use ocean_core::plan::Pass;
+
+use crate::device::{Error, Gpu};
+
+/// Most GPU passes a frame can time (9 plan passes, the Fresnel stage twice).
+const MAX_GPU_PASSES: u32 = 16;
+
+/// The timestamp queries of one frame.
+pub struct PassTimer {
+    queries: Option<Queries>,
+    slots: Vec<Pass>,
+}
+
+struct Queries {
+    set: wgpu::QuerySet,
+    resolve: wgpu::Buffer,
+    readback: wgpu::Buffer,
+    period_ns: f32,
+}
+
+impl PassTimer {
+    /// A timer for the next frame; inert without timestamp support.
+    pub fn new(gpu: &Gpu) -> Self {
+        let queries = gpu.timestamps.then(|| {
+            let count = 2 * MAX_GPU_PASSES;
+            let size = u64::from(count) * 8;
+            Queries {
+                set: gpu.device.create_query_set(&wgpu::QuerySetDescriptor {
+                    label: Some("ocean.timestamps"),
+                    ty: wgpu::QueryType::Timestamp,
+                    count,
+                }),
+                resolve: gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("ocean.timestamps.resolve"),
+                    size,
+                    usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+                    mapped_at_creation: false,
+                }),
+                readback: gpu.device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("ocean.timestamps.readback"),
+                    size,
+                    usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+                    mapped_at_creation: false,
+                }),
+                period_ns: gpu.queue.get_timestamp_period(),
+            }
+        });
+        Self { queries, slots: Vec::new() }
+    }
+
+    /// Reserves the begin/end queries of one GPU pass of `pass`; `None` without timestamps
+    /// (or beyond the query set's size).
+    pub fn slot(&mut self, pass: Pass) -> Option<u32> {
+        self.queries.as_ref()?;
+        let i = self.slots.len() as u32;
+        if i >= MAX_GPU_PASSES {
+            return None;
+        }
+        self.slots.push(pass);
+        Some(i)
+    }
+
+    /// The timestamp writes of a render pass in `slot`.
+    pub fn render_writes(&self, slot: Option<u32>) -> Option<wgpu::RenderPassTimestampWrites<'_>> {
+        let (q, i) = (self.queries.as_ref()?, slot?);
+        Some(wgpu::RenderPassTimestampWrites {
+            query_set: &q.set,
+            beginning_of_pass_write_index: Some(2 * i),
+            end_of_pass_write_index: Some(2 * i + 1),
+        })
+    }
+
+    /// The timestamp writes of a compute pass in `slot`.
+    pub fn compute_writes(
+        &self,
+        slot: Option<u32>,
+    ) -> Option<wgpu::ComputePassTimestampWrites<'_>> {
+        let (q, i) = (self.queries.as_ref()?, slot?);
+        Some(wgpu::ComputePassTimestampWrites {
+            query_set: &q.set,
+            beginning_of_pass_write_index: Some(2 * i),
+            end_of_pass_write_index: Some(2 * i + 1),
+        })
+    }
+
+    /// Records the resolve of the used queries and their copy to the readback buffer (call
+    /// after the last pass, before submitting `encoder`).
+    pub fn resolve(&self, encoder: &mut wgpu::CommandEncoder) {
+        let Some(q) = &self.queries else { return };
+        let n = 2 * self.slots.len() as u32;
+        if n == 0 {
+            return;
+        }
+        encoder.resolve_query_set(&q.set, 0..n, &q.resolve, 0);
+        encoder.copy_buffer_to_buffer(&q.resolve, 0, &q.readback, 0, u64::from(n) * 8);
+    }
+
+    /// GPU time of each timed pass (summed over its GPU passes), in first-timed order. Call
+    /// after the submission holding [`Self::resolve`] completed.
+    ///
+    /// # Errors
+    /// [`Error::Readback`] if the query buffer cannot be mapped.
+    pub fn finish(self, gpu: &Gpu) -> Result<Vec<(Pass, Duration)>, Error> {
+        let Some(q) = self.queries else { return Ok(Vec::new()) };
+        if self.slots.is_empty() {
+            return Ok(Vec::new());
+        }
+        let n = 2 * self.slots.len() as u64;
+        let slice = q.readback.slice(..n * 8);
+        let (tx, rx) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |r| {
+            let _ = tx.send(r);
+        });
+        gpu.wait()?;
+        let fail = |message: String| Error::Readback { what: "timestamps".into(), message };
+        rx.recv().map_err(|e| fail(e.to_string()))?.map_err(|e| fail(e.to_string()))?;
+        let ticks: Vec<u64> = {
+            let view = slice.get_mapped_range().map_err(|e| fail(e.to_string()))?;
+            view.chunks_exact(8)
+                .map(|c| u64::from_le_bytes([c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]]))
+                .collect()
+        };
+        q.readback.unmap();
+        let mut out: Vec<(Pass, Duration)> = Vec::new();
+        for (i, pass) in self.slots.iter().enumerate() {
+            let dt = ticks[2 * i + 1].saturating_sub(ticks[2 * i]);
+            let d = Duration::from_nanos((dt as f64 * f64::from(q.period_ns)) as u64);
+            match out.iter_mut().find(|(p, _)| p == pass) {
+                Some((_, total)) => *total += d,
+                None => out.push((*pass, d)),
+            }
+        }
+        Ok(out)
+    }
+}

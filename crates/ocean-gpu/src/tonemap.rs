@@ -1,0 +1,85 @@
+//! Stage `tonemap` (`shaders/tonemap.wgsl`): HDR frame → 8-bit sRGB, one full-screen triangle
+//! into an `Rgba8Unorm` target. Bindings: group 0 — 0 `TonemapUniforms`, 1 the HDR frame
+//! (`textureLoad` only). CPU mirror: `ocean-cpu/src/shaders/tonemap.rs`.
+
+use ocean_core::tonemap::TonemapUniforms;
+
+use crate::common::{
+    Load, begin_render_pass, bind_group, label, pipeline_layout, primitive, replace_target,
+    shader_module, texture_entry, uniform_buffer, uniform_entry,
+};
+use crate::device::Error;
+use crate::texture::LDR_FORMAT;
+
+/// The stage's pipeline.
+pub struct TonemapStage {
+    pipeline: wgpu::RenderPipeline,
+    layout: wgpu::BindGroupLayout,
+}
+
+impl TonemapStage {
+    /// Creates the pipeline `"ocean.tonemap"`.
+    ///
+    /// # Errors
+    /// [`Error::Core`] if the WGSL cannot be assembled.
+    pub fn new(device: &wgpu::Device) -> Result<Self, Error> {
+        let name = label("tonemap");
+        let module = shader_module(device, "tonemap")?;
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some(&name),
+            entries: &[
+                uniform_entry(0, wgpu::ShaderStages::FRAGMENT),
+                texture_entry(1, wgpu::ShaderStages::FRAGMENT, false),
+            ],
+        });
+        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some(&name),
+            layout: Some(&pipeline_layout(device, &name, &[&layout])),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: primitive(),
+            depth_stencil: None,
+            multisample: wgpu::MultisampleState::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs_main"),
+                compilation_options: Default::default(),
+                targets: &replace_target(LDR_FORMAT),
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        Ok(Self { pipeline, layout })
+    }
+
+    /// Records the pass from `hdr` into `ldr`.
+    pub fn encode(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        uniforms: &TonemapUniforms,
+        hdr: &wgpu::TextureView,
+        ldr: &wgpu::TextureView,
+        timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
+    ) {
+        let name = label("tonemap");
+        let group = bind_group(
+            device,
+            &name,
+            &self.layout,
+            &[
+                uniform_buffer(device, &name, uniforms).as_entire_binding(),
+                wgpu::BindingResource::TextureView(hdr),
+            ],
+        );
+        let mut pass =
+            begin_render_pass(encoder, &name, ldr, Load::Clear([0.0; 4]), None, timestamps);
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &group, &[]);
+        pass.draw(0..3, 0..1);
+    }
+}

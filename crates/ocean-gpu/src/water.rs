@@ -1,0 +1,204 @@
+//! Stage `water` (`shaders/water.wgsl`): the final pass of seed 000, eq. 3, on the near/far
+//! patch mesh. Bindings (as the WGSL declares them): group 0 — 0 `FrameUniforms`,
+//! 1 `displacement`, 2 `displacement_slopes`, 3 `bump`, 4 `fresnel_above`, 5 `fresnel_below`,
+//! 6 `reflection_map`, 7 `refraction_map`, 8 `shadow_map` (`textureLoad` only),
+//! 9 `wrap_linear`, 10 `clamp_linear`; group 1 — 0 `SkyUniforms`. Vertices: ocean-core's
+//! `geometry::WaterVertex` (12 bytes), u32 indices. State: reversed-Z `Greater` with depth
+//! writes, no blending, no culling (the surface is seen from below under water).
+//! CPU mirror: `ocean-cpu/src/shaders/water.rs` (samplers `WRAP_LINEAR`, `CLAMP_LINEAR`).
+
+use ocean_core::geometry::WaterVertex;
+
+use crate::common::{
+    Load, begin_render_pass, eye_depth, label, pipeline_layout, primitive, replace_target,
+    sampler_entry, shader_module, texture_entry, uniform_entry,
+};
+use crate::device::Error;
+use crate::texture::MAP_FORMAT;
+
+/// The vertex buffer layout of `WaterVertex`: pos (Float32x2), weight (Float32).
+pub const WATER_VERTEX_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+    array_stride: std::mem::size_of::<WaterVertex>() as u64,
+    step_mode: wgpu::VertexStepMode::Vertex,
+    attributes: &wgpu::vertex_attr_array![0 => Float32x2, 1 => Float32],
+};
+
+/// The textures of group 0, in binding order 1–8.
+pub struct WaterTextures<'a> {
+    /// binding 1.
+    pub displacement: &'a wgpu::TextureView,
+    /// binding 2.
+    pub displacement_slopes: &'a wgpu::TextureView,
+    /// binding 3.
+    pub bump: &'a wgpu::TextureView,
+    /// binding 4.
+    pub fresnel_above: &'a wgpu::TextureView,
+    /// binding 5.
+    pub fresnel_below: &'a wgpu::TextureView,
+    /// binding 6.
+    pub reflection_map: &'a wgpu::TextureView,
+    /// binding 7.
+    pub refraction_map: &'a wgpu::TextureView,
+    /// binding 8.
+    pub shadow_map: &'a wgpu::TextureView,
+}
+
+/// The water mesh on the GPU.
+pub struct WaterMeshBuffers<'a> {
+    /// `WaterVertex` buffer.
+    pub vertices: &'a wgpu::Buffer,
+    /// u32 index buffer (three per triangle).
+    pub indices: &'a wgpu::Buffer,
+    /// Number of indices.
+    pub index_count: u32,
+}
+
+/// The stage's pipeline, layouts and samplers.
+pub struct WaterStage {
+    pipeline: wgpu::RenderPipeline,
+    layout: wgpu::BindGroupLayout,
+    sky_layout: wgpu::BindGroupLayout,
+    wrap_linear: wgpu::Sampler,
+    clamp_linear: wgpu::Sampler,
+}
+
+/// A bilinear sampler with one address mode on both axes (the CPU's `Sampler` has one
+/// filter for magnification and minification; there is one level, so the mipmap filter is
+/// moot).
+fn linear_sampler(device: &wgpu::Device, label: &str, mode: wgpu::AddressMode) -> wgpu::Sampler {
+    device.create_sampler(&wgpu::SamplerDescriptor {
+        label: Some(label),
+        address_mode_u: mode,
+        address_mode_v: mode,
+        address_mode_w: mode,
+        mag_filter: wgpu::FilterMode::Linear,
+        min_filter: wgpu::FilterMode::Linear,
+        mipmap_filter: wgpu::MipmapFilterMode::Nearest,
+        ..Default::default()
+    })
+}
+
+impl WaterStage {
+    /// Creates the pipeline `"ocean.water"` and its samplers.
+    ///
+    /// # Errors
+    /// [`Error::Core`] if the WGSL cannot be assembled.
+    pub fn new(device: &wgpu::Device) -> Result<Self, Error> {
+        let name = label("water");
+        let module = shader_module(device, "water")?;
+        let vf = wgpu::ShaderStages::VERTEX_FRAGMENT;
+        let fragment = wgpu::ShaderStages::FRAGMENT;
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some(&name),
+            entries: &[
+                uniform_entry(0, vf),
+                texture_entry(1, vf, true),
+                texture_entry(2, fragment, true),
+                texture_entry(3, fragment, true),
+                texture_entry(4, fragment, true),
+                texture_entry(5, fragment, true),
+                texture_entry(6, fragment, true),
+                texture_entry(7, fragment, true),
+                texture_entry(8, fragment, false),
+                sampler_entry(9, vf),
+                sampler_entry(10, fragment),
+            ],
+        });
+        let sky_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("ocean.water.sky"),
+            entries: &[uniform_entry(0, fragment)],
+        });
+        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some(&name),
+            layout: Some(&pipeline_layout(device, &name, &[&layout, &sky_layout])),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("vs_main"),
+                compilation_options: Default::default(),
+                buffers: &[Some(WATER_VERTEX_LAYOUT)],
+            },
+            primitive: primitive(),
+            depth_stencil: Some(eye_depth()),
+            multisample: wgpu::MultisampleState::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("fs_main"),
+                compilation_options: Default::default(),
+                targets: &replace_target(MAP_FORMAT),
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        Ok(Self {
+            pipeline,
+            layout,
+            sky_layout,
+            wrap_linear: linear_sampler(
+                device,
+                "ocean.water.wrap_linear",
+                wgpu::AddressMode::Repeat,
+            ),
+            clamp_linear: linear_sampler(
+                device,
+                "ocean.water.clamp_linear",
+                wgpu::AddressMode::ClampToEdge,
+            ),
+        })
+    }
+
+    /// Records the pass over what the sky and objects drew (`Load::Keep` on colour and depth).
+    #[expect(clippy::too_many_arguments, reason = "one argument per binding and attachment")]
+    pub fn encode(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        frame: &wgpu::Buffer,
+        sky: &wgpu::Buffer,
+        textures: &WaterTextures<'_>,
+        mesh: &WaterMeshBuffers<'_>,
+        hdr: &wgpu::TextureView,
+        depth: &wgpu::TextureView,
+        timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
+    ) {
+        let name = label("water");
+        let t = textures;
+        let group = crate::common::bind_group(
+            device,
+            &name,
+            &self.layout,
+            &[
+                frame.as_entire_binding(),
+                wgpu::BindingResource::TextureView(t.displacement),
+                wgpu::BindingResource::TextureView(t.displacement_slopes),
+                wgpu::BindingResource::TextureView(t.bump),
+                wgpu::BindingResource::TextureView(t.fresnel_above),
+                wgpu::BindingResource::TextureView(t.fresnel_below),
+                wgpu::BindingResource::TextureView(t.reflection_map),
+                wgpu::BindingResource::TextureView(t.refraction_map),
+                wgpu::BindingResource::TextureView(t.shadow_map),
+                wgpu::BindingResource::Sampler(&self.wrap_linear),
+                wgpu::BindingResource::Sampler(&self.clamp_linear),
+            ],
+        );
+        let sky_group = crate::common::bind_group(
+            device,
+            "ocean.water.sky",
+            &self.sky_layout,
+            &[sky.as_entire_binding()],
+        );
+        let mut pass = begin_render_pass(
+            encoder,
+            &name,
+            hdr,
+            Load::Keep,
+            Some((depth, Load::Keep)),
+            timestamps,
+        );
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &group, &[]);
+        pass.set_bind_group(1, &sky_group, &[]);
+        pass.set_vertex_buffer(0, mesh.vertices.slice(..));
+        pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+        pass.draw_indexed(0..mesh.index_count, 0, 0..1);
+    }
+}

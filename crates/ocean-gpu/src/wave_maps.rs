@@ -1,0 +1,182 @@
+//! Stage `waves` on the GPU path: where the water stage's three wave maps come from.
+//!
+//! The maps, all `Rgba32Float` and laid out as ocean-cpu's `FrameBuffers` holds them
+//! (ocean-core's `frame::{displacement_texels, displacement_slope_texels, bump_texels}`):
+//!
+//! | map | size | texel |
+//! |---|---|---|
+//! | `displacement` | N_d² | (disp_x, height, disp_z, jacobian) |
+//! | `displacement_slopes` | N_d² | (slope_x, slope_z, 0, 0) |
+//! | `bump` | N_b² | (slope_x, slope_z, height, jacobian) |
+//!
+//! A [`WaveMapSource`] produces them for a time t. Two sources:
+//! - [`CpuUpload`] (now): ocean-core's `Synthesizer<f32>` on the CPU, exactly as the CPU
+//!   renderer's `waves` pass runs it, uploaded with `Queue::write_texture`. The maps are then
+//!   the CPU's bit for bit, which isolates every later stage in the cross-check.
+//! - the GPU FFT (`crates/ocean-gpu/src/waves.rs`, to come: h0(k) uploaded once, then
+//!   h̃(k, t), the choppy and slope spectra and an inverse FFT in compute passes every frame).
+//!   It plugs in at [`make_source`] — the one place marked `GPU FFT SEAM` — by implementing
+//!   [`WaveMapSource`]: record its compute passes into the frame's encoder in
+//!   [`WaveMapSource::encode`] and return the textures it wrote (created with
+//!   [`crate::texture::map_usage`], which includes `STORAGE_BINDING` for `textureStore`).
+
+use ocean_core::frame::{bump_texels, displacement_slope_texels, displacement_texels};
+use ocean_core::scene::Ocean;
+use ocean_core::waves::{OceanSurface, Synthesizer, WaveMaps};
+
+use crate::device::{Error, Gpu};
+use crate::texture::{GpuTexture, MAP_FORMAT, map_usage};
+
+/// The three maps the water stage binds (group 0, bindings 1–3).
+pub struct WaveTextures {
+    /// (disp_x, height, disp_z, jacobian), N_d².
+    pub displacement: GpuTexture,
+    /// (slope_x, slope_z, 0, 0), N_d².
+    pub displacement_slopes: GpuTexture,
+    /// (slope_x, slope_z, height, jacobian), N_b².
+    pub bump: GpuTexture,
+}
+
+impl WaveTextures {
+    /// Uninitialised maps of the given resolutions, usable by either source.
+    pub fn new(device: &wgpu::Device, n_d: u32, n_b: u32) -> Self {
+        let map =
+            |label: &str, n: u32| GpuTexture::new(device, label, n, n, MAP_FORMAT, map_usage());
+        Self {
+            displacement: map("ocean.waves.displacement", n_d),
+            displacement_slopes: map("ocean.waves.displacement_slopes", n_d),
+            bump: map("ocean.waves.bump", n_b),
+        }
+    }
+}
+
+/// Which implementation of stage `waves` the GPU renderer uses.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum WaveSynthesis {
+    /// ocean-core's CPU synthesis, uploaded ([`CpuUpload`]).
+    #[default]
+    CpuUpload,
+    /// The GPU FFT of `crates/ocean-gpu/src/waves.rs` (not built yet: [`make_source`] returns
+    /// [`Error::Unavailable`]).
+    GpuFft,
+}
+
+/// A producer of the wave maps of one ocean (its modes are fixed; the time changes).
+pub trait WaveMapSource {
+    /// A short name for reports: `"cpu-upload"`, `"gpu-fft"`.
+    fn name(&self) -> &'static str;
+
+    /// Whether [`Self::encode`] records GPU passes (and so writes the timestamps it is
+    /// given); a source that only uploads is timed on the CPU instead.
+    fn records_gpu_passes(&self) -> bool;
+
+    /// Produces the maps at time `t` (s) with `choppiness`: either writes them now through the
+    /// queue (ordered before the next submission) or records compute passes into `encoder`
+    /// (with `timestamps` on its first pass, when given). Returns the textures to bind.
+    ///
+    /// # Errors
+    /// Whatever the synthesis reports (an invalid time or choppiness).
+    fn encode(
+        &mut self,
+        gpu: &Gpu,
+        encoder: &mut wgpu::CommandEncoder,
+        t: f64,
+        choppiness: f64,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) -> Result<&WaveTextures, Error>;
+}
+
+/// The wave-map source of `kind` for an ocean (its modes drawn by ocean-core).
+///
+/// # Errors
+/// [`Error::Core`] if the ocean's modes cannot be drawn; [`Error::Unavailable`] for
+/// [`WaveSynthesis::GpuFft`] until it is built.
+pub fn make_source(
+    gpu: &Gpu,
+    kind: WaveSynthesis,
+    ocean: &Ocean,
+) -> Result<Box<dyn WaveMapSource>, Error> {
+    let surface = ocean.surface()?;
+    match kind {
+        WaveSynthesis::CpuUpload => Ok(Box::new(CpuUpload::new(gpu, surface)?)),
+        // ---- GPU FFT SEAM -------------------------------------------------------------------
+        // `crates/ocean-gpu/src/waves.rs` plugs in here, e.g.
+        //     WaveSynthesis::GpuFft => Ok(Box::new(crate::waves::GpuWaves::new(gpu, &surface)?)),
+        // with `GpuWaves: WaveMapSource` (h0 of `surface.displacement` and `surface.bump`
+        // uploaded once in `new`; `encode` dispatches h̃(k, t) and the inverse FFTs).
+        WaveSynthesis::GpuFft => {
+            drop(surface);
+            Err(Error::Unavailable(
+                "stage `waves` on the GPU (the GPU FFT) is not built yet; the GPU renderer \
+                 uploads the CPU synthesis (WaveSynthesis::CpuUpload)"
+                    .into(),
+            ))
+        }
+    }
+}
+
+/// Stage `waves` on the CPU (ocean-core's `Synthesizer<f32>`, as ocean-cpu's frame runs it),
+/// uploaded into [`WaveTextures`].
+pub struct CpuUpload {
+    surface: OceanSurface,
+    displacement: Synthesizer<f32>,
+    bump: Synthesizer<f32>,
+    textures: WaveTextures,
+}
+
+impl CpuUpload {
+    /// Plans the two FFTs and creates the textures.
+    ///
+    /// # Errors
+    /// [`Error::Core`] for a resolution the synthesis refuses.
+    pub fn new(gpu: &Gpu, surface: OceanSurface) -> Result<Self, Error> {
+        let n_d = surface.displacement.resolution();
+        let n_b = surface.bump.resolution();
+        Ok(Self {
+            displacement: Synthesizer::new(n_d)?,
+            bump: Synthesizer::new(n_b)?,
+            textures: WaveTextures::new(&gpu.device, n_d as u32, n_b as u32),
+            surface,
+        })
+    }
+}
+
+fn write(gpu: &Gpu, texture: &GpuTexture, texels: &[[f32; 4]]) {
+    gpu.queue.write_texture(
+        texture.texture.as_image_copy(),
+        bytemuck::cast_slice(texels),
+        wgpu::TexelCopyBufferLayout {
+            offset: 0,
+            bytes_per_row: Some(texture.width * 16),
+            rows_per_image: Some(texture.height),
+        },
+        wgpu::Extent3d { width: texture.width, height: texture.height, depth_or_array_layers: 1 },
+    );
+}
+
+impl WaveMapSource for CpuUpload {
+    fn name(&self) -> &'static str {
+        "cpu-upload"
+    }
+
+    fn records_gpu_passes(&self) -> bool {
+        false
+    }
+
+    fn encode(
+        &mut self,
+        gpu: &Gpu,
+        _encoder: &mut wgpu::CommandEncoder,
+        t: f64,
+        choppiness: f64,
+        _timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) -> Result<&WaveTextures, Error> {
+        let d: WaveMaps<f32> =
+            self.displacement.synthesize(&self.surface.displacement, t, choppiness)?;
+        let b: WaveMaps<f32> = self.bump.synthesize(&self.surface.bump, t, choppiness)?;
+        write(gpu, &self.textures.displacement, &displacement_texels(&d));
+        write(gpu, &self.textures.displacement_slopes, &displacement_slope_texels(&d));
+        write(gpu, &self.textures.bump, &bump_texels(&b));
+        Ok(&self.textures)
+    }
+}

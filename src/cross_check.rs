@@ -1,0 +1,592 @@
+//! The CPU ↔ GPU cross-check (issue 4): the same scene through ocean-cpu (the oracle) and
+//! ocean-gpu, compared map by map and picture by picture with DESIGN.md's tolerances. Used by
+//! `tests/gpu_cross_check.rs` and by `ocean compare`.
+//!
+//! Two comparators, each with the limits of DESIGN.md's tolerance table:
+//! - [`compare_float`] for float buffers (wave maps, Fresnel tables, shadow, reflection and
+//!   refraction maps, the HDR frame): a value passes when |gpu − cpu| ≤ max([`FLOAT_ABS`],
+//!   [`FLOAT_REL`]·|cpu|), computed in f64; reports max abs/rel error and where.
+//! - [`compare_image`] for the 8-bit output: the share of pixels whose R, G and B each lie
+//!   within 1/255, a per-channel difference histogram, and FLIP mean and P99 (NVIDIA's ꟻLIP,
+//!   `nv-flip`, CPU image as the reference, 67 pixels per degree), against [`ImageLimits`].
+
+use std::path::Path;
+
+use ocean_core::plan::{FramePlan, OutputKind, Pass};
+use ocean_core::scene::Scene;
+use ocean_cpu::frame::FrameBuffers;
+use ocean_gpu::{AdapterReport, FloatMap, FrameMap, GpuFrame, Renderer};
+use serde_json::{Value, json};
+
+/// Relative limit for CPU vs GPU float buffers (DESIGN.md: "lavapipe matches CPU f32 to a
+/// few ULP (measured)").
+pub const FLOAT_REL: f64 = 1e-5;
+/// Absolute limit for CPU vs GPU float buffers (DESIGN.md, same row), for values near 0.
+pub const FLOAT_ABS: f64 = 1e-6;
+
+/// Limits of the final 8-bit image.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ImageLimits {
+    /// Least share of pixels whose channels all lie within 1/255, if the row has one.
+    pub min_within_1: Option<f64>,
+    /// Largest FLIP mean.
+    pub max_flip_mean: f32,
+    /// Largest FLIP 99th percentile, if the row has one.
+    pub max_flip_p99: Option<f32>,
+    /// Where the numbers come from.
+    pub origin: &'static str,
+}
+
+impl ImageLimits {
+    /// DESIGN.md, "CPU vs GPU final image (lavapipe)": same raster rules, transcendental ULP
+    /// differences.
+    pub const SOFTWARE: Self = Self {
+        min_within_1: Some(0.995),
+        max_flip_mean: 0.005,
+        max_flip_p99: None,
+        origin: "DESIGN.md tolerance table, CPU vs GPU final image (lavapipe)",
+    };
+    /// DESIGN.md, "CPU vs GPU final image (hardware GPU)": real GPUs fuse and approximate
+    /// more.
+    pub const HARDWARE: Self = Self {
+        min_within_1: None,
+        max_flip_mean: 0.02,
+        max_flip_p99: Some(0.1),
+        origin: "DESIGN.md tolerance table, CPU vs GPU final image (hardware GPU)",
+    };
+
+    /// The row for an adapter: the software row for a CPU rasterizer (lavapipe), else the
+    /// hardware row.
+    pub fn for_adapter(adapter: &AdapterReport) -> Self {
+        if adapter.is_software { Self::SOFTWARE } else { Self::HARDWARE }
+    }
+}
+
+/// One float value: where it is and both sides.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Texel {
+    /// Column.
+    pub x: u32,
+    /// Row.
+    pub y: u32,
+    /// Channel 0–3 (RGBA).
+    pub channel: usize,
+    /// The CPU's value.
+    pub cpu: f32,
+    /// The GPU's value.
+    pub gpu: f32,
+}
+
+impl Texel {
+    fn to_json(self) -> Value {
+        json!({"x": self.x, "y": self.y, "channel": self.channel,
+               "cpu": self.cpu, "gpu": self.gpu})
+    }
+}
+
+/// The comparison of one float buffer.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FloatStats {
+    /// The buffer's name.
+    pub name: String,
+    /// Whether its pass ran (a skipped pass leaves a 1×1 zero map on both sides).
+    pub ran: bool,
+    /// CPU size.
+    pub cpu_size: (u32, u32),
+    /// GPU size.
+    pub gpu_size: (u32, u32),
+    /// Largest |gpu − cpu| and where.
+    pub max_abs: f64,
+    /// Its location.
+    pub max_abs_at: Option<Texel>,
+    /// Largest |gpu − cpu| / |cpu| over values with cpu ≠ 0, and where.
+    pub max_rel: f64,
+    /// Its location.
+    pub max_rel_at: Option<Texel>,
+    /// Values beyond the limit (a NaN on one side only counts).
+    pub beyond: usize,
+    /// The value furthest beyond, relative to its allowance.
+    pub worst: Option<Texel>,
+    /// Values compared.
+    pub values: usize,
+}
+
+impl FloatStats {
+    /// Whether the buffer is within the limits (and the sizes agree).
+    pub fn passed(&self) -> bool {
+        self.cpu_size == self.gpu_size && self.beyond == 0
+    }
+
+    /// A one-line summary.
+    pub fn line(&self) -> String {
+        let at = |t: &Option<Texel>| {
+            t.map_or(String::new(), |t| {
+                format!(" at ({}, {}).{} cpu {:e} gpu {:e}", t.x, t.y, t.channel, t.cpu, t.gpu)
+            })
+        };
+        if self.cpu_size != self.gpu_size {
+            return format!(
+                "{:<20} FAIL size cpu {:?} gpu {:?}",
+                self.name, self.cpu_size, self.gpu_size
+            );
+        }
+        format!(
+            "{:<20} {} {}x{}{} max abs {:.3e}{}; max rel {:.3e}{}; beyond limit {} of {}",
+            self.name,
+            if self.passed() { "ok  " } else { "FAIL" },
+            self.cpu_size.0,
+            self.cpu_size.1,
+            if self.ran { "" } else { " (skipped)" },
+            self.max_abs,
+            at(&self.max_abs_at),
+            self.max_rel,
+            at(&self.max_rel_at),
+            self.beyond,
+            self.values
+        )
+    }
+
+    /// The comparison as JSON.
+    pub fn to_json(&self) -> Value {
+        json!({
+            "name": self.name, "ran": self.ran, "passed": self.passed(),
+            "cpu_size": [self.cpu_size.0, self.cpu_size.1],
+            "gpu_size": [self.gpu_size.0, self.gpu_size.1],
+            "max_abs": self.max_abs, "max_abs_at": self.max_abs_at.map(Texel::to_json),
+            "max_rel": self.max_rel, "max_rel_at": self.max_rel_at.map(Texel::to_json),
+            "beyond_limit": self.beyond, "worst": self.worst.map(Texel::to_json),
+            "values": self.values,
+            "limit": {"rel": FLOAT_REL, "abs": FLOAT_ABS,
+                      "origin": "DESIGN.md tolerance table, CPU vs GPU float buffers"},
+        })
+    }
+}
+
+/// The allowance of a CPU value: max(abs, rel·|cpu|).
+pub fn allowance(cpu: f32) -> f64 {
+    FLOAT_ABS.max(FLOAT_REL * f64::from(cpu).abs())
+}
+
+/// Compares two RGBA f32 buffers of `size` texels each (row-major).
+pub fn compare_float(
+    name: &str,
+    ran: bool,
+    cpu: ((u32, u32), &[[f32; 4]]),
+    gpu: ((u32, u32), &[[f32; 4]]),
+) -> FloatStats {
+    let mut s = FloatStats {
+        name: name.to_owned(),
+        ran,
+        cpu_size: cpu.0,
+        gpu_size: gpu.0,
+        max_abs: 0.0,
+        max_abs_at: None,
+        max_rel: 0.0,
+        max_rel_at: None,
+        beyond: 0,
+        worst: None,
+        values: 0,
+    };
+    if cpu.0 != gpu.0 || cpu.1.len() != gpu.1.len() {
+        s.beyond = 1;
+        return s;
+    }
+    let width = cpu.0.0.max(1);
+    let mut worst_ratio = 1.0;
+    for (i, (c, g)) in cpu.1.iter().zip(gpu.1).enumerate() {
+        for ch in 0..4 {
+            s.values += 1;
+            let (a, b) = (c[ch], g[ch]);
+            let texel =
+                Texel { x: i as u32 % width, y: i as u32 / width, channel: ch, cpu: a, gpu: b };
+            if a.is_nan() || b.is_nan() {
+                if a.is_nan() != b.is_nan() {
+                    s.beyond += 1;
+                    s.worst = Some(texel);
+                    worst_ratio = f64::INFINITY;
+                }
+                continue;
+            }
+            if a == b {
+                continue; // equal values, infinities included
+            }
+            let err = (f64::from(b) - f64::from(a)).abs();
+            if err > s.max_abs {
+                s.max_abs = err;
+                s.max_abs_at = Some(texel);
+            }
+            if a != 0.0 {
+                let rel = err / f64::from(a).abs();
+                if rel > s.max_rel {
+                    s.max_rel = rel;
+                    s.max_rel_at = Some(texel);
+                }
+            }
+            let ratio = err / allowance(a);
+            if ratio > 1.0 {
+                s.beyond += 1;
+                if ratio > worst_ratio {
+                    worst_ratio = ratio;
+                    s.worst = Some(texel);
+                }
+            }
+        }
+    }
+    s
+}
+
+/// Buckets of the per-channel difference histogram: |Δ| = 0, 1, 2, 3–4, 5–8, 9–16, 17–32,
+/// 33–64, 65–255 (in 1/255 steps).
+pub const HISTOGRAM_BUCKETS: [(u8, u8); 9] =
+    [(0, 0), (1, 1), (2, 2), (3, 4), (5, 8), (9, 16), (17, 32), (33, 64), (65, 255)];
+
+/// The comparison of two 8-bit RGBA pictures.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ImageStats {
+    /// Width, pixels.
+    pub width: u32,
+    /// Height, pixels.
+    pub height: u32,
+    /// Share of pixels whose R, G and B each differ by at most 1/255.
+    pub within_1: f64,
+    /// Largest per-channel difference, in 1/255.
+    pub max_diff: u8,
+    /// Counts of per-channel differences in [`HISTOGRAM_BUCKETS`] (R, G and B of every pixel).
+    pub histogram: [u64; 9],
+    /// FLIP mean.
+    pub flip_mean: f32,
+    /// FLIP 99th percentile.
+    pub flip_p99: f32,
+    /// The per-pixel FLIP error, row-major.
+    pub flip_map: Vec<f32>,
+}
+
+impl ImageStats {
+    /// What fails the limits, empty when it passes.
+    pub fn failures(&self, limits: &ImageLimits) -> Vec<String> {
+        let mut f = Vec::new();
+        if let Some(min) = limits.min_within_1
+            && self.within_1 < min
+        {
+            f.push(format!(
+                "{:.3} % of pixels within 1/255 < {:.1} %",
+                100.0 * self.within_1,
+                100.0 * min
+            ));
+        }
+        if self.flip_mean > limits.max_flip_mean {
+            f.push(format!("FLIP mean {:.5} > {}", self.flip_mean, limits.max_flip_mean));
+        }
+        if let Some(max) = limits.max_flip_p99
+            && self.flip_p99 > max
+        {
+            f.push(format!("FLIP P99 {:.5} > {max}", self.flip_p99));
+        }
+        f
+    }
+
+    /// A one-line summary.
+    pub fn line(&self, limits: &ImageLimits) -> String {
+        let fails = self.failures(limits);
+        format!(
+            "{:<20} {} {}x{} within 1/255 {:.3} %, max diff {}/255, FLIP mean {:.5} P99 {:.5}; \
+             |Δ| histogram {:?}{}",
+            "ldr",
+            if fails.is_empty() { "ok  " } else { "FAIL" },
+            self.width,
+            self.height,
+            100.0 * self.within_1,
+            self.max_diff,
+            self.flip_mean,
+            self.flip_p99,
+            self.histogram,
+            if fails.is_empty() { String::new() } else { format!(" ({})", fails.join("; ")) }
+        )
+    }
+
+    /// The comparison as JSON.
+    pub fn to_json(&self, limits: &ImageLimits) -> Value {
+        json!({
+            "width": self.width, "height": self.height,
+            "passed": self.failures(limits).is_empty(),
+            "within_1_of_255": self.within_1, "max_diff": self.max_diff,
+            "histogram": HISTOGRAM_BUCKETS.iter().zip(self.histogram)
+                .map(|((lo, hi), n)| json!({"from": lo, "to": hi, "count": n}))
+                .collect::<Vec<_>>(),
+            "flip_mean": self.flip_mean, "flip_p99": self.flip_p99,
+            "limits": {"min_within_1_of_255": limits.min_within_1,
+                       "max_flip_mean": limits.max_flip_mean,
+                       "max_flip_p99": limits.max_flip_p99, "origin": limits.origin},
+        })
+    }
+}
+
+fn rgb(rgba: &[u8]) -> Vec<u8> {
+    rgba.chunks_exact(4).flat_map(|p| [p[0], p[1], p[2]]).collect()
+}
+
+/// Compares the GPU's 8-bit RGBA picture with the CPU's (the reference).
+///
+/// # Panics
+/// If either buffer does not hold `width · height` RGBA pixels.
+pub fn compare_image(cpu: &[u8], gpu: &[u8], width: u32, height: u32) -> ImageStats {
+    let n = width as usize * height as usize;
+    assert!(cpu.len() == 4 * n && gpu.len() == 4 * n, "pictures must be {width}x{height} RGBA");
+    let mut histogram = [0u64; 9];
+    let mut within = 0usize;
+    let mut max_diff = 0u8;
+    for (c, g) in cpu.chunks_exact(4).zip(gpu.chunks_exact(4)) {
+        let mut pixel_ok = true;
+        for ch in 0..3 {
+            let d = c[ch].abs_diff(g[ch]);
+            max_diff = max_diff.max(d);
+            pixel_ok &= d <= 1;
+            if let Some(b) = HISTOGRAM_BUCKETS.iter().position(|(lo, hi)| (*lo..=*hi).contains(&d))
+            {
+                histogram[b] += 1;
+            }
+        }
+        within += usize::from(pixel_ok);
+    }
+    let reference = nv_flip::FlipImageRgb8::with_data(width, height, &rgb(cpu));
+    let test = nv_flip::FlipImageRgb8::with_data(width, height, &rgb(gpu));
+    let error = nv_flip::flip(reference, test, nv_flip::DEFAULT_PIXELS_PER_DEGREE);
+    let mut pool = nv_flip::FlipPool::from_image(&error);
+    ImageStats {
+        width,
+        height,
+        within_1: within as f64 / n.max(1) as f64,
+        max_diff,
+        histogram,
+        flip_mean: pool.mean(),
+        flip_p99: pool.get_percentile(0.99, false),
+        flip_map: error.to_vec(),
+    }
+}
+
+/// A CPU map by the GPU's name for it: (size, texels).
+pub fn cpu_map(b: &FrameBuffers, which: FrameMap) -> ((u32, u32), &[[f32; 4]]) {
+    let t = match which {
+        FrameMap::Displacement => &b.displacement,
+        FrameMap::DisplacementSlopes => &b.displacement_slopes,
+        FrameMap::Bump => &b.bump,
+        FrameMap::FresnelAbove => &b.fresnel_above,
+        FrameMap::FresnelBelow => &b.fresnel_below,
+        FrameMap::ShadowMap => &b.shadow_map,
+        FrameMap::ReflectionMap => &b.reflection_map,
+        FrameMap::RefractionMap => &b.refraction_map,
+        FrameMap::Hdr => return ((b.hdr.width, b.hdr.height), &b.hdr.color),
+    };
+    ((t.width, t.height), &t.texels)
+}
+
+fn gpu_map(m: &FloatMap) -> ((u32, u32), &[[f32; 4]]) {
+    ((m.width, m.height), &m.texels)
+}
+
+/// Both renders of a scene.
+pub struct Renders {
+    /// The CPU oracle's frame.
+    pub cpu: ocean_cpu::Rendered,
+    /// The GPU's frame.
+    pub gpu: GpuFrame,
+}
+
+/// The cross-check of one scene.
+#[derive(Clone, Debug)]
+pub struct SceneCheck {
+    /// The scene's name.
+    pub scene: String,
+    /// Image size.
+    pub size: (u32, u32),
+    /// The adapter that rendered the GPU side.
+    pub adapter: AdapterReport,
+    /// The wave-map source of the GPU side.
+    pub wave_source: Option<&'static str>,
+    /// Every float buffer, in the frame's order.
+    pub maps: Vec<FloatStats>,
+    /// The 8-bit pictures, when the plan tonemaps.
+    pub image: Option<ImageStats>,
+    /// The limits the picture is held to.
+    pub image_limits: ImageLimits,
+}
+
+impl SceneCheck {
+    /// Everything beyond the limits, one line each; empty when the scene passes.
+    pub fn failures(&self) -> Vec<String> {
+        let mut f: Vec<String> = self
+            .maps
+            .iter()
+            .filter(|m| !m.passed())
+            .map(|m| format!("{}: {}", self.scene, m.line()))
+            .collect();
+        match &self.image {
+            Some(i) => f.extend(
+                i.failures(&self.image_limits)
+                    .into_iter()
+                    .map(|e| format!("{}: ldr: {e}", self.scene)),
+            ),
+            None => f.push(format!("{}: no 8-bit picture to compare", self.scene)),
+        }
+        f
+    }
+
+    /// The per-buffer summary lines.
+    pub fn lines(&self) -> Vec<String> {
+        let mut l: Vec<String> = self.maps.iter().map(FloatStats::line).collect();
+        if let Some(i) = &self.image {
+            l.push(i.line(&self.image_limits));
+        }
+        l
+    }
+
+    /// The summary as JSON.
+    pub fn to_json(&self) -> Value {
+        json!({
+            "scene": self.scene, "width": self.size.0, "height": self.size.1,
+            "adapter": {"name": self.adapter.name, "backend": self.adapter.backend,
+                        "device_type": self.adapter.device_type, "driver": self.adapter.driver,
+                        "software": self.adapter.is_software},
+            "wave_source": self.wave_source,
+            "passed": self.failures().is_empty(),
+            "maps": self.maps.iter().map(FloatStats::to_json).collect::<Vec<_>>(),
+            "ldr": self.image.as_ref().map(|i| i.to_json(&self.image_limits)),
+        })
+    }
+}
+
+/// Errors of a cross-check run.
+#[derive(Debug, thiserror::Error)]
+pub enum CheckError {
+    /// The CPU renderer failed.
+    #[error("CPU render: {0}")]
+    Cpu(#[from] ocean_cpu::frame::Error),
+    /// The GPU renderer failed.
+    #[error("GPU render: {0}")]
+    Gpu(#[from] ocean_gpu::Error),
+}
+
+/// Renders `scene` (validated) on both back ends with 8-bit output and compares every map.
+///
+/// # Errors
+/// [`CheckError`] if either renderer fails.
+pub fn check_scene(
+    renderer: &mut Renderer,
+    name: &str,
+    scene: &Scene,
+) -> Result<(SceneCheck, Renders), CheckError> {
+    let plan = FramePlan::new(scene, OutputKind::Ldr);
+    let cpu = ocean_cpu::render_scene(scene, OutputKind::Ldr, &mut |_| {})?;
+    let gpu = renderer.run(scene, &plan)?;
+    let mut maps = Vec::new();
+    for which in FrameMap::ALL {
+        let ran = plan.runs(which.pass());
+        let stats = match gpu.map(which) {
+            Some(g) => compare_float(which.name(), ran, cpu_map(&cpu.buffers, which), gpu_map(g)),
+            None => compare_float(which.name(), ran, cpu_map(&cpu.buffers, which), ((0, 0), &[])),
+        };
+        maps.push(stats);
+    }
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    let image = match (&cpu.ldr, &gpu.ldr) {
+        (Some(c), Some(g)) if c.len() == g.len() => Some(compare_image(c, g, w, h)),
+        _ => None,
+    };
+    let check = SceneCheck {
+        scene: name.to_owned(),
+        size: (w, h),
+        adapter: gpu.adapter.clone(),
+        wave_source: gpu.wave_source,
+        maps,
+        image,
+        image_limits: ImageLimits::for_adapter(&gpu.adapter),
+    };
+    Ok((check, Renders { cpu, gpu }))
+}
+
+/// Passes whose maps a [`SceneCheck`] compares, for reports.
+pub fn map_pass(name: &str) -> Option<Pass> {
+    FrameMap::ALL.iter().find(|m| m.name() == name).map(|m| m.pass())
+}
+
+fn save_rgba(path: &Path, w: u32, h: u32, rgba: Vec<u8>) -> std::io::Result<()> {
+    let img = image::RgbaImage::from_raw(w, h, rgba)
+        .ok_or_else(|| std::io::Error::other("image size does not match its pixels"))?;
+    img.save(path).map_err(std::io::Error::other)
+}
+
+/// A float map as a PNG: RGB × 255 clamped (for a look, not for measurement), alpha opaque.
+fn float_png(m: ((u32, u32), &[[f32; 4]])) -> Vec<u8> {
+    let q = |v: f32| (v.clamp(0.0, 1.0) * 255.0).round() as u8;
+    m.1.iter().flat_map(|t| [q(t[0]), q(t[1]), q(t[2]), 255]).collect()
+}
+
+/// A difference heat map of two same-size float maps: red = max channel |Δ| / allowance,
+/// 0 at the limit's 1/16, 255 at 16× the limit (log scale); green marks values beyond it.
+fn float_diff_png(cpu: &[[f32; 4]], gpu: &[[f32; 4]]) -> Vec<u8> {
+    cpu.iter()
+        .zip(gpu)
+        .flat_map(|(c, g)| {
+            let ratio = (0..4)
+                .map(|k| (f64::from(g[k]) - f64::from(c[k])).abs() / allowance(c[k]))
+                .fold(0.0f64, |a, b| if b.is_nan() { f64::INFINITY } else { a.max(b) });
+            let red = ((ratio.max(1.0 / 16.0).log2() + 4.0) / 8.0 * 255.0).clamp(0.0, 255.0) as u8;
+            [red, if ratio > 1.0 { 255 } else { 0 }, 0, 255]
+        })
+        .collect()
+}
+
+/// Writes `<dir>/<scene>.{cpu,gpu,diff,flip}.png`, a PNG pair and difference map of every
+/// float buffer beyond its limit (`<scene>.<map>.{cpu,gpu,diff}.png`), and
+/// `<dir>/<scene>.json` with the summary.
+///
+/// # Errors
+/// If a file cannot be written.
+pub fn write_artefacts(dir: &Path, check: &SceneCheck, renders: &Renders) -> std::io::Result<()> {
+    std::fs::create_dir_all(dir)?;
+    let name = &check.scene;
+    let (w, h) = check.size;
+    if let (Some(c), Some(g)) = (&renders.cpu.ldr, &renders.gpu.ldr) {
+        save_rgba(&dir.join(format!("{name}.cpu.png")), w, h, c.clone())?;
+        save_rgba(&dir.join(format!("{name}.gpu.png")), w, h, g.clone())?;
+        let diff: Vec<u8> = c
+            .chunks_exact(4)
+            .zip(g.chunks_exact(4))
+            .flat_map(|(a, b)| {
+                let d = (0..3).map(|k| a[k].abs_diff(b[k])).max().unwrap_or(0);
+                [d.saturating_mul(32), u8::from(d > 1) * 255, 0, 255]
+            })
+            .collect();
+        save_rgba(&dir.join(format!("{name}.diff.png")), w, h, diff)?;
+        if let Some(i) = &check.image {
+            let flip: Vec<u8> = i
+                .flip_map
+                .iter()
+                .flat_map(|e| {
+                    let v = (e.clamp(0.0, 1.0) * 255.0) as u8;
+                    [v, v, v, 255]
+                })
+                .collect();
+            save_rgba(&dir.join(format!("{name}.flip.png")), w, h, flip)?;
+        }
+    }
+    for m in check.maps.iter().filter(|m| !m.passed()) {
+        let Some(which) = FrameMap::ALL.iter().find(|f| f.name() == m.name) else { continue };
+        let Some(g) = renders.gpu.map(*which) else { continue };
+        let c = cpu_map(&renders.cpu.buffers, *which);
+        if c.0 != (g.width, g.height) {
+            continue;
+        }
+        let (mw, mh) = c.0;
+        save_rgba(&dir.join(format!("{name}.{}.cpu.png", m.name)), mw, mh, float_png(c))?;
+        save_rgba(&dir.join(format!("{name}.{}.gpu.png", m.name)), mw, mh, float_png(gpu_map(g)))?;
+        save_rgba(
+            &dir.join(format!("{name}.{}.diff.png", m.name)),
+            mw,
+            mh,
+            float_diff_png(c.1, &g.texels),
+        )?;
+    }
+    let text = serde_json::to_string_pretty(&check.to_json()).map_err(std::io::Error::other)?;
+    std::fs::write(dir.join(format!("{name}.json")), text)
+}

@@ -1,0 +1,363 @@
+//! CPU ↔ GPU cross-check (issue 4): every reference scene at 160×90 through the CPU oracle and
+//! the wgpu path, every float buffer within DESIGN.md's rel 1e-5 / abs 1e-6, the 8-bit picture
+//! within the tolerance row of the adapter that ran (lavapipe: ≥ 99.5 % of pixels within
+//! 1/255, FLIP mean ≤ 0.005). On a failure the CPU and GPU pictures, difference images and a
+//! JSON summary go to `target/gpu-cross-check/`.
+//!
+//! The adapter that ran is printed, and must be a real wgpu adapter (never the CPU compared
+//! with itself). Without any adapter the GPU test fails under `OCEAN_REQUIRE_GPU=1` (CI) and
+//! otherwise says that it was skipped and why. The comparators' negative controls need no
+//! GPU.
+
+use std::path::PathBuf;
+
+use ocean::cross_check::{
+    FLOAT_ABS, FLOAT_REL, ImageLimits, allowance, check_scene, compare_float, compare_image,
+    write_artefacts,
+};
+use ocean_core::scene::Scene;
+use ocean_gpu::{Error, Renderer};
+
+/// Small enough for CI on lavapipe with 2 cores, large enough to show every pass.
+const WIDTH: u32 = 160;
+const HEIGHT: u32 = 90;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn gpu_required() -> bool {
+    std::env::var_os("OCEAN_REQUIRE_GPU").is_some_and(|v| v == "1")
+}
+
+/// The GPU renderer; `None` (after saying why) when there is no usable adapter and the GPU
+/// is optional here.
+fn renderer() -> Option<Renderer> {
+    match Renderer::new() {
+        Ok(r) => {
+            let a = r.adapter().clone();
+            eprintln!("gpu_cross_check: adapter {a}");
+            // A real adapter: a wgpu backend, not the no-op one, and the one CI pinned.
+            assert!(!a.name.is_empty(), "the adapter has no name: {a}");
+            assert_ne!(a.backend, "Noop", "the no-op backend renders nothing: {a}");
+            if let Ok(want) = std::env::var("WGPU_BACKEND") {
+                assert!(
+                    a.backend.to_lowercase().contains(&want.to_lowercase().replace("vk", "vulkan")),
+                    "WGPU_BACKEND={want} but the adapter is {a}"
+                );
+            }
+            Some(r)
+        }
+        Err(
+            e @ (Error::NoAdapter { .. }
+            | Error::MissingFeature { .. }
+            | Error::RequestDevice { .. }),
+        ) if !gpu_required() => {
+            eprintln!(
+                "gpu_cross_check: SKIPPED, no usable GPU adapter: {e}\n\
+                 (set OCEAN_REQUIRE_GPU=1 to make this a failure, as CI does)"
+            );
+            None
+        }
+        Err(e) => panic!("gpu_cross_check: no GPU renderer: {e}"),
+    }
+}
+
+/// The reference scenes, plus the default scene seen from under the water (the plan skips the
+/// sky; the water pass takes its branch for a surface seen from below, with Fresnel for 1/η
+/// and Snell's window).
+fn reference_scenes() -> Vec<(String, Scene)> {
+    let mut paths: Vec<PathBuf> = std::fs::read_dir(root().join("reference/scenes"))
+        .expect("reference/scenes")
+        .map(|e| e.expect("entry").path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    paths.sort();
+    let mut scenes: Vec<(String, Scene)> = paths
+        .into_iter()
+        .map(|p| {
+            let mut s = Scene::load(&p).expect("reference scene");
+            s.camera.width = WIDTH;
+            s.camera.height = HEIGHT;
+            (p.file_stem().expect("name").to_string_lossy().into_owned(), s)
+        })
+        .collect();
+    let mut under = Scene::builtin();
+    (under.camera.width, under.camera.height) = (WIDTH, HEIGHT);
+    under.camera.position = [0.0, -2.5, 20.0];
+    under.camera.look_at = [0.0, 25.0, -15.0];
+    scenes.push(("default_underwater".into(), under));
+    scenes
+}
+
+#[test]
+fn reference_scenes_match_the_cpu_oracle() {
+    let Some(mut renderer) = renderer() else { return };
+    let scenes = reference_scenes();
+    assert!(scenes.len() >= 6, "expected the reference scenes, found {}", scenes.len());
+    let out = root().join("target/gpu-cross-check");
+    let mut failures = Vec::new();
+    for (name, scene) in &scenes {
+        let (check, renders) = check_scene(&mut renderer, name, scene).expect("both renders");
+        assert_eq!(check.adapter, *renderer.adapter(), "the GPU side ran on the adapter");
+        eprintln!("{name} ({}x{}, waves: {:?}):", WIDTH, HEIGHT, check.wave_source);
+        for line in check.lines() {
+            eprintln!("  {line}");
+        }
+        let f = check.failures();
+        if !f.is_empty() {
+            write_artefacts(&out, &check, &renders).expect("writable target dir");
+            failures.extend(f);
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "CPU and GPU differ beyond DESIGN.md's tolerances (images and JSON in {}):\n{}",
+        out.display(),
+        failures.join("\n")
+    );
+}
+
+/// A small deterministic generator for the raster test.
+struct Lcg(u64);
+
+impl Lcg {
+    fn unit(&mut self) -> f32 {
+        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (self.0 >> 40) as f32 / (1u64 << 24) as f32
+    }
+}
+
+/// The CPU rasterizer against lavapipe on random triangles, half of them cut by the view
+/// volume's planes (behind the eye, beside and beyond the viewport): every covered pixel's
+/// depth, 1/w and perspective-correct varyings agree bit for bit, in a 160×90 target (not a
+/// power of two, so the viewport transform's rounding shows). This pins the interpolation and
+/// clipping rules of `ocean_cpu::raster` to what the GPU does.
+#[test]
+fn rasterizer_matches_lavapipe_bit_for_bit() {
+    use ocean_cpu::raster::{BlendMode, CompareFunction, RasterState, RenderTarget, Vertex, draw};
+    use ocean_gpu::common::{Load, begin_render_pass, primitive, replace_target};
+    use ocean_gpu::texture::{GpuTexture, MAP_FORMAT, Readbacks, TexelData};
+    use wgpu::util::DeviceExt;
+
+    let Some(renderer) = renderer() else { return };
+    let gpu = renderer.gpu();
+    let mut rng = Lcg(7);
+    let mut tris: Vec<[Vertex<2>; 3]> = Vec::new();
+    for i in 0..400 {
+        let (spread, z_lo) = if i % 2 == 0 { (0.9, 0.0) } else { (3.0, -0.5) };
+        tris.push(std::array::from_fn(|_| {
+            let w = 0.2 + rng.unit() * 30.0;
+            let x = (rng.unit() * 2.0 - 1.0) * spread * w;
+            let y = (rng.unit() * 2.0 - 1.0) * spread * w;
+            let z = (z_lo + rng.unit() * (1.0 - 2.0 * z_lo)) * w;
+            Vertex::new([x, y, z, w], [rng.unit() * 200.0 - 100.0, rng.unit()])
+        }));
+    }
+    let (w, h) = (160u32, 90u32);
+    // CPU: no depth test, last triangle wins, as on the GPU without a depth buffer.
+    let state = RasterState {
+        depth_compare: CompareFunction::Always,
+        depth_write: false,
+        blend: BlendMode::Replace,
+        ..RasterState::default()
+    };
+    let mut cpu = RenderTarget::new(w, h);
+    draw(&mut cpu, &state, &tris, |f| {
+        Some([f.frag_coord[2], f.frag_coord[3], f.varyings[0], f.varyings[1]])
+    });
+    // GPU.
+    let d = &gpu.device;
+    let src = "struct VOut { @builtin(position) p: vec4<f32>, @location(0) a: vec2<f32> }\n\
+        @vertex fn vs(@location(0) pos: vec4<f32>, @location(1) a: vec2<f32>) -> VOut {\n\
+            var o: VOut; o.p = pos; o.a = a; return o; }\n\
+        @fragment fn fs(i: VOut) -> @location(0) vec4<f32> {\n\
+            return vec4<f32>(i.p.z, i.p.w, i.a.x, i.a.y); }\n";
+    let module = d.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("raster-check"),
+        source: wgpu::ShaderSource::Wgsl(src.into()),
+    });
+    let vertex_data: Vec<[f32; 6]> = tris
+        .iter()
+        .flatten()
+        .map(|v| [v.clip[0], v.clip[1], v.clip[2], v.clip[3], v.varyings[0], v.varyings[1]])
+        .collect();
+    let pipeline = d.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some("raster-check"),
+        layout: None,
+        vertex: wgpu::VertexState {
+            module: &module,
+            entry_point: Some("vs"),
+            compilation_options: Default::default(),
+            buffers: &[Some(wgpu::VertexBufferLayout {
+                array_stride: 24,
+                step_mode: wgpu::VertexStepMode::Vertex,
+                attributes: &wgpu::vertex_attr_array![0 => Float32x4, 1 => Float32x2],
+            })],
+        },
+        primitive: primitive(),
+        depth_stencil: None,
+        multisample: wgpu::MultisampleState::default(),
+        fragment: Some(wgpu::FragmentState {
+            module: &module,
+            entry_point: Some("fs"),
+            compilation_options: Default::default(),
+            targets: &replace_target(MAP_FORMAT),
+        }),
+        multiview_mask: None,
+        cache: None,
+    });
+    let vertices = d.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("raster-check"),
+        contents: bytemuck::cast_slice(&vertex_data),
+        usage: wgpu::BufferUsages::VERTEX,
+    });
+    let target = GpuTexture::target(d, "raster-check", w, h, MAP_FORMAT);
+    let mut encoder = d.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+    {
+        let mut pass = begin_render_pass(
+            &mut encoder,
+            "raster-check",
+            &target.view,
+            Load::Clear([0.0; 4]),
+            None,
+            None,
+        );
+        pass.set_pipeline(&pipeline);
+        pass.set_vertex_buffer(0, vertices.slice(..));
+        pass.draw(0..vertex_data.len() as u32, 0..1);
+    }
+    let mut readback: Readbacks<()> = Readbacks::default();
+    readback.copy(d, &mut encoder, (), "raster-check", &target, MAP_FORMAT);
+    gpu.queue.submit([encoder.finish()]);
+    let data = readback.finish(gpu).expect("readback");
+    let TexelData::Float(g) = &data[0].1 else { panic!("a float target") };
+    let covered = cpu.color.iter().filter(|c| **c != [0.0; 4]).count();
+    let differing: Vec<usize> = (0..cpu.color.len())
+        .filter(|&i| (0..4).any(|k| cpu.color[i][k].to_bits() != g.texels[i][k].to_bits()))
+        .collect();
+    eprintln!("raster check: {covered} covered pixels, {} differ", differing.len());
+    assert!(covered > (w * h / 2) as usize, "the triangles cover the target");
+    assert!(
+        differing.is_empty(),
+        "{} of {} pixels differ, first at {:?}: cpu {:?} gpu {:?}",
+        differing.len(),
+        w * h,
+        differing.first().map(|&i| (i as u32 % w, i as u32 / w)),
+        differing.first().map(|&i| cpu.color[i]),
+        differing.first().map(|&i| g.texels[i])
+    );
+}
+
+/// The float comparator at its boundary: a value exactly at the allowance passes, one ULP
+/// beyond fails, for values where the relative and where the absolute limit governs.
+#[test]
+fn float_comparator_fails_one_ulp_past_the_limit() {
+    for cpu in [1.0f32, -3.75, 0.02, 1e-3, 0.0, 2e-7, 12345.678] {
+        let allowed = allowance(cpu);
+        assert_eq!(allowed, FLOAT_ABS.max(FLOAT_REL * f64::from(cpu).abs()));
+        // The largest f32 above cpu still within the allowance, and the next one.
+        let mut at = (f64::from(cpu) + allowed) as f32;
+        while f64::from(at) - f64::from(cpu) > allowed {
+            at = at.next_down();
+        }
+        while f64::from(at.next_up()) - f64::from(cpu) <= allowed {
+            at = at.next_up();
+        }
+        let beyond = at.next_up();
+        let texels = |v: f32| vec![[0.5, 0.25, 0.0, 1.0], [0.5, v, 0.0, 1.0]];
+        let base = texels(cpu);
+        let ok = compare_float("control", true, ((2, 1), &base), ((2, 1), &texels(at)));
+        assert!(ok.passed(), "cpu {cpu}: {at} is within the allowance {allowed}: {}", ok.line());
+        let bad = compare_float("control", true, ((2, 1), &base), ((2, 1), &texels(beyond)));
+        assert!(!bad.passed(), "cpu {cpu}: {beyond} is one ULP past the limit: {}", bad.line());
+        let w = bad.worst.expect("the worst value is located");
+        assert_eq!((w.x, w.y, w.channel), (1, 0, 1));
+    }
+    // A NaN on one side, and a size mismatch, fail.
+    let a = vec![[1.0; 4]];
+    assert!(
+        !compare_float("nan", true, ((1, 1), &a), ((1, 1), &[[1.0, f32::NAN, 1.0, 1.0]])).passed()
+    );
+    assert!(!compare_float("size", true, ((1, 1), &a), ((2, 1), &[[1.0; 4]; 2])).passed());
+    assert!(compare_float("same", true, ((1, 1), &a), ((1, 1), &a)).passed());
+}
+
+/// A smooth test picture (FLIP of a picture with itself is 0).
+fn gradient(w: u32, h: u32) -> Vec<u8> {
+    (0..w * h)
+        .flat_map(|i| {
+            let (x, y) = (i % w, i / w);
+            [(x * 255 / w) as u8, (y * 255 / h) as u8, 128, 255]
+        })
+        .collect()
+}
+
+/// The image comparator: each limit fails just past it.
+#[test]
+fn image_comparator_fails_past_each_limit() {
+    let (w, h) = (64u32, 64u32);
+    let n = (w * h) as usize;
+    let cpu = gradient(w, h);
+    let limits = ImageLimits::SOFTWARE;
+    let same = compare_image(&cpu, &cpu, w, h);
+    assert_eq!(same.within_1, 1.0);
+    assert_eq!(same.flip_mean, 0.0);
+    assert!(same.failures(&limits).is_empty());
+
+    // Within 1/255 everywhere still passes that criterion.
+    let off_by_one: Vec<u8> = cpu.iter().map(|&v| v.saturating_add(1)).collect();
+    assert_eq!(compare_image(&cpu, &off_by_one, w, h).within_1, 1.0);
+
+    // ≥ 99.5 %: the largest number of pixels allowed 2/255 off, then one more.
+    let allowed = n - (0.995 * n as f64).ceil() as usize;
+    let mut gpu = cpu.clone();
+    for p in 0..allowed {
+        gpu[4 * (p * 97 % n)] ^= 2; // spread over the picture, 2/255 off
+    }
+    let s = compare_image(&cpu, &gpu, w, h);
+    assert!(s.failures(&limits).is_empty(), "{}", s.line(&limits));
+    let mut extra = allowed;
+    while gpu[4 * (extra * 97 % n)] != cpu[4 * (extra * 97 % n)] {
+        extra += 1;
+    }
+    gpu[4 * (extra * 97 % n)] ^= 2;
+    let s = compare_image(&cpu, &gpu, w, h);
+    assert!(
+        s.failures(&limits).iter().any(|f| f.contains("within 1/255")),
+        "one pixel past 99.5 %: {}",
+        s.line(&limits)
+    );
+
+    // FLIP mean: a block of inverted pixels, grown until the mean passes 0.005; the block
+    // one pixel smaller passes.
+    let mut prev_ok: Option<Vec<u8>> = None;
+    for k in 1..n {
+        let mut gpu = cpu.clone();
+        for p in 0..k {
+            for c in 0..3 {
+                gpu[4 * p + c] = 255 - gpu[4 * p + c];
+            }
+        }
+        let s = compare_image(&cpu, &gpu, w, h);
+        let loose = ImageLimits { min_within_1: None, ..limits };
+        if s.flip_mean > limits.max_flip_mean {
+            assert!(!s.failures(&loose).is_empty(), "{}", s.line(&loose));
+            let ok = prev_ok.expect("a single changed pixel keeps the mean under 0.005");
+            assert!(compare_image(&cpu, &ok, w, h).failures(&loose).is_empty());
+            break;
+        }
+        prev_ok = Some(gpu);
+    }
+    // FLIP P99 (hardware row): the same with the P99 limit.
+    let hw = ImageLimits::HARDWARE;
+    let mut gpu = cpu.clone();
+    for p in 0..n / 50 {
+        for c in 0..3 {
+            gpu[4 * p + c] = 255 - gpu[4 * p + c];
+        }
+    }
+    let s = compare_image(&cpu, &gpu, w, h);
+    assert!(s.flip_p99 > 0.1, "{}", s.line(&hw));
+    assert!(s.failures(&hw).iter().any(|f| f.contains("P99")), "{}", s.line(&hw));
+}
