@@ -26,6 +26,7 @@ use ocean_core::waves::{OceanSurface, Synthesizer, WaveMaps};
 
 use crate::device::{Error, Gpu};
 use crate::texture::{GpuTexture, MAP_FORMAT, map_usage};
+use crate::waves::{GpuWaves, WaveTexture, WavesError};
 
 /// The three maps the water stage binds (group 0, bindings 1–3).
 pub struct WaveTextures {
@@ -54,10 +55,10 @@ impl WaveTextures {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum WaveSynthesis {
     /// ocean-core's CPU synthesis, uploaded ([`CpuUpload`]).
-    #[default]
     CpuUpload,
-    /// The GPU FFT of `crates/ocean-gpu/src/waves.rs` (not built yet: [`make_source`] returns
-    /// [`Error::Unavailable`]).
+    /// The GPU FFT of `crates/ocean-gpu/src/waves.rs` ([`GpuFft`]), every frame; an ocean it
+    /// cannot take (a resolution that is not a power of two) falls back to [`CpuUpload`].
+    #[default]
     GpuFft,
 }
 
@@ -99,19 +100,95 @@ pub fn make_source(
     let surface = ocean.surface()?;
     match kind {
         WaveSynthesis::CpuUpload => Ok(Box::new(CpuUpload::new(gpu, surface)?)),
-        // ---- GPU FFT SEAM -------------------------------------------------------------------
-        // `crates/ocean-gpu/src/waves.rs` plugs in here, e.g.
-        //     WaveSynthesis::GpuFft => Ok(Box::new(crate::waves::GpuWaves::new(gpu, &surface)?)),
-        // with `GpuWaves: WaveMapSource` (h0 of `surface.displacement` and `surface.bump`
-        // uploaded once in `new`; `encode` dispatches h̃(k, t) and the inverse FFTs).
         WaveSynthesis::GpuFft => {
-            drop(surface);
-            Err(Error::Unavailable(
-                "stage `waves` on the GPU (the GPU FFT) is not built yet; the GPU renderer \
-                 uploads the CPU synthesis (WaveSynthesis::CpuUpload)"
-                    .into(),
-            ))
+            if ocean_core::waves::uniforms::check_fft_size(surface.displacement.resolution())
+                .is_err()
+                || ocean_core::waves::uniforms::check_fft_size(surface.bump.resolution()).is_err()
+            {
+                return Ok(Box::new(CpuUpload::new(gpu, surface)?));
+            }
+            Ok(Box::new(GpuFft::new(gpu, surface)?))
         }
+    }
+}
+
+/// Stage `waves` on the GPU: the two [`GpuWaves`] FFT syntheses (displacement and bump map,
+/// h0 uploaded once) run into the frame's encoder every frame; their textures are copied
+/// into [`WaveTextures`] (the displacement map's displacement and slopes, the bump map's
+/// bump texture).
+pub struct GpuFft {
+    displacement: GpuWaves,
+    bump: GpuWaves,
+    textures: WaveTextures,
+}
+
+impl GpuFft {
+    /// Uploads both maps' modes and builds the pipelines.
+    ///
+    /// # Errors
+    /// [`Error::Unavailable`] when the GPU FFT cannot take this ocean (a resolution that is
+    /// not a power of two, or buffers the device cannot hold): [`WaveSynthesis::CpuUpload`]
+    /// can.
+    pub fn new(gpu: &Gpu, surface: OceanSurface) -> Result<Self, Error> {
+        let unavailable = |e: WavesError| {
+            Error::Unavailable(format!("stage `waves` on the GPU: {e}; use the CPU synthesis"))
+        };
+        let displacement =
+            GpuWaves::new(&gpu.device, &surface.displacement).map_err(unavailable)?;
+        let bump = GpuWaves::new(&gpu.device, &surface.bump).map_err(unavailable)?;
+        let (n_d, n_b) = (surface.displacement.resolution(), surface.bump.resolution());
+        Ok(Self {
+            displacement,
+            bump,
+            textures: WaveTextures::new(&gpu.device, n_d as u32, n_b as u32),
+        })
+    }
+}
+
+fn copy(encoder: &mut wgpu::CommandEncoder, from: &wgpu::Texture, to: &GpuTexture) {
+    encoder.copy_texture_to_texture(
+        from.as_image_copy(),
+        to.texture.as_image_copy(),
+        wgpu::Extent3d { width: to.width, height: to.height, depth_or_array_layers: 1 },
+    );
+}
+
+impl WaveMapSource for GpuFft {
+    fn name(&self) -> &'static str {
+        "gpu-fft"
+    }
+
+    fn records_gpu_passes(&self) -> bool {
+        // GpuWaves records its own passes without timestamps: timed on the CPU side.
+        false
+    }
+
+    fn encode(
+        &mut self,
+        gpu: &Gpu,
+        encoder: &mut wgpu::CommandEncoder,
+        t: f64,
+        choppiness: f64,
+        _timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) -> Result<&WaveTextures, Error> {
+        let core = |e: WavesError| match e {
+            WavesError::Core(c) => Error::Core(c),
+            other => Error::Unavailable(format!("stage `waves` on the GPU: {other}")),
+        };
+        self.displacement.encode(&gpu.queue, encoder, t, choppiness).map_err(core)?;
+        self.bump.encode(&gpu.queue, encoder, t, choppiness).map_err(core)?;
+        copy(
+            encoder,
+            self.displacement.texture(WaveTexture::Displacement),
+            &self.textures.displacement,
+        );
+        copy(
+            encoder,
+            self.displacement.texture(WaveTexture::DisplacementSlopes),
+            &self.textures.displacement_slopes,
+        );
+        copy(encoder, self.bump.texture(WaveTexture::Bump), &self.textures.bump);
+        Ok(&self.textures)
     }
 }
 
