@@ -10,7 +10,6 @@ use bytemuck::{Pod, Zeroable};
 use glam::{DMat4, DVec3, DVec4};
 
 use crate::camera::{Camera, to_cols_f32};
-use crate::geometry::{PatchParams, WaterMesh};
 use crate::plan::{FramePlan, Pass};
 use crate::scene::{Object, Scene, Shape, Sun};
 use crate::sky::{PreethamSky, SkyParams};
@@ -317,18 +316,6 @@ pub fn sky_ambient(sky: &PreethamSky) -> [f32; 4] {
     }
     let mean = sum / (rows * cols) as f64;
     [mean.x as f32, mean.y as f32, mean.z as f32, 0.0]
-}
-
-/// The near/far patch mesh of a view (seed 000 §3), for the scene's displacement grid.
-pub fn scene_water_mesh(scene: &Scene, camera: &Camera) -> crate::Result<WaterMesh> {
-    let params = PatchParams::for_ocean(scene.ocean.patch_size_m, scene.ocean.resolution);
-    WaterMesh::for_view(
-        &params,
-        camera.eye.to_array(),
-        camera.forward.to_array(),
-        camera.fov_y,
-        camera.aspect(),
-    )
 }
 
 /// Texels of the water stage's `displacement` binding: (disp_x, height, disp_z, jacobian),

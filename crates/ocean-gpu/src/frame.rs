@@ -21,8 +21,7 @@ use std::time::{Duration, Instant};
 use ocean_core::camera::Camera;
 use ocean_core::camera_uniforms::CameraUniforms;
 use ocean_core::frame::{
-    FrameUniforms, FresnelTableUniforms, ObjectVertex, object_triangles, scene_sky,
-    scene_water_mesh, sky_ambient,
+    FrameUniforms, FresnelTableUniforms, ObjectVertex, object_triangles, scene_sky, sky_ambient,
 };
 use ocean_core::plan::{FramePlan, Pass};
 use ocean_core::scene::{Ocean, Scene};
@@ -246,7 +245,7 @@ impl Renderer {
             return Err(Error::TooLarge { width: w, height: h, max });
         }
         // The same ocean-core calls as ocean-cpu's `render_scene`.
-        let mesh = scene_water_mesh(scene, &camera)?;
+        let mesh = plan.water_mesh(scene, &camera)?;
         let preetham = scene_sky(scene)?;
         let sky_u = preetham.uniforms();
         let mut u = FrameUniforms::new(scene, &camera, plan, mesh.origin);
