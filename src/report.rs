@@ -166,6 +166,16 @@ const KNOBS: &[Knob] = &[
         measure: reflection_map_knob,
     },
     Knob {
+        name: "backend",
+        varies: "the default scene on the CPU oracle (the reference) and on wgpu (the adapter \
+                 WGPU_BACKEND picks; lavapipe in CI; wave maps from the GPU FFT): image error \
+                 against the CPU frame, frame time (GPU: submission to readback of the 8-bit \
+                 output). Without an adapter the knob has no GPU row and says why",
+        steps: |c| 2 * (c.runs as u64 + 1),
+        ordered: false,
+        measure: backend_knob,
+    },
+    Knob {
         name: "lod",
         varies: "near-patch refinement threshold ([quality] lod_split_threshold, radians): \
                  image error against the finest, CPU frame time",
@@ -519,6 +529,55 @@ fn reflection_map_knob(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
         })
         .collect();
     image_knob(ctx, "reflection_map_resolution", settings)
+}
+
+fn backend_knob(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
+    let mut scene = Scene::builtin();
+    (scene.camera.width, scene.camera.height) = ctx.frame_size();
+    let plan = FramePlan::new(&scene, OutputKind::Ldr);
+    let mut gpu = match ocean_gpu::Renderer::new() {
+        Ok(r) => Some(r),
+        Err(e) => {
+            ctx.bar.suspend(|| eprintln!("report: backend knob has no GPU row: {e}"));
+            None
+        }
+    };
+    let size = ctx.frame_size();
+    let mut works: Vec<Work<'_, Frame>> = vec![Box::new(|| {
+        let f = render_frame(&scene);
+        ctx.step("backend cpu");
+        f
+    })];
+    if let Some(renderer) = gpu.as_mut() {
+        let (scene, plan) = (&scene, &plan);
+        works.push(Box::new(move || {
+            let frame = renderer.run_with(scene, plan, ocean_gpu::Readback::Output)?;
+            let ldr = frame.ldr.context("the plan tonemaps")?;
+            ctx.step("backend gpu");
+            Ok(Frame {
+                rgb: ldr.chunks(4).flat_map(|p| [p[0], p[1], p[2]]).collect(),
+                hdr: Vec::new(),
+                width: size.0,
+                height: size.1,
+            })
+        }));
+    }
+    let timed = ctx.time_interleaved(&mut works)?;
+    drop(works);
+    let reference = &timed.first().context("the CPU frame")?.1;
+    let mut rows = Vec::new();
+    for ((ms, frame), backend) in timed.iter().zip([CPU, "gpu"]) {
+        let (flip, _) = image_errors(reference, frame);
+        rows.push(Row {
+            knob: "backend",
+            setting: format!("{backend} frame"),
+            error_metric: "flip_mean",
+            error: flip,
+            time_ms: *ms,
+            backend,
+        });
+    }
+    Ok(rows)
 }
 
 fn lod_knob(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {

@@ -44,6 +44,7 @@ fn csv_problems(text: &str) -> Vec<String> {
         "precision",
         "bump_resolution",
         "reflection_map_resolution",
+        "backend",
         "lod",
     ] {
         if !knobs.contains(&want) {
