@@ -92,6 +92,20 @@ fn reference_scenes() -> Vec<(String, Scene)> {
     under.camera.position = [0.0, -2.5, 20.0];
     under.camera.look_at = [0.0, 25.0, -15.0];
     scenes.push(("default_underwater".into(), under));
+    // An object behind the camera: every object pass culls it (the plan's per-pass lists),
+    // on both back ends.
+    let mut culled = Scene::builtin();
+    (culled.camera.width, culled.camera.height) = (WIDTH, HEIGHT);
+    let mut behind = culled.objects[0].clone();
+    behind.center = [0.0, 3.0, 80.0];
+    culled.objects.push(behind);
+    assert!(
+        !ocean_core::plan::FramePlan::new(&culled, ocean_core::plan::OutputKind::Ldr)
+            .objects
+            .objects
+            .contains(&2)
+    );
+    scenes.push(("default_culled".into(), culled));
     scenes
 }
 

@@ -24,7 +24,7 @@ use ocean_core::frame::{
     FrameUniforms, FresnelTableUniforms, ObjectVertex, object_triangles, scene_sky, sky_ambient,
 };
 use ocean_core::plan::{FramePlan, Pass};
-use ocean_core::scene::{Ocean, Scene};
+use ocean_core::scene::{Object, Ocean, Scene};
 use ocean_core::tonemap::TonemapUniforms;
 use wgpu::util::DeviceExt;
 
@@ -334,19 +334,25 @@ impl Renderer {
                 );
             }
 
-            // The objects' triangles, camera-relative, in ocean-core's order; one zero vertex
-            // keeps the buffer non-empty.
-            let tris = object_triangles(&scene.objects, camera.eye);
-            let mut vertices: Vec<ObjectVertex> = tris.iter().flatten().copied().collect();
-            let vertex_count = vertices.len() as u32;
-            if vertices.is_empty() {
-                vertices.push(bytemuck::Zeroable::zeroed());
-            }
-            let object_vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("ocean.objects.vertices"),
-                contents: bytemuck::cast_slice(&vertices),
-                usage: wgpu::BufferUsages::VERTEX,
-            });
+            // The objects each pass draws (the plan culls per pass, as on the CPU): their
+            // triangles, camera-relative, in ocean-core's order; one zero vertex keeps a buffer
+            // non-empty.
+            let objects_of = |pass: Pass| -> (wgpu::Buffer, u32) {
+                let objects: Vec<Object> =
+                    plan.objects.of(pass).iter().map(|&i| scene.objects[i].clone()).collect();
+                let tris = object_triangles(&objects, camera.eye);
+                let mut vertices: Vec<ObjectVertex> = tris.iter().flatten().copied().collect();
+                let count = vertices.len() as u32;
+                if vertices.is_empty() {
+                    vertices.push(bytemuck::Zeroable::zeroed());
+                }
+                let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("ocean.objects.vertices"),
+                    contents: bytemuck::cast_slice(&vertices),
+                    usage: wgpu::BufferUsages::VERTEX,
+                });
+                (buffer, count)
+            };
             let frame_buffer = uniform_buffer(device, "ocean.frame.uniforms", &u);
             let frame_group = |layout: &wgpu::BindGroupLayout, label: &str| {
                 bind_group(device, label, layout, &[frame_buffer.as_entire_binding()])
@@ -368,6 +374,7 @@ impl Renderer {
                     SHADOW_MAP_SIZE,
                 );
                 let slot = timer.slot(Pass::ShadowMap);
+                let (object_vertices, vertex_count) = objects_of(Pass::ShadowMap);
                 self.shadow.encode(
                     &mut encoder,
                     &frame_group(&self.shadow.frame_layout, "ocean.shadow"),
@@ -391,6 +398,7 @@ impl Renderer {
                 let target = GpuTexture::target(device, label, w, h, MAP_FORMAT);
                 let depth = GpuTexture::depth(device, label, w, h);
                 let slot = timer.slot(pass);
+                let (object_vertices, vertex_count) = objects_of(pass);
                 self.objects.encode(
                     &mut encoder,
                     entry,
@@ -444,6 +452,7 @@ impl Renderer {
             // objects
             if plan.runs(Pass::Objects) {
                 let slot = timer.slot(Pass::Objects);
+                let (object_vertices, vertex_count) = objects_of(Pass::Objects);
                 self.objects.encode(
                     &mut encoder,
                     ObjectsEntry::Main,
