@@ -25,6 +25,34 @@
 
 use num_traits::Float;
 
+/// The conventions both Fresnel functions share: NaN propagates; c is clamped to [−1, 1]; a
+/// negative c means the ray comes from the far side (c → −c, η → 1/η, as pbrt's
+/// FrDielectric); η ≤ 0 and η = +∞ reflect everything; η = 1 is no interface. `Err` holds the
+/// result of such a special case, `Ok` the oriented (c ∈ [0, 1], η) to evaluate.
+fn orient<T: Float>(cos_theta_i: T, eta: T) -> Result<(T, T), T> {
+    let zero = T::zero();
+    let one = T::one();
+    if cos_theta_i.is_nan() || eta.is_nan() {
+        return Err(T::nan());
+    }
+    let mut c = cos_theta_i.max(-one).min(one);
+    let mut eta = eta;
+    if c < zero {
+        // The ray comes from the far side: look at the interface from there.
+        c = -c;
+        eta = one / eta;
+    }
+    // Non-physical η ≤ 0 (also 1/(−0) = −∞ above) and η = +∞ both reflect everything.
+    if eta <= zero || eta.is_infinite() {
+        return Err(one);
+    }
+    if eta == one {
+        // No interface, no reflection; also avoids 0/0 at c = 0.
+        return Err(zero);
+    }
+    Ok((c, eta))
+}
+
 /// The unpolarised Fresnel reflectance F(c, η) of eq. 2 (seed 000, §4.1):
 ///
 /// F = ½ (g−c)²/(g+c)² · (1 + (c(g+c)−1)²/(c(g−c)+1)²), g² = η² + c² − 1,
@@ -66,24 +94,10 @@ pub fn fresnel_exact<T: Float>(cos_theta_i: T, eta: T) -> T {
     let one = T::one();
     let two = one + one;
     let half = one / two;
-    if cos_theta_i.is_nan() || eta.is_nan() {
-        return T::nan();
-    }
-    let mut c = cos_theta_i.max(-one).min(one);
-    let mut eta = eta;
-    if c < zero {
-        // The ray comes from the far side: look at the interface from there.
-        c = -c;
-        eta = one / eta;
-    }
-    // Non-physical η ≤ 0 (also 1/(−0) = −∞ above) and η = +∞ both reflect everything.
-    if eta <= zero || eta.is_infinite() {
-        return one;
-    }
-    if eta == one {
-        // No interface, no reflection; also avoids 0/0 at c = 0.
-        return zero;
-    }
+    let (c, eta) = match orient(cos_theta_i, eta) {
+        Ok(oriented) => oriented,
+        Err(special) => return special,
+    };
     if c == zero {
         // Grazing incidence reflects everything (for η < 1 this is inside the TIR range too).
         return one;
@@ -132,23 +146,11 @@ pub fn fresnel_exact<T: Float>(cos_theta_i: T, eta: T) -> T {
 /// η = 1 gives 0 (the literal formula would give (1 − c)⁵, a reflection from no interface),
 /// η ≤ 0 and η = +∞ give 1, NaN propagates.
 pub fn fresnel_schlick<T: Float>(cos_theta_i: T, eta: T) -> T {
-    let zero = T::zero();
     let one = T::one();
-    if cos_theta_i.is_nan() || eta.is_nan() {
-        return T::nan();
-    }
-    let mut c = cos_theta_i.max(-one).min(one);
-    let mut eta = eta;
-    if c < zero {
-        c = -c;
-        eta = one / eta;
-    }
-    if eta <= zero || eta.is_infinite() {
-        return one;
-    }
-    if eta == one {
-        return zero;
-    }
+    let (c, eta) = match orient(cos_theta_i, eta) {
+        Ok(oriented) => oriented,
+        Err(special) => return special,
+    };
     let cos_theta = if eta > one {
         c
     } else {
