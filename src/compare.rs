@@ -24,7 +24,7 @@ pub struct Args {
 pub fn run(args: Args) -> anyhow::Result<()> {
     let mut scene = crate::load_scene(args.scene.as_ref())?;
     if let Some(s) = &args.size {
-        (scene.camera.width, scene.camera.height) = crate::render::parse_size(s)?;
+        (scene.camera.width, scene.camera.height) = ocean::output::parse_size(s)?;
     }
     let name = args
         .scene

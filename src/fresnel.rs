@@ -8,7 +8,7 @@ use anyhow::{Context, bail};
 use ocean_core::fresnel::{fresnel_exact, fresnel_schlick};
 use ocean_core::tables::{FresnelTexture, TextureMapping};
 
-use crate::output::{Channel, encode_exr, require_extension, write_atomic};
+use ocean::output::{Channel, encode_exr, require_extension, write_atomic};
 
 /// Arguments of `ocean fresnel`.
 #[derive(clap::Args, Debug)]

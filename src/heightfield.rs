@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use anyhow::bail;
 use ocean_core::waves::Synthesizer;
 
-use crate::output::{Channel, encode_exr, require_extension, write_atomic};
+use ocean::output::{Channel, encode_exr, require_extension, write_atomic};
 
 /// Arguments of `ocean heightfield`.
 #[derive(clap::Args, Debug)]

@@ -3,5 +3,10 @@
 //!
 //! - [`cross_check`]: the CPU ↔ GPU comparison behind `ocean compare` and
 //!   `tests/gpu_cross_check.rs`.
+//! - [`output`]: atomic output files, PNG/EXR encoding.
+//! - [`view`]: `ocean view`, the real-time viewer (winit window, egui panel), with its
+//!   window-free parts (camera controller, parameter mapping) testable on their own.
 
 pub mod cross_check;
+pub mod output;
+pub mod view;

@@ -4,7 +4,6 @@
 mod compare;
 mod fresnel;
 mod heightfield;
-mod output;
 mod plan;
 mod render;
 mod report;
@@ -38,6 +37,8 @@ enum Command {
     Report(report::Args),
     /// Render a scene on the CPU oracle and on the GPU and compare every pass.
     Compare(compare::Args),
+    /// Fly over the ocean in a window (GPU path), changing the sea while it runs.
+    View(ocean::view::Args),
 }
 
 /// Loads a scene file, or the built-in default scene when none is given.
@@ -57,6 +58,7 @@ fn main() -> ExitCode {
         Command::Plan(a) => plan::run(a),
         Command::Report(a) => report::run(a),
         Command::Compare(a) => compare::run(a),
+        Command::View(a) => ocean::view::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -73,3 +73,31 @@ pub fn require_extension(path: &Path, ext: &str) -> anyhow::Result<()> {
     }
     Ok(())
 }
+
+/// Encodes 8-bit RGBA rows (top row first) as PNG.
+pub fn encode_png(rgba: Vec<u8>, width: u32, height: u32) -> anyhow::Result<Vec<u8>> {
+    let img = image::RgbaImage::from_raw(width, height, rgba).with_context(|| {
+        format!(
+            "an RGBA image of {width}×{height} needs {} bytes",
+            4 * width as usize * height as usize
+        )
+    })?;
+    let mut buf = Cursor::new(Vec::new());
+    img.write_to(&mut buf, image::ImageFormat::Png).context("cannot encode PNG")?;
+    Ok(buf.into_inner())
+}
+
+/// Parses `WIDTHxHEIGHT`.
+pub fn parse_size(s: &str) -> anyhow::Result<(u32, u32)> {
+    let (w, h) = s
+        .split_once(['x', 'X', '×'])
+        .with_context(|| format!("--size must be WIDTHxHEIGHT, e.g. 1280x720, got {s:?}"))?;
+    let parse = |v: &str| -> anyhow::Result<u32> {
+        let n: u32 = v.trim().parse().with_context(|| format!("--size: {v:?} is not a number"))?;
+        if n == 0 || n > ocean_core::scene::MAX_IMAGE_SIDE {
+            bail!("--size: each side must be 1..={}, got {n}", ocean_core::scene::MAX_IMAGE_SIDE);
+        }
+        Ok(n)
+    };
+    Ok((parse(w)?, parse(h)?))
+}

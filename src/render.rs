@@ -9,7 +9,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use ocean_core::plan::{FramePlan, OutputKind, Pass};
 use ocean_gpu::FrameMap;
 
-use crate::output::{Channel, encode_exr, write_atomic};
+use ocean::output::{Channel, encode_exr, encode_png, parse_size, write_atomic};
 
 /// Arguments of `ocean render`.
 #[derive(clap::Args, Debug)]
@@ -37,21 +37,6 @@ enum Backend {
     Cpu,
     /// The wgpu real-time path.
     Gpu,
-}
-
-/// Parses `WIDTHxHEIGHT`.
-pub(crate) fn parse_size(s: &str) -> anyhow::Result<(u32, u32)> {
-    let (w, h) = s
-        .split_once(['x', 'X', '×'])
-        .with_context(|| format!("--size must be WIDTHxHEIGHT, e.g. 1280x720, got {s:?}"))?;
-    let parse = |v: &str| -> anyhow::Result<u32> {
-        let n: u32 = v.trim().parse().with_context(|| format!("--size: {v:?} is not a number"))?;
-        if n == 0 || n > ocean_core::scene::MAX_IMAGE_SIDE {
-            bail!("--size: each side must be 1..={}, got {n}", ocean_core::scene::MAX_IMAGE_SIDE);
-        }
-        Ok(n)
-    };
-    Ok((parse(w)?, parse(h)?))
 }
 
 /// Runs `ocean render`.
@@ -100,10 +85,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let bytes = match kind {
         OutputKind::Ldr => {
             let rgba = ldr.context("the plan has no tonemap pass")?;
-            let img = image::RgbaImage::from_raw(w, h, rgba).context("image size")?;
-            let mut buf = std::io::Cursor::new(Vec::new());
-            img.write_to(&mut buf, image::ImageFormat::Png).context("cannot encode PNG")?;
-            buf.into_inner()
+            encode_png(rgba, w, h)?
         }
         OutputKind::Hdr => {
             let channel = |c: usize| hdr.iter().map(|p| p[c]).collect::<Vec<f32>>();

@@ -31,7 +31,7 @@ use ocean_cpu::sampler::texture_sample;
 use ocean_cpu::shaders::shared::frame::unit;
 use ocean_cpu::shaders::water;
 
-use crate::output::write_atomic;
+use ocean::output::write_atomic;
 
 /// Arguments of `ocean report`.
 #[derive(clap::Args, Debug)]

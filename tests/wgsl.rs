@@ -15,7 +15,7 @@ use ocean_core::waves::uniforms::{FftPassUniforms, WaveModeData, WavesUniforms};
 
 /// The stages written so far; a missing file is a failure, not a pass over fewer files.
 const EXPECTED_STAGES: &[&str] =
-    &["waves", "fresnel_table", "sky", "objects", "shadow", "water", "tonemap"];
+    &["waves", "fresnel_table", "sky", "objects", "shadow", "water", "tonemap", "present"];
 
 /// Compute stages and their entry points (named after what they do; `main` where a stage has
 /// one); the others render (`vs_main`, `fs_main`).

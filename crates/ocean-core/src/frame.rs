@@ -24,10 +24,10 @@ pub const SUN_SPECULAR_EXPONENT: f32 = 400.0;
 pub const REFLECTION_DISTORTION: f32 = 0.04;
 /// The same for the refraction map.
 pub const REFRACTION_DISTORTION: f32 = 0.03;
-/// Diffuse extinction coefficient K of clear ocean water, 1/m (Jerlov type II, ~0.1 /m at
+/// Default of `water.extinction_per_m`: diffuse extinction coefficient K of clear ocean water, 1/m (Jerlov type II, ~0.1 /m at
 /// 500 nm); used by eq. 4's fog-from-depth and the water-volume colour.
 pub const WATER_EXTINCTION_PER_M: f32 = 0.12;
-/// Colour of deep water seen from above (linear RGB radiance at sun intensity 1), the
+/// Default of `water.color`: colour of deep water seen from above (linear RGB radiance at sun intensity 1), the
 /// C_deep_water of eq. 4.
 pub const DEEP_WATER_COLOR: [f32; 3] = [0.004, 0.016, 0.028];
 
@@ -266,10 +266,10 @@ impl FrameUniforms {
                 SUN_SPECULAR_EXPONENT,
             ],
             water_color: [
-                DEEP_WATER_COLOR[0],
-                DEEP_WATER_COLOR[1],
-                DEEP_WATER_COLOR[2],
-                WATER_EXTINCTION_PER_M,
+                scene.water.color[0] as f32,
+                scene.water.color[1] as f32,
+                scene.water.color[2] as f32,
+                scene.water.extinction_per_m as f32,
             ],
             water_params: [eta, REFLECTION_DISTORTION, REFRACTION_DISTORTION, 1.0 / eta],
             viewport: [

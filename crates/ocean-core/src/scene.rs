@@ -310,11 +310,22 @@ impl Default for Sun {
 pub struct Water {
     /// Index of refraction of water relative to air (η of eq. 2).
     pub ior: f64,
+    /// Colour of deep water seen from above, linear RGB radiance at sun intensity 1: the
+    /// C_deep_water of eq. 4 and the water-volume colour under the surface.
+    pub color: [f64; 3],
+    /// Diffuse extinction coefficient K, 1/m: eq. 4's fog with depth and the downwelling
+    /// light on objects under water (Jerlov: ~0.02 in the clearest ocean water, 0.1–0.2 in
+    /// coastal water, ~1 in turbid water).
+    pub extinction_per_m: f64,
 }
 
 impl Default for Water {
     fn default() -> Self {
-        Self { ior: 1.333 }
+        Self {
+            ior: 1.333,
+            color: crate::frame::DEEP_WATER_COLOR.map(f64::from),
+            extinction_per_m: f64::from(crate::frame::WATER_EXTINCTION_PER_M),
+        }
     }
 }
 
@@ -533,6 +544,8 @@ impl Scene {
         if !self.water.ior.is_finite() || self.water.ior <= 0.0 {
             return bad("water.ior", format!("must be finite and > 0, got {}", self.water.ior));
         }
+        check_colour("water.color", self.water.color)?;
+        check_range("water.extinction_per_m", self.water.extinction_per_m, 0.0, 1e3)?;
         for (i, obj) in self.objects.iter().enumerate() {
             let key = |f: &str| format!("objects.{i}.{f}");
             check_vec(&key("center"), obj.center)?;

@@ -20,9 +20,11 @@
 
 use crate::{Error, Result};
 
-/// The stages whose WGSL is present, in the order of `DESIGN.md`'s stage table.
+/// The stages whose WGSL is present, in the order of `DESIGN.md`'s stage table, then
+/// `present` (the real-time viewer's copy of the output into its window; not a pass of the
+/// frame plan).
 pub const STAGES: &[&str] =
-    &["waves", "fresnel_table", "sky", "objects", "shadow", "water", "tonemap"];
+    &["waves", "fresnel_table", "sky", "objects", "shadow", "water", "tonemap", "present"];
 
 /// `(stage, source)` for every stage in [`STAGES`].
 const STAGE_FILES: &[(&str, &str)] = &[
@@ -33,6 +35,7 @@ const STAGE_FILES: &[(&str, &str)] = &[
     ("shadow", include_str!("../../../shaders/shadow.wgsl")),
     ("water", include_str!("../../../shaders/water.wgsl")),
     ("tonemap", include_str!("../../../shaders/tonemap.wgsl")),
+    ("present", include_str!("../../../shaders/present.wgsl")),
 ];
 
 /// `(path below shaders/, source)` for every shared file.

@@ -200,3 +200,35 @@ pub fn begin_render_pass<'e>(
         multiview_mask: None,
     })
 }
+
+/// The render pipeline of a full-screen pass (`shared/fullscreen.wgsl`): `vs_main` and
+/// `fs_main` of `module`, no vertex buffers, no depth, one unblended target of `format`.
+pub fn fullscreen_pipeline(
+    device: &wgpu::Device,
+    name: &str,
+    module: &wgpu::ShaderModule,
+    layout: &wgpu::BindGroupLayout,
+    format: wgpu::TextureFormat,
+) -> wgpu::RenderPipeline {
+    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        label: Some(name),
+        layout: Some(&pipeline_layout(device, name, &[layout])),
+        vertex: wgpu::VertexState {
+            module,
+            entry_point: Some("vs_main"),
+            compilation_options: Default::default(),
+            buffers: &[],
+        },
+        primitive: primitive(),
+        depth_stencil: None,
+        multisample: wgpu::MultisampleState::default(),
+        fragment: Some(wgpu::FragmentState {
+            module,
+            entry_point: Some("fs_main"),
+            compilation_options: Default::default(),
+            targets: &replace_target(format),
+        }),
+        multiview_mask: None,
+        cache: None,
+    })
+}

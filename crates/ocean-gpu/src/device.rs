@@ -150,12 +150,31 @@ impl Gpu {
     async fn open() -> Result<Self, Error> {
         let instance =
             wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
-        let adapter = wgpu::util::initialize_adapter_from_env_or_default(&instance, None)
+        Self::open_on(&instance, None).await
+    }
+
+    /// Opens the adapter the environment selects among those that can present to `surface`
+    /// (a window's), on `instance`, the instance the surface was made by.
+    ///
+    /// # Errors
+    /// As [`Self::new`].
+    pub fn for_surface(
+        instance: &wgpu::Instance,
+        surface: &wgpu::Surface<'_>,
+    ) -> Result<Self, Error> {
+        pollster::block_on(Self::open_on(instance, Some(surface)))
+    }
+
+    async fn open_on(
+        instance: &wgpu::Instance,
+        surface: Option<&wgpu::Surface<'_>>,
+    ) -> Result<Self, Error> {
+        let adapter = wgpu::util::initialize_adapter_from_env_or_default(instance, surface)
             .await
             .map_err(|e| Error::NoAdapter {
-                backend_env: std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "unset".into()),
-                reason: e.to_string(),
-            })?;
+            backend_env: std::env::var("WGPU_BACKEND").unwrap_or_else(|_| "unset".into()),
+            reason: e.to_string(),
+        })?;
         let info = adapter.get_info();
         let report = AdapterReport::new(&info);
         let available = adapter.features();

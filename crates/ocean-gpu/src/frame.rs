@@ -120,6 +120,9 @@ pub enum Readback {
     All,
     /// Only the output: the 8-bit picture when the plan tonemaps, else the HDR frame.
     Output,
+    /// Nothing: the output stays on the GPU in [`GpuFrame::output`] (the real-time viewer
+    /// presents it). The frame still waits for the GPU when timestamps are read.
+    None,
 }
 
 /// A frame rendered on the GPU.
@@ -128,8 +131,11 @@ pub struct GpuFrame {
     pub plan: FramePlan,
     /// The maps read back, in [`FrameMap::ALL`] order (skipped passes: their 1×1 zero map).
     pub maps: Vec<(FrameMap, FloatMap)>,
-    /// The 8-bit sRGB RGBA picture, when the plan tonemaps.
+    /// The 8-bit sRGB RGBA picture, when the plan tonemaps and it was read back.
     pub ldr: Option<Vec<u8>>,
+    /// The output texture on the GPU: the 8-bit picture (`Rgba8Unorm`) when the plan
+    /// tonemaps, else the HDR frame (`Rgba32Float`).
+    pub output: GpuTexture,
     /// The frame's uniforms.
     pub uniforms: FrameUniforms,
     /// GPU time per pass from timestamp queries (empty without `TIMESTAMP_QUERY`).
@@ -535,19 +541,20 @@ impl Renderer {
                 copy(Some(FrameMap::ReflectionMap), &reflection_map, MAP_FORMAT);
                 copy(Some(FrameMap::RefractionMap), &refraction_map, MAP_FORMAT);
             }
-            if all || ldr.is_none() {
+            let output = readback != Readback::None;
+            if all || (output && ldr.is_none()) {
                 copy(Some(FrameMap::Hdr), &hdr, MAP_FORMAT);
             }
-            if let Some(ldr) = &ldr {
+            if let Some(ldr) = ldr.as_ref().filter(|_| output) {
                 copy(None, ldr, LDR_FORMAT);
             }
             gpu.queue.submit([encoder.finish()]);
             let data = readbacks.finish(gpu)?;
             let timings = timer.finish(gpu)?;
-            Ok((data, timings))
+            Ok((data, timings, ldr.unwrap_or(hdr)))
         })??;
 
-        let (data, gpu_timings) = frame;
+        let (data, gpu_timings, output) = frame;
         let mut maps = Vec::new();
         let mut ldr = None;
         for (key, texels) in data {
@@ -566,6 +573,7 @@ impl Renderer {
             plan: plan.clone(),
             maps,
             ldr,
+            output,
             uniforms: u,
             gpu_timings,
             waves_cpu,

@@ -6,7 +6,8 @@
 //! - one module per stage, each creating its pipeline(s) labelled `"ocean.<stage>"` from
 //!   `ocean_core::shader_source::stage_source` and recording its pass: [`fresnel_table`],
 //!   [`sky`], [`objects`], [`shadow`], [`water`], [`tonemap`]; stage `waves` is
-//!   [`wave_maps`] (the CPU synthesis uploaded now; the GPU FFT plugs in there).
+//!   [`wave_maps`] (the CPU synthesis uploaded, or the GPU FFT of [`waves`]); [`present`]
+//!   copies the output into a window (the real-time viewer, `ocean view`).
 //! - [`frame`]: the [`Renderer`] and the [`GpuFrame`] it returns.
 //! - [`texture`]: formats, render targets, readback; [`timing`]: GPU time per pass.
 //!
@@ -25,6 +26,7 @@ pub mod device;
 pub mod frame;
 pub mod fresnel_table;
 pub mod objects;
+pub mod present;
 pub mod shadow;
 pub mod sky;
 pub mod texture;

@@ -188,42 +188,56 @@ impl<K: Copy> Readbacks<K> {
         texture: &GpuTexture,
         format: wgpu::TextureFormat,
     ) {
+        self.copy_texture(device, encoder, key, label, &texture.texture, format);
+    }
+
+    /// [`Self::copy`] of any texture with `COPY_SRC`, e.g. a window's surface texture;
+    /// `Bgra8Unorm` texels are also accepted and come back as RGBA bytes.
+    ///
+    /// # Panics
+    /// On a format without a readback (a bug in the caller).
+    pub fn copy_texture(
+        &mut self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        key: K,
+        label: &str,
+        texture: &wgpu::Texture,
+        format: wgpu::TextureFormat,
+    ) {
         let bytes_per_texel = match format {
             MAP_FORMAT => 16,
-            SHADOW_FORMAT | LDR_FORMAT => 4,
+            SHADOW_FORMAT | LDR_FORMAT | wgpu::TextureFormat::Bgra8Unorm => 4,
             other => panic!("no readback for {other:?}"),
         };
-        let row = texture.width * bytes_per_texel;
+        let (width, height) = (texture.width(), texture.height());
+        let row = width * bytes_per_texel;
         let padded_row =
             row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
         let buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some(&format!("ocean.readback.{label}")),
-            size: u64::from(padded_row) * u64::from(texture.height),
+            size: u64::from(padded_row) * u64::from(height),
             usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
             mapped_at_creation: false,
         });
         encoder.copy_texture_to_buffer(
-            texture.texture.as_image_copy(),
+            texture.as_image_copy(),
             wgpu::TexelCopyBufferInfo {
                 buffer: &buffer,
                 layout: wgpu::TexelCopyBufferLayout {
                     offset: 0,
                     bytes_per_row: Some(padded_row),
-                    rows_per_image: Some(texture.height),
+                    rows_per_image: Some(height),
                 },
             },
-            wgpu::Extent3d {
-                width: texture.width,
-                height: texture.height,
-                depth_or_array_layers: 1,
-            },
+            wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
         );
         self.pending.push(Pending {
             key,
             label: label.to_owned(),
             buffer,
-            width: texture.width,
-            height: texture.height,
+            width,
+            height,
             bytes_per_texel,
             padded_row,
             format,
@@ -269,6 +283,11 @@ impl<K: Copy> Readbacks<K> {
                     .map(|y| &view[y * p.padded_row as usize..y * p.padded_row as usize + row]);
                 match p.format {
                     LDR_FORMAT => TexelData::Rgba8(rows.flatten().copied().collect()),
+                    wgpu::TextureFormat::Bgra8Unorm => TexelData::Rgba8(
+                        rows.flat_map(|r| r.chunks_exact(4))
+                            .flat_map(|c| [c[2], c[1], c[0], c[3]])
+                            .collect(),
+                    ),
                     SHADOW_FORMAT => {
                         let texels = rows
                             .flat_map(|r| r.chunks_exact(4))

@@ -5,8 +5,8 @@
 use ocean_core::tonemap::TonemapUniforms;
 
 use crate::common::{
-    Load, begin_render_pass, bind_group, label, pipeline_layout, primitive, replace_target,
-    shader_module, texture_entry, uniform_buffer, uniform_entry,
+    Load, begin_render_pass, bind_group, fullscreen_pipeline, label, shader_module, texture_entry,
+    uniform_buffer, uniform_entry,
 };
 use crate::device::Error;
 use crate::texture::LDR_FORMAT;
@@ -32,27 +32,7 @@ impl TonemapStage {
                 texture_entry(1, wgpu::ShaderStages::FRAGMENT, false),
             ],
         });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some(&name),
-            layout: Some(&pipeline_layout(device, &name, &[&layout])),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: primitive(),
-            depth_stencil: None,
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
-                targets: &replace_target(LDR_FORMAT),
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let pipeline = fullscreen_pipeline(device, &name, &module, &layout, LDR_FORMAT);
         Ok(Self { pipeline, layout })
     }
 

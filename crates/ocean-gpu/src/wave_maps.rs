@@ -159,8 +159,7 @@ impl WaveMapSource for GpuFft {
     }
 
     fn records_gpu_passes(&self) -> bool {
-        // GpuWaves records its own passes without timestamps: timed on the CPU side.
-        false
+        true
     }
 
     fn encode(
@@ -169,14 +168,31 @@ impl WaveMapSource for GpuFft {
         encoder: &mut wgpu::CommandEncoder,
         t: f64,
         choppiness: f64,
-        _timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) -> Result<&WaveTextures, Error> {
         let core = |e: WavesError| match e {
             WavesError::Core(c) => Error::Core(c),
             other => Error::Unavailable(format!("stage `waves` on the GPU: {other}")),
         };
-        self.displacement.encode(&gpu.queue, encoder, t, choppiness).map_err(core)?;
-        self.bump.encode(&gpu.queue, encoder, t, choppiness).map_err(core)?;
+        // One timed span over both transforms: the first pass writes the beginning, the
+        // second the end.
+        let (first, second) = match timestamps {
+            Some(ts) => (
+                Some(wgpu::ComputePassTimestampWrites {
+                    query_set: ts.query_set,
+                    beginning_of_pass_write_index: ts.beginning_of_pass_write_index,
+                    end_of_pass_write_index: None,
+                }),
+                Some(wgpu::ComputePassTimestampWrites {
+                    query_set: ts.query_set,
+                    beginning_of_pass_write_index: None,
+                    end_of_pass_write_index: ts.end_of_pass_write_index,
+                }),
+            ),
+            None => (None, None),
+        };
+        self.displacement.encode_timed(&gpu.queue, encoder, t, choppiness, first).map_err(core)?;
+        self.bump.encode_timed(&gpu.queue, encoder, t, choppiness, second).map_err(core)?;
         copy(
             encoder,
             self.displacement.texture(WaveTexture::Displacement),

@@ -390,8 +390,23 @@ impl GpuWaves {
         t: f64,
         choppiness: f64,
     ) -> Result<(), WavesError> {
+        self.encode_timed(queue, encoder, t, choppiness, None)
+    }
+
+    /// [`Self::encode`] with timestamp writes on its compute pass.
+    ///
+    /// # Errors
+    /// As [`Self::encode`].
+    pub fn encode_timed(
+        &self,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        t: f64,
+        choppiness: f64,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) -> Result<(), WavesError> {
         self.write_uniforms(queue, t, choppiness)?;
-        self.encode_dispatches(encoder, 0..self.dispatch_count());
+        self.record(encoder, 0..self.dispatch_count(), timestamps);
         Ok(())
     }
 
@@ -484,12 +499,21 @@ impl GpuWaves {
     /// the last = `pack`) in one compute pass, with the uniforms last written. A frame is the
     /// whole range; a prefix stops after any dispatch, for pass-by-pass comparison.
     pub fn encode_dispatches(&self, encoder: &mut wgpu::CommandEncoder, range: Range<usize>) {
+        self.record(encoder, range, None);
+    }
+
+    fn record(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        range: Range<usize>,
+        timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) {
         let n = self.resolution;
         let stages = n.trailing_zeros() as usize;
         let tiles = n.div_ceil(WORKGROUP_2D);
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("ocean.waves"),
-            timestamp_writes: None,
+            timestamp_writes,
         });
         pass.set_bind_group(0, &self.shared_group, &[]);
         pass.set_bind_group(2, &self.texture_group, &[]);

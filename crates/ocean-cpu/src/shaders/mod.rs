@@ -9,6 +9,7 @@
 
 pub mod fresnel_table;
 pub mod objects;
+pub mod present;
 pub mod shadow;
 pub mod shared;
 pub mod sky;

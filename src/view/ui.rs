@@ -1,0 +1,283 @@
+//! The viewer's egui panel (parameters, presets, camera jumps) and overlay (frame time, GPU
+//! time per pass, the plan, the adapter), and the frame statistics behind both.
+
+use std::collections::VecDeque;
+use std::time::Duration;
+
+use egui::{Color32, RichText};
+use ocean_core::plan::{FramePlan, Pass};
+use ocean_core::spectrum::SpectrumKind;
+
+use super::controller::CameraController;
+use super::params::{Preset, ViewParams, range};
+
+/// Frames the overlay averages over.
+const RECENT: usize = 60;
+/// Frames left out of the exit summary: the first frames compile pipelines and draw modes.
+const WARM_UP: u64 = 3;
+
+/// What the panel asks the viewer to do.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Action {
+    /// Back to the scene's camera.
+    JumpHome,
+    /// Level the view.
+    Horizon,
+}
+
+/// Read-only state the overlay shows.
+pub(super) struct Overlay<'a> {
+    pub stats: &'a Stats,
+    pub plan: Option<&'a FramePlan>,
+    pub adapter: &'a str,
+    pub controller: &'a CameraController,
+    pub time_s: f64,
+    pub size: (u32, u32),
+    pub error: Option<&'a str>,
+    pub wave_source: Option<&'static str>,
+}
+
+/// Frame times: the last [`RECENT`] for the overlay, all after [`WARM_UP`] for the summary.
+#[derive(Default)]
+pub(super) struct Stats {
+    recent_interval_ms: VecDeque<f64>,
+    recent_render_ms: VecDeque<f64>,
+    last_passes: Vec<(Pass, f64)>,
+    last_waves_cpu_ms: Option<f64>,
+    interval_ms: Vec<f64>,
+    render_ms: Vec<f64>,
+    pass_ms: Vec<(Pass, Vec<f64>)>,
+}
+
+impl Stats {
+    /// One presented frame: the wall time since the previous one (`dt`, s), the time the
+    /// renderer took (encoding, GPU work, timestamp readback; s), GPU time per pass.
+    pub fn record(
+        &mut self,
+        dt: f64,
+        render_s: f64,
+        passes: &[(Pass, Duration)],
+        waves_cpu: Option<Duration>,
+        index: u64,
+    ) {
+        let push = |q: &mut VecDeque<f64>, v: f64| {
+            if q.len() == RECENT {
+                q.pop_front();
+            }
+            q.push_back(v);
+        };
+        if index > 0 {
+            push(&mut self.recent_interval_ms, dt * 1e3);
+        }
+        push(&mut self.recent_render_ms, render_s * 1e3);
+        self.last_passes = passes.iter().map(|(p, d)| (*p, d.as_secs_f64() * 1e3)).collect();
+        self.last_waves_cpu_ms = waves_cpu.map(|d| d.as_secs_f64() * 1e3);
+        if index < WARM_UP {
+            return;
+        }
+        self.interval_ms.push(dt * 1e3);
+        self.render_ms.push(render_s * 1e3);
+        for (p, ms) in &self.last_passes {
+            match self.pass_ms.iter_mut().find(|(q, _)| q == p) {
+                Some((_, v)) => v.push(*ms),
+                None => self.pass_ms.push((*p, vec![*ms])),
+            }
+        }
+    }
+
+    /// Median of the recent frame intervals, ms.
+    pub fn frame_ms(&self) -> Option<f64> {
+        median(self.recent_interval_ms.iter().copied().collect())
+    }
+
+    /// The exit summary: median (10th–90th percentile) frame interval, render time and GPU
+    /// time per pass after the warm-up frames.
+    pub fn summary(&self, frames: u64, adapter: &str) -> String {
+        let stat = |v: &[f64]| -> String {
+            let mut s = v.to_vec();
+            s.sort_by(f64::total_cmp);
+            match s.len() {
+                0 => "n/a".into(),
+                n => format!(
+                    "{:.1} ms ({:.1}–{:.1})",
+                    s[n / 2],
+                    s[(n - 1) / 10],
+                    s[(n - 1) - (n - 1) / 10]
+                ),
+            }
+        };
+        let mut out = format!(
+            "view: {frames} frames on {adapter}; after {WARM_UP} warm-up frames, median (p10–p90): \
+             frame interval {}, render {}",
+            stat(&self.interval_ms),
+            stat(&self.render_ms)
+        );
+        if !self.pass_ms.is_empty() {
+            let passes: Vec<String> = self
+                .pass_ms
+                .iter()
+                .map(|(p, v)| format!("{} {:.2}", p.name(), median(v.clone()).unwrap_or(0.0)))
+                .collect();
+            out.push_str(&format!("; GPU ms per pass (median): {}", passes.join(", ")));
+        }
+        out
+    }
+}
+
+fn median(mut v: Vec<f64>) -> Option<f64> {
+    if v.is_empty() {
+        return None;
+    }
+    v.sort_by(f64::total_cmp);
+    Some(v[v.len() / 2])
+}
+
+/// Draws the panel and the overlay; changes go into `params`, jumps into `actions`.
+pub(super) fn draw(
+    ctx: &egui::Context,
+    params: &mut ViewParams,
+    overlay: &Overlay<'_>,
+    actions: &mut Vec<Action>,
+) {
+    egui::Window::new("ocean")
+        .default_pos([8.0, 8.0])
+        .default_width(280.0)
+        .resizable(false)
+        .show(ctx, |ui| panel(ui, params, overlay, actions));
+    egui::Window::new("frame")
+        .anchor(egui::Align2::RIGHT_TOP, [-8.0, 8.0])
+        .resizable(false)
+        .show(ctx, |ui| stats(ui, overlay));
+}
+
+fn panel(ui: &mut egui::Ui, p: &mut ViewParams, overlay: &Overlay<'_>, actions: &mut Vec<Action>) {
+    ui.horizontal_wrapped(|ui| {
+        for preset in Preset::ALL {
+            if ui.button(preset.label()).clicked() {
+                *p = p.with_preset(preset);
+            }
+        }
+    });
+    egui::CollapsingHeader::new("Sea").default_open(true).show(ui, |ui| {
+        egui::ComboBox::from_label("spectrum").selected_text(spectrum_label(p.spectrum)).show_ui(
+            ui,
+            |ui| {
+                for k in [
+                    SpectrumKind::Phillips,
+                    SpectrumKind::PiersonMoskowitz,
+                    SpectrumKind::Jonswap,
+                    SpectrumKind::Tma,
+                ] {
+                    ui.selectable_value(&mut p.spectrum, k, spectrum_label(k));
+                }
+            },
+        );
+        slider(ui, &mut p.wind_speed, range::WIND_SPEED, "wind U₁₀, m/s", false);
+        slider(ui, &mut p.wind_direction_deg, (0.0, 360.0), "wind towards, °", false);
+        slider(ui, &mut p.fetch_km, range::FETCH_KM, "fetch, km", true);
+        ui.checkbox(&mut p.deep, "deep water");
+        ui.add_enabled_ui(!p.deep, |ui| {
+            slider(ui, &mut p.depth_m, range::DEPTH_M, "depth, m", true);
+        });
+        slider(ui, &mut p.choppiness, range::CHOPPINESS, "choppiness λ", false);
+        slider(ui, &mut p.patch_size_m, range::PATCH_SIZE_M, "patch size, m", true);
+    });
+    egui::CollapsingHeader::new("Sun").default_open(true).show(ui, |ui| {
+        ui.checkbox(&mut p.sun, "sun");
+        ui.add_enabled_ui(p.sun, |ui| {
+            slider(ui, &mut p.sun_elevation_deg, range::SUN_ELEVATION_DEG, "elevation, °", false);
+            slider(ui, &mut p.sun_azimuth_deg, (-180.0, 180.0), "azimuth, °", false);
+        });
+    });
+    egui::CollapsingHeader::new("Water").default_open(false).show(ui, |ui| {
+        for (c, name) in p.water_color.iter_mut().zip(["red", "green", "blue"]) {
+            ui.add(
+                egui::Slider::new(c, range::WATER_COLOR.0..=range::WATER_COLOR.1)
+                    .logarithmic(true)
+                    .text(format!("colour {name}")),
+            );
+        }
+        slider(ui, &mut p.extinction_per_m, range::EXTINCTION_PER_M, "extinction K, 1/m", true);
+    });
+    egui::CollapsingHeader::new("Time").default_open(true).show(ui, |ui| {
+        slider(ui, &mut p.time_scale, range::TIME_SCALE, "time scale", false);
+        ui.checkbox(&mut p.paused, "paused (Space)");
+        ui.label(format!("t = {:.2} s", overlay.time_s));
+    });
+    egui::CollapsingHeader::new("Camera").default_open(true).show(ui, |ui| {
+        ui.horizontal(|ui| {
+            if ui.button("scene camera (R)").clicked() {
+                actions.push(Action::JumpHome);
+            }
+            if ui.button("horizon (H)").clicked() {
+                actions.push(Action::Horizon);
+            }
+        });
+        let c = overlay.controller;
+        ui.label(format!(
+            "at ({:.1}, {:.1}, {:.1}) m, speed {:.1} m/s",
+            c.position.x, c.position.y, c.position.z, c.speed
+        ));
+        ui.label(
+            RichText::new(
+                "drag (left or right button) to look · WASD fly · Q/E down/up · Shift fast · \
+                 scroll speed · F1 hide · Esc quit",
+            )
+            .small(),
+        );
+    });
+    if let Some(e) = overlay.error {
+        ui.colored_label(Color32::LIGHT_RED, format!("not applied: {e}"));
+    }
+}
+
+fn stats(ui: &mut egui::Ui, o: &Overlay<'_>) {
+    let s = o.stats;
+    match s.frame_ms() {
+        Some(ms) => ui.label(format!("{ms:.1} ms/frame ({:.1} fps)", 1e3 / ms)),
+        None => ui.label("…"),
+    };
+    if let Some(ms) = median(s.recent_render_ms.iter().copied().collect()) {
+        ui.label(format!("render {ms:.1} ms · {}×{}", o.size.0, o.size.1));
+    }
+    if s.last_passes.is_empty() {
+        ui.label(RichText::new("GPU time per pass: no timestamp queries").weak());
+    } else {
+        egui::Grid::new("passes").num_columns(2).show(ui, |ui| {
+            for (p, ms) in &s.last_passes {
+                ui.label(p.name());
+                ui.label(format!("{ms:.2} ms"));
+                ui.end_row();
+            }
+        });
+    }
+    if let (Some(src), Some(ms)) = (o.wave_source, s.last_waves_cpu_ms) {
+        ui.label(RichText::new(format!("waves: {src}, {ms:.1} ms on the CPU")).small());
+    }
+    if let Some(plan) = o.plan {
+        ui.separator();
+        ui.label("plan (hover for the reason)");
+        for p in &plan.passes {
+            ui.label(format!("+ {}", p.name.name())).on_hover_text(&p.reason);
+        }
+        for p in &plan.skipped {
+            ui.label(RichText::new(format!("- {} (skipped)", p.name.name())).weak())
+                .on_hover_text(&p.reason);
+        }
+    }
+    ui.separator();
+    ui.label(RichText::new(o.adapter).small());
+}
+
+fn slider(ui: &mut egui::Ui, v: &mut f64, (lo, hi): (f64, f64), text: &str, log: bool) {
+    ui.add(egui::Slider::new(v, lo..=hi).logarithmic(log).text(text));
+}
+
+fn spectrum_label(k: SpectrumKind) -> &'static str {
+    match k {
+        SpectrumKind::Phillips => "Phillips",
+        SpectrumKind::PiersonMoskowitz => "Pierson–Moskowitz",
+        SpectrumKind::Jonswap => "JONSWAP",
+        SpectrumKind::Tma => "TMA (finite depth)",
+    }
+}
