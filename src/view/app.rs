@@ -413,6 +413,9 @@ impl App {
             self.open(event_loop)?;
             eprintln!("view: recovered: new device at frame {}", self.frame_index);
         }
+        if let (true, Some(n)) = (self.args.exercise_wind_sweep, self.args.frames) {
+            self.params.wind_speed = super::swept_wind(self.frame_index, n);
+        }
         self.refresh_scene();
         let Some(mut gfx) = self.gfx.take() else { return Ok(()) };
         let result = self.draw(event_loop, &window, &mut gfx, size, dt);

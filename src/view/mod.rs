@@ -55,6 +55,10 @@ pub struct Args {
     /// the device at fixed frames, and recover from each.
     #[arg(long, hide = true, requires = "frames")]
     pub exercise_recovery: bool,
+    /// Testing aid: during a --frames run, move the wind slider from 0 to its top
+    /// ([`params::range::WIND_SPEED`]) one step a frame, through the panel's mapping.
+    #[arg(long, hide = true, requires = "frames")]
+    pub exercise_wind_sweep: bool,
 }
 
 /// Whether presentation waits for the display.
@@ -97,6 +101,13 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         scene.ocean.time_s = t;
     }
     app::run(args, scene)
+}
+
+/// The wind speed of frame `index` of `frames` in a `--exercise-wind-sweep` run: 0 at the
+/// first frame, the top of the slider (exactly) at the last.
+pub fn swept_wind(index: u64, frames: u64) -> f64 {
+    let top = params::range::WIND_SPEED.1;
+    if frames <= 1 { top } else { top * index as f64 / (frames - 1) as f64 }
 }
 
 /// The simulated time of frame `index` of a `--frames` run that starts at `t0`.

@@ -267,7 +267,20 @@ impl Renderer {
         let mut wave_source = None;
         if plan.runs(Pass::Waves) {
             let key = Ocean { time_s: 0.0, ..scene.ocean.clone() };
-            if self.waves.as_ref().is_none_or(|(k, _)| *k != key) {
+            let updated = match &mut self.waves {
+                Some((k, _)) if *k == key => true,
+                // A new wind, fetch, spectrum or seed at the same map sizes: new modes into
+                // the same buffers (what the viewer's sliders do every frame).
+                Some((k, source)) => {
+                    let done = source.update(&self.gpu, &scene.ocean.surface()?)?;
+                    if done {
+                        *k = key.clone();
+                    }
+                    done
+                }
+                None => false,
+            };
+            if !updated {
                 self.waves = None;
                 self.waves =
                     Some((key, make_source(&self.gpu, self.wave_synthesis, &scene.ocean)?));

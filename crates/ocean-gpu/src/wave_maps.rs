@@ -85,6 +85,16 @@ pub trait WaveMapSource {
         choppiness: f64,
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) -> Result<&WaveTextures, Error>;
+
+    /// Takes another ocean's modes in place when it can (same map sizes), so that a change of
+    /// wind, fetch or spectrum costs one upload of N² modes and no new pipeline; returns
+    /// whether it did (else the caller makes a new source).
+    ///
+    /// # Errors
+    /// A failed upload.
+    fn update(&mut self, _gpu: &Gpu, _surface: &OceanSurface) -> Result<bool, Error> {
+        Ok(false)
+    }
 }
 
 /// The wave-map source of `kind` for an ocean (its modes drawn by ocean-core).
@@ -205,6 +215,18 @@ impl WaveMapSource for GpuFft {
         );
         copy(encoder, self.bump.texture(WaveTexture::Bump), &self.textures.bump);
         Ok(&self.textures)
+    }
+
+    fn update(&mut self, gpu: &Gpu, surface: &OceanSurface) -> Result<bool, Error> {
+        let same = surface.displacement.resolution() == self.displacement.resolution()
+            && surface.bump.resolution() == self.bump.resolution();
+        if !same {
+            return Ok(false);
+        }
+        let fail = |e: WavesError| Error::Unavailable(format!("stage `waves` on the GPU: {e}"));
+        self.displacement.update_modes(&gpu.queue, &surface.displacement).map_err(fail)?;
+        self.bump.update_modes(&gpu.queue, &surface.bump).map_err(fail)?;
+        Ok(true)
     }
 }
 

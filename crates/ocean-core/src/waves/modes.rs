@@ -4,6 +4,7 @@
 use std::f64::consts::TAU;
 
 use num_complex::Complex;
+use rayon::prelude::*;
 
 use crate::dispersion::Dispersion;
 use crate::rng::mode_gaussians;
@@ -191,7 +192,7 @@ impl WaveModes {
     pub fn new(
         params: &ModeParams,
         dispersion: Dispersion,
-        density: impl Fn(f64, f64) -> f64,
+        density: impl Fn(f64, f64) -> f64 + Sync,
     ) -> Result<Self> {
         let n = params.resolution;
         let l = params.patch_size_m;
@@ -212,21 +213,19 @@ impl WaveModes {
                 TAU * index as f64 / l
             })
             .collect();
-        let mut k = Vec::with_capacity(n * n);
-        let mut omega = Vec::with_capacity(n * n);
-        let mut h0 = Vec::with_capacity(n * n);
-        let mut expected_variance = 0.0;
-        for bz in 0..n {
+        // Rows in parallel (each mode depends only on its own indices: the generator is
+        // counter-based), then gathered and summed in row-major order, so the result and
+        // the first error reported are those of a sequential loop, bit for bit.
+        let row = |bz: usize| -> Result<Vec<(f64, f64, Complex<f64>, f64)>> {
+            let mut out = Vec::with_capacity(n);
             for bx in 0..n {
                 let (kx, kz) = (axis_k[bx], axis_k[bz]);
                 let k_len = (kx * kx + kz * kz).sqrt();
-                k.push(k_len);
-                omega.push(dispersion.omega(k_len));
                 let weight = match (signed_index(bx, n), signed_index(bz, n)) {
                     (Some(i), Some(j)) if (i, j) != (0, 0) => cell_weight(params, i, j),
                     _ => 0.0,
                 };
-                let amplitude = match (signed_index(bx, n), signed_index(bz, n)) {
+                let (amplitude, cell) = match (signed_index(bx, n), signed_index(bz, n)) {
                     (Some(i), Some(j)) if weight > 0.0 => {
                         let f = density(kx, kz);
                         if !(f >= 0.0 && f.is_finite()) {
@@ -237,18 +236,33 @@ impl WaveModes {
                             ));
                         }
                         let cell = f * delta_k * delta_k * weight;
-                        expected_variance += cell;
                         // Key by the reference-lattice index: |r·i| < 2³¹ was checked above.
                         let (xi_r, xi_i) = mode_gaussians(
                             params.seed,
                             (r as i64 * i) as i32,
                             (r as i64 * j) as i32,
                         );
-                        Complex::new(xi_r, xi_i) * (0.5 * cell.sqrt())
+                        (Complex::new(xi_r, xi_i) * (0.5 * cell.sqrt()), cell)
                     }
-                    _ => Complex::new(0.0, 0.0),
+                    _ => (Complex::new(0.0, 0.0), 0.0),
                 };
+                out.push((k_len, dispersion.omega(k_len), amplitude, cell));
+            }
+            Ok(out)
+        };
+        let rows: Vec<Result<Vec<(f64, f64, Complex<f64>, f64)>>> =
+            (0..n).into_par_iter().map(row).collect();
+        let mut k = Vec::with_capacity(n * n);
+        let mut omega = Vec::with_capacity(n * n);
+        let mut h0 = Vec::with_capacity(n * n);
+        let mut expected_variance = 0.0;
+        for row in rows {
+            for (k_len, w, amplitude, cell) in row? {
+                k.push(k_len);
+                omega.push(w);
                 h0.push(amplitude);
+                // Inactive bins carry a cell of 0, which leaves the sum as it was.
+                expected_variance += cell;
             }
         }
         Ok(Self { params: *params, dispersion, axis_k, k, omega, h0, expected_variance })

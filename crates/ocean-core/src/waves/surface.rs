@@ -63,7 +63,7 @@ pub struct OceanSurface {
 
 impl OceanSurface {
     /// Draws both maps' modes for the spectrum `density` (see [`WaveModes::new`]).
-    pub fn new(params: &OceanParams, density: impl Fn(f64, f64) -> f64) -> Result<Self> {
+    pub fn new(params: &OceanParams, density: impl Fn(f64, f64) -> f64 + Sync) -> Result<Self> {
         check_grid(params.patch_size_m, params.displacement_resolution)?;
         let r = params.bump_ratio;
         if r == 0 {
