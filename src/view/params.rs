@@ -147,7 +147,14 @@ impl ViewParams {
         // dark storm water; turquoise over a bright reef floor, the clearest water.
         let (color, k, elevation) = match preset {
             Preset::CalmLake => ([0.006, 0.018, 0.014], 0.35, 35.0),
-            Preset::OpenOcean => (ocean_core::frame::DEEP_WATER_COLOR, 0.12, 12.0),
+            Preset::OpenOcean => {
+                let c = ocean_core::frame::DEEP_WATER_COLOR;
+                (
+                    [c[0] as f32, c[1] as f32, c[2] as f32],
+                    ocean_core::frame::WATER_EXTINCTION_PER_M,
+                    12.0,
+                )
+            }
             Preset::Storm => ([0.003, 0.010, 0.014], 0.2, 20.0),
             Preset::ShallowReef => ([0.010, 0.060, 0.060], 0.06, 40.0),
         };

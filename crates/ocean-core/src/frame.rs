@@ -26,10 +26,10 @@ pub const REFLECTION_DISTORTION: f32 = 0.04;
 pub const REFRACTION_DISTORTION: f32 = 0.03;
 /// Default of `water.extinction_per_m`: diffuse extinction coefficient K of clear ocean water, 1/m (Jerlov type II, ~0.1 /m at
 /// 500 nm); used by eq. 4's fog-from-depth and the water-volume colour.
-pub const WATER_EXTINCTION_PER_M: f32 = 0.12;
+pub const WATER_EXTINCTION_PER_M: f64 = 0.12;
 /// Default of `water.color`: colour of deep water seen from above (linear RGB radiance at sun intensity 1), the
 /// C_deep_water of eq. 4.
-pub const DEEP_WATER_COLOR: [f32; 3] = [0.004, 0.016, 0.028];
+pub const DEEP_WATER_COLOR: [f64; 3] = [0.004, 0.016, 0.028];
 
 /// Uniforms of the `objects`, `shadow` and `water` stages (WGSL `FrameUniforms`).
 #[repr(C)]

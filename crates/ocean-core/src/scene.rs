@@ -323,8 +323,8 @@ impl Default for Water {
     fn default() -> Self {
         Self {
             ior: 1.333,
-            color: crate::frame::DEEP_WATER_COLOR.map(f64::from),
-            extinction_per_m: f64::from(crate::frame::WATER_EXTINCTION_PER_M),
+            color: crate::frame::DEEP_WATER_COLOR,
+            extinction_per_m: crate::frame::WATER_EXTINCTION_PER_M,
         }
     }
 }
