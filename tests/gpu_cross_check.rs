@@ -434,3 +434,46 @@ fn gpu_fft_frames_meet_the_image_tolerances() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// The viewer's sliders change the sea every frame: the GPU FFT then takes the new modes into
+/// its buffers in place (`WaveMapSource::update`). That must give the same frame, bit for bit,
+/// as a renderer that never saw the old sea; a new map size makes a new source.
+#[test]
+fn a_new_sea_on_a_running_renderer_equals_a_fresh_renderer() {
+    let Some(mut kept) = renderer_with(WaveSynthesis::GpuFft) else { return };
+    let mut first = Scene::builtin();
+    (first.camera.width, first.camera.height) = (WIDTH, HEIGHT);
+    let mut windier = first.clone();
+    windier.ocean.wind_speed = 21.0;
+    windier.ocean.spectrum = ocean_core::spectrum::SpectrumKind::Tma;
+    windier.ocean.depth_m = 6.0;
+    windier.ocean.fetch_km = 40.0;
+    let mut finer = windier.clone();
+    finer.ocean.resolution = 128;
+
+    let bits = |f: &ocean_gpu::GpuFrame, m: FrameMap| -> Vec<u32> {
+        f.map(m).expect("map read back").texels.iter().flatten().map(|v| v.to_bits()).collect()
+    };
+    let maps =
+        [FrameMap::Displacement, FrameMap::DisplacementSlopes, FrameMap::Bump, FrameMap::Hdr];
+    let run = |r: &mut Renderer, s: &Scene| {
+        let plan = ocean_core::plan::FramePlan::new(s, ocean_core::plan::OutputKind::Ldr);
+        r.run(s, &plan).expect("frame")
+    };
+    let before = run(&mut kept, &first);
+    for next in [&windier, &finer] {
+        let updated = run(&mut kept, next);
+        let Some(mut fresh) = renderer_with(WaveSynthesis::GpuFft) else { return };
+        let reference = run(&mut fresh, next);
+        for m in maps {
+            assert!(bits(&updated, m) == bits(&reference, m), "{}: in place ≠ fresh", m.name());
+            // Negative control: the old sea's map is not the new one.
+            assert!(
+                bits(&before, m) != bits(&reference, m),
+                "{}: the sea did not change",
+                m.name()
+            );
+        }
+        assert_eq!(updated.ldr, reference.ldr);
+    }
+}
