@@ -8,12 +8,14 @@
 //! time. A zero-sized (minimised) window renders nothing and wakes ten times a second.
 
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Mutex, mpsc};
 use std::time::{Duration, Instant};
 
 use anyhow::{Context, anyhow, bail};
 use ocean_core::plan::{FramePlan, OutputKind};
-use ocean_core::scene::Scene;
+use ocean_core::scene::{Ocean, Scene};
+use ocean_core::waves::OceanSurface;
+use ocean_gpu::frame::wave_key;
 use ocean_gpu::present::PresentStage;
 use ocean_gpu::texture::{Readbacks, TexelData};
 use ocean_gpu::{Gpu, Readback, Renderer, WaveSynthesis};
@@ -210,6 +212,32 @@ struct UiPaint {
     screen: egui_wgpu::ScreenDescriptor,
 }
 
+/// Draws a sea's wave modes (`Ocean::surface`, ~10–20 ms at N = 256 here) on a thread of its
+/// own, so that moving a slider never stalls a frame: frames keep the sea whose modes are on
+/// the GPU until the new ones are ready, then switch.
+struct ModeWorker {
+    requests: mpsc::Sender<Ocean>,
+    results: mpsc::Receiver<(Ocean, Result<OceanSurface, String>)>,
+    /// The last sea asked for, while it is being drawn.
+    pending: Option<Ocean>,
+}
+
+impl ModeWorker {
+    fn new() -> Self {
+        let (requests, inbox) = mpsc::channel::<Ocean>();
+        let (outbox, results) = mpsc::channel();
+        std::thread::spawn(move || {
+            for ocean in inbox {
+                let surface = ocean.surface().map_err(|e| e.to_string());
+                if outbox.send((ocean, surface)).is_err() {
+                    break;
+                }
+            }
+        });
+        Self { requests, results, pending: None }
+    }
+}
+
 struct App {
     args: Args,
     display: OwnedDisplayHandle,
@@ -239,6 +267,9 @@ struct App {
     error: Option<anyhow::Error>,
     /// The window size at start, which the recovery exercise returns to.
     start_size: PhysicalSize<u32>,
+    worker: ModeWorker,
+    /// The sea whose modes the renderer holds ([`wave_key`]); `None` after a new device.
+    shown_sea: Option<Ocean>,
 }
 
 impl App {
@@ -272,6 +303,8 @@ impl App {
             screenshot: None,
             error: None,
             start_size,
+            worker: ModeWorker::new(),
+            shown_sea: None,
         }
     }
 
@@ -338,7 +371,52 @@ impl App {
             Some(gfx.gpu().device.limits().max_texture_dimension_2d as usize),
         ));
         self.gfx = Some(gfx);
+        self.shown_sea = None;
         Ok(())
+    }
+
+    /// Brings the renderer's wave modes towards the panel's sea: takes a finished drawing,
+    /// asks for the next one. With `wait` (the first frame, the last frame of a `--frames`
+    /// run) it returns only once the renderer holds the panel's sea, so screenshots are
+    /// reproducible.
+    fn sync_waves(&mut self, gfx: &mut Graphics, wait: bool) -> anyhow::Result<()> {
+        let target = wave_key(&self.scene.ocean);
+        loop {
+            let received = if wait && self.worker.pending.is_some() {
+                Some(self.worker.results.recv().context("the wave-mode worker stopped")?)
+            } else {
+                self.worker.results.try_recv().ok()
+            };
+            if let Some((sea, surface)) = received {
+                self.worker.pending = None;
+                match surface {
+                    Ok(surface) => {
+                        gfx.renderer.set_waves(&sea, surface)?;
+                        self.shown_sea = Some(sea);
+                    }
+                    Err(e) => self.param_error = Some(e),
+                }
+                continue;
+            }
+            if self.shown_sea.as_ref() == Some(&target) {
+                return Ok(());
+            }
+            if self.shown_sea.is_none() && self.worker.pending.is_none() {
+                // Nothing on the GPU yet: the frame draws the modes itself.
+                self.shown_sea = Some(target);
+                return Ok(());
+            }
+            if self.worker.pending.is_none() {
+                self.worker
+                    .requests
+                    .send(target.clone())
+                    .context("the wave-mode worker stopped")?;
+                self.worker.pending = Some(target.clone());
+            }
+            if !wait {
+                return Ok(());
+            }
+        }
     }
 
     /// Turns changed panel values into the scene; refused values keep the last good scene.
@@ -433,8 +511,13 @@ impl App {
         dt: f64,
     ) -> anyhow::Result<()> {
         gfx.resize(size)?;
+        let last = self.args.frames.is_some_and(|n| self.frame_index + 1 >= n);
+        self.sync_waves(gfx, last)?;
 
         let mut scene = self.scene.clone();
+        if let Some(sea) = &self.shown_sea {
+            scene.ocean = sea.clone();
+        }
         self.controller.apply(&mut scene.camera);
         (scene.camera.width, scene.camera.height) = (gfx.config.width, gfx.config.height);
         scene.ocean.time_s = self.sim_time;
@@ -522,7 +605,6 @@ impl App {
             None
         };
 
-        let last = self.args.frames.is_some_and(|n| self.frame_index + 1 >= n);
         let device = gfx.gpu().device.clone();
         let queue = gfx.gpu().queue.clone();
         if let Some(p) = &paint {

@@ -26,6 +26,7 @@ use ocean_core::frame::{
 use ocean_core::plan::{FramePlan, Pass};
 use ocean_core::scene::{Object, Ocean, Scene};
 use ocean_core::tonemap::TonemapUniforms;
+use ocean_core::waves::OceanSurface;
 use wgpu::util::DeviceExt;
 
 use crate::common::{Load, begin_render_pass, bind_group, uniform_buffer};
@@ -40,7 +41,12 @@ use crate::texture::{
 use crate::timing::PassTimer;
 use crate::tonemap::TonemapStage;
 use crate::water::{WaterMeshBuffers, WaterStage, WaterTextures};
-use crate::wave_maps::{WaveMapSource, WaveSynthesis, make_source};
+use crate::wave_maps::{WaveMapSource, WaveSynthesis, make_source_from};
+
+/// What identifies an ocean's wave modes: everything but the time.
+pub fn wave_key(ocean: &Ocean) -> Ocean {
+    Ocean { time_s: 0.0, ..ocean.clone() }
+}
 
 /// Side of the 2D Fresnel textures (ocean-cpu's `FRESNEL_TABLE_SIZE`).
 pub const FRESNEL_TABLE_SIZE: u32 = 256;
@@ -224,6 +230,27 @@ impl Renderer {
         &self.gpu.report
     }
 
+    /// Installs the wave modes of `ocean`, drawn by the caller as `ocean.surface()` (the
+    /// real-time viewer draws them on a worker thread, so that a slider never stalls a
+    /// frame). At the same map sizes the running source takes them in place (one upload, no
+    /// new pipeline); otherwise a new source is made. Frames of this ocean (any time) then
+    /// use them; [`Self::run`] installs the modes itself when they are not there.
+    ///
+    /// # Errors
+    /// As [`Self::run`]'s `waves` pass.
+    pub fn set_waves(&mut self, ocean: &Ocean, surface: OceanSurface) -> Result<(), Error> {
+        let key = wave_key(ocean);
+        if let Some((k, source)) = &mut self.waves
+            && source.update(&self.gpu, &surface)?
+        {
+            *k = key;
+            return Ok(());
+        }
+        self.waves = None;
+        self.waves = Some((key, make_source_from(&self.gpu, self.wave_synthesis, surface)?));
+        Ok(())
+    }
+
     /// Renders a validated scene by its plan and reads back every map ([`Readback::All`]).
     ///
     /// # Errors
@@ -265,26 +292,10 @@ impl Renderer {
         // The wave-map source for this ocean (kept across frames while the ocean is the same).
         let mut waves_cpu = None;
         let mut wave_source = None;
-        if plan.runs(Pass::Waves) {
-            let key = Ocean { time_s: 0.0, ..scene.ocean.clone() };
-            let updated = match &mut self.waves {
-                Some((k, _)) if *k == key => true,
-                // A new wind, fetch, spectrum or seed at the same map sizes: new modes into
-                // the same buffers (what the viewer's sliders do every frame).
-                Some((k, source)) => {
-                    let done = source.update(&self.gpu, &scene.ocean.surface()?)?;
-                    if done {
-                        *k = key.clone();
-                    }
-                    done
-                }
-                None => false,
-            };
-            if !updated {
-                self.waves = None;
-                self.waves =
-                    Some((key, make_source(&self.gpu, self.wave_synthesis, &scene.ocean)?));
-            }
+        if plan.runs(Pass::Waves)
+            && self.waves.as_ref().is_none_or(|(k, _)| *k != wave_key(&scene.ocean))
+        {
+            self.set_waves(&scene.ocean, scene.ocean.surface()?)?;
         }
 
         let gpu = &self.gpu;

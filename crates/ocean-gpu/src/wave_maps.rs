@@ -107,7 +107,18 @@ pub fn make_source(
     kind: WaveSynthesis,
     ocean: &Ocean,
 ) -> Result<Box<dyn WaveMapSource>, Error> {
-    let surface = ocean.surface()?;
+    make_source_from(gpu, kind, ocean.surface()?)
+}
+
+/// [`make_source`] from modes already drawn (`ocean.surface()`, e.g. on another thread).
+///
+/// # Errors
+/// As [`make_source`].
+pub fn make_source_from(
+    gpu: &Gpu,
+    kind: WaveSynthesis,
+    surface: OceanSurface,
+) -> Result<Box<dyn WaveMapSource>, Error> {
     match kind {
         WaveSynthesis::CpuUpload => Ok(Box::new(CpuUpload::new(gpu, surface)?)),
         WaveSynthesis::GpuFft => {

@@ -184,6 +184,9 @@ pub(crate) fn check_choppiness(choppiness: f64) -> Result<()> {
     }
 }
 
+/// One bin as drawn: (|k|, ω, h0, the variance of its cell).
+type Bin = (f64, f64, Complex<f64>, f64);
+
 impl WaveModes {
     /// Draws the amplitudes of the grid described by `params`, for the spectrum `density`:
     /// F(kx, kz) in m⁴, the 2D wavenumber spectrum whose integral ∫∫ F dkx dkz is the
@@ -216,7 +219,7 @@ impl WaveModes {
         // Rows in parallel (each mode depends only on its own indices: the generator is
         // counter-based), then gathered and summed in row-major order, so the result and
         // the first error reported are those of a sequential loop, bit for bit.
-        let row = |bz: usize| -> Result<Vec<(f64, f64, Complex<f64>, f64)>> {
+        let row = |bz: usize| -> Result<Vec<Bin>> {
             let mut out = Vec::with_capacity(n);
             for bx in 0..n {
                 let (kx, kz) = (axis_k[bx], axis_k[bz]);
@@ -250,8 +253,7 @@ impl WaveModes {
             }
             Ok(out)
         };
-        let rows: Vec<Result<Vec<(f64, f64, Complex<f64>, f64)>>> =
-            (0..n).into_par_iter().map(row).collect();
+        let rows: Vec<Result<Vec<Bin>>> = (0..n).into_par_iter().map(row).collect();
         let mut k = Vec::with_capacity(n * n);
         let mut omega = Vec::with_capacity(n * n);
         let mut h0 = Vec::with_capacity(n * n);
