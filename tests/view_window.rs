@@ -326,3 +326,102 @@ fn bad_arguments_and_no_display_are_clear_errors() {
     assert!(text(&o).contains("needs a display"), "{}", text(&o));
     assert!(!text(&o).contains("panicked"), "{}", text(&o));
 }
+
+/// Runs `ocean view ARGS` and, once its window is up, the `xdotool` commands `inputs` (real
+/// X input events through XTEST); returns the viewer's output.
+fn view_with_input(x: &Xvfb, args: &[String], inputs: &[&[&str]]) -> Option<Output> {
+    if Command::new("xdotool").arg("version").output().is_err() {
+        return unavailable("no xdotool to send input (apt-get install xdotool)".into());
+    }
+    let child = ocean()
+        .arg("view")
+        .args(args)
+        .env("DISPLAY", &x.display)
+        .env_remove("WAYLAND_DISPLAY")
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("ocean view starts");
+    let xdotool = |a: &[&str]| {
+        let o = Command::new("timeout")
+            .arg("30")
+            .arg("xdotool")
+            .args(a)
+            .env("DISPLAY", &x.display)
+            .output()
+            .expect("xdotool runs");
+        assert!(o.status.success(), "xdotool {a:?}: {}", text(&o));
+        String::from_utf8_lossy(&o.stdout).trim().to_owned()
+    };
+    let window = xdotool(&["search", "--sync", "--onlyvisible", "--name", "^ocean view$"]);
+    let window = window.lines().next().expect("a window id").to_owned();
+    // No window manager under Xvfb: point at the window and give it the keyboard focus.
+    xdotool(&["mousemove", "--window", &window, "80", "45"]);
+    xdotool(&["windowfocus", "--sync", &window]);
+    for a in inputs {
+        xdotool(a);
+    }
+    let out = child.wait_with_output().expect("ocean view ends");
+    eprintln!("ocean view {}:\n{}", args.join(" "), text(&out));
+    Some(out)
+}
+
+/// (x, y, z, yaw °, pitch °) from the viewer's last line about its camera.
+fn final_camera(log: &str) -> [f64; 5] {
+    let line = log.lines().find(|l| l.starts_with("view: camera at")).expect("camera line");
+    let numbers: Vec<f64> = line
+        .split(|c: char| !(c.is_ascii_digit() || c == '.' || c == '-'))
+        .filter_map(|t| t.parse().ok())
+        .collect();
+    [numbers[0], numbers[1], numbers[2], numbers[3], numbers[4]]
+}
+
+#[test]
+fn keys_and_mouse_fly_the_camera_and_r_returns_to_the_scene_camera() {
+    let Some(adapter) = adapter() else { return };
+    let Some(x) = Xvfb::start() else { return };
+    let dir = out_dir("input");
+    let frames: u64 = 160;
+    let args = |shot: &Path| {
+        args_with_shot(&["--frames", &frames.to_string(), "--size", "160x90", "--no-ui"], shot)
+    };
+    // W held for half a second, a 50-pixel drag to the right with the right button, H.
+    let fly: [&[&str]; 6] = [
+        &["keydown", "w"],
+        &["sleep", "0.5"],
+        &["keyup", "w"],
+        &["mousedown", "3", "mousemove_relative", "--sync", "50", "0", "mouseup", "3"],
+        &["key", "h"],
+        &["sleep", "0.2"],
+    ];
+    let shot = dir.join("flown.png");
+    let Some(out) = view_with_input(&x, &args(&shot), &fly) else { return };
+    let log = text(&out);
+    assert!(out.status.success(), "ocean view failed:\n{log}");
+    let [cx, cy, cz, yaw, pitch] = final_camera(&log);
+    // The default camera sits at (0, 6, 30) looking along −z; W flew it forward.
+    assert!(cz < 28.0 && cx.abs() < 1.0 && (cy - 6.0).abs() < 1.0, "W: camera at {cx} {cy} {cz}");
+    let drag = (50.0 * ocean::view::controller::DEFAULT_SENSITIVITY).to_degrees();
+    assert!((yaw - drag).abs() < 0.5, "drag: yaw {yaw}° vs {drag}°");
+    assert_eq!(pitch, 0.0, "H levels the view");
+    let reference = dir.join("render.png");
+    let out = ocean()
+        .args(["render", "--backend", "gpu", "--size", "160x90", "--time", &time_arg(frames - 1)])
+        .arg("-o")
+        .arg(&reference)
+        .output()
+        .expect("render runs");
+    assert!(out.status.success(), "{}", text(&out));
+    let limits = ImageLimits::for_adapter(&adapter);
+    assert!(!compare(&shot, &reference, &limits).is_empty(), "the flight changed nothing");
+
+    // The same flight, then R: back at the scene camera, the window shows the headless
+    // render again.
+    let mut home: Vec<&[&str]> = fly.to_vec();
+    home.push(&["key", "r"]);
+    let shot = dir.join("home.png");
+    let Some(out) = view_with_input(&x, &args(&shot), &home) else { return };
+    assert!(out.status.success(), "ocean view failed:\n{}", text(&out));
+    let failures = compare(&shot, &reference, &limits);
+    assert!(failures.is_empty(), "after R: {failures:?}");
+}

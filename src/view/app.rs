@@ -320,6 +320,16 @@ impl App {
         }
         let adapter = self.gfx.as_ref().map_or_else(String::new, |g| g.gpu().report.to_string());
         eprintln!("{}", self.stats.summary(self.frame_index, &adapter));
+        let c = &self.controller;
+        eprintln!(
+            "view: camera at ({:.3}, {:.3}, {:.3}) m, yaw {:.3}°, pitch {:.3}°, speed {:.2} m/s",
+            c.position.x,
+            c.position.y,
+            c.position.z,
+            c.yaw.to_degrees(),
+            c.pitch.to_degrees(),
+            c.speed
+        );
         if let Some(path) = &self.args.screenshot {
             let (w, h, rgba) = self
                 .screenshot
