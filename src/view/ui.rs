@@ -251,9 +251,14 @@ fn stats(ui: &mut egui::Ui, o: &Overlay<'_>) {
             }
         });
     }
-    if let (Some(src), Some(ms)) = (o.wave_source, s.last_waves_cpu_ms) {
-        ui.label(RichText::new(format!("waves: {src}, {ms:.1} ms on the CPU")).small());
-    }
+    match (o.wave_source, s.last_waves_cpu_ms) {
+        // The CPU synthesis is timed on the CPU (its upload has no GPU pass).
+        (Some(src @ "cpu-upload"), Some(ms)) => {
+            ui.label(RichText::new(format!("waves: {src}, {ms:.1} ms on the CPU")).small())
+        }
+        (Some(src), _) => ui.label(RichText::new(format!("waves: {src}")).small()),
+        _ => ui.label(RichText::new("waves: not in the plan").small()),
+    };
     if let Some(plan) = o.plan {
         ui.separator();
         ui.label("plan (hover for the reason)");
