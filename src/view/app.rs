@@ -7,6 +7,7 @@
 //! it) → a new device, renderer, surface and egui renderer, keeping camera, parameters and
 //! time. A zero-sized (minimised) window renders nothing and wakes ten times a second.
 
+use std::collections::VecDeque;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex, mpsc};
 use std::time::{Duration, Instant};
@@ -18,6 +19,7 @@ use ocean_core::waves::OceanSurface;
 use ocean_gpu::frame::wave_key;
 use ocean_gpu::present::PresentStage;
 use ocean_gpu::texture::{Readbacks, TexelData};
+use ocean_gpu::timing::PendingTimings;
 use ocean_gpu::{Gpu, Readback, Renderer, WaveSynthesis};
 use winit::application::ApplicationHandler;
 use winit::dpi::PhysicalSize;
@@ -268,6 +270,8 @@ struct App {
     /// The window size at start, which the recovery exercise returns to.
     start_size: PhysicalSize<u32>,
     worker: ModeWorker,
+    /// GPU time per pass of frames still on the GPU, oldest first.
+    timings: VecDeque<(u64, PendingTimings)>,
     /// The sea whose modes the renderer holds ([`wave_key`]); `None` after a new device.
     shown_sea: Option<Ocean>,
 }
@@ -304,6 +308,7 @@ impl App {
             error: None,
             start_size,
             worker: ModeWorker::new(),
+            timings: VecDeque::new(),
             shown_sea: None,
         }
     }
@@ -317,6 +322,11 @@ impl App {
             && self.frame_index < n
         {
             bail!("the window closed after {} of {n} frames", self.frame_index);
+        }
+        if let Some(g) = &self.gfx
+            && g.gpu().wait().is_ok()
+        {
+            self.collect_timings();
         }
         let adapter = self.gfx.as_ref().map_or_else(String::new, |g| g.gpu().report.to_string());
         eprintln!("{}", self.stats.summary(self.frame_index, &adapter));
@@ -382,7 +392,21 @@ impl App {
         ));
         self.gfx = Some(gfx);
         self.shown_sea = None;
+        self.timings.clear();
         Ok(())
+    }
+
+    /// Takes the GPU times of the frames the GPU has finished (the device was polled this
+    /// frame).
+    fn collect_timings(&mut self) {
+        while let Some((index, pending)) = self.timings.front() {
+            match pending.try_take() {
+                None => break,
+                Some(Ok(passes)) => self.stats.record_passes(&passes, *index),
+                Some(Err(e)) => eprintln!("view: GPU timings of frame {index} lost: {e}"),
+            }
+            self.timings.pop_front();
+        }
     }
 
     /// Brings the renderer's wave modes towards the panel's sea: takes a finished drawing,
@@ -717,10 +741,13 @@ impl App {
         self.stats.record(
             dt,
             render_start.elapsed().as_secs_f64(),
-            &frame.gpu_timings,
             frame.waves_cpu,
             self.frame_index,
         );
+        if let Some(p) = frame.pending_timings {
+            self.timings.push_back((self.frame_index, p));
+        }
+        self.collect_timings();
         self.wave_source = frame.wave_source;
         self.last_plan = Some(plan);
         self.frame_index += 1;

@@ -50,33 +50,26 @@ pub(super) struct Stats {
 }
 
 impl Stats {
-    /// One presented frame: the wall time since the previous one (`dt`, s), the time the
-    /// renderer took (encoding, GPU work, timestamp readback; s), GPU time per pass.
-    pub fn record(
-        &mut self,
-        dt: f64,
-        render_s: f64,
-        passes: &[(Pass, Duration)],
-        waves_cpu: Option<Duration>,
-        index: u64,
-    ) {
-        let push = |q: &mut VecDeque<f64>, v: f64| {
-            if q.len() == RECENT {
-                q.pop_front();
-            }
-            q.push_back(v);
-        };
+    /// One presented frame: the wall time since the previous one (`dt`, s) and the time the
+    /// CPU spent on it (scene, plan, mesh, encoding, submission; s).
+    pub fn record(&mut self, dt: f64, cpu_s: f64, waves_cpu: Option<Duration>, index: u64) {
         if index > 0 {
             push(&mut self.recent_interval_ms, dt * 1e3);
         }
-        push(&mut self.recent_render_ms, render_s * 1e3);
-        self.last_passes = passes.iter().map(|(p, d)| (*p, d.as_secs_f64() * 1e3)).collect();
+        push(&mut self.recent_render_ms, cpu_s * 1e3);
         self.last_waves_cpu_ms = waves_cpu.map(|d| d.as_secs_f64() * 1e3);
+        if index >= WARM_UP {
+            self.interval_ms.push(dt * 1e3);
+            self.render_ms.push(cpu_s * 1e3);
+        }
+    }
+
+    /// GPU time per pass of frame `index`, which arrives a frame or two after it.
+    pub fn record_passes(&mut self, passes: &[(Pass, Duration)], index: u64) {
+        self.last_passes = passes.iter().map(|(p, d)| (*p, d.as_secs_f64() * 1e3)).collect();
         if index < WARM_UP {
             return;
         }
-        self.interval_ms.push(dt * 1e3);
-        self.render_ms.push(render_s * 1e3);
         for (p, ms) in &self.last_passes {
             match self.pass_ms.iter_mut().find(|(q, _)| q == p) {
                 Some((_, v)) => v.push(*ms),
@@ -108,7 +101,7 @@ impl Stats {
         };
         let mut out = format!(
             "view: {frames} frames on {adapter}; after {WARM_UP} warm-up frames, median (p10–p90): \
-             frame interval {}, render {}",
+             frame interval {}, CPU per frame {}",
             stat(&self.interval_ms),
             stat(&self.render_ms)
         );
@@ -122,6 +115,13 @@ impl Stats {
         }
         out
     }
+}
+
+fn push(q: &mut VecDeque<f64>, v: f64) {
+    if q.len() == RECENT {
+        q.pop_front();
+    }
+    q.push_back(v);
 }
 
 fn median(mut v: Vec<f64>) -> Option<f64> {
@@ -238,7 +238,7 @@ fn stats(ui: &mut egui::Ui, o: &Overlay<'_>) {
         None => ui.label("…"),
     };
     if let Some(ms) = median(s.recent_render_ms.iter().copied().collect()) {
-        ui.label(format!("render {ms:.1} ms · {}×{}", o.size.0, o.size.1));
+        ui.label(format!("CPU {ms:.1} ms/frame · {}×{}", o.size.0, o.size.1));
     }
     if s.last_passes.is_empty() {
         ui.label(RichText::new("GPU time per pass: no timestamp queries").weak());

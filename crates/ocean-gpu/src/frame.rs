@@ -38,7 +38,7 @@ use crate::sky::SkyStage;
 use crate::texture::{
     FloatMap, GpuTexture, LDR_FORMAT, MAP_FORMAT, Readbacks, SHADOW_FORMAT, TexelData, map_usage,
 };
-use crate::timing::PassTimer;
+use crate::timing::{PassTimer, PendingTimings};
 use crate::tonemap::TonemapStage;
 use crate::water::{WaterMeshBuffers, WaterStage, WaterTextures};
 use crate::wave_maps::{WaveMapSource, WaveSynthesis, make_source_from};
@@ -127,7 +127,7 @@ pub enum Readback {
     /// Only the output: the 8-bit picture when the plan tonemaps, else the HDR frame.
     Output,
     /// Nothing: the output stays on the GPU in [`GpuFrame::output`] (the real-time viewer
-    /// presents it). The frame still waits for the GPU when timestamps are read.
+    /// presents it), and the call returns after the submission without waiting for the GPU.
     None,
 }
 
@@ -144,11 +144,15 @@ pub struct GpuFrame {
     pub output: GpuTexture,
     /// The frame's uniforms.
     pub uniforms: FrameUniforms,
-    /// GPU time per pass from timestamp queries (empty without `TIMESTAMP_QUERY`).
+    /// GPU time per pass from timestamp queries (empty without `TIMESTAMP_QUERY`, and with
+    /// [`Readback::None`], which leaves them in [`Self::pending_timings`]).
     pub gpu_timings: Vec<(Pass, Duration)>,
+    /// With [`Readback::None`]: the timestamps on their way back.
+    pub pending_timings: Option<PendingTimings>,
     /// CPU time of the `waves` pass when its source runs on the CPU (synthesis and upload).
     pub waves_cpu: Option<Duration>,
-    /// Wall time of the whole frame: setup, encoding, submission, GPU work and readback.
+    /// Wall time of the whole frame: setup, encoding, submission, GPU work and readback (with
+    /// [`Readback::None`]: up to the submission, the GPU work goes on).
     pub wall: Duration,
     /// Which adapter rendered it.
     pub adapter: AdapterReport,
@@ -574,11 +578,17 @@ impl Renderer {
             }
             gpu.queue.submit([encoder.finish()]);
             let data = readbacks.finish(gpu)?;
-            let timings = timer.finish(gpu)?;
-            Ok((data, timings, ldr.unwrap_or(hdr)))
+            // Reading nothing back, the frame does not wait for the GPU: its timestamps come
+            // later (`GpuFrame::pending_timings`).
+            let (timings, pending) = if output {
+                (timer.finish(gpu)?, None)
+            } else {
+                (Vec::new(), timer.finish_later())
+            };
+            Ok((data, timings, pending, ldr.unwrap_or(hdr)))
         })??;
 
-        let (data, gpu_timings, output) = frame;
+        let (data, gpu_timings, pending_timings, output) = frame;
         let mut maps = Vec::new();
         let mut ldr = None;
         for (key, texels) in data {
@@ -598,6 +608,7 @@ impl Renderer {
             maps,
             ldr,
             output,
+            pending_timings,
             uniforms: u,
             gpu_timings,
             waves_cpu,

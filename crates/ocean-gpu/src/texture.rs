@@ -250,6 +250,10 @@ impl<K: Copy> Readbacks<K> {
     /// # Errors
     /// [`Error::Readback`] if a buffer cannot be mapped.
     pub fn finish(self, gpu: &Gpu) -> Result<Vec<(K, TexelData)>, Error> {
+        if self.pending.is_empty() {
+            // Nothing to read: no reason to wait for the GPU.
+            return Ok(Vec::new());
+        }
         type MapResult = Arc<Mutex<Option<Result<(), wgpu::BufferAsyncError>>>>;
         let results: Vec<MapResult> = self
             .pending

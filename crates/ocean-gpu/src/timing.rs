@@ -3,6 +3,7 @@
 //! several GPU passes (two Fresnel tables) gets the sum. Without the feature every call is a
 //! no-op and [`PassTimer::finish`] returns nothing.
 
+use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 use ocean_core::plan::Pass;
@@ -103,40 +104,88 @@ impl PassTimer {
     }
 
     /// GPU time of each timed pass (summed over its GPU passes), in first-timed order. Call
-    /// after the submission holding [`Self::resolve`] completed.
+    /// after the submission holding [`Self::resolve`]; waits for the GPU.
     ///
     /// # Errors
     /// [`Error::Readback`] if the query buffer cannot be mapped.
     pub fn finish(self, gpu: &Gpu) -> Result<Vec<(Pass, Duration)>, Error> {
-        let Some(q) = self.queries else { return Ok(Vec::new()) };
-        if self.slots.is_empty() {
-            return Ok(Vec::new());
-        }
-        let n = 2 * self.slots.len() as u64;
-        let slice = q.readback.slice(..n * 8);
-        let (tx, rx) = std::sync::mpsc::channel();
-        slice.map_async(wgpu::MapMode::Read, move |r| {
-            let _ = tx.send(r);
-        });
+        let Some(pending) = self.finish_later() else { return Ok(Vec::new()) };
         gpu.wait()?;
+        pending.try_take().unwrap_or_else(|| {
+            Err(Error::Readback {
+                what: "timestamps".into(),
+                message: "the buffer was not mapped after the wait".into(),
+            })
+        })
+    }
+
+    /// Starts reading the timestamps back without waiting (after the submission holding
+    /// [`Self::resolve`]): the real-time viewer collects them a frame or two later, so that
+    /// the CPU never waits for the GPU to finish a frame. `None` without timed passes.
+    pub fn finish_later(self) -> Option<PendingTimings> {
+        let q = self.queries?;
+        if self.slots.is_empty() {
+            return None;
+        }
+        let bytes = 2 * self.slots.len() as u64 * 8;
+        let state: MapState = Arc::new(Mutex::new(None));
+        let slot = Arc::clone(&state);
+        q.readback.slice(..bytes).map_async(wgpu::MapMode::Read, move |r| {
+            if let Ok(mut s) = slot.lock() {
+                *s = Some(r);
+            }
+        });
+        Some(PendingTimings {
+            readback: q.readback,
+            bytes,
+            slots: self.slots,
+            period_ns: q.period_ns,
+            state,
+        })
+    }
+}
+
+type MapState = Arc<Mutex<Option<Result<(), wgpu::BufferAsyncError>>>>;
+
+/// Timestamps on their way back from the GPU ([`PassTimer::finish_later`]).
+pub struct PendingTimings {
+    readback: wgpu::Buffer,
+    bytes: u64,
+    slots: Vec<Pass>,
+    period_ns: f32,
+    state: MapState,
+}
+
+impl PendingTimings {
+    /// The GPU time per pass once the GPU has finished the frame and the device was polled
+    /// since (`Device::poll`); `None` before.
+    pub fn try_take(&self) -> Option<Result<Vec<(Pass, Duration)>, Error>> {
         let fail = |message: String| Error::Readback { what: "timestamps".into(), message };
-        rx.recv().map_err(|e| fail(e.to_string()))?.map_err(|e| fail(e.to_string()))?;
-        let ticks: Vec<u64> = {
-            let view = slice.get_mapped_range().map_err(|e| fail(e.to_string()))?;
-            view.chunks_exact(8)
-                .map(|c| u64::from_le_bytes([c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]]))
-                .collect()
+        let status = match self.state.lock() {
+            Ok(mut s) => s.take()?,
+            Err(_) => return Some(Err(fail("poisoned lock".into()))),
         };
-        q.readback.unmap();
+        if let Err(e) = status {
+            return Some(Err(fail(e.to_string())));
+        }
+        let slice = self.readback.slice(..self.bytes);
+        let ticks: Vec<u64> = match slice.get_mapped_range() {
+            Ok(view) => view
+                .chunks_exact(8)
+                .map(|c| u64::from_le_bytes([c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]]))
+                .collect(),
+            Err(e) => return Some(Err(fail(e.to_string()))),
+        };
+        self.readback.unmap();
         let mut out: Vec<(Pass, Duration)> = Vec::new();
         for (i, pass) in self.slots.iter().enumerate() {
             let dt = ticks[2 * i + 1].saturating_sub(ticks[2 * i]);
-            let d = Duration::from_nanos((dt as f64 * f64::from(q.period_ns)) as u64);
+            let d = Duration::from_nanos((dt as f64 * f64::from(self.period_ns)) as u64);
             match out.iter_mut().find(|(p, _)| p == pass) {
                 Some((_, total)) => *total += d,
                 None => out.push((*pass, d)),
             }
         }
-        Ok(out)
+        Some(Ok(out))
     }
 }
