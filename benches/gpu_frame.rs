@@ -3,11 +3,13 @@
 //! and the CPU renderer's time for the same frame in the same run.
 //!
 //! Before the criterion runs it prints, per size, the GPU time of each pass from timestamp
-//! queries (median of a few frames; the `waves` pass runs on the CPU and is timed there) and
-//! the wall time of a whole frame on each back end with the ratio CPU / GPU. Wall time covers
-//! setup, encoding, the GPU work and reading the 8-bit picture back (`Readback::Output`); the
-//! CPU frame likewise ends with the 8-bit picture. Without an adapter the bench says so and
-//! measures nothing.
+//! queries (median of a few frames; `waves` is the GPU FFT, or, where the CPU synthesis is
+//! uploaded, timed on the CPU) and the wall time of a whole frame on each back end with the
+//! ratio CPU / GPU. Wall time covers setup, encoding, the GPU work and reading the 8-bit
+//! picture back (`Readback::Output`); the CPU frame likewise ends with the 8-bit picture.
+//! `gpu_stream` is the real-time viewer's case: frames submitted back to back with nothing
+//! read back (`Readback::None`), the GPU waited for once per batch, time per frame. Without an
+//! adapter the bench says so and measures nothing.
 //!
 //! `WGPU_BACKEND=vulkan cargo bench --bench gpu_frame`
 
@@ -99,6 +101,16 @@ fn bench(c: &mut Criterion) {
         let plan = FramePlan::new(&s, OutputKind::Ldr);
         group.bench_with_input(BenchmarkId::new("gpu", format!("{w}x{h}")), &s, |b, s| {
             b.iter(|| black_box(renderer.run_with(s, &plan, Readback::Output).expect("GPU frame")))
+        });
+        group.bench_with_input(BenchmarkId::new("gpu_stream", format!("{w}x{h}")), &s, |b, s| {
+            b.iter_custom(|iters| {
+                let t0 = Instant::now();
+                for _ in 0..iters {
+                    black_box(renderer.run_with(s, &plan, Readback::None).expect("GPU frame"));
+                }
+                renderer.gpu().wait().expect("GPU idle");
+                t0.elapsed()
+            })
         });
         group.bench_with_input(BenchmarkId::new("cpu", format!("{w}x{h}")), &s, |b, s| {
             b.iter(|| black_box(ocean_cpu::render_ldr(s).expect("CPU frame")))
