@@ -377,22 +377,34 @@ fn final_camera(log: &str) -> [f64; 5] {
 }
 
 #[test]
-fn keys_and_mouse_fly_the_camera_and_r_returns_to_the_scene_camera() {
+fn keys_and_mouse_fly_the_camera_hiding_survives_and_r_returns_home() {
     let Some(adapter) = adapter() else { return };
     let Some(x) = Xvfb::start() else { return };
     let dir = out_dir("input");
     let frames: u64 = 160;
     let args = |shot: &Path| {
-        args_with_shot(&["--frames", &frames.to_string(), "--size", "160x90", "--no-ui"], shot)
+        // 160 frames of at least 40 ms: 6.4 s or more, whatever the machine, for about 2 s of
+        // input.
+        let f = frames.to_string();
+        args_with_shot(
+            &["--frames", &f, "--size", "160x90", "--no-ui", "--min-frame-ms", "40"],
+            shot,
+        )
     };
-    // W held for half a second, a 50-pixel drag to the right with the right button, H.
-    let fly: [&[&str]; 6] = [
+    // W held for half a second, a 50-pixel drag to the right with the right button, H; then
+    // the window is hidden (unmapped, as a minimised window is) and shown again.
+    let fly: [&[&str]; 10] = [
         &["keydown", "w"],
         &["sleep", "0.5"],
         &["keyup", "w"],
         &["mousedown", "3", "mousemove_relative", "--sync", "50", "0", "mouseup", "3"],
         &["key", "h"],
         &["sleep", "0.2"],
+        &["search", "--name", "^ocean view$", "windowunmap", "--sync"],
+        &["sleep", "0.5"],
+        &["search", "--name", "^ocean view$", "windowmap", "--sync"],
+        // Hiding took the keyboard focus away.
+        &["search", "--name", "^ocean view$", "windowfocus", "--sync"],
     ];
     let shot = dir.join("flown.png");
     let Some(out) = view_with_input(&x, &args(&shot), &fly) else { return };

@@ -532,6 +532,9 @@ impl App {
         let Some(mut gfx) = self.gfx.take() else { return Ok(()) };
         let result = self.draw(event_loop, &window, &mut gfx, size, dt);
         self.gfx = Some(gfx);
+        if let Some(ms) = self.args.min_frame_ms {
+            std::thread::sleep(Duration::from_millis(ms).saturating_sub(now.elapsed()));
+        }
         result
     }
 

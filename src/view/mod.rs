@@ -59,6 +59,10 @@ pub struct Args {
     /// ([`params::range::WIND_SPEED`]) one step a frame, through the panel's mapping.
     #[arg(long, hide = true, requires = "frames")]
     pub exercise_wind_sweep: bool,
+    /// Testing aid: make each frame last at least this many milliseconds (a slow display), so
+    /// that scripted input lands within a --frames run on any machine.
+    #[arg(long, hide = true)]
+    pub min_frame_ms: Option<u64>,
 }
 
 /// Whether presentation waits for the display.
