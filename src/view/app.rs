@@ -222,6 +222,10 @@ struct ModeWorker {
     results: mpsc::Receiver<(Ocean, Result<OceanSurface, String>)>,
     /// The last sea asked for, while it is being drawn.
     pending: Option<Ocean>,
+    /// Results still to come that were asked for before a lost device: dropped.
+    stale: usize,
+    /// A sea whose modes could not be drawn (not asked for again).
+    failed: Option<Ocean>,
 }
 
 impl ModeWorker {
@@ -236,7 +240,7 @@ impl ModeWorker {
                 }
             }
         });
-        Self { requests, results, pending: None }
+        Self { requests, results, pending: None, stale: 0, failed: None }
     }
 }
 
@@ -272,6 +276,8 @@ struct App {
     worker: ModeWorker,
     /// GPU time per pass of frames still on the GPU, oldest first.
     timings: VecDeque<(u64, PendingTimings)>,
+    /// Set while the window has nothing to draw: no redraw is asked for before then.
+    idle_until: Option<Instant>,
     /// The sea whose modes the renderer holds ([`wave_key`]); `None` after a new device.
     shown_sea: Option<Ocean>,
 }
@@ -309,6 +315,7 @@ impl App {
             start_size,
             worker: ModeWorker::new(),
             timings: VecDeque::new(),
+            idle_until: None,
             shown_sea: None,
         }
     }
@@ -392,6 +399,9 @@ impl App {
         ));
         self.gfx = Some(gfx);
         self.shown_sea = None;
+        if self.worker.pending.take().is_some() {
+            self.worker.stale += 1;
+        }
         self.timings.clear();
         Ok(())
     }
@@ -410,9 +420,9 @@ impl App {
     }
 
     /// Brings the renderer's wave modes towards the panel's sea: takes a finished drawing,
-    /// asks for the next one. With `wait` (the first frame, the last frame of a `--frames`
-    /// run) it returns only once the renderer holds the panel's sea, so screenshots are
-    /// reproducible.
+    /// asks for the next one. With `wait` (the last frame of a `--frames` run) it returns
+    /// only once the renderer holds the panel's sea, so screenshots are reproducible. The
+    /// first frame on a device draws the modes itself, in `Renderer::run_with`.
     fn sync_waves(&mut self, gfx: &mut Graphics, wait: bool) -> anyhow::Result<()> {
         let target = wave_key(&self.scene.ocean);
         loop {
@@ -422,13 +432,21 @@ impl App {
                 self.worker.results.try_recv().ok()
             };
             if let Some((sea, surface)) = received {
+                if self.worker.stale > 0 {
+                    // Asked for before the device was lost: the new renderer has moved on.
+                    self.worker.stale -= 1;
+                    continue;
+                }
                 self.worker.pending = None;
                 match surface {
                     Ok(surface) => {
                         gfx.renderer.set_waves(&sea, surface)?;
                         self.shown_sea = Some(sea);
                     }
-                    Err(e) => self.param_error = Some(e),
+                    Err(e) => {
+                        self.param_error = Some(format!("wave modes: {e}"));
+                        self.worker.failed = Some(sea);
+                    }
                 }
                 continue;
             }
@@ -438,6 +456,16 @@ impl App {
             if self.shown_sea.is_none() && self.worker.pending.is_none() {
                 // Nothing on the GPU yet: the frame draws the modes itself.
                 self.shown_sea = Some(target);
+                return Ok(());
+            }
+            if self.worker.failed.as_ref() == Some(&target) {
+                // Not asked again: the last good sea stays, the panel says why.
+                if wait {
+                    bail!(
+                        "the wave modes of the panel's sea cannot be drawn: {}",
+                        self.param_error.as_deref().unwrap_or("unknown error")
+                    );
+                }
                 return Ok(());
             }
             if self.worker.pending.is_none() {
@@ -505,14 +533,20 @@ impl App {
         Ok(())
     }
 
+    /// Nothing to draw (minimised, occluded): sleep [`IDLE_WAIT`] before trying again, and do
+    /// not count the time away as a frame step (the sea and the camera carry on from here).
+    fn go_idle(&mut self) {
+        self.idle_until = Some(Instant::now() + IDLE_WAIT);
+        self.last_frame = None;
+    }
+
     fn redraw(&mut self, event_loop: &ActiveEventLoop) -> anyhow::Result<()> {
         let Some(window) = self.window.clone() else { return Ok(()) };
         let size = window.inner_size();
         if size.width == 0 || size.height == 0 {
-            event_loop.set_control_flow(ControlFlow::wait_duration(IDLE_WAIT));
+            self.go_idle();
             return Ok(());
         }
-        event_loop.set_control_flow(ControlFlow::Poll);
         let now = Instant::now();
         let dt = self.last_frame.map_or(0.0, |t| (now - t).as_secs_f64());
         self.last_frame = Some(now);
@@ -551,24 +585,6 @@ impl App {
         let last = self.args.frames.is_some_and(|n| self.frame_index + 1 >= n);
         self.sync_waves(gfx, last)?;
 
-        let mut scene = self.scene.clone();
-        if let Some(sea) = &self.shown_sea {
-            scene.ocean = sea.clone();
-        }
-        self.controller.apply(&mut scene.camera);
-        (scene.camera.width, scene.camera.height) = (gfx.config.width, gfx.config.height);
-        scene.ocean.time_s = self.sim_time;
-        let plan = FramePlan::new(&scene, OutputKind::Ldr);
-        let render_start = Instant::now();
-        let frame = match gfx.renderer.run_with(&scene, &plan, Readback::None) {
-            Ok(f) => f,
-            Err(e) if gfx.device_lost() => {
-                eprintln!("view: frame {} failed on a lost device ({e})", self.frame_index);
-                return Ok(());
-            }
-            Err(e) => return Err(e.into()),
-        };
-
         let mut reconfigure = false;
         let texture = match gfx.surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(t) => t,
@@ -578,7 +594,8 @@ impl App {
                 t
             }
             wgpu::CurrentSurfaceTexture::Timeout | wgpu::CurrentSurfaceTexture::Occluded => {
-                event_loop.set_control_flow(ControlFlow::wait_duration(IDLE_WAIT));
+                // Acquired before the frame is rendered, so a hidden window costs nothing.
+                self.go_idle();
                 return Ok(());
             }
             wgpu::CurrentSurfaceTexture::Outdated => {
@@ -600,6 +617,24 @@ impl App {
                 bail!("GPU validation error while acquiring the window's next image");
             }
         };
+        let mut scene = self.scene.clone();
+        if let Some(sea) = &self.shown_sea {
+            scene.ocean = sea.clone();
+        }
+        self.controller.apply(&mut scene.camera);
+        (scene.camera.width, scene.camera.height) = (gfx.config.width, gfx.config.height);
+        scene.ocean.time_s = self.sim_time;
+        let plan = FramePlan::new(&scene, OutputKind::Ldr);
+        let render_start = Instant::now();
+        let frame = match gfx.renderer.run_with(&scene, &plan, Readback::None) {
+            Ok(f) => f,
+            Err(e) if gfx.device_lost() => {
+                eprintln!("view: frame {} failed on a lost device ({e})", self.frame_index);
+                return Ok(());
+            }
+            Err(e) => return Err(e.into()),
+        };
+
         let view = texture.texture.create_view(&wgpu::TextureViewDescriptor {
             format: Some(gfx.view_format),
             ..Default::default()
@@ -829,16 +864,24 @@ impl ApplicationHandler for App {
             WindowEvent::KeyboardInput { event, .. } => {
                 let pressed = event.state == ElementState::Pressed;
                 // Releases always reach the camera, so no key stays held behind the panel.
+                // F1 too: it must work while a panel field has the focus.
                 if let PhysicalKey::Code(code) = event.physical_key
-                    && (!consumed || !pressed)
+                    && (!consumed || !pressed || code == KeyCode::F1)
                 {
                     self.key(event_loop, code, pressed, event.repeat);
                 }
             }
             WindowEvent::MouseInput { state, button, .. } => {
-                let over_ui = self.ui_visible && self.egui_ctx.is_pointer_over_egui();
+                // Hit-test the cursor now: egui's own idea of the pointer is a frame old, and a
+                // frame is 100 ms on lavapipe.
+                let ppp = window.scale_factor() as f32;
+                let over_ui = self.ui_visible
+                    && self.cursor.is_some_and(|(x, y)| {
+                        let p = egui::pos2(x as f32 / ppp, y as f32 / ppp);
+                        self.egui_ctx.layer_id_at(p).is_some()
+                    });
                 match (button, state) {
-                    (MouseButton::Right, ElementState::Pressed) => self.looking = true,
+                    (MouseButton::Right, ElementState::Pressed) if !over_ui => self.looking = true,
                     (MouseButton::Left, ElementState::Pressed) if !consumed && !over_ui => {
                         self.looking = true;
                     }
@@ -869,7 +912,17 @@ impl ApplicationHandler for App {
         }
     }
 
-    fn about_to_wait(&mut self, _event_loop: &ActiveEventLoop) {
+    fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
+        // A redraw request makes winit poll without sleeping, so an idle window (minimised,
+        // occluded) asks for none until its wake-up time.
+        if let Some(t) = self.idle_until
+            && Instant::now() < t
+        {
+            event_loop.set_control_flow(ControlFlow::WaitUntil(t));
+            return;
+        }
+        self.idle_until = None;
+        event_loop.set_control_flow(ControlFlow::Poll);
         if let Some(w) = &self.window {
             w.request_redraw();
         }

@@ -12,8 +12,10 @@
 //! frame, so a slider that changes the sea costs one h0 upload (N² modes), not a stall.
 //!
 //! With `--frames N`, time advances exactly 1/60 s per frame (frame i shows
-//! `t0 + i/60`), whatever the wall clock does, so `--screenshot` is reproducible and matches
-//! `ocean render --backend gpu --time t0+(N−1)/60` of the same scene and size.
+//! `t0 + i/60`), whatever the wall clock does, and the last frame waits for the panel's sea,
+//! so `--screenshot --no-ui` is reproducible and matches
+//! `ocean render --backend gpu --time t0+(N−1)/60` of the same scene and size (with the panel,
+//! the overlay's timings are in the picture).
 
 mod app;
 pub mod controller;

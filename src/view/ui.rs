@@ -189,11 +189,12 @@ fn panel(ui: &mut egui::Ui, p: &mut ViewParams, overlay: &Overlay<'_>, actions: 
             slider(ui, &mut p.sun_azimuth_deg, (-180.0, 180.0), "azimuth, °", false);
         });
     });
-    egui::CollapsingHeader::new("Water").default_open(false).show(ui, |ui| {
+    egui::CollapsingHeader::new("Water").default_open(true).show(ui, |ui| {
         for (c, name) in p.water_color.iter_mut().zip(["red", "green", "blue"]) {
             ui.add(
                 egui::Slider::new(c, range::WATER_COLOR.0..=range::WATER_COLOR.1)
                     .logarithmic(true)
+                    .clamping(egui::SliderClamping::Edits)
                     .text(format!("colour {name}")),
             );
         }
@@ -274,8 +275,16 @@ fn stats(ui: &mut egui::Ui, o: &Overlay<'_>) {
     ui.label(RichText::new(o.adapter).small());
 }
 
+/// A slider over `lo..=hi` that leaves a scene's value outside the range as it is (egui
+/// clamps existing values by default, which would change the scene by drawing the panel);
+/// only the user's own edits are kept within the range.
 fn slider(ui: &mut egui::Ui, v: &mut f64, (lo, hi): (f64, f64), text: &str, log: bool) {
-    ui.add(egui::Slider::new(v, lo..=hi).logarithmic(log).text(text));
+    ui.add(
+        egui::Slider::new(v, lo..=hi)
+            .logarithmic(log)
+            .clamping(egui::SliderClamping::Edits)
+            .text(text),
+    );
 }
 
 fn spectrum_label(k: SpectrumKind) -> &'static str {
@@ -284,5 +293,72 @@ fn spectrum_label(k: SpectrumKind) -> &'static str {
         SpectrumKind::PiersonMoskowitz => "Pierson–Moskowitz",
         SpectrumKind::Jonswap => "JONSWAP",
         SpectrumKind::Tma => "TMA (finite depth)",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::view::params::sun_direction;
+    use ocean_core::scene::Scene;
+
+    fn run(ctx: &egui::Context, f: impl FnMut(&egui::Context)) {
+        let input = egui::RawInput {
+            screen_rect: Some(egui::Rect::from_min_size(
+                egui::Pos2::ZERO,
+                egui::vec2(1280.0, 2000.0),
+            )),
+            ..Default::default()
+        };
+        let _ = ctx.run_pass(input, f);
+    }
+
+    /// A scene file may hold values the sliders do not reach; showing the panel must not
+    /// pull them into the sliders' ranges (which would change the picture untouched).
+    #[test]
+    fn drawing_the_panel_leaves_a_scenes_out_of_range_values_alone() {
+        let mut scene = Scene::builtin();
+        scene.ocean.wind_speed = 45.0;
+        scene.ocean.wind_direction_deg = -30.0;
+        scene.ocean.fetch_km = 5000.0;
+        scene.ocean.patch_size_m = 4096.0;
+        scene.ocean.choppiness = 3.0;
+        scene.water.color = [0.0, 0.0, 0.6];
+        scene.water.extinction_per_m = 5.0;
+        if let Some(sun) = &mut scene.sun {
+            sun.direction = sun_direction(-20.0, 10.0);
+        }
+        scene.validate().expect("a valid scene");
+        let mut p = ViewParams::from_scene(&scene);
+        let before = p.clone();
+        let stats = Stats::default();
+        let controller = CameraController::new(&scene.camera);
+        let overlay = Overlay {
+            stats: &stats,
+            plan: None,
+            adapter: "test",
+            controller: &controller,
+            time_s: 0.0,
+            size: (1280, 720),
+            error: None,
+            wave_source: None,
+        };
+        let ctx = egui::Context::default();
+        let mut actions = Vec::new();
+        for _ in 0..3 {
+            run(&ctx, |ctx| draw(ctx, &mut p, &overlay, &mut actions));
+        }
+        assert!(actions.is_empty());
+        assert_eq!(p, before);
+        assert_eq!(p.apply(&scene).expect("applies"), scene);
+
+        // Negative control: egui's default slider does clamp an existing value.
+        let mut v = 45.0;
+        run(&ctx, |ctx| {
+            egui::Window::new("control").show(ctx, |ui| {
+                ui.add(egui::Slider::new(&mut v, 0.0..=40.0));
+            });
+        });
+        assert_eq!(v, 40.0);
     }
 }

@@ -184,7 +184,8 @@ pub struct Renderer {
 
 impl Renderer {
     /// Opens the adapter the environment selects ([`crate::device`]) and creates every
-    /// pipeline; the wave maps come from the CPU synthesis ([`WaveSynthesis::CpuUpload`]).
+    /// pipeline; the wave maps come from the GPU FFT ([`WaveSynthesis::GpuFft`], the
+    /// default).
     ///
     /// # Errors
     /// [`Error::NoAdapter`] and the other device errors; [`Error::Wgpu`] if a pipeline does

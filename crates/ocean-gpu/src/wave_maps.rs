@@ -10,15 +10,15 @@
 //! | `bump` | N_b² | (slope_x, slope_z, height, jacobian) |
 //!
 //! A [`WaveMapSource`] produces them for a time t. Two sources:
-//! - [`CpuUpload`] (now): ocean-core's `Synthesizer<f32>` on the CPU, exactly as the CPU
-//!   renderer's `waves` pass runs it, uploaded with `Queue::write_texture`. The maps are then
-//!   the CPU's bit for bit, which isolates every later stage in the cross-check.
-//! - the GPU FFT (`crates/ocean-gpu/src/waves.rs`, to come: h0(k) uploaded once, then
-//!   h̃(k, t), the choppy and slope spectra and an inverse FFT in compute passes every frame).
-//!   It plugs in at [`make_source`] — the one place marked `GPU FFT SEAM` — by implementing
-//!   [`WaveMapSource`]: record its compute passes into the frame's encoder in
-//!   [`WaveMapSource::encode`] and return the textures it wrote (created with
-//!   [`crate::texture::map_usage`], which includes `STORAGE_BINDING` for `textureStore`).
+//! - [`GpuFft`] (the default): h0(k) uploaded once, then h̃(k, t), the choppy and slope
+//!   spectra and a Stockham inverse FFT in compute passes every frame
+//!   (`crates/ocean-gpu/src/waves.rs`); a new sea of the same size takes new modes in place
+//!   ([`WaveMapSource::update`]).
+//! - [`CpuUpload`]: ocean-core's `Synthesizer<f32>` on the CPU, exactly as the CPU renderer's
+//!   `waves` pass runs it, uploaded with `Queue::write_texture`. The maps are then the CPU's
+//!   bit for bit, which isolates every later stage in the cross-check. It is also the
+//!   fallback where the GPU FFT cannot take a sea (a size that is not a power of two, or
+//!   buffers beyond the device's limits).
 
 use ocean_core::frame::{bump_texels, displacement_slope_texels, displacement_texels};
 use ocean_core::scene::Ocean;
@@ -100,8 +100,8 @@ pub trait WaveMapSource {
 /// The wave-map source of `kind` for an ocean (its modes drawn by ocean-core).
 ///
 /// # Errors
-/// [`Error::Core`] if the ocean's modes cannot be drawn; [`Error::Unavailable`] for
-/// [`WaveSynthesis::GpuFft`] until it is built.
+/// [`Error::Core`] if the ocean's modes cannot be drawn; [`Error::Wgpu`] or
+/// [`Error::Unavailable`] if neither source can be made.
 pub fn make_source(
     gpu: &Gpu,
     kind: WaveSynthesis,
@@ -128,7 +128,13 @@ pub fn make_source_from(
             {
                 return Ok(Box::new(CpuUpload::new(gpu, surface)?));
             }
-            Ok(Box::new(GpuFft::new(gpu, surface)?))
+            match GpuFft::new(gpu, surface.clone()) {
+                Ok(fft) => Ok(Box::new(fft)),
+                // Too large for the device's buffers: the CPU synthesis can (the frame
+                // reports the source it used, `GpuFrame::wave_source`).
+                Err(Error::Unavailable(_)) => Ok(Box::new(CpuUpload::new(gpu, surface)?)),
+                Err(e) => Err(e),
+            }
         }
     }
 }
