@@ -625,7 +625,7 @@ impl App {
         (scene.camera.width, scene.camera.height) = (gfx.config.width, gfx.config.height);
         scene.ocean.time_s = self.sim_time;
         let plan = FramePlan::new(&scene, OutputKind::Ldr);
-        let render_start = Instant::now();
+        let cpu_start = Instant::now();
         let frame = match gfx.renderer.run_with(&scene, &plan, Readback::None) {
             Ok(f) => f,
             Err(e) if gfx.device_lost() => {
@@ -776,12 +776,7 @@ impl App {
         }
         gfx.check_uncaptured("presenting the frame")?;
 
-        self.stats.record(
-            dt,
-            render_start.elapsed().as_secs_f64(),
-            frame.waves_cpu,
-            self.frame_index,
-        );
+        self.stats.record(dt, cpu_start.elapsed().as_secs_f64(), frame.waves_cpu, self.frame_index);
         if let Some(p) = frame.pending_timings {
             self.timings.push_back((self.frame_index, p));
         }

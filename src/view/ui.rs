@@ -41,11 +41,11 @@ pub(super) struct Overlay<'a> {
 #[derive(Default)]
 pub(super) struct Stats {
     recent_interval_ms: VecDeque<f64>,
-    recent_render_ms: VecDeque<f64>,
+    recent_cpu_ms: VecDeque<f64>,
     last_passes: Vec<(Pass, f64)>,
     last_waves_cpu_ms: Option<f64>,
     interval_ms: Vec<f64>,
-    render_ms: Vec<f64>,
+    cpu_ms: Vec<f64>,
     pass_ms: Vec<(Pass, Vec<f64>)>,
 }
 
@@ -56,11 +56,11 @@ impl Stats {
         if index > 0 {
             push(&mut self.recent_interval_ms, dt * 1e3);
         }
-        push(&mut self.recent_render_ms, cpu_s * 1e3);
+        push(&mut self.recent_cpu_ms, cpu_s * 1e3);
         self.last_waves_cpu_ms = waves_cpu.map(|d| d.as_secs_f64() * 1e3);
         if index >= WARM_UP {
             self.interval_ms.push(dt * 1e3);
-            self.render_ms.push(cpu_s * 1e3);
+            self.cpu_ms.push(cpu_s * 1e3);
         }
     }
 
@@ -103,7 +103,7 @@ impl Stats {
             "view: {frames} frames on {adapter}; after {WARM_UP} warm-up frames, median (p10–p90): \
              frame interval {}, CPU per frame {}",
             stat(&self.interval_ms),
-            stat(&self.render_ms)
+            stat(&self.cpu_ms)
         );
         if !self.pass_ms.is_empty() {
             let passes: Vec<String> = self
@@ -238,7 +238,7 @@ fn stats(ui: &mut egui::Ui, o: &Overlay<'_>) {
         Some(ms) => ui.label(format!("{ms:.1} ms/frame ({:.1} fps)", 1e3 / ms)),
         None => ui.label("…"),
     };
-    if let Some(ms) = median(s.recent_render_ms.iter().copied().collect()) {
+    if let Some(ms) = median(s.recent_cpu_ms.iter().copied().collect()) {
         ui.label(format!("CPU {ms:.1} ms/frame · {}×{}", o.size.0, o.size.1));
     }
     if s.last_passes.is_empty() {

@@ -162,6 +162,22 @@ struct Pending<K> {
     format: wgpu::TextureFormat,
 }
 
+/// Where a buffer's `map_async` leaves its result: `None` until the device is polled after
+/// the GPU finished with the buffer.
+pub(crate) type MapState = Arc<Mutex<Option<Result<(), wgpu::BufferAsyncError>>>>;
+
+/// Starts mapping `slice` for reading; the result arrives in the returned state.
+pub(crate) fn map_for_reading(slice: wgpu::BufferSlice<'_>) -> MapState {
+    let state: MapState = Arc::new(Mutex::new(None));
+    let slot = Arc::clone(&state);
+    slice.map_async(wgpu::MapMode::Read, move |r| {
+        if let Ok(mut s) = slot.lock() {
+            *s = Some(r);
+        }
+    });
+    state
+}
+
 /// The texture copies of one submission.
 pub struct Readbacks<K> {
     pending: Vec<Pending<K>>,
@@ -254,21 +270,8 @@ impl<K: Copy> Readbacks<K> {
             // Nothing to read: no reason to wait for the GPU.
             return Ok(Vec::new());
         }
-        type MapResult = Arc<Mutex<Option<Result<(), wgpu::BufferAsyncError>>>>;
-        let results: Vec<MapResult> = self
-            .pending
-            .iter()
-            .map(|p| {
-                let slot: MapResult = Arc::new(Mutex::new(None));
-                let s = Arc::clone(&slot);
-                p.buffer.slice(..).map_async(wgpu::MapMode::Read, move |r| {
-                    if let Ok(mut g) = s.lock() {
-                        *g = Some(r);
-                    }
-                });
-                slot
-            })
-            .collect();
+        let results: Vec<MapState> =
+            self.pending.iter().map(|p| map_for_reading(p.buffer.slice(..))).collect();
         gpu.wait()?;
         let mut out = Vec::with_capacity(self.pending.len());
         for (p, slot) in self.pending.into_iter().zip(results) {

@@ -3,12 +3,12 @@
 //! several GPU passes (two Fresnel tables) gets the sum. Without the feature every call is a
 //! no-op and [`PassTimer::finish`] returns nothing.
 
-use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 use ocean_core::plan::Pass;
 
 use crate::device::{Error, Gpu};
+use crate::texture::{MapState, map_for_reading};
 
 /// Most GPU passes a frame can time (9 plan passes, the Fresnel stage twice).
 const MAX_GPU_PASSES: u32 = 16;
@@ -128,13 +128,7 @@ impl PassTimer {
             return None;
         }
         let bytes = 2 * self.slots.len() as u64 * 8;
-        let state: MapState = Arc::new(Mutex::new(None));
-        let slot = Arc::clone(&state);
-        q.readback.slice(..bytes).map_async(wgpu::MapMode::Read, move |r| {
-            if let Ok(mut s) = slot.lock() {
-                *s = Some(r);
-            }
-        });
+        let state = map_for_reading(q.readback.slice(..bytes));
         Some(PendingTimings {
             readback: q.readback,
             bytes,
@@ -144,8 +138,6 @@ impl PassTimer {
         })
     }
 }
-
-type MapState = Arc<Mutex<Option<Result<(), wgpu::BufferAsyncError>>>>;
 
 /// Timestamps on their way back from the GPU ([`PassTimer::finish_later`]).
 pub struct PendingTimings {
