@@ -12,6 +12,8 @@ use ocean::cross_check::{check_scene, map_pass, write_artefacts};
 pub struct Args {
     /// Scene file (TOML); the built-in default scene when omitted.
     scene: Option<PathBuf>,
+    #[command(flatten)]
+    system: ocean::scene_arg::SystemArg,
     /// Folder for the images and the JSON summary (created if missing).
     #[arg(long, default_value = "ocean-compare")]
     out_dir: PathBuf,
@@ -22,7 +24,7 @@ pub struct Args {
 
 /// Runs `ocean compare`.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let mut scene = crate::load_scene(args.scene.as_ref())?;
+    let mut scene = ocean::scene_arg::load_scene(args.scene.as_ref(), &args.system)?;
     if let Some(s) = &args.size {
         (scene.camera.width, scene.camera.height) = ocean::output::parse_size(s)?;
     }

@@ -12,7 +12,7 @@
 
 use std::path::Path;
 
-use ocean_core::plan::{FramePlan, OutputKind, Pass};
+use ocean_core::plan::{FramePlan, OutputKind, Pass, ResourceId};
 use ocean_core::scene::Scene;
 use ocean_cpu::frame::FrameBuffers;
 use ocean_gpu::{AdapterReport, FloatMap, FrameMap, GpuFrame, Renderer};
@@ -95,6 +95,9 @@ pub struct FloatStats {
     pub cpu_size: (u32, u32),
     /// GPU size.
     pub gpu_size: (u32, u32),
+    /// The size the frame plan gives the resource, when the comparison is of a frame: both
+    /// back ends must have allocated exactly that.
+    pub plan_size: Option<(u32, u32)>,
     /// Largest |gpu − cpu| and where.
     pub max_abs: f64,
     /// Its location.
@@ -114,7 +117,12 @@ pub struct FloatStats {
 impl FloatStats {
     /// Whether the buffer is within the limits (and the sizes agree).
     pub fn passed(&self) -> bool {
-        self.cpu_size == self.gpu_size && self.beyond == 0
+        self.sizes_agree() && self.beyond == 0
+    }
+
+    /// Whether the CPU, the GPU and (when given) the plan agree on the size.
+    pub fn sizes_agree(&self) -> bool {
+        self.cpu_size == self.gpu_size && self.plan_size.is_none_or(|p| p == self.cpu_size)
     }
 
     /// A one-line summary.
@@ -124,10 +132,10 @@ impl FloatStats {
                 format!(" at ({}, {}).{} cpu {:e} gpu {:e}", t.x, t.y, t.channel, t.cpu, t.gpu)
             })
         };
-        if self.cpu_size != self.gpu_size {
+        if !self.sizes_agree() {
             return format!(
-                "{:<20} FAIL size cpu {:?} gpu {:?}",
-                self.name, self.cpu_size, self.gpu_size
+                "{:<20} FAIL size cpu {:?} gpu {:?} plan {:?}",
+                self.name, self.cpu_size, self.gpu_size, self.plan_size
             );
         }
         format!(
@@ -152,6 +160,7 @@ impl FloatStats {
             "name": self.name, "ran": self.ran, "passed": self.passed(),
             "cpu_size": [self.cpu_size.0, self.cpu_size.1],
             "gpu_size": [self.gpu_size.0, self.gpu_size.1],
+            "plan_size": self.plan_size.map(|p| [p.0, p.1]),
             "max_abs": self.max_abs, "max_abs_at": self.max_abs_at.map(Texel::to_json),
             "max_rel": self.max_rel, "max_rel_at": self.max_rel_at.map(Texel::to_json),
             "beyond_limit": self.beyond, "worst": self.worst.map(Texel::to_json),
@@ -179,6 +188,7 @@ pub fn compare_float(
         ran,
         cpu_size: cpu.0,
         gpu_size: gpu.0,
+        plan_size: None,
         max_abs: 0.0,
         max_abs_at: None,
         max_rel: 0.0,
@@ -364,20 +374,9 @@ pub fn compare_image(cpu: &[u8], gpu: &[u8], width: u32, height: u32) -> ImageSt
     }
 }
 
-/// A CPU map by the GPU's name for it: (size, texels).
+/// A CPU map by its resource id: (size, texels); `ldr` (not a float map) is empty.
 pub fn cpu_map(b: &FrameBuffers, which: FrameMap) -> ((u32, u32), &[[f32; 4]]) {
-    let t = match which {
-        FrameMap::Displacement => &b.displacement,
-        FrameMap::DisplacementSlopes => &b.displacement_slopes,
-        FrameMap::Bump => &b.bump,
-        FrameMap::FresnelAbove => &b.fresnel_above,
-        FrameMap::FresnelBelow => &b.fresnel_below,
-        FrameMap::ShadowMap => &b.shadow_map,
-        FrameMap::ReflectionMap => &b.reflection_map,
-        FrameMap::RefractionMap => &b.refraction_map,
-        FrameMap::Hdr => return ((b.hdr.width, b.hdr.height), &b.hdr.color),
-    };
-    ((t.width, t.height), &t.texels)
+    b.map(which).map_or(((0, 0), &[][..]), |(w, h, t)| ((w, h), t))
 }
 
 fn gpu_map(m: &FloatMap) -> ((u32, u32), &[[f32; 4]]) {
@@ -476,15 +475,16 @@ pub fn check_scene(
     scene: &Scene,
 ) -> Result<(SceneCheck, Renders), CheckError> {
     let plan = FramePlan::new(scene, OutputKind::Ldr);
-    let cpu = ocean_cpu::render_scene(scene, OutputKind::Ldr, &mut |_| {})?;
+    let cpu = ocean_cpu::render_scene_with_plan(scene, plan.clone(), &mut |_| {})?;
     let gpu = renderer.run(scene, &plan)?;
     let mut maps = Vec::new();
-    for which in FrameMap::ALL {
+    for which in ResourceId::MAPS {
         let ran = plan.runs(which.pass());
-        let stats = match gpu.map(which) {
+        let mut stats = match gpu.map(which) {
             Some(g) => compare_float(which.name(), ran, cpu_map(&cpu.buffers, which), gpu_map(g)),
             None => compare_float(which.name(), ran, cpu_map(&cpu.buffers, which), ((0, 0), &[])),
         };
+        stats.plan_size = plan.resource(which).map(|r| (r.size[0], r.size[1]));
         maps.push(stats);
     }
     let (w, h) = (scene.camera.width, scene.camera.height);
@@ -506,7 +506,7 @@ pub fn check_scene(
 
 /// Passes whose maps a [`SceneCheck`] compares, for reports.
 pub fn map_pass(name: &str) -> Option<Pass> {
-    FrameMap::ALL.iter().find(|m| m.name() == name).map(|m| m.pass())
+    ResourceId::MAPS.iter().find(|m| m.name() == name).map(|m| m.pass())
 }
 
 fn save_rgba(path: &Path, w: u32, h: u32, rgba: Vec<u8>) -> std::io::Result<()> {
@@ -571,7 +571,7 @@ pub fn write_artefacts(dir: &Path, check: &SceneCheck, renders: &Renders) -> std
         }
     }
     for m in check.maps.iter().filter(|m| !m.passed()) {
-        let Some(which) = FrameMap::ALL.iter().find(|f| f.name() == m.name) else { continue };
+        let Some(which) = ResourceId::MAPS.iter().find(|f| f.name() == m.name) else { continue };
         let Some(g) = renders.gpu.map(*which) else { continue };
         let c = cpu_map(&renders.cpu.buffers, *which);
         if c.0 != (g.width, g.height) {

@@ -12,7 +12,6 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
-use ocean_core::scene::Scene;
 
 /// Ocean renderer after Hu et al. 2004: a deterministic CPU oracle and a wgpu real-time path.
 #[derive(Parser, Debug)]
@@ -41,12 +40,10 @@ enum Command {
     View(ocean::view::Args),
 }
 
-/// Loads a scene file, or the built-in default scene when none is given.
-pub(crate) fn load_scene(path: Option<&PathBuf>) -> anyhow::Result<Scene> {
-    Ok(match path {
-        Some(p) => Scene::load(p)?,
-        None => Scene::builtin(),
-    })
+/// Loads a scene file, or the built-in default scene when none is given (commands without
+/// `--system`).
+pub(crate) fn load_scene(path: Option<&PathBuf>) -> anyhow::Result<ocean_core::scene::Scene> {
+    ocean::scene_arg::load_scene(path, &ocean::scene_arg::SystemArg::default())
 }
 
 fn main() -> ExitCode {

@@ -1,6 +1,8 @@
-//! `ocean plan`: which passes a scene's frame runs and why each is in or out (DESIGN.md:
-//! `--json` prints `{"passes": [{"name", "reason"}…], "skipped": […]}`, plus the objects each
-//! object pass draws and the map sizes).
+//! `ocean plan`: the frame graph of a scene: its system and the technique of every stage, the
+//! passes it runs and why each is in or out, and the resources with their sizes (DESIGN.md:
+//! `--json` prints `{"system": …, "techniques": {stage: technique, …}, "passes": [{"name",
+//! "reason", …}…], "skipped": […], "resources": […]}`, plus the objects each object pass
+//! draws).
 
 use std::path::PathBuf;
 
@@ -11,6 +13,8 @@ use ocean_core::plan::{FramePlan, OutputKind};
 pub struct Args {
     /// Scene file (TOML); the built-in default scene when omitted.
     scene: Option<PathBuf>,
+    #[command(flatten)]
+    system: ocean::scene_arg::SystemArg,
     /// Print JSON instead of a table.
     #[arg(long)]
     json: bool,
@@ -28,7 +32,7 @@ pub struct Args {
 
 /// Runs `ocean plan`.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    let scene = crate::load_scene(args.scene.as_ref())?;
+    let scene = ocean::scene_arg::load_scene(args.scene.as_ref(), &args.system)?;
     let output = if args.hdr { OutputKind::Hdr } else { OutputKind::Ldr };
     let plan = if args.full {
         FramePlan::full(&scene, output)
@@ -36,10 +40,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         FramePlan::for_frames(&scene, output, args.frames)
     };
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&plan)?);
+        // `objects` (each object pass's list) stays a top-level key, as before the frame
+        // graph moved the lists into the passes.
+        let mut v = serde_json::to_value(&plan)?;
+        v["objects"] = serde_json::to_value(plan.objects())?;
+        println!("{}", serde_json::to_string_pretty(&v)?);
     } else {
         print!("{plan}");
-        let o = &plan.objects;
+        let o = plan.objects();
         println!(
             "  objects drawn: shadow_map {:?}, reflection_map {:?} ({}×{}), refraction_map {:?}, \
              objects {:?}",
@@ -50,6 +58,15 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             o.refraction_map,
             o.objects
         );
+        let sizes: Vec<String> = plan
+            .resources
+            .iter()
+            .map(|r| {
+                let unused = if r.written { "" } else { " (placeholder)" };
+                format!("{} {}×{}{unused}", r.id.name(), r.size[0], r.size[1])
+            })
+            .collect();
+        println!("  resources: {}", sizes.join(", "));
     }
     Ok(())
 }

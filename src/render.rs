@@ -16,6 +16,8 @@ use ocean::output::{Channel, encode_exr, encode_png, parse_size, write_atomic};
 pub struct Args {
     /// Scene file (TOML); the built-in default scene when omitted.
     scene: Option<PathBuf>,
+    #[command(flatten)]
+    system: ocean::scene_arg::SystemArg,
     /// Which renderer.
     #[arg(long, value_enum, default_value_t = Backend::Cpu)]
     backend: Backend,
@@ -46,7 +48,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         Some(e) if e == "exr" => OutputKind::Hdr,
         _ => bail!("output {} must end in .png or .exr", args.output.display()),
     };
-    let mut scene = crate::load_scene(args.scene.as_ref())?;
+    let mut scene = ocean::scene_arg::load_scene(args.scene.as_ref(), &args.system)?;
     if let Some(t) = args.time {
         if !t.is_finite() {
             bail!("--time must be finite, got {t}");

@@ -197,7 +197,7 @@ fn frame_view_vectors(scene: &Scene) -> anyhow::Result<Vec<[f64; 3]>> {
     let rendered = ocean_cpu::render_scene_with_plan(scene, plan.clone(), &mut |_| {})?;
     let fb = &rendered.buffers;
     let camera = ocean_core::camera::Camera::from_scene(&scene.camera)?;
-    let mesh = ocean_cpu::render::water_mesh(scene, &plan, &camera)?;
+    let mesh = plan.water_mesh(scene, &camera)?;
     let sky = |_: [f32; 3]| [0.0f32; 3];
     let b = water::Bindings {
         frame: &fb.uniforms,
@@ -637,11 +637,11 @@ fn planner(ctx: &Ctx) -> anyhow::Result<Vec<PlannerRow>> {
         let (pruned_ms, b) = timed.next().context("two plans")?;
         let differing =
             a.iter().zip(&b).filter(|(p, q)| p.map(f32::to_bits) != q.map(f32::to_bits)).count();
-        let o = &pruned.objects;
+        let (o, f) = (pruned.objects(), full.objects());
         let culled = [
-            ("objects", o.objects.len(), full.objects.objects.len()),
-            ("reflection_map", o.reflection_map.len(), full.objects.reflection_map.len()),
-            ("refraction_map", o.refraction_map.len(), full.objects.refraction_map.len()),
+            ("objects", o.objects.len(), f.objects.len()),
+            ("reflection_map", o.reflection_map.len(), f.reflection_map.len()),
+            ("refraction_map", o.refraction_map.len(), f.refraction_map.len()),
         ]
         .iter()
         .filter(|(_, k, n)| k < n)

@@ -101,7 +101,7 @@ fn reference_scenes() -> Vec<(String, Scene)> {
     culled.objects.push(behind);
     assert!(
         !ocean_core::plan::FramePlan::new(&culled, ocean_core::plan::OutputKind::Ldr)
-            .objects
+            .objects()
             .objects
             .contains(&2)
     );

@@ -138,9 +138,9 @@ fn objects_and_mirror_images_outside_the_frustum_culled_per_pass() {
     s.objects.push(sphere([0.0, 208.0, -370.0]));
     s.objects.push(sphere([2.0, -3.0, 90.0]));
     let plan = FramePlan::new(&s, OutputKind::Ldr);
-    assert_eq!(plan.objects.objects, [0, 1], "{plan}");
-    assert_eq!(plan.objects.reflection_map, [0, 1, 3], "{plan}");
-    assert_eq!(plan.objects.refraction_map, [0, 1], "{plan}");
+    assert_eq!(plan.objects().objects, [0, 1], "{plan}");
+    assert_eq!(plan.objects().reflection_map, [0, 1, 3], "{plan}");
+    assert_eq!(plan.objects().refraction_map, [0, 1], "{plan}");
     println!("{plan}");
     check_rule("objects outside the view → culled per pass", &s, &[]);
     // Every object above the water behind the camera: no reflection map, no objects pass.
@@ -162,7 +162,8 @@ fn the_comparison_fails_when_a_contributing_pass_is_left_out() {
     let (b, ..) = render(&s, broken);
     assert_ne!(a, b, "dropping the reflection map must change the picture");
     let mut culled = full.clone();
-    culled.objects.objects = vec![1];
+    let objects_pass = culled.passes.iter_mut().find(|p| p.name == Pass::Objects).unwrap();
+    objects_pass.objects = vec![1];
     let (c, ..) = render(&s, culled);
     assert_ne!(a, c, "culling the buoy must change the picture");
 }

@@ -34,6 +34,9 @@ pub const FIXED_STEP_S: f64 = 1.0 / 60.0;
 pub struct Args {
     /// Scene file (TOML); the built-in default scene when omitted.
     pub scene: Option<PathBuf>,
+    /// `--system`.
+    #[command(flatten)]
+    pub system: crate::scene_arg::SystemArg,
     /// Window size WIDTHxHEIGHT in physical pixels (default: the scene's camera size).
     #[arg(long)]
     pub size: Option<String>,
@@ -93,10 +96,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             bail!("cannot write {}: folder {} does not exist", path.display(), dir.display());
         }
     }
-    let mut scene = match &args.scene {
-        Some(p) => ocean_core::scene::Scene::load(p)?,
-        None => ocean_core::scene::Scene::builtin(),
-    };
+    let mut scene = crate::scene_arg::load_scene(args.scene.as_ref(), &args.system)?;
     if let Some(s) = &args.size {
         (scene.camera.width, scene.camera.height) = crate::output::parse_size(s)?;
     }

@@ -72,6 +72,11 @@ pub enum SceneError {
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize, Default)]
 #[serde(deny_unknown_fields, default)]
 pub struct Scene {
+    /// The seed paper's system whose techniques the frame uses (`hu`, the default; see
+    /// `plan::SYSTEMS`).
+    pub system: crate::plan::System,
+    /// Per-stage overrides of the system's techniques.
+    pub techniques: TechniqueOverrides,
     /// The sea: spectrum, grid, time.
     pub ocean: Ocean,
     /// The viewpoint.
@@ -84,6 +89,55 @@ pub struct Scene {
     pub objects: Vec<Object>,
     /// Cost/accuracy knobs of the renderer (what `ocean report` measures).
     pub quality: Quality,
+}
+
+/// The `[techniques]` table: a technique name per stage, overriding the system's choice.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct TechniqueOverrides {
+    /// Stage `waves`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub waves: Option<String>,
+    /// Stage `surface`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub surface: Option<String>,
+    /// Stage `shading`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shading: Option<String>,
+    /// Stage `sky`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sky: Option<String>,
+    /// Stage `far_field`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub far_field: Option<String>,
+    /// Stage `foam`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub foam: Option<String>,
+    /// Stage `spray`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub spray: Option<String>,
+    /// Stage `post`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub post: Option<String>,
+}
+
+impl TechniqueOverrides {
+    /// The (stage, name) pairs that are set, in stage order.
+    pub fn iter(&self) -> impl Iterator<Item = (crate::plan::Stage, &str)> {
+        use crate::plan::Stage;
+        [
+            (Stage::Waves, &self.waves),
+            (Stage::Surface, &self.surface),
+            (Stage::Shading, &self.shading),
+            (Stage::Sky, &self.sky),
+            (Stage::FarField, &self.far_field),
+            (Stage::Foam, &self.foam),
+            (Stage::Spray, &self.spray),
+            (Stage::Post, &self.post),
+        ]
+        .into_iter()
+        .filter_map(|(s, v)| v.as_deref().map(|v| (s, v)))
+    }
 }
 
 /// Default side of the 2D Fresnel textures (README: 256² is within 2e-3 of eq. 2 up to 76°
@@ -440,9 +494,53 @@ impl Scene {
         Ok(scene)
     }
 
+    /// The technique of every stage: the system's, with `[techniques]` applied (the
+    /// system's own where an override is invalid; [`Self::validate`] refuses those).
+    pub fn techniques(&self) -> crate::plan::Techniques {
+        crate::plan::Techniques::with_overrides(self.system, self.techniques.iter())
+            .unwrap_or_else(|_| crate::plan::Techniques::of_system(self.system))
+    }
+
+    /// The scene rendered with another system: `system` replaced, `[techniques]` kept.
+    ///
+    /// # Errors
+    /// As [`Self::validate`], when the system (or an override on top of it) cannot be
+    /// rendered.
+    pub fn with_system(mut self, system: crate::plan::System) -> Result<Self, SceneError> {
+        self.system = system;
+        if let Err((key, message)) = self.validate() {
+            return Err(SceneError::Invalid {
+                source_name: SceneSource::Text,
+                line: 0,
+                column: 0,
+                key: Some(key),
+                message,
+            });
+        }
+        Ok(self)
+    }
+
     /// Checks every value's range. Returns the dotted key path of the first bad value and
     /// what is allowed.
     pub fn validate(&self) -> Result<(), (String, String)> {
+        use crate::plan::{TechniqueError, Techniques};
+        let techniques = Techniques::with_overrides(self.system, self.techniques.iter()).map_err(
+            |e| match &e {
+                TechniqueError::UnknownTechnique { stage, .. } => {
+                    (format!("techniques.{stage}"), e.to_string())
+                }
+                _ => ("system".to_owned(), e.to_string()),
+            },
+        )?;
+        if let Err(e) = techniques.check() {
+            let key = match &e {
+                TechniqueError::NotAvailable { stage, .. } if techniques.is_overridden(*stage) => {
+                    format!("techniques.{stage}")
+                }
+                _ => "system".to_owned(),
+            };
+            return Err((key, e.to_string()));
+        }
         let o = &self.ocean;
         let bad = |k: &str, m: String| Err((k.to_string(), m));
         check_range("ocean.wind_speed", o.wind_speed, 0.0, 200.0)?;

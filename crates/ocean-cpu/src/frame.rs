@@ -1,28 +1,35 @@
-//! The frame of Hu et al. 2004 on the CPU: runs a [`FramePlan`] pass by pass with the shader
-//! mirrors and the rasterizer, keeping every intermediate map for the tests and the GPU
-//! cross-check.
+//! The CPU back end of the frame graph: [`CpuBackend`] executes one planned pass at a time
+//! with the shader mirrors and the rasterizer, at the sizes the plan gives
+//! (`ocean_core::plan::run_frame` walks the passes), keeping every intermediate map for the
+//! tests and the GPU cross-check.
 
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use ocean_core::camera::Camera;
 use ocean_core::frame::{
     FrameUniforms, FresnelTableUniforms, ObjectVertex, bump_texels, displacement_slope_texels,
     displacement_texels, object_triangles,
 };
-use ocean_core::plan::{FramePlan, Pass};
+use ocean_core::plan::{
+    Backend, FrameInputs, FramePlan, FrameState, Pass, PlannedPass, ResourceId, run_frame,
+};
 use ocean_core::scene::{Object, Scene};
-use ocean_core::waves::{FrameCycle, Synthesizer, WaveMaps};
+use ocean_core::waves::{Synthesizer, WaveMaps};
 
 use crate::raster::{self, BlendMode, CompareFunction, RasterState, RenderTarget, Vertex};
 use crate::sampler::Texture2D;
-use crate::shaders::{fresnel_table, objects, shadow, water};
+use crate::shaders::shared::preetham;
+use crate::shaders::{fresnel_table, objects, shadow, sky, tonemap, water};
 
 /// Default side of the 2D Fresnel textures (the error table in the README: 256² is within 2e-3
 /// of eq. 2 up to 76° from the normal); a scene's `[quality] fresnel_table_size` and the plan
 /// choose the size a frame uses.
 pub const FRESNEL_TABLE_SIZE: u32 = ocean_core::scene::DEFAULT_FRESNEL_TABLE_SIZE;
-/// Side of the sun's shadow map.
-pub const SHADOW_MAP_SIZE: u32 = 1024;
+/// Side of the sun's shadow map (the plan's).
+pub const SHADOW_MAP_SIZE: u32 = ocean_core::plan::SHADOW_MAP_SIZE;
+
+/// The water mesh of a view (ocean-core's [`ocean_core::plan::DrawMesh`]).
+pub type WaterMesh = ocean_core::plan::DrawMesh;
 
 /// Errors of the CPU renderer.
 #[derive(Debug, thiserror::Error)]
@@ -62,20 +69,54 @@ pub struct FrameBuffers {
     pub refraction_map: Texture2D,
     /// The frame, linear HDR RGBA.
     pub hdr: RenderTarget,
+    /// The 8-bit sRGB RGBA picture, when the plan tonemaps.
+    pub ldr: Option<Vec<u8>>,
     /// The frame's uniforms.
     pub uniforms: FrameUniforms,
     /// Wall time of each pass that ran, in order.
     pub timings: Vec<(Pass, Duration)>,
 }
 
-/// An empty 1×1 texture bound where a skipped pass would have left its map: the shaders
-/// multiply what they read from it by 0 (the plan's pass flags).
-fn empty() -> Texture2D {
-    Texture2D::new(1, 1, vec![[0.0; 4]])
+impl FrameBuffers {
+    /// A float map by its resource id (`ldr` is not a float map: `None`).
+    pub fn map(&self, id: ResourceId) -> Option<(u32, u32, &[[f32; 4]])> {
+        let t = match id {
+            ResourceId::Displacement => &self.displacement,
+            ResourceId::DisplacementSlopes => &self.displacement_slopes,
+            ResourceId::Bump => &self.bump,
+            ResourceId::FresnelAbove => &self.fresnel_above,
+            ResourceId::FresnelBelow => &self.fresnel_below,
+            ResourceId::ShadowMap => &self.shadow_map,
+            ResourceId::ReflectionMap => &self.reflection_map,
+            ResourceId::RefractionMap => &self.refraction_map,
+            ResourceId::Hdr => return Some((self.hdr.width, self.hdr.height, &self.hdr.color)),
+            ResourceId::Ldr => return None,
+        };
+        Some((t.width, t.height, &t.texels))
+    }
 }
 
-fn target_texture(t: RenderTarget) -> Texture2D {
-    Texture2D::new(t.width, t.height, t.color)
+/// The environment the frame reflects and draws behind everything: the plan's sky technique,
+/// or (tests of the water pass) a given radiance function and background.
+#[derive(Clone, Copy)]
+pub enum Environment<'a> {
+    /// The sky technique the plan chose, from [`FrameInputs::environment`].
+    Planned,
+    /// A given radiance of a world direction, and what the `sky` pass draws.
+    Given {
+        /// Radiance of a world direction.
+        radiance: &'a (dyn Fn([f32; 3]) -> [f32; 3] + Sync),
+        /// The `sky` pass.
+        draw: &'a dyn Fn(&mut RenderTarget),
+    },
+}
+
+/// The CPU back end: executes passes, holding the resources they write.
+pub struct CpuBackend<'e> {
+    environment: Environment<'e>,
+    maps: Vec<(ResourceId, Texture2D)>,
+    hdr: Option<RenderTarget>,
+    ldr: Option<Vec<u8>>,
 }
 
 /// The displacement map packed as the water stage binds it: (disp_x, height, disp_z,
@@ -86,24 +127,6 @@ fn wave_textures(maps: &WaveMaps<f32>) -> (Texture2D, Texture2D) {
         Texture2D::new(n, n, displacement_texels(maps)),
         Texture2D::new(n, n, displacement_slope_texels(maps)),
     )
-}
-
-/// The water mesh of a view: vertices relative to `origin` (world x, z; see
-/// `ocean_core::geometry::WaterMesh`), triangles counter-clockwise seen from above.
-#[derive(Clone, Debug, PartialEq)]
-pub struct WaterMesh {
-    /// The vertices.
-    pub vertices: Vec<water::WaterVertex>,
-    /// The triangles.
-    pub indices: Vec<[u32; 3]>,
-    /// The mesh's reference point (world x, z), m.
-    pub origin: [f64; 2],
-}
-
-impl From<ocean_core::geometry::WaterMesh> for WaterMesh {
-    fn from(m: ocean_core::geometry::WaterMesh) -> Self {
-        Self { vertices: m.vertices, indices: m.indices, origin: m.origin }
-    }
 }
 
 /// Draws the objects' triangles with one of the objects stage's entry-point pairs.
@@ -134,10 +157,271 @@ fn eye_state() -> RasterState {
     RasterState { depth_compare: CompareFunction::Greater, ..RasterState::default() }
 }
 
-/// Renders a frame of a validated scene by its plan. `sky_radiance` is the sky stage's
-/// radiance of a world direction; `water_mesh` gives the near/far patch mesh of the view (it
-/// should leave the far patch out where the plan does: `ocean_core::plan::water_mesh`);
-/// `on_pass` is called as each pass starts (progress reporting).
+fn target_texture(t: RenderTarget) -> Texture2D {
+    Texture2D::new(t.width, t.height, t.color)
+}
+
+/// A render target of the plan's size for `id`, cleared to the plan's colour.
+fn planned_target(plan: &FramePlan, id: ResourceId) -> RenderTarget {
+    let (size, clear) = plan.resource(id).map_or(([1, 1], [0.0; 4]), |r| (r.size, r.clear));
+    let mut t = RenderTarget::new(size[0], size[1]);
+    t.clear_color(clear);
+    t
+}
+
+impl<'e> CpuBackend<'e> {
+    /// A back end for one frame with the given environment.
+    pub fn new(environment: Environment<'e>) -> Self {
+        Self { environment, maps: Vec::new(), hdr: None, ldr: None }
+    }
+
+    fn put(&mut self, id: ResourceId, t: Texture2D) {
+        self.maps.retain(|(m, _)| *m != id);
+        self.maps.push((id, t));
+    }
+
+    /// A map a pass wrote, or the plan's 1×1 zero texture in place of a skipped pass's.
+    fn take(&mut self, id: ResourceId) -> Texture2D {
+        match self.maps.iter().position(|(m, _)| *m == id) {
+            Some(i) => self.maps.swap_remove(i).1,
+            None => Texture2D::new(1, 1, vec![[0.0; 4]]),
+        }
+    }
+
+    /// The HDR frame, made at the plan's size and clear colour by its first writer.
+    fn hdr(&mut self, plan: &FramePlan) -> &mut RenderTarget {
+        self.hdr.get_or_insert_with(|| {
+            let mut t = planned_target(plan, ResourceId::Hdr);
+            t.clear_depth(0.0);
+            t
+        })
+    }
+
+    /// The frame's buffers once every pass has run.
+    pub fn finish(
+        mut self,
+        frame: &FrameInputs<'_>,
+        timings: Vec<(Pass, Duration)>,
+    ) -> FrameBuffers {
+        let hdr = self.hdr.take().unwrap_or_else(|| planned_target(frame.plan, ResourceId::Hdr));
+        FrameBuffers {
+            displacement: self.take(ResourceId::Displacement),
+            displacement_slopes: self.take(ResourceId::DisplacementSlopes),
+            bump: self.take(ResourceId::Bump),
+            fresnel_above: self.take(ResourceId::FresnelAbove),
+            fresnel_below: self.take(ResourceId::FresnelBelow),
+            shadow_map: self.take(ResourceId::ShadowMap),
+            reflection_map: self.take(ResourceId::ReflectionMap),
+            refraction_map: self.take(ResourceId::RefractionMap),
+            hdr,
+            ldr: self.ldr.take(),
+            uniforms: frame.uniforms,
+            timings,
+        }
+    }
+
+    fn waves(&mut self, frame: &FrameInputs<'_>, state: &FrameState) -> Result<(), Error> {
+        let ocean = &frame.scene.ocean;
+        let t = frame.time_s;
+        let owned;
+        let (d, b) = if frame.plan.runs(Pass::Cycle) {
+            // Cyclic playback: the loop's maps at F instants, the one nearest t shown.
+            state.cycle_at(ocean, t).ok_or_else(|| {
+                Error::Core(ocean_core::Error::InvalidParameter {
+                    name: "loop_period_s",
+                    value: ocean.loop_period_s,
+                    reason: "the plan plays a cycle that was not precomputed".into(),
+                })
+            })?
+        } else {
+            let surface = ocean.surface()?;
+            let chop = ocean.choppiness;
+            let mut synth_d = Synthesizer::<f32>::new(surface.displacement.resolution())?;
+            let mut synth_b = Synthesizer::<f32>::new(surface.bump.resolution())?;
+            owned = (
+                synth_d.synthesize(&surface.displacement, t, chop)?,
+                synth_b.synthesize(&surface.bump, t, chop)?,
+            );
+            (&owned.0, &owned.1)
+        };
+        let (displacement, slopes) = wave_textures(d);
+        let n = b.resolution() as u32;
+        self.put(ResourceId::Displacement, displacement);
+        self.put(ResourceId::DisplacementSlopes, slopes);
+        self.put(ResourceId::Bump, Texture2D::new(n, n, bump_texels(b)));
+        Ok(())
+    }
+
+    fn fresnel_tables(&mut self, frame: &FrameInputs<'_>) {
+        let eta = frame.uniforms.water_params[0];
+        for (id, eta) in [(ResourceId::FresnelAbove, eta), (ResourceId::FresnelBelow, 1.0 / eta)] {
+            let size = frame.plan.resource(id).map_or(1, |r| r.size[0]);
+            let t =
+                fresnel_table::dispatch(&FresnelTableUniforms { eta, size, mapping: 0, pad: 0 });
+            self.put(id, t);
+        }
+    }
+
+    fn object_pass(&mut self, pass: &PlannedPass, frame: &FrameInputs<'_>) {
+        let scene = frame.scene;
+        let objects: Vec<Object> = pass.objects.iter().map(|&i| scene.objects[i].clone()).collect();
+        let tris = object_triangles(&objects, frame.camera.eye);
+        let u = &frame.uniforms;
+        match pass.name {
+            Pass::ShadowMap => {
+                let mut target = planned_target(frame.plan, ResourceId::ShadowMap);
+                target.clear_color([1.0, 0.0, 0.0, 0.0]);
+                target.clear_depth(1.0);
+                let verts: Vec<[Vertex<0>; 3]> = tris
+                    .iter()
+                    .map(|t| t.map(|v| Vertex::new(shadow::vs_main(v.position, u), [])))
+                    .collect();
+                raster::draw(&mut target, &RasterState::default(), &verts, |f| {
+                    Some(shadow::fs_main(f.frag_coord))
+                });
+                self.put(ResourceId::ShadowMap, target_texture(target));
+            }
+            // Both maps are looked up at normalised screen coordinates, so they may be
+            // smaller than the viewport (the plan's sizes).
+            Pass::ReflectionMap | Pass::RefractionMap => {
+                let (id, vs, fs): (_, fn(&_, &_) -> _, fn(&_, &_) -> _) =
+                    if pass.name == Pass::ReflectionMap {
+                        (ResourceId::ReflectionMap, objects::vs_reflect, objects::fs_reflect)
+                    } else {
+                        (ResourceId::RefractionMap, objects::vs_refract, objects::fs_refract)
+                    };
+                let mut target = planned_target(frame.plan, id);
+                target.clear_depth(0.0);
+                draw_objects(&mut target, &eye_state(), &tris, u, vs, fs);
+                self.put(id, target_texture(target));
+            }
+            _ => {
+                let hdr = self.hdr(frame.plan);
+                draw_objects(hdr, &eye_state(), &tris, u, objects::vs_main, |o, u| {
+                    Some(objects::fs_main(o, u))
+                });
+            }
+        }
+    }
+
+    fn water(&mut self, frame: &FrameInputs<'_>) {
+        let env = frame.environment;
+        let planned_sky = move |d: [f32; 3]| preetham::sky_radiance(&env, d);
+        let sky_radiance: &(dyn Fn([f32; 3]) -> [f32; 3] + Sync) = match self.environment {
+            Environment::Planned => &planned_sky,
+            Environment::Given { radiance, .. } => radiance,
+        };
+        let mut hdr = self.hdr.take().unwrap_or_else(|| {
+            let mut t = planned_target(frame.plan, ResourceId::Hdr);
+            t.clear_depth(0.0);
+            t
+        });
+        let empty = Texture2D::new(1, 1, vec![[0.0; 4]]);
+        let maps = &self.maps;
+        let map = |id| maps.iter().find(|(m, _)| *m == id).map_or(&empty, |(_, t)| t);
+        let bindings = water::Bindings {
+            frame: &frame.uniforms,
+            displacement: map(ResourceId::Displacement),
+            displacement_slopes: map(ResourceId::DisplacementSlopes),
+            bump: map(ResourceId::Bump),
+            fresnel_above: map(ResourceId::FresnelAbove),
+            fresnel_below: map(ResourceId::FresnelBelow),
+            reflection_map: map(ResourceId::ReflectionMap),
+            refraction_map: map(ResourceId::RefractionMap),
+            shadow_map: map(ResourceId::ShadowMap),
+            sky_radiance,
+        };
+        let mesh = &frame.mesh;
+        let verts: Vec<Vertex<{ water::VARYINGS }>> = mesh
+            .vertices
+            .iter()
+            .map(|v| {
+                let o = water::vs_main(v, &bindings);
+                Vertex::new(o.clip, o.varyings())
+            })
+            .collect();
+        let state = RasterState { blend: BlendMode::Replace, ..eye_state() };
+        raster::draw_indexed(&mut hdr, &state, &verts, &mesh.indices, |frag| {
+            Some(water::fs_main(
+                &water::VertexOut::from_fragment(frag.frag_coord, &frag.varyings),
+                &bindings,
+            ))
+        });
+        self.hdr = Some(hdr);
+    }
+}
+
+impl Backend for CpuBackend<'_> {
+    type Error = Error;
+
+    fn execute(
+        &mut self,
+        pass: &PlannedPass,
+        frame: &FrameInputs<'_>,
+        state: &FrameState,
+    ) -> Result<(), Error> {
+        match pass.name {
+            Pass::Cycle | Pass::FarPatch => {}
+            Pass::Waves => self.waves(frame, state)?,
+            Pass::FresnelTable => self.fresnel_tables(frame),
+            Pass::ShadowMap | Pass::ReflectionMap | Pass::RefractionMap | Pass::Objects => {
+                self.object_pass(pass, frame)
+            }
+            Pass::Sky => {
+                let environment = self.environment;
+                let hdr = self.hdr(frame.plan);
+                match environment {
+                    Environment::Planned => {
+                        sky::render_sky(hdr, &frame.camera_uniforms, &frame.environment)
+                    }
+                    Environment::Given { draw, .. } => draw(hdr),
+                }
+            }
+            Pass::Water => self.water(frame),
+            Pass::Tonemap => {
+                if let Some(t) = &frame.tonemap {
+                    let hdr = self.hdr(frame.plan);
+                    let (w, h) = (hdr.width, hdr.height);
+                    self.ldr = Some(tonemap::tonemap_to_rgba8(&hdr.color, w, h, t));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Checks the image size against the rasterizer's limit.
+fn check_size(camera: &Camera) -> Result<(), Error> {
+    let (w, h) = (camera.width, camera.height);
+    if w > RenderTarget::MAX_SIZE || h > RenderTarget::MAX_SIZE {
+        return Err(Error::TooLarge { width: w, height: h, max: RenderTarget::MAX_SIZE });
+    }
+    Ok(())
+}
+
+/// Runs one frame of `plan` on the CPU: [`FrameInputs`] for `state`'s frame, then every
+/// pass through [`run_frame`]. `on_pass` is called as each pass starts (progress).
+///
+/// # Errors
+/// [`Error::TooLarge`] for an image beyond the rasterizer's targets; [`Error::Core`] for
+/// physics that cannot be set up.
+pub fn render_frame(
+    frame: &FrameInputs<'_>,
+    environment: Environment<'_>,
+    state: &mut FrameState,
+    on_pass: &mut dyn FnMut(Pass),
+) -> Result<FrameBuffers, Error> {
+    check_size(&frame.camera)?;
+    let mut backend = CpuBackend::new(environment);
+    let timings = run_frame(&mut backend, frame, state, on_pass)?;
+    Ok(backend.finish(frame, timings))
+}
+
+/// One frame of a validated scene with a given environment and water mesh (the tests of the
+/// water pass: a uniform sky, a plain grid); everything else as the plan says.
+///
+/// # Errors
+/// As [`render_frame`], and whatever `water_mesh` returns.
 pub fn render(
     scene: &Scene,
     plan: &FramePlan,
@@ -146,207 +430,12 @@ pub fn render(
     water_mesh: &dyn Fn(&Camera) -> Result<WaterMesh, Error>,
     on_pass: &mut dyn FnMut(Pass),
 ) -> Result<FrameBuffers, Error> {
-    render_with(scene, plan, sky_radiance, draw_sky, water_mesh, &|_| {}, on_pass)
-}
-
-/// [`render`], with `customise` applied to the frame's uniforms before any pass (the sky's
-/// ambient term, which depends on the sky model the caller chose).
-pub fn render_with(
-    scene: &Scene,
-    plan: &FramePlan,
-    sky_radiance: &(dyn Fn([f32; 3]) -> [f32; 3] + Sync),
-    draw_sky: &dyn Fn(&mut RenderTarget),
-    water_mesh: &dyn Fn(&Camera) -> Result<WaterMesh, Error>,
-    customise: &dyn Fn(&mut FrameUniforms),
-    on_pass: &mut dyn FnMut(Pass),
-) -> Result<FrameBuffers, Error> {
     let camera = Camera::from_scene(&scene.camera)?;
-    let (w, h) = (camera.width, camera.height);
-    if w > RenderTarget::MAX_SIZE || h > RenderTarget::MAX_SIZE {
-        return Err(Error::TooLarge { width: w, height: h, max: RenderTarget::MAX_SIZE });
-    }
-    let mesh_start = Instant::now();
+    check_size(&camera)?;
+    let start = std::time::Instant::now();
     let mesh = water_mesh(&camera)?;
-    let mesh_time = mesh_start.elapsed();
-    let mut u = FrameUniforms::new(scene, &camera, plan, mesh.origin);
-    customise(&mut u);
-    let u = u;
-    let mut timings = Vec::new();
-    let mut timed = |pass: Pass, start: Instant| timings.push((pass, start.elapsed()));
-
-    // cycle, waves
-    let (mut displacement, mut displacement_slopes, mut bump) = (empty(), empty(), empty());
-    if plan.runs(Pass::Waves) {
-        let mut t0 = Instant::now();
-        let surface = scene.ocean.surface()?;
-        let t = scene.ocean.time_s;
-        let chop = scene.ocean.choppiness;
-        let mut synth_d = Synthesizer::<f32>::new(surface.displacement.resolution())?;
-        let mut synth_b = Synthesizer::<f32>::new(surface.bump.resolution())?;
-        let (d, b) = if plan.runs(Pass::Cycle) {
-            // Cyclic playback: the loop's maps at F instants, the one nearest t shown.
-            on_pass(Pass::Cycle);
-            let d = FrameCycle::new(&surface.displacement, &mut synth_d, chop)?;
-            let b = FrameCycle::new(&surface.bump, &mut synth_b, chop)?;
-            timed(Pass::Cycle, t0);
-            t0 = Instant::now();
-            on_pass(Pass::Waves);
-            (d.frame_at(t).clone(), b.frame_at(t).clone())
-        } else {
-            on_pass(Pass::Waves);
-            (
-                synth_d.synthesize(&surface.displacement, t, chop)?,
-                synth_b.synthesize(&surface.bump, t, chop)?,
-            )
-        };
-        (displacement, displacement_slopes) = wave_textures(&d);
-        let n = b.resolution() as u32;
-        bump = Texture2D::new(n, n, bump_texels(&b));
-        timed(Pass::Waves, t0);
-    }
-
-    // fresnel_table
-    on_pass(Pass::FresnelTable);
-    let t0 = Instant::now();
-    let table = |eta: f32| {
-        fresnel_table::dispatch(&FresnelTableUniforms {
-            eta,
-            size: plan.fresnel_table_size,
-            mapping: 0,
-            pad: 0,
-        })
-    };
-    let fresnel_above = table(u.water_params[0]);
-    let fresnel_below = table(1.0 / u.water_params[0]);
-    timed(Pass::FresnelTable, t0);
-
-    // The objects each pass draws (the plan culls per pass).
-    let tris_of = |pass: Pass| {
-        let objects: Vec<Object> =
-            plan.objects.of(pass).iter().map(|&i| scene.objects[i].clone()).collect();
-        object_triangles(&objects, camera.eye)
-    };
-
-    // shadow_map
-    let mut shadow_map = empty();
-    if plan.runs(Pass::ShadowMap) {
-        on_pass(Pass::ShadowMap);
-        let t0 = Instant::now();
-        let mut target = RenderTarget::new(SHADOW_MAP_SIZE, SHADOW_MAP_SIZE);
-        target.clear_color([1.0, 0.0, 0.0, 0.0]);
-        target.clear_depth(1.0);
-        let verts: Vec<[Vertex<0>; 3]> = tris_of(Pass::ShadowMap)
-            .iter()
-            .map(|t| t.map(|v| Vertex::new(shadow::vs_main(v.position, &u), [])))
-            .collect();
-        raster::draw(&mut target, &RasterState::default(), &verts, |f| {
-            Some(shadow::fs_main(f.frag_coord))
-        });
-        shadow_map = target_texture(target);
-        timed(Pass::ShadowMap, t0);
-    }
-
-    // reflection_map, refraction_map
-    // Both are looked up at normalised screen coordinates, so they may be smaller than the
-    // viewport (the plan's reflection_map_size).
-    let mut object_map = |pass: Pass, size: [u32; 2], vs, fs| {
-        on_pass(pass);
-        let mut target = RenderTarget::new(size[0], size[1]);
-        target.clear_depth(0.0);
-        draw_objects(&mut target, &eye_state(), &tris_of(pass), &u, vs, fs);
-        target_texture(target)
-    };
-    let mut reflection_map = empty();
-    if plan.runs(Pass::ReflectionMap) {
-        let t0 = Instant::now();
-        reflection_map = object_map(
-            Pass::ReflectionMap,
-            plan.reflection_map_size,
-            objects::vs_reflect,
-            objects::fs_reflect,
-        );
-        timed(Pass::ReflectionMap, t0);
-    }
-    let mut refraction_map = empty();
-    if plan.runs(Pass::RefractionMap) {
-        let t0 = Instant::now();
-        refraction_map =
-            object_map(Pass::RefractionMap, [w, h], objects::vs_refract, objects::fs_refract);
-        timed(Pass::RefractionMap, t0);
-    }
-
-    // sky
-    let mut hdr = RenderTarget::new(w, h);
-    hdr.clear_depth(0.0);
-    if plan.runs(Pass::Sky) {
-        on_pass(Pass::Sky);
-        let t0 = Instant::now();
-        draw_sky(&mut hdr);
-        timed(Pass::Sky, t0);
-    } else {
-        // Under the water: the water volume is the background.
-        hdr.clear_color([u.water_color[0], u.water_color[1], u.water_color[2], 1.0]);
-    }
-
-    // objects
-    if plan.runs(Pass::Objects) {
-        on_pass(Pass::Objects);
-        let t0 = Instant::now();
-        draw_objects(
-            &mut hdr,
-            &eye_state(),
-            &tris_of(Pass::Objects),
-            &u,
-            objects::vs_main,
-            |o, u| Some(objects::fs_main(o, u)),
-        );
-        timed(Pass::Objects, t0);
-    }
-
-    // water
-    on_pass(Pass::Water);
-    let t0 = Instant::now();
-    let bindings = water::Bindings {
-        frame: &u,
-        displacement: &displacement,
-        displacement_slopes: &displacement_slopes,
-        bump: &bump,
-        fresnel_above: &fresnel_above,
-        fresnel_below: &fresnel_below,
-        reflection_map: &reflection_map,
-        refraction_map: &refraction_map,
-        shadow_map: &shadow_map,
-        sky_radiance,
-    };
-    let verts: Vec<Vertex<{ water::VARYINGS }>> = mesh
-        .vertices
-        .iter()
-        .map(|v| {
-            let o = water::vs_main(v, &bindings);
-            Vertex::new(o.clip, o.varyings())
-        })
-        .collect();
-    let state = RasterState { blend: BlendMode::Replace, ..eye_state() };
-    raster::draw_indexed(&mut hdr, &state, &verts, &mesh.indices, |frag| {
-        Some(water::fs_main(
-            &water::VertexOut::from_fragment(frag.frag_coord, &frag.varyings),
-            &bindings,
-        ))
-    });
-    // The water pass's time includes building its mesh (near patch, and far patch if planned).
-    timings.push((Pass::Water, t0.elapsed() + mesh_time));
-
-    Ok(FrameBuffers {
-        displacement,
-        displacement_slopes,
-        bump,
-        fresnel_above,
-        fresnel_below,
-        shadow_map,
-        reflection_map,
-        refraction_map,
-        hdr,
-        uniforms: u,
-        timings,
-    })
+    let mut state = FrameState::default();
+    let frame = FrameInputs::with_mesh(scene, plan, &state, camera, mesh, start.elapsed())?;
+    let environment = Environment::Given { radiance: sky_radiance, draw: draw_sky };
+    render_frame(&frame, environment, &mut state, on_pass)
 }

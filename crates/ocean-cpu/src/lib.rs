@@ -17,4 +17,6 @@ pub mod sampler;
 pub mod shaders;
 pub mod stability;
 
-pub use render::{Rendered, render_ldr, render_scene, render_scene_with_plan};
+pub use render::{
+    Rendered, render_animation_frame, render_ldr, render_scene, render_scene_with_plan,
+};

@@ -297,7 +297,7 @@ fn flat_sea_readback(camera_toml: &str) -> Result<(f64, usize, bool), Error> {
     })?;
     let plan = FramePlan::new(&scene, OutputKind::Hdr);
     let sky = |_: [f32; 3]| [1.0f32; 3];
-    let mesh = |c: &Camera| crate::render::water_mesh(&scene, &plan, c);
+    let mesh = |c: &Camera| Ok(plan.water_mesh(&scene, c)?.into());
     let buffers = frame::render(
         &scene,
         &plan,

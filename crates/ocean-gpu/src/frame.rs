@@ -1,31 +1,31 @@
-//! The frame of Hu et al. 2004 on wgpu: runs a [`FramePlan`] with the same passes, in the same
-//! order, with the same uniforms as ocean-cpu's frame (`ocean-cpu/src/frame.rs`), and reads
-//! back every intermediate map for the cross-check.
+//! The GPU back end of the frame graph: [`GpuBackend`] records one planned pass at a time
+//! into one command encoder, with the textures at the sizes and formats of the plan's
+//! resource table (`ocean_core::plan::run_frame` walks the passes, as it does for the CPU
+//! oracle), and [`Renderer`] submits the frame and reads back every map for the cross-check.
 //!
 //! | pass | target (clear) | depth (clear, test) |
 //! |---|---|---|
-//! | waves | N_d², N_d², N_b² `Rgba32Float` ([`crate::wave_maps`]) | — |
-//! | fresnel_table | 2 × 256² `Rgba32Float` (η, 1/η), compute | — |
-//! | shadow_map | 1024² `R32Float` (1, 0, 0, 0) | 1, `Less` |
-//! | reflection_map, refraction_map | viewport `Rgba32Float` (0) | 0, `Greater` |
-//! | sky (or, camera under water, a clear to the water colour) | HDR viewport `Rgba32Float` (0) | 0, `Always` without writes |
+//! | waves (or the cycle's maps, uploaded) | the plan's sizes, `Rgba32Float` ([`crate::wave_maps`]) | — |
+//! | fresnel_table | 2 × the plan's N² `Rgba32Float` (η, 1/η), compute | — |
+//! | shadow_map | the plan's `R32Float` (1, 0, 0, 0) | 1, `Less` |
+//! | reflection_map, refraction_map | the plan's sizes, `Rgba32Float` (0) | 0, `Greater` |
+//! | sky (or, camera under water, a clear to the plan's colour) | HDR viewport `Rgba32Float` | 0, `Always` without writes |
 //! | objects | HDR (kept) | kept, `Greater` |
 //! | water | HDR (kept) | kept, `Greater` |
 //! | tonemap | viewport `Rgba8Unorm` | — |
 //!
-//! A skipped pass leaves a 1×1 zero texture where its map would be, as on the CPU. Everything
-//! is recorded into one command encoder and submitted once.
+//! A skipped pass leaves the plan's 1×1 zero texture where its map would be, as on the CPU.
 
 use std::time::{Duration, Instant};
 
-use ocean_core::camera::Camera;
-use ocean_core::camera_uniforms::CameraUniforms;
 use ocean_core::frame::{
-    FrameUniforms, FresnelTableUniforms, ObjectVertex, object_triangles, scene_sky, sky_ambient,
+    FrameUniforms, FresnelTableUniforms, ObjectVertex, bump_texels, displacement_slope_texels,
+    displacement_texels, object_triangles,
 };
-use ocean_core::plan::{FramePlan, Pass};
+use ocean_core::plan::{
+    Backend, Format, FrameInputs, FramePlan, FrameState, Pass, PlannedPass, ResourceId, run_frame,
+};
 use ocean_core::scene::{Object, Ocean, Scene};
-use ocean_core::tonemap::TonemapUniforms;
 use ocean_core::waves::OceanSurface;
 use wgpu::util::DeviceExt;
 
@@ -48,75 +48,9 @@ pub fn wave_key(ocean: &Ocean) -> Ocean {
     Ocean { time_s: 0.0, ..ocean.clone() }
 }
 
-/// Side of the 2D Fresnel textures (ocean-cpu's `FRESNEL_TABLE_SIZE`).
-pub const FRESNEL_TABLE_SIZE: u32 = 256;
-/// Side of the sun's shadow map (ocean-cpu's `SHADOW_MAP_SIZE`).
-pub const SHADOW_MAP_SIZE: u32 = 1024;
-
-/// A map of the frame that is read back, named as ocean-cpu's `FrameBuffers` fields.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum FrameMap {
-    /// (disp_x, height, disp_z, jacobian).
-    Displacement,
-    /// (slope_x, slope_z, 0, 0).
-    DisplacementSlopes,
-    /// (slope_x, slope_z, height, jacobian).
-    Bump,
-    /// Fresnel texture for η.
-    FresnelAbove,
-    /// Fresnel texture for 1/η.
-    FresnelBelow,
-    /// Depth from the sun in red.
-    ShadowMap,
-    /// Mirrored objects, alpha = coverage.
-    ReflectionMap,
-    /// Fogged objects under the water, alpha = coverage.
-    RefractionMap,
-    /// The linear HDR frame after the water pass.
-    Hdr,
-}
-
-impl FrameMap {
-    /// Every map, in the order the frame makes them.
-    pub const ALL: [FrameMap; 9] = [
-        FrameMap::Displacement,
-        FrameMap::DisplacementSlopes,
-        FrameMap::Bump,
-        FrameMap::FresnelAbove,
-        FrameMap::FresnelBelow,
-        FrameMap::ShadowMap,
-        FrameMap::ReflectionMap,
-        FrameMap::RefractionMap,
-        FrameMap::Hdr,
-    ];
-
-    /// The field name (`displacement`, …, `hdr`).
-    pub fn name(self) -> &'static str {
-        match self {
-            FrameMap::Displacement => "displacement",
-            FrameMap::DisplacementSlopes => "displacement_slopes",
-            FrameMap::Bump => "bump",
-            FrameMap::FresnelAbove => "fresnel_above",
-            FrameMap::FresnelBelow => "fresnel_below",
-            FrameMap::ShadowMap => "shadow_map",
-            FrameMap::ReflectionMap => "reflection_map",
-            FrameMap::RefractionMap => "refraction_map",
-            FrameMap::Hdr => "hdr",
-        }
-    }
-
-    /// The pass that writes it last.
-    pub fn pass(self) -> Pass {
-        match self {
-            FrameMap::Displacement | FrameMap::DisplacementSlopes | FrameMap::Bump => Pass::Waves,
-            FrameMap::FresnelAbove | FrameMap::FresnelBelow => Pass::FresnelTable,
-            FrameMap::ShadowMap => Pass::ShadowMap,
-            FrameMap::ReflectionMap => Pass::ReflectionMap,
-            FrameMap::RefractionMap => Pass::RefractionMap,
-            FrameMap::Hdr => Pass::Water,
-        }
-    }
-}
+/// A map of the frame that is read back: the plan's resource id
+/// ([`ResourceId::MAPS`] lists the float maps, in the order the frame makes them).
+pub type FrameMap = ResourceId;
 
 /// What [`Renderer::run_with`] reads back.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -135,7 +69,7 @@ pub enum Readback {
 pub struct GpuFrame {
     /// The plan it ran.
     pub plan: FramePlan,
-    /// The maps read back, in [`FrameMap::ALL`] order (skipped passes: their 1×1 zero map).
+    /// The maps read back, in [`ResourceId::MAPS`] order (skipped passes: their 1×1 zero map).
     pub maps: Vec<(FrameMap, FloatMap)>,
     /// The 8-bit sRGB RGBA picture, when the plan tonemaps and it was read back.
     pub ldr: Option<Vec<u8>>,
@@ -167,19 +101,398 @@ impl GpuFrame {
     }
 }
 
-/// The GPU renderer: the device and every stage's pipelines, made once; a wave-map source
-/// kept while the ocean stays the same (its modes are drawn once, as the GPU FFT will upload
-/// h0 once).
-pub struct Renderer {
-    gpu: Gpu,
+/// Every stage's pipelines, made once.
+struct Stages {
     fresnel_table: FresnelTableStage,
     sky: SkyStage,
     objects: ObjectsStage,
     shadow: ShadowStage,
     water: WaterStage,
     tonemap: TonemapStage,
+}
+
+/// The wave-map source of the ocean whose modes it holds.
+type WaveSlot = Option<(Ocean, Box<dyn WaveMapSource>)>;
+
+/// The GPU renderer: the device and every stage's pipelines, made once; a wave-map source
+/// kept while the ocean stays the same (its modes are drawn once, as the GPU FFT will upload
+/// h0 once).
+pub struct Renderer {
+    gpu: Gpu,
+    stages: Stages,
     wave_synthesis: WaveSynthesis,
-    waves: Option<(Ocean, Box<dyn WaveMapSource>)>,
+    waves: WaveSlot,
+}
+
+fn wgpu_format(f: Format) -> wgpu::TextureFormat {
+    match f {
+        Format::Rgba32Float => MAP_FORMAT,
+        Format::R32Float => SHADOW_FORMAT,
+        Format::Rgba8Unorm => LDR_FORMAT,
+    }
+}
+
+/// The GPU back end of one frame: records each pass into `encoder`, with the textures at the
+/// plan's sizes.
+pub struct GpuBackend<'r> {
+    gpu: &'r Gpu,
+    stages: &'r Stages,
+    waves: &'r mut WaveSlot,
+    encoder: wgpu::CommandEncoder,
+    timer: PassTimer,
+    maps: Vec<(ResourceId, GpuTexture)>,
+    depth: Option<GpuTexture>,
+    hdr_started: bool,
+    frame_buffer: wgpu::Buffer,
+    waves_cpu: Option<Duration>,
+    wave_source: Option<&'static str>,
+}
+
+impl GpuBackend<'_> {
+    fn put(&mut self, id: ResourceId, t: GpuTexture) {
+        self.maps.retain(|(m, _)| *m != id);
+        self.maps.push((id, t));
+    }
+
+    /// A written map, or the plan's 1×1 zero texture in place of a skipped pass's.
+    fn map(&mut self, id: ResourceId) -> GpuTexture {
+        if let Some((_, t)) = self.maps.iter().find(|(m, _)| *m == id) {
+            return t.clone();
+        }
+        let t = GpuTexture::empty_map(self.gpu, &format!("ocean.{}", id.name()));
+        self.put(id, t.clone());
+        t
+    }
+
+    /// A render target of the plan's size and format for `id`.
+    fn target(&self, plan: &FramePlan, id: ResourceId) -> GpuTexture {
+        let (size, format) =
+            plan.resource(id).map_or(([1, 1], MAP_FORMAT), |r| (r.size, wgpu_format(r.format)));
+        let label = format!("ocean.{}", id.name());
+        GpuTexture::target(&self.gpu.device, &label, size[0], size[1], format)
+    }
+
+    /// The HDR frame and its depth, made by their first writer; with the sky skipped, that
+    /// writer first clears the frame to the plan's background.
+    fn hdr(&mut self, plan: &FramePlan) -> (GpuTexture, GpuTexture) {
+        let hdr = match self.maps.iter().find(|(m, _)| *m == ResourceId::Hdr) {
+            Some((_, t)) => t.clone(),
+            None => {
+                let t = self.target(plan, ResourceId::Hdr);
+                self.put(ResourceId::Hdr, t.clone());
+                t
+            }
+        };
+        let depth = self
+            .depth
+            .get_or_insert_with(|| {
+                GpuTexture::depth(&self.gpu.device, "ocean.hdr.depth", hdr.width, hdr.height)
+            })
+            .clone();
+        (hdr, depth)
+    }
+
+    /// Clears the HDR frame to the plan's background before its first writer when the sky
+    /// pass (which draws over every pixel) does not run.
+    fn start_hdr(&mut self, plan: &FramePlan) -> (GpuTexture, GpuTexture) {
+        let (hdr, depth) = self.hdr(plan);
+        if !self.hdr_started {
+            let c = plan.resource(ResourceId::Hdr).map_or([0.0; 4], |r| r.clear);
+            drop(begin_render_pass(
+                &mut self.encoder,
+                "ocean.background",
+                &hdr.view,
+                Load::Clear(c),
+                Some((&depth.view, Load::Clear(0.0))),
+                None,
+            ));
+            self.hdr_started = true;
+        }
+        (hdr, depth)
+    }
+
+    fn waves(&mut self, frame: &FrameInputs<'_>, state: &FrameState) -> Result<(), Error> {
+        let ocean = &frame.scene.ocean;
+        if frame.plan.runs(Pass::Cycle) {
+            // Cyclic playback: the cycle's maps nearest t, uploaded (the same maps the CPU
+            // oracle binds).
+            let t0 = Instant::now();
+            let (d, b) = state.cycle_at(ocean, frame.time_s).ok_or_else(|| {
+                Error::Core(ocean_core::Error::InvalidParameter {
+                    name: "loop_period_s",
+                    value: ocean.loop_period_s,
+                    reason: "the plan plays a cycle that was not precomputed".into(),
+                })
+            })?;
+            for (id, texels) in [
+                (ResourceId::Displacement, displacement_texels(d)),
+                (ResourceId::DisplacementSlopes, displacement_slope_texels(d)),
+                (ResourceId::Bump, bump_texels(b)),
+            ] {
+                let r = frame.plan.resource(id);
+                let size = r.map_or([1, 1], |r| r.size);
+                let label = format!("ocean.waves.{}", id.name());
+                let t = GpuTexture::new(
+                    &self.gpu.device,
+                    &label,
+                    size[0],
+                    size[1],
+                    MAP_FORMAT,
+                    map_usage(),
+                );
+                crate::wave_maps::write(self.gpu, &t, &texels);
+                self.put(id, t);
+            }
+            self.waves_cpu = Some(t0.elapsed());
+            self.wave_source = Some("cycle-upload");
+            return Ok(());
+        }
+        if self.waves.as_ref().is_none_or(|(k, _)| *k != wave_key(ocean)) {
+            return Err(Error::Readback {
+                what: "waves".into(),
+                message: "the renderer holds no wave source for this ocean".into(),
+            });
+        }
+        let Some((_, source)) = self.waves.as_mut() else { return Ok(()) };
+        let t0 = Instant::now();
+        self.wave_source = Some(source.name());
+        let slot = if source.records_gpu_passes() { self.timer.slot(Pass::Waves) } else { None };
+        let maps = source.encode(
+            self.gpu,
+            &mut self.encoder,
+            frame.time_s,
+            ocean.choppiness,
+            self.timer.compute_writes(slot),
+        )?;
+        let (d, s, b) =
+            (maps.displacement.clone(), maps.displacement_slopes.clone(), maps.bump.clone());
+        self.waves_cpu = Some(t0.elapsed());
+        self.put(ResourceId::Displacement, d);
+        self.put(ResourceId::DisplacementSlopes, s);
+        self.put(ResourceId::Bump, b);
+        Ok(())
+    }
+
+    fn fresnel_tables(&mut self, frame: &FrameInputs<'_>) {
+        let eta = frame.uniforms.water_params[0];
+        for (id, eta) in [(ResourceId::FresnelAbove, eta), (ResourceId::FresnelBelow, 1.0 / eta)] {
+            let size = frame.plan.resource(id).map_or(1, |r| r.size[0]);
+            let label = format!("ocean.fresnel_table.{}", id.name());
+            let target =
+                GpuTexture::new(&self.gpu.device, &label, size, size, MAP_FORMAT, map_usage());
+            let params = FresnelTableUniforms { eta, size, mapping: 0, pad: 0 };
+            let slot = self.timer.slot(Pass::FresnelTable);
+            self.stages.fresnel_table.encode(
+                &self.gpu.device,
+                &mut self.encoder,
+                &params,
+                &target,
+                self.timer.compute_writes(slot),
+            );
+            self.put(id, target);
+        }
+    }
+
+    /// The triangles of a pass's objects, camera-relative, in ocean-core's order; one zero
+    /// vertex keeps a buffer non-empty.
+    fn object_vertices(&self, pass: &PlannedPass, frame: &FrameInputs<'_>) -> (wgpu::Buffer, u32) {
+        let objects: Vec<Object> =
+            pass.objects.iter().map(|&i| frame.scene.objects[i].clone()).collect();
+        let tris = object_triangles(&objects, frame.camera.eye);
+        let mut vertices: Vec<ObjectVertex> = tris.iter().flatten().copied().collect();
+        let count = vertices.len() as u32;
+        if vertices.is_empty() {
+            vertices.push(bytemuck::Zeroable::zeroed());
+        }
+        let buffer = self.gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("ocean.objects.vertices"),
+            contents: bytemuck::cast_slice(&vertices),
+            usage: wgpu::BufferUsages::VERTEX,
+        });
+        (buffer, count)
+    }
+
+    fn frame_group(&self, layout: &wgpu::BindGroupLayout, label: &str) -> wgpu::BindGroup {
+        bind_group(&self.gpu.device, label, layout, &[self.frame_buffer.as_entire_binding()])
+    }
+
+    fn object_pass(&mut self, pass: &PlannedPass, frame: &FrameInputs<'_>) {
+        let (vertices, count) = self.object_vertices(pass, frame);
+        let device = &self.gpu.device;
+        match pass.name {
+            Pass::ShadowMap => {
+                let target = self.target(frame.plan, ResourceId::ShadowMap);
+                let depth =
+                    GpuTexture::depth(device, "ocean.shadow.depth", target.width, target.height);
+                let group = self.frame_group(&self.stages.shadow.frame_layout, "ocean.shadow");
+                let slot = self.timer.slot(Pass::ShadowMap);
+                self.stages.shadow.encode(
+                    &mut self.encoder,
+                    &group,
+                    &vertices,
+                    count,
+                    &target.view,
+                    &depth.view,
+                    self.timer.render_writes(slot),
+                );
+                self.put(ResourceId::ShadowMap, target);
+            }
+            Pass::ReflectionMap | Pass::RefractionMap => {
+                let (id, entry) = if pass.name == Pass::ReflectionMap {
+                    (ResourceId::ReflectionMap, ObjectsEntry::Reflect)
+                } else {
+                    (ResourceId::RefractionMap, ObjectsEntry::Refract)
+                };
+                let target = self.target(frame.plan, id);
+                let label = format!("ocean.objects.{}", id.name());
+                let depth = GpuTexture::depth(device, &label, target.width, target.height);
+                let group = self.frame_group(&self.stages.objects.frame_layout, "ocean.objects");
+                let slot = self.timer.slot(pass.name);
+                self.stages.objects.encode(
+                    &mut self.encoder,
+                    entry,
+                    &group,
+                    &vertices,
+                    count,
+                    &target.view,
+                    &depth.view,
+                    (Load::Clear([0.0; 4]), Load::Clear(0.0)),
+                    self.timer.render_writes(slot),
+                );
+                self.put(id, target);
+            }
+            _ => {
+                let (hdr, depth) = self.start_hdr(frame.plan);
+                let group = self.frame_group(&self.stages.objects.frame_layout, "ocean.objects");
+                let slot = self.timer.slot(Pass::Objects);
+                self.stages.objects.encode(
+                    &mut self.encoder,
+                    ObjectsEntry::Main,
+                    &group,
+                    &vertices,
+                    count,
+                    &hdr.view,
+                    &depth.view,
+                    (Load::Keep, Load::Keep),
+                    self.timer.render_writes(slot),
+                );
+            }
+        }
+    }
+
+    fn water(&mut self, frame: &FrameInputs<'_>) {
+        let [
+            displacement,
+            displacement_slopes,
+            bump,
+            fresnel_above,
+            fresnel_below,
+            shadow_map,
+            reflection_map,
+            refraction_map,
+        ] = [
+            ResourceId::Displacement,
+            ResourceId::DisplacementSlopes,
+            ResourceId::Bump,
+            ResourceId::FresnelAbove,
+            ResourceId::FresnelBelow,
+            ResourceId::ShadowMap,
+            ResourceId::ReflectionMap,
+            ResourceId::RefractionMap,
+        ]
+        .map(|id| self.map(id));
+        let (hdr, depth) = self.start_hdr(frame.plan);
+        let device = &self.gpu.device;
+        let mesh = &frame.mesh;
+        let water_vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("ocean.water.vertices"),
+            contents: bytemuck::cast_slice(&mesh.vertices),
+            usage: wgpu::BufferUsages::VERTEX,
+        });
+        let water_indices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("ocean.water.indices"),
+            contents: bytemuck::cast_slice(&mesh.indices),
+            usage: wgpu::BufferUsages::INDEX,
+        });
+        let sky_buffer = uniform_buffer(device, "ocean.water.sky", &frame.environment);
+        let slot = self.timer.slot(Pass::Water);
+        self.stages.water.encode(
+            device,
+            &mut self.encoder,
+            &self.frame_buffer,
+            &sky_buffer,
+            &WaterTextures {
+                displacement: &displacement.view,
+                displacement_slopes: &displacement_slopes.view,
+                bump: &bump.view,
+                fresnel_above: &fresnel_above.view,
+                fresnel_below: &fresnel_below.view,
+                reflection_map: &reflection_map.view,
+                refraction_map: &refraction_map.view,
+                shadow_map: &shadow_map.view,
+            },
+            &WaterMeshBuffers {
+                vertices: &water_vertices,
+                indices: &water_indices,
+                index_count: 3 * mesh.indices.len() as u32,
+            },
+            &hdr.view,
+            &depth.view,
+            self.timer.render_writes(slot),
+        );
+    }
+}
+
+impl Backend for GpuBackend<'_> {
+    type Error = Error;
+
+    fn execute(
+        &mut self,
+        pass: &PlannedPass,
+        frame: &FrameInputs<'_>,
+        state: &FrameState,
+    ) -> Result<(), Error> {
+        match pass.name {
+            Pass::Cycle | Pass::FarPatch => {}
+            Pass::Waves => self.waves(frame, state)?,
+            Pass::FresnelTable => self.fresnel_tables(frame),
+            Pass::ShadowMap | Pass::ReflectionMap | Pass::RefractionMap | Pass::Objects => {
+                self.object_pass(pass, frame)
+            }
+            Pass::Sky => {
+                let (hdr, depth) = self.hdr(frame.plan);
+                let slot = self.timer.slot(Pass::Sky);
+                self.stages.sky.encode(
+                    &self.gpu.device,
+                    &mut self.encoder,
+                    &frame.camera_uniforms,
+                    &frame.environment,
+                    &hdr.view,
+                    &depth.view,
+                    self.timer.render_writes(slot),
+                );
+                self.hdr_started = true;
+            }
+            Pass::Water => self.water(frame),
+            Pass::Tonemap => {
+                if let Some(t) = &frame.tonemap {
+                    let (hdr, _) = self.hdr(frame.plan);
+                    let ldr = self.target(frame.plan, ResourceId::Ldr);
+                    let slot = self.timer.slot(Pass::Tonemap);
+                    self.stages.tonemap.encode(
+                        &self.gpu.device,
+                        &mut self.encoder,
+                        t,
+                        &hdr.view,
+                        &ldr.view,
+                        self.timer.render_writes(slot),
+                    );
+                    self.put(ResourceId::Ldr, ldr);
+                }
+            }
+        }
+        Ok(())
+    }
 }
 
 impl Renderer {
@@ -202,27 +515,16 @@ impl Renderer {
     pub fn with_gpu(gpu: Gpu, wave_synthesis: WaveSynthesis) -> Result<Self, Error> {
         let d = &gpu.device;
         let stages = gpu.scoped("creating the pipelines", || -> Result<_, Error> {
-            Ok((
-                FresnelTableStage::new(d)?,
-                SkyStage::new(d)?,
-                ObjectsStage::new(d)?,
-                ShadowStage::new(d)?,
-                WaterStage::new(d)?,
-                TonemapStage::new(d)?,
-            ))
+            Ok(Stages {
+                fresnel_table: FresnelTableStage::new(d)?,
+                sky: SkyStage::new(d)?,
+                objects: ObjectsStage::new(d)?,
+                shadow: ShadowStage::new(d)?,
+                water: WaterStage::new(d)?,
+                tonemap: TonemapStage::new(d)?,
+            })
         })??;
-        let (fresnel_table, sky, objects, shadow, water, tonemap) = stages;
-        Ok(Self {
-            gpu,
-            fresnel_table,
-            sky,
-            objects,
-            shadow,
-            water,
-            tonemap,
-            wave_synthesis,
-            waves: None,
-        })
+        Ok(Self { gpu, stages, wave_synthesis, waves: None })
     }
 
     /// The device.
@@ -275,330 +577,108 @@ impl Renderer {
         plan: &FramePlan,
         readback: Readback,
     ) -> Result<GpuFrame, Error> {
+        self.run_frame(scene, plan, &mut FrameState::default(), readback)
+    }
+
+    /// Renders frame `state.frame` of an animation by `plan` (a plan for several frames plays
+    /// a looping sea's cycle, precomputed in `state` by the first frame), reads back what
+    /// `readback` says, and advances `state`.
+    ///
+    /// # Errors
+    /// As [`Self::run`].
+    pub fn run_frame(
+        &mut self,
+        scene: &Scene,
+        plan: &FramePlan,
+        state: &mut FrameState,
+        readback: Readback,
+    ) -> Result<GpuFrame, Error> {
         let start = Instant::now();
-        let camera = Camera::from_scene(&scene.camera)?;
-        let (w, h) = (camera.width, camera.height);
+        let inputs = FrameInputs::new(scene, plan, state)?;
+        let (w, h) = (inputs.camera.width, inputs.camera.height);
         let max = self.gpu.device.limits().max_texture_dimension_2d;
         if w > max || h > max {
             return Err(Error::TooLarge { width: w, height: h, max });
         }
-        // The same ocean-core calls as ocean-cpu's `render_scene`.
-        let mesh = plan.water_mesh(scene, &camera)?;
-        let preetham = scene_sky(scene)?;
-        let sky_u = preetham.uniforms();
-        let mut u = FrameUniforms::new(scene, &camera, plan, mesh.origin);
-        u.sky_ambient = sky_ambient(&preetham);
-        let camera_u = CameraUniforms::new(camera.view_proj().to_cols_array_2d(), [0.0; 3], w, h)?;
-        let tonemap_u = plan
-            .runs(Pass::Tonemap)
-            .then(|| TonemapUniforms::new(scene.camera.exposure))
-            .transpose()?;
-
         // The wave-map source for this ocean (kept across frames while the ocean is the same).
-        let mut waves_cpu = None;
-        let mut wave_source = None;
         if plan.runs(Pass::Waves)
+            && !plan.runs(Pass::Cycle)
             && self.waves.as_ref().is_none_or(|(k, _)| *k != wave_key(&scene.ocean))
         {
             self.set_waves(&scene.ocean, scene.ocean.surface()?)?;
         }
-
+        let u: FrameUniforms = inputs.uniforms;
         let gpu = &self.gpu;
-        let device = &gpu.device;
+        let stages = &self.stages;
+        let waves = &mut self.waves;
         let frame = gpu.scoped("rendering the frame", || -> Result<_, Error> {
-            let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("ocean.frame"),
-            });
-            let mut timer = PassTimer::new(gpu);
-            let mut readbacks: Readbacks<Option<FrameMap>> = Readbacks::default();
-            let all = readback == Readback::All;
-
-            // waves
-            let empty = |label: &str| GpuTexture::empty_map(gpu, label);
-            let owned_waves;
-            let (displacement, displacement_slopes, bump) = match &mut self.waves {
-                Some((_, source)) if plan.runs(Pass::Waves) => {
-                    let t0 = Instant::now();
-                    wave_source = Some(source.name());
-                    let slot =
-                        if source.records_gpu_passes() { timer.slot(Pass::Waves) } else { None };
-                    let maps = source.encode(
-                        gpu,
-                        &mut encoder,
-                        scene.ocean.time_s,
-                        scene.ocean.choppiness,
-                        timer.compute_writes(slot),
-                    )?;
-                    waves_cpu = Some(t0.elapsed());
-                    (&maps.displacement, &maps.displacement_slopes, &maps.bump)
-                }
-                _ => {
-                    owned_waves = [
-                        empty("ocean.waves.displacement"),
-                        empty("ocean.waves.displacement_slopes"),
-                        empty("ocean.waves.bump"),
-                    ];
-                    (&owned_waves[0], &owned_waves[1], &owned_waves[2])
-                }
+            let device = &gpu.device;
+            let mut backend = GpuBackend {
+                gpu,
+                stages,
+                waves,
+                encoder: device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("ocean.frame"),
+                }),
+                timer: PassTimer::new(gpu),
+                maps: Vec::new(),
+                depth: None,
+                hdr_started: false,
+                frame_buffer: uniform_buffer(device, "ocean.frame.uniforms", &u),
+                waves_cpu: None,
+                wave_source: None,
             };
-
-            // fresnel_table
-            let table = |label: &str| {
-                GpuTexture::new(
-                    device,
-                    label,
-                    FRESNEL_TABLE_SIZE,
-                    FRESNEL_TABLE_SIZE,
-                    MAP_FORMAT,
-                    map_usage(),
-                )
-            };
-            let fresnel_above = table("ocean.fresnel_table.above");
-            let fresnel_below = table("ocean.fresnel_table.below");
-            let eta = u.water_params[0];
-            for (target, eta) in [(&fresnel_above, eta), (&fresnel_below, 1.0 / eta)] {
-                let params =
-                    FresnelTableUniforms { eta, size: FRESNEL_TABLE_SIZE, mapping: 0, pad: 0 };
-                let slot = timer.slot(Pass::FresnelTable);
-                self.fresnel_table.encode(
-                    device,
-                    &mut encoder,
-                    &params,
-                    target,
-                    timer.compute_writes(slot),
-                );
-            }
-
-            // The objects each pass draws (the plan culls per pass, as on the CPU): their
-            // triangles, camera-relative, in ocean-core's order; one zero vertex keeps a buffer
-            // non-empty.
-            let objects_of = |pass: Pass| -> (wgpu::Buffer, u32) {
-                let objects: Vec<Object> =
-                    plan.objects.of(pass).iter().map(|&i| scene.objects[i].clone()).collect();
-                let tris = object_triangles(&objects, camera.eye);
-                let mut vertices: Vec<ObjectVertex> = tris.iter().flatten().copied().collect();
-                let count = vertices.len() as u32;
-                if vertices.is_empty() {
-                    vertices.push(bytemuck::Zeroable::zeroed());
-                }
-                let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some("ocean.objects.vertices"),
-                    contents: bytemuck::cast_slice(&vertices),
-                    usage: wgpu::BufferUsages::VERTEX,
-                });
-                (buffer, count)
-            };
-            let frame_buffer = uniform_buffer(device, "ocean.frame.uniforms", &u);
-            let frame_group = |layout: &wgpu::BindGroupLayout, label: &str| {
-                bind_group(device, label, layout, &[frame_buffer.as_entire_binding()])
-            };
-
-            // shadow_map
-            let shadow_map = if plan.runs(Pass::ShadowMap) {
-                let target = GpuTexture::target(
-                    device,
-                    "ocean.shadow.map",
-                    SHADOW_MAP_SIZE,
-                    SHADOW_MAP_SIZE,
-                    SHADOW_FORMAT,
-                );
-                let depth = GpuTexture::depth(
-                    device,
-                    "ocean.shadow.depth",
-                    SHADOW_MAP_SIZE,
-                    SHADOW_MAP_SIZE,
-                );
-                let slot = timer.slot(Pass::ShadowMap);
-                let (object_vertices, vertex_count) = objects_of(Pass::ShadowMap);
-                self.shadow.encode(
-                    &mut encoder,
-                    &frame_group(&self.shadow.frame_layout, "ocean.shadow"),
-                    &object_vertices,
-                    vertex_count,
-                    &target.view,
-                    &depth.view,
-                    timer.render_writes(slot),
-                );
-                (target, SHADOW_FORMAT)
-            } else {
-                (empty("ocean.shadow.map"), MAP_FORMAT)
-            };
-
-            // reflection_map, refraction_map
-            let objects_group = frame_group(&self.objects.frame_layout, "ocean.objects");
-            let mut object_map = |pass: Pass, entry: ObjectsEntry, label: &str| {
-                if !plan.runs(pass) {
-                    return empty(label);
-                }
-                let target = GpuTexture::target(device, label, w, h, MAP_FORMAT);
-                let depth = GpuTexture::depth(device, label, w, h);
-                let slot = timer.slot(pass);
-                let (object_vertices, vertex_count) = objects_of(pass);
-                self.objects.encode(
-                    &mut encoder,
-                    entry,
-                    &objects_group,
-                    &object_vertices,
-                    vertex_count,
-                    &target.view,
-                    &depth.view,
-                    (Load::Clear([0.0; 4]), Load::Clear(0.0)),
-                    timer.render_writes(slot),
-                );
-                target
-            };
-            let reflection_map = object_map(
-                Pass::ReflectionMap,
-                ObjectsEntry::Reflect,
-                "ocean.objects.reflection_map",
-            );
-            let refraction_map = object_map(
-                Pass::RefractionMap,
-                ObjectsEntry::Refract,
-                "ocean.objects.refraction_map",
-            );
-
-            // sky (or the water volume as the background)
-            let hdr = GpuTexture::target(device, "ocean.hdr", w, h, MAP_FORMAT);
-            let depth = GpuTexture::depth(device, "ocean.hdr.depth", w, h);
-            if plan.runs(Pass::Sky) {
-                let slot = timer.slot(Pass::Sky);
-                self.sky.encode(
-                    device,
-                    &mut encoder,
-                    &camera_u,
-                    &sky_u,
-                    &hdr.view,
-                    &depth.view,
-                    timer.render_writes(slot),
-                );
-            } else {
-                let c = u.water_color;
-                drop(begin_render_pass(
-                    &mut encoder,
-                    "ocean.background",
-                    &hdr.view,
-                    Load::Clear([c[0], c[1], c[2], 1.0]),
-                    Some((&depth.view, Load::Clear(0.0))),
-                    None,
-                ));
-            }
-
-            // objects
-            if plan.runs(Pass::Objects) {
-                let slot = timer.slot(Pass::Objects);
-                let (object_vertices, vertex_count) = objects_of(Pass::Objects);
-                self.objects.encode(
-                    &mut encoder,
-                    ObjectsEntry::Main,
-                    &objects_group,
-                    &object_vertices,
-                    vertex_count,
-                    &hdr.view,
-                    &depth.view,
-                    (Load::Keep, Load::Keep),
-                    timer.render_writes(slot),
-                );
-            }
-
-            // water
-            let water_vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("ocean.water.vertices"),
-                contents: bytemuck::cast_slice(&mesh.vertices),
-                usage: wgpu::BufferUsages::VERTEX,
-            });
-            let water_indices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("ocean.water.indices"),
-                contents: bytemuck::cast_slice(&mesh.indices),
-                usage: wgpu::BufferUsages::INDEX,
-            });
-            let sky_buffer = uniform_buffer(device, "ocean.water.sky", &sky_u);
-            let slot = timer.slot(Pass::Water);
-            self.water.encode(
-                device,
-                &mut encoder,
-                &frame_buffer,
-                &sky_buffer,
-                &WaterTextures {
-                    displacement: &displacement.view,
-                    displacement_slopes: &displacement_slopes.view,
-                    bump: &bump.view,
-                    fresnel_above: &fresnel_above.view,
-                    fresnel_below: &fresnel_below.view,
-                    reflection_map: &reflection_map.view,
-                    refraction_map: &refraction_map.view,
-                    shadow_map: &shadow_map.0.view,
-                },
-                &WaterMeshBuffers {
-                    vertices: &water_vertices,
-                    indices: &water_indices,
-                    index_count: 3 * mesh.indices.len() as u32,
-                },
-                &hdr.view,
-                &depth.view,
-                timer.render_writes(slot),
-            );
-
-            // tonemap
-            let ldr = tonemap_u.map(|t| {
-                let ldr = GpuTexture::target(device, "ocean.ldr", w, h, LDR_FORMAT);
-                let slot = timer.slot(Pass::Tonemap);
-                self.tonemap.encode(
-                    device,
-                    &mut encoder,
-                    &t,
-                    &hdr.view,
-                    &ldr.view,
-                    timer.render_writes(slot),
-                );
-                ldr
-            });
+            run_frame(&mut backend, &inputs, state, &mut |_| {})?;
+            let GpuBackend { mut encoder, timer, waves_cpu, wave_source, maps, .. } = backend;
             timer.resolve(&mut encoder);
 
             // readback
-            let mut copy = |key: Option<FrameMap>, texture: &GpuTexture, format| {
-                let label = key.map_or("ldr", FrameMap::name);
-                readbacks.copy(device, &mut encoder, key, label, texture, format);
-            };
-            if all {
-                copy(Some(FrameMap::Displacement), displacement, MAP_FORMAT);
-                copy(Some(FrameMap::DisplacementSlopes), displacement_slopes, MAP_FORMAT);
-                copy(Some(FrameMap::Bump), bump, MAP_FORMAT);
-                copy(Some(FrameMap::FresnelAbove), &fresnel_above, MAP_FORMAT);
-                copy(Some(FrameMap::FresnelBelow), &fresnel_below, MAP_FORMAT);
-                copy(Some(FrameMap::ShadowMap), &shadow_map.0, shadow_map.1);
-                copy(Some(FrameMap::ReflectionMap), &reflection_map, MAP_FORMAT);
-                copy(Some(FrameMap::RefractionMap), &refraction_map, MAP_FORMAT);
+            let mut readbacks: Readbacks<ResourceId> = Readbacks::default();
+            let all = readback == Readback::All;
+            let output_back = readback != Readback::None;
+            let find = |id: ResourceId| maps.iter().find(|(m, _)| *m == id).map(|(_, t)| t);
+            let ldr = find(ResourceId::Ldr).cloned();
+            let empty = GpuTexture::empty_map(gpu, "ocean.empty");
+            for id in ResourceId::MAPS {
+                let wanted = all || (id == ResourceId::Hdr && output_back && ldr.is_none());
+                if !wanted {
+                    continue;
+                }
+                let format = plan.resource(id).map_or(MAP_FORMAT, |r| wgpu_format(r.format));
+                let texture = find(id).unwrap_or(&empty);
+                readbacks.copy(device, &mut encoder, id, id.name(), texture, format);
             }
-            let output = readback != Readback::None;
-            if all || (output && ldr.is_none()) {
-                copy(Some(FrameMap::Hdr), &hdr, MAP_FORMAT);
-            }
-            if let Some(ldr) = ldr.as_ref().filter(|_| output) {
-                copy(None, ldr, LDR_FORMAT);
+            if let Some(ldr) = ldr.as_ref().filter(|_| output_back) {
+                readbacks.copy(device, &mut encoder, ResourceId::Ldr, "ldr", ldr, LDR_FORMAT);
             }
             gpu.queue.submit([encoder.finish()]);
             let data = readbacks.finish(gpu)?;
             // Reading nothing back, the frame does not wait for the GPU: its timestamps come
             // later (`GpuFrame::pending_timings`).
-            let (timings, pending) = if output {
+            let (timings, pending) = if output_back {
                 (timer.finish(gpu)?, None)
             } else {
                 (Vec::new(), timer.finish_later())
             };
-            Ok((data, timings, pending, ldr.unwrap_or(hdr)))
+            let output = match ldr {
+                Some(l) => l,
+                None => find(ResourceId::Hdr).cloned().unwrap_or(empty),
+            };
+            Ok((data, timings, pending, output, waves_cpu, wave_source))
         })??;
+        drop(inputs);
+        state.advance();
 
-        let (data, gpu_timings, pending_timings, output) = frame;
+        let (data, gpu_timings, pending_timings, output, waves_cpu, wave_source) = frame;
         let mut maps = Vec::new();
         let mut ldr = None;
         for (key, texels) in data {
             match (key, texels) {
-                (Some(m), TexelData::Float(t)) => maps.push((m, t)),
-                (None, TexelData::Rgba8(bytes)) => ldr = Some(bytes),
+                (ResourceId::Ldr, TexelData::Rgba8(bytes)) => ldr = Some(bytes),
+                (m, TexelData::Float(t)) if m != ResourceId::Ldr => maps.push((m, t)),
                 (key, _) => {
                     return Err(Error::Readback {
-                        what: key.map_or("ldr", FrameMap::name).into(),
+                        what: key.name().into(),
                         message: "unexpected texel format".into(),
                     });
                 }

@@ -24,7 +24,7 @@ pub const LDR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
 /// A 2D texture with its default view.
-#[derive(Debug)]
+#[derive(Debug, Clone)]
 pub struct GpuTexture {
     /// The texture.
     pub texture: wgpu::Texture,

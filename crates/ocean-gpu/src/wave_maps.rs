@@ -273,7 +273,8 @@ impl CpuUpload {
     }
 }
 
-fn write(gpu: &Gpu, texture: &GpuTexture, texels: &[[f32; 4]]) {
+/// Uploads `texels` into the whole of `texture` (ordered before the next submission).
+pub(crate) fn write(gpu: &Gpu, texture: &GpuTexture, texels: &[[f32; 4]]) {
     gpu.queue.write_texture(
         texture.texture.as_image_copy(),
         bytemuck::cast_slice(texels),

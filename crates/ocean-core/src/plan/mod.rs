@@ -32,6 +32,10 @@
 //! stay: they are what the picture shows, not work saved); the tests render both plans and
 //! compare the bits.
 
+mod graph;
+mod resource;
+mod technique;
+
 use std::fmt;
 
 use glam::{DVec3, DVec4};
@@ -40,6 +44,13 @@ use serde::Serialize;
 use crate::camera::{Camera, NEAR_PLANE_M};
 use crate::geometry::WaterMesh;
 use crate::scene::{Object, Scene, Shape};
+
+pub use graph::{Backend, DrawMesh, FrameInputs, FrameState, run_frame};
+pub use resource::{Format, Resource, ResourceId, SHADOW_MAP_SIZE};
+pub use technique::{
+    SYSTEMS, Stage, System, SystemInfo, TECHNIQUES, TechniqueError, TechniqueInfo, Techniques,
+    known_systems, technique,
+};
 
 /// A pass of the frame, named as in DESIGN.md (the name of its stage, or of the map an
 /// object pass fills, or of the work it stands for: `cycle`, `far_patch`).
@@ -86,6 +97,68 @@ impl Pass {
         Pass::Tonemap,
     ];
 
+    /// The technique stage the pass belongs to, if it is one of a stage's techniques (the
+    /// object passes belong to none: every system draws the scene's objects alike).
+    pub fn stage(self) -> Option<Stage> {
+        match self {
+            Pass::Cycle | Pass::Waves => Some(Stage::Waves),
+            Pass::FresnelTable | Pass::Water => Some(Stage::Shading),
+            Pass::Sky => Some(Stage::Sky),
+            Pass::FarPatch => Some(Stage::Surface),
+            Pass::Tonemap => Some(Stage::Post),
+            Pass::ShadowMap | Pass::ReflectionMap | Pass::RefractionMap | Pass::Objects => None,
+        }
+    }
+
+    /// The registry stage whose WGSL executes the pass (`None`: CPU work in ocean-core, the
+    /// cycle's precompute and the far patch's geometry).
+    pub fn shader(self) -> Option<&'static str> {
+        match self {
+            Pass::Cycle | Pass::FarPatch => None,
+            Pass::Waves => Some("waves"),
+            Pass::FresnelTable => Some("fresnel_table"),
+            Pass::ShadowMap => Some("shadow"),
+            Pass::ReflectionMap | Pass::RefractionMap | Pass::Objects => Some("objects"),
+            Pass::Sky => Some("sky"),
+            Pass::Water => Some("water"),
+            Pass::Tonemap => Some("tonemap"),
+        }
+    }
+
+    /// The resources the pass reads.
+    pub fn reads(self) -> &'static [ResourceId] {
+        use ResourceId as R;
+        match self {
+            Pass::Water => &[
+                R::Displacement,
+                R::DisplacementSlopes,
+                R::Bump,
+                R::FresnelAbove,
+                R::FresnelBelow,
+                R::ShadowMap,
+                R::ReflectionMap,
+                R::RefractionMap,
+            ],
+            Pass::Tonemap => &[R::Hdr],
+            _ => &[],
+        }
+    }
+
+    /// The resources the pass writes.
+    pub fn writes(self) -> &'static [ResourceId] {
+        use ResourceId as R;
+        match self {
+            Pass::Cycle | Pass::FarPatch => &[],
+            Pass::Waves => &[R::Displacement, R::DisplacementSlopes, R::Bump],
+            Pass::FresnelTable => &[R::FresnelAbove, R::FresnelBelow],
+            Pass::ShadowMap => &[R::ShadowMap],
+            Pass::ReflectionMap => &[R::ReflectionMap],
+            Pass::RefractionMap => &[R::RefractionMap],
+            Pass::Sky | Pass::Objects | Pass::Water => &[R::Hdr],
+            Pass::Tonemap => &[R::Ldr],
+        }
+    }
+
     /// The pass's name in plans, labels and reports.
     pub fn name(self) -> &'static str {
         match self {
@@ -119,13 +192,26 @@ pub enum OutputKind {
     Hdr,
 }
 
-/// A pass with the reason it is in or out of the plan.
+/// A pass with the reason it is in or out of the plan, its stage and technique, what it
+/// reads and writes and which objects it draws.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
 pub struct PlannedPass {
     /// Which pass.
     pub name: Pass,
     /// Why it runs or is skipped.
     pub reason: String,
+    /// Its technique stage ([`Pass::stage`]).
+    pub stage: Option<Stage>,
+    /// The technique of that stage the plan chose.
+    pub technique: Option<&'static str>,
+    /// The registry stage whose WGSL runs it ([`Pass::shader`]).
+    pub shader: Option<&'static str>,
+    /// Resources it reads.
+    pub reads: &'static [ResourceId],
+    /// Resources it writes.
+    pub writes: &'static [ResourceId],
+    /// The objects it draws (indices into the scene's `objects`; object passes only).
+    pub objects: Vec<usize>,
 }
 
 /// Which objects (indices into the scene's `objects`) each object pass draws.
@@ -154,16 +240,21 @@ impl PassObjects {
     }
 }
 
-/// The ordered passes of a frame, the ones left out, and what each object pass draws at what
-/// size.
-#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+/// The frame graph: the system and the technique per stage, the resources with their
+/// formats and sizes, the ordered passes, the ones left out, and what each object pass
+/// draws. Both back ends run it through [`run_frame`].
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct FramePlan {
+    /// The system the techniques start from.
+    pub system: System,
+    /// The technique of every stage.
+    pub techniques: Techniques,
     /// The passes to run, in order.
     pub passes: Vec<PlannedPass>,
     /// The passes left out, with why.
     pub skipped: Vec<PlannedPass>,
-    /// The objects each object pass draws.
-    pub objects: PassObjects,
+    /// Every texture the frame binds, with its format and size.
+    pub resources: Vec<Resource>,
     /// Side N of the N × N Fresnel textures (`[quality] fresnel_table_size`).
     pub fresnel_table_size: u32,
     /// Width and height of the reflection map, pixels (`[quality] reflection_map_scale` of the
@@ -333,16 +424,20 @@ impl FramePlan {
             .as_ref()
             .filter(|_| opt.prune)
             .and_then(|c| footprint_inside_near_patch(scene, c));
+        let techniques = scene.techniques();
         let mut plan = FramePlan {
+            system: techniques.system,
+            techniques,
+            resources: Vec::new(),
             passes: Vec::new(),
             skipped: Vec::new(),
-            objects: PassObjects::default(),
             fresnel_table_size: scene.quality.fresnel_table_size,
             reflection_map_size: [scene.camera.width, scene.camera.height].map(|side| {
                 ((f64::from(side) * scene.quality.reflection_map_scale).round() as u32).max(1)
             }),
         };
         let full = "full plan: every pass the scene can use";
+        let mut objects = PassObjects::default();
         for pass in Pass::ALL {
             let (run, reason) = match pass {
                 Pass::Cycle => match (looping, waves_on, opt.frames) {
@@ -380,7 +475,7 @@ impl FramePlan {
                     ),
                 ),
                 Pass::ShadowMap => {
-                    plan.objects.shadow_map = above.clone();
+                    objects.shadow_map = above.clone();
                     match (sun_up || !opt.prune, above.len()) {
                         (false, _) => {
                             (false, "no sun above the horizon: no specular to shadow".into())
@@ -394,7 +489,7 @@ impl FramePlan {
                     }
                 }
                 Pass::ReflectionMap => {
-                    plan.objects.reflection_map = mirrored.clone();
+                    objects.reflection_map = mirrored.clone();
                     let size = plan.reflection_map_size;
                     match (above.len(), mirrored.len()) {
                         (0, _) if opt.prune => {
@@ -427,7 +522,7 @@ impl FramePlan {
                     }
                 }
                 Pass::RefractionMap => {
-                    plan.objects.refraction_map = refracted.clone();
+                    objects.refraction_map = refracted.clone();
                     match (below.len(), refracted.len()) {
                         (0, _) if opt.prune => {
                             (false, "nothing under the water: the water volume colour alone".into())
@@ -466,7 +561,7 @@ impl FramePlan {
                     }
                 }
                 Pass::Objects => {
-                    plan.objects.objects = in_view.clone();
+                    objects.objects = in_view.clone();
                     match (objs.len(), in_view.len()) {
                         (0, _) if opt.prune => (false, "the scene has no objects".into()),
                         (_, 0) if opt.prune => (
@@ -509,10 +604,88 @@ impl FramePlan {
                     OutputKind::Hdr => (false, "EXR output keeps linear HDR".into()),
                 },
             };
-            let planned = PlannedPass { name: pass, reason };
+            let planned = PlannedPass {
+                name: pass,
+                reason,
+                stage: pass.stage(),
+                technique: pass.stage().map(|s| techniques.of(s).name),
+                shader: pass.shader(),
+                reads: pass.reads(),
+                writes: pass.writes(),
+                objects: objects.of(pass).to_vec(),
+            };
             if run { plan.passes.push(planned) } else { plan.skipped.push(planned) }
         }
+        plan.resources = plan.size_resources(scene);
         plan
+    }
+
+    /// The resource table: each texture at the size its writer makes it, or 1×1 where the
+    /// writer is skipped.
+    fn size_resources(&self, scene: &Scene) -> Vec<Resource> {
+        let viewport = [scene.camera.width, scene.camera.height];
+        let o = &scene.ocean;
+        let written = |id: ResourceId| self.runs(id.pass());
+        let mut out = Vec::new();
+        for id in ResourceId::ALL {
+            let (format, size) = match id {
+                ResourceId::Displacement | ResourceId::DisplacementSlopes => {
+                    (Format::Rgba32Float, [o.resolution; 2])
+                }
+                ResourceId::Bump => (Format::Rgba32Float, [o.bump_resolution; 2]),
+                ResourceId::FresnelAbove | ResourceId::FresnelBelow => {
+                    (Format::Rgba32Float, [self.fresnel_table_size; 2])
+                }
+                ResourceId::ShadowMap => (Format::R32Float, [SHADOW_MAP_SIZE; 2]),
+                ResourceId::ReflectionMap => (Format::Rgba32Float, self.reflection_map_size),
+                ResourceId::RefractionMap => (Format::Rgba32Float, viewport),
+                ResourceId::Hdr => (Format::Rgba32Float, viewport),
+                ResourceId::Ldr => (Format::Rgba8Unorm, viewport),
+            };
+            let is_written = written(id);
+            if id == ResourceId::Ldr && !is_written {
+                continue;
+            }
+            // The frame starts from the sky; under the water the sky is skipped and the water
+            // volume's colour is the background.
+            let clear = if id == ResourceId::Hdr && !self.runs(Pass::Sky) {
+                let c = scene.water.color.map(|v| v as f32);
+                [c[0], c[1], c[2], 1.0]
+            } else {
+                [0.0; 4]
+            };
+            let (format, size) =
+                if is_written { (format, size) } else { (Format::Rgba32Float, [1, 1]) };
+            out.push(Resource { id, format, size, written: is_written, clear });
+        }
+        out
+    }
+
+    /// The plan's entry for a resource (every resource but `ldr` of an HDR frame is listed).
+    pub fn resource(&self, id: ResourceId) -> Option<&Resource> {
+        self.resources.iter().find(|r| r.id == id)
+    }
+
+    /// The objects each object pass draws (run or skipped), gathered from the passes.
+    pub fn objects(&self) -> PassObjects {
+        let of = |pass: Pass| {
+            self.passes
+                .iter()
+                .chain(&self.skipped)
+                .find(|p| p.name == pass)
+                .map_or_else(Vec::new, |p| p.objects.clone())
+        };
+        PassObjects {
+            shadow_map: of(Pass::ShadowMap),
+            reflection_map: of(Pass::ReflectionMap),
+            refraction_map: of(Pass::RefractionMap),
+            objects: of(Pass::Objects),
+        }
+    }
+
+    /// The planned pass `pass`, if it runs.
+    pub fn pass(&self, pass: Pass) -> Option<&PlannedPass> {
+        self.passes.iter().find(|p| p.name == pass)
     }
 
     /// Whether the plan runs a pass.
@@ -545,6 +718,11 @@ impl FramePlan {
 
 impl fmt::Display for FramePlan {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(f, "  system {} ({})", self.system, self.system.info().paper)?;
+        for (stage, t) in self.techniques.iter() {
+            let by = if self.techniques.is_overridden(stage) { "  [techniques]" } else { "" };
+            writeln!(f, "  stage {:<10} {:<16} {}{by}", stage.name(), t.name, t.source)?;
+        }
         for p in &self.passes {
             writeln!(f, "  run   {:<15} {}", p.name.name(), p.reason)?;
         }
@@ -578,7 +756,7 @@ mod tests {
         assert_eq!(skipped, [Pass::Cycle], "{p}");
         let names: Vec<_> = p.passes.iter().map(|p| p.name).collect();
         assert_eq!(names, Pass::ALL[1..]);
-        assert_eq!(p.objects.objects, [0, 1]);
+        assert_eq!(p.objects().objects, [0, 1]);
         let p = FramePlan::new(&s, OutputKind::Hdr);
         assert_eq!(p.skipped.len(), 2);
         assert!(!p.runs(Pass::Tonemap));
@@ -632,13 +810,13 @@ mod tests {
         let high = Object { center: [0.0, 208.0, -370.0], ..sphere(0.0) };
         s.objects = vec![behind, ahead, high];
         let p = FramePlan::new(&s, OutputKind::Ldr);
-        assert_eq!(p.objects.objects, [1], "{p}");
-        assert_eq!(p.objects.reflection_map, [1, 2], "{p}");
-        assert_eq!(p.objects.shadow_map, [0, 1, 2]);
+        assert_eq!(p.objects().objects, [1], "{p}");
+        assert_eq!(p.objects().reflection_map, [1, 2], "{p}");
+        assert_eq!(p.objects().shadow_map, [0, 1, 2]);
         let reason = &p.passes.iter().find(|q| q.name == Pass::Objects).unwrap().reason;
         assert!(reason.contains("#0 sphere") && reason.contains("#2 sphere"), "{reason}");
         let full = FramePlan::full(&s, OutputKind::Ldr);
-        assert_eq!(full.objects.objects, [0, 1, 2]);
+        assert_eq!(full.objects().objects, [0, 1, 2]);
         // Everything behind the camera: no objects pass, no reflection map.
         s.objects = vec![Object { center: [0.0, 3.0, 80.0], ..sphere(0.0) }];
         let p = FramePlan::new(&s, OutputKind::Ldr);

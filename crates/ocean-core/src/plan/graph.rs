@@ -1,0 +1,234 @@
+//! One frame for both back ends (DESIGN.md, "One frame, two back ends"): [`FrameInputs`]
+//! computes once, from the scene, the plan and the [`FrameState`], everything a pass needs
+//! (camera, mesh, uniform blocks, time); [`run_frame`] walks the plan's passes in order and
+//! hands each to a [`Backend`], which knows how to execute one pass and nothing else. A back
+//! end chooses no size, pass, technique or constant: they are all here or in the plan.
+
+use std::time::{Duration, Instant};
+
+use crate::camera::Camera;
+use crate::camera_uniforms::CameraUniforms;
+use crate::frame::{FrameUniforms, scene_sky, sky_ambient};
+use crate::geometry::WaterVertex;
+use crate::scene::{Ocean, Scene};
+use crate::sky::SkyUniforms;
+use crate::tonemap::TonemapUniforms;
+use crate::waves::{FrameCycle, Synthesizer, WaveMaps};
+
+use super::{FramePlan, Pass, PlannedPass};
+
+/// The water mesh of a frame, as the `water` pass draws it: vertices relative to `origin`
+/// (world x, z), triangles counter-clockwise seen from above.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DrawMesh {
+    /// The vertices.
+    pub vertices: Vec<WaterVertex>,
+    /// The triangles.
+    pub indices: Vec<[u32; 3]>,
+    /// The reference point (world x, z), m.
+    pub origin: [f64; 2],
+}
+
+impl From<crate::geometry::WaterMesh> for DrawMesh {
+    fn from(m: crate::geometry::WaterMesh) -> Self {
+        Self { vertices: m.vertices, indices: m.indices, origin: m.origin }
+    }
+}
+
+/// What every pass of one frame reads, computed once for both back ends.
+pub struct FrameInputs<'a> {
+    /// The validated scene.
+    pub scene: &'a Scene,
+    /// The plan being run.
+    pub plan: &'a FramePlan,
+    /// The camera.
+    pub camera: Camera,
+    /// The water mesh (the plan's near and far patch).
+    pub mesh: DrawMesh,
+    /// Time spent building [`Self::mesh`].
+    pub mesh_time: Duration,
+    /// The uniforms of the `objects`, `shadow` and `water` stages.
+    pub uniforms: FrameUniforms,
+    /// The environment the water reflects and the `sky` stage draws (technique `preetham`).
+    pub environment: SkyUniforms,
+    /// The `sky` stage's camera block.
+    pub camera_uniforms: CameraUniforms,
+    /// The `tonemap` stage's block, when the plan tonemaps.
+    pub tonemap: Option<TonemapUniforms>,
+    /// The sea's time this frame, s ([`FrameState::time_s`]).
+    pub time_s: f64,
+}
+
+impl<'a> FrameInputs<'a> {
+    /// The inputs of frame `state.frame` of a validated scene under `plan`.
+    ///
+    /// # Errors
+    /// An invalid camera, mesh, sky or exposure.
+    pub fn new(scene: &'a Scene, plan: &'a FramePlan, state: &FrameState) -> crate::Result<Self> {
+        let camera = Camera::from_scene(&scene.camera)?;
+        let start = Instant::now();
+        let mesh = plan.water_mesh(scene, &camera)?.into();
+        Self::with_mesh(scene, plan, state, camera, mesh, start.elapsed())
+    }
+
+    /// [`Self::new`] with a given water mesh (tests draw a plain grid).
+    ///
+    /// # Errors
+    /// As [`Self::new`].
+    pub fn with_mesh(
+        scene: &'a Scene,
+        plan: &'a FramePlan,
+        state: &FrameState,
+        camera: Camera,
+        mesh: DrawMesh,
+        mesh_time: Duration,
+    ) -> crate::Result<Self> {
+        let sky = scene_sky(scene)?;
+        let mut uniforms = FrameUniforms::new(scene, &camera, plan, mesh.origin);
+        uniforms.sky_ambient = sky_ambient(&sky);
+        let camera_uniforms = CameraUniforms::new(
+            camera.view_proj().to_cols_array_2d(),
+            [0.0; 3],
+            camera.width,
+            camera.height,
+        )?;
+        let tonemap = plan
+            .runs(Pass::Tonemap)
+            .then(|| TonemapUniforms::new(scene.camera.exposure))
+            .transpose()?;
+        Ok(Self {
+            scene,
+            plan,
+            camera,
+            mesh,
+            mesh_time,
+            uniforms,
+            environment: sky.uniforms(),
+            camera_uniforms,
+            tonemap,
+            time_s: state.time_s(scene),
+        })
+    }
+}
+
+/// The maps of one loop period of one ocean (pass `cycle`).
+struct Cycle {
+    key: Ocean,
+    displacement: FrameCycle<f32>,
+    bump: FrameCycle<f32>,
+}
+
+/// What lives across the frames of an animation, owned by the caller: the frame index, the
+/// fixed step between frames, and the cycle's precomputed maps. Frame n shows the sea at
+/// `time_s + n · step_s`, whatever the wall clock did, so it is a pure function of (scene, n).
+#[derive(Default)]
+pub struct FrameState {
+    /// The index of the next frame.
+    pub frame: u64,
+    /// Seconds between frames.
+    pub step_s: f64,
+    cycle: Option<Cycle>,
+}
+
+impl FrameState {
+    /// Frames `step_s` apart, starting at frame 0.
+    pub fn new(step_s: f64) -> Self {
+        Self { frame: 0, step_s, cycle: None }
+    }
+
+    /// The sea's time of the current frame: the scene's `time_s` plus `frame · step_s`
+    /// (frame 0 is the scene's time exactly).
+    pub fn time_s(&self, scene: &Scene) -> f64 {
+        if self.frame == 0 {
+            scene.ocean.time_s
+        } else {
+            scene.ocean.time_s + self.frame as f64 * self.step_s
+        }
+    }
+
+    /// Moves on to the next frame.
+    pub fn advance(&mut self) {
+        self.frame += 1;
+    }
+
+    /// Pass `cycle`: precomputes the loop's maps of `ocean` unless they are already here
+    /// (a later frame of the same sea plays them). Returns whether it computed them.
+    ///
+    /// # Errors
+    /// A sea that does not loop, or a cycle too large to hold.
+    pub fn precompute_cycle(&mut self, ocean: &Ocean) -> crate::Result<bool> {
+        let key = Ocean { time_s: 0.0, ..ocean.clone() };
+        if self.cycle.as_ref().is_some_and(|c| c.key == key) {
+            return Ok(false);
+        }
+        let surface = ocean.surface()?;
+        let chop = ocean.choppiness;
+        let mut synth_d = Synthesizer::<f32>::new(surface.displacement.resolution())?;
+        let mut synth_b = Synthesizer::<f32>::new(surface.bump.resolution())?;
+        self.cycle = Some(Cycle {
+            key,
+            displacement: FrameCycle::new(&surface.displacement, &mut synth_d, chop)?,
+            bump: FrameCycle::new(&surface.bump, &mut synth_b, chop)?,
+        });
+        Ok(true)
+    }
+
+    /// The cycle's (displacement, bump) maps nearest `t`, once [`Self::precompute_cycle`]
+    /// has run for this ocean.
+    pub fn cycle_at(&self, ocean: &Ocean, t: f64) -> Option<(&WaveMaps<f32>, &WaveMaps<f32>)> {
+        let key = Ocean { time_s: 0.0, ..ocean.clone() };
+        let c = self.cycle.as_ref().filter(|c| c.key == key)?;
+        Some((c.displacement.frame_at(t), c.bump.frame_at(t)))
+    }
+}
+
+/// A back end: executes one planned pass of a frame. It keeps the resources the passes write
+/// (allocated at the plan's sizes) until the caller takes them.
+pub trait Backend {
+    /// The back end's error.
+    type Error: From<crate::Error>;
+
+    /// Executes `pass` (never `cycle`, which [`run_frame`] runs itself: it is the same CPU
+    /// precompute for both back ends).
+    ///
+    /// # Errors
+    /// Whatever the pass reports.
+    fn execute(
+        &mut self,
+        pass: &PlannedPass,
+        frame: &FrameInputs<'_>,
+        state: &FrameState,
+    ) -> Result<(), Self::Error>;
+}
+
+/// Runs every pass of `frame.plan` in order on `backend`; `on_pass` is called as each pass
+/// starts (progress). Returns the wall time of each pass (for a GPU back end: the time to
+/// record it).
+///
+/// # Errors
+/// The first error of a pass.
+pub fn run_frame<B: Backend>(
+    backend: &mut B,
+    frame: &FrameInputs<'_>,
+    state: &mut FrameState,
+    on_pass: &mut dyn FnMut(Pass),
+) -> Result<Vec<(Pass, Duration)>, B::Error> {
+    let mut timings = Vec::with_capacity(frame.plan.passes.len());
+    for pass in &frame.plan.passes {
+        on_pass(pass.name);
+        let t0 = Instant::now();
+        if pass.name == Pass::Cycle {
+            state.precompute_cycle(&frame.scene.ocean)?;
+        } else {
+            backend.execute(pass, frame, state)?;
+        }
+        let mut elapsed = t0.elapsed();
+        // The water pass's time includes building its mesh (near patch, and far patch if
+        // planned), as before the frame graph.
+        if pass.name == Pass::Water {
+            elapsed += frame.mesh_time;
+        }
+        timings.push((pass.name, elapsed));
+    }
+    Ok(timings)
+}

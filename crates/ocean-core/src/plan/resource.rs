@@ -1,0 +1,133 @@
+//! The resources of a frame: every texture a pass writes or reads, with the format and size
+//! the plan gives it. Both back ends allocate exactly these (a test holds each back end's
+//! allocations against this table), so neither chooses a size of its own.
+
+use serde::Serialize;
+
+use super::Pass;
+
+/// Side of the sun's shadow map, texels.
+pub const SHADOW_MAP_SIZE: u32 = 1024;
+
+/// A texture of the frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ResourceId {
+    /// (disp_x, height, disp_z, jacobian) of the displacement map.
+    Displacement,
+    /// (slope_x, slope_z, 0, 0) of the displacement map.
+    DisplacementSlopes,
+    /// (slope_x, slope_z, height, jacobian) of the bump map.
+    Bump,
+    /// Fresnel texture for η (surface seen from above).
+    FresnelAbove,
+    /// Fresnel texture for 1/η (seen from below).
+    FresnelBelow,
+    /// Depth of the objects from the sun, in red.
+    ShadowMap,
+    /// Mirrored objects above the water, alpha = coverage.
+    ReflectionMap,
+    /// Fogged objects under the water, alpha = coverage.
+    RefractionMap,
+    /// The linear HDR frame.
+    Hdr,
+    /// The 8-bit sRGB picture.
+    Ldr,
+}
+
+impl ResourceId {
+    /// The float maps both back ends keep and the cross-check compares, in the order the
+    /// frame makes them.
+    pub const MAPS: [ResourceId; 9] = [
+        ResourceId::Displacement,
+        ResourceId::DisplacementSlopes,
+        ResourceId::Bump,
+        ResourceId::FresnelAbove,
+        ResourceId::FresnelBelow,
+        ResourceId::ShadowMap,
+        ResourceId::ReflectionMap,
+        ResourceId::RefractionMap,
+        ResourceId::Hdr,
+    ];
+
+    /// Every resource.
+    pub const ALL: [ResourceId; 10] = [
+        ResourceId::Displacement,
+        ResourceId::DisplacementSlopes,
+        ResourceId::Bump,
+        ResourceId::FresnelAbove,
+        ResourceId::FresnelBelow,
+        ResourceId::ShadowMap,
+        ResourceId::ReflectionMap,
+        ResourceId::RefractionMap,
+        ResourceId::Hdr,
+        ResourceId::Ldr,
+    ];
+
+    /// Its name (`displacement`, …, `ldr`): ocean-cpu's `FrameBuffers` field, the GPU's label
+    /// and the cross-check's file names.
+    pub fn name(self) -> &'static str {
+        match self {
+            ResourceId::Displacement => "displacement",
+            ResourceId::DisplacementSlopes => "displacement_slopes",
+            ResourceId::Bump => "bump",
+            ResourceId::FresnelAbove => "fresnel_above",
+            ResourceId::FresnelBelow => "fresnel_below",
+            ResourceId::ShadowMap => "shadow_map",
+            ResourceId::ReflectionMap => "reflection_map",
+            ResourceId::RefractionMap => "refraction_map",
+            ResourceId::Hdr => "hdr",
+            ResourceId::Ldr => "ldr",
+        }
+    }
+
+    /// The pass that writes it last.
+    pub fn pass(self) -> Pass {
+        match self {
+            ResourceId::Displacement | ResourceId::DisplacementSlopes | ResourceId::Bump => {
+                Pass::Waves
+            }
+            ResourceId::FresnelAbove | ResourceId::FresnelBelow => Pass::FresnelTable,
+            ResourceId::ShadowMap => Pass::ShadowMap,
+            ResourceId::ReflectionMap => Pass::ReflectionMap,
+            ResourceId::RefractionMap => Pass::RefractionMap,
+            ResourceId::Hdr => Pass::Water,
+            ResourceId::Ldr => Pass::Tonemap,
+        }
+    }
+}
+
+/// A texel format (the wgpu name).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Format {
+    /// Four f32 channels.
+    Rgba32Float,
+    /// One f32 channel.
+    R32Float,
+    /// 8-bit sRGB-encoded RGBA, stored as unorm.
+    Rgba8Unorm,
+}
+
+/// A resource as the plan sizes it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Resource {
+    /// Which.
+    pub id: ResourceId,
+    /// Its texel format.
+    pub format: Format,
+    /// Width and height, texels.
+    pub size: [u32; 2],
+    /// Whether a pass writes it this frame; when not, it is a 1×1 zero texture bound in its
+    /// place (the shaders multiply what they read from it by the plan's pass flags).
+    pub written: bool,
+    /// The colour it starts from before its first pass.
+    pub clear: [f32; 4],
+}
+
+impl Resource {
+    /// Texels (width × height).
+    pub fn texels(&self) -> u64 {
+        u64::from(self.size[0]) * u64::from(self.size[1])
+    }
+}

@@ -1,0 +1,459 @@
+//! The technique axis (DESIGN.md, "Systems and techniques"): a **stage** is one step of the
+//! frame, a **technique** one way to do it, a **system** one seed paper's choice of technique
+//! per stage. This file is the one table of both; `ocean plan` prints it, the scene's
+//! `system` and `[techniques]` keys choose from it, and the planner turns the choice into
+//! passes.
+//!
+//! A technique that is listed but not built yet is `available: false`: choosing it (or a
+//! system that needs it) is an error that names it, never a silent fallback to another.
+
+use std::fmt;
+
+use serde::{Deserialize, Serialize};
+
+/// A stage of the technique table, in DESIGN.md's order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Stage {
+    /// The sea's displacement and slopes.
+    Waves,
+    /// The mesh the waves displace.
+    Surface,
+    /// The water's shading.
+    Shading,
+    /// The sky model (the environment the water reflects).
+    Sky,
+    /// What becomes of the detail a pixel cannot resolve.
+    FarField,
+    /// White water.
+    Foam,
+    /// Spray particles.
+    Spray,
+    /// HDR → display.
+    Post,
+}
+
+impl Stage {
+    /// Every stage, in order.
+    pub const ALL: [Stage; 8] = [
+        Stage::Waves,
+        Stage::Surface,
+        Stage::Shading,
+        Stage::Sky,
+        Stage::FarField,
+        Stage::Foam,
+        Stage::Spray,
+        Stage::Post,
+    ];
+
+    /// The stage's name: the scene key under `[techniques]`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Stage::Waves => "waves",
+            Stage::Surface => "surface",
+            Stage::Shading => "shading",
+            Stage::Sky => "sky",
+            Stage::FarField => "far_field",
+            Stage::Foam => "foam",
+            Stage::Spray => "spray",
+            Stage::Post => "post",
+        }
+    }
+
+    /// The techniques of this stage, in the table's order.
+    pub fn techniques(self) -> impl Iterator<Item = &'static TechniqueInfo> {
+        TECHNIQUES.iter().filter(move |t| t.stage == self)
+    }
+}
+
+impl fmt::Display for Stage {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// One technique of one stage.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TechniqueInfo {
+    /// Its stage.
+    pub stage: Stage,
+    /// Its name: the scene value, and the file name at every layer
+    /// (`shaders/<stage>/<name>.wgsl`, `ocean-cpu/src/shaders/<stage>/<name>.rs`).
+    pub name: &'static str,
+    /// Where it comes from (seed number, paper).
+    pub source: &'static str,
+    /// Whether both back ends implement it.
+    pub available: bool,
+}
+
+const fn t(
+    stage: Stage,
+    name: &'static str,
+    source: &'static str,
+    available: bool,
+) -> TechniqueInfo {
+    TechniqueInfo { stage, name, source, available }
+}
+
+/// Every technique of every stage (DESIGN.md's table).
+pub const TECHNIQUES: &[TechniqueInfo] = &[
+    t(Stage::Waves, "fft", "Tessendorf spectrum → displacement + bump maps (seed 000)", true),
+    t(Stage::Waves, "gerstner", "sum of Gerstner waves (seed 002)", false),
+    t(Stage::Waves, "coastal", "radial waves running to a shore (seed 004)", false),
+    t(Stage::Surface, "hu_patches", "near LOD tree + far conic patch (seed 000 §3)", true),
+    t(Stage::Surface, "projected_grid", "projected grid (seed 001)", false),
+    t(Stage::Surface, "clipmap", "GPU clipmaps (seed 002)", false),
+    t(Stage::Surface, "shore_grid", "camera-aligned shore grid (seed 004)", false),
+    t(Stage::Shading, "hu", "eq. 3: 2D Fresnel texture + Phong (seed 000)", true),
+    t(Stage::Shading, "chiu", "local optics and water colour, eqs. 2–8 (seed 001)", false),
+    t(Stage::Shading, "ggx", "Cook–Torrance with GGX (seed 002)", false),
+    t(Stage::Shading, "coastal", "Blinn–Phong + dull colour (seed 004)", false),
+    t(Stage::Sky, "preetham", "Preetham et al. 1999 daylight", true),
+    t(Stage::Sky, "preetham_clouds", "Preetham + clouds (seed 001 eq. 4)", false),
+    t(Stage::Sky, "atmosphere", "Rayleigh/Mie scattering (seed 002)", false),
+    t(Stage::FarField, "none", "point-sampled wave maps", true),
+    t(Stage::FarField, "mip", "mip-mapped wave maps", false),
+    t(Stage::FarField, "variance", "unresolved slope variance in the BRDF (Bruneton 2010)", false),
+    t(Stage::Foam, "none", "no foam", true),
+    t(Stage::Foam, "heuristic", "from normal and height (seed 002)", false),
+    t(Stage::Foam, "jacobian", "where the Jacobian folds", false),
+    t(Stage::Foam, "accumulated", "grows where J < threshold, decays over time", false),
+    t(Stage::Spray, "none", "no spray", true),
+    t(Stage::Spray, "particles", "state-preserving GPU particles (seed 001)", false),
+    t(Stage::Post, "tonemap", "exposure + ACES filmic curve → 8-bit sRGB", true),
+    t(Stage::Post, "bloom", "bloom (seed 002)", false),
+    t(Stage::Post, "vignette", "vignette (seed 002)", false),
+];
+
+/// The technique `name` of `stage`, if the table has it.
+pub fn technique(stage: Stage, name: &str) -> Option<&'static TechniqueInfo> {
+    stage.techniques().find(|t| t.name == name)
+}
+
+/// A seed paper's system.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum System {
+    /// Hu, Velho, Tong, Guo & Shum 2004 (seed 000), the default.
+    #[default]
+    Hu,
+    /// Chiu & Chang (seed 001).
+    Chiu,
+    /// Welch 2019 (seed 002).
+    Welch,
+    /// The coastal-wave shader (seed 004).
+    Coastal,
+}
+
+/// A system's row of the table.
+#[derive(Clone, Copy, Debug)]
+pub struct SystemInfo {
+    /// Which system.
+    pub system: System,
+    /// Its name (`--system`, the scene's `system`).
+    pub name: &'static str,
+    /// The paper.
+    pub paper: &'static str,
+    /// Its technique per stage, in [`Stage::ALL`] order.
+    pub techniques: [&'static str; 8],
+}
+
+/// The systems, one per seed paper (DESIGN.md). A stage a paper does not name keeps the
+/// neutral technique (`none`, `tonemap`).
+pub const SYSTEMS: &[SystemInfo] = &[
+    SystemInfo {
+        system: System::Hu,
+        name: "hu",
+        paper: "Hu, Velho, Tong, Guo & Shum 2004 (seed 000)",
+        techniques: ["fft", "hu_patches", "hu", "preetham", "none", "none", "none", "tonemap"],
+    },
+    SystemInfo {
+        system: System::Chiu,
+        name: "chiu",
+        paper: "Chiu & Chang (seed 001)",
+        techniques: [
+            "fft",
+            "projected_grid",
+            "chiu",
+            "preetham_clouds",
+            "none",
+            "none",
+            "particles",
+            "tonemap",
+        ],
+    },
+    SystemInfo {
+        system: System::Welch,
+        name: "welch",
+        paper: "Welch 2019 (seed 002)",
+        techniques: [
+            "gerstner",
+            "clipmap",
+            "ggx",
+            "atmosphere",
+            "none",
+            "heuristic",
+            "none",
+            "bloom",
+        ],
+    },
+    SystemInfo {
+        system: System::Coastal,
+        name: "coastal",
+        paper: "the coastal-wave shader (seed 004)",
+        techniques: [
+            "coastal",
+            "shore_grid",
+            "coastal",
+            "preetham",
+            "none",
+            "heuristic",
+            "none",
+            "tonemap",
+        ],
+    },
+];
+
+impl System {
+    /// Every system, in the table's order.
+    pub const ALL: [System; 4] = [System::Hu, System::Chiu, System::Welch, System::Coastal];
+
+    /// The system's row.
+    pub fn info(self) -> &'static SystemInfo {
+        // Every variant has a row; a missing one is caught by the tests of this module.
+        SYSTEMS.iter().find(|s| s.system == self).unwrap_or(&SYSTEMS[0])
+    }
+
+    /// Its name.
+    pub fn name(self) -> &'static str {
+        self.info().name
+    }
+
+    /// The system called `name`, or an error that lists the known ones.
+    ///
+    /// # Errors
+    /// [`TechniqueError::UnknownSystem`].
+    pub fn from_name(name: &str) -> Result<System, TechniqueError> {
+        SYSTEMS
+            .iter()
+            .find(|s| s.name == name)
+            .map(|s| s.system)
+            .ok_or_else(|| TechniqueError::UnknownSystem { name: name.to_owned() })
+    }
+
+    /// Whether every technique the system names is available.
+    pub fn available(self) -> bool {
+        Techniques::of_system(self).missing().is_none()
+    }
+}
+
+impl fmt::Display for System {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// Why a choice of system or technique cannot be rendered.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum TechniqueError {
+    /// No such system.
+    #[error("unknown system `{name}` (known: {})", known_systems())]
+    UnknownSystem {
+        /// The name asked for.
+        name: String,
+    },
+    /// No such technique for the stage.
+    #[error("unknown technique `{name}` for stage `{stage}` (known: {})", known_techniques(*stage))]
+    UnknownTechnique {
+        /// The stage.
+        stage: Stage,
+        /// The name asked for.
+        name: String,
+    },
+    /// The technique is listed but not built yet.
+    #[error(
+        "{what} needs {stage} technique `{name}`, which is not yet available (available for \
+         {stage}: {}; systems available: {})",
+        available_techniques(*stage),
+        available_systems()
+    )]
+    NotAvailable {
+        /// The system or key that asked for it.
+        what: String,
+        /// The stage.
+        stage: Stage,
+        /// The technique.
+        name: &'static str,
+    },
+}
+
+/// "hu, chiu (not yet available), …".
+pub fn known_systems() -> String {
+    SYSTEMS
+        .iter()
+        .map(|s| {
+            if s.system.available() {
+                s.name.to_owned()
+            } else {
+                format!("{} (not yet available)", s.name)
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+fn available_systems() -> String {
+    let names: Vec<_> = SYSTEMS.iter().filter(|s| s.system.available()).map(|s| s.name).collect();
+    names.join(", ")
+}
+
+fn known_techniques(stage: Stage) -> String {
+    let names: Vec<_> = stage
+        .techniques()
+        .map(|t| {
+            if t.available { t.name.to_owned() } else { format!("{} (not yet available)", t.name) }
+        })
+        .collect();
+    names.join(", ")
+}
+
+fn available_techniques(stage: Stage) -> String {
+    let names: Vec<_> = stage.techniques().filter(|t| t.available).map(|t| t.name).collect();
+    names.join(", ")
+}
+
+/// The technique chosen for each stage of a frame: the system's row with the scene's
+/// `[techniques]` overrides applied.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Techniques {
+    /// The system the choice starts from.
+    pub system: System,
+    chosen: [&'static TechniqueInfo; 8],
+    overridden: [bool; 8],
+}
+
+impl Techniques {
+    /// The system's own choice.
+    pub fn of_system(system: System) -> Self {
+        let row = system.info();
+        let chosen = std::array::from_fn(|i| {
+            // The table's tests check that every name in a system's row exists.
+            technique(Stage::ALL[i], row.techniques[i]).unwrap_or(&TECHNIQUES[0])
+        });
+        Self { system, chosen, overridden: [false; 8] }
+    }
+
+    /// The system's choice with `overrides` (stage → technique name) applied.
+    ///
+    /// # Errors
+    /// [`TechniqueError::UnknownTechnique`] for a name the stage does not have.
+    pub fn with_overrides<'a>(
+        system: System,
+        overrides: impl IntoIterator<Item = (Stage, &'a str)>,
+    ) -> Result<Self, TechniqueError> {
+        let mut t = Self::of_system(system);
+        for (stage, name) in overrides {
+            let info = technique(stage, name)
+                .ok_or_else(|| TechniqueError::UnknownTechnique { stage, name: name.to_owned() })?;
+            let i = stage as usize;
+            t.chosen[i] = info;
+            t.overridden[i] = true;
+        }
+        Ok(t)
+    }
+
+    /// The technique of `stage`.
+    pub fn of(&self, stage: Stage) -> &'static TechniqueInfo {
+        self.chosen[stage as usize]
+    }
+
+    /// Whether the scene chose `stage`'s technique (rather than the system).
+    pub fn is_overridden(&self, stage: Stage) -> bool {
+        self.overridden[stage as usize]
+    }
+
+    /// Every (stage, technique), in stage order.
+    pub fn iter(&self) -> impl Iterator<Item = (Stage, &'static TechniqueInfo)> + '_ {
+        Stage::ALL.into_iter().map(|s| (s, self.of(s)))
+    }
+
+    /// The first chosen technique that is not available, as the error that names it.
+    pub fn missing(&self) -> Option<TechniqueError> {
+        self.iter().find(|(_, t)| !t.available).map(|(stage, t)| TechniqueError::NotAvailable {
+            what: if self.is_overridden(stage) {
+                format!("techniques.{stage}")
+            } else {
+                format!("system `{}`", self.system)
+            },
+            stage,
+            name: t.name,
+        })
+    }
+
+    /// Checks that the choice can be rendered: every technique available, and no pair that
+    /// cannot work together (none yet: `hu`'s are the only ones built).
+    ///
+    /// # Errors
+    /// [`TechniqueError::NotAvailable`] naming the first technique that is not built.
+    pub fn check(&self) -> Result<(), TechniqueError> {
+        self.missing().map_or(Ok(()), Err)
+    }
+}
+
+impl Serialize for Techniques {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let mut m = s.serialize_map(Some(Stage::ALL.len()))?;
+        for (stage, t) in self.iter() {
+            m.serialize_entry(stage.name(), t.name)?;
+        }
+        m.end()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_system_row_names_existing_techniques_and_every_variant_has_a_row() {
+        for s in SYSTEMS {
+            for (i, name) in s.techniques.iter().enumerate() {
+                assert!(technique(Stage::ALL[i], name).is_some(), "{}: {name}", s.name);
+            }
+        }
+        for sys in System::ALL {
+            assert_eq!(SYSTEMS.iter().filter(|s| s.system == sys).count(), 1, "{sys:?}");
+            assert_eq!(System::from_name(sys.name()), Ok(sys));
+        }
+        for stage in Stage::ALL {
+            assert!(stage.techniques().any(|t| t.available), "{stage} has nothing available");
+        }
+    }
+
+    #[test]
+    fn only_hu_is_available_and_the_others_name_what_is_missing() {
+        assert!(System::Hu.available());
+        Techniques::of_system(System::Hu).check().unwrap();
+        for sys in [System::Chiu, System::Welch, System::Coastal] {
+            let e = Techniques::of_system(sys).check().unwrap_err().to_string();
+            assert!(
+                e.contains(&format!("system `{sys}`")) && e.contains("not yet available"),
+                "{e}"
+            );
+        }
+        let e = System::from_name("no-such-system").unwrap_err().to_string();
+        assert!(e.contains("hu") && e.contains("welch") && e.contains("coastal"), "{e}");
+    }
+
+    #[test]
+    fn overrides_replace_one_stage_and_are_checked() {
+        let t = Techniques::with_overrides(System::Hu, [(Stage::FarField, "mip")]).unwrap();
+        assert_eq!(t.of(Stage::FarField).name, "mip");
+        assert_eq!(t.of(Stage::Waves).name, "fft");
+        let e = t.check().unwrap_err().to_string();
+        assert!(e.contains("techniques.far_field") && e.contains("`mip`"), "{e}");
+        let e = Techniques::with_overrides(System::Hu, [(Stage::Sky, "nope")]).unwrap_err();
+        assert!(e.to_string().contains("preetham"), "{e}");
+    }
+}

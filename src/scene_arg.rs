@@ -1,0 +1,36 @@
+//! The scene a command renders: a file or the built-in default scene, and `--system`.
+
+use std::path::PathBuf;
+
+use ocean_core::plan::{System, Techniques};
+use ocean_core::scene::Scene;
+
+/// `--system NAME`, shared by `render`, `plan`, `compare` and `view`.
+#[derive(clap::Args, Debug, Clone, Default)]
+pub struct SystemArg {
+    /// The seed paper's system to render (`hu`, `chiu`, `welch`, `coastal`); overrides the
+    /// scene's `system`, keeps its `[techniques]`.
+    #[arg(long, value_name = "NAME")]
+    pub system: Option<String>,
+}
+
+/// Loads a scene file, or the built-in default scene when none is given, and applies
+/// `--system`.
+///
+/// # Errors
+/// A scene that does not load or validate; an unknown system (the message lists the known
+/// ones) or one whose techniques are not yet available.
+pub fn load_scene(path: Option<&PathBuf>, system: &SystemArg) -> anyhow::Result<Scene> {
+    let mut scene = match path {
+        Some(p) => Scene::load(p)?,
+        None => Scene::builtin(),
+    };
+    if let Some(name) = &system.system {
+        let system = System::from_name(name).map_err(|e| anyhow::anyhow!("--system: {e}"))?;
+        Techniques::with_overrides(system, scene.techniques.iter())
+            .and_then(|t| t.check())
+            .map_err(|e| anyhow::anyhow!("--system {name}: {e}"))?;
+        scene.system = system;
+    }
+    Ok(scene)
+}

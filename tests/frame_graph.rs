@@ -1,0 +1,253 @@
+//! The frame graph (issue 10): one plan, its techniques and resource table, driving the CPU
+//! oracle (the GPU side is in `tests/gpu_frame_graph.rs`); systems and `[techniques]` in
+//! scenes and on the command line.
+
+use std::process::Command;
+
+use ocean_core::plan::{FramePlan, FrameState, OutputKind, Pass, ResourceId, Stage, System};
+use ocean_core::scene::{Scene, SceneError, SceneSource};
+
+fn scene(text: &str) -> Result<Scene, SceneError> {
+    Scene::from_toml(text, SceneSource::Text)
+}
+
+/// A small deterministic generator for the property test (SplitMix64).
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * (self.next() >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn pick<T: Copy>(&mut self, xs: &[T]) -> T {
+        xs[(self.next() % xs.len() as u64) as usize]
+    }
+}
+
+/// A random valid scene at a tiny size: random `[quality]`, wave grids, camera height (above
+/// and under the water), sun, objects above and below, wind on or off, PNG or EXR.
+fn random_scene(rng: &mut Rng) -> (Scene, OutputKind) {
+    let res = rng.pick(&[16u32, 32, 64]);
+    let text = format!(
+        "[ocean]\nwind_speed = {wind}\nresolution = {res}\nbump_resolution = {bres}\n\
+         patch_size_m = {patch}\n\
+         [quality]\nfresnel_table_size = {fres}\nreflection_map_scale = {scale}\n\
+         lod_split_threshold = {lod}\n\
+         [camera]\nwidth = {w}\nheight = {h}\nposition = [0.0, {y}, 30.0]\n\
+         look_at = [0.0, {ly}, 0.0]\n{sun}{objects}",
+        wind = rng.pick(&[0.0, 4.0, 12.0]),
+        bres = rng.pick(&[16u32, 32]),
+        patch = rng.pick(&[64.0, 128.0, 256.0]),
+        fres = rng.pick(&[2u32, 17, 64, 128, 256]),
+        scale = rng.uniform(0.05, 1.0),
+        lod = rng.pick(&[0.02, 0.05, 0.2]),
+        w = rng.pick(&[16u32, 33, 48]),
+        h = rng.pick(&[9u32, 18, 27]),
+        y = rng.pick(&[6.0, 40.0, -5.0]),
+        ly = rng.pick(&[0.0, 2.0, -3.0]),
+        sun =
+            if rng.next().is_multiple_of(2) { "[sun]\ndirection = [0.3, 0.5, -1.0]\n" } else { "" },
+        objects = match rng.next() % 3 {
+            0 => "",
+            1 => "[[objects]]\nkind = \"sphere\"\ncenter = [0.0, 3.0, 0.0]\nradius = 2.0\n",
+            _ =>
+                "[[objects]]\nkind = \"box\"\ncenter = [1.0, -2.0, 5.0]\nsize = [2.0, 2.0, 2.0]\n\
+                  [[objects]]\nkind = \"sphere\"\ncenter = [-4.0, 2.0, 0.0]\nradius = 1.0\n",
+        },
+    );
+    let s = scene(&text).unwrap_or_else(|e| panic!("{e}\n{text}"));
+    (s, if rng.next().is_multiple_of(3) { OutputKind::Hdr } else { OutputKind::Ldr })
+}
+
+#[test]
+fn every_map_the_cpu_allocates_has_the_plans_size() {
+    // Property over random valid plans: each of the CPU's maps is exactly the plan's resource
+    // (its size, or 1×1 where the writer is skipped); the LDR picture is the viewport.
+    let mut rng = Rng(0x0cea_2026);
+    for case in 0..24 {
+        let (s, output) = random_scene(&mut rng);
+        let plan = FramePlan::new(&s, output);
+        let r = ocean_cpu::render_scene_with_plan(&s, plan.clone(), &mut |_| {}).unwrap();
+        for id in ResourceId::MAPS {
+            let want = plan.resource(id).unwrap_or_else(|| panic!("{id:?} not in the plan"));
+            let (w, h, texels) = r.buffers.map(id).unwrap();
+            assert_eq!([w, h], want.size, "case {case}: {} {plan}", id.name());
+            assert_eq!(texels.len() as u64, want.texels(), "case {case}: {}", id.name());
+            assert_eq!(want.written, plan.runs(id.pass()), "case {case}: {}", id.name());
+        }
+        match (plan.resource(ResourceId::Ldr), &r.ldr) {
+            (Some(l), Some(px)) => assert_eq!(px.len() as u64, 4 * l.texels()),
+            (None, None) => assert_eq!(output, OutputKind::Hdr),
+            (a, b) => panic!("case {case}: plan {a:?} vs picture {}", b.is_some()),
+        }
+    }
+}
+
+#[test]
+fn quality_keys_size_the_resources() {
+    let s = scene(
+        "[quality]\nfresnel_table_size = 64\nreflection_map_scale = 0.5\n\
+         [camera]\nwidth = 160\nheight = 90\n\
+         [[objects]]\nkind = \"sphere\"\ncenter = [0.0, 3.0, 0.0]\nradius = 2.0\n",
+    )
+    .unwrap();
+    let plan = FramePlan::new(&s, OutputKind::Ldr);
+    let size = |id| plan.resource(id).unwrap().size;
+    assert_eq!(size(ResourceId::FresnelAbove), [64, 64]);
+    assert_eq!(size(ResourceId::FresnelBelow), [64, 64]);
+    assert_eq!(size(ResourceId::ReflectionMap), [80, 45]);
+    assert_eq!(size(ResourceId::RefractionMap), [1, 1], "nothing under the water");
+    assert_eq!(size(ResourceId::Hdr), [160, 90]);
+    let r = ocean_cpu::render_scene_with_plan(&s, plan.clone(), &mut |_| {}).unwrap();
+    assert_eq!(r.buffers.fresnel_above.width, 64);
+    assert_eq!((r.buffers.reflection_map.width, r.buffers.reflection_map.height), (80, 45));
+}
+
+#[test]
+fn the_plan_names_the_system_and_a_technique_per_stage() {
+    let plan = FramePlan::new(&Scene::builtin(), OutputKind::Ldr);
+    assert_eq!(plan.system, System::Hu);
+    let json = serde_json::to_value(&plan).unwrap();
+    assert_eq!(json["system"], "hu");
+    let t = json["techniques"].as_object().unwrap();
+    let stages: Vec<&str> = t.keys().map(String::as_str).collect();
+    let mut want: Vec<&str> = Stage::ALL.iter().map(|s| s.name()).collect();
+    want.sort_unstable();
+    let mut got = stages.clone();
+    got.sort_unstable();
+    assert_eq!(got, want);
+    assert_eq!(t["waves"], "fft");
+    assert_eq!(t["surface"], "hu_patches");
+    assert_eq!(t["shading"], "hu");
+    assert_eq!(t["sky"], "preetham");
+    assert_eq!(t["far_field"], "none");
+    let water = plan.pass(Pass::Water).unwrap();
+    assert_eq!(
+        (water.stage, water.technique, water.shader),
+        (Some(Stage::Shading), Some("hu"), Some("water"))
+    );
+    assert!(water.reads.contains(&ResourceId::FresnelAbove));
+    assert_eq!(water.writes, [ResourceId::Hdr]);
+}
+
+#[test]
+fn systems_and_techniques_in_a_scene_are_checked_with_their_position() {
+    assert_eq!(scene("system = \"hu\"\n").unwrap().system, System::Hu);
+    let e = scene("\n\nsystem = \"welch\"\n").unwrap_err().to_string();
+    assert!(e.contains(":3:1") && e.contains("system") && e.contains("not yet available"), "{e}");
+    assert!(e.contains("gerstner"), "names the technique that is missing: {e}");
+    let e = scene("system = \"nope\"\n").unwrap_err().to_string();
+    assert!(e.contains("nope") && e.contains("coastal"), "{e}");
+    let e = scene("[techniques]\nfar_field = \"mip\"\n").unwrap_err().to_string();
+    assert!(
+        e.contains("techniques.far_field") && e.contains(":2:1") && e.contains("not yet available"),
+        "{e}"
+    );
+    let e = scene("[techniques]\nsky = \"sunset\"\n").unwrap_err().to_string();
+    assert!(e.contains("techniques.sky") && e.contains("preetham"), "{e}");
+    let e = scene("[techniques]\ncolour = \"red\"\n").unwrap_err().to_string();
+    assert!(e.contains("colour"), "{e}");
+    // An override to the system's own choice is accepted and shows in the plan.
+    let s = scene("[techniques]\nsky = \"preetham\"\nfar_field = \"none\"\n").unwrap();
+    let plan = FramePlan::new(&s, OutputKind::Ldr);
+    assert!(plan.techniques.is_overridden(Stage::Sky));
+    assert!(plan.to_string().contains("[techniques]"), "{plan}");
+}
+
+#[test]
+fn a_looping_animation_precomputes_its_cycle_once_and_plays_it() {
+    let s = scene("[ocean]\nloop_period_s = 4.0\nresolution = 32\nbump_resolution = 16\n[camera]\nwidth = 32\nheight = 18\n").unwrap();
+    let plan = FramePlan::for_frames(&s, OutputKind::Ldr, 3);
+    assert!(plan.runs(Pass::Cycle), "{plan}");
+    let mut state = FrameState::new(0.5);
+    let mut pictures = Vec::new();
+    for n in 0..3 {
+        assert_eq!(state.frame, n);
+        let computed_before = state.cycle_at(&s.ocean, 0.0).is_some();
+        assert_eq!(computed_before, n > 0, "frame {n}: the cycle exists from the first frame on");
+        let r =
+            ocean_cpu::render_animation_frame(&s, plan.clone(), &mut state, &mut |_| {}).unwrap();
+        pictures.push(r.ldr.unwrap());
+    }
+    // A second precompute of the same sea is a no-op.
+    assert!(!state.precompute_cycle(&s.ocean).unwrap());
+    // Frame n shows the sea at time_s + n/2: a pure function of (scene, n).
+    let mut again = FrameState::new(0.5);
+    again.frame = 2;
+    again.precompute_cycle(&s.ocean).unwrap();
+    let r = ocean_cpu::render_animation_frame(&s, plan.clone(), &mut again, &mut |_| {}).unwrap();
+    assert_eq!(r.ldr.unwrap(), pictures[2]);
+    assert!(pictures[0] != pictures[2], "the sea moves between frames");
+}
+
+fn ocean(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_ocean"))
+        .args(args)
+        .env("RUST_BACKTRACE", "0")
+        .output()
+        .expect("the ocean binary runs")
+}
+
+#[test]
+fn render_with_an_unknown_system_exits_1_lists_the_systems_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("never.png");
+    let o = ocean(&[
+        "render",
+        "--system",
+        "no-such-system",
+        "--size",
+        "16x9",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    let e = String::from_utf8_lossy(&o.stderr);
+    for name in ["hu", "chiu", "welch", "coastal"] {
+        assert!(e.contains(name), "{e}");
+    }
+    assert!(!e.contains("panicked"), "{e}");
+    assert!(!out.exists());
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "no temporary file either");
+    // A known system that is not built yet: the same, naming what is missing.
+    let o = ocean(&["render", "--system", "chiu", "--size", "16x9", "-o", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(e.contains("not yet available") && e.contains("projected_grid"), "{e}");
+    assert!(!out.exists());
+    for cmd in ["plan", "compare", "view"] {
+        let o = ocean(&[cmd, "--system", "no-such-system"]);
+        assert_eq!(o.status.code(), Some(1), "{cmd}: {}", String::from_utf8_lossy(&o.stderr));
+        assert!(String::from_utf8_lossy(&o.stderr).contains("welch"), "{cmd}");
+    }
+}
+
+#[test]
+fn plan_json_shows_the_system_and_the_techniques() {
+    let o = ocean(&["plan", "--system", "hu", "--json"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["system"], "hu");
+    assert_eq!(v["techniques"]["shading"], "hu");
+    assert_eq!(v["techniques"].as_object().unwrap().len(), Stage::ALL.len());
+    assert!(
+        v["passes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .all(|p| p["name"].is_string() && p["reason"].is_string())
+    );
+    assert!(v["resources"].as_array().unwrap().iter().any(|r| r["id"] == "fresnel_above"));
+    let o = ocean(&["plan"]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        text.contains("system hu") && text.contains("stage shading") && text.contains("resources:"),
+        "{text}"
+    );
+}
