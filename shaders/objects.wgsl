@@ -32,19 +32,19 @@ const INV_PI: f32 = 0.31830988618;
 // Lambert: albedo/π · (E_sun cos θ + π·ambient).
 fn shade(normal: vec3<f32>, color: vec3<f32>) -> vec3<f32> {
     let n = unit(normal);
-    let cos_sun = max(dot3(n, frame.sun_dir.xyz), 0.0) * frame.sun_dir.w;
-    let direct = frame.sun_radiance.xyz * (cos_sun * INV_PI);
-    return color * (direct + frame.sky_ambient.xyz);
+    let cos_sun = max(dot3(n, frame.sun.direction), 0.0) * frame.sun.lit;
+    let direct = frame.sun.radiance * (cos_sun * INV_PI);
+    return color * (direct + frame.ambient.sky);
 }
 
 @vertex
 fn vs_main(v: ObjectVertex) -> VertexOut {
     var out: VertexOut;
-    out.clip = transform_point(frame.view_proj, v.position);
+    out.clip = transform_point(frame.view.view_proj, v.position);
     out.normal = v.normal;
     out.color = v.color;
     out.rel = v.position;
-    out.world_y = v.position.y + frame.eye.x;
+    out.world_y = v.position.y + frame.view.eye_height;
     return out;
 }
 
@@ -56,13 +56,13 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
 @vertex
 fn vs_reflect(v: ObjectVertex) -> VertexOut {
     // World y → −y; camera-relative: y_rel → −y_rel − 2·eye_height.
-    let mirrored = vec3<f32>(v.position.x, -v.position.y - 2.0 * frame.eye.x, v.position.z);
+    let mirrored = vec3<f32>(v.position.x, -v.position.y - 2.0 * frame.view.eye_height, v.position.z);
     var out: VertexOut;
-    out.clip = transform_point(frame.view_proj, mirrored);
+    out.clip = transform_point(frame.view.view_proj, mirrored);
     out.normal = vec3<f32>(v.normal.x, -v.normal.y, v.normal.z);
     out.color = v.color;
     out.rel = mirrored;
-    out.world_y = v.position.y + frame.eye.x;
+    out.world_y = v.position.y + frame.view.eye_height;
     return out;
 }
 
@@ -80,10 +80,10 @@ fn fs_reflect(in: VertexOut) -> @location(0) vec4<f32> {
 @vertex
 fn vs_refract(v: ObjectVertex) -> VertexOut {
     // World y → y/η (apparent depth); camera-relative: y_rel → (y_rel + eye_height)/η − eye.
-    let world_y = v.position.y + frame.eye.x;
-    let scaled = vec3<f32>(v.position.x, world_y * frame.water_params.w - frame.eye.x, v.position.z);
+    let world_y = v.position.y + frame.view.eye_height;
+    let scaled = vec3<f32>(v.position.x, world_y * frame.water.inv_eta - frame.view.eye_height, v.position.z);
     var out: VertexOut;
-    out.clip = transform_point(frame.view_proj, scaled);
+    out.clip = transform_point(frame.view.view_proj, scaled);
     out.normal = v.normal;
     out.color = v.color;
     out.rel = scaled;
@@ -99,13 +99,13 @@ fn fs_refract(in: VertexOut) -> @location(0) vec4<f32> {
     }
     // Eq. 4: C = α(d)·C_deep + (1 − α(d))·C_obj, α = 1 − e^{−K d}, d the path length in the
     // water from the (apparent) point towards the eye: the part of the segment below y = 0.
-    let depth_below = -(in.rel.y + frame.eye.x);
-    let height_above = max(frame.eye.x, 0.0);
+    let depth_below = -(in.rel.y + frame.view.eye_height);
+    let height_above = max(frame.view.eye_height, 0.0);
     let dist = sqrt(dot3(in.rel, in.rel));
     let d = dist * (depth_below / (depth_below + height_above));
-    let fog = 1.0 - exp(-frame.water_color.w * d);
+    let fog = 1.0 - exp(-frame.water.extinction_per_m * d);
     // The light reaching the object is the downwelling irradiance at its depth, which falls
     // as e^{−K z} (K is the diffuse extinction coefficient, §4.3).
-    let obj = shade(in.normal, in.color) * exp(-frame.water_color.w * -in.world_y);
-    return vec4<f32>(frame.water_color.xyz * fog + obj * (1.0 - fog), 1.0);
+    let obj = shade(in.normal, in.color) * exp(-frame.water.extinction_per_m * -in.world_y);
+    return vec4<f32>(frame.water.color * fog + obj * (1.0 - fog), 1.0);
 }

@@ -14,7 +14,7 @@ struct ShadowOut {
 @vertex
 fn vs_main(@location(0) position: vec3<f32>) -> ShadowOut {
     var out: ShadowOut;
-    out.clip = transform_point(frame.sun_view_proj, position);
+    out.clip = transform_point(frame.sun.shadow_view_proj, position);
     return out;
 }
 

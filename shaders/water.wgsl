@@ -77,14 +77,14 @@ fn pow_int(x: f32, n: u32) -> f32 {
 @vertex
 fn vs_main(v: WaterVertex) -> VertexOut {
     // Texel (i, j) of an N×N map holds the sample at (i, j)·L/N: u = x/L + ½/N.
-    let uv_d = (v.pos + frame.patch_origin.xy) * frame.patch_scale.x + frame.patch_scale.z;
-    let uv_b = (v.pos + frame.patch_origin.zw) * frame.patch_scale.y + frame.patch_scale.w;
-    let d = textureSampleLevel(displacement, wrap_linear, uv_d, 0.0) * (v.weight * frame.passes.x);
+    let uv_d = (v.pos + frame.tiling.displacement_origin) * frame.tiling.inv_displacement_size + frame.tiling.displacement_half_texel;
+    let uv_b = (v.pos + frame.tiling.bump_origin) * frame.tiling.inv_bump_size + frame.tiling.bump_half_texel;
+    let d = textureSampleLevel(displacement, wrap_linear, uv_d, 0.0) * (v.weight * frame.passes.waves);
     // Camera-relative: c − eye (formed in f64 on the CPU) plus the vertex's offset from c.
-    let plane = v.pos + frame.mesh_offset.xy;
-    let rel = vec3<f32>(plane.x + d.x, d.y - frame.eye.x, plane.y + d.z);
+    let plane = v.pos + frame.tiling.mesh_offset;
+    let rel = vec3<f32>(plane.x + d.x, d.y - frame.view.eye_height, plane.y + d.z);
     var out: VertexOut;
-    out.clip = transform_point(frame.view_proj, rel);
+    out.clip = transform_point(frame.view.view_proj, rel);
     out.rel = rel;
     out.uv_d = uv_d;
     out.uv_b = uv_b;
@@ -94,10 +94,10 @@ fn vs_main(v: WaterVertex) -> VertexOut {
 
 // 1 where the sun reaches the point, 0 where the shadow map holds something nearer the sun.
 fn sun_visibility(rel: vec3<f32>) -> f32 {
-    if (frame.passes.w == 0.0) {
+    if (frame.passes.shadow_map == 0.0) {
         return 1.0;
     }
-    let s = transform_point(frame.sun_view_proj, rel);
+    let s = transform_point(frame.sun.shadow_view_proj, rel);
     let u = s.x * 0.5 + 0.5;
     let v = 0.5 - s.y * 0.5;
     if (u < 0.0 || u >= 1.0 || v < 0.0 || v >= 1.0) {
@@ -120,15 +120,15 @@ fn sun_visibility(rel: vec3<f32>) -> f32 {
 fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     // Bumped normal (§5): the slopes of the displacement map (faded with w like the
     // displacement itself) plus those of the bump map.
-    let sd = textureSample(displacement_slopes, wrap_linear, in.uv_d).xy * (in.weight * frame.passes.x);
-    let sb = textureSample(bump, wrap_linear, in.uv_b).xy * frame.passes.x;
+    let sd = textureSample(displacement_slopes, wrap_linear, in.uv_d).xy * (in.weight * frame.passes.waves);
+    let sb = textureSample(bump, wrap_linear, in.uv_b).xy * frame.passes.waves;
     let n = unit(vec3<f32>(-(sd.x + sb.x), 1.0, -(sd.y + sb.y)));
     // (du, dv) of §5: the horizontal components of the bumped unit normal.
     let du = n.x;
     let dv = n.z;
     let view = unit(-in.rel);
     // In the fragment stage `clip` is the fragment's position: (x + 0.5, y + 0.5, depth, 1/w).
-    let screen = in.clip.xy * frame.viewport.zw;
+    let screen = in.clip.xy * frame.view.inv_viewport_size;
     if (view.y >= 0.0) {
         // Fresnel bump mapping (§5.1, Fig. 4): the view vector bumped by (−du, −dv), on the
         // whole-hemisphere texture (x, y) ∈ [−1, 1]² ↦ [0, 1]².
@@ -141,20 +141,20 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
         var r = n * (2.0 * vn) - view;
         r.y = max(r.y, 0.0);
         let sky_r = sky_radiance(sky, unit(r + vec3<f32>(0.0, 1e-6, 0.0)));
-        let refl = textureSample(reflection_map, clamp_linear, screen + vec2<f32>(du, dv) * frame.water_params.y);
-        let a_refl = refl.w * frame.passes.y;
+        let refl = textureSample(reflection_map, clamp_linear, screen + vec2<f32>(du, dv) * frame.hu.reflection_distortion);
+        let a_refl = refl.w * frame.passes.reflection_map;
         let c_reflect = sky_r * (1.0 - a_refl) + refl.xyz * a_refl;
         // Refraction (§5.2, eq. 4): the fogged objects under the water, over the water
         // volume colour.
-        let refr = textureSample(refraction_map, clamp_linear, screen + vec2<f32>(du, dv) * frame.water_params.z);
-        let a_refr = refr.w * frame.passes.z;
-        let c_refract = frame.water_color.xyz * (1.0 - a_refr) + refr.xyz * a_refr;
+        let refr = textureSample(refraction_map, clamp_linear, screen + vec2<f32>(du, dv) * frame.hu.refraction_distortion);
+        let a_refr = refr.w * frame.passes.refraction_map;
+        let c_refract = frame.water.color * (1.0 - a_refr) + refr.xyz * a_refr;
         // Specular (§5.3): (V·R)^s with V the bumped view vector stored in the texture's RGB
         // (local z = world y) and R the sun's reflection about (0, 1, 0); s is whole.
         let vb = vec3<f32>(fres.x, fres.z, fres.y);
-        let r_sun = vec3<f32>(-frame.sun_dir.x, frame.sun_dir.y, -frame.sun_dir.z);
+        let r_sun = vec3<f32>(-frame.sun.direction.x, frame.sun.direction.y, -frame.sun.direction.z);
         let cos_spec = max(dot3(vb, r_sun), 0.0);
-        let spec = frame.sun_radiance.xyz * (pow_int(cos_spec, u32(frame.sun_radiance.w)) * frame.sun_dir.w);
+        let spec = frame.sun.radiance * (pow_int(cos_spec, u32(frame.hu.phong_exponent)) * frame.sun.lit);
         let shadow = sun_visibility(in.rel);
         let c = c_reflect * f + c_refract * (1.0 - f) + spec * shadow;
         return vec4<f32>(c, 1.0);
@@ -166,7 +166,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     // Snell's window: the ray i from the eye meets the surface from below (the normal facing
     // it is −n) and leaves into the air, η_i/η_t = η (water to air):
     // t = η i + (η cos θ_i − cos θ_t)(−n), cos θ_i = i·n, cos² θ_t = 1 − η² sin² θ_i.
-    let eta = frame.water_params.x;
+    let eta = frame.water.eta;
     let i = -view;
     let cos_i = dot3(i, n);
     let k = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
@@ -175,6 +175,6 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
         let t = i * eta + n * (sqrt(k) - eta * cos_i);
         sky_t = sky_radiance(sky, unit(vec3<f32>(t.x, max(t.y, 0.0) + 1e-6, t.z)));
     }
-    let c = frame.water_color.xyz * f + sky_t * (1.0 - f);
+    let c = frame.water.color * f + sky_t * (1.0 - f);
     return vec4<f32>(c, 1.0);
 }

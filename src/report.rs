@@ -232,12 +232,12 @@ fn frame_view_vectors(scene: &Scene) -> anyhow::Result<Vec<[f64; 3]>> {
         let input = water::VertexOut::from_fragment(frag.frag_coord, &frag.varyings);
         // As fs_main: the bumped normal, the view vector, the texture coordinates.
         let sdt = texture_sample(b.displacement_slopes, &water::WRAP_LINEAR, input.uv_d);
-        let wd = input.weight * f.passes[0];
+        let wd = input.weight * f.passes.waves;
         let sbt = texture_sample(b.bump, &water::WRAP_LINEAR, input.uv_b);
         let n = unit([
-            -(sdt[0] * wd + sbt[0] * f.passes[0]),
+            -(sdt[0] * wd + sbt[0] * f.passes.waves),
             1.0,
-            -(sdt[1] * wd + sbt[1] * f.passes[0]),
+            -(sdt[1] * wd + sbt[1] * f.passes.waves),
         ]);
         let view = unit([-input.rel[0], -input.rel[1], -input.rel[2]]);
         if view[1] < 0.0 {

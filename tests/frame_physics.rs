@@ -70,7 +70,7 @@ fn compare(scene: &Scene, frame: &FrameBuffers) -> Comparison {
     let camera = Camera::from_scene(&scene.camera).expect("valid camera");
     let table = FresnelTexture::new(FRESNEL_TABLE_SIZE as usize, 1.333, TextureMapping::Hemisphere)
         .expect("valid table");
-    let w = frame.uniforms.water_color[0] as f64;
+    let w = frame.uniforms.water.color[0] as f64;
     let (width, height) = (camera.width, camera.height);
     let mut c = Comparison {
         pixels: 0,
@@ -187,11 +187,13 @@ fn bumped_fresnel_is_the_texture_lookup_of_the_bumped_view_vector() {
     let empty = Texture2D::new(1, 1, vec![[0.0; 4]]);
     let w = 0.01f32;
     let mut u: FrameUniforms = bytemuck::Zeroable::zeroed();
-    u.eye = [10.0, 0.0, 0.0, 0.0];
-    u.viewport = [1.0, 1.0, 1.0, 1.0];
-    u.passes = [1.0, 0.0, 0.0, 0.0];
-    u.water_color = [w, w, w, 0.1];
-    u.water_params = [eta, 0.0, 0.0, 1.0 / eta];
+    u.view.eye_height = 10.0;
+    u.view.viewport_size = [1.0, 1.0];
+    u.view.inv_viewport_size = [1.0, 1.0];
+    u.passes.waves = 1.0;
+    (u.water.color, u.water.extinction_per_m) = ([w, w, w], 0.1);
+    (u.water.eta, u.water.inv_eta) = (eta, 1.0 / eta);
+    (u.hu.reflection_distortion, u.hu.refraction_distortion) = (0.0, 0.0);
     let sky = |_: [f32; 3]| [1.0f32; 3];
     println!(
         "slope | max |F − F_texture(bumped V)| | max |F − eq.2(V·N)| for V·N > 0 and θ_V ≤ 30°, 60°, 80°"

@@ -271,9 +271,13 @@ fn water_colour_and_extinction_reach_the_shaders() {
     let cam = Camera::from_scene(&s.camera).expect("camera");
     let plan = FramePlan::new(&s, OutputKind::Ldr);
     let u = FrameUniforms::new(&s, &cam, &plan, [0.0, 0.0]);
-    assert_eq!(u.water_color, [0.01, 0.05, 0.04, 0.4]);
+    assert_eq!((u.water.color, u.water.extinction_per_m), ([0.01, 0.05, 0.04], 0.4));
     let u0 = FrameUniforms::new(&base, &cam, &FramePlan::new(&base, OutputKind::Ldr), [0.0; 2]);
-    assert_eq!(u0.water_color, [0.004, 0.016, 0.028, 0.12], "defaults = the old constants");
+    assert_eq!(
+        (u0.water.color, u0.water.extinction_per_m),
+        ([0.004, 0.016, 0.028], 0.12),
+        "defaults = the old constants"
+    );
 }
 
 #[test]

@@ -233,8 +233,7 @@ fn frame_uniforms_layout() {
         assert_layout::<FrameUniforms>(
             &module(stage),
             "FrameUniforms",
-            fields!(FrameUniforms: view_proj, sun_view_proj, eye, patch_origin, mesh_offset, patch_scale,
-                sun_dir, sun_radiance, water_color, water_params, viewport, passes, sky_ambient),
+            fields!(FrameUniforms: view, sun, tiling, water, hu, passes, ambient),
         );
     }
 }

@@ -1,19 +1,72 @@
 // The uniforms of the `objects`, `shadow` and `water` stages: ocean-core's
-// `frame::FrameUniforms` (same names, same layout; tests/wgsl.rs compares them).
-struct FrameUniforms {
+// `frame::FrameUniforms`, one named block per concern (same names, same layout; the stage
+// registry's layout check in tests/wgsl.rs compares every member's name, offset and type).
+struct ViewBlock {
     view_proj: mat4x4<f32>,
-    sun_view_proj: mat4x4<f32>,
-    eye: vec4<f32>,
-    patch_origin: vec4<f32>,
-    mesh_offset: vec4<f32>,
-    patch_scale: vec4<f32>,
-    sun_dir: vec4<f32>,
-    sun_radiance: vec4<f32>,
-    water_color: vec4<f32>,
-    water_params: vec4<f32>,
-    viewport: vec4<f32>,
-    passes: vec4<f32>,
-    sky_ambient: vec4<f32>,
+    viewport_size: vec2<f32>,
+    inv_viewport_size: vec2<f32>,
+    eye_height: f32,
+    pad0: f32,
+    pad1: f32,
+    pad2: f32,
+}
+
+struct SunBlock {
+    shadow_view_proj: mat4x4<f32>,
+    direction: vec3<f32>,
+    lit: f32,
+    radiance: vec3<f32>,
+    pad: f32,
+}
+
+struct WaveTilingBlock {
+    displacement_origin: vec2<f32>,
+    bump_origin: vec2<f32>,
+    mesh_offset: vec2<f32>,
+    pad0: f32,
+    pad1: f32,
+    inv_displacement_size: f32,
+    inv_bump_size: f32,
+    displacement_half_texel: f32,
+    bump_half_texel: f32,
+}
+
+struct WaterBlock {
+    color: vec3<f32>,
+    extinction_per_m: f32,
+    eta: f32,
+    inv_eta: f32,
+    pad0: f32,
+    pad1: f32,
+}
+
+struct HuShadingBlock {
+    phong_exponent: f32,
+    reflection_distortion: f32,
+    refraction_distortion: f32,
+    pad: f32,
+}
+
+struct PassFlags {
+    waves: f32,
+    reflection_map: f32,
+    refraction_map: f32,
+    shadow_map: f32,
+}
+
+struct AmbientBlock {
+    sky: vec3<f32>,
+    pad: f32,
+}
+
+struct FrameUniforms {
+    view: ViewBlock,
+    sun: SunBlock,
+    tiling: WaveTilingBlock,
+    water: WaterBlock,
+    hu: HuShadingBlock,
+    passes: PassFlags,
+    ambient: AmbientBlock,
 }
 
 // m · (p, 1), written out so that the order of operations is fixed (the CPU mirror,

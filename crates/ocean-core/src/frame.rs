@@ -31,41 +31,150 @@ pub const WATER_EXTINCTION_PER_M: f64 = 0.12;
 /// C_deep_water of eq. 4.
 pub const DEEP_WATER_COLOR: [f64; 3] = [0.004, 0.016, 0.028];
 
-/// Uniforms of the `objects`, `shadow` and `water` stages (WGSL `FrameUniforms`).
+/// The view from the eye (every stage that draws in the main view or its maps).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct ViewBlock {
+    /// Camera-relative view-projection (reversed-Z infinite).
+    pub view_proj: [[f32; 4]; 4],
+    /// (width, height) of the main view, pixels.
+    pub viewport_size: [f32; 2],
+    /// (1/width, 1/height).
+    pub inv_viewport_size: [f32; 2],
+    /// The eye's height above the mean sea plane, m.
+    pub eye_height: f32,
+    /// Padding to 16 bytes.
+    pub pad0: f32,
+    /// Padding.
+    pub pad1: f32,
+    /// Padding.
+    pub pad2: f32,
+}
+
+/// The sun: its light and its shadow map's camera.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct SunBlock {
+    /// Camera-relative orthographic view-projection of the sun's shadow map (depth 0 near
+    /// the sun, 1 far, `Less`).
+    pub shadow_view_proj: [[f32; 4]; 4],
+    /// Unit direction towards the sun.
+    pub direction: [f32; 3],
+    /// 1 when the sun lights the scene (above the horizon, intensity > 0), else 0.
+    pub lit: f32,
+    /// Sun colour × intensity, linear RGB.
+    pub radiance: [f32; 3],
+    /// Padding to 16 bytes.
+    pub pad: f32,
+}
+
+/// Where the wave maps tile under the water mesh (stage `waves`, technique `fft`: the
+/// displacement and bump patches).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct WaveTilingBlock {
+    /// (c.x mod L_d, c.z mod L_d), m: the water mesh's reference point c in the displacement
+    /// tile (reduced in f64). c sits on a displacement grid point, so a near-patch vertex
+    /// lands exactly on a map sample.
+    pub displacement_origin: [f32; 2],
+    /// (c.x mod L_b, c.z mod L_b), m: the same in the bump tile.
+    pub bump_origin: [f32; 2],
+    /// (c.x − eye.x, c.z − eye.z), m: where the mesh's reference point is relative to the
+    /// eye (formed in f64).
+    pub mesh_offset: [f32; 2],
+    /// Padding to 16 bytes.
+    pub pad0: f32,
+    /// Padding.
+    pub pad1: f32,
+    /// 1/L_d, 1/m.
+    pub inv_displacement_size: f32,
+    /// 1/L_b, 1/m.
+    pub inv_bump_size: f32,
+    /// Half a texel of the displacement map, 0.5/N_d.
+    pub displacement_half_texel: f32,
+    /// Half a texel of the bump map, 0.5/N_b.
+    pub bump_half_texel: f32,
+}
+
+/// The water's optics, shared by every shading technique and the refraction map.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct WaterBlock {
+    /// Deep-water colour, linear RGB (eq. 4's C_deep_water).
+    pub color: [f32; 3],
+    /// Diffuse extinction K, 1/m.
+    pub extinction_per_m: f32,
+    /// η of the water.
+    pub eta: f32,
+    /// 1/η: the refraction map's apparent-depth scale.
+    pub inv_eta: f32,
+    /// Padding to 16 bytes.
+    pub pad0: f32,
+    /// Padding.
+    pub pad1: f32,
+}
+
+/// Parameters of shading technique `hu` (seed 000 eq. 3).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct HuShadingBlock {
+    /// Phong exponent s of the sun's highlight, a whole number.
+    pub phong_exponent: f32,
+    /// Shift of the reflection-map lookup per unit of normal tilt (§5.2).
+    pub reflection_distortion: f32,
+    /// The same for the refraction map.
+    pub refraction_distortion: f32,
+    /// Padding to 16 bytes.
+    pub pad: f32,
+}
+
+/// Which optional maps the frame made: 1.0 when the pass ran, 0.0 when its 1×1 zero map is
+/// bound in its place (the shaders multiply what they read by it).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct PassFlags {
+    /// `waves`.
+    pub waves: f32,
+    /// `reflection_map`.
+    pub reflection_map: f32,
+    /// `refraction_map`.
+    pub refraction_map: f32,
+    /// `shadow_map`.
+    pub shadow_map: f32,
+}
+
+/// Light from the environment for the objects' diffuse shading.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct AmbientBlock {
+    /// Irradiance-like ambient light from the sky on an upward surface, divided by π.
+    pub sky: [f32; 3],
+    /// Padding to 16 bytes.
+    pub pad: f32,
+}
+
+/// Uniforms of the `objects`, `shadow` and `water` stages (WGSL `FrameUniforms`): one named
+/// block per concern, so that a new technique adds a block or a field instead of
+/// re-purposing a lane. Each block is declared with the same names in
+/// `shaders/shared/frame.wgsl`; the registry's layout check compares every member's name,
+/// offset and type with the naga-parsed WGSL.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct FrameUniforms {
-    /// Camera-relative view-projection (reversed-Z infinite).
-    pub view_proj: [[f32; 4]; 4],
-    /// Camera-relative orthographic view-projection of the sun's shadow map (depth 0 near
-    /// the sun, 1 far, `Less`).
-    pub sun_view_proj: [[f32; 4]; 4],
-    /// (eye height above the mean sea plane, m; 0; 0; 0).
-    pub eye: [f32; 4],
-    /// (c.x mod L_d, c.z mod L_d, c.x mod L_b, c.z mod L_b), m: the water mesh's reference
-    /// point c in the displacement and bump tiles (reduced in f64). c sits on a displacement
-    /// grid point, so a near-patch vertex lands exactly on a map sample.
-    pub patch_origin: [f32; 4],
-    /// (c.x − eye.x, c.z − eye.z, 0, 0), m: where the mesh's reference point is relative to
-    /// the eye (formed in f64).
-    pub mesh_offset: [f32; 4],
-    /// (1/L_d, 1/L_b, ½ texel of the displacement map 0.5/N_d, ½ texel of the bump map).
-    pub patch_scale: [f32; 4],
-    /// Unit direction towards the sun (xyz); w = 1 when the sun lights the scene, else 0.
-    pub sun_dir: [f32; 4],
-    /// Sun colour × intensity (rgb); w = Phong exponent s.
-    pub sun_radiance: [f32; 4],
-    /// Deep-water colour (rgb); w = extinction K, 1/m.
-    pub water_color: [f32; 4],
-    /// (η of the water, reflection distortion, refraction distortion, refraction y-scale).
-    pub water_params: [f32; 4],
-    /// (width, height, 1/width, 1/height) of the main view, pixels.
-    pub viewport: [f32; 4],
-    /// 1.0 or 0.0: (waves, reflection map, refraction map, shadow map) present.
-    pub passes: [f32; 4],
-    /// Irradiance-like ambient light from the sky on an upward surface, divided by π (rgb),
-    /// for the objects' diffuse shading; w unused.
-    pub sky_ambient: [f32; 4],
+    /// The view from the eye.
+    pub view: ViewBlock,
+    /// The sun.
+    pub sun: SunBlock,
+    /// The wave maps' tiling.
+    pub tiling: WaveTilingBlock,
+    /// The water's optics.
+    pub water: WaterBlock,
+    /// Shading technique `hu`.
+    pub hu: HuShadingBlock,
+    /// Which optional maps were made.
+    pub passes: PassFlags,
+    /// The environment's ambient light.
+    pub ambient: AmbientBlock,
 }
 
 /// Uniforms of the `fresnel_table` stage (WGSL `FresnelTableUniforms`).
@@ -232,59 +341,60 @@ impl FrameUniforms {
         let flag = |p: Pass| if plan.runs(p) { 1.0 } else { 0.0 };
         let eta = scene.water.ior as f32;
         FrameUniforms {
-            view_proj: to_cols_f32(camera.view_proj()),
-            sun_view_proj: to_cols_f32(shadow),
-            eye: [eye.y as f32, 0.0, 0.0, 0.0],
-            patch_origin: [
-                mesh_origin[0].rem_euclid(l_d) as f32,
-                mesh_origin[1].rem_euclid(l_d) as f32,
-                mesh_origin[0].rem_euclid(l_b) as f32,
-                mesh_origin[1].rem_euclid(l_b) as f32,
-            ],
-            mesh_offset: [
-                (mesh_origin[0] - eye.x) as f32,
-                (mesh_origin[1] - eye.z) as f32,
-                0.0,
-                0.0,
-            ],
-            patch_scale: [
-                (1.0 / l_d) as f32,
-                (1.0 / l_b) as f32,
-                (0.5 / o.resolution as f64) as f32,
-                (0.5 / o.bump_resolution as f64) as f32,
-            ],
-            sun_dir: [
-                sun_dir.x as f32,
-                sun_dir.y as f32,
-                sun_dir.z as f32,
-                if sun_on { 1.0 } else { 0.0 },
-            ],
-            sun_radiance: [
-                sun_radiance.x as f32,
-                sun_radiance.y as f32,
-                sun_radiance.z as f32,
-                SUN_SPECULAR_EXPONENT,
-            ],
-            water_color: [
-                scene.water.color[0] as f32,
-                scene.water.color[1] as f32,
-                scene.water.color[2] as f32,
-                scene.water.extinction_per_m as f32,
-            ],
-            water_params: [eta, REFLECTION_DISTORTION, REFRACTION_DISTORTION, 1.0 / eta],
-            viewport: [
-                camera.width as f32,
-                camera.height as f32,
-                1.0 / camera.width as f32,
-                1.0 / camera.height as f32,
-            ],
-            passes: [
-                flag(Pass::Waves),
-                flag(Pass::ReflectionMap),
-                flag(Pass::RefractionMap),
-                flag(Pass::ShadowMap),
-            ],
-            sky_ambient: [0.0; 4],
+            view: ViewBlock {
+                view_proj: to_cols_f32(camera.view_proj()),
+                viewport_size: [camera.width as f32, camera.height as f32],
+                inv_viewport_size: [1.0 / camera.width as f32, 1.0 / camera.height as f32],
+                eye_height: eye.y as f32,
+                pad0: 0.0,
+                pad1: 0.0,
+                pad2: 0.0,
+            },
+            sun: SunBlock {
+                shadow_view_proj: to_cols_f32(shadow),
+                direction: [sun_dir.x as f32, sun_dir.y as f32, sun_dir.z as f32],
+                lit: if sun_on { 1.0 } else { 0.0 },
+                radiance: [sun_radiance.x as f32, sun_radiance.y as f32, sun_radiance.z as f32],
+                pad: 0.0,
+            },
+            tiling: WaveTilingBlock {
+                displacement_origin: [
+                    mesh_origin[0].rem_euclid(l_d) as f32,
+                    mesh_origin[1].rem_euclid(l_d) as f32,
+                ],
+                bump_origin: [
+                    mesh_origin[0].rem_euclid(l_b) as f32,
+                    mesh_origin[1].rem_euclid(l_b) as f32,
+                ],
+                mesh_offset: [(mesh_origin[0] - eye.x) as f32, (mesh_origin[1] - eye.z) as f32],
+                pad0: 0.0,
+                pad1: 0.0,
+                inv_displacement_size: (1.0 / l_d) as f32,
+                inv_bump_size: (1.0 / l_b) as f32,
+                displacement_half_texel: (0.5 / o.resolution as f64) as f32,
+                bump_half_texel: (0.5 / o.bump_resolution as f64) as f32,
+            },
+            water: WaterBlock {
+                color: scene.water.color.map(|c| c as f32),
+                extinction_per_m: scene.water.extinction_per_m as f32,
+                eta,
+                inv_eta: 1.0 / eta,
+                pad0: 0.0,
+                pad1: 0.0,
+            },
+            hu: HuShadingBlock {
+                phong_exponent: SUN_SPECULAR_EXPONENT,
+                reflection_distortion: REFLECTION_DISTORTION,
+                refraction_distortion: REFRACTION_DISTORTION,
+                pad: 0.0,
+            },
+            passes: PassFlags {
+                waves: flag(Pass::Waves),
+                reflection_map: flag(Pass::ReflectionMap),
+                refraction_map: flag(Pass::RefractionMap),
+                shadow_map: flag(Pass::ShadowMap),
+            },
+            ambient: AmbientBlock { sky: [0.0; 3], pad: 0.0 },
         }
     }
 }
@@ -299,10 +409,10 @@ pub fn scene_sky(scene: &Scene) -> crate::Result<PreethamSky> {
 }
 
 /// The sky's mean radiance weighted by cos θ over the upper hemisphere, i.e. the irradiance of
-/// an upward surface divided by π: the objects' ambient term ([`FrameUniforms::sky_ambient`]).
+/// an upward surface divided by π: the objects' ambient term ([`AmbientBlock::sky`]).
 /// A fixed 32 × 64 midpoint grid in (cos² θ, φ) — uniform in projected solid angle — so it is
 /// deterministic.
-pub fn sky_ambient(sky: &PreethamSky) -> [f32; 4] {
+pub fn sky_ambient(sky: &PreethamSky) -> [f32; 3] {
     let (rows, cols) = (32, 64);
     let mut sum = DVec3::ZERO;
     for i in 0..rows {
@@ -315,7 +425,7 @@ pub fn sky_ambient(sky: &PreethamSky) -> [f32; 4] {
         }
     }
     let mean = sum / (rows * cols) as f64;
-    [mean.x as f32, mean.y as f32, mean.z as f32, 0.0]
+    [mean.x as f32, mean.y as f32, mean.z as f32]
 }
 
 /// Texels of the water stage's `displacement` binding: (disp_x, height, disp_z, jacobian),

@@ -311,7 +311,7 @@ fn flat_sea_readback(camera_toml: &str) -> Result<(f64, usize, bool), Error> {
     let size = scene.quality.fresnel_table_size as usize;
     let above = FresnelTexture::new(size, eta, TextureMapping::Hemisphere)?;
     let below = FresnelTexture::new(size, 1.0 / eta, TextureMapping::Hemisphere)?;
-    let w = f64::from(buffers.uniforms.water_color[0]);
+    let w = f64::from(buffers.uniforms.water.color[0]);
     let (width, height) = (camera.width, camera.height);
     let finite = buffers.hdr.color.iter().all(|p| p.iter().all(|c| c.is_finite()));
     let table_f = |d: DVec3| {

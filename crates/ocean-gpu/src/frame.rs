@@ -274,7 +274,7 @@ impl GpuBackend<'_> {
     }
 
     fn fresnel_tables(&mut self, frame: &FrameInputs<'_>) {
-        let eta = frame.uniforms.water_params[0];
+        let eta = frame.uniforms.water.eta;
         for (id, eta) in [(ResourceId::FresnelAbove, eta), (ResourceId::FresnelBelow, 1.0 / eta)] {
             let size = frame.plan.resource(id).map_or(1, |r| r.size[0]);
             let label = format!("ocean.fresnel_table.{}", id.name());

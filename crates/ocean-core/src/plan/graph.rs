@@ -85,7 +85,7 @@ impl<'a> FrameInputs<'a> {
     ) -> crate::Result<Self> {
         let sky = scene_sky(scene)?;
         let mut uniforms = FrameUniforms::new(scene, &camera, plan, mesh.origin);
-        uniforms.sky_ambient = sky_ambient(&sky);
+        uniforms.ambient.sky = sky_ambient(&sky);
         let camera_uniforms = CameraUniforms::new(
             camera.view_proj().to_cols_array_2d(),
             [0.0; 3],

@@ -3,7 +3,7 @@
 
 use ocean_core::frame::{FrameUniforms, ObjectVertex};
 
-use super::shared::frame::{add3, dot3, mul3, scale3, transform_point, unit, xyz};
+use super::shared::frame::{add3, dot3, mul3, scale3, transform_point, unit};
 
 /// `VertexOut` of objects.wgsl (clip position and the varyings, in declaration order).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -48,19 +48,19 @@ const INV_PI: f32 = std::f32::consts::FRAC_1_PI;
 /// `shade(normal, color)`: Lambert under the sun plus the sky's ambient.
 fn shade(frame: &FrameUniforms, normal: [f32; 3], color: [f32; 3]) -> [f32; 3] {
     let n = unit(normal);
-    let cos_sun = dot3(n, xyz(frame.sun_dir)).max(0.0) * frame.sun_dir[3];
-    let direct = scale3(xyz(frame.sun_radiance), cos_sun * INV_PI);
-    mul3(color, add3(direct, xyz(frame.sky_ambient)))
+    let cos_sun = dot3(n, frame.sun.direction).max(0.0) * frame.sun.lit;
+    let direct = scale3(frame.sun.radiance, cos_sun * INV_PI);
+    mul3(color, add3(direct, frame.ambient.sky))
 }
 
 /// `vs_main`.
 pub fn vs_main(v: &ObjectVertex, frame: &FrameUniforms) -> VertexOut {
     VertexOut {
-        clip: transform_point(&frame.view_proj, v.position),
+        clip: transform_point(&frame.view.view_proj, v.position),
         normal: v.normal,
         color: v.color,
         rel: v.position,
-        world_y: v.position[1] + frame.eye[0],
+        world_y: v.position[1] + frame.view.eye_height,
     }
 }
 
@@ -73,13 +73,13 @@ pub fn fs_main(input: &VertexOut, frame: &FrameUniforms) -> [f32; 4] {
 /// `vs_reflect`.
 pub fn vs_reflect(v: &ObjectVertex, frame: &FrameUniforms) -> VertexOut {
     let p = v.position;
-    let mirrored = [p[0], -p[1] - 2.0 * frame.eye[0], p[2]];
+    let mirrored = [p[0], -p[1] - 2.0 * frame.view.eye_height, p[2]];
     VertexOut {
-        clip: transform_point(&frame.view_proj, mirrored),
+        clip: transform_point(&frame.view.view_proj, mirrored),
         normal: [v.normal[0], -v.normal[1], v.normal[2]],
         color: v.color,
         rel: mirrored,
-        world_y: p[1] + frame.eye[0],
+        world_y: p[1] + frame.view.eye_height,
     }
 }
 
@@ -95,10 +95,11 @@ pub fn fs_reflect(input: &VertexOut, frame: &FrameUniforms) -> Option<[f32; 4]> 
 
 /// `vs_refract`.
 pub fn vs_refract(v: &ObjectVertex, frame: &FrameUniforms) -> VertexOut {
-    let world_y = v.position[1] + frame.eye[0];
-    let scaled = [v.position[0], world_y * frame.water_params[3] - frame.eye[0], v.position[2]];
+    let world_y = v.position[1] + frame.view.eye_height;
+    let scaled =
+        [v.position[0], world_y * frame.water.inv_eta - frame.view.eye_height, v.position[2]];
     VertexOut {
-        clip: transform_point(&frame.view_proj, scaled),
+        clip: transform_point(&frame.view.view_proj, scaled),
         normal: v.normal,
         color: v.color,
         rel: scaled,
@@ -111,15 +112,15 @@ pub fn fs_refract(input: &VertexOut, frame: &FrameUniforms) -> Option<[f32; 4]> 
     if input.world_y > 0.0 {
         return None;
     }
-    let depth_below = -(input.rel[1] + frame.eye[0]);
-    let height_above = frame.eye[0].max(0.0);
+    let depth_below = -(input.rel[1] + frame.view.eye_height);
+    let height_above = frame.view.eye_height.max(0.0);
     let dist = dot3(input.rel, input.rel).sqrt();
     let d = dist * (depth_below / (depth_below + height_above));
-    let fog = 1.0 - (-frame.water_color[3] * d).exp();
+    let fog = 1.0 - (-frame.water.extinction_per_m * d).exp();
     let obj = scale3(
         shade(frame, input.normal, input.color),
-        (-frame.water_color[3] * -input.world_y).exp(),
+        (-frame.water.extinction_per_m * -input.world_y).exp(),
     );
-    let c = add3(scale3(xyz(frame.water_color), fog), scale3(obj, 1.0 - fog));
+    let c = add3(scale3(frame.water.color, fog), scale3(obj, 1.0 - fog));
     Some([c[0], c[1], c[2], 1.0])
 }

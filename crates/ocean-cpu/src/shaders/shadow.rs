@@ -6,7 +6,7 @@ use super::shared::frame::transform_point;
 
 /// `vs_main(position)`: the clip position in the sun's orthographic view.
 pub fn vs_main(position: [f32; 3], frame: &FrameUniforms) -> [f32; 4] {
-    transform_point(&frame.sun_view_proj, position)
+    transform_point(&frame.sun.shadow_view_proj, position)
 }
 
 /// `fs_main(frag)`: the fragment's depth in the red channel.

@@ -94,19 +94,21 @@ impl VertexOut {
 pub fn vs_main(v: &WaterVertex, b: &Bindings<'_>) -> VertexOut {
     let f = b.frame;
     let uv_d = [
-        (v.pos[0] + f.patch_origin[0]) * f.patch_scale[0] + f.patch_scale[2],
-        (v.pos[1] + f.patch_origin[1]) * f.patch_scale[0] + f.patch_scale[2],
+        (v.pos[0] + f.tiling.displacement_origin[0]) * f.tiling.inv_displacement_size
+            + f.tiling.displacement_half_texel,
+        (v.pos[1] + f.tiling.displacement_origin[1]) * f.tiling.inv_displacement_size
+            + f.tiling.displacement_half_texel,
     ];
     let uv_b = [
-        (v.pos[0] + f.patch_origin[2]) * f.patch_scale[1] + f.patch_scale[3],
-        (v.pos[1] + f.patch_origin[3]) * f.patch_scale[1] + f.patch_scale[3],
+        (v.pos[0] + f.tiling.bump_origin[0]) * f.tiling.inv_bump_size + f.tiling.bump_half_texel,
+        (v.pos[1] + f.tiling.bump_origin[1]) * f.tiling.inv_bump_size + f.tiling.bump_half_texel,
     ];
     let s = texture_sample_level(b.displacement, &WRAP_LINEAR, uv_d, 0.0);
-    let w = v.weight * f.passes[0];
+    let w = v.weight * f.passes.waves;
     let d = [s[0] * w, s[1] * w, s[2] * w, s[3] * w];
-    let plane = [v.pos[0] + f.mesh_offset[0], v.pos[1] + f.mesh_offset[1]];
-    let rel = [plane[0] + d[0], d[1] - f.eye[0], plane[1] + d[2]];
-    VertexOut { clip: transform_point(&f.view_proj, rel), rel, uv_d, uv_b, weight: v.weight }
+    let plane = [v.pos[0] + f.tiling.mesh_offset[0], v.pos[1] + f.tiling.mesh_offset[1]];
+    let rel = [plane[0] + d[0], d[1] - f.view.eye_height, plane[1] + d[2]];
+    VertexOut { clip: transform_point(&f.view.view_proj, rel), rel, uv_d, uv_b, weight: v.weight }
 }
 
 /// `pow_int(x, n)`: x^n by binary exponentiation, multiplications in the WGSL's order.
@@ -130,10 +132,10 @@ pub fn pow_int(x: f32, n: u32) -> f32 {
 /// `sun_visibility(rel)`.
 fn sun_visibility(rel: [f32; 3], b: &Bindings<'_>) -> f32 {
     let f = b.frame;
-    if f.passes[3] == 0.0 {
+    if f.passes.shadow_map == 0.0 {
         return 1.0;
     }
-    let s = transform_point(&f.sun_view_proj, rel);
+    let s = transform_point(&f.sun.shadow_view_proj, rel);
     let u = s[0] * 0.5 + 0.5;
     let v = 0.5 - s[1] * 0.5;
     if u < 0.0 || u >= 1.0 || v < 0.0 || v >= 1.0 {
@@ -155,15 +157,16 @@ fn sun_visibility(rel: [f32; 3], b: &Bindings<'_>) -> f32 {
 pub fn fs_main(input: &VertexOut, b: &Bindings<'_>) -> [f32; 4] {
     let f = b.frame;
     let sdt = texture_sample(b.displacement_slopes, &WRAP_LINEAR, input.uv_d);
-    let wd = input.weight * f.passes[0];
+    let wd = input.weight * f.passes.waves;
     let sd = [sdt[0] * wd, sdt[1] * wd];
     let sbt = texture_sample(b.bump, &WRAP_LINEAR, input.uv_b);
-    let sb = [sbt[0] * f.passes[0], sbt[1] * f.passes[0]];
+    let sb = [sbt[0] * f.passes.waves, sbt[1] * f.passes.waves];
     let n = unit([-(sd[0] + sb[0]), 1.0, -(sd[1] + sb[1])]);
     let du = n[0];
     let dv = n[2];
     let view = unit([-input.rel[0], -input.rel[1], -input.rel[2]]);
-    let screen = [input.clip[0] * f.viewport[2], input.clip[1] * f.viewport[3]];
+    let screen =
+        [input.clip[0] * f.view.inv_viewport_size[0], input.clip[1] * f.view.inv_viewport_size[1]];
     if view[1] >= 0.0 {
         let st = [(view[0] - du) * 0.5 + 0.5, (view[2] - dv) * 0.5 + 0.5];
         let fres = texture_sample(b.fresnel_above, &CLAMP_LINEAR, st);
@@ -176,22 +179,28 @@ pub fn fs_main(input: &VertexOut, b: &Bindings<'_>) -> [f32; 4] {
         let refl = texture_sample(
             b.reflection_map,
             &CLAMP_LINEAR,
-            [screen[0] + du * f.water_params[1], screen[1] + dv * f.water_params[1]],
+            [
+                screen[0] + du * f.hu.reflection_distortion,
+                screen[1] + dv * f.hu.reflection_distortion,
+            ],
         );
-        let a_refl = refl[3] * f.passes[1];
+        let a_refl = refl[3] * f.passes.reflection_map;
         let c_reflect = add3(scale3(sky, 1.0 - a_refl), scale3(xyz(refl), a_refl));
         let refr = texture_sample(
             b.refraction_map,
             &CLAMP_LINEAR,
-            [screen[0] + du * f.water_params[2], screen[1] + dv * f.water_params[2]],
+            [
+                screen[0] + du * f.hu.refraction_distortion,
+                screen[1] + dv * f.hu.refraction_distortion,
+            ],
         );
-        let a_refr = refr[3] * f.passes[2];
-        let c_refract = add3(scale3(xyz(f.water_color), 1.0 - a_refr), scale3(xyz(refr), a_refr));
+        let a_refr = refr[3] * f.passes.refraction_map;
+        let c_refract = add3(scale3(f.water.color, 1.0 - a_refr), scale3(xyz(refr), a_refr));
         let vb = [fres[0], fres[2], fres[1]];
-        let r_sun = [-f.sun_dir[0], f.sun_dir[1], -f.sun_dir[2]];
+        let r_sun = [-f.sun.direction[0], f.sun.direction[1], -f.sun.direction[2]];
         let cos_spec = dot3(vb, r_sun).max(0.0);
         let spec =
-            scale3(xyz(f.sun_radiance), pow_int(cos_spec, f.sun_radiance[3] as u32) * f.sun_dir[3]);
+            scale3(f.sun.radiance, pow_int(cos_spec, f.hu.phong_exponent as u32) * f.sun.lit);
         let shadow = sun_visibility(input.rel, b);
         let c =
             add3(add3(scale3(c_reflect, fr), scale3(c_refract, 1.0 - fr)), scale3(spec, shadow));
@@ -199,7 +208,7 @@ pub fn fs_main(input: &VertexOut, b: &Bindings<'_>) -> [f32; 4] {
     }
     let st = [(view[0] - du) * 0.5 + 0.5, (view[2] - dv) * 0.5 + 0.5];
     let fr = texture_sample(b.fresnel_below, &CLAMP_LINEAR, st)[3];
-    let eta = f.water_params[0];
+    let eta = f.water.eta;
     let i = [-view[0], -view[1], -view[2]];
     let cos_i = dot3(i, n);
     let k = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
@@ -208,6 +217,6 @@ pub fn fs_main(input: &VertexOut, b: &Bindings<'_>) -> [f32; 4] {
         let t = add3(scale3(i, eta), scale3(n, k.sqrt() - eta * cos_i));
         sky = (b.sky_radiance)(unit([t[0], t[1].max(0.0) + 1e-6, t[2]]));
     }
-    let c = add3(scale3(xyz(f.water_color), fr), scale3(sky, 1.0 - fr));
+    let c = add3(scale3(f.water.color, fr), scale3(sky, 1.0 - fr));
     [c[0], c[1], c[2], 1.0]
 }
