@@ -1,10 +1,11 @@
-// Stage `sky`: the daylight sky (Preetham et al. 1999) behind everything, drawn with one
+// Stage `sky`: the environment (the frame's sky technique, imported as `technique/sky`;
+// `preetham` for every system built so far) behind everything, drawn with one
 // full-screen triangle at the far plane (reversed Z: z = 0). Output: linear HDR radiance in
 // scene units, alpha 1. CPU mirror: ocean-cpu/src/shaders/sky.rs.
 
 // #import shared/camera.wgsl
 // #import shared/fullscreen.wgsl
-// #import shared/preetham.wgsl
+// #import technique/sky
 
 @group(0) @binding(0) var<uniform> camera: CameraUniforms;
 @group(1) @binding(0) var<uniform> sky: SkyUniforms;

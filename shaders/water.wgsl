@@ -5,14 +5,15 @@
 // fragment shader bumps the normal with the bump map (§5), looks the Fresnel term and the
 // bumped view vector up in the 2D Fresnel texture (§5.1, §5.3), shifts the reflection- and
 // refraction-map lookups by the bump (§5.2), and adds the sun's Phong highlight attenuated
-// by the shadow map (§5.3). The environment (sky) is reflected analytically along the bumped
-// reflection direction; the reflection map adds the mirrored objects over it by coverage.
+// by the shadow map (§5.3). The environment (the sky technique's radiance, imported as
+// `technique/sky`) is reflected analytically along the bumped reflection direction; the
+// reflection map adds the mirrored objects over it by coverage.
 // Seen from below (camera under the water) the surface reflects the water volume and
 // transmits the sky through Snell's window, with F for η⁻¹ (total internal reflection).
 // CPU mirror: crates/ocean-cpu/src/shaders/water.rs.
 
 // #import shared/frame.wgsl
-// #import shared/preetham.wgsl
+// #import technique/sky
 
 @group(0) @binding(0) var<uniform> frame: FrameUniforms;
 // (disp_x, height, disp_z, jacobian) of the displacement map.
@@ -30,7 +31,8 @@
 @group(0) @binding(8) var shadow_map: texture_2d<f32>;
 @group(0) @binding(9) var wrap_linear: sampler;
 @group(0) @binding(10) var clamp_linear: sampler;
-// The sky the water reflects (shared/preetham.wgsl).
+// The environment the water reflects: the frame's sky technique (its interface: SkyUniforms,
+// sky_radiance), a resource of the plan that the water reads.
 @group(1) @binding(0) var<uniform> sky: SkyUniforms;
 
 struct WaterVertex {

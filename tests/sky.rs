@@ -224,8 +224,8 @@ fn finite_and_non_negative_everywhere() {
                 );
                 // The f32 shader too, through its sky function (not a pixel).
                 let d32 = d.map(|c| c as f32);
-                let g = ocean_cpu::shaders::shared::preetham::sky_radiance(&u, d32);
-                let h = ocean_cpu::shaders::shared::preetham::sun_disc(&u, d32);
+                let g = ocean_cpu::shaders::sky::preetham::sky_radiance(&u, d32);
+                let h = ocean_cpu::shaders::sky::preetham::sun_disc(&u, d32);
                 assert!(
                     g.iter().chain(&h).all(|c| c.is_finite() && *c >= 0.0),
                     "f32 T={t} el={el}"

@@ -1,109 +1,146 @@
-//! Every WGSL stage parses and validates with naga (no GPU needed), the `shaders/` folder holds
-//! the stages we expect and nothing that is not embedded, and every uniform struct's Rust layout
-//! (size, field offsets) is the one naga computes for the WGSL declaration.
+//! The stage registry against the WGSL (no GPU needed): every stage parses and validates with
+//! naga; its entry points and bindings are exactly the registry's; every struct Rust shares
+//! with WGSL has the same size and the same members (name, offset, type); every WGSL `const`
+//! equals its Rust twin; every technique file implements its stage's interface; the
+//! `shaders/` folder holds exactly the embedded files; and every piece the registry names
+//! (WGSL, CPU mirror, GPU module) exists — with negative controls for each checker.
 
-use std::mem::{offset_of, size_of};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use naga::valid::{Capabilities, ValidationFlags, Validator};
-use ocean_core::camera_uniforms::CameraUniforms;
-use ocean_core::frame::{FrameUniforms, FresnelTableUniforms};
-use ocean_core::shader_source::{STAGES, embedded_files, stage_source};
-use ocean_core::sky::SkyUniforms;
-use ocean_core::tonemap::TonemapUniforms;
-use ocean_core::waves::uniforms::{FftPassUniforms, WaveModeData, WavesUniforms};
+use ocean_core::plan::Pass;
+use ocean_core::registry::{
+    self, Block, EntryKind, SHARED, STAGES, StageEntry, TECHNIQUE_FILES, WAVE_MODE,
+};
+use ocean_core::shader_source::{embedded_files, stage_source};
 
-/// The stages written so far; a missing file is a failure, not a pass over fewer files.
+/// The stages written so far; a missing one is a failure, not a pass over fewer stages.
 const EXPECTED_STAGES: &[&str] =
     &["waves", "fresnel_table", "sky", "objects", "shadow", "water", "tonemap", "present"];
 
-/// Compute stages and their entry points (named after what they do; `main` where a stage has
-/// one); the others render (`vs_main`, `fs_main`).
-const COMPUTE_STAGES: &[(&str, &[&str])] =
-    &[("waves", &["spectrum", "fft_rows", "fft_columns", "pack"]), ("fresnel_table", &["main"])];
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
 
-/// The stage's source, imports resolved, parsed and validated. Stages stay within WebGPU's
-/// baseline: no optional capabilities.
-fn module(stage: &str) -> naga::Module {
-    let src = stage_source(stage).unwrap_or_else(|e| panic!("{e}"));
-    let module = naga::front::wgsl::parse_str(&src)
-        .unwrap_or_else(|e| panic!("{stage}.wgsl:\n{}", e.emit_to_string(&src)));
+fn parse(name: &str, src: &str) -> naga::Module {
+    let module = naga::front::wgsl::parse_str(src)
+        .unwrap_or_else(|e| panic!("{name}:\n{}", e.emit_to_string(src)));
     Validator::new(ValidationFlags::all(), Capabilities::empty())
         .validate(&module)
-        .unwrap_or_else(|e| panic!("{stage}.wgsl does not validate:\n{}", e.emit_to_string(&src)));
+        .unwrap_or_else(|e| panic!("{name} does not validate:\n{}", e.emit_to_string(src)));
     module
 }
 
+fn module(stage: &str) -> naga::Module {
+    let src = stage_source(stage).unwrap_or_else(|e| panic!("{e}"));
+    parse(&format!("{stage}.wgsl"), &src)
+}
+
+fn kind(k: EntryKind) -> naga::ShaderStage {
+    match k {
+        EntryKind::Vertex => naga::ShaderStage::Vertex,
+        EntryKind::Fragment => naga::ShaderStage::Fragment,
+        EntryKind::Compute => naga::ShaderStage::Compute,
+    }
+}
+
+/// What differs between a stage's registry entry and its WGSL: entry points and bindings, in
+/// both directions.
+fn entry_and_binding_errors(stage: &StageEntry, m: &naga::Module) -> Vec<String> {
+    let mut errors = Vec::new();
+    for &(name, k) in stage.entry_points {
+        if !m.entry_points.iter().any(|e| e.name == name && e.stage == kind(k)) {
+            errors.push(format!("{}: no {k:?} entry point `{name}` in the WGSL", stage.name));
+        }
+    }
+    for e in &m.entry_points {
+        if stage.entry(&e.name).is_none() {
+            errors.push(format!("{}: entry point `{}` is not in the registry", stage.name, e.name));
+        }
+    }
+    let wgsl: Vec<(u32, u32, String)> = m
+        .global_variables
+        .iter()
+        .filter_map(|(_, g)| {
+            g.binding.as_ref().map(|b| (b.group, b.binding, g.name.clone().unwrap_or_default()))
+        })
+        .collect();
+    for b in stage.bindings {
+        if !wgsl.iter().any(|(g, n, name)| *g == b.group && *n == b.binding && name == b.name) {
+            errors.push(format!(
+                "{}: no @group({}) @binding({}) var {} in the WGSL",
+                stage.name, b.group, b.binding, b.name
+            ));
+        }
+    }
+    for (g, n, name) in &wgsl {
+        if !stage.bindings.iter().any(|b| b.group == *g && b.binding == *n && b.name == name) {
+            errors.push(format!(
+                "{}: @group({g}) @binding({n}) var {name} is not in the registry",
+                stage.name
+            ));
+        }
+    }
+    errors
+}
+
 #[test]
-fn every_stage_parses_and_validates() {
-    let mut validated = Vec::new();
+fn every_stage_parses_validates_and_has_exactly_the_registrys_entry_points_and_bindings() {
+    let mut errors = Vec::new();
     for stage in STAGES {
-        let m = module(stage);
-        // Render and post stages have the two entry points the CPU mirrors are named after;
-        // compute stages the entry points listed in COMPUTE_STAGES.
-        let wanted: Vec<(&str, naga::ShaderStage)> =
-            match COMPUTE_STAGES.iter().find(|(s, _)| s == stage) {
-                Some((_, entries)) => {
-                    entries.iter().map(|&e| (e, naga::ShaderStage::Compute)).collect()
-                }
-                None => vec![
-                    ("vs_main", naga::ShaderStage::Vertex),
-                    ("fs_main", naga::ShaderStage::Fragment),
-                ],
-            };
-        for &(name, kind) in &wanted {
-            assert!(
-                m.entry_points.iter().any(|e| e.name == name && e.stage == kind),
-                "{stage}.wgsl has no {kind:?} entry point `{name}`"
-            );
-        }
-        validated.push(*stage);
+        errors.extend(entry_and_binding_errors(stage, &module(stage.name)));
     }
+    assert!(errors.is_empty(), "{}", errors.join("\n"));
     for want in EXPECTED_STAGES {
-        assert!(validated.contains(want), "stage {want} was not validated");
+        assert!(registry::stage(want).is_some(), "stage {want} is not in the registry");
     }
 }
 
 #[test]
-fn shaders_folder_holds_the_expected_stages_and_only_embedded_files() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("shaders");
-    let mut on_disk = Vec::new();
-    for dir in [root.clone(), root.join("shared")] {
-        for entry in std::fs::read_dir(&dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display())) {
-            let path = entry.unwrap().path();
-            if path.extension().is_some_and(|e| e == "wgsl") {
-                let rel = path.strip_prefix(&root).unwrap().to_string_lossy().replace('\\', "/");
-                on_disk.push(rel);
-            }
+fn entry_and_binding_check_fails_on_a_wrong_registry_entry() {
+    // Negative control: the water stage's entry with a renamed entry point and a binding moved.
+    let water = *registry::stage("water").unwrap();
+    let wrong = StageEntry {
+        entry_points: &[("vs_main", EntryKind::Vertex), ("fs_water", EntryKind::Fragment)],
+        bindings: &[registry::Binding { group: 0, binding: 0, name: "frames" }],
+        ..water
+    };
+    let errors = entry_and_binding_errors(&wrong, &module("water")).join("\n");
+    assert!(errors.contains("no Fragment entry point `fs_water`"), "{errors}");
+    assert!(errors.contains("entry point `fs_main` is not in the registry"), "{errors}");
+    assert!(errors.contains("var frames in the WGSL"), "{errors}");
+    assert!(errors.contains("var displacement is not in the registry"), "{errors}");
+}
+
+/// The WGSL name of a naga type.
+fn type_name(m: &naga::Module, ty: naga::Handle<naga::Type>) -> String {
+    let t = &m.types[ty];
+    if let Some(n) = &t.name {
+        return n.clone();
+    }
+    let scalar = |s: naga::Scalar| match (s.kind, s.width) {
+        (naga::ScalarKind::Float, 4) => "f32".to_owned(),
+        (naga::ScalarKind::Uint, 4) => "u32".to_owned(),
+        (naga::ScalarKind::Sint, 4) => "i32".to_owned(),
+        other => format!("{other:?}"),
+    };
+    match &t.inner {
+        naga::TypeInner::Scalar(s) => scalar(*s),
+        naga::TypeInner::Vector { size, scalar: s } => {
+            format!("vec{}<{}>", *size as u8, scalar(*s))
         }
-    }
-    for stage in EXPECTED_STAGES {
-        let file = format!("{stage}.wgsl");
-        assert!(on_disk.contains(&file), "shaders/{file} is missing");
-        assert!(STAGES.contains(stage), "stage {stage} is not in shader_source::STAGES");
-    }
-    let embedded = embedded_files();
-    for file in &on_disk {
-        assert!(embedded.contains(file), "shaders/{file} is not embedded in shader_source");
-    }
-    for file in &embedded {
-        assert!(on_disk.contains(file), "shader_source embeds {file}, which is not in shaders/");
-        // The embedded text is the file's text (include_str! cannot go stale, but say it).
-        if let Some(text) = ocean_core::shader_source::shared_file(file) {
-            assert_eq!(text, std::fs::read_to_string(root.join(file)).unwrap(), "{file}");
+        naga::TypeInner::Matrix { columns, rows, scalar: s } => {
+            format!("mat{}x{}<{}>", *columns as u8, *rows as u8, scalar(*s))
         }
+        other => format!("{other:?}"),
     }
 }
 
-/// Compares the Rust struct `T` with the WGSL struct `name` of `module`: same size as naga's
-/// `span`, the same members in the same order, each at naga's offset. `fields` lists the Rust
-/// fields as `(name, offset_of!(T, name))`.
-fn check_layout<T>(
-    module: &naga::Module,
-    name: &str,
-    fields: &[(&str, usize)],
-) -> Result<(), String> {
-    let (_, ty) = module
+/// Compares a shared struct's Rust layout with the WGSL declaration in `m`: size, and each
+/// member's name, offset and type.
+fn check_block(m: &naga::Module, block: &Block) -> Result<(), String> {
+    let name = block.name;
+    let (_, ty) = m
         .types
         .iter()
         .find(|(_, ty)| ty.name.as_deref() == Some(name))
@@ -112,103 +149,282 @@ fn check_layout<T>(
         return Err(format!("`{name}` is not a struct in the WGSL"));
     };
     let mut errors = Vec::new();
-    if *span as usize != size_of::<T>() {
-        errors.push(format!("size: WGSL {span}, Rust {}", size_of::<T>()));
+    if *span as usize != block.size {
+        errors.push(format!("size: WGSL {span}, Rust {}", block.size));
     }
-    let wgsl: Vec<(&str, usize)> =
-        members.iter().map(|m| (m.name.as_deref().unwrap_or("?"), m.offset as usize)).collect();
-    if wgsl.len() != fields.len() {
-        errors.push(format!("{} WGSL members, {} Rust fields", wgsl.len(), fields.len()));
+    let rust = (block.members)();
+    if members.len() != rust.len() {
+        errors.push(format!("{} WGSL members, {} Rust fields", members.len(), rust.len()));
     }
-    for (i, (w, r)) in wgsl.iter().zip(fields).enumerate() {
-        if w != r {
-            errors.push(format!("member {i}: WGSL {} at {}, Rust {} at {}", w.0, w.1, r.0, r.1));
+    for (i, (w, r)) in members.iter().zip(&rust).enumerate() {
+        let (wn, wo, wt) =
+            (w.name.as_deref().unwrap_or("?"), w.offset as usize, type_name(m, w.ty));
+        if (wn, wo, wt.as_str()) != (r.name, r.offset, r.wgsl_type) {
+            errors.push(format!(
+                "member {i}: WGSL {wn}: {wt} at {wo}, Rust {}: {} at {}",
+                r.name, r.wgsl_type, r.offset
+            ));
         }
     }
     if errors.is_empty() { Ok(()) } else { Err(format!("{name}: {}", errors.join("; "))) }
 }
 
-/// `check_layout` that fails the test.
-fn assert_layout<T>(module: &naga::Module, name: &str, fields: &[(&str, usize)]) {
-    if let Err(e) = check_layout::<T>(module, name, fields) {
-        panic!("{e}");
+#[test]
+fn every_shared_struct_has_the_same_layout_and_member_types_in_rust_and_wgsl() {
+    let mut errors = Vec::new();
+    let mut checked = 0;
+    for stage in STAGES {
+        let m = module(stage.name);
+        for b in stage.blocks {
+            errors.extend(check_block(&m, b).err());
+            checked += 1;
+        }
     }
-}
-
-/// `(stringify!(field), offset_of!(T, field))` for each field.
-macro_rules! fields {
-    ($t:ty: $($f:ident),* $(,)?) => { &[$((stringify!($f), offset_of!($t, $f))),*] };
-}
-
-#[test]
-fn camera_uniforms_layout() {
-    assert_layout::<CameraUniforms>(
-        &module("sky"),
-        "CameraUniforms",
-        fields!(CameraUniforms: view_proj, inv_view_proj, eye, viewport),
-    );
-}
-
-#[test]
-fn sky_uniforms_layout() {
-    assert_layout::<SkyUniforms>(
-        &module("sky"),
-        "SkyUniforms",
-        fields!(SkyUniforms: perez_a, perez_b, perez_c, perez_d, perez_e, zenith, perez_zenith,
-            sun_direction, sun_radiance, sky_scale, cos_theta_min, sun_sin_inner, sun_sin_outer),
-    );
-}
-
-#[test]
-fn tonemap_uniforms_layout() {
-    assert_layout::<TonemapUniforms>(
-        &module("tonemap"),
-        "TonemapUniforms",
-        fields!(TonemapUniforms: exposure, pad0, pad1, pad2),
-    );
+    // Shared and technique files are checked where a stage imports them.
+    let importers = ["water", "sky"];
+    for b in
+        SHARED.iter().flat_map(|f| f.blocks).chain(TECHNIQUE_FILES.iter().flat_map(|f| f.blocks))
+    {
+        let m = importers
+            .iter()
+            .map(|s| module(s))
+            .find(|m| m.types.iter().any(|(_, t)| t.name.as_deref() == Some(b.name)))
+            .unwrap_or_else(|| panic!("no stage imports struct `{}`", b.name));
+        errors.extend(check_block(&m, b).err());
+        checked += 1;
+    }
+    errors.extend(check_block(&module("waves"), &WAVE_MODE).err());
+    checked += 1;
+    assert!(errors.is_empty(), "{}", errors.join("\n"));
+    // The 15 structs of the registry today: a check over fewer is a failure.
+    assert!(checked >= 15, "only {checked} structs checked");
 }
 
 /// Negative controls: the checker rejects a struct without its padding, with swapped fields,
-/// with a field missing, and a name the WGSL does not have.
+/// with a member of the wrong type, and a name the WGSL does not have.
 #[test]
 fn layout_checker_rejects_wrong_structs() {
-    #[repr(C)]
-    struct NoPadding {
-        exposure: f32,
-    }
-    #[repr(C)]
-    struct Swapped {
-        pad0: f32,
-        exposure: f32,
-        pad1: f32,
-        pad2: f32,
-    }
-    #[repr(C)]
-    struct VecWhereScalarsAre {
-        perez_a: [f32; 4],
-        rest: [[f32; 4]; 9],
-        sky_scale: [f32; 4],
-    }
+    use ocean_core::registry::Member;
     let tonemap = module("tonemap");
-    let err = check_layout::<NoPadding>(&tonemap, "TonemapUniforms", fields!(NoPadding: exposure))
-        .unwrap_err();
-    assert!(err.contains("size: WGSL 16, Rust 4") && err.contains("4 WGSL members"), "{err}");
-    let err = check_layout::<Swapped>(
+    let block =
+        |members: fn() -> Vec<Member>, size| Block { name: "TonemapUniforms", size, members };
+    let err = check_block(
         &tonemap,
-        "TonemapUniforms",
-        fields!(Swapped: pad0, exposure, pad1, pad2),
+        &block(|| vec![Member { name: "exposure", offset: 0, wgsl_type: "f32" }], 4),
     )
     .unwrap_err();
-    assert!(err.contains("member 0: WGSL exposure at 0, Rust pad0 at 0"), "{err}");
-    let err = check_layout::<VecWhereScalarsAre>(
-        &module("sky"),
-        "SkyUniforms",
-        fields!(VecWhereScalarsAre: perez_a, rest, sky_scale),
-    )
-    .unwrap_err();
-    assert!(err.contains("size: WGSL 160, Rust 176"), "{err}");
-    let err = check_layout::<NoPadding>(&tonemap, "NoSuchStruct", &[]).unwrap_err();
+    assert!(err.contains("size: WGSL 16, Rust 4") && err.contains("4 WGSL members"), "{err}");
+    let swapped = || {
+        vec![
+            Member { name: "pad0", offset: 0, wgsl_type: "f32" },
+            Member { name: "exposure", offset: 4, wgsl_type: "f32" },
+            Member { name: "pad1", offset: 8, wgsl_type: "f32" },
+            Member { name: "pad2", offset: 12, wgsl_type: "f32" },
+        ]
+    };
+    let err = check_block(&tonemap, &block(swapped, 16)).unwrap_err();
+    assert!(err.contains("member 0: WGSL exposure: f32 at 0, Rust pad0: f32 at 0"), "{err}");
+    let wrong_type = || {
+        vec![
+            Member { name: "exposure", offset: 0, wgsl_type: "u32" },
+            Member { name: "pad0", offset: 4, wgsl_type: "f32" },
+            Member { name: "pad1", offset: 8, wgsl_type: "f32" },
+            Member { name: "pad2", offset: 12, wgsl_type: "f32" },
+        ]
+    };
+    let err = check_block(&tonemap, &block(wrong_type, 16)).unwrap_err();
+    assert!(err.contains("WGSL exposure: f32 at 0, Rust exposure: u32 at 0"), "{err}");
+    let err = check_block(&tonemap, &Block { name: "NoSuchStruct", size: 0, members: Vec::new })
+        .unwrap_err();
     assert!(err.contains("no struct `NoSuchStruct`"), "{err}");
+    // A nested block of the wrong type is caught by name.
+    let frame = module("water");
+    let nested_wrong = || {
+        let mut v = (registry::SHARED[1].blocks.last().unwrap().members)();
+        v[1].wgsl_type = "ViewBlock";
+        v
+    };
+    let fu = Block {
+        name: "FrameUniforms",
+        size: std::mem::size_of::<ocean_core::frame::FrameUniforms>(),
+        members: nested_wrong,
+    };
+    let err = check_block(&frame, &fu).unwrap_err();
+    assert!(err.contains("WGSL sun: SunBlock"), "{err}");
+}
+
+/// Every WGSL `const` of every stage and its Rust twin (the CPU mirror's, or ocean-core's).
+/// A WGSL constant not listed here fails: each one needs its twin.
+fn rust_consts() -> Vec<(&'static str, f64)> {
+    use ocean_cpu::shaders::{objects, sky::preetham, tonemap, water, waves};
+    vec![
+        ("SHADOW_BIAS", f64::from(water::SHADOW_BIAS)),
+        ("HDR_MAX", f64::from(tonemap::HDR_MAX)),
+        ("SRGB_INV_GAMMA", f64::from(tonemap::SRGB_INV_GAMMA)),
+        ("TAU", f64::from(waves::TAU)),
+        ("TURN_UNIT", f64::from(waves::TURN_UNIT)),
+        ("MIN_CHROMATICITY_Y", f64::from(preetham::MIN_CHROMATICITY_Y)),
+        ("INV_PI", f64::from(objects::INV_PI)),
+    ]
+}
+
+/// The named constants of `m` as f32 values.
+fn wgsl_consts(m: &naga::Module) -> Vec<(String, f64)> {
+    m.constants
+        .iter()
+        .filter_map(|(_, c)| {
+            let name = c.name.clone()?;
+            let v = match m.global_expressions[c.init] {
+                naga::Expression::Literal(naga::Literal::F32(v)) => f64::from(v),
+                naga::Expression::Literal(naga::Literal::U32(v)) => f64::from(v),
+                naga::Expression::Literal(naga::Literal::I32(v)) => f64::from(v),
+                naga::Expression::Literal(naga::Literal::AbstractFloat(v)) => v as f32 as f64,
+                _ => f64::NAN,
+            };
+            Some((name, v))
+        })
+        .collect()
+}
+
+fn const_errors(rust: &[(&str, f64)]) -> Vec<String> {
+    let mut errors = Vec::new();
+    for stage in STAGES {
+        for (name, v) in wgsl_consts(&module(stage.name)) {
+            match rust.iter().find(|(n, _)| *n == name) {
+                // Both are f32 values: equal bits, not a tolerance.
+                Some((_, r)) if (*r as f32).to_bits() == (v as f32).to_bits() => {}
+                Some((_, r)) => {
+                    errors.push(format!("{}: {name} = {v} in WGSL, {r} in Rust", stage.name))
+                }
+                None => errors.push(format!("{}: const {name} has no Rust twin", stage.name)),
+            }
+        }
+    }
+    errors
+}
+
+#[test]
+fn every_wgsl_const_equals_its_rust_twin() {
+    let errors = const_errors(&rust_consts());
+    assert!(errors.is_empty(), "{}", errors.join("\n"));
+    // Negative controls: one ULP off, and a constant left out.
+    let mut off = rust_consts();
+    off[0].1 = f64::from(f32::from_bits((off[0].1 as f32).to_bits() + 1));
+    let e = const_errors(&off).join("\n");
+    assert!(e.contains("SHADOW_BIAS = 0.002"), "{e}");
+    let e = const_errors(&rust_consts()[1..]).join("\n");
+    assert!(e.contains("const SHADOW_BIAS has no Rust twin"), "{e}");
+}
+
+#[test]
+fn every_technique_file_implements_its_stages_interface() {
+    for t in TECHNIQUE_FILES {
+        let m = parse(t.file, t.source);
+        for name in t.interface {
+            let found = m.functions.iter().any(|(_, f)| f.name.as_deref() == Some(name))
+                || m.types.iter().any(|(_, ty)| ty.name.as_deref() == Some(name));
+            assert!(found, "{}: the {} interface needs `{name}`", t.file, t.stage);
+        }
+    }
+    // Negative control: a source without the interface's function.
+    let t = &TECHNIQUE_FILES[0];
+    let stripped = t.source.replace("fn sky_radiance(", "fn sky_radiance_renamed(");
+    let m = parse("stripped", &stripped);
+    assert!(!m.functions.iter().any(|(_, f)| f.name.as_deref() == Some("sky_radiance")));
+}
+
+#[test]
+fn the_registry_names_no_missing_piece_and_a_fake_entry_is_caught() {
+    let missing = registry::missing_pieces(&root(), STAGES, SHARED, TECHNIQUE_FILES);
+    assert!(missing.is_empty(), "{}", missing.join("\n"));
+    // Negative control: a stage added to the registry without its WGSL, CPU mirror or GPU
+    // module; a technique file without its mirror.
+    let fake = StageEntry {
+        name: "foam",
+        file: "foam.wgsl",
+        source: "",
+        entry_points: &[],
+        bindings: &[],
+        blocks: &[],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/foam.rs",
+        gpu_module: "crates/ocean-gpu/src/foam.rs",
+    };
+    let mut stages = STAGES.to_vec();
+    stages.push(fake);
+    let fake_tech = registry::TechniqueFile {
+        technique: "atmosphere",
+        file: "sky/atmosphere.wgsl",
+        cpu_mirror: "crates/ocean-cpu/src/shaders/sky/atmosphere.rs",
+        ..TECHNIQUE_FILES[0]
+    };
+    let mut techs = TECHNIQUE_FILES.to_vec();
+    techs.push(fake_tech);
+    let missing = registry::missing_pieces(&root(), &stages, SHARED, &techs).join("\n");
+    for want in [
+        "stage `foam`: its WGSL: shaders/foam.wgsl is missing",
+        "stage `foam`: its CPU mirror: crates/ocean-cpu/src/shaders/foam.rs is missing",
+        "stage `foam`: its GPU module: crates/ocean-gpu/src/foam.rs is missing",
+        "technique sky/atmosphere: its WGSL: shaders/sky/atmosphere.wgsl is missing",
+        "technique sky/atmosphere: its CPU mirror",
+    ] {
+        assert!(missing.contains(want), "wanted `{want}` in:\n{missing}");
+    }
+    // An available sky technique with no file is caught too.
+    let missing = registry::missing_pieces(&root(), STAGES, SHARED, &[]).join("\n");
+    assert!(
+        missing.contains("technique sky/preetham: available but not in the registry"),
+        "{missing}"
+    );
+}
+
+#[test]
+fn every_pass_of_the_plan_runs_a_registered_stage() {
+    for pass in Pass::ALL {
+        if let Some(shader) = pass.shader() {
+            assert!(
+                registry::stage(shader).is_some(),
+                "{pass}: stage `{shader}` is not registered"
+            );
+        }
+    }
+}
+
+fn wgsl_files(dir: &Path, root: &Path, out: &mut Vec<String>) {
+    for entry in std::fs::read_dir(dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display())) {
+        let path = entry.expect("a readable entry").path();
+        if path.is_dir() {
+            wgsl_files(&path, root, out);
+        } else if path.extension().is_some_and(|e| e == "wgsl") {
+            out.push(
+                path.strip_prefix(root)
+                    .expect("below shaders/")
+                    .to_string_lossy()
+                    .replace('\\', "/"),
+            );
+        }
+    }
+}
+
+#[test]
+fn shaders_folder_holds_exactly_the_embedded_files() {
+    let dir = root().join("shaders");
+    let mut on_disk = Vec::new();
+    wgsl_files(&dir, &dir, &mut on_disk);
+    let embedded = embedded_files();
+    for file in &on_disk {
+        assert!(embedded.contains(file), "shaders/{file} is not in the registry");
+    }
+    for file in &embedded {
+        assert!(on_disk.contains(file), "the registry embeds {file}, which is not in shaders/");
+        let text = std::fs::read_to_string(dir.join(file)).unwrap();
+        let stored = STAGES
+            .iter()
+            .find(|s| s.file == file)
+            .map(|s| s.source)
+            .or_else(|| ocean_core::shader_source::shared_file(file))
+            .unwrap();
+        assert_eq!(stored, text, "{file}: the embedded text is stale");
+    }
 }
 
 /// A broken source fails validation: the validator is not a rubber stamp.
@@ -228,42 +444,10 @@ fn validator_rejects_a_broken_shader() {
 }
 
 #[test]
-fn frame_uniforms_layout() {
-    for stage in ["objects", "shadow", "water"] {
-        assert_layout::<FrameUniforms>(
-            &module(stage),
-            "FrameUniforms",
-            fields!(FrameUniforms: view, sun, tiling, water, hu, passes, ambient),
-        );
-    }
-}
-
-#[test]
-fn fresnel_table_uniforms_layout() {
-    assert_layout::<FresnelTableUniforms>(
-        &module("fresnel_table"),
-        "FresnelTableUniforms",
-        fields!(FresnelTableUniforms: eta, size, mapping, pad),
-    );
-}
-
-#[test]
-fn waves_uniforms_layout() {
-    let waves = module("waves");
-    assert_layout::<WavesUniforms>(
-        &waves,
-        "WavesUniforms",
-        fields!(WavesUniforms: size, log2_size, time_ticks, time_remainder, lambda, pad0, pad1),
-    );
-    assert_layout::<FftPassUniforms>(
-        &waves,
-        "FftPassUniforms",
-        fields!(FftPassUniforms: stage, pad0, pad1, pad2),
-    );
-    // The storage table's element: its size is the array stride.
-    assert_layout::<WaveModeData>(
-        &waves,
-        "WaveMode",
-        fields!(WaveModeData: h0, k, phase_rate, inv_k, frequency),
-    );
+fn the_water_shader_reads_the_sky_through_the_technique_interface() {
+    let water = registry::stage("water").unwrap().source;
+    assert!(!water.to_lowercase().contains("import shared/preetham"), "water imports a sky model");
+    assert!(water.contains("// #import technique/sky"));
+    // Assembled for hu, the technique's file is in.
+    assert!(stage_source("water").unwrap().contains("// ---- begin sky/preetham.wgsl"));
 }

@@ -22,6 +22,7 @@ pub mod frame;
 pub mod fresnel;
 pub mod geometry;
 pub mod plan;
+pub mod registry;
 pub mod rng;
 pub mod scene;
 pub mod shader_source;

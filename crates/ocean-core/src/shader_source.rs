@@ -1,127 +1,146 @@
-//! The WGSL sources of the render stages, embedded in the binary, and their `#import`s.
+//! The WGSL sources of the render stages, embedded in the binary (the registry,
+//! [`crate::registry`], holds them), and their `#import`s.
 //!
-//! Every `shaders/<stage>.wgsl` and `shaders/shared/<name>.wgsl` of the repository is compiled
-//! into this crate with `include_str!`, so a program works from any folder. A stage's complete
-//! source is [`stage_source`]: its file with each line of the form
+//! A stage's complete source is [`stage_source_with`]: its file with each line of the form
 //!
 //! ```text
 //! // #import shared/NAME.wgsl
+//! // #import technique/STAGE
 //! ```
 //!
-//! replaced by the text of `shaders/shared/NAME.wgsl` (whose own imports are resolved the same
-//! way). Each shared file is included once per stage, at its first import; a later import of
-//! it is dropped, so two shared files may both import a third. An import of an unknown file,
-//! an import cycle or a malformed import line is an error. Nothing else is preprocessed: the
-//! result is plain WGSL, which `tests/wgsl.rs` parses and validates with naga.
+//! replaced by the text of `shaders/shared/NAME.wgsl`, or of the file of the technique the
+//! frame chose for technique stage STAGE (`shaders/<stage>/<technique>.wgsl`: composition, so
+//! that the water shader reads "the sky" without naming a sky model). Imported files' own
+//! imports are resolved the same way. Each file is included once per stage, at its first
+//! import; a later import of it is dropped, so two files may both import a third. An import of
+//! an unknown file, of a technique without WGSL, an import cycle or a malformed import line is
+//! an error. Nothing else is preprocessed: the result is plain WGSL, which `tests/wgsl.rs`
+//! parses and validates with naga.
 //!
-//! Adding a file: put it under `shaders/` and add it to [`STAGES`] and `STAGE_FILES` (a stage)
-//! or to `SHARED_FILES` (a shared file). `tests/wgsl.rs` fails on a file in `shaders/` that is
-//! not listed here.
+//! Adding a file: put it under `shaders/` and list it in the registry. `tests/wgsl.rs` fails on
+//! a file in `shaders/` that is not listed there, and on a listed piece that is missing.
 
+use crate::plan::{Stage, System, Techniques};
+use crate::registry::{SHARED, STAGES, TECHNIQUE_FILES};
 use crate::{Error, Result};
-
-/// The stages whose WGSL is present, in the order of `DESIGN.md`'s stage table, then
-/// `present` (the real-time viewer's copy of the output into its window; not a pass of the
-/// frame plan).
-pub const STAGES: &[&str] =
-    &["waves", "fresnel_table", "sky", "objects", "shadow", "water", "tonemap", "present"];
-
-/// `(stage, source)` for every stage in [`STAGES`].
-const STAGE_FILES: &[(&str, &str)] = &[
-    ("waves", include_str!("../../../shaders/waves.wgsl")),
-    ("fresnel_table", include_str!("../../../shaders/fresnel_table.wgsl")),
-    ("sky", include_str!("../../../shaders/sky.wgsl")),
-    ("objects", include_str!("../../../shaders/objects.wgsl")),
-    ("shadow", include_str!("../../../shaders/shadow.wgsl")),
-    ("water", include_str!("../../../shaders/water.wgsl")),
-    ("tonemap", include_str!("../../../shaders/tonemap.wgsl")),
-    ("present", include_str!("../../../shaders/present.wgsl")),
-];
-
-/// `(path below shaders/, source)` for every shared file.
-const SHARED_FILES: &[(&str, &str)] = &[
-    ("shared/camera.wgsl", include_str!("../../../shaders/shared/camera.wgsl")),
-    ("shared/frame.wgsl", include_str!("../../../shaders/shared/frame.wgsl")),
-    ("shared/fullscreen.wgsl", include_str!("../../../shaders/shared/fullscreen.wgsl")),
-    ("shared/preetham.wgsl", include_str!("../../../shaders/shared/preetham.wgsl")),
-];
 
 /// What starts an import line (after leading white space).
 const IMPORT_PREFIX: &str = "// #import ";
 
-/// The paths below `shaders/` of every embedded file, stages (`sky.wgsl`) and shared files
-/// (`shared/camera.wgsl`): what `tests/wgsl.rs` compares with the folder.
+/// The names of the stages with WGSL, in the registry's order.
+pub fn stage_names() -> impl Iterator<Item = &'static str> {
+    STAGES.iter().map(|s| s.name)
+}
+
+/// The paths below `shaders/` of every embedded file: stages (`sky.wgsl`), shared files
+/// (`shared/camera.wgsl`) and technique files (`sky/preetham.wgsl`): what `tests/wgsl.rs`
+/// compares with the folder.
 pub fn embedded_files() -> Vec<String> {
-    STAGE_FILES
+    STAGES
         .iter()
-        .map(|(stage, _)| format!("{stage}.wgsl"))
-        .chain(SHARED_FILES.iter().map(|(path, _)| (*path).to_owned()))
+        .map(|s| s.file.to_owned())
+        .chain(SHARED.iter().map(|f| f.file.to_owned()))
+        .chain(TECHNIQUE_FILES.iter().map(|f| f.file.to_owned()))
         .collect()
 }
 
-/// The text of a shared file as stored, imports unresolved (`path` like `shared/camera.wgsl`).
+/// The text of an embedded non-stage file as stored, imports unresolved (`path` like
+/// `shared/camera.wgsl` or `sky/preetham.wgsl`).
 pub fn shared_file(path: &str) -> Option<&'static str> {
-    SHARED_FILES.iter().find(|(p, _)| *p == path).map(|(_, src)| *src)
+    SHARED
+        .iter()
+        .find(|f| f.file == path)
+        .map(|f| f.source)
+        .or_else(|| TECHNIQUE_FILES.iter().find(|f| f.file == path).map(|f| f.source))
 }
 
-/// The complete WGSL of `stage` (one of [`STAGES`]), its imports resolved as the module doc
-/// says.
+/// [`stage_source_with`] for the default system's techniques (`hu`).
 ///
 /// # Errors
-/// [`Error::ShaderSource`] for an unknown stage, an import of an unknown file, an import cycle
-/// or an import line that is not exactly `// #import shared/NAME.wgsl`.
+/// As [`stage_source_with`].
 pub fn stage_source(stage: &str) -> Result<String> {
-    let Some((_, source)) = STAGE_FILES.iter().find(|(s, _)| *s == stage) else {
+    stage_source_with(stage, &Techniques::of_system(System::Hu))
+}
+
+/// The complete WGSL of `stage` (one of the registry's stages) for the chosen `techniques`,
+/// its imports resolved as the module doc says.
+///
+/// # Errors
+/// [`Error::ShaderSource`] for an unknown stage, an import of an unknown file or of a
+/// technique without WGSL, an import cycle or a malformed import line.
+pub fn stage_source_with(stage: &str, techniques: &Techniques) -> Result<String> {
+    let Some(entry) = STAGES.iter().find(|s| s.name == stage) else {
         return Err(Error::ShaderSource {
             stage: stage.to_owned(),
-            reason: format!("no such stage (known: {})", STAGES.join(", ")),
+            reason: format!(
+                "no such stage (known: {})",
+                stage_names().collect::<Vec<_>>().join(", ")
+            ),
         });
     };
-    let mut out = String::with_capacity(source.len() * 4);
+    let mut out = String::with_capacity(entry.source.len() * 4);
     let mut included = Vec::new();
-    let mut stack = vec![format!("{stage}.wgsl")];
-    resolve(stage, source, &mut stack, &mut included, &mut out)?;
+    let mut stack = vec![entry.file.to_owned()];
+    resolve(stage, entry.source, techniques, &mut stack, &mut included, &mut out)?;
     Ok(out)
 }
 
 /// Appends `source` to `out` with its imports resolved. `stack` holds the chain of files being
-/// expanded (for cycle detection), `included` every shared file already in `out`.
+/// expanded (for cycle detection), `included` every file already in `out`.
 fn resolve(
     stage: &str,
     source: &str,
+    techniques: &Techniques,
     stack: &mut Vec<String>,
     included: &mut Vec<String>,
     out: &mut String,
 ) -> Result<()> {
     for line in source.lines() {
-        let Some(path) = import_path(stage, line)? else {
+        let Some(import) = import_path(stage, line)? else {
             out.push_str(line);
             out.push('\n');
             continue;
         };
-        if stack.iter().any(|p| p == path) {
+        let path = match import.strip_prefix("technique/") {
+            Some(name) => technique_path(stage, name, techniques)?,
+            None => import.to_owned(),
+        };
+        if stack.contains(&path) {
             return Err(Error::ShaderSource {
                 stage: stage.to_owned(),
                 reason: format!("import cycle: {} -> {path}", stack.join(" -> ")),
             });
         }
-        if included.iter().any(|p| p == path) {
+        if included.contains(&path) {
             continue;
         }
-        let Some(text) = shared_file(path) else {
+        let Some(text) = shared_file(&path) else {
             return Err(Error::ShaderSource {
                 stage: stage.to_owned(),
                 reason: format!("`{}` imports unknown file `{path}`", stack.join(" -> ")),
             });
         };
         out.push_str(&format!("// ---- begin {path}\n"));
-        stack.push(path.to_owned());
-        resolve(stage, text, stack, included, out)?;
+        stack.push(path.clone());
+        resolve(stage, text, techniques, stack, included, out)?;
         stack.pop();
-        included.push(path.to_owned());
+        included.push(path.clone());
         out.push_str(&format!("// ---- end {path}\n"));
     }
     Ok(())
+}
+
+/// The file of the technique chosen for technique stage `name`.
+fn technique_path(stage: &str, name: &str, techniques: &Techniques) -> Result<String> {
+    let err = |reason: String| Error::ShaderSource { stage: stage.to_owned(), reason };
+    let which = Stage::ALL
+        .into_iter()
+        .find(|s| s.name() == name)
+        .ok_or_else(|| err(format!("`// #import technique/{name}`: no such technique stage")))?;
+    let t = techniques.of(which);
+    crate::registry::technique_file(which, t.name)
+        .map(|f| f.file.to_owned())
+        .ok_or_else(|| err(format!("technique {which}/{} has no WGSL", t.name)))
 }
 
 /// The imported path if `line` is an import line, `None` for any other line.
@@ -130,16 +149,21 @@ fn import_path<'a>(stage: &str, line: &'a str) -> Result<Option<&'a str>> {
         return Ok(None);
     };
     let path = rest.trim_end();
+    let word = |name: &str| {
+        !name.is_empty() && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+    };
     let well_formed =
-        path.strip_prefix("shared/").and_then(|p| p.strip_suffix(".wgsl")).is_some_and(|name| {
-            !name.is_empty() && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
-        });
+        path.strip_prefix("shared/").and_then(|p| p.strip_suffix(".wgsl")).is_some_and(word)
+            || path.strip_prefix("technique/").is_some_and(word);
     if well_formed {
         Ok(Some(path))
     } else {
         Err(Error::ShaderSource {
             stage: stage.to_owned(),
-            reason: format!("malformed import line `{line}` (want `// #import shared/NAME.wgsl`)"),
+            reason: format!(
+                "malformed import line `{line}` (want `// #import shared/NAME.wgsl` or \
+                 `// #import technique/STAGE`)"
+            ),
         })
     }
 }
@@ -151,13 +175,14 @@ mod tests {
     /// The resolver on made-up sources, through the same `resolve` the stages use.
     fn resolve_text(text: &str) -> Result<String> {
         let mut out = String::new();
-        resolve("test", text, &mut vec!["test.wgsl".into()], &mut Vec::new(), &mut out)?;
+        let t = Techniques::of_system(System::Hu);
+        resolve("test", text, &t, &mut vec!["test.wgsl".into()], &mut Vec::new(), &mut out)?;
         Ok(out)
     }
 
     #[test]
     fn every_stage_resolves_and_imports_are_gone() {
-        for stage in STAGES {
+        for stage in stage_names() {
             let src = stage_source(stage).unwrap();
             assert!(!src.contains(IMPORT_PREFIX), "{stage}: an import is left");
             let render = src.contains("fn vs_main") && src.contains("fn fs_main");
@@ -168,13 +193,13 @@ mod tests {
     #[test]
     fn each_shared_file_is_included_once() {
         let src = resolve_text(
-            "// #import shared/camera.wgsl\n// #import shared/preetham.wgsl\n\
-             // #import shared/camera.wgsl\n",
+            "// #import shared/camera.wgsl\n// #import technique/sky\n\
+             // #import shared/camera.wgsl\n// #import technique/sky\n",
         )
         .unwrap();
         assert_eq!(src.matches("// ---- begin shared/camera.wgsl").count(), 1);
         assert_eq!(src.matches("struct CameraUniforms").count(), 1);
-        assert_eq!(src.matches("// ---- begin shared/preetham.wgsl").count(), 1);
+        assert_eq!(src.matches("// ---- begin sky/preetham.wgsl").count(), 1);
     }
 
     #[test]
@@ -183,6 +208,16 @@ mod tests {
         assert!(err.contains("no such stage") && err.contains("sky"), "{err}");
         let err = resolve_text("// #import shared/missing.wgsl\n").unwrap_err().to_string();
         assert!(err.contains("unknown file `shared/missing.wgsl`"), "{err}");
+        let err = resolve_text("// #import technique/clouds\n").unwrap_err().to_string();
+        assert!(err.contains("no such technique stage"), "{err}");
+        // A technique that is listed but has no WGSL (not built yet) is refused by name.
+        let t = Techniques::with_overrides(System::Hu, [(Stage::Sky, "atmosphere")]).unwrap();
+        let mut out = String::new();
+        let err =
+            resolve("test", "// #import technique/sky\n", &t, &mut vec![], &mut vec![], &mut out)
+                .unwrap_err()
+                .to_string();
+        assert!(err.contains("sky/atmosphere has no WGSL"), "{err}");
     }
 
     #[test]
@@ -205,19 +240,26 @@ mod tests {
         // A file importing itself is the smallest cycle; the stack check catches any length.
         let mut out = String::new();
         let mut stack = vec!["test.wgsl".to_owned(), "shared/camera.wgsl".to_owned()];
-        let err =
-            resolve("test", "// #import shared/camera.wgsl\n", &mut stack, &mut vec![], &mut out)
-                .unwrap_err()
-                .to_string();
+        let t = Techniques::of_system(System::Hu);
+        let err = resolve(
+            "test",
+            "// #import shared/camera.wgsl\n",
+            &t,
+            &mut stack,
+            &mut vec![],
+            &mut out,
+        )
+        .unwrap_err()
+        .to_string();
         assert!(err.contains("import cycle"), "{err}");
     }
 
     #[test]
     fn embedded_files_lists_stages_and_shared() {
         let files = embedded_files();
-        for stage in STAGES {
+        for stage in stage_names() {
             assert!(files.contains(&format!("{stage}.wgsl")));
         }
-        assert!(files.contains(&"shared/preetham.wgsl".to_owned()));
+        assert!(files.contains(&"sky/preetham.wgsl".to_owned()));
     }
 }

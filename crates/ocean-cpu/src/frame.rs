@@ -11,14 +11,13 @@ use ocean_core::frame::{
     displacement_texels, object_triangles,
 };
 use ocean_core::plan::{
-    Backend, FrameInputs, FramePlan, FrameState, Pass, PlannedPass, ResourceId, run_frame,
+    Backend, FrameInputs, FramePlan, FrameState, Pass, PlannedPass, ResourceId, Stage, run_frame,
 };
 use ocean_core::scene::{Object, Scene};
 use ocean_core::waves::{Synthesizer, WaveMaps};
 
 use crate::raster::{self, BlendMode, CompareFunction, RasterState, RenderTarget, Vertex};
 use crate::sampler::Texture2D;
-use crate::shaders::shared::preetham;
 use crate::shaders::{fresnel_table, objects, shadow, sky, tonemap, water};
 
 /// Default side of the 2D Fresnel textures (the error table in the README: 256² is within 2e-3
@@ -90,7 +89,7 @@ impl FrameBuffers {
             ResourceId::ReflectionMap => &self.reflection_map,
             ResourceId::RefractionMap => &self.refraction_map,
             ResourceId::Hdr => return Some((self.hdr.width, self.hdr.height, &self.hdr.color)),
-            ResourceId::Ldr => return None,
+            ResourceId::Ldr | ResourceId::Environment => return None,
         };
         Some((t.width, t.height, &t.texels))
     }
@@ -304,9 +303,16 @@ impl<'e> CpuBackend<'e> {
         }
     }
 
-    fn water(&mut self, frame: &FrameInputs<'_>) {
+    fn water(&mut self, frame: &FrameInputs<'_>) -> Result<(), Error> {
         let env = frame.environment;
-        let planned_sky = move |d: [f32; 3]| preetham::sky_radiance(&env, d);
+        let technique = frame.plan.techniques.of(Stage::Sky).name;
+        let radiance = sky::environment_radiance(technique).ok_or_else(|| {
+            Error::Core(ocean_core::Error::ShaderSource {
+                stage: "sky".into(),
+                reason: format!("sky technique `{technique}` has no CPU mirror"),
+            })
+        })?;
+        let planned_sky = move |d: [f32; 3]| radiance(&env, d);
         let sky_radiance: &(dyn Fn([f32; 3]) -> [f32; 3] + Sync) = match self.environment {
             Environment::Planned => &planned_sky,
             Environment::Given { radiance, .. } => radiance,
@@ -348,6 +354,7 @@ impl<'e> CpuBackend<'e> {
             ))
         });
         self.hdr = Some(hdr);
+        Ok(())
     }
 }
 
@@ -377,7 +384,7 @@ impl Backend for CpuBackend<'_> {
                     Environment::Given { draw, .. } => draw(hdr),
                 }
             }
-            Pass::Water => self.water(frame),
+            Pass::Water => self.water(frame)?,
             Pass::Tonemap => {
                 if let Some(t) = &frame.tonemap {
                     let hdr = self.hdr(frame.plan);

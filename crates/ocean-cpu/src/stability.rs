@@ -30,7 +30,7 @@ use ocean_core::waves::{MapFloat, Synthesizer, WaveMaps, WaveModes};
 
 use crate::frame::{self, Error};
 use crate::raster::{self, BlendMode, CompareFunction, RasterState, RenderTarget, Vertex};
-use crate::shaders::shared::preetham;
+use crate::shaders::sky::preetham;
 
 /// One row of the stability table.
 #[derive(Clone, Debug, PartialEq)]

@@ -24,6 +24,22 @@ pub fn shader_module(device: &wgpu::Device, stage: &str) -> Result<wgpu::ShaderM
     }))
 }
 
+/// The entry point `name` of `stage` as the stage registry lists it
+/// (`ocean_core::registry::STAGES`): pipelines take their entry points from there, so an entry
+/// the registry does not list cannot be used, and one it lists that the WGSL lacks fails to
+/// validate.
+///
+/// # Errors
+/// [`Error::Core`] for a stage or entry point the registry does not list.
+pub fn entry(stage: &str, name: &str) -> Result<&'static str, Error> {
+    ocean_core::registry::stage(stage).and_then(|s| s.entry(name)).ok_or_else(|| {
+        Error::Core(ocean_core::Error::ShaderSource {
+            stage: stage.to_owned(),
+            reason: format!("the stage registry lists no entry point `{name}`"),
+        })
+    })
+}
+
 /// Triangle lists, counter-clockwise front faces, no culling: the CPU's
 /// `RasterState::default()` (`ocean_cpu::raster::state`).
 pub fn primitive() -> wgpu::PrimitiveState {
@@ -202,20 +218,25 @@ pub fn begin_render_pass<'e>(
 }
 
 /// The render pipeline of a full-screen pass (`shared/fullscreen.wgsl`): `vs_main` and
-/// `fs_main` of `module`, no vertex buffers, no depth, one unblended target of `format`.
+/// `fs_main` of `stage`'s `module`, no vertex buffers, no depth, one unblended target of
+/// `format`.
+///
+/// # Errors
+/// [`Error::Core`] if the registry does not list the entry points.
 pub fn fullscreen_pipeline(
     device: &wgpu::Device,
-    name: &str,
+    stage: &str,
     module: &wgpu::ShaderModule,
     layout: &wgpu::BindGroupLayout,
     format: wgpu::TextureFormat,
-) -> wgpu::RenderPipeline {
-    device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+) -> Result<wgpu::RenderPipeline, Error> {
+    let name = &label(stage);
+    Ok(device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some(name),
         layout: Some(&pipeline_layout(device, name, &[layout])),
         vertex: wgpu::VertexState {
             module,
-            entry_point: Some("vs_main"),
+            entry_point: Some(entry(stage, "vs_main")?),
             compilation_options: Default::default(),
             buffers: &[],
         },
@@ -224,11 +245,11 @@ pub fn fullscreen_pipeline(
         multisample: wgpu::MultisampleState::default(),
         fragment: Some(wgpu::FragmentState {
             module,
-            entry_point: Some("fs_main"),
+            entry_point: Some(entry(stage, "fs_main")?),
             compilation_options: Default::default(),
             targets: &replace_target(format),
         }),
         multiview_mask: None,
         cache: None,
-    })
+    }))
 }

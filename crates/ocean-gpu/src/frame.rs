@@ -129,6 +129,9 @@ fn wgpu_format(f: Format) -> wgpu::TextureFormat {
         Format::Rgba32Float => MAP_FORMAT,
         Format::R32Float => SHADOW_FORMAT,
         Format::Rgba8Unorm => LDR_FORMAT,
+        // No pass renders into or reads back the environment (a uniform buffer); a texture
+        // is never made of it.
+        Format::Uniform => MAP_FORMAT,
     }
 }
 

@@ -4,7 +4,7 @@
 
 use ocean_core::frame::FresnelTableUniforms;
 
-use crate::common::{bind_group, label, pipeline_layout, shader_module, uniform_buffer};
+use crate::common::{bind_group, entry, label, pipeline_layout, shader_module, uniform_buffer};
 use crate::device::Error;
 use crate::texture::{GpuTexture, MAP_FORMAT};
 
@@ -46,7 +46,7 @@ impl FresnelTableStage {
             label: Some(&name),
             layout: Some(&pipeline_layout(device, &name, &[&layout])),
             module: &module,
-            entry_point: Some("main"),
+            entry_point: Some(entry("fresnel_table", "main")?),
             compilation_options: wgpu::PipelineCompilationOptions::default(),
             cache: None,
         });

@@ -9,7 +9,7 @@
 use ocean_core::frame::ObjectVertex;
 
 use crate::common::{
-    Load, begin_render_pass, eye_depth, label, pipeline_layout, primitive, replace_target,
+    Load, begin_render_pass, entry, eye_depth, label, pipeline_layout, primitive, replace_target,
     shader_module, uniform_entry,
 };
 use crate::device::Error;
@@ -65,9 +65,10 @@ impl ObjectsStage {
             entries: &[uniform_entry(0, wgpu::ShaderStages::VERTEX_FRAGMENT)],
         });
         let layout = pipeline_layout(device, &name, &[&frame_layout]);
-        let pipeline = |entry: ObjectsEntry| {
-            let (vs, fs) = entry.entry_points();
-            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        let pipeline = |which: ObjectsEntry| -> Result<wgpu::RenderPipeline, Error> {
+            let (vs, fs) = which.entry_points();
+            let (vs, fs) = (entry("objects", vs)?, entry("objects", fs)?);
+            Ok(device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some(&name),
                 layout: Some(&layout),
                 vertex: wgpu::VertexState {
@@ -87,12 +88,12 @@ impl ObjectsStage {
                 }),
                 multiview_mask: None,
                 cache: None,
-            })
+            }))
         };
         Ok(Self {
-            main: pipeline(ObjectsEntry::Main),
-            reflect: pipeline(ObjectsEntry::Reflect),
-            refract: pipeline(ObjectsEntry::Refract),
+            main: pipeline(ObjectsEntry::Main)?,
+            reflect: pipeline(ObjectsEntry::Reflect)?,
+            refract: pipeline(ObjectsEntry::Refract)?,
             frame_layout,
         })
     }

@@ -39,7 +39,7 @@ impl PresentStage {
             label: Some(&name),
             entries: &[texture_entry(0, wgpu::ShaderStages::FRAGMENT, false)],
         });
-        let pipeline = fullscreen_pipeline(device, &name, &module, &layout, format);
+        let pipeline = fullscreen_pipeline(device, "present", &module, &layout, format)?;
         Ok(Self { pipeline, layout, format })
     }
 

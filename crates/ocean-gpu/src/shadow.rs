@@ -4,7 +4,7 @@
 //! buffer, position only. CPU mirror: `ocean-cpu/src/shaders/shadow.rs`.
 
 use crate::common::{
-    Load, begin_render_pass, depth_state, label, pipeline_layout, primitive, replace_target,
+    Load, begin_render_pass, depth_state, entry, label, pipeline_layout, primitive, replace_target,
     shader_module, uniform_entry,
 };
 use crate::device::Error;
@@ -40,7 +40,7 @@ impl ShadowStage {
             layout: Some(&pipeline_layout(device, &name, &[&frame_layout])),
             vertex: wgpu::VertexState {
                 module: &module,
-                entry_point: Some("vs_main"),
+                entry_point: Some(entry("shadow", "vs_main")?),
                 compilation_options: Default::default(),
                 buffers: &[Some(position_only)],
             },
@@ -49,7 +49,7 @@ impl ShadowStage {
             multisample: wgpu::MultisampleState::default(),
             fragment: Some(wgpu::FragmentState {
                 module: &module,
-                entry_point: Some("fs_main"),
+                entry_point: Some(entry("shadow", "fs_main")?),
                 compilation_options: Default::default(),
                 targets: &replace_target(SHADOW_FORMAT),
             }),

@@ -7,7 +7,7 @@ use ocean_core::camera_uniforms::CameraUniforms;
 use ocean_core::sky::SkyUniforms;
 
 use crate::common::{
-    Load, begin_render_pass, bind_group, depth_state, label, pipeline_layout, primitive,
+    Load, begin_render_pass, bind_group, depth_state, entry, label, pipeline_layout, primitive,
     replace_target, shader_module, uniform_buffer, uniform_entry,
 };
 use crate::device::Error;
@@ -41,7 +41,7 @@ impl SkyStage {
             layout: Some(&pipeline_layout(device, &name, &[&camera_layout, &sky_layout])),
             vertex: wgpu::VertexState {
                 module: &module,
-                entry_point: Some("vs_main"),
+                entry_point: Some(entry("sky", "vs_main")?),
                 compilation_options: Default::default(),
                 buffers: &[],
             },
@@ -50,7 +50,7 @@ impl SkyStage {
             multisample: wgpu::MultisampleState::default(),
             fragment: Some(wgpu::FragmentState {
                 module: &module,
-                entry_point: Some("fs_main"),
+                entry_point: Some(entry("sky", "fs_main")?),
                 compilation_options: Default::default(),
                 targets: &replace_target(MAP_FORMAT),
             }),

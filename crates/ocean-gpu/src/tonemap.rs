@@ -32,7 +32,7 @@ impl TonemapStage {
                 texture_entry(1, wgpu::ShaderStages::FRAGMENT, false),
             ],
         });
-        let pipeline = fullscreen_pipeline(device, &name, &module, &layout, LDR_FORMAT);
+        let pipeline = fullscreen_pipeline(device, "tonemap", &module, &layout, LDR_FORMAT)?;
         Ok(Self { pipeline, layout })
     }
 

@@ -10,7 +10,7 @@
 use ocean_core::geometry::WaterVertex;
 
 use crate::common::{
-    Load, begin_render_pass, eye_depth, label, pipeline_layout, primitive, replace_target,
+    Load, begin_render_pass, entry, eye_depth, label, pipeline_layout, primitive, replace_target,
     sampler_entry, shader_module, texture_entry, uniform_entry,
 };
 use crate::device::Error;
@@ -113,7 +113,7 @@ impl WaterStage {
             layout: Some(&pipeline_layout(device, &name, &[&layout, &sky_layout])),
             vertex: wgpu::VertexState {
                 module: &module,
-                entry_point: Some("vs_main"),
+                entry_point: Some(entry("water", "vs_main")?),
                 compilation_options: Default::default(),
                 buffers: &[Some(WATER_VERTEX_LAYOUT)],
             },
@@ -122,7 +122,7 @@ impl WaterStage {
             multisample: wgpu::MultisampleState::default(),
             fragment: Some(wgpu::FragmentState {
                 module: &module,
-                entry_point: Some("fs_main"),
+                entry_point: Some(entry("water", "fs_main")?),
                 compilation_options: Default::default(),
                 targets: &replace_target(MAP_FORMAT),
             }),

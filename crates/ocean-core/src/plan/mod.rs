@@ -138,8 +138,10 @@ impl Pass {
                 R::ShadowMap,
                 R::ReflectionMap,
                 R::RefractionMap,
+                R::Environment,
             ],
             Pass::Tonemap => &[R::Hdr],
+            Pass::Sky => &[R::Environment],
             _ => &[],
         }
     }
@@ -625,7 +627,7 @@ impl FramePlan {
     fn size_resources(&self, scene: &Scene) -> Vec<Resource> {
         let viewport = [scene.camera.width, scene.camera.height];
         let o = &scene.ocean;
-        let written = |id: ResourceId| self.runs(id.pass());
+        let written = |id: ResourceId| id.writer().is_none_or(|p| self.runs(p));
         let mut out = Vec::new();
         for id in ResourceId::ALL {
             let (format, size) = match id {
@@ -641,6 +643,9 @@ impl FramePlan {
                 ResourceId::RefractionMap => (Format::Rgba32Float, viewport),
                 ResourceId::Hdr => (Format::Rgba32Float, viewport),
                 ResourceId::Ldr => (Format::Rgba8Unorm, viewport),
+                ResourceId::Environment => {
+                    (Format::Uniform, [std::mem::size_of::<crate::sky::SkyUniforms>() as u32, 1])
+                }
             };
             let is_written = written(id);
             if id == ResourceId::Ldr && !is_written {

@@ -33,6 +33,10 @@ pub enum ResourceId {
     Hdr,
     /// The 8-bit sRGB picture.
     Ldr,
+    /// The environment the water reflects and the `sky` pass draws: the sky technique's
+    /// uniform block, prepared with the frame's inputs (a `preetham` sky is a fit of the
+    /// Perez coefficients, computed on the CPU for both back ends).
+    Environment,
 }
 
 impl ResourceId {
@@ -51,7 +55,7 @@ impl ResourceId {
     ];
 
     /// Every resource.
-    pub const ALL: [ResourceId; 10] = [
+    pub const ALL: [ResourceId; 11] = [
         ResourceId::Displacement,
         ResourceId::DisplacementSlopes,
         ResourceId::Bump,
@@ -62,6 +66,7 @@ impl ResourceId {
         ResourceId::RefractionMap,
         ResourceId::Hdr,
         ResourceId::Ldr,
+        ResourceId::Environment,
     ];
 
     /// Its name (`displacement`, …, `ldr`): ocean-cpu's `FrameBuffers` field, the GPU's label
@@ -78,12 +83,14 @@ impl ResourceId {
             ResourceId::RefractionMap => "refraction_map",
             ResourceId::Hdr => "hdr",
             ResourceId::Ldr => "ldr",
+            ResourceId::Environment => "environment",
         }
     }
 
-    /// The pass that writes it last.
-    pub fn pass(self) -> Pass {
-        match self {
+    /// The pass that writes it last (`None`: prepared with the frame's inputs, before any
+    /// pass).
+    pub fn writer(self) -> Option<Pass> {
+        Some(match self {
             ResourceId::Displacement | ResourceId::DisplacementSlopes | ResourceId::Bump => {
                 Pass::Waves
             }
@@ -93,7 +100,8 @@ impl ResourceId {
             ResourceId::RefractionMap => Pass::RefractionMap,
             ResourceId::Hdr => Pass::Water,
             ResourceId::Ldr => Pass::Tonemap,
-        }
+            ResourceId::Environment => return None,
+        })
     }
 }
 
@@ -107,6 +115,8 @@ pub enum Format {
     R32Float,
     /// 8-bit sRGB-encoded RGBA, stored as unorm.
     Rgba8Unorm,
+    /// A uniform buffer (its size is [bytes, 1]).
+    Uniform,
 }
 
 /// A resource as the plan sizes it.
@@ -116,7 +126,7 @@ pub struct Resource {
     pub id: ResourceId,
     /// Its texel format.
     pub format: Format,
-    /// Width and height, texels.
+    /// Width and height, texels (a uniform buffer: bytes and 1).
     pub size: [u32; 2],
     /// Whether a pass writes it this frame; when not, it is a 1×1 zero texture bound in its
     /// place (the shaders multiply what they read from it by the plan's pass flags).

@@ -1,5 +1,7 @@
-//! One Rust module per WGSL stage (`shaders/<stage>.wgsl` ↔ `shaders/<stage>.rs`), and one per
-//! shared WGSL file (`shaders/shared/<name>.wgsl` ↔ [`shared`]`::<name>`).
+//! One Rust module per WGSL stage (`shaders/<stage>.wgsl` ↔ `shaders/<stage>.rs`), one per
+//! technique of a stage (`shaders/<stage>/<technique>.wgsl` ↔ `<stage>::<technique>`, e.g.
+//! [`sky::preetham`]), and one per shared WGSL file (`shaders/shared/<name>.wgsl` ↔
+//! [`shared`]`::<name>`).
 //!
 //! Each mirror keeps the WGSL entry points' names and signatures (`vs_main`, `fs_main`), the
 //! same variable names and the same order of operations, in f32, so the two files read side by

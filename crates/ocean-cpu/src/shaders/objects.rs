@@ -43,7 +43,7 @@ impl VertexOut {
 }
 
 /// WGSL `INV_PI` (0.31830988618 rounds to the same f32).
-const INV_PI: f32 = std::f32::consts::FRAC_1_PI;
+pub const INV_PI: f32 = std::f32::consts::FRAC_1_PI;
 
 /// `shade(normal, color)`: Lambert under the sun plus the sky's ambient.
 fn shade(frame: &FrameUniforms, normal: [f32; 3], color: [f32; 3]) -> [f32; 3] {

@@ -1,11 +1,27 @@
-//! Mirror of `shaders/sky.wgsl`: the daylight sky, one full-screen triangle at the far plane.
+//! Mirror of `shaders/sky.wgsl`: the environment behind everything, one full-screen triangle
+//! at the far plane; its techniques are the submodules (`shaders/sky/<technique>.wgsl`).
+
+pub mod preetham;
 
 use crate::raster::{
     BlendMode, CompareFunction, CullMode, FrontFace, RasterState, RenderTarget, Vertex, draw,
 };
 use crate::shaders::shared::camera::{CameraUniforms, view_ray};
 use crate::shaders::shared::fullscreen::fullscreen_position;
-use crate::shaders::shared::preetham::{SkyUniforms, sky_radiance, sun_disc};
+use crate::shaders::sky::preetham::{SkyUniforms, sky_radiance, sun_disc};
+
+/// A sky technique's `sky_radiance`: radiance of a world direction.
+pub type SkyRadiance = fn(&SkyUniforms, [f32; 3]) -> [f32; 3];
+
+/// The environment's radiance of a world direction for the frame's sky technique: what
+/// `sky_radiance` of the WGSL's `// #import technique/sky` is (`None` for a technique without
+/// a mirror, which the planner never chooses: it is not available).
+pub fn environment_radiance(technique: &str) -> Option<SkyRadiance> {
+    match technique {
+        "preetham" => Some(sky_radiance),
+        _ => None,
+    }
+}
 
 /// `VertexOut` of `sky.wgsl`: in the fragment stage `position` is `@builtin(position)`
 /// (pixel centre x + 0.5, y + 0.5, depth, 1/w).

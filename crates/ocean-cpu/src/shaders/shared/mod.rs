@@ -3,4 +3,3 @@
 pub mod camera;
 pub mod frame;
 pub mod fullscreen;
-pub mod preetham;

@@ -1,4 +1,5 @@
-//! Mirror of `shaders/shared/preetham.wgsl`: the Preetham sky in f32. The physics and the f64
+//! Mirror of `shaders/sky/preetham.wgsl` (technique `preetham` of stage `sky`): the Preetham
+//! sky in f32. The physics and the f64
 //! reference are `ocean_core::sky`.
 
 pub use ocean_core::sky::SkyUniforms;

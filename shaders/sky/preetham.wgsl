@@ -1,7 +1,9 @@
 // Preetham, Shirley & Smits (1999), "A practical analytic model for daylight": sky radiance in
 // a direction, and the sun disc. Physics, equations and the choices at the model's edges:
 // ocean_core::sky (f64 reference). Rust struct: ocean_core::sky::SkyUniforms.
-// CPU mirror: ocean-cpu/src/shaders/shared/preetham.rs.
+// CPU mirror: ocean-cpu/src/shaders/sky/preetham.rs. Technique `preetham` of stage `sky`:
+// it implements the sky interface (SkyUniforms, sky_radiance, sun_disc) that `sky.wgsl` and
+// the water's shading import as `technique/sky`.
 //
 // Channels are ordered (Y, x, y): luminance Y in kcd/m2, CIE chromaticities x and y.
 

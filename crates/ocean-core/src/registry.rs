@@ -1,0 +1,451 @@
+//! The stage registry: every stage of the frame, its WGSL file, entry points, bindings, the
+//! uniform and storage structs it shares with Rust, its CPU mirror and its GPU module, listed
+//! once. The shader assembler ([`crate::shader_source`]), the GPU pipelines (entry-point
+//! names), the naga layout checks and the registry's completeness test (`tests/wgsl.rs`) are
+//! derived from these tables, not written again.
+//!
+//! A technique of a stage with several is one file at every layer
+//! (`shaders/<stage>/<technique>.wgsl`, `ocean-cpu/src/shaders/<stage>/<technique>.rs`), listed
+//! in [`TECHNIQUE_FILES`] with the functions of the stage's interface it implements; a stage
+//! file imports the chosen one with `// #import technique/<stage>`.
+
+use std::mem::{offset_of, size_of};
+use std::path::Path;
+
+use crate::camera_uniforms::CameraUniforms;
+use crate::frame::{
+    AmbientBlock, FrameUniforms, FresnelTableUniforms, HuShadingBlock, PassFlags, SunBlock,
+    ViewBlock, WaterBlock, WaveTilingBlock,
+};
+use crate::plan::Stage as TechniqueStage;
+use crate::sky::SkyUniforms;
+use crate::tonemap::TonemapUniforms;
+use crate::waves::uniforms::{FftPassUniforms, WaveModeData, WavesUniforms};
+
+/// A Rust type with a WGSL twin: its name in WGSL (`vec4<f32>`, a struct's name).
+pub trait WgslType {
+    /// The WGSL type.
+    const WGSL: &'static str;
+}
+
+macro_rules! wgsl_types {
+    ($($t:ty => $w:literal),* $(,)?) => { $(impl WgslType for $t { const WGSL: &'static str = $w; })* };
+}
+
+wgsl_types!(
+    f32 => "f32", u32 => "u32", [f32; 2] => "vec2<f32>", [f32; 3] => "vec3<f32>",
+    [f32; 4] => "vec4<f32>", [u32; 2] => "vec2<u32>", [u32; 4] => "vec4<u32>",
+    [[f32; 4]; 4] => "mat4x4<f32>",
+);
+
+/// One member of a shared struct, as Rust lays it out.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Member {
+    /// The field's name (the WGSL member's).
+    pub name: &'static str,
+    /// Byte offset.
+    pub offset: usize,
+    /// The WGSL type its Rust type stands for.
+    pub wgsl_type: &'static str,
+}
+
+/// A struct shared by Rust and WGSL.
+#[derive(Clone, Copy, Debug)]
+pub struct Block {
+    /// Its name, the same in both.
+    pub name: &'static str,
+    /// Rust's size in bytes (WGSL's span must equal it).
+    pub size: usize,
+    /// The members in declaration order.
+    pub members: fn() -> Vec<Member>,
+}
+
+/// The WGSL type of a field, from the field's Rust type.
+fn wgsl_of<S, T: WgslType>(_: fn(&S) -> &T) -> &'static str {
+    T::WGSL
+}
+
+macro_rules! block {
+    ($t:ident as $name:literal { $($f:ident),* $(,)? }) => { block!(@make $t, $name, $($f),*) };
+    ($t:ident { $($f:ident),* $(,)? }) => { block!(@make $t, stringify!($t), $($f),*) };
+    (@make $t:ident, $name:expr, $($f:ident),*) => {
+        Block {
+            name: $name,
+            size: size_of::<$t>(),
+            members: || vec![$(Member {
+                name: stringify!($f),
+                offset: offset_of!($t, $f),
+                wgsl_type: wgsl_of(|s: &$t| &s.$f),
+            }),*],
+        }
+    };
+}
+
+macro_rules! nested {
+    ($($t:ident),* $(,)?) => { $(impl WgslType for $t { const WGSL: &'static str = stringify!($t); })* };
+}
+
+nested!(ViewBlock, SunBlock, WaveTilingBlock, WaterBlock, HuShadingBlock, PassFlags, AmbientBlock);
+
+/// The kind of an entry point.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EntryKind {
+    /// `@vertex`.
+    Vertex,
+    /// `@fragment`.
+    Fragment,
+    /// `@compute`.
+    Compute,
+}
+
+/// A `@group(g) @binding(b) var name` of a stage.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Binding {
+    /// Bind group.
+    pub group: u32,
+    /// Binding within the group.
+    pub binding: u32,
+    /// The variable's name.
+    pub name: &'static str,
+}
+
+const fn b(group: u32, binding: u32, name: &'static str) -> Binding {
+    Binding { group, binding, name }
+}
+
+/// One stage: a WGSL file with entry points, and its twins.
+#[derive(Clone, Copy, Debug)]
+pub struct StageEntry {
+    /// The stage's name (`water`): its pipeline label is `ocean.<name>`.
+    pub name: &'static str,
+    /// Its file below `shaders/`.
+    pub file: &'static str,
+    /// The file's text, embedded.
+    pub source: &'static str,
+    /// Its entry points.
+    pub entry_points: &'static [(&'static str, EntryKind)],
+    /// Its resource bindings.
+    pub bindings: &'static [Binding],
+    /// The structs it shares with Rust.
+    pub blocks: &'static [Block],
+    /// Its CPU mirror below the repository root.
+    pub cpu_mirror: &'static str,
+    /// Its GPU module below the repository root.
+    pub gpu_module: &'static str,
+}
+
+impl StageEntry {
+    /// The entry point `name` if the stage declares it (GPU pipelines take their names from
+    /// here).
+    pub fn entry(&self, name: &str) -> Option<&'static str> {
+        self.entry_points.iter().find(|(e, _)| *e == name).map(|(e, _)| *e)
+    }
+}
+
+/// A shared WGSL file (`shaders/shared/*.wgsl`) and its CPU mirror.
+#[derive(Clone, Copy, Debug)]
+pub struct SharedFile {
+    /// Its path below `shaders/`.
+    pub file: &'static str,
+    /// Its text.
+    pub source: &'static str,
+    /// The structs it declares that Rust shares.
+    pub blocks: &'static [Block],
+    /// Its CPU mirror below the repository root.
+    pub cpu_mirror: &'static str,
+}
+
+/// A technique's file: the functions of its stage's interface.
+#[derive(Clone, Copy, Debug)]
+pub struct TechniqueFile {
+    /// The technique stage.
+    pub stage: TechniqueStage,
+    /// The technique.
+    pub technique: &'static str,
+    /// Its path below `shaders/`.
+    pub file: &'static str,
+    /// Its text.
+    pub source: &'static str,
+    /// The interface: what every technique of the stage defines, so that the stages that
+    /// import `technique/<stage>` work with any of them.
+    pub interface: &'static [&'static str],
+    /// The structs it declares that Rust shares.
+    pub blocks: &'static [Block],
+    /// Its CPU mirror below the repository root.
+    pub cpu_mirror: &'static str,
+}
+
+use EntryKind::{Compute, Fragment, Vertex};
+
+const VS_FS: &[(&str, EntryKind)] = &[("vs_main", Vertex), ("fs_main", Fragment)];
+
+/// Every stage with WGSL, in the order of DESIGN.md's stage table, then `present` (the
+/// real-time viewer's copy of the output into its window; not a pass of the frame plan).
+pub const STAGES: &[StageEntry] = &[
+    StageEntry {
+        name: "waves",
+        file: "waves.wgsl",
+        source: include_str!("../../../shaders/waves.wgsl"),
+        entry_points: &[
+            ("spectrum", Compute),
+            ("fft_rows", Compute),
+            ("fft_columns", Compute),
+            ("pack", Compute),
+        ],
+        bindings: &[
+            b(0, 0, "params"),
+            b(0, 1, "modes"),
+            b(0, 2, "twiddles"),
+            b(1, 0, "fft_pass"),
+            b(1, 1, "src"),
+            b(1, 2, "dst"),
+            b(2, 0, "displacement"),
+            b(2, 1, "displacement_slopes"),
+            b(2, 2, "bump"),
+        ],
+        blocks: &[
+            block!(WavesUniforms {
+                size,
+                log2_size,
+                time_ticks,
+                time_remainder,
+                lambda,
+                pad0,
+                pad1
+            }),
+            block!(FftPassUniforms { stage, pad0, pad1, pad2 }),
+        ],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/waves.rs",
+        gpu_module: "crates/ocean-gpu/src/waves.rs",
+    },
+    StageEntry {
+        name: "fresnel_table",
+        file: "fresnel_table.wgsl",
+        source: include_str!("../../../shaders/fresnel_table.wgsl"),
+        entry_points: &[("main", Compute)],
+        bindings: &[b(0, 0, "params"), b(0, 1, "table")],
+        blocks: &[block!(FresnelTableUniforms { eta, size, mapping, pad })],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/fresnel_table.rs",
+        gpu_module: "crates/ocean-gpu/src/fresnel_table.rs",
+    },
+    StageEntry {
+        name: "sky",
+        file: "sky.wgsl",
+        source: include_str!("../../../shaders/sky.wgsl"),
+        entry_points: VS_FS,
+        bindings: &[b(0, 0, "camera"), b(1, 0, "sky")],
+        blocks: &[],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/sky.rs",
+        gpu_module: "crates/ocean-gpu/src/sky.rs",
+    },
+    StageEntry {
+        name: "objects",
+        file: "objects.wgsl",
+        source: include_str!("../../../shaders/objects.wgsl"),
+        entry_points: &[
+            ("vs_main", Vertex),
+            ("fs_main", Fragment),
+            ("vs_reflect", Vertex),
+            ("fs_reflect", Fragment),
+            ("vs_refract", Vertex),
+            ("fs_refract", Fragment),
+        ],
+        bindings: &[b(0, 0, "frame")],
+        // ObjectVertex is a vertex-buffer layout (tightly packed), not a WGSL memory layout:
+        // ocean-gpu's OBJECT_VERTEX_LAYOUT describes it.
+        blocks: &[],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/objects.rs",
+        gpu_module: "crates/ocean-gpu/src/objects.rs",
+    },
+    StageEntry {
+        name: "shadow",
+        file: "shadow.wgsl",
+        source: include_str!("../../../shaders/shadow.wgsl"),
+        entry_points: VS_FS,
+        bindings: &[b(0, 0, "frame")],
+        blocks: &[],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/shadow.rs",
+        gpu_module: "crates/ocean-gpu/src/shadow.rs",
+    },
+    StageEntry {
+        name: "water",
+        file: "water.wgsl",
+        source: include_str!("../../../shaders/water.wgsl"),
+        entry_points: VS_FS,
+        bindings: &[
+            b(0, 0, "frame"),
+            b(0, 1, "displacement"),
+            b(0, 2, "displacement_slopes"),
+            b(0, 3, "bump"),
+            b(0, 4, "fresnel_above"),
+            b(0, 5, "fresnel_below"),
+            b(0, 6, "reflection_map"),
+            b(0, 7, "refraction_map"),
+            b(0, 8, "shadow_map"),
+            b(0, 9, "wrap_linear"),
+            b(0, 10, "clamp_linear"),
+            b(1, 0, "sky"),
+        ],
+        blocks: &[],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/water.rs",
+        gpu_module: "crates/ocean-gpu/src/water.rs",
+    },
+    StageEntry {
+        name: "tonemap",
+        file: "tonemap.wgsl",
+        source: include_str!("../../../shaders/tonemap.wgsl"),
+        entry_points: VS_FS,
+        bindings: &[b(0, 0, "tonemap"), b(0, 1, "hdr_frame")],
+        blocks: &[block!(TonemapUniforms { exposure, pad0, pad1, pad2 })],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/tonemap.rs",
+        gpu_module: "crates/ocean-gpu/src/tonemap.rs",
+    },
+    StageEntry {
+        name: "present",
+        file: "present.wgsl",
+        source: include_str!("../../../shaders/present.wgsl"),
+        entry_points: VS_FS,
+        bindings: &[b(0, 0, "frame_output")],
+        blocks: &[],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/present.rs",
+        gpu_module: "crates/ocean-gpu/src/present.rs",
+    },
+];
+
+/// Every shared WGSL file.
+pub const SHARED: &[SharedFile] = &[
+    SharedFile {
+        file: "shared/camera.wgsl",
+        source: include_str!("../../../shaders/shared/camera.wgsl"),
+        blocks: &[block!(CameraUniforms { view_proj, inv_view_proj, eye, viewport })],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/shared/camera.rs",
+    },
+    SharedFile {
+        file: "shared/frame.wgsl",
+        source: include_str!("../../../shaders/shared/frame.wgsl"),
+        blocks: &[
+            block!(ViewBlock {
+                view_proj,
+                viewport_size,
+                inv_viewport_size,
+                eye_height,
+                pad0,
+                pad1,
+                pad2
+            }),
+            block!(SunBlock { shadow_view_proj, direction, lit, radiance, pad }),
+            block!(WaveTilingBlock {
+                displacement_origin,
+                bump_origin,
+                mesh_offset,
+                pad0,
+                pad1,
+                inv_displacement_size,
+                inv_bump_size,
+                displacement_half_texel,
+                bump_half_texel,
+            }),
+            block!(WaterBlock { color, extinction_per_m, eta, inv_eta, pad0, pad1 }),
+            block!(HuShadingBlock {
+                phong_exponent,
+                reflection_distortion,
+                refraction_distortion,
+                pad
+            }),
+            block!(PassFlags { waves, reflection_map, refraction_map, shadow_map }),
+            block!(AmbientBlock { sky, pad }),
+            block!(FrameUniforms { view, sun, tiling, water, hu, passes, ambient }),
+        ],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/shared/frame.rs",
+    },
+    SharedFile {
+        file: "shared/fullscreen.wgsl",
+        source: include_str!("../../../shaders/shared/fullscreen.wgsl"),
+        blocks: &[],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/shared/fullscreen.rs",
+    },
+];
+
+/// Every technique file.
+pub const TECHNIQUE_FILES: &[TechniqueFile] = &[TechniqueFile {
+    stage: TechniqueStage::Sky,
+    technique: "preetham",
+    file: "sky/preetham.wgsl",
+    source: include_str!("../../../shaders/sky/preetham.wgsl"),
+    interface: &["SkyUniforms", "sky_radiance", "sun_disc"],
+    blocks: &[block!(SkyUniforms {
+        perez_a,
+        perez_b,
+        perez_c,
+        perez_d,
+        perez_e,
+        zenith,
+        perez_zenith,
+        sun_direction,
+        sun_radiance,
+        sky_scale,
+        cos_theta_min,
+        sun_sin_inner,
+        sun_sin_outer,
+    })],
+    cpu_mirror: "crates/ocean-cpu/src/shaders/sky/preetham.rs",
+}];
+
+/// The storage table's element of stage `waves` (its size is the array stride).
+pub const WAVE_MODE: Block =
+    block!(WaveModeData as "WaveMode" { h0, k, phase_rate, inv_k, frequency });
+
+/// The stage called `name`.
+pub fn stage(name: &str) -> Option<&'static StageEntry> {
+    STAGES.iter().find(|s| s.name == name)
+}
+
+/// The file of technique `technique` of `stage`, when it has one.
+pub fn technique_file(stage: TechniqueStage, technique: &str) -> Option<&'static TechniqueFile> {
+    TECHNIQUE_FILES.iter().find(|t| t.stage == stage && t.technique == technique)
+}
+
+/// What the repository at `root` lacks for the given tables: each stage's WGSL, CPU mirror
+/// and GPU module, each shared or technique file and its mirror, and each available
+/// technique with WGSL-backed stages (sky) that has no file. One line per missing piece,
+/// naming it; empty when nothing is missing.
+pub fn missing_pieces(
+    root: &Path,
+    stages: &[StageEntry],
+    shared: &[SharedFile],
+    techniques: &[TechniqueFile],
+) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut need = |what: String, path: &str| {
+        if !root.join(path).is_file() {
+            out.push(format!("{what}: {path} is missing"));
+        }
+    };
+    for s in stages {
+        need(format!("stage `{}`: its WGSL", s.name), &format!("shaders/{}", s.file));
+        need(format!("stage `{}`: its CPU mirror", s.name), s.cpu_mirror);
+        need(format!("stage `{}`: its GPU module", s.name), s.gpu_module);
+    }
+    for f in shared {
+        need(format!("shared file `{}`", f.file), &format!("shaders/{}", f.file));
+        need(format!("shared file `{}`: its CPU mirror", f.file), f.cpu_mirror);
+    }
+    for t in techniques {
+        let name = format!("technique {}/{}", t.stage, t.technique);
+        need(format!("{name}: its WGSL"), &format!("shaders/{}", t.file));
+        need(format!("{name}: its CPU mirror"), t.cpu_mirror);
+    }
+    // A stage whose technique is composed into WGSL needs a file for every technique that is
+    // available.
+    for stage in [TechniqueStage::Sky] {
+        for t in stage.techniques().filter(|t| t.available) {
+            if !techniques.iter().any(|f| f.stage == stage && f.technique == t.name) {
+                out.push(format!(
+                    "technique {stage}/{}: available but not in the registry's technique files",
+                    t.name
+                ));
+            }
+        }
+    }
+    out
+}
