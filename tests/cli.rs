@@ -1,5 +1,14 @@
 //! The command line's contracts (DESIGN.md): CSV and EXR layouts, exit codes, clear errors,
 //! no output file on failure.
+//!
+//! The GPU commands' tests need an adapter: without one they fail under `OCEAN_REQUIRE_GPU=1`
+//! (CI) and are otherwise reported ignored, with why (tests/support/gpu_harness.rs).
+
+#![allow(clippy::unwrap_used, reason = "a panic in a test is its failure report")]
+
+#[macro_use]
+#[path = "support/gpu_harness.rs"]
+mod gpu_harness;
 
 use std::path::Path;
 use std::process::{Command, Output};
@@ -42,7 +51,6 @@ fn read_exr(path: &Path) -> (usize, usize, Vec<(String, Vec<f32>)>) {
     (size.0, size.1, channels)
 }
 
-#[test]
 fn fresnel_csv_contract() {
     let o = ocean(&["fresnel", "--eta", "1.333"]);
     assert!(o.status.success(), "{}", stderr(&o));
@@ -66,7 +74,6 @@ fn fresnel_csv_contract() {
     assert_eq!(String::from_utf8_lossy(&o.stdout).lines().count(), 182);
 }
 
-#[test]
 fn fresnel_rejects_bad_eta_without_panicking() {
     for bad in ["0", "-1", "nan", "inf"] {
         let o = ocean(&["fresnel", "--eta", bad]);
@@ -76,7 +83,6 @@ fn fresnel_rejects_bad_eta_without_panicking() {
     }
 }
 
-#[test]
 fn fresnel_table_exr_contract() {
     let dir = tempfile::tempdir().expect("a temp dir");
     let path = dir.path().join("f.exr");
@@ -108,7 +114,6 @@ fn fresnel_table_exr_contract() {
     }
 }
 
-#[test]
 fn fresnel_table_needs_an_exr_output() {
     let dir = tempfile::tempdir().expect("a temp dir");
     let png = dir.path().join("f.png");
@@ -121,7 +126,6 @@ fn fresnel_table_needs_an_exr_output() {
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
 }
 
-#[test]
 fn bad_scene_names_file_line_key_and_writes_nothing() {
     let dir = tempfile::tempdir().expect("a temp dir");
     let out = dir.path().join("h.exr");
@@ -148,7 +152,6 @@ fn bad_scene_names_file_line_key_and_writes_nothing() {
     assert!(stderr(&o).contains("/nonexistent/scene.toml"));
 }
 
-#[test]
 fn heightfield_exr_contract() {
     let dir = tempfile::tempdir().expect("a temp dir");
     let scene = dir.path().join("s.toml");
@@ -189,7 +192,6 @@ fn heightfield_exr_contract() {
     assert_ne!(std::fs::read(&out).unwrap(), std::fs::read(&again).unwrap());
 }
 
-#[test]
 fn render_writes_png_and_exr_and_rejects_bad_input() {
     let dir = tempfile::tempdir().expect("a temp dir");
     let png = dir.path().join("o.png");
@@ -223,7 +225,6 @@ fn render_writes_png_and_exr_and_rejects_bad_input() {
     assert_eq!(o.status.code(), Some(1));
 }
 
-#[test]
 fn gpu_without_an_adapter_says_what_to_do_and_writes_nothing() {
     // A backend this platform's build cannot open stands for a machine without a GPU.
     let dir = tempfile::tempdir().expect("a temp dir");
@@ -242,34 +243,7 @@ fn gpu_without_an_adapter_says_what_to_do_and_writes_nothing() {
     assert!(stderr(&o).contains("--backend cpu"), "{}", stderr(&o));
 }
 
-/// Whether a GPU adapter is usable here; without one the GPU command tests say they were
-/// skipped (and fail under `OCEAN_REQUIRE_GPU=1`, as in CI).
-fn gpu_or_skip(test: &str) -> bool {
-    let dir = tempfile::tempdir().expect("a temp dir");
-    let probe = dir.path().join("probe.png");
-    let o = ocean(&[
-        "render",
-        "--backend",
-        "gpu",
-        "--size",
-        "8x8",
-        "-o",
-        probe.to_str().expect("utf-8 path"),
-    ]);
-    if o.status.success() {
-        return true;
-    }
-    let required = std::env::var_os("OCEAN_REQUIRE_GPU").is_some_and(|v| v == "1");
-    assert!(!required, "{test}: OCEAN_REQUIRE_GPU=1 but the GPU render failed: {}", stderr(&o));
-    eprintln!("{test}: SKIPPED, no usable GPU adapter: {}", stderr(&o));
-    false
-}
-
-#[test]
 fn render_on_the_gpu_writes_png_and_exr() {
-    if !gpu_or_skip("render_on_the_gpu_writes_png_and_exr") {
-        return;
-    }
     let dir = tempfile::tempdir().expect("a temp dir");
     let png = dir.path().join("g.png");
     let o = ocean(&["render", "--backend", "gpu", "--size", "64x36", "-o", png.to_str().unwrap()]);
@@ -285,11 +259,7 @@ fn render_on_the_gpu_writes_png_and_exr() {
     assert!(channels.iter().all(|(_, d)| d.iter().all(|v| v.is_finite())));
 }
 
-#[test]
 fn compare_prints_metrics_writes_images_and_passes() {
-    if !gpu_or_skip("compare_prints_metrics_writes_images_and_passes") {
-        return;
-    }
     let dir = tempfile::tempdir().expect("a temp dir");
     let out = dir.path().join("cmp");
     let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("reference/scenes/calm.toml");
@@ -315,4 +285,15 @@ fn compare_prints_metrics_writes_images_and_passes() {
         serde_json::from_str(&std::fs::read_to_string(out.join("calm.json")).unwrap()).unwrap();
     assert_eq!(json["passed"], true, "{json}");
     assert!(json["adapter"]["name"].as_str().is_some_and(|n| !n.is_empty()));
+}
+
+fn main() -> std::process::ExitCode {
+    run_tests!(gpu_harness::GPU_ADAPTER;
+        cpu: fresnel_csv_contract, fresnel_rejects_bad_eta_without_panicking,
+            fresnel_table_exr_contract, fresnel_table_needs_an_exr_output,
+            bad_scene_names_file_line_key_and_writes_nothing, heightfield_exr_contract,
+            render_writes_png_and_exr_and_rejects_bad_input,
+            gpu_without_an_adapter_says_what_to_do_and_writes_nothing;
+        gpu: render_on_the_gpu_writes_png_and_exr, compare_prints_metrics_writes_images_and_passes;
+    )
 }

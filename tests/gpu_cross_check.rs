@@ -5,9 +5,15 @@
 //! JSON summary go to `target/gpu-cross-check/`.
 //!
 //! The adapter that ran is printed, and must be a real wgpu adapter (never the CPU compared
-//! with itself). Without any adapter the GPU test fails under `OCEAN_REQUIRE_GPU=1` (CI) and
-//! otherwise says that it was skipped and why. The comparators' negative controls need no
-//! GPU.
+//! with itself). Without any adapter the GPU tests fail under `OCEAN_REQUIRE_GPU=1` (CI) and
+//! are otherwise reported ignored, with why (tests/support/gpu_harness.rs). The comparators'
+//! negative controls need no GPU.
+
+#![allow(clippy::unwrap_used, reason = "a panic in a test is its failure report")]
+
+#[macro_use]
+#[path = "support/gpu_harness.rs"]
+mod gpu_harness;
 
 use std::path::PathBuf;
 
@@ -16,7 +22,7 @@ use ocean::cross_check::{
     cpu_map, write_artefacts,
 };
 use ocean_core::scene::Scene;
-use ocean_gpu::{Error, FrameMap, Renderer, WaveSynthesis};
+use ocean_gpu::{FrameMap, Renderer, WaveSynthesis};
 
 /// Small enough for CI on lavapipe with 2 cores, large enough to show every pass.
 const WIDTH: u32 = 160;
@@ -26,18 +32,13 @@ fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
-fn gpu_required() -> bool {
-    std::env::var_os("OCEAN_REQUIRE_GPU").is_some_and(|v| v == "1")
-}
-
-/// The GPU renderer; `None` (after saying why) when there is no usable adapter and the GPU
-/// is optional here.
-fn renderer() -> Option<Renderer> {
+/// The GPU renderer (the harness runs the GPU tests only where there is an adapter).
+fn renderer() -> Renderer {
     renderer_with(WaveSynthesis::CpuUpload)
 }
 
 /// The GPU renderer with a given wave-map source (see [`renderer`]).
-fn renderer_with(waves: WaveSynthesis) -> Option<Renderer> {
+fn renderer_with(waves: WaveSynthesis) -> Renderer {
     match ocean_gpu::Gpu::new().and_then(|g| Renderer::with_gpu(g, waves)) {
         Ok(r) => {
             let a = r.adapter().clone();
@@ -51,18 +52,7 @@ fn renderer_with(waves: WaveSynthesis) -> Option<Renderer> {
                     "WGPU_BACKEND={want} but the adapter is {a}"
                 );
             }
-            Some(r)
-        }
-        Err(
-            e @ (Error::NoAdapter { .. }
-            | Error::MissingFeature { .. }
-            | Error::RequestDevice { .. }),
-        ) if !gpu_required() => {
-            eprintln!(
-                "gpu_cross_check: SKIPPED, no usable GPU adapter: {e}\n\
-                 (set OCEAN_REQUIRE_GPU=1 to make this a failure, as CI does)"
-            );
-            None
+            r
         }
         Err(e) => panic!("gpu_cross_check: no GPU renderer: {e}"),
     }
@@ -109,9 +99,8 @@ fn reference_scenes() -> Vec<(String, Scene)> {
     scenes
 }
 
-#[test]
 fn reference_scenes_match_the_cpu_oracle() {
-    let Some(mut renderer) = renderer() else { return };
+    let mut renderer = renderer();
     let scenes = reference_scenes();
     assert!(scenes.len() >= 6, "expected the reference scenes, found {}", scenes.len());
     let out = root().join("target/gpu-cross-check");
@@ -152,14 +141,13 @@ impl Lcg {
 /// depth, 1/w and perspective-correct varyings agree bit for bit, in a 160×90 target (not a
 /// power of two, so the viewport transform's rounding shows). This pins the interpolation and
 /// clipping rules of `ocean_cpu::raster` to what the GPU does.
-#[test]
 fn rasterizer_matches_lavapipe_bit_for_bit() {
     use ocean_cpu::raster::{BlendMode, CompareFunction, RasterState, RenderTarget, Vertex, draw};
     use ocean_gpu::common::{Load, begin_render_pass, primitive, replace_target};
     use ocean_gpu::texture::{GpuTexture, MAP_FORMAT, Readbacks, TexelData};
     use wgpu::util::DeviceExt;
 
-    let Some(renderer) = renderer() else { return };
+    let renderer = renderer();
     let gpu = renderer.gpu();
     let mut rng = Lcg(7);
     let mut tris: Vec<[Vertex<2>; 3]> = Vec::new();
@@ -270,7 +258,6 @@ fn rasterizer_matches_lavapipe_bit_for_bit() {
 
 /// The float comparator at its boundary: a value exactly at the allowance passes, one ULP
 /// beyond fails, for values where the relative and where the absolute limit governs.
-#[test]
 fn float_comparator_fails_one_ulp_past_the_limit() {
     for cpu in [1.0f32, -3.75, 0.02, 1e-3, 0.0, 2e-7, 12345.678] {
         let allowed = allowance(cpu);
@@ -313,7 +300,6 @@ fn gradient(w: u32, h: u32) -> Vec<u8> {
 }
 
 /// The image comparator: each limit fails just past it.
-#[test]
 fn image_comparator_fails_past_each_limit() {
     let (w, h) = (64u32, 64u32);
     let n = (w * h) as usize;
@@ -388,9 +374,8 @@ fn image_comparator_fails_past_each_limit() {
 /// the differences are then amplified through the bumped normal and the sun's (V·R)^400, so
 /// the HDR frame is held to DESIGN's final-image tolerances (≥ 99.5 % of pixels within 1/255,
 /// FLIP mean ≤ 0.005), not the float-buffer ones. Every other map must still meet those.
-#[test]
 fn gpu_fft_frames_meet_the_image_tolerances() {
-    let Some(mut renderer) = renderer_with(WaveSynthesis::GpuFft) else { return };
+    let mut renderer = renderer_with(WaveSynthesis::GpuFft);
     let wave_maps = [FrameMap::Displacement, FrameMap::DisplacementSlopes, FrameMap::Bump];
     let mut failures = Vec::new();
     for (name, scene) in reference_scenes() {
@@ -438,9 +423,8 @@ fn gpu_fft_frames_meet_the_image_tolerances() {
 /// The viewer's sliders change the sea every frame: the GPU FFT then takes the new modes into
 /// its buffers in place (`WaveMapSource::update`). That must give the same frame, bit for bit,
 /// as a renderer that never saw the old sea; a new map size makes a new source.
-#[test]
 fn a_new_sea_on_a_running_renderer_equals_a_fresh_renderer() {
-    let Some(mut kept) = renderer_with(WaveSynthesis::GpuFft) else { return };
+    let mut kept = renderer_with(WaveSynthesis::GpuFft);
     let mut first = Scene::builtin();
     (first.camera.width, first.camera.height) = (WIDTH, HEIGHT);
     let mut windier = first.clone();
@@ -463,7 +447,7 @@ fn a_new_sea_on_a_running_renderer_equals_a_fresh_renderer() {
     let before = run(&mut kept, &first);
     for next in [&windier, &finer] {
         let updated = run(&mut kept, next);
-        let Some(mut fresh) = renderer_with(WaveSynthesis::GpuFft) else { return };
+        let mut fresh = renderer_with(WaveSynthesis::GpuFft);
         let reference = run(&mut fresh, next);
         for m in maps {
             assert!(bits(&updated, m) == bits(&reference, m), "{}: in place ≠ fresh", m.name());
@@ -476,4 +460,13 @@ fn a_new_sea_on_a_running_renderer_equals_a_fresh_renderer() {
         }
         assert_eq!(updated.ldr, reference.ldr);
     }
+}
+
+fn main() -> std::process::ExitCode {
+    run_tests!(gpu_harness::GPU_ADAPTER;
+        cpu: float_comparator_fails_one_ulp_past_the_limit, image_comparator_fails_past_each_limit;
+        gpu: reference_scenes_match_the_cpu_oracle, rasterizer_matches_lavapipe_bit_for_bit,
+            gpu_fft_frames_meet_the_image_tolerances,
+            a_new_sea_on_a_running_renderer_equals_a_fresh_renderer;
+    )
 }

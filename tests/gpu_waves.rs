@@ -11,8 +11,15 @@
 //!   spectra, whose values are mostly below 1e-6.
 //!
 //! GPU tests need an adapter (`WGPU_BACKEND=vulkan` with Mesa's lavapipe is enough). Without
-//! one they print that they were skipped and why, unless `OCEAN_REQUIRE_GPU=1`, which makes
-//! that a failure (CI). Each GPU test prints the adapter that ran.
+//! one they are reported ignored, with why (tests/support/gpu_harness.rs; those with a CPU
+//! part run that part first), unless `OCEAN_REQUIRE_GPU=1`, which makes that a failure (CI).
+//! Each GPU test prints the adapter that ran.
+
+#![allow(clippy::unwrap_used, reason = "a panic in a test is its failure report")]
+
+#[macro_use]
+#[path = "support/gpu_harness.rs"]
+mod gpu_harness;
 
 use std::f64::consts::TAU;
 use std::sync::OnceLock;
@@ -178,8 +185,13 @@ async fn open_gpu() -> Result<Gpu, String> {
     Ok(Gpu { device, queue, info: adapter.get_info() })
 }
 
-/// The shared device, or `None` (skipped, with the reason printed) — a failure instead when
-/// `OCEAN_REQUIRE_GPU=1`.
+/// The harness's probe: opens the shared device once, before the tests run.
+fn probe() -> Result<(), String> {
+    GPU.get_or_init(|| pollster::block_on(open_gpu())).as_ref().map(|_| ()).map_err(Clone::clone)
+}
+
+/// The shared device, or `None` without one (the harness then reports the test ignored, as
+/// its GPU part did not run) — a failure instead when `OCEAN_REQUIRE_GPU=1`.
 fn gpu(test: &str) -> Option<&'static Gpu> {
     match GPU.get_or_init(|| pollster::block_on(open_gpu())) {
         Ok(g) => {
@@ -190,13 +202,9 @@ fn gpu(test: &str) -> Option<&'static Gpu> {
             Some(g)
         }
         Err(reason) => {
-            if std::env::var("OCEAN_REQUIRE_GPU").as_deref() == Ok("1") {
+            if gpu_harness::gpu_required() {
                 panic!("{test}: OCEAN_REQUIRE_GPU=1 but {reason}");
             }
-            println!(
-                "{test}: SKIPPED — {reason}. Install Mesa's Vulkan drivers (lavapipe) and set \
-                 WGPU_BACKEND=vulkan; OCEAN_REQUIRE_GPU=1 turns this skip into a failure."
-            );
             None
         }
     }
@@ -229,7 +237,6 @@ impl Gpu {
 // ---------------------------------------------------------------------------------------------
 // (a) The mirror against ocean-core
 
-#[test]
 fn mirror_matches_ocean_core_synthesis() {
     for n in SIZES {
         for dispersion in [Dispersion::deep(G), Dispersion::new(G, f64::INFINITY, LOOP_S).unwrap()]
@@ -259,7 +266,6 @@ fn mirror_matches_ocean_core_synthesis() {
     }
 }
 
-#[test]
 fn mirror_small_grids() {
     // N = 2 holds only k = 0 and Nyquist bins (all zero); 4 and 8 have one or three rings.
     for n in [2, 4, 8] {
@@ -272,7 +278,6 @@ fn mirror_small_grids() {
     }
 }
 
-#[test]
 fn mirror_flat_fields_without_choppiness() {
     let modes = build(64, Dispersion::deep(G));
     let f = fields_of(&texels(&WavesMirror::new(&modes).unwrap().run(12.5, 0.0).unwrap()));
@@ -280,7 +285,6 @@ fn mirror_flat_fields_without_choppiness() {
     assert!(f[5].iter().all(|&v| v == 1.0), "J must be exactly 1");
 }
 
-#[test]
 fn non_power_of_two_is_an_error() {
     let modes = build(48, Dispersion::deep(G));
     let err = WavesMirror::new(&modes).unwrap_err().to_string();
@@ -336,9 +340,9 @@ fn compare_textures(
     failures
 }
 
-#[test]
 fn gpu_matches_the_mirror_dispatch_by_dispatch() {
-    let Some(gpu) = gpu("gpu_matches_the_mirror_dispatch_by_dispatch") else { return };
+    let gpu = gpu("gpu_matches_the_mirror_dispatch_by_dispatch")
+        .expect("the harness runs GPU tests with a GPU");
     for n in SIZES {
         let modes = build(n, Dispersion::deep(G));
         let mirror = WavesMirror::new(&modes).unwrap();
@@ -403,9 +407,8 @@ fn gpu_matches_the_mirror_dispatch_by_dispatch() {
 
 /// Where the GPU and the mirror differ: `cos` and `sin` (the mirror uses Rust's). Measured on
 /// the arguments the stage feeds them, θ = 2π·c for c in [−½, ½].
-#[test]
 fn gpu_cos_sin_against_rust() {
-    let Some(gpu) = gpu("gpu_cos_sin_against_rust") else { return };
+    let gpu = gpu("gpu_cos_sin_against_rust").expect("the harness runs GPU tests with a GPU");
     const COUNT: u32 = 1 << 16;
     let source = "
         @group(0) @binding(0) var<storage, read> theta: array<f32>;
@@ -497,9 +500,9 @@ fn gpu_cos_sin_against_rust() {
     assert!(max_abs <= 1e-6, "cos/sin differ by {max_abs:e}");
 }
 
-#[test]
 fn gpu_matches_ocean_core_at_large_time() {
-    let Some(gpu) = gpu("gpu_matches_ocean_core_at_large_time") else { return };
+    let gpu =
+        gpu("gpu_matches_ocean_core_at_large_time").expect("the harness runs GPU tests with a GPU");
     let n = 64;
     for dispersion in [Dispersion::deep(G), Dispersion::new(G, 30.0, LOOP_S).unwrap()] {
         let modes = build(n, dispersion);
@@ -552,7 +555,6 @@ fn phase_error(modes: &WaveModes, spectrum: &[[f32; 2]], t: f64) -> f64 {
     worst
 }
 
-#[test]
 fn phase_is_accurate_at_a_million_seconds() {
     let n = 64;
     let gpu = gpu("phase_is_accurate_at_a_million_seconds");
@@ -598,7 +600,6 @@ fn phase_is_accurate_at_a_million_seconds() {
     assert!(e > 1e-4);
 }
 
-#[test]
 fn looping_repeats_bit_for_bit() {
     let n = 64;
     let modes = build(n, Dispersion::new(G, f64::INFINITY, LOOP_S).unwrap());
@@ -643,7 +644,6 @@ fn perturb_largest_h0(table: &mut [ocean_core::waves::uniforms::WaveModeData]) {
     table[largest].h0 = table[largest].h0.map(|v| v * 1.001);
 }
 
-#[test]
 fn mirror_comparator_rejects_wrong_twiddles_and_h0() {
     let n = 64;
     let modes = build(n, Dispersion::deep(G));
@@ -664,7 +664,6 @@ fn mirror_comparator_rejects_wrong_twiddles_and_h0() {
     assert!(e > SYNTHESIS_REL);
 }
 
-#[test]
 fn gpu_comparator_rejects_wrong_twiddles_and_h0() {
     // The comparator itself, each of its two limits: one value moved just past abs + rel·|b|
     // fails and just inside passes (a field of max 1, the value 0.01, so the per-field rel stays
@@ -713,7 +712,6 @@ fn gpu_comparator_rejects_wrong_twiddles_and_h0() {
 }
 
 /// The uniforms the GPU gets are the mirror's (one definition in ocean-core).
-#[test]
 fn uniforms_are_shared() {
     let modes = build(16, Dispersion::deep(G));
     let m = WavesMirror::new(&modes).unwrap();
@@ -724,4 +722,17 @@ fn uniforms_are_shared() {
         mirror::mul_hi(0x1234_5678, 0x9abc_def0),
         ((0x1234_5678u64 * 0x9abc_def0u64) >> 32) as u32
     );
+}
+
+fn main() -> std::process::ExitCode {
+    let requirement = gpu_harness::Requirement { probe, ..gpu_harness::GPU_ADAPTER };
+    run_tests!(requirement;
+        cpu: mirror_matches_ocean_core_synthesis, mirror_small_grids,
+            mirror_flat_fields_without_choppiness, mirror_comparator_rejects_wrong_twiddles_and_h0,
+            uniforms_are_shared;
+        gpu: gpu_matches_the_mirror_dispatch_by_dispatch, gpu_cos_sin_against_rust,
+            gpu_matches_ocean_core_at_large_time;
+        gpu_part: non_power_of_two_is_an_error, phase_is_accurate_at_a_million_seconds,
+            looping_repeats_bit_for_bit, gpu_comparator_rejects_wrong_twiddles_and_h0;
+    )
 }

@@ -5,9 +5,16 @@
 //! (lavapipe: ≥ 99.5 % of pixels within 1/255, FLIP mean ≤ 0.005). The screenshot is read
 //! back from the window's own surface texture where the surface allows it.
 //!
-//! Without Xvfb or a GPU adapter the tests fail under `OCEAN_REQUIRE_GPU=1` (CI installs
-//! both) and otherwise say that they were skipped and why. Pictures of a failed comparison
-//! stay in `target/view-window/<test>/`.
+//! Without a GPU adapter, Xvfb or xdotool (probed once, at start-up) the tests fail under
+//! `OCEAN_REQUIRE_GPU=1` (CI installs all three) and are otherwise reported ignored, with why
+//! (tests/support/gpu_harness.rs). Pictures of a failed comparison stay in
+//! `target/view-window/<test>/`.
+
+#![allow(clippy::unwrap_used, reason = "a panic in a test is its failure report")]
+
+#[macro_use]
+#[path = "support/gpu_harness.rs"]
+mod gpu_harness;
 
 use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
@@ -20,15 +27,22 @@ use ocean::view::{fixed_step_time, swept_wind};
 const SIZE: &str = "320x180";
 const T0: f64 = 12.0; // the built-in scene's ocean.time_s
 
-fn gpu_required() -> bool {
-    std::env::var_os("OCEAN_REQUIRE_GPU").is_some_and(|v| v == "1")
-}
+/// What the window tests need; the harness probes it once, before they run.
+const WINDOW: gpu_harness::Requirement = gpu_harness::Requirement {
+    what: "a GPU adapter, Xvfb and xdotool",
+    how: "apt-get install mesa-vulkan-drivers libvulkan1 xvfb xdotool and set \
+          WGPU_BACKEND=vulkan",
+    probe,
+};
 
-/// Skips (returns `None`) or fails, as `OCEAN_REQUIRE_GPU` says.
-fn unavailable<T>(why: String) -> Option<T> {
-    assert!(!gpu_required(), "view_window: {why} (OCEAN_REQUIRE_GPU=1)");
-    eprintln!("view_window: SKIPPED, {why} (set OCEAN_REQUIRE_GPU=1 to make this a failure)");
-    None
+/// `Err(what is missing)` unless there are an adapter, an Xvfb that starts and xdotool.
+fn probe() -> Result<(), String> {
+    gpu_harness::adapter().map_err(|e| format!("no usable GPU adapter: {e}"))?;
+    drop(Xvfb::try_start()?);
+    if let Err(e) = Command::new("xdotool").arg("version").output() {
+        return Err(format!("no xdotool to send input ({e}); apt-get install xdotool"));
+    }
+    Ok(())
 }
 
 /// An Xvfb server of this test; killed when dropped.
@@ -39,7 +53,12 @@ struct Xvfb {
 
 impl Xvfb {
     /// Starts Xvfb on a free display (Xvfb picks it and writes its number to `-displayfd`).
-    fn start() -> Option<Self> {
+    fn start() -> Self {
+        Self::try_start().unwrap_or_else(|why| panic!("view_window: {why}"))
+    }
+
+    /// [`Xvfb::start`], or why it cannot.
+    fn try_start() -> Result<Self, String> {
         let spawned = Command::new("Xvfb")
             .args(["-displayfd", "1", "-screen", "0", "1280x1024x24", "-nolisten", "tcp"])
             .stdout(Stdio::piped())
@@ -47,7 +66,7 @@ impl Xvfb {
             .spawn();
         let mut child = match spawned {
             Ok(c) => c,
-            Err(e) => return unavailable(format!("cannot start Xvfb ({e}); apt-get install xvfb")),
+            Err(e) => return Err(format!("cannot start Xvfb ({e}); apt-get install xvfb")),
         };
         let stdout = child.stdout.take().expect("piped stdout");
         let mut line = String::new();
@@ -56,9 +75,9 @@ impl Xvfb {
         if read.is_err() || number.is_empty() || number.parse::<u32>().is_err() {
             let _ = child.kill();
             let _ = child.wait();
-            panic!("Xvfb did not report a display number (got {line:?})");
+            return Err(format!("Xvfb did not report a display number (got {line:?})"));
         }
-        Some(Self { display: format!(":{number}"), child })
+        Ok(Self { display: format!(":{number}"), child })
     }
 }
 
@@ -69,11 +88,11 @@ impl Drop for Xvfb {
     }
 }
 
-/// The adapter the viewer will get (same environment), or `None` after saying why.
-fn adapter() -> Option<ocean_gpu::AdapterReport> {
+/// The adapter the viewer will get (same environment).
+fn adapter() -> ocean_gpu::AdapterReport {
     match ocean_gpu::Gpu::new() {
-        Ok(g) => Some(g.report),
-        Err(e) => unavailable(format!("no usable GPU adapter: {e}")),
+        Ok(g) => g.report,
+        Err(e) => panic!("view_window: no usable GPU adapter: {e}"),
     }
 }
 
@@ -154,10 +173,9 @@ fn time_arg(index: u64) -> String {
     fixed_step_time(T0, index).to_string()
 }
 
-#[test]
 fn screenshot_after_60_frames_matches_the_headless_gpu_render() {
-    let Some(adapter) = adapter() else { return };
-    let Some(x) = Xvfb::start() else { return };
+    let adapter = adapter();
+    let x = Xvfb::start();
     let dir = out_dir("screenshot");
     let shot = dir.join("view.png");
     let out = run_view(&x, &args_with_shot(&["--frames", "60", "--size", SIZE, "--no-ui"], &shot));
@@ -189,10 +207,9 @@ fn run_view(x: &Xvfb, args: &[String]) -> Output {
     view(x, &args.iter().map(String::as_str).collect::<Vec<_>>())
 }
 
-#[test]
 fn resize_lost_surface_and_lost_device_are_survived() {
-    let Some(adapter) = adapter() else { return };
-    let Some(x) = Xvfb::start() else { return };
+    let adapter = adapter();
+    let x = Xvfb::start();
     let dir = out_dir("recovery");
     let shot = dir.join("view.png");
     let frames = 45;
@@ -221,10 +238,9 @@ fn resize_lost_surface_and_lost_device_are_survived() {
     assert!(failures.is_empty(), "{failures:?}");
 }
 
-#[test]
 fn wind_slider_from_calm_to_storm_reaches_the_picture() {
-    let Some(adapter) = adapter() else { return };
-    let Some(x) = Xvfb::start() else { return };
+    let adapter = adapter();
+    let x = Xvfb::start();
     let dir = out_dir("wind_sweep");
     let shot = dir.join("view.png");
     let frames: u64 = 30;
@@ -261,10 +277,9 @@ fn wind_slider_from_calm_to_storm_reaches_the_picture() {
     assert!(!compare(&shot, &calm, &limits).is_empty(), "the wind must change the picture");
 }
 
-#[test]
 fn the_panel_and_overlay_are_drawn_over_the_frame() {
-    let Some(_adapter) = adapter() else { return };
-    let Some(x) = Xvfb::start() else { return };
+    let _adapter = adapter();
+    let x = Xvfb::start();
     let dir = out_dir("panel");
     let shot = dir.join("view.png");
     let out = run_view(&x, &args_with_shot(&["--frames", "5", "--size", "640x360"], &shot));
@@ -294,7 +309,6 @@ fn the_panel_and_overlay_are_drawn_over_the_frame() {
     assert!(panel > 0.5, "no panel drawn at the top left");
 }
 
-#[test]
 fn bad_arguments_and_no_display_are_clear_errors() {
     let run = |args: &[&str], env_display: bool| {
         let mut c = ocean();
@@ -329,10 +343,7 @@ fn bad_arguments_and_no_display_are_clear_errors() {
 
 /// Runs `ocean view ARGS` and, once its window is up, the `xdotool` commands `inputs` (real
 /// X input events through XTEST); returns the viewer's output.
-fn view_with_input(x: &Xvfb, args: &[String], inputs: &[&[&str]]) -> Option<Output> {
-    if Command::new("xdotool").arg("version").output().is_err() {
-        return unavailable("no xdotool to send input (apt-get install xdotool)".into());
-    }
+fn view_with_input(x: &Xvfb, args: &[String], inputs: &[&[&str]]) -> Output {
     let child = ocean()
         .arg("view")
         .args(args)
@@ -363,7 +374,7 @@ fn view_with_input(x: &Xvfb, args: &[String], inputs: &[&[&str]]) -> Option<Outp
     }
     let out = child.wait_with_output().expect("ocean view ends");
     eprintln!("ocean view {}:\n{}", args.join(" "), text(&out));
-    Some(out)
+    out
 }
 
 /// (x, y, z, yaw °, pitch °) from the viewer's last line about its camera.
@@ -376,10 +387,9 @@ fn final_camera(log: &str) -> [f64; 5] {
     [numbers[0], numbers[1], numbers[2], numbers[3], numbers[4]]
 }
 
-#[test]
 fn keys_and_mouse_fly_the_camera_hiding_survives_and_r_returns_home() {
-    let Some(adapter) = adapter() else { return };
-    let Some(x) = Xvfb::start() else { return };
+    let adapter = adapter();
+    let x = Xvfb::start();
     let dir = out_dir("input");
     let frames: u64 = 160;
     let args = |shot: &Path| {
@@ -407,7 +417,7 @@ fn keys_and_mouse_fly_the_camera_hiding_survives_and_r_returns_home() {
         &["search", "--name", "^ocean view$", "windowfocus", "--sync"],
     ];
     let shot = dir.join("flown.png");
-    let Some(out) = view_with_input(&x, &args(&shot), &fly) else { return };
+    let out = view_with_input(&x, &args(&shot), &fly);
     let log = text(&out);
     assert!(out.status.success(), "ocean view failed:\n{log}");
     let [cx, cy, cz, yaw, pitch] = final_camera(&log);
@@ -432,8 +442,19 @@ fn keys_and_mouse_fly_the_camera_hiding_survives_and_r_returns_home() {
     let mut home: Vec<&[&str]> = fly.to_vec();
     home.push(&["key", "r"]);
     let shot = dir.join("home.png");
-    let Some(out) = view_with_input(&x, &args(&shot), &home) else { return };
+    let out = view_with_input(&x, &args(&shot), &home);
     assert!(out.status.success(), "ocean view failed:\n{}", text(&out));
     let failures = compare(&shot, &reference, &limits);
     assert!(failures.is_empty(), "after R: {failures:?}");
+}
+
+fn main() -> std::process::ExitCode {
+    run_tests!(WINDOW;
+        cpu: bad_arguments_and_no_display_are_clear_errors;
+        gpu: screenshot_after_60_frames_matches_the_headless_gpu_render,
+            resize_lost_surface_and_lost_device_are_survived,
+            wind_slider_from_calm_to_storm_reaches_the_picture,
+            the_panel_and_overlay_are_drawn_over_the_frame,
+            keys_and_mouse_fly_the_camera_hiding_survives_and_r_returns_home;
+    )
 }
