@@ -1,0 +1,190 @@
+//! The frame graph on both back ends (issue 10): the GPU obeys the plan's `[quality]` sizes
+//! and its cycle, and every resource both back ends allocate has the plan's size — checked
+//! with the cross-check's comparators (float maps within DESIGN.md's rel 1e-5 / abs 1e-6, the
+//! picture within the adapter's tolerance row, and each map's size equal to the plan's).
+//!
+//! Before the frame graph the GPU hard-coded 256² Fresnel textures and a viewport-sized
+//! reflection map: `quality_scenes_match_the_cpu_oracle` failed on its first scene (64² vs
+//! 256², 80×45 vs 160×90, 77.5 % of pixels within 1/255).
+
+#![allow(clippy::unwrap_used, reason = "a panic in a test is its failure report")]
+
+#[macro_use]
+#[path = "support/gpu_harness.rs"]
+mod gpu_harness;
+#[path = "support/random_scene.rs"]
+mod random_scene;
+
+use std::path::PathBuf;
+
+use ocean::cross_check::{
+    check_plan, check_scene, compare_float, compare_image, cpu_map, write_artefacts,
+};
+use ocean_core::plan::{FramePlan, FrameState, OutputKind, Pass, ResourceId};
+use ocean_core::scene::{Scene, SceneSource};
+use ocean_gpu::{Readback, Renderer, WaveSynthesis};
+use random_scene::{Rng, random_scene};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn renderer() -> Renderer {
+    let gpu = ocean_gpu::Gpu::new().unwrap_or_else(|e| panic!("gpu_frame_graph: {e}"));
+    let r = Renderer::with_gpu(gpu, WaveSynthesis::CpuUpload).expect("renderer");
+    eprintln!("gpu_frame_graph: adapter {}", r.adapter());
+    r
+}
+
+/// The reference default scene at 160×90 with `quality` appended.
+fn default_with(quality: &str) -> Scene {
+    let text = std::fs::read_to_string(root().join("reference/scenes/default.toml")).unwrap();
+    let text = format!("{text}\n[quality]\n{quality}\n");
+    let mut s = Scene::from_toml(&text, SceneSource::Text).unwrap_or_else(|e| panic!("{e}"));
+    (s.camera.width, s.camera.height) = (160, 90);
+    s
+}
+
+/// Renders on both back ends, prints the comparison, and returns its failures (artefacts in
+/// `target/gpu-frame-graph/` on failure).
+fn failures_of(
+    r: &mut Renderer,
+    name: &str,
+    scene: &Scene,
+    plan: Option<FramePlan>,
+) -> Vec<String> {
+    let (check, renders) = match plan {
+        Some(p) => check_plan(r, name, scene, p),
+        None => check_scene(r, name, scene),
+    }
+    .expect("both renders");
+    eprintln!("{name}:");
+    for line in check.lines() {
+        eprintln!("  {line}");
+    }
+    let f = check.failures();
+    if !f.is_empty() {
+        write_artefacts(&root().join("target/gpu-frame-graph"), &check, &renders)
+            .expect("writable");
+    }
+    f
+}
+
+fn quality_scenes_match_the_cpu_oracle() {
+    let mut r = renderer();
+    let cases = [
+        ("fresnel64_reflection0.5", "fresnel_table_size = 64\nreflection_map_scale = 0.5"),
+        ("fresnel32_reflection0.25", "fresnel_table_size = 32\nreflection_map_scale = 0.25"),
+        ("fresnel17_reflection0.33", "fresnel_table_size = 17\nreflection_map_scale = 0.33"),
+        ("fresnel512_lod0.2", "fresnel_table_size = 512\nlod_split_threshold = 0.2"),
+        ("lod0.02_reflection0.8", "lod_split_threshold = 0.02\nreflection_map_scale = 0.8"),
+    ];
+    let mut failures = Vec::new();
+    for (name, q) in cases {
+        let s = default_with(q);
+        let plan = FramePlan::new(&s, OutputKind::Ldr);
+        // The plan's sizes are what the keys say (the check below holds both back ends to them).
+        let size = |id| plan.resource(id).unwrap().size;
+        assert_eq!(size(ResourceId::FresnelAbove)[0], s.quality.fresnel_table_size, "{name}");
+        let want = [160, 90]
+            .map(|v: u32| ((f64::from(v) * s.quality.reflection_map_scale).round() as u32).max(1));
+        assert_eq!(size(ResourceId::ReflectionMap), want, "{name}");
+        failures.extend(failures_of(&mut r, name, &s, None));
+    }
+    // The same from under the water (no sky pass: the background is the plan's clear colour).
+    let mut under = default_with("fresnel_table_size = 64\nreflection_map_scale = 0.5");
+    under.camera.position = [0.0, -2.5, 20.0];
+    under.camera.look_at = [0.0, 25.0, -15.0];
+    failures.extend(failures_of(&mut r, "underwater_fresnel64", &under, None));
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+fn every_resource_both_back_ends_allocate_has_the_plans_size() {
+    // Property over random valid plans (tiny frames; both PNG and EXR plans): the comparison
+    // fails on any map whose CPU, GPU or plan size differ, and on values beyond the limits.
+    let mut r = renderer();
+    let mut rng = Rng(0x6e0_2026);
+    let mut failures = Vec::new();
+    for case in 0..10 {
+        let (s, output) = random_scene(&mut rng);
+        let plan = FramePlan::new(&s, output);
+        let (check, _) =
+            check_plan(&mut r, &format!("random{case}"), &s, plan.clone()).expect("renders");
+        for m in &check.maps {
+            assert!(m.plan_size.is_some(), "case {case}: {} has no plan size", m.name);
+            if !m.sizes_agree() {
+                failures.push(format!("case {case}: {}", m.line()));
+            }
+        }
+        // Beyond the sizes, the frames agree as everywhere else.
+        failures.extend(check.failures().into_iter().map(|f| format!("case {case}: {f}")));
+        assert_eq!(check.maps.len(), ResourceId::MAPS.len());
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+fn the_gpu_plays_the_cycle_the_plan_precomputes() {
+    let text = "[ocean]\nloop_period_s = 4.0\nresolution = 64\nbump_resolution = 32\n\
+                [camera]\nwidth = 96\nheight = 54\n";
+    let s = Scene::from_toml(text, SceneSource::Text).unwrap();
+    let plan = FramePlan::for_frames(&s, OutputKind::Ldr, 3);
+    assert!(plan.runs(Pass::Cycle), "{plan}");
+    let mut r = renderer();
+    // 0.37 s apart: frames fall between the cycle's instants, so playing the cycle (nearest
+    // instant) and synthesising at t differ — the negative control below.
+    let (mut cpu_state, mut gpu_state) = (FrameState::new(0.37), FrameState::new(0.37));
+    for n in 0..3 {
+        let cpu = ocean_cpu::render_animation_frame(&s, plan.clone(), &mut cpu_state, &mut |_| {})
+            .unwrap();
+        let gpu = r.run_frame(&s, &plan, &mut gpu_state, Readback::All).unwrap();
+        assert_eq!(gpu.wave_source, Some("cycle-upload"), "frame {n}");
+        for id in [ResourceId::Displacement, ResourceId::Bump] {
+            let g = gpu.map(id).unwrap();
+            let stats = compare_float(
+                id.name(),
+                true,
+                cpu_map(&cpu.buffers, id),
+                ((g.width, g.height), &g.texels),
+            );
+            assert!(stats.passed() && stats.max_abs == 0.0, "frame {n}: {}", stats.line());
+        }
+        let image = compare_image(cpu.ldr.as_ref().unwrap(), gpu.ldr.as_ref().unwrap(), 96, 54);
+        let limits = ocean::cross_check::ImageLimits::for_adapter(r.adapter());
+        assert!(image.failures(&limits).is_empty(), "frame {n}: {:?}", image.failures(&limits));
+        // Negative control: the single-frame plan synthesises at the frame's own time.
+        let t = s.ocean.time_s + n as f64 * 0.37;
+        let mut at_t = s.clone();
+        at_t.ocean.time_s = t;
+        let single = r.run(&at_t, &FramePlan::new(&at_t, OutputKind::Ldr)).unwrap();
+        let synthesised = single.map(ResourceId::Displacement).unwrap();
+        let played = gpu.map(ResourceId::Displacement).unwrap();
+        if n > 0 {
+            assert!(synthesised.texels != played.texels, "frame {n}: the cycle was not played");
+        }
+    }
+    assert_eq!((cpu_state.frame, gpu_state.frame), (3, 3));
+}
+
+/// Negative control of the size check: maps that agree in values but not with the plan's
+/// size fail, and so do CPU and GPU maps of different sizes.
+fn the_size_check_fails_on_a_map_of_another_size() {
+    let texels = [[0.5f32; 4]; 4];
+    let mut m = compare_float("fresnel_above", true, ((2, 2), &texels), ((2, 2), &texels));
+    assert!(m.passed());
+    m.plan_size = Some((2, 2));
+    assert!(m.passed());
+    m.plan_size = Some((4, 1));
+    assert!(!m.passed() && !m.sizes_agree());
+    assert!(m.line().contains("plan Some((4, 1))"), "{}", m.line());
+    let m = compare_float("x", true, ((2, 2), &texels), ((4, 1), &texels));
+    assert!(!m.passed());
+}
+
+fn main() -> std::process::ExitCode {
+    run_tests!(gpu_harness::GPU_ADAPTER;
+        cpu: the_size_check_fails_on_a_map_of_another_size;
+        gpu: quality_scenes_match_the_cpu_oracle,
+            every_resource_both_back_ends_allocate_has_the_plans_size,
+            the_gpu_plays_the_cycle_the_plan_precomputes;
+    )
+}
