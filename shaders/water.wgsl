@@ -118,13 +118,24 @@ fn sun_visibility(rel: vec3<f32>) -> f32 {
     return 1.0;
 }
 
-@fragment
-fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
-    // Bumped normal (§5): the slopes of the displacement map (faded with w like the
-    // displacement itself) plus those of the bump map.
+// Bumped normal (§5): the slopes of the displacement map (faded with w like the displacement
+// itself) plus those of the bump map.
+fn bumped_normal(in: VertexOut) -> vec3<f32> {
     let sd = textureSample(displacement_slopes, wrap_linear, in.uv_d).xy * (in.weight * frame.passes.waves);
     let sb = textureSample(bump, wrap_linear, in.uv_b).xy * frame.passes.waves;
-    let n = unit(vec3<f32>(-(sd.x + sb.x), 1.0, -(sd.y + sb.y)));
+    return unit(vec3<f32>(-(sd.x + sb.x), 1.0, -(sd.y + sb.y)));
+}
+
+// Fresnel bump mapping (§5.1, Fig. 4): the view vector bumped by (−du, −dv), (du, dv) the
+// horizontal components of the bumped unit normal, on the whole-hemisphere texture
+// (x, y) ∈ [−1, 1]² ↦ [0, 1]².
+fn fresnel_st(view: vec3<f32>, n: vec3<f32>) -> vec2<f32> {
+    return vec2<f32>(view.x - n.x, view.z - n.z) * 0.5 + 0.5;
+}
+
+@fragment
+fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
+    let n = bumped_normal(in);
     // (du, dv) of §5: the horizontal components of the bumped unit normal.
     let du = n.x;
     let dv = n.z;
@@ -132,9 +143,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     // In the fragment stage `clip` is the fragment's position: (x + 0.5, y + 0.5, depth, 1/w).
     let screen = in.clip.xy * frame.view.inv_viewport_size;
     if (view.y >= 0.0) {
-        // Fresnel bump mapping (§5.1, Fig. 4): the view vector bumped by (−du, −dv), on the
-        // whole-hemisphere texture (x, y) ∈ [−1, 1]² ↦ [0, 1]².
-        let st = vec2<f32>(view.x - du, view.z - dv) * 0.5 + 0.5;
+        let st = fresnel_st(view, n);
         let fres = textureSample(fresnel_above, clamp_linear, st);
         let f = fres.w;
         // Reflection (§4.2, §5.2): sky along the bumped reflection direction, mirrored
@@ -163,7 +172,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     }
     // From below: the normal facing the eye is (n.x, −n.y, n.z), its horizontal part again
     // (du, dv); F for η⁻¹ (1 beyond the critical angle: total internal reflection).
-    let st = vec2<f32>(view.x - du, view.z - dv) * 0.5 + 0.5;
+    let st = fresnel_st(view, n);
     let f = textureSample(fresnel_below, clamp_linear, st).w;
     // Snell's window: the ray i from the eye meets the surface from below (the normal facing
     // it is −n) and leaves into the air, η_i/η_t = η (water to air):

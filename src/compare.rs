@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 
 use anyhow::{Context, bail};
-use ocean::cross_check::{check_scene, map_pass, write_artefacts};
+use ocean_verify::cross_check::{check_scene, map_pass, write_artefacts};
 
 /// Arguments of `ocean compare`.
 #[derive(clap::Args, Debug)]
@@ -49,8 +49,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     );
     println!(
         "limits: float maps rel {:e} / abs {:e}; picture: {}",
-        ocean::cross_check::FLOAT_REL,
-        ocean::cross_check::FLOAT_ABS,
+        ocean_verify::compare::FLOAT_REL,
+        ocean_verify::compare::FLOAT_ABS,
         check.image_limits.origin
     );
     for m in &check.maps {

@@ -1,14 +1,11 @@
 //! The library half of the `ocean` package: what the command line (`src/main.rs`) and the
 //! integration tests share.
 //!
-//! - [`cross_check`]: the CPU ↔ GPU comparison behind `ocean compare` and
-//!   `tests/gpu_cross_check.rs`.
 //! - [`output`]: atomic output files, PNG/EXR encoding.
 //! - [`scene_arg`]: the scene a command renders, and `--system`.
 //! - [`view`]: `ocean view`, the real-time viewer (winit window, egui panel), with its
 //!   window-free parts (camera controller, parameter mapping) testable on their own.
 
-pub mod cross_check;
 pub mod output;
 pub mod scene_arg;
 pub mod view;

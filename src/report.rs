@@ -26,8 +26,7 @@ use ocean_core::plan::{FramePlan, OutputKind, Pass};
 use ocean_core::scene::Scene;
 use ocean_core::tables::{FresnelTable1D, FresnelTexture, TextureMapping};
 use ocean_core::waves::{Synthesizer, WaveMaps};
-use ocean_cpu::raster::{self, BlendMode, CompareFunction, RasterState, RenderTarget, Vertex};
-use ocean_cpu::sampler::texture_sample;
+use ocean_cpu::raster::RenderTarget;
 use ocean_cpu::shaders::shared::frame::unit;
 use ocean_cpu::shaders::water;
 
@@ -211,39 +210,18 @@ fn frame_view_vectors(scene: &Scene) -> anyhow::Result<Vec<[f64; 3]>> {
         shadow_map: &fb.shadow_map,
         sky_radiance: &sky,
     };
-    let verts: Vec<Vertex<{ water::VARYINGS }>> = mesh
-        .vertices
-        .iter()
-        .map(|v| {
-            let o = water::vs_main(v, &b);
-            Vertex::new(o.clip, o.varyings())
-        })
-        .collect();
-    let state = RasterState {
-        depth_compare: CompareFunction::Greater,
-        blend: BlendMode::Replace,
-        ..RasterState::default()
-    };
     let mut target = RenderTarget::new(camera.width, camera.height);
     target.clear_depth(0.0);
     target.clear_color([0.0; 4]);
-    let f = b.frame;
-    raster::draw_indexed(&mut target, &state, &verts, &mesh.indices, |frag| {
-        let input = water::VertexOut::from_fragment(frag.frag_coord, &frag.varyings);
-        // As fs_main: the bumped normal, the view vector, the texture coordinates.
-        let sdt = texture_sample(b.displacement_slopes, &water::WRAP_LINEAR, input.uv_d);
-        let wd = input.weight * f.passes.waves;
-        let sbt = texture_sample(b.bump, &water::WRAP_LINEAR, input.uv_b);
-        let n = unit([
-            -(sdt[0] * wd + sbt[0] * f.passes.waves),
-            1.0,
-            -(sdt[1] * wd + sbt[1] * f.passes.waves),
-        ]);
+    // The water pass's own draw and fs_main's own functions, up to its texture lookup.
+    let mesh = mesh.into();
+    ocean_cpu::frame::draw_water(&mut target, &mesh, &b, &|input, b| {
+        let n = water::bumped_normal(input, b);
         let view = unit([-input.rel[0], -input.rel[1], -input.rel[2]]);
         if view[1] < 0.0 {
             return Some([0.0; 4]);
         }
-        let st = [(view[0] - n[0]) * 0.5 + 0.5, (view[2] - n[2]) * 0.5 + 0.5];
+        let st = water::fresnel_st(view, n);
         Some([st[0], st[1], 1.0, 1.0])
     });
     Ok(target
@@ -800,7 +778,7 @@ fn markdown(
     args: &Args,
     rows: &[Row],
     planner: &[PlannerRow],
-    stability: &[ocean_cpu::stability::Case],
+    stability: &[ocean_verify::stability::Case],
     elapsed_s: f64,
 ) -> String {
     let mut s = String::new();
@@ -932,7 +910,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         rows.extend((knob.measure)(&ctx).with_context(|| format!("knob {}", knob.name))?);
     }
     let planner = planner(&ctx)?;
-    let stability = ocean_cpu::stability::cases()?;
+    let stability = ocean_verify::stability::cases()?;
     ctx.step("stability");
     ctx.bar.finish_and_clear();
 

@@ -17,12 +17,12 @@ mod gpu_harness;
 
 use std::path::PathBuf;
 
-use ocean::cross_check::{
-    FLOAT_ABS, FLOAT_REL, ImageLimits, allowance, check_scene, compare_float, compare_image,
-    cpu_map, write_artefacts,
-};
 use ocean_core::scene::Scene;
 use ocean_gpu::{FrameMap, Renderer, WaveSynthesis};
+use ocean_verify::compare::{
+    FLOAT_ABS, FLOAT_REL, ImageLimits, allowance, compare_float, compare_image,
+};
+use ocean_verify::cross_check::{check_scene, cpu_map, write_artefacts};
 
 /// Small enough for CI on lavapipe with 2 cores, large enough to show every pass.
 const WIDTH: u32 = 160;

@@ -17,12 +17,11 @@ mod random_scene;
 
 use std::path::PathBuf;
 
-use ocean::cross_check::{
-    check_plan, check_scene, compare_float, compare_image, cpu_map, write_artefacts,
-};
 use ocean_core::plan::{FramePlan, FrameState, OutputKind, Pass, ResourceId};
 use ocean_core::scene::{Scene, SceneSource};
 use ocean_gpu::{Readback, Renderer, WaveSynthesis};
+use ocean_verify::compare::{compare_float, compare_image};
+use ocean_verify::cross_check::{check_plan, check_scene, cpu_map, write_artefacts};
 use random_scene::{Rng, random_scene};
 
 fn root() -> PathBuf {
@@ -149,7 +148,7 @@ fn the_gpu_plays_the_cycle_the_plan_precomputes() {
             assert!(stats.passed() && stats.max_abs == 0.0, "frame {n}: {}", stats.line());
         }
         let image = compare_image(cpu.ldr.as_ref().unwrap(), gpu.ldr.as_ref().unwrap(), 96, 54);
-        let limits = ocean::cross_check::ImageLimits::for_adapter(r.adapter());
+        let limits = ocean_verify::compare::ImageLimits::for_adapter(r.adapter());
         assert!(image.failures(&limits).is_empty(), "frame {n}: {:?}", image.failures(&limits));
         // Negative control: the single-frame plan synthesises at the frame's own time.
         let t = s.ocean.time_s + n as f64 * 0.37;

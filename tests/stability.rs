@@ -4,7 +4,7 @@
 //! documentation; a negative control shows the comparison can fail.
 
 use ocean_core::fresnel::{fresnel_exact, fresnel_schlick};
-use ocean_cpu::stability::{Case, cases, fresnel_check};
+use ocean_verify::stability::{Case, cases, fresnel_check};
 
 #[test]
 fn every_extreme_case_is_finite_and_within_its_bound() {

@@ -21,8 +21,8 @@ use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};
 use std::time::Instant;
 
-use ocean::cross_check::{ImageLimits, compare_image};
 use ocean::view::{fixed_step_time, swept_wind};
+use ocean_verify::compare::{ImageLimits, compare_image};
 
 const SIZE: &str = "320x180";
 const T0: f64 = 12.0; // the built-in scene's ocean.time_s

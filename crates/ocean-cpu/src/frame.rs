@@ -151,6 +151,30 @@ fn draw_objects(
     });
 }
 
+/// The water pass's draw: `water::vs_main` on every vertex of `mesh`, then `fragment` on
+/// every covered pixel, reversed-Z with `Greater`, no blending. The frame's water pass runs it
+/// with `water::fs_main`; a probe (`ocean report`'s Fresnel lookups) runs it with another
+/// fragment function of the same mirror.
+pub fn draw_water(
+    target: &mut RenderTarget,
+    mesh: &WaterMesh,
+    bindings: &water::Bindings<'_>,
+    fragment: &(dyn Fn(&water::VertexOut, &water::Bindings<'_>) -> Option<[f32; 4]> + Sync),
+) {
+    let verts: Vec<Vertex<{ water::VARYINGS }>> = mesh
+        .vertices
+        .iter()
+        .map(|v| {
+            let o = water::vs_main(v, bindings);
+            Vertex::new(o.clip, o.varyings())
+        })
+        .collect();
+    let state = RasterState { blend: BlendMode::Replace, ..eye_state() };
+    raster::draw_indexed(target, &state, &verts, &mesh.indices, |frag| {
+        fragment(&water::VertexOut::from_fragment(frag.frag_coord, &frag.varyings), bindings)
+    });
+}
+
 /// Reversed-Z depth state of the views from the eye: `Greater`, cleared to 0.
 fn eye_state() -> RasterState {
     RasterState { depth_compare: CompareFunction::Greater, ..RasterState::default() }
@@ -337,22 +361,7 @@ impl<'e> CpuBackend<'e> {
             shadow_map: map(ResourceId::ShadowMap),
             sky_radiance,
         };
-        let mesh = &frame.mesh;
-        let verts: Vec<Vertex<{ water::VARYINGS }>> = mesh
-            .vertices
-            .iter()
-            .map(|v| {
-                let o = water::vs_main(v, &bindings);
-                Vertex::new(o.clip, o.varyings())
-            })
-            .collect();
-        let state = RasterState { blend: BlendMode::Replace, ..eye_state() };
-        raster::draw_indexed(&mut hdr, &state, &verts, &mesh.indices, |frag| {
-            Some(water::fs_main(
-                &water::VertexOut::from_fragment(frag.frag_coord, &frag.varyings),
-                &bindings,
-            ))
-        });
+        draw_water(&mut hdr, &frame.mesh, &bindings, &|input, b| Some(water::fs_main(input, b)));
         self.hdr = Some(hdr);
         Ok(())
     }

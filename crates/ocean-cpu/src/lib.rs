@@ -15,7 +15,6 @@ pub mod raster;
 pub mod render;
 pub mod sampler;
 pub mod shaders;
-pub mod stability;
 
 pub use render::{
     Rendered, render_animation_frame, render_ldr, render_scene, render_scene_with_plan,

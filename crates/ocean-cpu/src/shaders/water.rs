@@ -153,22 +153,34 @@ fn sun_visibility(rel: [f32; 3], b: &Bindings<'_>) -> f32 {
     1.0
 }
 
-/// `fs_main(in)`; `input.clip` is the fragment's position.
-pub fn fs_main(input: &VertexOut, b: &Bindings<'_>) -> [f32; 4] {
+/// `bumped_normal(in)`: the bumped unit normal (§5).
+pub fn bumped_normal(input: &VertexOut, b: &Bindings<'_>) -> [f32; 3] {
     let f = b.frame;
     let sdt = texture_sample(b.displacement_slopes, &WRAP_LINEAR, input.uv_d);
     let wd = input.weight * f.passes.waves;
     let sd = [sdt[0] * wd, sdt[1] * wd];
     let sbt = texture_sample(b.bump, &WRAP_LINEAR, input.uv_b);
     let sb = [sbt[0] * f.passes.waves, sbt[1] * f.passes.waves];
-    let n = unit([-(sd[0] + sb[0]), 1.0, -(sd[1] + sb[1])]);
+    unit([-(sd[0] + sb[0]), 1.0, -(sd[1] + sb[1])])
+}
+
+/// `fresnel_st(view, n)`: the Fresnel texture's coordinates of the bumped view vector
+/// (§5.1, Fig. 4).
+pub fn fresnel_st(view: [f32; 3], n: [f32; 3]) -> [f32; 2] {
+    [(view[0] - n[0]) * 0.5 + 0.5, (view[2] - n[2]) * 0.5 + 0.5]
+}
+
+/// `fs_main(in)`; `input.clip` is the fragment's position.
+pub fn fs_main(input: &VertexOut, b: &Bindings<'_>) -> [f32; 4] {
+    let f = b.frame;
+    let n = bumped_normal(input, b);
     let du = n[0];
     let dv = n[2];
     let view = unit([-input.rel[0], -input.rel[1], -input.rel[2]]);
     let screen =
         [input.clip[0] * f.view.inv_viewport_size[0], input.clip[1] * f.view.inv_viewport_size[1]];
     if view[1] >= 0.0 {
-        let st = [(view[0] - du) * 0.5 + 0.5, (view[2] - dv) * 0.5 + 0.5];
+        let st = fresnel_st(view, n);
         let fres = texture_sample(b.fresnel_above, &CLAMP_LINEAR, st);
         let fr = fres[3];
         let vn = dot3(view, n);
@@ -206,7 +218,7 @@ pub fn fs_main(input: &VertexOut, b: &Bindings<'_>) -> [f32; 4] {
             add3(add3(scale3(c_reflect, fr), scale3(c_refract, 1.0 - fr)), scale3(spec, shadow));
         return [c[0], c[1], c[2], 1.0];
     }
-    let st = [(view[0] - du) * 0.5 + 0.5, (view[2] - dv) * 0.5 + 0.5];
+    let st = fresnel_st(view, n);
     let fr = texture_sample(b.fresnel_below, &CLAMP_LINEAR, st)[3];
     let eta = f.water.eta;
     let i = [-view[0], -view[1], -view[2]];

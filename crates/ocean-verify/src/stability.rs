@@ -28,9 +28,9 @@ use ocean_core::sky::{PreethamSky, SkyParams};
 use ocean_core::tables::{FresnelTexture, TextureMapping};
 use ocean_core::waves::{MapFloat, Synthesizer, WaveMaps, WaveModes};
 
-use crate::frame::{self, Error};
-use crate::raster::{self, BlendMode, CompareFunction, RasterState, RenderTarget, Vertex};
-use crate::shaders::sky::preetham;
+use ocean_cpu::frame::{self, Error};
+use ocean_cpu::raster::{self, BlendMode, CompareFunction, RasterState, RenderTarget, Vertex};
+use ocean_cpu::shaders::sky::preetham;
 
 /// One row of the stability table.
 #[derive(Clone, Debug, PartialEq)]
@@ -421,7 +421,7 @@ fn sun_cases() -> Result<Vec<Case>, Error> {
         scene.camera.width = 64;
         scene.camera.height = 36;
         scene.sun = Some(Sun { direction: dir, ..Sun::default() });
-        let r = crate::render_scene(&scene, OutputKind::Hdr, &mut |_| {})?;
+        let r = ocean_cpu::render_scene(&scene, OutputKind::Hdr, &mut |_| {})?;
         let frame_finite = r.buffers.hdr.color.iter().all(|p| p.iter().all(|c| c.is_finite()));
         out.push(Case {
             group: "sun",

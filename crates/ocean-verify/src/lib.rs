@@ -1,0 +1,11 @@
+//! How `ocean` checks itself, shared by the tests, `ocean compare` and `ocean report`:
+//!
+//! - [`compare`]: the comparators of DESIGN.md's tolerance table (float buffers, 8-bit
+//!   pictures with FLIP), each with its limits.
+//! - [`cross_check`]: one scene and plan through the CPU oracle and the wgpu path, every map
+//!   compared and held to the plan's size; artefacts for a failure.
+//! - [`stability`]: the numerical-stability table on stiff and extreme inputs.
+
+pub mod compare;
+pub mod cross_check;
+pub mod stability;
