@@ -81,6 +81,40 @@ fn phase_turns(rate: vec2<u32>, frequency: f32) -> f32 {
     return c - floor(c + 0.5);
 }
 
+// Taylor coefficients of sin and cos on [−π/4, π/4] (truncation below 2e-9 there), so that
+// (cos 2πp, sin 2πp) is + − × only: every device that does not fuse rounds it alike, and the
+// CPU mirror gives the same bits as lavapipe (the drivers' cos and sin differ by ulps).
+const SIN_C3: f32 = -0.16666667;
+const SIN_C5: f32 = 0.008333334;
+const SIN_C7: f32 = -0.0001984127;
+const SIN_C9: f32 = 0.0000027557319;
+const COS_C2: f32 = -0.5;
+const COS_C4: f32 = 0.041666668;
+const COS_C6: f32 = -0.0013888889;
+const COS_C8: f32 = 0.0000248015873;
+const COS_C10: f32 = -2.755732e-7;
+
+// (cos 2πp, sin 2πp) for p in turns, |p| ≤ ½: the quarter turn q nearest p, the rest
+// r = p − q/4 ∈ [−⅛, ⅛] as x = 2πr, then sin x and cos x rotated by q quarter turns.
+fn cis_turns(p: f32) -> vec2<f32> {
+    let q = floor(p * 4.0 + 0.5);
+    let x = (p - q * 0.25) * TAU;
+    let x2 = x * x;
+    let s = x + x * x2 * (SIN_C3 + x2 * (SIN_C5 + x2 * (SIN_C7 + x2 * SIN_C9)));
+    let c = 1.0 + x2 * (COS_C2 + x2 * (COS_C4 + x2 * (COS_C6 + x2 * (COS_C8 + x2 * COS_C10))));
+    let k = (i32(q) + 4) & 3;
+    if (k == 0) {
+        return vec2<f32>(c, s);
+    }
+    if (k == 1) {
+        return vec2<f32>(-s, c);
+    }
+    if (k == 2) {
+        return vec2<f32>(-c, -s);
+    }
+    return vec2<f32>(s, -c);
+}
+
 // a·b of complex numbers (x = real part).
 fn complex_mul(a: vec2<f32>, b: vec2<f32>) -> vec2<f32> {
     return vec2<f32>(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x);
@@ -102,11 +136,12 @@ fn spectrum(@builtin(global_invocation_id) id: vec3<u32>) {
     let mode = modes[bin];
     let h0_minus = modes[partner].h0;
     // The same rate at k and −k (same |k|), so h~(−k) = conj(h~(k)) bit for bit.
-    let theta = TAU * phase_turns(mode.phase_rate, mode.frequency);
-    let e = vec2<f32>(cos(theta), sin(theta));
-    let a = complex_mul(mode.h0, e);
-    let b = complex_mul(h0_minus, e);
-    let h = vec2<f32>(a.x + b.x, a.y - b.y);
+    let e = cis_turns(phase_turns(mode.phase_rate, mode.frequency));
+    // h~ = h0·e + conj(h0(−k)·e), written factored: lavapipe's compiler factors the
+    // unfactored sum (a·e.x + b·e.x → (a + b)·e.x), so this is the form both evaluate alike.
+    let s = mode.h0 + h0_minus;
+    let d = mode.h0 - h0_minus;
+    let h = vec2<f32>(s.x * e.x - s.y * e.y, d.x * e.y + d.y * e.x);
 
     let kx = mode.k.x;
     let kz = mode.k.y;

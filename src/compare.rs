@@ -33,12 +33,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         .as_ref()
         .and_then(|p| p.file_stem())
         .map_or_else(|| "default".to_owned(), |s| s.to_string_lossy().into_owned());
-    // The wave maps are the CPU synthesis uploaded, so that every later pass is compared on
-    // identical inputs against DESIGN's float-buffer tolerances; the GPU FFT itself is held
-    // to the CPU by tests/gpu_waves.rs and, through the whole frame, by the image
-    // tolerances in tests/gpu_cross_check.rs.
+    // The GPU runs the plan's `waves` kernel as the oracle does: waves.wgsl (its mirror on the
+    // CPU; on lavapipe the same bits), or ocean-core's synthesis uploaded where the plan says.
     let gpu = ocean_gpu::Gpu::new()?;
-    let mut renderer = ocean_gpu::Renderer::with_gpu(gpu, ocean_gpu::WaveSynthesis::CpuUpload)?;
+    let mut renderer = ocean_gpu::Renderer::with_gpu(gpu, ocean_gpu::WaveSynthesis::GpuFft)?;
     let (check, renders) = check_scene(&mut renderer, &name, &scene)?;
     println!(
         "{name} {}x{}: CPU oracle vs {} (waves: {})",

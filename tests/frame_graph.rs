@@ -206,3 +206,36 @@ fn plan_json_shows_the_system_and_the_techniques() {
         "{text}"
     );
 }
+
+#[test]
+fn the_oracle_runs_the_plans_waves_kernel() {
+    use ocean_core::frame::displacement_texels;
+    use ocean_core::plan::WavesKernel;
+    use ocean_core::waves::Synthesizer;
+    use ocean_cpu::shaders::waves::WavesMirror;
+    let s =
+        scene("[ocean]\nresolution = 64\nbump_resolution = 32\n[camera]\nwidth = 16\nheight = 9\n")
+            .unwrap();
+    let plan = FramePlan::new(&s, OutputKind::Ldr);
+    assert_eq!(plan.waves_kernel, WavesKernel::Shader);
+    assert!(plan.pass(Pass::Waves).unwrap().reason.contains("waves.wgsl"), "{plan}");
+    let r = ocean_cpu::render_scene_with_plan(&s, plan, &mut |_| {}).unwrap();
+    let surface = s.ocean.surface().unwrap();
+    let (t, chop) = (s.ocean.time_s, s.ocean.choppiness);
+    // Direct evaluation of what the pass must have run: waves.wgsl's mirror, bit for bit.
+    let mirror = WavesMirror::new(&surface.displacement).unwrap().run(t, chop).unwrap();
+    let bits = |t: &[[f32; 4]]| t.iter().flat_map(|v| v.map(f32::to_bits)).collect::<Vec<_>>();
+    assert_eq!(bits(&r.buffers.displacement.texels), bits(&mirror.displacement.texels));
+    let bump = WavesMirror::new(&surface.bump).unwrap().run(t, chop).unwrap();
+    assert_eq!(bits(&r.buffers.bump.texels), bits(&bump.bump.texels));
+    // Negative control: ocean-core's synthesis of the same sea is other bits (within 1e-5).
+    let core =
+        Synthesizer::<f32>::new(64).unwrap().synthesize(&surface.displacement, t, chop).unwrap();
+    assert_ne!(bits(&displacement_texels(&core)), bits(&mirror.displacement.texels));
+    // A looping sea is synthesised by ocean-core, as its cycle is.
+    let looping =
+        scene("[ocean]\nloop_period_s = 8.0\nresolution = 64\nbump_resolution = 32\n").unwrap();
+    let plan = FramePlan::new(&looping, OutputKind::Ldr);
+    assert_eq!(plan.waves_kernel, WavesKernel::Synthesis);
+    assert!(plan.pass(Pass::Waves).unwrap().reason.contains("looping"), "{plan}");
+}

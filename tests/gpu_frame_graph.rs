@@ -30,7 +30,7 @@ fn root() -> PathBuf {
 
 fn renderer() -> Renderer {
     let gpu = ocean_gpu::Gpu::new().unwrap_or_else(|e| panic!("gpu_frame_graph: {e}"));
-    let r = Renderer::with_gpu(gpu, WaveSynthesis::CpuUpload).expect("renderer");
+    let r = Renderer::with_gpu(gpu, WaveSynthesis::GpuFft).expect("renderer");
     eprintln!("gpu_frame_graph: adapter {}", r.adapter());
     r
 }

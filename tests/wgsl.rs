@@ -265,6 +265,15 @@ fn rust_consts() -> Vec<(&'static str, f64)> {
         ("TURN_UNIT", f64::from(waves::TURN_UNIT)),
         ("MIN_CHROMATICITY_Y", f64::from(preetham::MIN_CHROMATICITY_Y)),
         ("INV_PI", f64::from(objects::INV_PI)),
+        ("SIN_C3", f64::from(waves::SIN_C3)),
+        ("SIN_C5", f64::from(waves::SIN_C5)),
+        ("SIN_C7", f64::from(waves::SIN_C7)),
+        ("SIN_C9", f64::from(waves::SIN_C9)),
+        ("COS_C2", f64::from(waves::COS_C2)),
+        ("COS_C4", f64::from(waves::COS_C4)),
+        ("COS_C6", f64::from(waves::COS_C6)),
+        ("COS_C8", f64::from(waves::COS_C8)),
+        ("COS_C10", f64::from(waves::COS_C10)),
     ]
 }
 

@@ -11,13 +11,15 @@ use ocean_core::frame::{
     displacement_texels, object_triangles,
 };
 use ocean_core::plan::{
-    Backend, FrameInputs, FramePlan, FrameState, Pass, PlannedPass, ResourceId, Stage, run_frame,
+    Backend, FrameInputs, FramePlan, FrameState, Pass, PlannedPass, ResourceId, Stage, WavesKernel,
+    run_frame,
 };
 use ocean_core::scene::{Object, Scene};
 use ocean_core::waves::{Synthesizer, WaveMaps};
 
 use crate::raster::{self, BlendMode, CompareFunction, RasterState, RenderTarget, Vertex};
 use crate::sampler::Texture2D;
+use crate::shaders::waves::WavesMirror;
 use crate::shaders::{fresnel_table, objects, shadow, sky, tonemap, water};
 
 /// Default side of the 2D Fresnel textures (the error table in the README: 256² is within 2e-3
@@ -256,6 +258,16 @@ impl<'e> CpuBackend<'e> {
                     reason: "the plan plays a cycle that was not precomputed".into(),
                 })
             })?
+        } else if frame.plan.waves_kernel == WavesKernel::Shader {
+            // The oracle runs waves.wgsl's own mirror, as the GPU runs the WGSL.
+            let surface = ocean.surface()?;
+            let chop = ocean.choppiness;
+            let d = WavesMirror::new(&surface.displacement)?.run(t, chop)?;
+            let b = WavesMirror::new(&surface.bump)?.run(t, chop)?;
+            self.put(ResourceId::Displacement, d.displacement);
+            self.put(ResourceId::DisplacementSlopes, d.displacement_slopes);
+            self.put(ResourceId::Bump, b.bump);
+            return Ok(());
         } else {
             let surface = ocean.surface()?;
             let chop = ocean.choppiness;

@@ -23,7 +23,8 @@ use ocean_core::frame::{
     displacement_texels, object_triangles,
 };
 use ocean_core::plan::{
-    Backend, Format, FrameInputs, FramePlan, FrameState, Pass, PlannedPass, ResourceId, run_frame,
+    Backend, Format, FrameInputs, FramePlan, FrameState, Pass, PlannedPass, ResourceId,
+    WavesKernel, run_frame,
 };
 use ocean_core::scene::{Object, Ocean, Scene};
 use ocean_core::waves::OceanSurface;
@@ -111,8 +112,8 @@ struct Stages {
     tonemap: TonemapStage,
 }
 
-/// The wave-map source of the ocean whose modes it holds.
-type WaveSlot = Option<(Ocean, Box<dyn WaveMapSource>)>;
+/// The wave-map source of the ocean whose modes it holds, and which kind it is.
+type WaveSlot = Option<(Ocean, WaveSynthesis, Box<dyn WaveMapSource>)>;
 
 /// The GPU renderer: the device and every stage's pipelines, made once; a wave-map source
 /// kept while the ocean stays the same (its modes are drawn once, as the GPU FFT will upload
@@ -250,13 +251,13 @@ impl GpuBackend<'_> {
             self.wave_source = Some("cycle-upload");
             return Ok(());
         }
-        if self.waves.as_ref().is_none_or(|(k, _)| *k != wave_key(ocean)) {
+        if self.waves.as_ref().is_none_or(|(k, _, _)| *k != wave_key(ocean)) {
             return Err(Error::Readback {
                 what: "waves".into(),
                 message: "the renderer holds no wave source for this ocean".into(),
             });
         }
-        let Some((_, source)) = self.waves.as_mut() else { return Ok(()) };
+        let Some((_, _, source)) = self.waves.as_mut() else { return Ok(()) };
         let t0 = Instant::now();
         self.wave_source = Some(source.name());
         let slot = if source.records_gpu_passes() { self.timer.slot(Pass::Waves) } else { None };
@@ -550,15 +551,26 @@ impl Renderer {
     /// As [`Self::run`]'s `waves` pass.
     pub fn set_waves(&mut self, ocean: &Ocean, surface: OceanSurface) -> Result<(), Error> {
         let key = wave_key(ocean);
-        if let Some((k, source)) = &mut self.waves
+        let kind = self.source_kind(WavesKernel::for_ocean(ocean));
+        if let Some((k, kept, source)) = &mut self.waves
+            && *kept == kind
             && source.update(&self.gpu, &surface)?
         {
             *k = key;
             return Ok(());
         }
         self.waves = None;
-        self.waves = Some((key, make_source_from(&self.gpu, self.wave_synthesis, surface)?));
+        self.waves = Some((key, kind, make_source_from(&self.gpu, kind, surface)?));
         Ok(())
+    }
+
+    /// The wave-map source for the plan's kernel: ocean-core's synthesis uploaded where the
+    /// plan says so, else the renderer's own choice (the GPU FFT by default).
+    fn source_kind(&self, kernel: WavesKernel) -> WaveSynthesis {
+        match kernel {
+            WavesKernel::Shader => self.wave_synthesis,
+            WavesKernel::Synthesis => WaveSynthesis::CpuUpload,
+        }
     }
 
     /// Renders a validated scene by its plan and reads back every map ([`Readback::All`]).
@@ -604,9 +616,15 @@ impl Renderer {
             return Err(Error::TooLarge { width: w, height: h, max });
         }
         // The wave-map source for this ocean (kept across frames while the ocean is the same).
+        // The wave-map source for this ocean (kept across frames while the ocean is the same;
+        // `make_source_from` follows the plan's `WavesKernel` rule).
+        let kind = self.source_kind(plan.waves_kernel);
         if plan.runs(Pass::Waves)
             && !plan.runs(Pass::Cycle)
-            && self.waves.as_ref().is_none_or(|(k, _)| *k != wave_key(&scene.ocean))
+            && self
+                .waves
+                .as_ref()
+                .is_none_or(|(k, kept, _)| *k != wave_key(&scene.ocean) || *kept != kind)
         {
             self.set_waves(&scene.ocean, scene.ocean.surface()?)?;
         }

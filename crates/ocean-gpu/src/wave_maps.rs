@@ -13,14 +13,16 @@
 //! - [`GpuFft`] (the default): h0(k) uploaded once, then h̃(k, t), the choppy and slope
 //!   spectra and a Stockham inverse FFT in compute passes every frame
 //!   (`crates/ocean-gpu/src/waves.rs`); a new sea of the same size takes new modes in place
-//!   ([`WaveMapSource::update`]).
-//! - [`CpuUpload`]: ocean-core's `Synthesizer<f32>` on the CPU, exactly as the CPU renderer's
-//!   `waves` pass runs it, uploaded with `Queue::write_texture`. The maps are then the CPU's
-//!   bit for bit, which isolates every later stage in the cross-check. It is also the
-//!   fallback where the GPU FFT cannot take a sea (a size that is not a power of two, or
-//!   buffers beyond the device's limits).
+//!   ([`WaveMapSource::update`]). The CPU oracle runs the same `waves.wgsl` through its
+//!   mirror (the plan's `WavesKernel::Shader`), and on lavapipe the two agree bit for bit.
+//! - [`CpuUpload`]: ocean-core's `Synthesizer<f32>` on the CPU, uploaded with
+//!   `Queue::write_texture`: what both back ends use where the plan says
+//!   `WavesKernel::Synthesis` (a side that is not a power of two), and the fallback where the
+//!   GPU FFT's buffers exceed the device's limits. Chosen on purpose elsewhere, its maps are
+//!   ocean-core's, not the oracle's mirror's (within DESIGN.md's FFT tolerance, 1e-5).
 
 use ocean_core::frame::{bump_texels, displacement_slope_texels, displacement_texels};
+use ocean_core::plan::WavesKernel;
 use ocean_core::scene::Ocean;
 use ocean_core::waves::{OceanSurface, Synthesizer, WaveMaps};
 
@@ -122,10 +124,13 @@ pub fn make_source_from(
     match kind {
         WaveSynthesis::CpuUpload => Ok(Box::new(CpuUpload::new(gpu, surface)?)),
         WaveSynthesis::GpuFft => {
-            if ocean_core::waves::uniforms::check_fft_size(surface.displacement.resolution())
-                .is_err()
-                || ocean_core::waves::uniforms::check_fft_size(surface.bump.resolution()).is_err()
-            {
+            // The frame plan's rule (both back ends follow it): waves.wgsl where its radix-2
+            // FFT can run, ocean-core's synthesis elsewhere.
+            let kernel = WavesKernel::for_resolutions(
+                surface.displacement.resolution() as u32,
+                surface.bump.resolution() as u32,
+            );
+            if kernel == WavesKernel::Synthesis {
                 return Ok(Box::new(CpuUpload::new(gpu, surface)?));
             }
             match GpuFft::new(gpu, surface.clone()) {
@@ -247,8 +252,8 @@ impl WaveMapSource for GpuFft {
     }
 }
 
-/// Stage `waves` on the CPU (ocean-core's `Synthesizer<f32>`, as ocean-cpu's frame runs it),
-/// uploaded into [`WaveTextures`].
+/// Stage `waves` on the CPU (ocean-core's `Synthesizer<f32>`, as ocean-cpu's frame runs it
+/// under `WavesKernel::Synthesis`), uploaded into [`WaveTextures`].
 pub struct CpuUpload {
     surface: OceanSurface,
     displacement: Synthesizer<f32>,

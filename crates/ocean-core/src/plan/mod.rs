@@ -46,6 +46,7 @@ use crate::geometry::WaterMesh;
 use crate::scene::{Object, Scene, Shape};
 
 pub use graph::{Backend, DrawMesh, FrameInputs, FrameState, run_frame};
+
 pub use resource::{Format, Resource, ResourceId, SHADOW_MAP_SIZE};
 pub use technique::{
     SYSTEMS, Stage, System, SystemInfo, TECHNIQUES, TechniqueError, TechniqueInfo, Techniques,
@@ -185,6 +186,37 @@ impl fmt::Display for Pass {
     }
 }
 
+/// How the `waves` pass computes technique `fft`'s maps (both back ends follow it).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum WavesKernel {
+    /// `shaders/waves.wgsl`: the GPU FFT on the GPU, its CPU mirror on the oracle (both maps'
+    /// sides are powers of two, as its radix-2 FFT needs).
+    Shader,
+    /// ocean-core's FFT synthesis, uploaded on the GPU: a side that is not a power of two.
+    Synthesis,
+}
+
+impl WavesKernel {
+    /// The kernel for a displacement and a bump map of these sides.
+    pub fn for_resolutions(n_d: u32, n_b: u32) -> Self {
+        let fft = |n: u32| crate::waves::uniforms::check_fft_size(n as usize).is_ok();
+        if fft(n_d) && fft(n_b) { WavesKernel::Shader } else { WavesKernel::Synthesis }
+    }
+
+    /// The kernel for a sea: [`Self::for_resolutions`], except that a looping sea is always
+    /// synthesised by ocean-core — the cycle's precompute (`cycle`) is, so a frame played from
+    /// the cycle and one synthesised at its instant are the same bits, and the planner's
+    /// `cycle` rule stays exact.
+    pub fn for_ocean(ocean: &crate::scene::Ocean) -> Self {
+        if ocean.loop_period_s > 0.0 {
+            WavesKernel::Synthesis
+        } else {
+            Self::for_resolutions(ocean.resolution, ocean.bump_resolution)
+        }
+    }
+}
+
 /// What the frame is written to: the tonemap pass runs only for 8-bit output.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum OutputKind {
@@ -257,6 +289,8 @@ pub struct FramePlan {
     pub skipped: Vec<PlannedPass>,
     /// Every texture the frame binds, with its format and size.
     pub resources: Vec<Resource>,
+    /// How the `waves` pass computes its maps.
+    pub waves_kernel: WavesKernel,
     /// Side N of the N × N Fresnel textures (`[quality] fresnel_table_size`).
     pub fresnel_table_size: u32,
     /// Width and height of the reflection map, pixels (`[quality] reflection_map_scale` of the
@@ -427,9 +461,11 @@ impl FramePlan {
             .filter(|_| opt.prune)
             .and_then(|c| footprint_inside_near_patch(scene, c));
         let techniques = scene.techniques();
+        let waves_kernel = WavesKernel::for_ocean(&scene.ocean);
         let mut plan = FramePlan {
             system: techniques.system,
             techniques,
+            waves_kernel,
             resources: Vec::new(),
             passes: Vec::new(),
             skipped: Vec::new(),
@@ -461,8 +497,20 @@ impl FramePlan {
                     (true, true, _) => (true, full.into()),
                 },
                 Pass::Waves => {
+                    let how = match (looping && opt.frames > 1 && waves_on, waves_kernel) {
+                        (true, _) => "the cycle's maps",
+                        (false, WavesKernel::Shader) => {
+                            "waves.wgsl (GPU FFT; its CPU mirror on the oracle)"
+                        }
+                        (false, WavesKernel::Synthesis) if looping => {
+                            "ocean-core's FFT synthesis (a looping sea: as its cycle)"
+                        }
+                        (false, WavesKernel::Synthesis) => {
+                            "ocean-core's FFT synthesis (a side that is not a power of two)"
+                        }
+                    };
                     if scene.ocean.wind_speed > 0.0 {
-                        (true, format!("wind {} m/s", scene.ocean.wind_speed))
+                        (true, format!("wind {} m/s: {how}", scene.ocean.wind_speed))
                     } else if !opt.prune {
                         (true, full.into())
                     } else {

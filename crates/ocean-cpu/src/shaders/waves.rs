@@ -4,7 +4,8 @@
 //! integers wrap), the same twiddle table and the same mode table (ocean-core's
 //! `waves::uniforms`, which also documents the phase in integer turns and the FFT stages).
 //!
-//! Only `cos` and `sin` are not the GPU's: Rust's f32 functions here, the driver's on the GPU.
+//! Nothing is left to the implementation: the phase's cos and sin are `cis_turns`, a
+//! polynomial of + − × only, so that on lavapipe the GPU and the mirror agree bit for bit.
 //! ocean-core's `Synthesizer<f64>` is the reference both are held against.
 //!
 //! [`WavesMirror`] runs a whole frame; [`WavesMirror::run_traced`] hands out the ping-pong
@@ -56,6 +57,41 @@ pub fn phase_turns(rate: [u32; 2], frequency: f32, params: &WavesUniforms) -> f3
     c - (c + 0.5).floor()
 }
 
+/// `SIN_C3`…`SIN_C9`, `COS_C2`…`COS_C10`: the Taylor coefficients of `cis_turns`.
+pub const SIN_C3: f32 = -0.166_666_67;
+/// `SIN_C5`.
+pub const SIN_C5: f32 = 0.008_333_334;
+/// `SIN_C7`.
+pub const SIN_C7: f32 = -0.000_198_412_7;
+/// `SIN_C9`.
+pub const SIN_C9: f32 = 0.000_002_755_731_9;
+/// `COS_C2`.
+pub const COS_C2: f32 = -0.5;
+/// `COS_C4`.
+pub const COS_C4: f32 = 0.041_666_668;
+/// `COS_C6`.
+pub const COS_C6: f32 = -0.001_388_888_9;
+/// `COS_C8`.
+pub const COS_C8: f32 = 0.000_024_801_587;
+/// `COS_C10`.
+pub const COS_C10: f32 = -2.755_732e-7;
+
+/// `cis_turns(p)`: (cos 2πp, sin 2πp) for |p| ≤ ½ turn, + − × only (the WGSL's order).
+#[inline]
+pub fn cis_turns(p: f32) -> Vec2 {
+    let q = (p * 4.0 + 0.5).floor();
+    let x = (p - q * 0.25) * TAU;
+    let x2 = x * x;
+    let s = x + x * x2 * (SIN_C3 + x2 * (SIN_C5 + x2 * (SIN_C7 + x2 * SIN_C9)));
+    let c = 1.0 + x2 * (COS_C2 + x2 * (COS_C4 + x2 * (COS_C6 + x2 * (COS_C8 + x2 * COS_C10))));
+    match (q as i32 + 4) & 3 {
+        0 => [c, s],
+        1 => [-s, c],
+        2 => [-c, -s],
+        _ => [s, -c],
+    }
+}
+
 /// `complex_mul(a, b)`.
 #[inline]
 pub fn complex_mul(a: Vec2, b: Vec2) -> Vec2 {
@@ -83,11 +119,10 @@ pub fn spectrum(id: [u32; 3], params: &WavesUniforms, modes: &[WaveModeData], ds
     let partner = ((n - id[1]) & (n - 1)) * n + ((n - id[0]) & (n - 1));
     let mode = modes[bin as usize];
     let h0_minus = modes[partner as usize].h0;
-    let theta = TAU * phase_turns(mode.phase_rate, mode.frequency, params);
-    let e = [theta.cos(), theta.sin()];
-    let a = complex_mul(mode.h0, e);
-    let b = complex_mul(h0_minus, e);
-    let h = [a[0] + b[0], a[1] - b[1]];
+    let e = cis_turns(phase_turns(mode.phase_rate, mode.frequency, params));
+    let s = [mode.h0[0] + h0_minus[0], mode.h0[1] + h0_minus[1]];
+    let d = [mode.h0[0] - h0_minus[0], mode.h0[1] - h0_minus[1]];
+    let h = [s[0] * e[0] - s[1] * e[1], d[0] * e[1] + d[1] * e[0]];
 
     let kx = mode.k[0];
     let kz = mode.k[1];
@@ -332,5 +367,36 @@ impl WavesMirror {
         }
         let [displacement, displacement_slopes, bump] = texels.map(|t| Texture2D::new(n, n, t));
         WaveTextures { displacement, displacement_slopes, bump }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `cis_turns` against f64 cos and sin of 2πp over the whole range, on a fine grid and at
+    /// the quadrant boundaries: within 4e-7 (a few f32 ulps of 1; the Taylor truncation on
+    /// [−π/4, π/4] is below 2e-9).
+    #[test]
+    fn cis_turns_is_cos_and_sin_of_a_turn() {
+        let mut worst = 0.0f64;
+        let mut check = |p: f32| {
+            let [c, s] = cis_turns(p);
+            let x = std::f64::consts::TAU * f64::from(p);
+            worst = worst.max((f64::from(c) - x.cos()).abs()).max((f64::from(s) - x.sin()).abs());
+        };
+        for i in -100_000..=100_000 {
+            check(i as f32 / 200_000.0);
+        }
+        for q in [-0.5f32, -0.375, -0.25, -0.125, 0.0, 0.125, 0.25, 0.375, 0.5] {
+            for d in [-1i32, 0, 1] {
+                check(f32::from_bits((q.to_bits() as i32 + d) as u32));
+            }
+        }
+        assert!(worst < 4e-7, "worst {worst:e}");
+        // Exact where the quadrant rotation makes it so.
+        assert_eq!(cis_turns(0.0), [1.0, 0.0]);
+        assert_eq!(cis_turns(0.25), [-0.0, 1.0]);
+        assert_eq!(cis_turns(-0.5), [-1.0, -0.0]);
     }
 }
