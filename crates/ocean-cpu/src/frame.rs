@@ -245,7 +245,7 @@ impl<'e> CpuBackend<'e> {
         }
     }
 
-    fn waves(&mut self, frame: &FrameInputs<'_>, state: &FrameState) -> Result<(), Error> {
+    fn wave_maps(&mut self, frame: &FrameInputs<'_>, state: &FrameState) -> Result<(), Error> {
         let ocean = &frame.scene.ocean;
         let t = frame.time_s;
         let owned;
@@ -287,7 +287,7 @@ impl<'e> CpuBackend<'e> {
         Ok(())
     }
 
-    fn fresnel_tables(&mut self, frame: &FrameInputs<'_>) {
+    fn fresnel_textures(&mut self, frame: &FrameInputs<'_>) {
         let eta = frame.uniforms.water.eta;
         for (id, eta) in [(ResourceId::FresnelAbove, eta), (ResourceId::FresnelBelow, 1.0 / eta)] {
             let size = frame.plan.resource(id).map_or(1, |r| r.size[0]);
@@ -339,7 +339,7 @@ impl<'e> CpuBackend<'e> {
         }
     }
 
-    fn water(&mut self, frame: &FrameInputs<'_>) -> Result<(), Error> {
+    fn water_pass(&mut self, frame: &FrameInputs<'_>) -> Result<(), Error> {
         let env = frame.environment;
         let technique = frame.plan.techniques.of(Stage::Sky).name;
         let radiance = sky::environment_radiance(technique).ok_or_else(|| {
@@ -382,37 +382,41 @@ impl<'e> CpuBackend<'e> {
 impl Backend for CpuBackend<'_> {
     type Error = Error;
 
-    fn execute(
-        &mut self,
-        pass: &PlannedPass,
-        frame: &FrameInputs<'_>,
-        state: &FrameState,
-    ) -> Result<(), Error> {
-        match pass.name {
-            Pass::Cycle | Pass::FarPatch => {}
-            Pass::Waves => self.waves(frame, state)?,
-            Pass::FresnelTable => self.fresnel_tables(frame),
-            Pass::ShadowMap | Pass::ReflectionMap | Pass::RefractionMap | Pass::Objects => {
-                self.object_pass(pass, frame)
+    fn waves(&mut self, frame: &FrameInputs<'_>, state: &FrameState) -> Result<(), Error> {
+        self.wave_maps(frame, state)
+    }
+
+    fn fresnel_tables(&mut self, frame: &FrameInputs<'_>) -> Result<(), Error> {
+        self.fresnel_textures(frame);
+        Ok(())
+    }
+
+    fn objects(&mut self, pass: &PlannedPass, frame: &FrameInputs<'_>) -> Result<(), Error> {
+        self.object_pass(pass, frame);
+        Ok(())
+    }
+
+    fn sky(&mut self, frame: &FrameInputs<'_>) -> Result<(), Error> {
+        let environment = self.environment;
+        let hdr = self.hdr(frame.plan);
+        match environment {
+            Environment::Planned => {
+                sky::render_sky(hdr, &frame.camera_uniforms, &frame.environment)
             }
-            Pass::Sky => {
-                let environment = self.environment;
-                let hdr = self.hdr(frame.plan);
-                match environment {
-                    Environment::Planned => {
-                        sky::render_sky(hdr, &frame.camera_uniforms, &frame.environment)
-                    }
-                    Environment::Given { draw, .. } => draw(hdr),
-                }
-            }
-            Pass::Water => self.water(frame)?,
-            Pass::Tonemap => {
-                if let Some(t) = &frame.tonemap {
-                    let hdr = self.hdr(frame.plan);
-                    let (w, h) = (hdr.width, hdr.height);
-                    self.ldr = Some(tonemap::tonemap_to_rgba8(&hdr.color, w, h, t));
-                }
-            }
+            Environment::Given { draw, .. } => draw(hdr),
+        }
+        Ok(())
+    }
+
+    fn water(&mut self, frame: &FrameInputs<'_>) -> Result<(), Error> {
+        self.water_pass(frame)
+    }
+
+    fn tonemap(&mut self, frame: &FrameInputs<'_>) -> Result<(), Error> {
+        if let Some(t) = &frame.tonemap {
+            let hdr = self.hdr(frame.plan);
+            let (w, h) = (hdr.width, hdr.height);
+            self.ldr = Some(tonemap::tonemap_to_rgba8(&hdr.color, w, h, t));
         }
         Ok(())
     }

@@ -215,7 +215,7 @@ impl GpuBackend<'_> {
         (hdr, depth)
     }
 
-    fn waves(&mut self, frame: &FrameInputs<'_>, state: &FrameState) -> Result<(), Error> {
+    fn wave_maps(&mut self, frame: &FrameInputs<'_>, state: &FrameState) -> Result<(), Error> {
         let ocean = &frame.scene.ocean;
         if frame.plan.runs(Pass::Cycle) {
             // Cyclic playback: the cycle's maps nearest t, uploaded (the same maps the CPU
@@ -277,7 +277,7 @@ impl GpuBackend<'_> {
         Ok(())
     }
 
-    fn fresnel_tables(&mut self, frame: &FrameInputs<'_>) {
+    fn fresnel_textures(&mut self, frame: &FrameInputs<'_>) {
         let eta = frame.uniforms.water.eta;
         for (id, eta) in [(ResourceId::FresnelAbove, eta), (ResourceId::FresnelBelow, 1.0 / eta)] {
             let size = frame.plan.resource(id).map_or(1, |r| r.size[0]);
@@ -384,7 +384,7 @@ impl GpuBackend<'_> {
         }
     }
 
-    fn water(&mut self, frame: &FrameInputs<'_>) {
+    fn water_pass(&mut self, frame: &FrameInputs<'_>) {
         let [
             displacement,
             displacement_slopes,
@@ -450,50 +450,55 @@ impl GpuBackend<'_> {
 impl Backend for GpuBackend<'_> {
     type Error = Error;
 
-    fn execute(
-        &mut self,
-        pass: &PlannedPass,
-        frame: &FrameInputs<'_>,
-        state: &FrameState,
-    ) -> Result<(), Error> {
-        match pass.name {
-            Pass::Cycle | Pass::FarPatch => {}
-            Pass::Waves => self.waves(frame, state)?,
-            Pass::FresnelTable => self.fresnel_tables(frame),
-            Pass::ShadowMap | Pass::ReflectionMap | Pass::RefractionMap | Pass::Objects => {
-                self.object_pass(pass, frame)
-            }
-            Pass::Sky => {
-                let (hdr, depth) = self.hdr(frame.plan);
-                let slot = self.timer.slot(Pass::Sky);
-                self.stages.sky.encode(
-                    &self.gpu.device,
-                    &mut self.encoder,
-                    &frame.camera_uniforms,
-                    &frame.environment,
-                    &hdr.view,
-                    &depth.view,
-                    self.timer.render_writes(slot),
-                );
-                self.hdr_started = true;
-            }
-            Pass::Water => self.water(frame),
-            Pass::Tonemap => {
-                if let Some(t) = &frame.tonemap {
-                    let (hdr, _) = self.hdr(frame.plan);
-                    let ldr = self.target(frame.plan, ResourceId::Ldr);
-                    let slot = self.timer.slot(Pass::Tonemap);
-                    self.stages.tonemap.encode(
-                        &self.gpu.device,
-                        &mut self.encoder,
-                        t,
-                        &hdr.view,
-                        &ldr.view,
-                        self.timer.render_writes(slot),
-                    );
-                    self.put(ResourceId::Ldr, ldr);
-                }
-            }
+    fn waves(&mut self, frame: &FrameInputs<'_>, state: &FrameState) -> Result<(), Error> {
+        self.wave_maps(frame, state)
+    }
+
+    fn fresnel_tables(&mut self, frame: &FrameInputs<'_>) -> Result<(), Error> {
+        self.fresnel_textures(frame);
+        Ok(())
+    }
+
+    fn objects(&mut self, pass: &PlannedPass, frame: &FrameInputs<'_>) -> Result<(), Error> {
+        self.object_pass(pass, frame);
+        Ok(())
+    }
+
+    fn sky(&mut self, frame: &FrameInputs<'_>) -> Result<(), Error> {
+        let (hdr, depth) = self.hdr(frame.plan);
+        let slot = self.timer.slot(Pass::Sky);
+        self.stages.sky.encode(
+            &self.gpu.device,
+            &mut self.encoder,
+            &frame.camera_uniforms,
+            &frame.environment,
+            &hdr.view,
+            &depth.view,
+            self.timer.render_writes(slot),
+        );
+        self.hdr_started = true;
+        Ok(())
+    }
+
+    fn water(&mut self, frame: &FrameInputs<'_>) -> Result<(), Error> {
+        self.water_pass(frame);
+        Ok(())
+    }
+
+    fn tonemap(&mut self, frame: &FrameInputs<'_>) -> Result<(), Error> {
+        if let Some(t) = &frame.tonemap {
+            let (hdr, _) = self.hdr(frame.plan);
+            let ldr = self.target(frame.plan, ResourceId::Ldr);
+            let slot = self.timer.slot(Pass::Tonemap);
+            self.stages.tonemap.encode(
+                &self.gpu.device,
+                &mut self.encoder,
+                t,
+                &hdr.view,
+                &ldr.view,
+                self.timer.render_writes(slot),
+            );
+            self.put(ResourceId::Ldr, ldr);
         }
         Ok(())
     }

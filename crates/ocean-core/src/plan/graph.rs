@@ -182,23 +182,52 @@ impl FrameState {
     }
 }
 
-/// A back end: executes one planned pass of a frame. It keeps the resources the passes write
-/// (allocated at the plan's sizes) until the caller takes them.
+/// A back end: knows how to execute each kind of pass, nothing else; [`run_frame`] decides
+/// which run, in which order, at what size. It keeps the resources the passes write
+/// (allocated at the plan's sizes) until the caller takes them. `cycle` is not here: it is
+/// the same CPU precompute for both back ends, run by [`run_frame`] into the [`FrameState`];
+/// `far_patch` is geometry, built into [`FrameInputs::mesh`].
 pub trait Backend {
     /// The back end's error.
     type Error: From<crate::Error>;
 
-    /// Executes `pass` (never `cycle`, which [`run_frame`] runs itself: it is the same CPU
-    /// precompute for both back ends).
+    /// `waves`: the displacement and bump maps at the frame's time (the cycle's, when the
+    /// plan plays it).
     ///
     /// # Errors
-    /// Whatever the pass reports.
-    fn execute(
-        &mut self,
-        pass: &PlannedPass,
-        frame: &FrameInputs<'_>,
-        state: &FrameState,
-    ) -> Result<(), Self::Error>;
+    /// Whatever the synthesis reports.
+    fn waves(&mut self, frame: &FrameInputs<'_>, state: &FrameState) -> Result<(), Self::Error>;
+
+    /// `fresnel_table`: the two Fresnel textures (η and 1/η).
+    ///
+    /// # Errors
+    /// A device error.
+    fn fresnel_tables(&mut self, frame: &FrameInputs<'_>) -> Result<(), Self::Error>;
+
+    /// `shadow_map`, `reflection_map`, `refraction_map` or `objects`: `pass.objects` drawn
+    /// into the pass's target.
+    ///
+    /// # Errors
+    /// A device error.
+    fn objects(&mut self, pass: &PlannedPass, frame: &FrameInputs<'_>) -> Result<(), Self::Error>;
+
+    /// `sky`: the environment behind everything.
+    ///
+    /// # Errors
+    /// A device error.
+    fn sky(&mut self, frame: &FrameInputs<'_>) -> Result<(), Self::Error>;
+
+    /// `water`: the sea surface over the frame.
+    ///
+    /// # Errors
+    /// A technique without an implementation; a device error.
+    fn water(&mut self, frame: &FrameInputs<'_>) -> Result<(), Self::Error>;
+
+    /// `tonemap`: HDR → 8-bit.
+    ///
+    /// # Errors
+    /// A device error.
+    fn tonemap(&mut self, frame: &FrameInputs<'_>) -> Result<(), Self::Error>;
 }
 
 /// Runs every pass of `frame.plan` in order on `backend`; `on_pass` is called as each pass
@@ -217,10 +246,19 @@ pub fn run_frame<B: Backend>(
     for pass in &frame.plan.passes {
         on_pass(pass.name);
         let t0 = Instant::now();
-        if pass.name == Pass::Cycle {
-            state.precompute_cycle(&frame.scene.ocean)?;
-        } else {
-            backend.execute(pass, frame, state)?;
+        match pass.name {
+            Pass::Cycle => {
+                state.precompute_cycle(&frame.scene.ocean)?;
+            }
+            Pass::FarPatch => {}
+            Pass::Waves => backend.waves(frame, state)?,
+            Pass::FresnelTable => backend.fresnel_tables(frame)?,
+            Pass::ShadowMap | Pass::ReflectionMap | Pass::RefractionMap | Pass::Objects => {
+                backend.objects(pass, frame)?
+            }
+            Pass::Sky => backend.sky(frame)?,
+            Pass::Water => backend.water(frame)?,
+            Pass::Tonemap => backend.tonemap(frame)?,
         }
         let mut elapsed = t0.elapsed();
         // The water pass's time includes building its mesh (near patch, and far patch if
