@@ -217,12 +217,12 @@ fn frame_view_vectors(scene: &Scene) -> anyhow::Result<Vec<[f64; 3]>> {
     let mesh = mesh.into();
     ocean_cpu::frame::draw_water(&mut target, &mesh, &b, &|input, b| {
         let n = water::bumped_normal(input, b);
-        let view = unit([-input.rel[0], -input.rel[1], -input.rel[2]]);
-        if view[1] < 0.0 {
+        let view = unit(-input.rel);
+        if view.y < 0.0 {
             return Some([0.0; 4]);
         }
         let st = water::fresnel_st(view, n);
-        Some([st[0], st[1], 1.0, 1.0])
+        Some([st.x, st.y, 1.0, 1.0])
     });
     Ok(target
         .color

@@ -223,18 +223,21 @@ fn bumped_fresnel_is_the_texture_lookup_of_the_bumped_view_vector() {
                     let view = [theta.sin() * phi.cos(), theta.cos(), theta.sin() * phi.sin()];
                     let rel = view.map(|c| (-10.0 * c) as f32);
                     let input = water::VertexOut {
-                        clip: [0.5, 0.5, 0.5, 1.0],
-                        rel,
-                        uv_d: [0.5, 0.5],
-                        uv_b: [0.5, 0.5],
+                        clip: [0.5, 0.5, 0.5, 1.0].into(),
+                        rel: rel.into(),
+                        uv_d: [0.5, 0.5].into(),
+                        uv_b: [0.5, 0.5].into(),
                         weight: 1.0,
                     };
                     let c = water::fs_main(&input, &b);
                     let f = (c[0] as f64 - w as f64) / (1.0 - w as f64);
                     // The shader's own view and normal, in f64, for the expectations.
-                    let v = ocean_cpu::shaders::shared::frame::unit([-rel[0], -rel[1], -rel[2]]);
+                    let v: [f32; 3] =
+                        ocean_cpu::shaders::shared::frame::unit([-rel[0], -rel[1], -rel[2]].into())
+                            .into();
                     let (sx, sz) = (slope * phi_s.cos(), slope * phi_s.sin());
-                    let n = ocean_cpu::shaders::shared::frame::unit([-sx, 1.0, -sz]);
+                    let n: [f32; 3] =
+                        ocean_cpu::shaders::shared::frame::unit([-sx, 1.0, -sz].into()).into();
                     let st =
                         (((v[0] - n[0]) * 0.5 + 0.5) as f32, ((v[2] - n[2]) * 0.5 + 0.5) as f32);
                     let f_texture = reference.sample_bilinear(st.0, st.1)[3] as f64;

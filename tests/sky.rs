@@ -224,14 +224,16 @@ fn finite_and_non_negative_everywhere() {
                 );
                 // The f32 shader too, through its sky function (not a pixel).
                 let d32 = d.map(|c| c as f32);
-                let g = ocean_cpu::shaders::sky::preetham::sky_radiance(&u, d32);
-                let h = ocean_cpu::shaders::sky::preetham::sun_disc(&u, d32);
+                let g: [f32; 3] =
+                    ocean_cpu::shaders::sky::preetham::sky_radiance(&u, d32.into()).into();
+                let h: [f32; 3] =
+                    ocean_cpu::shaders::sky::preetham::sun_disc(&u, d32.into()).into();
                 assert!(
                     g.iter().chain(&h).all(|c| c.is_finite() && *c >= 0.0),
                     "f32 T={t} el={el}"
                 );
             }
-            let px = fs_main(&VertexOut { position: [0.5, 0.5, 0.0, 1.0] }, &camera, &u);
+            let px = fs_main(&VertexOut { position: [0.5, 0.5, 0.0, 1.0].into() }, &camera, &u);
             assert!(px.iter().all(|c| c.is_finite()));
         }
     }
@@ -569,7 +571,7 @@ fn comparator_rejects_a_wrong_pixel_and_a_wrong_sky() {
 fn full_screen_triangle_covers_every_pixel_once() {
     // Vertex shader output, and the pass through the rasterizer: every pixel written (the target
     // starts as NaN) and a second pass with additive blending would count 1 per pixel.
-    let p: Vec<[f32; 4]> = (0..3).map(|i| vs_main(i).position).collect();
+    let p: Vec<[f32; 4]> = (0..3).map(|i| vs_main(i).position.into()).collect();
     assert_eq!(p, [[-1.0, -1.0, 0.0, 1.0], [3.0, -1.0, 0.0, 1.0], [-1.0, 3.0, 0.0, 1.0]]);
     for (w, h) in [(1, 1), (7, 5), (33, 64)] {
         let cam = TestCamera::new([0.0, 0.0, -1.0], deg(50.0), w, h);

@@ -36,7 +36,7 @@ fn shade(hdr: f32, exposure: f32) -> u8 {
     let texels = [[hdr, hdr, hdr, 1.0]];
     let frame = HdrFrame { width: 1, height: 1, texels: &texels };
     let u = TonemapUniforms { exposure, ..TonemapUniforms::DEFAULT };
-    let rgba = fs_main(&VertexOut { position: [0.5, 0.5, 0.0, 1.0] }, &u, &frame);
+    let rgba = fs_main(&VertexOut { position: [0.5, 0.5, 0.0, 1.0].into() }, &u, &frame);
     assert_eq!(rgba[0], rgba[1]);
     assert_eq!(rgba[3], 1.0);
     store_unorm8(rgba[0])
@@ -53,7 +53,7 @@ fn sweep() -> Vec<f32> {
 fn operator_matches_its_closed_form() {
     let mut worst = 0.0f64;
     for x in sweep() {
-        let got = f64::from(aces_narkowicz([x; 3])[0]);
+        let got = f64::from(aces_narkowicz([x; 3].into()).x);
         worst = worst.max((got - aces_f64(f64::from(x))).abs());
     }
     println!("ACES fit, f32 vs f64: max abs error {worst:.2e}");
@@ -61,9 +61,9 @@ fn operator_matches_its_closed_form() {
     assert!(worst < 5e-7, "{worst}");
     // Negative control: Reinhard's x / (1 + x) is not this operator.
     let reinhard = |x: f64| x / (1.0 + x);
-    assert!((reinhard(1.0) - f64::from(aces_narkowicz([1.0; 3])[0])).abs() > 0.1);
+    assert!((reinhard(1.0) - f64::from(aces_narkowicz([1.0; 3].into()).x)).abs() > 0.1);
     // Documented values: f(0) = 0, f(1) ≈ 0.80 ("1 maps to ~0.8"), f reaches 1 at ≈ 7.24.
-    assert_eq!(aces_narkowicz([0.0; 3]), [0.0; 3]);
+    assert_eq!(aces_narkowicz([0.0; 3].into()), [0.0; 3].into());
     assert!((aces_f64(1.0) - 0.8038).abs() < 1e-4);
     let one = (0.56 + (0.56f64 * 0.56 + 4.0 * 0.08 * 0.14).sqrt()) / 0.16;
     assert!((aces_f64(one) - 1.0).abs() < 1e-12 && (one - 7.24).abs() < 0.01);
@@ -86,7 +86,7 @@ fn srgb_oetf_matches_iec_61966_2_1() {
     let below = 0.0031308f32;
     let above = f32::from_bits(below.to_bits() + 1);
     for l in [0.0, 1e-6, 0.001, below, above, 0.01, 0.18, 0.5, 0.9, 1.0] {
-        let got = f64::from(srgb_oetf([l; 3])[0]);
+        let got = f64::from(srgb_oetf([l; 3].into()).x);
         let want = srgb_f64(f64::from(l));
         assert!((got - want).abs() < 3e-7, "L = {l}: {got} vs {want}");
     }
@@ -94,8 +94,8 @@ fn srgb_oetf_matches_iec_61966_2_1() {
     let l = 0.0031308f64;
     assert!((12.92 * l - (1.055 * l.powf(1.0 / 2.4) - 0.055)).abs() < 1e-7);
     // The linear piece is used at the breakpoint, the power piece just above.
-    assert_eq!(srgb_oetf([below; 3])[0], 12.92 * below);
-    assert_ne!(srgb_oetf([above; 3])[0], 12.92 * above);
+    assert_eq!(srgb_oetf([below; 3].into()).x, 12.92 * below);
+    assert_ne!(srgb_oetf([above; 3].into()).x, 12.92 * above);
     // Negative control: a pure 2.2 gamma differs visibly in the shadows.
     assert!((0.01f64.powf(1.0 / 2.2) - srgb_f64(0.01)).abs() > 0.01);
 }
@@ -117,9 +117,9 @@ fn quantisation_rounds_to_nearest_ties_to_even() {
         };
         midpoints += 1;
         let even = if k % 2 == 0 { k } else { k + 1 };
-        let byte = |v: f32| store_unorm8(quantize_unorm8([v; 3])[0]);
+        let byte = |v: f32| store_unorm8(quantize_unorm8([v; 3].into()).x);
         assert_eq!(byte(v), even as u8, "k = {k}");
-        assert_eq!(quantize_unorm8([v; 3])[0], even as f32 / 255.0);
+        assert_eq!(quantize_unorm8([v; 3].into()).x, even as f32 / 255.0);
         let mut below = f32::from_bits(v.to_bits() - 1);
         while below * 255.0 >= target {
             below = f32::from_bits(below.to_bits() - 1);
@@ -137,7 +137,7 @@ fn quantisation_rounds_to_nearest_ties_to_even() {
     assert!(midpoints > 100, "only {midpoints} exact midpoints found");
     // Every output is a multiple of 1/255 that the Rgba8Unorm store maps back exactly.
     for k in 0..=255u8 {
-        let q = quantize_unorm8([f32::from(k) / 255.0; 3])[0];
+        let q = quantize_unorm8([f32::from(k) / 255.0; 3].into()).x;
         assert_eq!(store_unorm8(q), k);
         assert!(((q * 255.0) - f32::from(k)).abs() < 2e-5);
     }
@@ -155,8 +155,11 @@ fn nan_and_infinities_have_documented_outputs() {
     // Mixed channels stay independent.
     let texels = [[f32::NAN, 0.18, f32::INFINITY, f32::NAN]];
     let frame = HdrFrame { width: 1, height: 1, texels: &texels };
-    let px =
-        fs_main(&VertexOut { position: [0.5, 0.5, 0.0, 1.0] }, &TonemapUniforms::DEFAULT, &frame);
+    let px = fs_main(
+        &VertexOut { position: [0.5, 0.5, 0.0, 1.0].into() },
+        &TonemapUniforms::DEFAULT,
+        &frame,
+    );
     assert_eq!(px.map(store_unorm8), [0, pipeline_f64(0.18, 1.0), 255, 255]);
 }
 
@@ -202,10 +205,10 @@ fn frame_driver_equals_the_rasterized_pass() {
     let frame = HdrFrame { width: w, height: h, texels: &hdr };
     let mut target = RenderTarget::new(w, h);
     target.clear_color([f32::NAN; 4]);
-    let tri: [Vertex<0>; 3] = [0, 1, 2].map(|i| Vertex::new(vs_main(i).position, []));
+    let tri: [Vertex<0>; 3] = [0, 1, 2].map(|i| Vertex::new(vs_main(i).position.into(), []));
     let state = RasterState { depth_write: false, ..RasterState::default() };
     draw(&mut target, &state, &[tri], |f| {
-        Some(fs_main(&VertexOut { position: f.frag_coord }, &u, &frame))
+        Some(fs_main(&VertexOut { position: f.frag_coord.into() }, &u, &frame))
     });
     let raster: Vec<u8> = target.color.iter().flat_map(|p| p.map(store_unorm8)).collect();
     assert_eq!(bytes, raster);

@@ -144,7 +144,7 @@ fn draw_objects(
         .map(|t| {
             t.map(|v| {
                 let o = vs(&v, u);
-                Vertex::new(o.clip, o.varyings())
+                Vertex::new(o.clip.into(), o.varyings())
             })
         })
         .collect();
@@ -168,7 +168,7 @@ pub fn draw_water(
         .iter()
         .map(|v| {
             let o = water::vs_main(v, bindings);
-            Vertex::new(o.clip, o.varyings())
+            Vertex::new(o.clip.into(), o.varyings())
         })
         .collect();
     let state = RasterState { blend: BlendMode::Replace, ..eye_state() };

@@ -405,7 +405,8 @@ fn sun_cases() -> Result<Vec<Case>, Error> {
                 let r = (1.0 - up * up).sqrt();
                 let d = DVec3::new(r * phi.cos(), up, r * phi.sin()).normalize();
                 let want = model.sky_radiance(d.to_array());
-                let got = preetham::sky_radiance(&u, d.as_vec3().to_array());
+                let got: [f32; 3] =
+                    preetham::sky_radiance(&u, d.as_vec3().to_array().into()).into();
                 let scale = want.iter().fold(0.0f64, |m, v| m.max(v.abs()));
                 for c in 0..3 {
                     finite &= got[c].is_finite();

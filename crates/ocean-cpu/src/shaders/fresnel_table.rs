@@ -5,6 +5,7 @@
 use ocean_core::frame::FresnelTableUniforms;
 
 use crate::sampler::Texture2D;
+use crate::shaders::wgsl::{Vec3, max, sqrt, vec3};
 
 /// Eq. 2 as the WGSL writes it: ocean-core's generic `fresnel_exact` in f32 takes the same
 /// branches in the same order for c ∈ [0, 1] and η > 0.
@@ -13,20 +14,20 @@ pub fn fresnel_exact(c: f32, eta: f32) -> f32 {
 }
 
 /// `view_vector(s, t)`.
-pub fn view_vector(s: f32, t: f32, params: &FresnelTableUniforms) -> [f32; 3] {
+pub fn view_vector(s: f32, t: f32, params: &FresnelTableUniforms) -> Vec3 {
     if params.mapping == 1 {
         let x = s - 0.5;
         let y = t - 0.5;
-        return [x, y, (1.0 - x * x - y * y).max(0.0).sqrt()];
+        return vec3(x, y, sqrt(max(1.0 - x * x - y * y, 0.0)));
     }
     let x = 2.0 * s - 1.0;
     let y = 2.0 * t - 1.0;
     let r2 = x * x + y * y;
     if r2 > 1.0 {
-        let r = r2.sqrt();
-        return [x / r, y / r, 0.0];
+        let r = sqrt(r2);
+        return vec3(x / r, y / r, 0.0);
     }
-    [x, y, (1.0 - r2).max(0.0).sqrt()]
+    vec3(x, y, sqrt(max(1.0 - r2, 0.0)))
 }
 
 /// `main(id)`: the texel at `id`, or `None` outside the table.
@@ -38,7 +39,7 @@ pub fn main(id: [u32; 3], params: &FresnelTableUniforms) -> Option<[f32; 4]> {
     let s = (id[0] as f32 + 0.5) / n;
     let t = (id[1] as f32 + 0.5) / n;
     let v = view_vector(s, t, params);
-    Some([v[0], v[1], v[2], fresnel_exact(v[2], params.eta)])
+    Some(v.extend(fresnel_exact(v.z, params.eta)).into())
 }
 
 /// Runs the stage over the whole table (the dispatch), row-major texels.

@@ -6,8 +6,9 @@
 //! Each mirror keeps the WGSL entry points' names and signatures (`vs_main`, `fs_main`), the
 //! same variable names and the same order of operations, in f32, so the two files read side by
 //! side. WGSL uniforms become `&` parameters after the shader's own inputs. Vector expressions
-//! are written per component, with the WGSL built-ins of [`wgsl`]. No `mul_add` (the WGSL uses
-//! no `fma`), no fast-math.
+//! are written as in the WGSL, with the vector types, operators and built-ins of [`wgsl`]
+//! (each operator one plain f32 operation per component, in WGSL's order). No `mul_add` (the
+//! WGSL uses no `fma`), no fast-math.
 
 pub mod fresnel_table;
 pub mod objects;

@@ -3,19 +3,20 @@
 
 use ocean_core::frame::{FrameUniforms, ObjectVertex};
 
-use super::shared::frame::{add3, dot3, mul3, scale3, transform_point, unit};
+use super::shared::frame::{dot3, transform_point, unit};
+use super::wgsl::{Vec3, Vec4, exp, max, sqrt, vec3};
 
 /// `VertexOut` of objects.wgsl (clip position and the varyings, in declaration order).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct VertexOut {
     /// `@builtin(position)`.
-    pub clip: [f32; 4],
+    pub clip: Vec4,
     /// `@location(0)`.
-    pub normal: [f32; 3],
+    pub normal: Vec3,
     /// `@location(1)`.
-    pub color: [f32; 3],
+    pub color: Vec3,
     /// `@location(2)`: camera-relative position as drawn.
-    pub rel: [f32; 3],
+    pub rel: Vec3,
     /// `@location(3)`: height of the original point above the sea plane.
     pub world_y: f32,
 }
@@ -27,16 +28,16 @@ impl VertexOut {
     /// The varyings as the rasterizer interpolates them.
     pub fn varyings(&self) -> [f32; VARYINGS] {
         let (n, c, r) = (self.normal, self.color, self.rel);
-        [n[0], n[1], n[2], c[0], c[1], c[2], r[0], r[1], r[2], self.world_y]
+        [n.x, n.y, n.z, c.x, c.y, c.z, r.x, r.y, r.z, self.world_y]
     }
 
     /// A fragment's interpolated varyings back in the struct (clip unused).
     pub fn from_varyings(v: &[f32; VARYINGS]) -> Self {
         Self {
-            clip: [0.0; 4],
-            normal: [v[0], v[1], v[2]],
-            color: [v[3], v[4], v[5]],
-            rel: [v[6], v[7], v[8]],
+            clip: Vec4::splat(0.0),
+            normal: vec3(v[0], v[1], v[2]),
+            color: vec3(v[3], v[4], v[5]),
+            rel: vec3(v[6], v[7], v[8]),
             world_y: v[9],
         }
     }
@@ -46,40 +47,40 @@ impl VertexOut {
 pub const INV_PI: f32 = std::f32::consts::FRAC_1_PI;
 
 /// `shade(normal, color)`: Lambert under the sun plus the sky's ambient.
-fn shade(frame: &FrameUniforms, normal: [f32; 3], color: [f32; 3]) -> [f32; 3] {
+fn shade(frame: &FrameUniforms, normal: Vec3, color: Vec3) -> Vec3 {
     let n = unit(normal);
-    let cos_sun = dot3(n, frame.sun.direction).max(0.0) * frame.sun.lit;
-    let direct = scale3(frame.sun.radiance, cos_sun * INV_PI);
-    mul3(color, add3(direct, frame.ambient.sky))
+    let cos_sun = max(dot3(n, frame.sun.direction.into()), 0.0) * frame.sun.lit;
+    let direct = Vec3::from(frame.sun.radiance) * (cos_sun * INV_PI);
+    color * (direct + Vec3::from(frame.ambient.sky))
 }
 
 /// `vs_main`.
 pub fn vs_main(v: &ObjectVertex, frame: &FrameUniforms) -> VertexOut {
+    let position = Vec3::from(v.position);
     VertexOut {
-        clip: transform_point(&frame.view.view_proj, v.position),
-        normal: v.normal,
-        color: v.color,
-        rel: v.position,
-        world_y: v.position[1] + frame.view.eye_height,
+        clip: transform_point(&frame.view.view_proj, position),
+        normal: v.normal.into(),
+        color: v.color.into(),
+        rel: position,
+        world_y: position.y + frame.view.eye_height,
     }
 }
 
 /// `fs_main`.
 pub fn fs_main(input: &VertexOut, frame: &FrameUniforms) -> [f32; 4] {
-    let c = shade(frame, input.normal, input.color);
-    [c[0], c[1], c[2], 1.0]
+    shade(frame, input.normal, input.color).extend(1.0).into()
 }
 
 /// `vs_reflect`.
 pub fn vs_reflect(v: &ObjectVertex, frame: &FrameUniforms) -> VertexOut {
-    let p = v.position;
-    let mirrored = [p[0], -p[1] - 2.0 * frame.view.eye_height, p[2]];
+    let (position, normal) = (Vec3::from(v.position), Vec3::from(v.normal));
+    let mirrored = vec3(position.x, -position.y - 2.0 * frame.view.eye_height, position.z);
     VertexOut {
         clip: transform_point(&frame.view.view_proj, mirrored),
-        normal: [v.normal[0], -v.normal[1], v.normal[2]],
-        color: v.color,
+        normal: vec3(normal.x, -normal.y, normal.z),
+        color: v.color.into(),
         rel: mirrored,
-        world_y: p[1] + frame.view.eye_height,
+        world_y: position.y + frame.view.eye_height,
     }
 }
 
@@ -88,20 +89,20 @@ pub fn fs_reflect(input: &VertexOut, frame: &FrameUniforms) -> Option<[f32; 4]> 
     if input.world_y < 0.0 {
         return None;
     }
-    let n = [input.normal[0], -input.normal[1], input.normal[2]];
-    let c = shade(frame, n, input.color);
-    Some([c[0], c[1], c[2], 1.0])
+    let n = vec3(input.normal.x, -input.normal.y, input.normal.z);
+    Some(shade(frame, n, input.color).extend(1.0).into())
 }
 
 /// `vs_refract`.
 pub fn vs_refract(v: &ObjectVertex, frame: &FrameUniforms) -> VertexOut {
-    let world_y = v.position[1] + frame.view.eye_height;
+    let position = Vec3::from(v.position);
+    let world_y = position.y + frame.view.eye_height;
     let scaled =
-        [v.position[0], world_y * frame.water.inv_eta - frame.view.eye_height, v.position[2]];
+        vec3(position.x, world_y * frame.water.inv_eta - frame.view.eye_height, position.z);
     VertexOut {
         clip: transform_point(&frame.view.view_proj, scaled),
-        normal: v.normal,
-        color: v.color,
+        normal: v.normal.into(),
+        color: v.color.into(),
         rel: scaled,
         world_y,
     }
@@ -112,15 +113,12 @@ pub fn fs_refract(input: &VertexOut, frame: &FrameUniforms) -> Option<[f32; 4]> 
     if input.world_y > 0.0 {
         return None;
     }
-    let depth_below = -(input.rel[1] + frame.view.eye_height);
-    let height_above = frame.view.eye_height.max(0.0);
-    let dist = dot3(input.rel, input.rel).sqrt();
+    let depth_below = -(input.rel.y + frame.view.eye_height);
+    let height_above = max(frame.view.eye_height, 0.0);
+    let dist = sqrt(dot3(input.rel, input.rel));
     let d = dist * (depth_below / (depth_below + height_above));
-    let fog = 1.0 - (-frame.water.extinction_per_m * d).exp();
-    let obj = scale3(
-        shade(frame, input.normal, input.color),
-        (-frame.water.extinction_per_m * -input.world_y).exp(),
-    );
-    let c = add3(scale3(frame.water.color, fog), scale3(obj, 1.0 - fog));
-    Some([c[0], c[1], c[2], 1.0])
+    let fog = 1.0 - exp(-frame.water.extinction_per_m * d);
+    let obj = shade(frame, input.normal, input.color)
+        * exp(-frame.water.extinction_per_m * -input.world_y);
+    Some((Vec3::from(frame.water.color) * fog + obj * (1.0 - fog)).extend(1.0).into())
 }

@@ -5,12 +5,13 @@
 //! screenshot test holds the window against.
 
 use crate::shaders::shared::fullscreen::fullscreen_position;
+use crate::shaders::wgsl::{Vec2, Vec4, vec2};
 
 /// `VertexOut` of `present.wgsl`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct VertexOut {
     /// `@builtin(position)`.
-    pub position: [f32; 4],
+    pub position: Vec4,
 }
 
 /// `vs_main`: the full-screen triangle.
@@ -20,8 +21,8 @@ pub fn vs_main(vertex_index: u32) -> VertexOut {
 
 /// `fs_main` at a pixel of an RGBA8 image (`width` texels a row): the texel's colour bytes
 /// with alpha 255; zeros outside the image (robust `textureLoad`).
-pub fn fs_main(frame_output: &[u8], width: u32, height: u32, position: [f32; 2]) -> [u8; 4] {
-    let (x, y) = (position[0] as i32, position[1] as i32);
+pub fn fs_main(frame_output: &[u8], width: u32, height: u32, position: Vec2) -> [u8; 4] {
+    let (x, y) = (position.x as i32, position.y as i32);
     if x < 0 || y < 0 || x as u32 >= width || y as u32 >= height {
         return [0, 0, 0, 255];
     }
@@ -34,7 +35,9 @@ pub fn fs_main(frame_output: &[u8], width: u32, height: u32, position: [f32; 2])
 pub fn present(frame_output: &[u8], width: u32, height: u32) -> Vec<u8> {
     (0..height)
         .flat_map(|y| (0..width).map(move |x| (x, y)))
-        .flat_map(|(x, y)| fs_main(frame_output, width, height, [x as f32 + 0.5, y as f32 + 0.5]))
+        .flat_map(|(x, y)| {
+            fs_main(frame_output, width, height, vec2(x as f32 + 0.5, y as f32 + 0.5))
+        })
         .collect()
 }
 
@@ -46,7 +49,7 @@ mod tests {
     fn copies_colour_and_makes_the_window_opaque() {
         let image = [1, 2, 3, 4, 250, 251, 252, 0];
         assert_eq!(present(&image, 2, 1), vec![1, 2, 3, 255, 250, 251, 252, 255]);
-        assert_eq!(fs_main(&image, 2, 1, [2.5, 0.5]), [0, 0, 0, 255]);
-        assert_eq!(vs_main(1).position, [3.0, -1.0, 0.0, 1.0]);
+        assert_eq!(fs_main(&image, 2, 1, vec2(2.5, 0.5)), [0, 0, 0, 255]);
+        assert_eq!(vs_main(1).position, Vec4::from([3.0, -1.0, 0.0, 1.0]));
     }
 }

@@ -9,8 +9,10 @@ use crate::raster::{
 use crate::shaders::shared::camera::{CameraUniforms, view_ray};
 use crate::shaders::shared::fullscreen::fullscreen_position;
 use crate::shaders::sky::preetham::{SkyUniforms, sky_radiance, sun_disc};
+use crate::shaders::wgsl::Vec4;
 
-/// A sky technique's `sky_radiance`: radiance of a world direction.
+/// A sky technique's `sky_radiance`: radiance of a world direction (arrays at this boundary
+/// to the frame and the water's bindings).
 pub type SkyRadiance = fn(&SkyUniforms, [f32; 3]) -> [f32; 3];
 
 /// The environment's radiance of a world direction for the frame's sky technique: what
@@ -18,7 +20,7 @@ pub type SkyRadiance = fn(&SkyUniforms, [f32; 3]) -> [f32; 3];
 /// a mirror, which the planner never chooses: it is not available).
 pub fn environment_radiance(technique: &str) -> Option<SkyRadiance> {
     match technique {
-        "preetham" => Some(sky_radiance),
+        "preetham" => Some(|sky, dir| sky_radiance(sky, dir.into()).into()),
         _ => None,
     }
 }
@@ -28,7 +30,7 @@ pub fn environment_radiance(technique: &str) -> Option<SkyRadiance> {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct VertexOut {
     /// `@builtin(position)`.
-    pub position: [f32; 4],
+    pub position: Vec4,
 }
 
 /// The pipeline state of the `sky` pass: it is drawn first, as the background, so it neither
@@ -49,11 +51,9 @@ pub fn vs_main(vertex_index: u32) -> VertexOut {
 
 /// `fs_main(in: VertexOut) -> @location(0) vec4<f32>`: linear HDR radiance, alpha 1.
 pub fn fs_main(input: &VertexOut, camera: &CameraUniforms, sky: &SkyUniforms) -> [f32; 4] {
-    let dir = view_ray(camera, [input.position[0], input.position[1]]);
-    let sky_rgb = sky_radiance(sky, dir);
-    let sun_rgb = sun_disc(sky, dir);
-    let radiance: [f32; 3] = std::array::from_fn(|i| sky_rgb[i] + sun_rgb[i]);
-    [radiance[0], radiance[1], radiance[2], 1.0]
+    let dir = view_ray(camera, input.position.xy());
+    let radiance = sky_radiance(sky, dir) + sun_disc(sky, dir);
+    radiance.extend(1.0).into()
 }
 
 /// Draws the `sky` pass into `target` with the rasterizer: vertices 0, 1, 2 through
@@ -68,8 +68,8 @@ pub fn render_sky(target: &mut RenderTarget, camera: &CameraUniforms, sky: &SkyU
         target.width,
         target.height
     );
-    let triangle: [Vertex<0>; 3] = [0, 1, 2].map(|i| Vertex::new(vs_main(i).position, []));
+    let triangle: [Vertex<0>; 3] = [0, 1, 2].map(|i| Vertex::new(vs_main(i).position.into(), []));
     draw(target, &RASTER_STATE, &[triangle], |frag| {
-        Some(fs_main(&VertexOut { position: frag.frag_coord }, camera, sky))
+        Some(fs_main(&VertexOut { position: frag.frag_coord.into() }, camera, sky))
     });
 }

@@ -6,7 +6,7 @@ use rayon::prelude::*;
 pub use ocean_core::tonemap::TonemapUniforms;
 
 use crate::shaders::shared::fullscreen::fullscreen_position;
-use crate::shaders::wgsl::{Vec3, Vec4, clamp, select};
+use crate::shaders::wgsl::{Vec3, Vec4, clamp, max, min, pow, round, select, vec4};
 
 /// Largest finite f16 (`ocean_core::tonemap::HDR_MAX`).
 pub const HDR_MAX: f32 = 65504.0;
@@ -17,7 +17,7 @@ pub const SRGB_INV_GAMMA: f32 = 0.416_666_66;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct VertexOut {
     /// `@builtin(position)`.
-    pub position: [f32; 4],
+    pub position: Vec4,
 }
 
 /// The `hdr_frame: texture_2d<f32>` binding: a borrowed row-major RGBA f32 image, texel
@@ -38,30 +38,28 @@ impl HdrFrame<'_> {
     pub fn texture_load(&self, texel: [i32; 2]) -> Vec4 {
         let [x, y] = texel;
         if x < 0 || y < 0 || x as u32 >= self.width || y as u32 >= self.height {
-            return [0.0; 4];
+            return Vec4::splat(0.0);
         }
-        self.texels[y as usize * self.width as usize + x as usize]
+        self.texels[y as usize * self.width as usize + x as usize].into()
     }
 }
 
 /// ACES filmic curve, K. Narkowicz's fit: x (2.51 x + 0.03) / (x (2.43 x + 0.59) + 0.14).
 pub fn aces_narkowicz(x: Vec3) -> Vec3 {
-    x.map(|x| (x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14))
+    (x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14)
 }
 
 /// sRGB OETF, IEC 61966-2-1: 12.92 c for c ≤ 0.0031308, else 1.055 c^(1/2.4) − 0.055.
 pub fn srgb_oetf(c: Vec3) -> Vec3 {
-    c.map(|c| {
-        let lo = 12.92 * c;
-        let hi = 1.055 * c.powf(SRGB_INV_GAMMA) - 0.055;
-        select(hi, lo, c <= 0.0031308)
-    })
+    let lo = 12.92 * c;
+    let hi = 1.055 * pow(c, Vec3::splat(SRGB_INV_GAMMA)) - 0.055;
+    select(hi, lo, c.le(Vec3::splat(0.0031308)))
 }
 
 /// Rounds to the nearest multiple of 1/255, ties to even: `round(v · 255) / 255` (WGSL
 /// `round` is Rust's `round_ties_even`; both are exact).
 pub fn quantize_unorm8(v: Vec3) -> Vec3 {
-    v.map(|v| (v * 255.0).round_ties_even() / 255.0)
+    round(v * 255.0) / 255.0
 }
 
 /// `vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOut`.
@@ -71,14 +69,13 @@ pub fn vs_main(vertex_index: u32) -> VertexOut {
 
 /// `fs_main(in: VertexOut) -> @location(0) vec4<f32>`: the quantised sRGB value, alpha 1.
 pub fn fs_main(input: &VertexOut, tonemap: &TonemapUniforms, hdr_frame: &HdrFrame) -> [f32; 4] {
-    let texel = [input.position[0] as i32, input.position[1] as i32];
-    let hdr = hdr_frame.texture_load(texel);
-    let exposed: Vec3 = std::array::from_fn(|i| hdr[i] * tonemap.exposure);
-    let x = exposed.map(|e| clamp(e, 0.0, HDR_MAX)); // min(max(e, 0), HDR_MAX)
-    let mapped = aces_narkowicz(x).map(|m| clamp(m, 0.0, 1.0));
+    let texel = [input.position.x as i32, input.position.y as i32];
+    let hdr = hdr_frame.texture_load(texel).xyz();
+    let exposed = hdr * tonemap.exposure;
+    let x = min(max(exposed, Vec3::splat(0.0)), Vec3::splat(HDR_MAX));
+    let mapped = clamp(aces_narkowicz(x), Vec3::splat(0.0), Vec3::splat(1.0));
     let encoded = srgb_oetf(mapped);
-    let q = quantize_unorm8(encoded);
-    [q[0], q[1], q[2], 1.0]
+    quantize_unorm8(encoded).extend(1.0).into()
 }
 
 /// What an `Rgba8Unorm` target stores for a shader output `v` in [0, 1]: v · 255 rounded to
@@ -111,7 +108,7 @@ pub fn tonemap_to_rgba8(
     }
     out.par_chunks_mut(width as usize * 4).enumerate().for_each(|(y, row)| {
         for (x, px) in row.chunks_exact_mut(4).enumerate() {
-            let position = [x as f32 + 0.5, y as f32 + 0.5, 0.0, 1.0];
+            let position = vec4(x as f32 + 0.5, y as f32 + 0.5, 0.0, 1.0);
             let rgba = fs_main(&VertexOut { position }, tonemap, &frame);
             for (byte, v) in px.iter_mut().zip(rgba) {
                 *byte = store_unorm8(v);
