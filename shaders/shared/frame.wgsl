@@ -70,7 +70,7 @@ struct FrameUniforms {
 }
 
 // m · (p, 1), written out so that the order of operations is fixed (the CPU mirror,
-// ocean-cpu/src/shaders/common.rs, sums the columns in the same order).
+// ocean-cpu/src/shaders/shared/frame.rs, sums the columns in the same order).
 fn transform_point(m: mat4x4<f32>, p: vec3<f32>) -> vec4<f32> {
     return m[0] * p.x + m[1] * p.y + m[2] * p.z + m[3];
 }
