@@ -11,13 +11,20 @@ pub fn label(stage: &str) -> String {
     format!("ocean.{stage}")
 }
 
-/// The shader module of `stage`, from `ocean_core::shader_source::stage_source` (imports
+/// The techniques the pipelines are assembled for: system `hu`'s, the only ones built (a
+/// frame whose plan composes another technique into a stage's WGSL is refused by the renderer,
+/// `Renderer::run_frame`, rather than drawn with these).
+pub fn pipeline_techniques() -> ocean_core::plan::Techniques {
+    ocean_core::plan::Techniques::of_system(ocean_core::plan::System::Hu)
+}
+
+/// The shader module of `stage`, from `ocean_core::shader_source::stage_source_with` (imports
 /// resolved), labelled `"ocean.<stage>"`.
 ///
 /// # Errors
 /// [`Error::Core`] if the source cannot be assembled (an unknown stage or import).
 pub fn shader_module(device: &wgpu::Device, stage: &str) -> Result<wgpu::ShaderModule, Error> {
-    let source = ocean_core::shader_source::stage_source(stage)?;
+    let source = ocean_core::shader_source::stage_source_with(stage, &pipeline_techniques())?;
     Ok(device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some(&label(stage)),
         source: wgpu::ShaderSource::Wgsl(source.into()),

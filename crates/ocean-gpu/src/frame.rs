@@ -614,6 +614,16 @@ impl Renderer {
         readback: Readback,
     ) -> Result<GpuFrame, Error> {
         let start = Instant::now();
+        // The pipelines hold the techniques they were assembled for; a plan composing another
+        // one into a stage's WGSL would need other pipelines (none is built yet).
+        let built = crate::common::pipeline_techniques();
+        if let Some((stage, t)) = plan.techniques.iter().find(|(s, t)| built.of(*s) != *t) {
+            return Err(Error::Unavailable(format!(
+                "the GPU pipelines are built for {stage} technique `{}`, the plan asks for `{}`",
+                built.of(stage).name,
+                t.name
+            )));
+        }
         let inputs = FrameInputs::new(scene, plan, state)?;
         let (w, h) = (inputs.camera.width, inputs.camera.height);
         let max = self.gpu.device.limits().max_texture_dimension_2d;

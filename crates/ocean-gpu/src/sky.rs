@@ -1,6 +1,8 @@
-//! Stage `sky` (`shaders/sky.wgsl`): the Preetham sky behind everything, one full-screen
-//! triangle into the HDR frame. Bindings: group 0 = `CameraUniforms`, group 1 =
-//! `SkyUniforms`. CPU mirror: `ocean-cpu/src/shaders/sky.rs` (its `RASTER_STATE`: depth test
+//! Stage `sky` (`shaders/sky.wgsl`): the environment behind everything, one full-screen
+//! triangle into the HDR frame. The sky model is the technique `shaders/sky.wgsl` imports as
+//! `technique/sky`: `preetham` (`shaders/sky/preetham.wgsl`, the only one built), assembled by
+//! [`crate::common::shader_module`] for [`crate::common::pipeline_techniques`]. Bindings:
+//! group 0 = `CameraUniforms`, group 1 = `SkyUniforms`. CPU mirror: `ocean-cpu/src/shaders/sky.rs` (its `RASTER_STATE`: depth test
 //! `Always`, no depth writes, no blending — the same here).
 
 use ocean_core::camera_uniforms::CameraUniforms;
