@@ -63,7 +63,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             .iter()
             .map(|r| {
                 let unused = if r.written { "" } else { " (placeholder)" };
-                format!("{} {}×{}{unused}", r.id.name(), r.size[0], r.size[1])
+                match r.format {
+                    ocean_core::plan::Format::Uniform => {
+                        format!("{} {} bytes{unused}", r.id.name(), r.size[0])
+                    }
+                    _ => format!("{} {}×{}{unused}", r.id.name(), r.size[0], r.size[1]),
+                }
             })
             .collect();
         println!("  resources: {}", sizes.join(", "));
