@@ -18,7 +18,7 @@ pub struct Args {
     #[arg(long, default_value = "ocean-compare")]
     out_dir: PathBuf,
     /// Image size WIDTHxHEIGHT (overrides the scene's camera).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     size: Option<String>,
 }
 

@@ -1,7 +1,6 @@
 //! `ocean fresnel`: the exact Fresnel term of eq. 2 (seed 000) as CSV, or the 2D Fresnel
 //! texture of §5.1 as EXR (DESIGN.md's contracts).
 
-use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use anyhow::{Context, bail};
@@ -16,8 +15,9 @@ pub struct Args {
     /// Relative index of refraction η = η_t/η_i (water from air: 1.333; from below: 0.75).
     #[arg(long, allow_negative_numbers = true)]
     eta: f64,
-    /// Step of the incidence angle in degrees for the CSV (0 to 90 inclusive).
-    #[arg(long, default_value_t = 1.0)]
+    /// Step of the incidence angle in degrees for the CSV (0 to 90 inclusive), at least
+    /// 90 / 1,000,000 (a million rows).
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
     step_deg: f64,
     /// Write the N×N 2D Fresnel texture instead of the CSV (needs -o FILE.exr).
     #[arg(long, value_name = "N")]
@@ -42,19 +42,32 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     match args.table {
         Some(n) => write_table(&args, n),
         None => {
-            print!("{}", csv(args.eta, args.step_deg)?);
+            let stdout = std::io::stdout().lock();
+            let mut out = std::io::BufWriter::new(stdout);
+            write_csv(&mut out, args.eta, args.step_deg)?;
+            std::io::Write::flush(&mut out).context("writing the CSV")?;
             Ok(())
         }
     }
 }
 
-/// The CSV `theta_deg,cos_theta,exact,schlick`, θ = 0, step, 2·step, … up to 90 degrees.
-/// Values use Rust's shortest round-trip formatting.
-fn csv(eta: f64, step_deg: f64) -> anyhow::Result<String> {
-    if !(step_deg > 0.0 && step_deg <= 90.0) {
-        bail!("--step-deg must be in (0, 90], got {step_deg}");
+/// The most CSV rows `--step-deg` may ask for: 90 / step + 1 ≤ a million (about 50 MB), so a
+/// tiny step is refused at once instead of running for ever.
+pub const MAX_CSV_ROWS: f64 = 1e6;
+
+/// Writes the CSV `theta_deg,cos_theta,exact,schlick`, θ = 0, step, 2·step, … up to 90
+/// degrees, row by row as it is computed. Values use Rust's shortest round-trip formatting.
+fn write_csv(out: &mut impl std::io::Write, eta: f64, step_deg: f64) -> anyhow::Result<()> {
+    let min_step = 90.0 / (MAX_CSV_ROWS - 1.0);
+    if !(step_deg >= min_step && step_deg <= 90.0) {
+        bail!(
+            "--step-deg must be in [{min_step:e}, 90] (at most {MAX_CSV_ROWS:e} rows), got {step_deg}"
+        );
     }
-    let mut out = String::from("theta_deg,cos_theta,exact,schlick\n");
+    let write = |out: &mut dyn std::io::Write, line: std::fmt::Arguments<'_>| {
+        out.write_fmt(line).context("writing the CSV")
+    };
+    write(out, format_args!("theta_deg,cos_theta,exact,schlick\n"))?;
     // θ from an integer count, not by accumulation, so the last row is exactly 90 when the
     // step divides 90; the tolerance absorbs the rounding of 90/step.
     let steps = (90.0 / step_deg * (1.0 + 1e-12)).floor() as usize;
@@ -65,9 +78,9 @@ fn csv(eta: f64, step_deg: f64) -> anyhow::Result<String> {
         let cos_theta = if theta_deg == 90.0 { 0.0 } else { theta_deg.to_radians().cos() };
         let exact = fresnel_exact(cos_theta, eta);
         let schlick = fresnel_schlick(cos_theta, eta);
-        writeln!(out, "{theta_deg},{cos_theta},{exact},{schlick}")?;
+        write(out, format_args!("{theta_deg},{cos_theta},{exact},{schlick}\n"))?;
     }
-    Ok(out)
+    Ok(())
 }
 
 fn write_table(args: &Args, n: usize) -> anyhow::Result<()> {
@@ -96,6 +109,12 @@ fn write_table(args: &Args, n: usize) -> anyhow::Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn csv(eta: f64, step_deg: f64) -> anyhow::Result<String> {
+        let mut out = Vec::new();
+        write_csv(&mut out, eta, step_deg)?;
+        Ok(String::from_utf8(out)?)
+    }
 
     #[test]
     fn csv_rows_cover_0_to_90() {

@@ -17,8 +17,8 @@ pub struct Args {
     /// Time in seconds (overrides the scene's `ocean.time_s`).
     #[arg(long, allow_negative_numbers = true)]
     time: Option<f64>,
-    /// Seed of the random amplitudes (overrides the scene's `ocean.seed`).
-    #[arg(long)]
+    /// Seed of the random amplitudes (overrides the scene's `ocean.seed`), 0 or more.
+    #[arg(long, allow_negative_numbers = true, value_parser = ocean::output::parse_seed)]
     seed: Option<u64>,
     /// Output EXR file.
     #[arg(short, long)]

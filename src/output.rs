@@ -93,11 +93,25 @@ pub fn parse_size(s: &str) -> anyhow::Result<(u32, u32)> {
         .split_once(['x', 'X', '×'])
         .with_context(|| format!("--size must be WIDTHxHEIGHT, e.g. 1280x720, got {s:?}"))?;
     let parse = |v: &str| -> anyhow::Result<u32> {
-        let n: u32 = v.trim().parse().with_context(|| format!("--size: {v:?} is not a number"))?;
-        if n == 0 || n > ocean_core::scene::MAX_IMAGE_SIDE {
-            bail!("--size: each side must be 1..={}, got {n}", ocean_core::scene::MAX_IMAGE_SIDE);
+        // Parsed wide, so that a negative or huge side gets the range error, not a parse one.
+        let n: i128 = v.trim().parse().with_context(|| format!("--size: {v:?} is not a number"))?;
+        let max = ocean_core::scene::MAX_IMAGE_SIDE;
+        match u32::try_from(n) {
+            Ok(n) if (1..=max).contains(&n) => Ok(n),
+            _ => bail!("--size: each side must be 1..={max}, got {n}"),
         }
-        Ok(n)
     };
     Ok((parse(w)?, parse(h)?))
+}
+
+/// `--seed`: a whole number ≥ 0 (the generator's seed is a u64), with a range error for a
+/// negative one.
+///
+/// # Errors
+/// A value that is not a whole number in 0..=2⁶⁴−1.
+pub fn parse_seed(s: &str) -> Result<u64, String> {
+    match s.trim().parse::<i128>() {
+        Ok(n) => u64::try_from(n).map_err(|_| format!("must be 0..={}, got {n}", u64::MAX)),
+        Err(_) => Err(format!("{s:?} is not a whole number")),
+    }
 }

@@ -28,7 +28,7 @@ pub struct Args {
     #[arg(long, allow_negative_numbers = true)]
     time: Option<f64>,
     /// Image size WIDTHxHEIGHT (overrides the scene's camera).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     size: Option<String>,
 }
 

@@ -38,7 +38,7 @@ pub struct Args {
     #[command(flatten)]
     pub system: crate::scene_arg::SystemArg,
     /// Window size WIDTHxHEIGHT in physical pixels (default: the scene's camera size).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub size: Option<String>,
     /// Render this many frames, then exit (time advances 1/60 s per frame).
     #[arg(long)]

@@ -448,6 +448,12 @@ fn default_object_color() -> [f64; 3] {
 /// The largest grid a scene may ask for: 4096² complex f64 fields are ~2 GiB of scratch,
 /// the most a 24 GiB machine should be asked to hold with room for the rest.
 pub const MAX_RESOLUTION: u32 = 4096;
+
+/// The largest `ocean.bump_patch_divisor`: the bump map's modes sit on the lattice of the
+/// displacement patch at index divisor × resolution, which must stay far inside the
+/// generator's i32 key (65536 × 4096 = 2²⁸), and a bump patch 65536 times smaller than the
+/// displacement patch is already below a millimetre for a 256 m sea.
+pub const MAX_BUMP_PATCH_DIVISOR: u32 = 65_536;
 /// The largest image side: a 16384² f32 RGBA frame is 4 GiB.
 pub const MAX_IMAGE_SIDE: u32 = 16384;
 
@@ -561,8 +567,15 @@ impl Scene {
                 return bad(k, format!("must be between 2 and {MAX_RESOLUTION}, got {n}"));
             }
         }
-        if o.bump_patch_divisor == 0 {
-            return bad("ocean.bump_patch_divisor", "must be ≥ 1, got 0".into());
+        if !(1..=MAX_BUMP_PATCH_DIVISOR).contains(&o.bump_patch_divisor) {
+            return bad(
+                "ocean.bump_patch_divisor",
+                format!(
+                    "must be between 1 and {MAX_BUMP_PATCH_DIVISOR} (the bump patch is \
+                     patch_size_m / divisor), got {}",
+                    o.bump_patch_divisor
+                ),
+            );
         }
         // The bump map holds the waves the displacement map cannot: those from index
         // ⌈N_d / 2r⌉ of its own lattice up to its Nyquist N_b / 2 (waves::surface).

@@ -1,0 +1,88 @@
+//! Regression tests for the hostile inputs of issue 11 that this change fixes (items 1, 2 and
+//! the command-line part of 8): each failed before the fix (a hang, a panic, or clap's
+//! "unexpected argument") and must now be a clear, immediate error naming what is wrong.
+
+use std::process::{Command, Output};
+use std::time::{Duration, Instant};
+
+use ocean_core::scene::{Scene, SceneSource};
+
+fn ocean(args: &[&str]) -> (Output, Duration) {
+    let start = Instant::now();
+    let o = Command::new(env!("CARGO_BIN_EXE_ocean"))
+        .args(args)
+        .env("RUST_BACKTRACE", "0")
+        .output()
+        .expect("the ocean binary runs");
+    (o, start.elapsed())
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn a_tiny_fresnel_step_is_refused_at_once() {
+    // Before: 1e-300 saturated the row count and built the whole CSV in memory (6.4 GB after
+    // 10 s). The check is on the step, before any row is made.
+    for step in ["1e-300", "5e-324", "0.00008", "0", "-1", "90.5", "NaN"] {
+        let (o, took) = ocean(&["fresnel", "--eta", "1.333", "--step-deg", step]);
+        assert_eq!(o.status.code(), Some(1), "--step-deg {step}: {}", stderr(&o));
+        let e = stderr(&o);
+        assert!(e.contains("--step-deg must be in") && !e.contains("unexpected argument"), "{e}");
+        assert!(o.stdout.is_empty(), "--step-deg {step}: no partial CSV");
+        assert!(took < Duration::from_secs(20), "--step-deg {step} took {took:?}");
+    }
+}
+
+#[test]
+fn the_fresnel_csv_streams_every_row() {
+    let (o, _) = ocean(&["fresnel", "--eta", "1.333", "--step-deg", "0.01"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = String::from_utf8(o.stdout).unwrap();
+    let rows: Vec<&str> = text.lines().collect();
+    assert_eq!(rows[0], "theta_deg,cos_theta,exact,schlick");
+    assert_eq!(rows.len(), 1 + 9001, "θ = 0, 0.01, …, 90");
+    assert!(rows[9001].starts_with("90,0,1,"), "{}", rows[9001]);
+}
+
+#[test]
+fn a_huge_bump_patch_divisor_is_a_scene_error_not_a_panic() {
+    // Before: 2147483648 made `2 * divisor` wrap to 0 (a division by zero in every command);
+    // 2147483649 gave a wrong "must exceed 256"; 4294967295 an internal `lattice_ratio` error
+    // with no line.
+    for v in ["2147483648", "2147483649", "4294967295", "65537", "0"] {
+        let text = format!("[ocean]\nbump_patch_divisor = {v}\n");
+        let e = Scene::from_toml(&text, SceneSource::Text).unwrap_err().to_string();
+        assert!(
+            e.contains("ocean.bump_patch_divisor") && e.contains(":2:") && e.contains("65536"),
+            "{v}: {e}"
+        );
+    }
+    // The largest allowed divisor still makes a valid sea.
+    let s = Scene::from_toml(
+        "[ocean]\nbump_patch_divisor = 65536\nbump_resolution = 4096\n",
+        SceneSource::Text,
+    );
+    assert!(s.is_ok(), "{:?}", s.err());
+}
+
+#[test]
+fn negative_numbers_on_the_command_line_get_range_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("x.png");
+    let out = out.to_str().unwrap();
+    for size in ["-5x5", "5x-5", "99999999999x5"] {
+        let (o, _) = ocean(&["render", "--size", size, "-o", out]);
+        assert_eq!(o.status.code(), Some(1), "{size}");
+        let e = stderr(&o);
+        assert!(e.contains("--size: each side must be 1..="), "{size}: {e}");
+    }
+    let exr = dir.path().join("h.exr");
+    let (o, _) = ocean(&["heightfield", "--seed", "-1", "-o", exr.to_str().unwrap()]);
+    assert_ne!(o.status.code(), Some(0));
+    let e = stderr(&o);
+    assert!(e.contains("--seed") && e.contains("must be 0..="), "{e}");
+    assert!(!e.contains("unexpected argument"), "{e}");
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "nothing written");
+}
