@@ -89,6 +89,7 @@ fn write_table(args: &Args, n: usize) -> anyhow::Result<()> {
     }
     let path = args.output.as_ref().context("--table N needs -o FILE.exr")?;
     require_extension(path, "exr")?;
+    ocean::output::check_writable(path)?;
     let mapping = if args.paper_half_range {
         TextureMapping::PaperHalfRange
     } else {

@@ -28,6 +28,7 @@ pub struct Args {
 /// Runs `ocean heightfield`.
 pub fn run(args: Args) -> anyhow::Result<()> {
     require_extension(&args.output, "exr")?;
+    ocean::output::check_writable(&args.output)?;
     let mut scene = crate::load_scene(args.scene.as_ref())?;
     if let Some(t) = args.time {
         if !t.is_finite() {

@@ -6,8 +6,9 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, bail};
 
-/// Writes `bytes` to `path` atomically (temporary file in the same folder, then rename).
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
+/// The folder an output goes to and the temporary name it is first written under; errors for
+/// a path without a file name, a missing folder, or a path that is a folder.
+fn target(path: &Path) -> anyhow::Result<(PathBuf, PathBuf)> {
     let file_name = path
         .file_name()
         .with_context(|| format!("output path {} has no file name", path.display()))?;
@@ -18,7 +19,29 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
     if !dir.is_dir() {
         bail!("cannot write {}: folder {} does not exist", path.display(), dir.display());
     }
+    if path.is_dir() {
+        bail!("cannot write {}: it is a folder", path.display());
+    }
     let tmp = dir.join(format!(".{}.tmp-{}", file_name.to_string_lossy(), std::process::id()));
+    Ok((dir, tmp))
+}
+
+/// Checks, before any work, that [`write_atomic`] will be able to write `path`: its folder
+/// exists and takes a new file (the temporary is created and removed), and `path` is not a
+/// folder. A render of minutes then never ends in "cannot write".
+///
+/// # Errors
+/// What [`write_atomic`] would report.
+pub fn check_writable(path: &Path) -> anyhow::Result<()> {
+    let (_, tmp) = target(path)?;
+    std::fs::File::create(&tmp).with_context(|| format!("cannot write {}", path.display()))?;
+    std::fs::remove_file(&tmp).with_context(|| format!("cannot write {}", path.display()))?;
+    Ok(())
+}
+
+/// Writes `bytes` to `path` atomically (temporary file in the same folder, then rename).
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
+    let (_, tmp) = target(path)?;
     let result = (|| -> std::io::Result<()> {
         let mut f = std::fs::File::create(&tmp)?;
         f.write_all(bytes)?;

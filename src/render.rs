@@ -48,6 +48,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         Some(e) if e == "exr" => OutputKind::Hdr,
         _ => bail!("output {} must end in .png or .exr", args.output.display()),
     };
+    // Before any work: a render of minutes must not end in "cannot write".
+    ocean::output::check_writable(&args.output)?;
     let mut scene = ocean::scene_arg::load_scene(args.scene.as_ref(), &args.system)?;
     if let Some(t) = args.time {
         if !t.is_finite() {

@@ -86,3 +86,26 @@ fn negative_numbers_on_the_command_line_get_range_errors() {
     assert!(!e.contains("unexpected argument"), "{e}");
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "nothing written");
 }
+
+#[test]
+fn an_unwritable_output_is_refused_before_the_render() {
+    // Before: reported only after the whole render (43 s at 16384²). A huge frame that the
+    // check refuses at once proves the order: rendering it would take minutes.
+    let dir = tempfile::tempdir().unwrap();
+    let folder = dir.path().join("a_folder.png");
+    std::fs::create_dir(&folder).unwrap();
+    std::fs::create_dir(folder.with_extension("exr")).unwrap();
+    let missing = dir.path().join("missing").join("x.png");
+    for (out, want) in [(&folder, "it is a folder"), (&missing, "does not exist")] {
+        let (o, took) = ocean(&["render", "--size", "16384x16384", "-o", out.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(1));
+        let e = stderr(&o);
+        assert!(e.contains(want), "{e}");
+        assert!(took < Duration::from_secs(20), "took {took:?}: the check came after the render");
+        let exr = out.with_extension("exr");
+        let (o, _) = ocean(&["heightfield", "-o", exr.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    }
+    // Only the folders made above are left: no temporary behind.
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 2);
+}
