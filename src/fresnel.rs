@@ -7,7 +7,7 @@ use anyhow::{Context, bail};
 use ocean_core::fresnel::{fresnel_exact, fresnel_schlick};
 use ocean_core::tables::{FresnelTexture, TextureMapping};
 
-use ocean::output::{Channel, encode_exr, require_extension, write_atomic};
+use ocean::output::{Channel, encode_exr, require_extension};
 
 /// Arguments of `ocean fresnel`.
 #[derive(clap::Args, Debug)]
@@ -89,7 +89,7 @@ fn write_table(args: &Args, n: usize) -> anyhow::Result<()> {
     }
     let path = args.output.as_ref().context("--table N needs -o FILE.exr")?;
     require_extension(path, "exr")?;
-    ocean::output::check_writable(path)?;
+    let out = ocean::output::OutputFile::reserve(path)?;
     let mapping = if args.paper_half_range {
         TextureMapping::PaperHalfRange
     } else {
@@ -102,7 +102,7 @@ fn write_table(args: &Args, n: usize) -> anyhow::Result<()> {
         .enumerate()
         .map(|(c, name)| Channel { name, data: channel(c) })
         .collect();
-    write_atomic(path, &encode_exr(n, n, channels)?)?;
+    out.commit(&encode_exr(n, n, channels)?)?;
     eprintln!("wrote {} ({n}×{n}, η = {}, {:?} mapping)", path.display(), args.eta, mapping);
     Ok(())
 }

@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use anyhow::bail;
 use ocean_core::waves::Synthesizer;
 
-use ocean::output::{Channel, encode_exr, require_extension, write_atomic};
+use ocean::output::{Channel, encode_exr, require_extension};
 
 /// Arguments of `ocean heightfield`.
 #[derive(clap::Args, Debug)]
@@ -28,7 +28,7 @@ pub struct Args {
 /// Runs `ocean heightfield`.
 pub fn run(args: Args) -> anyhow::Result<()> {
     require_extension(&args.output, "exr")?;
-    ocean::output::check_writable(&args.output)?;
+    let out = ocean::output::OutputFile::reserve(&args.output)?;
     let mut scene = crate::load_scene(args.scene.as_ref())?;
     if let Some(t) = args.time {
         if !t.is_finite() {
@@ -45,7 +45,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let maps = Synthesizer::<f32>::new(n)?.synthesize(&modes, ocean.time_s, ocean.choppiness)?;
     let channels =
         maps.fields().iter().map(|(name, data)| Channel { name, data: data.to_vec() }).collect();
-    write_atomic(&args.output, &encode_exr(n, n, channels)?)?;
+    out.commit(&encode_exr(n, n, channels)?)?;
     eprintln!(
         "wrote {} ({n}×{n}, L = {} m, t = {} s, seed {})",
         args.output.display(),

@@ -48,6 +48,9 @@ pub(crate) fn load_scene(path: Option<&PathBuf>) -> anyhow::Result<ocean_core::s
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    if let Err(e) = ocean::output::remove_temporaries_on_interrupt() {
+        eprintln!("warning: {e:#}");
+    }
     let result = match cli.command {
         Command::Render(a) => render::run(a),
         Command::Fresnel(a) => fresnel::run(a),

@@ -3,12 +3,13 @@
 
 use std::io::{Cursor, Write};
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
 
 use anyhow::{Context, bail};
 
 /// The folder an output goes to and the temporary name it is first written under; errors for
 /// a path without a file name, a missing folder, or a path that is a folder.
-fn target(path: &Path) -> anyhow::Result<(PathBuf, PathBuf)> {
+fn target(path: &Path) -> anyhow::Result<(PathBuf, String)> {
     let file_name = path
         .file_name()
         .with_context(|| format!("output path {} has no file name", path.display()))?;
@@ -22,37 +23,119 @@ fn target(path: &Path) -> anyhow::Result<(PathBuf, PathBuf)> {
     if path.is_dir() {
         bail!("cannot write {}: it is a folder", path.display());
     }
-    let tmp = dir.join(format!(".{}.tmp-{}", file_name.to_string_lossy(), std::process::id()));
-    Ok((dir, tmp))
+    Ok((dir, format!(".{}.tmp-", file_name.to_string_lossy())))
 }
 
-/// Checks, before any work, that [`write_atomic`] will be able to write `path`: its folder
-/// exists and takes a new file (the temporary is created and removed), and `path` is not a
-/// folder. A render of minutes then never ends in "cannot write".
+/// The temporaries being written now, removed by the SIGINT/SIGTERM handler
+/// ([`remove_temporaries_on_interrupt`]).
+static PENDING: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+fn pending() -> std::sync::MutexGuard<'static, Vec<PathBuf>> {
+    // A poisoned list is still a list of paths to remove.
+    PENDING.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
+/// Whether process `pid` is alive (Linux: its `/proc` entry). Elsewhere every process counts
+/// as alive, so nothing is removed that might still be written.
+fn alive(pid: u32) -> bool {
+    !Path::new("/proc/self").exists() || Path::new(&format!("/proc/{pid}")).exists()
+}
+
+/// Removes the temporaries of `prefix` (`.NAME.tmp-`) that a dead process left in `dir` (a
+/// run killed with SIGKILL cannot clean up after itself). Returns how many.
+fn remove_stale(dir: &Path, prefix: &str) -> usize {
+    let Ok(entries) = std::fs::read_dir(dir) else { return 0 };
+    let mut removed = 0;
+    for entry in entries.flatten() {
+        let name = entry.file_name();
+        let Some(pid) = name.to_str().and_then(|n| n.strip_prefix(prefix)) else { continue };
+        let Ok(pid) = pid.parse::<u32>() else { continue };
+        if pid != std::process::id() && !alive(pid) && std::fs::remove_file(entry.path()).is_ok() {
+            removed += 1;
+        }
+    }
+    removed
+}
+
+/// An output file reserved before the work that makes it: its temporary (`.NAME.tmp-PID`
+/// beside it) exists from [`Self::reserve`] on, so an unwritable path fails at once, and it is
+/// removed on an error, on SIGINT/SIGTERM, or (after SIGKILL) by the next run that writes the
+/// same name. [`Self::commit`] writes the bytes and renames the temporary into place.
+pub struct OutputFile {
+    path: PathBuf,
+    tmp: PathBuf,
+    file: Option<std::fs::File>,
+}
+
+impl OutputFile {
+    /// Checks the path and creates its temporary.
+    ///
+    /// # Errors
+    /// A path without a file name, a missing folder, a path that is a folder, or a folder that
+    /// takes no new file.
+    pub fn reserve(path: &Path) -> anyhow::Result<Self> {
+        let (dir, prefix) = target(path)?;
+        remove_stale(&dir, &prefix);
+        let tmp = dir.join(format!("{prefix}{}", std::process::id()));
+        pending().push(tmp.clone());
+        let file = std::fs::File::create(&tmp);
+        let file = match file {
+            Ok(f) => f,
+            Err(e) => {
+                pending().retain(|p| *p != tmp);
+                return Err(e).with_context(|| format!("cannot write {}", path.display()));
+            }
+        };
+        Ok(Self { path: path.to_owned(), tmp, file: Some(file) })
+    }
+
+    /// Writes `bytes` and renames the temporary to the path.
+    ///
+    /// # Errors
+    /// An I/O error (the temporary is removed).
+    pub fn commit(mut self, bytes: &[u8]) -> anyhow::Result<()> {
+        let result = (|| -> std::io::Result<()> {
+            let mut f = self.file.take().ok_or_else(|| std::io::Error::other("already written"))?;
+            f.write_all(bytes)?;
+            f.sync_all()?;
+            drop(f);
+            std::fs::rename(&self.tmp, &self.path)
+        })();
+        result.with_context(|| format!("cannot write {}", self.path.display()))
+    }
+}
+
+impl Drop for OutputFile {
+    fn drop(&mut self) {
+        // After a commit the temporary is renamed away: removing it then fails harmlessly.
+        let _ = std::fs::remove_file(&self.tmp);
+        pending().retain(|p| *p != self.tmp);
+    }
+}
+
+/// Installs the SIGINT/SIGTERM handler of the command line: it removes every temporary being
+/// written and exits with status 130, so an interrupted run leaves no `.NAME.tmp-PID` behind.
 ///
 /// # Errors
-/// What [`write_atomic`] would report.
-pub fn check_writable(path: &Path) -> anyhow::Result<()> {
-    let (_, tmp) = target(path)?;
-    std::fs::File::create(&tmp).with_context(|| format!("cannot write {}", path.display()))?;
-    std::fs::remove_file(&tmp).with_context(|| format!("cannot write {}", path.display()))?;
-    Ok(())
+/// If a handler is already installed.
+pub fn remove_temporaries_on_interrupt() -> anyhow::Result<()> {
+    ctrlc::set_handler(|| {
+        let paths: Vec<PathBuf> = pending().drain(..).collect();
+        for p in &paths {
+            let _ = std::fs::remove_file(p);
+        }
+        eprintln!("interrupted: stopped, {} temporary file(s) removed", paths.len());
+        std::process::exit(130);
+    })
+    .context("cannot install the interrupt handler")
 }
 
 /// Writes `bytes` to `path` atomically (temporary file in the same folder, then rename).
+///
+/// # Errors
+/// As [`OutputFile::reserve`] and [`OutputFile::commit`].
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
-    let (_, tmp) = target(path)?;
-    let result = (|| -> std::io::Result<()> {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(bytes)?;
-        f.sync_all()?;
-        std::fs::rename(&tmp, path)
-    })();
-    if let Err(e) = result {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(e).with_context(|| format!("cannot write {}", path.display()));
-    }
-    Ok(())
+    OutputFile::reserve(path)?.commit(bytes)
 }
 
 /// One named f32 channel of an image, row-major (x fastest), top row first.

@@ -9,7 +9,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use ocean_core::plan::{FramePlan, OutputKind, Pass};
 use ocean_gpu::FrameMap;
 
-use ocean::output::{Channel, encode_exr, encode_png, parse_size, write_atomic};
+use ocean::output::{Channel, encode_exr, encode_png, parse_size};
 
 /// Arguments of `ocean render`.
 #[derive(clap::Args, Debug)]
@@ -49,7 +49,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         _ => bail!("output {} must end in .png or .exr", args.output.display()),
     };
     // Before any work: a render of minutes must not end in "cannot write".
-    ocean::output::check_writable(&args.output)?;
+    let out = ocean::output::OutputFile::reserve(&args.output)?;
     let mut scene = ocean::scene_arg::load_scene(args.scene.as_ref(), &args.system)?;
     if let Some(t) = args.time {
         if !t.is_finite() {
@@ -101,7 +101,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             encode_exr(w as usize, h as usize, channels)?
         }
     };
-    write_atomic(&args.output, &bytes)?;
+    out.commit(&bytes)?;
     let passes: Vec<String> = passes;
     eprintln!(
         "wrote {} ({w}×{h}, {backend}, {:.2} s: {})",

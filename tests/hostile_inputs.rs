@@ -109,3 +109,68 @@ fn an_unwritable_output_is_refused_before_the_render() {
     // Only the folders made above are left: no temporary behind.
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 2);
 }
+
+#[test]
+fn a_duplicate_key_is_named() {
+    // Before: "<scene>:3:1: duplicate key", without the key.
+    let text = "[ocean]\nwind_speed = 3.0\nwind_speed = 4.0\n";
+    let e = Scene::from_toml(text, SceneSource::Text).unwrap_err().to_string();
+    assert!(e.contains("ocean.wind_speed") && e.contains(":3:") && e.contains("duplicate"), "{e}");
+    let e = Scene::from_toml("system = \"hu\"\nsystem = \"hu\"\n", SceneSource::Text)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("key `system`"), "{e}");
+}
+
+/// The temporary of output `name` written by process `pid`.
+fn temporary(dir: &std::path::Path, name: &str, pid: u32) -> std::path::PathBuf {
+    dir.join(format!(".{name}.tmp-{pid}"))
+}
+
+#[test]
+fn sigint_or_sigterm_during_a_render_removes_its_temporary() {
+    // Before: 12 of 12 interrupted writes left `.NAME.png.tmp-PID` behind.
+    for signal in ["-INT", "-TERM"] {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("big.png");
+        let child = Command::new(env!("CARGO_BIN_EXE_ocean"))
+            .args(["render", "--size", "3000x3000", "-o", out.to_str().unwrap()])
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .expect("ocean runs");
+        let tmp = temporary(dir.path(), "big.png", child.id());
+        // The output is reserved before the render starts.
+        let start = Instant::now();
+        while !tmp.exists() {
+            assert!(start.elapsed() < Duration::from_secs(20), "no temporary appeared");
+            std::thread::sleep(Duration::from_millis(5));
+        }
+        let status = Command::new("kill").args([signal, &child.id().to_string()]).status();
+        assert!(status.expect("kill runs").success());
+        let o = child.wait_with_output().expect("ocean exits");
+        assert_eq!(o.status.code(), Some(130), "{signal}: {}", stderr(&o));
+        assert!(stderr(&o).contains("interrupted"), "{}", stderr(&o));
+        assert!(!tmp.exists() && !out.exists(), "{signal}: something was left behind");
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+    }
+}
+
+#[test]
+fn a_killed_runs_temporary_is_removed_by_the_next_run() {
+    // SIGKILL cannot be caught: the next run writing the same name removes what a dead
+    // process left, and leaves a living process's temporary alone.
+    let dir = tempfile::tempdir().unwrap();
+    let mut dead = Command::new("true").spawn().expect("true runs");
+    let dead_pid = dead.id();
+    dead.wait().unwrap();
+    let stale = temporary(dir.path(), "x.png", dead_pid);
+    let live = temporary(dir.path(), "x.png", std::process::id());
+    std::fs::write(&stale, b"left by a killed run").unwrap();
+    std::fs::write(&live, b"being written by a live run").unwrap();
+    let out = dir.path().join("x.png");
+    let (o, _) = ocean(&["render", "--size", "16x9", "-o", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(out.exists());
+    assert!(!stale.exists(), "the dead run's temporary is still there");
+    assert!(live.exists(), "a living process's temporary was removed");
+}

@@ -483,7 +483,9 @@ impl Scene {
                 source_name: source.clone(),
                 line,
                 column,
-                key: e.span().and_then(|s| key_at_offset(text, s.start)),
+                key: e
+                    .span()
+                    .and_then(|s| key_at_offset(text, s.start).or_else(|| key_of_line(text, s))),
                 message: e.message().trim().to_string(),
             }
         })?;
@@ -721,6 +723,27 @@ fn check_colour(key: &str, v: [f64; 3]) -> Result<(), (String, String)> {
 }
 
 /// 1-based (line, column) of a byte offset; the column counts characters.
+/// The dotted key written at `span` when the parse tree cannot say (a duplicate key fails the
+/// parse, so it is not in any tree): the key before `=` on that line, under the nearest table
+/// header above it.
+fn key_of_line(text: &str, span: std::ops::Range<usize>) -> Option<String> {
+    let line_start = text[..span.start.min(text.len())].rfind('\n').map_or(0, |i| i + 1);
+    let line = text[line_start..].lines().next()?;
+    let key = line.split('=').next()?.trim().trim_matches('"');
+    let valid = !key.is_empty() && !key.starts_with('[') && !key.starts_with('#');
+    if !valid {
+        return None;
+    }
+    let table = text[..line_start].lines().rev().map(str::trim).find_map(|l| {
+        let inner = l.strip_prefix('[')?.split(']').next()?;
+        Some(inner.trim_matches(['[', ']']).trim().to_owned())
+    });
+    Some(match table {
+        Some(t) if !t.is_empty() => format!("{t}.{key}"),
+        _ => key.to_owned(),
+    })
+}
+
 fn line_column(text: &str, offset: usize) -> (usize, usize) {
     let offset = offset.min(text.len());
     let before = &text[..offset];
