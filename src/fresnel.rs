@@ -61,7 +61,7 @@ fn write_csv(out: &mut impl std::io::Write, eta: f64, step_deg: f64) -> anyhow::
     let min_step = 90.0 / (MAX_CSV_ROWS - 1.0);
     if !(step_deg >= min_step && step_deg <= 90.0) {
         bail!(
-            "--step-deg must be in [{min_step:e}, 90] (at most {MAX_CSV_ROWS:e} rows), got {step_deg}"
+            "--step-deg must be in [{min_step:e}, 90] (at most {MAX_CSV_ROWS:e} rows), got {step_deg:?}"
         );
     }
     let write = |out: &mut dyn std::io::Write, line: std::fmt::Arguments<'_>| {
