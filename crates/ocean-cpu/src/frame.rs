@@ -186,6 +186,13 @@ fn target_texture(t: RenderTarget) -> Texture2D {
     Texture2D::new(t.width, t.height, t.color)
 }
 
+/// The HDR frame at the plan's size and clear colour, reversed-Z depth cleared to 0.
+fn new_hdr(plan: &FramePlan) -> RenderTarget {
+    let mut t = planned_target(plan, ResourceId::Hdr);
+    t.clear_depth(0.0);
+    t
+}
+
 /// A render target of the plan's size for `id`, cleared to the plan's colour.
 fn planned_target(plan: &FramePlan, id: ResourceId) -> RenderTarget {
     let (size, clear) = plan.resource(id).map_or(([1, 1], [0.0; 4]), |r| (r.size, r.clear));
@@ -215,11 +222,7 @@ impl<'e> CpuBackend<'e> {
 
     /// The HDR frame, made at the plan's size and clear colour by its first writer.
     fn hdr(&mut self, plan: &FramePlan) -> &mut RenderTarget {
-        self.hdr.get_or_insert_with(|| {
-            let mut t = planned_target(plan, ResourceId::Hdr);
-            t.clear_depth(0.0);
-            t
-        })
+        self.hdr.get_or_insert_with(|| new_hdr(plan))
     }
 
     /// The frame's buffers once every pass has run.
@@ -353,11 +356,8 @@ impl<'e> CpuBackend<'e> {
             Environment::Planned => &planned_sky,
             Environment::Given { radiance, .. } => radiance,
         };
-        let mut hdr = self.hdr.take().unwrap_or_else(|| {
-            let mut t = planned_target(frame.plan, ResourceId::Hdr);
-            t.clear_depth(0.0);
-            t
-        });
+        // Taken out while the bindings borrow the other maps, put back after the draw.
+        let mut hdr = self.hdr.take().unwrap_or_else(|| new_hdr(frame.plan));
         let empty = Texture2D::new(1, 1, vec![[0.0; 4]]);
         let maps = &self.maps;
         let map = |id| maps.iter().find(|(m, _)| *m == id).map_or(&empty, |(_, t)| t);

@@ -252,10 +252,9 @@ impl GpuBackend<'_> {
             return Ok(());
         }
         if self.waves.as_ref().is_none_or(|(k, _, _)| *k != wave_key(ocean)) {
-            return Err(Error::Readback {
-                what: "waves".into(),
-                message: "the renderer holds no wave source for this ocean".into(),
-            });
+            return Err(Error::Unavailable(
+                "stage `waves`: the renderer holds no wave source for this ocean".into(),
+            ));
         }
         let Some((_, _, source)) = self.waves.as_mut() else { return Ok(()) };
         let t0 = Instant::now();
