@@ -28,6 +28,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if let Some(s) = &args.size {
         (scene.camera.width, scene.camera.height) = ocean::output::parse_size(s)?;
     }
+    ocean::scene_arg::revalidate(&scene, "--size")?;
     let name = args
         .scene
         .as_ref()

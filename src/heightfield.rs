@@ -4,7 +4,6 @@
 
 use std::path::PathBuf;
 
-use anyhow::bail;
 use ocean_core::waves::Synthesizer;
 
 use ocean::output::{Channel, encode_exr, require_extension};
@@ -31,14 +30,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let out = ocean::output::OutputFile::reserve(&args.output)?;
     let mut scene = crate::load_scene(args.scene.as_ref())?;
     if let Some(t) = args.time {
-        if !t.is_finite() {
-            bail!("--time must be finite, got {t}");
-        }
         scene.ocean.time_s = t;
     }
     if let Some(s) = args.seed {
         scene.ocean.seed = s;
     }
+    ocean::scene_arg::revalidate(&scene, "--time/--seed")?;
     let ocean = &scene.ocean;
     let modes = ocean.displacement_modes()?;
     let n = modes.resolution();

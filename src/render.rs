@@ -52,14 +52,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let out = ocean::output::OutputFile::reserve(&args.output)?;
     let mut scene = ocean::scene_arg::load_scene(args.scene.as_ref(), &args.system)?;
     if let Some(t) = args.time {
-        if !t.is_finite() {
-            bail!("--time must be finite, got {t}");
-        }
         scene.ocean.time_s = t;
     }
     if let Some(s) = &args.size {
         (scene.camera.width, scene.camera.height) = parse_size(s)?;
     }
+    ocean::scene_arg::revalidate(&scene, "--time/--size")?;
     let (w, h) = (scene.camera.width, scene.camera.height);
     let start = Instant::now();
     let (ldr, hdr, passes, backend) = match args.backend {

@@ -34,3 +34,12 @@ pub fn load_scene(path: Option<&PathBuf>, system: &SystemArg) -> anyhow::Result<
     }
     Ok(scene)
 }
+
+/// Checks a scene again after command-line flags changed it (`--time`, `--size`, `--seed`),
+/// so that a flag is held to the same limits as the key it overrides; the error names both.
+///
+/// # Errors
+/// The first value out of range, as `FLAGS: key `KEY`: what is allowed`.
+pub fn revalidate(scene: &Scene, flags: &str) -> anyhow::Result<()> {
+    scene.validate().map_err(|(key, message)| anyhow::anyhow!("{flags}: key `{key}`: {message}"))
+}

@@ -101,11 +101,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         (scene.camera.width, scene.camera.height) = crate::output::parse_size(s)?;
     }
     if let Some(t) = args.time {
-        if !t.is_finite() {
-            bail!("--time must be finite, got {t}");
-        }
         scene.ocean.time_s = t;
     }
+    crate::scene_arg::revalidate(&scene, "--size/--time")?;
     app::run(args, scene)
 }
 

@@ -4,7 +4,7 @@
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
     /// A physical or numerical parameter is outside the range where the model is defined.
-    #[error("invalid {name} = {value}: {reason}")]
+    #[error("invalid {name} = {}: {reason}", number(*value))]
     InvalidParameter {
         /// The parameter's name as the user knows it (scene key or argument name).
         name: &'static str,
@@ -26,3 +26,13 @@ pub enum Error {
 
 /// Shorthand for results of this crate.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// A number as a person reads it in a message: plain from 1e-4 to 1e7, in exponent notation
+/// beyond (`1e300`, not three hundred digits).
+pub fn number(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() || (1e-4..1e7).contains(&v.abs()) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
+}

@@ -1,0 +1,412 @@
+//! [`Scene::validate`]: every value checked against what the f32 pipeline, the geometry and
+//! the GPU can represent, so that **validation accepts ⇒ both back ends render only finite
+//! pixels** (`tests/scene_properties.rs` holds the scenes at these limits to that).
+//!
+//! Two layers:
+//! - [`LIMITS`], one range per numeric key (vectors and colours per component), each with the
+//!   reason for its bounds. The README's table, the property test's extreme scenes and the
+//!   fuzzer read the same table.
+//! - Cross-key checks: the quantities the frame derives from several keys (the bump map's
+//!   band, the time the wave phase holds, the view, the spectrum, the water mesh) are built
+//!   here with the constructors the frame uses, and a failure is reported as the scene key it
+//!   comes from, never as the internal quantity.
+
+use super::{ObjectKind, Scene, Shape};
+use crate::error::number;
+
+/// The accepted range of one numeric scene key, inclusive at both ends (NaN never passes).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Limit {
+    /// The dotted key; `objects.*.` stands for every object.
+    pub key: &'static str,
+    /// Smallest accepted value (of each component, for a vector).
+    pub min: f64,
+    /// Largest accepted value (of each component); `inf` where infinity is meaningful.
+    pub max: f64,
+    /// Why the bounds are where they are.
+    pub why: &'static str,
+    /// The key takes whole numbers (written without a decimal point).
+    pub whole: bool,
+}
+
+const fn real(key: &'static str, min: f64, max: f64, why: &'static str) -> Limit {
+    Limit { key, min, max, why, whole: false }
+}
+
+const fn whole(key: &'static str, min: f64, max: f64, why: &'static str) -> Limit {
+    Limit { key, min, max, why, whole: true }
+}
+
+/// The largest distance from the origin of any position, per axis, metres: the camera's
+/// height is bounded by the water mesh at [`crate::geometry::MAX_HEIGHT_M`], and the same
+/// bound on x and z keeps every camera-relative f32 coordinate below 4e6 m (within 0.25 m).
+pub const MAX_COORDINATE_M: f64 = crate::geometry::MAX_HEIGHT_M;
+
+/// The largest colour component: albedos and radiances beyond a thousand carry no meaning the
+/// sun's intensity does not, and the bound keeps radiance × exposure far inside f32.
+pub const MAX_COLOUR: f64 = 1.0e3;
+
+/// The largest `sun.intensity`. With [`MAX_COLOUR`] and the largest exposure (1e6), HDR
+/// values stay below ~1e17, and the tonemap's x² below 1e35 < f32::MAX (3.4e38).
+pub const MAX_SUN_INTENSITY: f64 = 1.0e6;
+
+/// The shortest camera-to-target distance and object size, metres: below a millimetre f32
+/// camera-relative positions of 1e6 m scenes can no longer tell the ends apart.
+pub const MIN_LENGTH_M: f64 = 1.0e-3;
+
+/// Every numeric key's range, in scene-file order.
+pub const LIMITS: &[Limit] = &[
+    real(
+        "ocean.wind_speed",
+        0.0,
+        200.0,
+        "m/s at 10 m; 0 is a flat sea, 200 is above any measured surface wind",
+    ),
+    real("ocean.wind_direction_deg", -1.0e6, 1.0e6, "degrees; any angle, within f32 range"),
+    real(
+        "ocean.fetch_km",
+        1.0e-3,
+        2.0e4,
+        "JONSWAP/TMA fetch from 1 m to half the Earth's circumference",
+    ),
+    real("ocean.depth_m", 1.0e-2, f64::INFINITY, "m; inf is deep water"),
+    real(
+        "ocean.peak_enhancement",
+        1.0,
+        20.0,
+        "JONSWAP γ: 1 is Pierson–Moskowitz, 3.3 the JONSWAP mean",
+    ),
+    real(
+        "ocean.patch_size_m",
+        1.0e-2,
+        1.0e5,
+        "m; beyond 100 km the far patch (1e6 H) no longer reaches past the near patch from 0.5 m up",
+    ),
+    whole(
+        "ocean.resolution",
+        2.0,
+        super::MAX_RESOLUTION as f64,
+        "4096² complex f64 fields are ~2 GiB of scratch",
+    ),
+    whole("ocean.bump_resolution", 2.0, super::MAX_RESOLUTION as f64, "as ocean.resolution"),
+    whole(
+        "ocean.bump_patch_divisor",
+        1.0,
+        super::MAX_BUMP_PATCH_DIVISOR as f64,
+        "the bump modes' lattice index divisor × resolution stays far inside i32",
+    ),
+    real("ocean.choppiness", 0.0, 10.0, "Tessendorf's λ; beyond ~2 the surface folds everywhere"),
+    real(
+        "ocean.time_s",
+        -f64::MAX,
+        f64::MAX,
+        "s; without a loop period |t| < 2^55 s, what the wave phase's tick count holds",
+    ),
+    real(
+        "ocean.loop_period_s",
+        0.0,
+        crate::waves::uniforms::MAX_TIME_S,
+        "s; 0 = no looping; at most 2^55 s, so the reduced time fits the wave phase",
+    ),
+    real(
+        "ocean.phillips_amplitude",
+        0.0,
+        1.0,
+        "775 × the default α/(2π); steeper than any sea that does not break",
+    ),
+    real("ocean.phillips_small_wave_m", 0.0, 1.0e5, "m; as ocean.patch_size_m"),
+    real(
+        "camera.position",
+        -MAX_COORDINATE_M,
+        MAX_COORDINATE_M,
+        "m; the water mesh is built for |eye.y| ≤ 1e6 m",
+    ),
+    real("camera.look_at", -MAX_COORDINATE_M, MAX_COORDINATE_M, "m; as camera.position"),
+    real(
+        "camera.fov_y_deg",
+        1.0e-2,
+        179.0,
+        "degrees; the projection's 1/tan(fov/2) stays below 2e4",
+    ),
+    whole(
+        "camera.width",
+        1.0,
+        super::MAX_IMAGE_SIDE as f64,
+        "pixels; a 16384² f32 RGBA frame is 4 GiB",
+    ),
+    whole("camera.height", 1.0, super::MAX_IMAGE_SIDE as f64, "pixels; as camera.width"),
+    real("camera.exposure", 1.0e-6, 1.0e6, "multiplier before the tonemap; the tonemap needs > 0"),
+    real(
+        "sun.direction",
+        -MAX_COORDINATE_M,
+        MAX_COORDINATE_M,
+        "normalised on use; its length must be at least 1e-6",
+    ),
+    real("sun.color", 0.0, MAX_COLOUR, "linear RGB"),
+    real(
+        "sun.intensity",
+        0.0,
+        MAX_SUN_INTENSITY,
+        "radiance of the disc; keeps radiance × exposure inside f32",
+    ),
+    real("sun.turbidity", crate::sky::TURBIDITY_MIN, crate::sky::TURBIDITY_MAX, "Preetham's fit"),
+    real(
+        "water.ior",
+        1.0e-2,
+        1.0e2,
+        "η; 1 is no interface, < 1 total internal reflection from above",
+    ),
+    real("water.color", 0.0, MAX_COLOUR, "linear RGB radiance at sun intensity 1"),
+    real("water.extinction_per_m", 0.0, 1.0e3, "1/m; 1e3 is opaque within a millimetre"),
+    whole(
+        "quality.fresnel_table_size",
+        2.0,
+        crate::tables::MAX_TABLE_SIZE as f64,
+        "texels per side",
+    ),
+    real("quality.reflection_map_scale", 1.0e-3, 1.0, "fraction of the viewport's side"),
+    real(
+        "quality.lod_split_threshold",
+        1.0e-4,
+        10.0,
+        "radians; small values make large meshes (the memory estimate bounds them)",
+    ),
+    real("objects.*.center", -MAX_COORDINATE_M, MAX_COORDINATE_M, "m; as camera.position"),
+    real("objects.*.radius", MIN_LENGTH_M, MAX_COORDINATE_M, "m"),
+    real("objects.*.size", MIN_LENGTH_M, MAX_COORDINATE_M, "m, each edge"),
+    real("objects.*.color", 0.0, MAX_COLOUR, "linear RGB albedo"),
+];
+
+/// The limit of a key (`objects.3.radius` finds `objects.*.radius`).
+pub fn limit(key: &str) -> Option<&'static Limit> {
+    let pattern = match key.strip_prefix("objects.") {
+        Some(rest) => match rest.split_once('.') {
+            Some((index, field)) if index.parse::<usize>().is_ok() => format!("objects.*.{field}"),
+            _ => key.to_owned(),
+        },
+        None => key.to_owned(),
+    };
+    LIMITS.iter().find(|l| l.key == pattern)
+}
+
+type Refusal = (String, String);
+
+/// Checks `values` (one or the components of a vector) against the limit of `key`.
+fn check(key: &str, values: &[f64]) -> Result<(), Refusal> {
+    let Some(l) = limit(key) else {
+        return Err((key.to_owned(), "internal: no limit for this key".to_owned()));
+    };
+    if values.iter().all(|v| (l.min..=l.max).contains(v)) {
+        return Ok(());
+    }
+    let got = if values.len() == 1 {
+        number(values[0])
+    } else {
+        format!("[{}]", values.iter().map(|v| number(*v)).collect::<Vec<_>>().join(", "))
+    };
+    let each = if values.len() > 1 { "every component " } else { "" };
+    Err((
+        key.to_owned(),
+        format!(
+            "{each}must be between {} and {} ({}), got {got}",
+            number(l.min),
+            number(l.max),
+            l.why
+        ),
+    ))
+}
+
+fn check_u32(key: &str, v: u32) -> Result<(), Refusal> {
+    check(key, &[f64::from(v)])
+}
+
+impl Scene {
+    /// Checks every value against [`LIMITS`] and every derived quantity the frame needs.
+    /// Returns the dotted key path of the first bad value and what is allowed.
+    pub fn validate(&self) -> Result<(), Refusal> {
+        self.check_techniques()?;
+        let o = &self.ocean;
+        check("ocean.wind_speed", &[o.wind_speed])?;
+        check("ocean.wind_direction_deg", &[o.wind_direction_deg])?;
+        check("ocean.fetch_km", &[o.fetch_km])?;
+        check("ocean.depth_m", &[o.depth_m])?;
+        check("ocean.peak_enhancement", &[o.peak_enhancement])?;
+        check("ocean.patch_size_m", &[o.patch_size_m])?;
+        check_u32("ocean.resolution", o.resolution)?;
+        check_u32("ocean.bump_resolution", o.bump_resolution)?;
+        check_u32("ocean.bump_patch_divisor", o.bump_patch_divisor)?;
+        check("ocean.choppiness", &[o.choppiness])?;
+        check("ocean.time_s", &[o.time_s])?;
+        check("ocean.loop_period_s", &[o.loop_period_s])?;
+        check("ocean.phillips_amplitude", &[o.phillips_amplitude])?;
+        check("ocean.phillips_small_wave_m", &[o.phillips_small_wave_m])?;
+        let c = &self.camera;
+        check("camera.position", &c.position)?;
+        check("camera.look_at", &c.look_at)?;
+        check("camera.fov_y_deg", &[c.fov_y_deg])?;
+        check_u32("camera.width", c.width)?;
+        check_u32("camera.height", c.height)?;
+        check("camera.exposure", &[c.exposure])?;
+        if let Some(s) = &self.sun {
+            check("sun.direction", &s.direction)?;
+            check("sun.color", &s.color)?;
+            check("sun.intensity", &[s.intensity])?;
+            check("sun.turbidity", &[s.turbidity])?;
+        }
+        let w = &self.water;
+        check("water.ior", &[w.ior])?;
+        check("water.color", &w.color)?;
+        check("water.extinction_per_m", &[w.extinction_per_m])?;
+        let q = &self.quality;
+        check_u32("quality.fresnel_table_size", q.fresnel_table_size)?;
+        check("quality.reflection_map_scale", &[q.reflection_map_scale])?;
+        check("quality.lod_split_threshold", &[q.lod_split_threshold])?;
+        self.check_objects()?;
+        self.check_derived()
+    }
+
+    fn check_techniques(&self) -> Result<(), Refusal> {
+        use crate::plan::{TechniqueError, Techniques};
+        let techniques = Techniques::with_overrides(self.system, self.techniques.iter()).map_err(
+            |e| match &e {
+                TechniqueError::UnknownTechnique { stage, .. } => {
+                    (format!("techniques.{stage}"), e.to_string())
+                }
+                _ => ("system".to_owned(), e.to_string()),
+            },
+        )?;
+        techniques.check().map_err(|e| {
+            let key = match &e {
+                TechniqueError::NotAvailable { stage, .. } if techniques.is_overridden(*stage) => {
+                    format!("techniques.{stage}")
+                }
+                _ => "system".to_owned(),
+            };
+            (key, e.to_string())
+        })
+    }
+
+    fn check_objects(&self) -> Result<(), Refusal> {
+        for (i, obj) in self.objects.iter().enumerate() {
+            let key = |f: &str| format!("objects.{i}.{f}");
+            check(&key("center"), &obj.center)?;
+            check(&key("color"), &obj.color)?;
+            let (needs, forbids) = match obj.kind {
+                ObjectKind::Sphere => ("radius", obj.size.is_some().then_some("size")),
+                ObjectKind::Box => ("size", obj.radius.is_some().then_some("radius")),
+            };
+            if let Some(f) = forbids {
+                return Err((
+                    key(f),
+                    format!("a {:?} has no `{f}` (it takes `{needs}`)", obj.kind),
+                ));
+            }
+            match obj.shape() {
+                Some(Shape::Sphere { radius }) => check(&key("radius"), &[radius])?,
+                Some(Shape::Box { size }) => check(&key("size"), &size)?,
+                None => return Err((key(needs), format!("a {:?} needs `{needs}`", obj.kind))),
+            }
+        }
+        Ok(())
+    }
+
+    /// The quantities the frame derives from several keys, built as the frame builds them.
+    fn check_derived(&self) -> Result<(), Refusal> {
+        let o = &self.ocean;
+        // The bump map holds the waves the displacement map cannot: those from index
+        // ⌈N_d / 2r⌉ of its own lattice up to its Nyquist N_b / 2 (waves::surface).
+        let first_bump_index = o.resolution.div_ceil(2 * o.bump_patch_divisor);
+        if o.bump_resolution <= 2 * first_bump_index {
+            return Err((
+                "ocean.bump_resolution".into(),
+                format!(
+                    "must exceed {} (2·⌈resolution / (2·bump_patch_divisor)⌉), else the bump \
+                     map holds no wave finer than the displacement map's; got {}",
+                    2 * first_bump_index,
+                    o.bump_resolution
+                ),
+            ));
+        }
+        let dispersion = o.dispersion().map_err(|e| ("ocean.depth_m".to_owned(), e.to_string()))?;
+        let tau = dispersion.reduced_time(o.time_s);
+        if tau.abs() >= crate::waves::uniforms::MAX_TIME_S {
+            return Err((
+                "ocean.time_s".into(),
+                format!(
+                    "must be within ±2^55 s ({}) without a loop period (the wave phase counts \
+                     2⁻⁸ s ticks in 64 bits); got {}; set ocean.loop_period_s to render later \
+                     times",
+                    number(crate::waves::uniforms::MAX_TIME_S),
+                    number(o.time_s)
+                ),
+            ));
+        }
+        o.wave_spectrum().map_err(|e| (spectrum_key(&e).to_owned(), e.to_string()))?;
+
+        let c = &self.camera;
+        let d = [0, 1, 2].map(|i| c.look_at[i] - c.position[i]);
+        let distance = d[0].hypot(d[1]).hypot(d[2]);
+        if distance < MIN_LENGTH_M {
+            return Err((
+                "camera.look_at".into(),
+                format!(
+                    "must be at least {} m from camera.position, got {}",
+                    number(MIN_LENGTH_M),
+                    number(distance)
+                ),
+            ));
+        }
+        let camera = crate::camera::Camera::from_scene(c)
+            .map_err(|e| ("camera.look_at".to_owned(), e.to_string()))?;
+        let view_proj = camera.view_proj();
+        if !view_proj.is_finite()
+            || crate::camera_uniforms::invert(&view_proj.to_cols_array_2d()).is_none()
+        {
+            return Err((
+                "camera.fov_y_deg".into(),
+                "the view-projection matrix of this camera is singular".into(),
+            ));
+        }
+        if let Some(s) = &self.sun {
+            let length = s.direction[0].hypot(s.direction[1]).hypot(s.direction[2]);
+            if length < 1.0e-6 {
+                return Err((
+                    "sun.direction".into(),
+                    format!("must have a length of at least 1e-6, got {}", number(length)),
+                ));
+            }
+        }
+        let grid = self.patch_params();
+        let refuse_grid = |e: crate::Error| {
+            (
+                "ocean.patch_size_m".to_owned(),
+                format!(
+                    "with ocean.resolution = {} (a grid spacing of {} m) the water mesh cannot \
+                     be built: {e}",
+                    o.resolution,
+                    number(grid.grid_spacing_m)
+                ),
+            )
+        };
+        crate::geometry::near_patch_square(&grid, [c.position[0], c.position[2]])
+            .map_err(refuse_grid)?;
+        crate::geometry::effective_height(&grid, c.position[1])
+            .map_err(|e| ("camera.position".to_owned(), e.to_string()))?;
+        Ok(())
+    }
+}
+
+/// The scene key of a spectrum parameter the spectrum refused.
+fn spectrum_key(e: &crate::Error) -> &'static str {
+    let crate::Error::InvalidParameter { name, .. } = e else { return "ocean.spectrum" };
+    match *name {
+        "wind_speed" => "ocean.wind_speed",
+        "wind_direction" => "ocean.wind_direction_deg",
+        "depth_m" => "ocean.depth_m",
+        "fetch_m" => "ocean.fetch_km",
+        "peak_enhancement" => "ocean.peak_enhancement",
+        "phillips_amplitude" => "ocean.phillips_amplitude",
+        "phillips_small_wave_m" => "ocean.phillips_small_wave_m",
+        _ => "ocean.spectrum",
+    }
+}

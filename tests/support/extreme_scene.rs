@@ -1,0 +1,237 @@
+//! Scenes at the edges of what validation accepts, drawn from the validation's own table
+//! (`ocean_core::scene::LIMITS`), for the invariant "validation accepts ⇒ finite pixels"
+//! (`tests/scene_properties.rs` on the CPU, `tests/gpu_frame_graph.rs` on the GPU).
+//!
+//! The generator writes scene *text*, so every scene goes through `Scene::from_toml` as a
+//! user's does; what it checks (finiteness) does not come from the code under test.
+
+#![allow(dead_code, reason = "each test binary uses part of the generator")]
+
+use ocean_core::scene::{LIMITS, Limit, Scene, SceneSource};
+
+/// SplitMix64: small, deterministic, no dependency.
+pub struct Rng(pub u64);
+
+impl Rng {
+    pub fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    /// Uniform in [0, 1).
+    pub fn unit(&mut self) -> f64 {
+        (self.next() >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// Keys whose value is a 3-vector (each component has the key's limit).
+pub const VECTOR_KEYS: &[&str] = &[
+    "camera.position",
+    "camera.look_at",
+    "sun.direction",
+    "sun.color",
+    "water.color",
+    "objects.*.center",
+    "objects.*.size",
+    "objects.*.color",
+];
+
+/// Keys that set the cost of a frame (grid sizes, table size, image size, mesh density): the
+/// random scenes keep them small, and [`cost_extremes`] takes each to its limit once.
+pub const COST_KEYS: &[&str] = &[
+    "ocean.resolution",
+    "ocean.bump_resolution",
+    "camera.width",
+    "camera.height",
+    "quality.fresnel_table_size",
+    "quality.lod_split_threshold",
+];
+
+/// How to draw a value in a limit's range.
+#[derive(Clone, Copy, Debug)]
+pub enum Draw {
+    /// The smallest accepted value.
+    Min,
+    /// The largest accepted value (the largest finite one where the limit is ∞, and ∞ too).
+    Max,
+    /// Anywhere in the range: log-uniform in magnitude across the range's decades, either
+    /// sign where both are allowed, and at a bound one time in five.
+    Random,
+}
+
+/// A value of `limit` drawn by `how`.
+pub fn draw(limit: &Limit, how: Draw, rng: &mut Rng) -> f64 {
+    let v = match how {
+        Draw::Min => limit.min,
+        Draw::Max => {
+            if limit.max.is_infinite() && rng.next().is_multiple_of(2) {
+                f64::MAX
+            } else {
+                limit.max
+            }
+        }
+        Draw::Random => {
+            if rng.next().is_multiple_of(5) {
+                return draw(
+                    limit,
+                    if rng.next().is_multiple_of(2) { Draw::Min } else { Draw::Max },
+                    rng,
+                );
+            }
+            let hi = limit.max.min(f64::MAX);
+            let lo = limit.min.max(-f64::MAX);
+            // A magnitude from 1e-6 of the range's larger end up to it, log-uniform.
+            let top = hi.abs().max(lo.abs()).max(1e-300);
+            let m = top * 10f64.powf(-12.0 * rng.unit());
+            let v = if lo < 0.0 && rng.next().is_multiple_of(2) { -m } else { m };
+            v.clamp(lo, hi)
+        }
+    };
+    if limit.whole { v.round() } else { v }
+}
+
+/// The TOML literal of `v` for `limit`.
+pub fn literal(limit: &Limit, v: f64) -> String {
+    if limit.whole {
+        format!("{}", v as u64)
+    } else if v.is_infinite() {
+        if v > 0.0 { "inf".into() } else { "-inf".into() }
+    } else {
+        // `{:?}` round-trips an f64 and is valid TOML (`1e300`, `0.5`, `-3.0`).
+        format!("{v:?}")
+    }
+}
+
+/// Scene text with `values` (key → TOML literal) set and everything else defaulted. Object
+/// keys (`objects.*.field`) go to every object in `objects` (kinds), each getting the field
+/// its kind takes.
+pub fn scene_text(values: &[(&str, String)], objects: &[&str]) -> String {
+    let mut tables: Vec<(&str, Vec<String>)> = Vec::new();
+    let mut object_lines = Vec::new();
+    for (key, value) in values {
+        if let Some(field) = key.strip_prefix("objects.*.") {
+            object_lines.push((field, value.clone()));
+            continue;
+        }
+        let (table, field) = key.split_once('.').unwrap_or(("", key));
+        let line = format!("{field} = {value}");
+        match tables.iter_mut().find(|(t, _)| *t == table) {
+            Some((_, lines)) => lines.push(line),
+            None => tables.push((table, vec![line])),
+        }
+    }
+    let mut text = String::new();
+    for (table, lines) in tables {
+        text += &format!("[{table}]\n{}\n", lines.join("\n"));
+    }
+    for kind in objects {
+        text += &format!("[[objects]]\nkind = \"{kind}\"\n");
+        let mut has_center = false;
+        for (field, value) in &object_lines {
+            let skip =
+                (*kind == "sphere" && *field == "size") || (*kind == "box" && *field == "radius");
+            if !skip {
+                text += &format!("{field} = {value}\n");
+                has_center |= *field == "center";
+            }
+        }
+        if !has_center {
+            text += "center = [0.0, 2.0, -20.0]\n";
+        }
+        if !object_lines
+            .iter()
+            .any(|(f, _)| *f == if *kind == "sphere" { "radius" } else { "size" })
+        {
+            text += if *kind == "sphere" { "radius = 2.0\n" } else { "size = [2.0, 2.0, 2.0]\n" };
+        }
+    }
+    text
+}
+
+/// The literal of `key` drawn by `how` (three components for a vector key).
+pub fn drawn(limit: &Limit, how: Draw, rng: &mut Rng) -> String {
+    if VECTOR_KEYS.contains(&limit.key) {
+        let c: Vec<String> = (0..3).map(|_| literal(limit, draw(limit, how, rng))).collect();
+        format!("[{}]", c.join(", "))
+    } else {
+        literal(limit, draw(limit, how, rng))
+    }
+}
+
+/// Parses scene text; `None` where validation refuses it (a cross-key check).
+pub fn parse(text: &str) -> Option<Scene> {
+    Scene::from_toml(text, SceneSource::Text).ok()
+}
+
+/// One scene per (key, bound) of every non-cost key: that key at its min or max, everything
+/// else at its default, with a sun and one object of each kind, at 16×9. Some are refused by
+/// a cross-key check (the camera's target at its own position, say); those come back `None`.
+pub fn per_key_extremes() -> Vec<(String, String)> {
+    let mut rng = Rng(7);
+    let mut out = Vec::new();
+    for limit in LIMITS.iter().filter(|l| !COST_KEYS.contains(&l.key)) {
+        for how in [Draw::Min, Draw::Max] {
+            let mut values =
+                vec![("camera.width", "16".to_owned()), ("camera.height", "9".to_owned())];
+            values.push((limit.key, drawn(limit, how, &mut rng)));
+            if !values.iter().any(|(k, _)| k.starts_with("sun.")) {
+                values.push(("sun.intensity", "5.0".to_owned()));
+            }
+            out.push((format!("{} = {how:?}", limit.key), scene_text(&values, &["sphere", "box"])));
+        }
+    }
+    out
+}
+
+/// A scene with every key drawn at random ([`Draw::Random`]), cost keys small, 0–3 objects.
+pub fn random_extreme(rng: &mut Rng) -> String {
+    let mut values = Vec::new();
+    for limit in LIMITS {
+        if COST_KEYS.contains(&limit.key) {
+            continue;
+        }
+        if limit.key == "ocean.time_s" && rng.next().is_multiple_of(2) {
+            // Half the time within the phase's range without a loop; else any finite time.
+            values.push((limit.key, literal(limit, (rng.unit() - 0.5) * 7.0e16)));
+            continue;
+        }
+        values.push((limit.key, drawn(limit, Draw::Random, rng)));
+    }
+    let small = |rng: &mut Rng, xs: &[u32]| xs[(rng.next() % xs.len() as u64) as usize].to_string();
+    values.push(("ocean.resolution", small(rng, &[2, 3, 16, 64])));
+    values.push(("ocean.bump_resolution", small(rng, &[16, 33, 64])));
+    values.push(("camera.width", small(rng, &[1, 16, 17])));
+    values.push(("camera.height", small(rng, &[1, 9, 10])));
+    values.push(("quality.fresnel_table_size", small(rng, &[2, 17, 64])));
+    values.push((
+        "quality.lod_split_threshold",
+        ["0.05", "0.5", "10.0"][(rng.next() % 3) as usize].into(),
+    ));
+    let kinds: &[&str] =
+        [&[][..], &["sphere"], &["box"], &["sphere", "box", "sphere"]][(rng.next() % 4) as usize];
+    scene_text(&values, kinds)
+}
+
+/// Each cost key at its limits once, the rest default (the slow cases).
+pub fn cost_extremes() -> Vec<(String, String)> {
+    let mut rng = Rng(11);
+    let mut out = Vec::new();
+    for limit in LIMITS.iter().filter(|l| COST_KEYS.contains(&l.key)) {
+        for how in [Draw::Min, Draw::Max] {
+            let mut values = vec![(limit.key, drawn(limit, how, &mut rng))];
+            if limit.key == "ocean.resolution" && matches!(how, Draw::Max) {
+                // The bump map must hold finer waves than a 4096² displacement map.
+                values.push(("ocean.bump_resolution", "4096".to_owned()));
+            }
+            for (k, v) in [("camera.width", "16"), ("camera.height", "9")] {
+                if limit.key != k {
+                    values.push((k, v.to_owned()));
+                }
+            }
+            out.push((format!("{} = {how:?}", limit.key), scene_text(&values, &["sphere"])));
+        }
+    }
+    out
+}
