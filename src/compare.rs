@@ -20,6 +20,8 @@ pub struct Args {
     /// Image size WIDTHxHEIGHT (overrides the scene's camera).
     #[arg(long, allow_hyphen_values = true)]
     size: Option<String>,
+    #[command(flatten)]
+    memory: ocean::memory_arg::MemoryArg,
 }
 
 /// Runs `ocean compare`.
@@ -29,6 +31,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         (scene.camera.width, scene.camera.height) = ocean::output::parse_size(s)?;
     }
     ocean::scene_arg::revalidate(&scene, "--size")?;
+    {
+        use ocean_core::plan::memory::MemoryBackend;
+        let plan = ocean_core::plan::FramePlan::new(&scene, ocean_core::plan::OutputKind::Ldr);
+        args.memory.check(&scene, &plan, &[MemoryBackend::Cpu, MemoryBackend::Gpu])?;
+    }
     let name = args
         .scene
         .as_ref()

@@ -6,6 +6,7 @@
 //! - [`view`]: `ocean view`, the real-time viewer (winit window, egui panel), with its
 //!   window-free parts (camera controller, parameter mapping) testable on their own.
 
+pub mod memory_arg;
 pub mod output;
 pub mod scene_arg;
 pub mod view;

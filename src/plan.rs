@@ -44,6 +44,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         // graph moved the lists into the passes.
         let mut v = serde_json::to_value(&plan)?;
         v["objects"] = serde_json::to_value(plan.objects())?;
+        let e = ocean_core::plan::memory::MemoryEstimate::of(
+            &scene,
+            &plan,
+            ocean_core::plan::memory::MemoryBackend::Cpu,
+        );
+        v["memory_estimate_bytes"] = serde_json::to_value(e.total())?;
         println!("{}", serde_json::to_string_pretty(&v)?);
     } else {
         print!("{plan}");
@@ -72,6 +78,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             })
             .collect();
         println!("  resources: {}", sizes.join(", "));
+        use ocean_core::plan::memory::{MemoryBackend, MemoryEstimate, bytes};
+        let e = MemoryEstimate::of(&scene, &plan, MemoryBackend::Cpu);
+        let largest = e.largest().map_or(String::new(), |i| {
+            format!("; largest {} {} (`{}`)", i.what, bytes(i.bytes), i.key)
+        });
+        println!("  memory: {} estimated on the CPU{largest}", bytes(e.total()));
     }
     Ok(())
 }

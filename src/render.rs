@@ -30,6 +30,8 @@ pub struct Args {
     /// Image size WIDTHxHEIGHT (overrides the scene's camera).
     #[arg(long, allow_hyphen_values = true)]
     size: Option<String>,
+    #[command(flatten)]
+    memory: ocean::memory_arg::MemoryArg,
 }
 
 /// Render back ends.
@@ -59,6 +61,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     ocean::scene_arg::revalidate(&scene, "--time/--size")?;
     let (w, h) = (scene.camera.width, scene.camera.height);
+    let memory_backend = match args.backend {
+        Backend::Cpu => ocean_core::plan::memory::MemoryBackend::Cpu,
+        Backend::Gpu => ocean_core::plan::memory::MemoryBackend::Gpu,
+    };
+    args.memory.check(&scene, &FramePlan::new(&scene, kind), &[memory_backend])?;
     let start = Instant::now();
     let (ldr, hdr, passes, backend) = match args.backend {
         Backend::Cpu => {

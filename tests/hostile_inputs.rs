@@ -1,6 +1,8 @@
-//! Regression tests for the hostile inputs of issue 11 that this change fixes (items 1, 2 and
-//! the command-line part of 8): each failed before the fix (a hang, a panic, or clap's
-//! "unexpected argument") and must now be a clear, immediate error naming what is wrong.
+//! Regression tests for the hostile inputs of issue 11 (items 1–8): each failed before its fix
+//! (a hang, a panic, NaN pixels with exit 0, an error naming an internal quantity, a leftover
+//! temporary, or clap's "unexpected argument") and must now be a clear, immediate error naming
+//! what is wrong. The invariant behind items 4 and 5 is held on random scenes in
+//! `tests/scene_properties.rs`; the memory estimate behind item 3 in `tests/memory_estimate.rs`.
 
 use std::process::{Command, Output};
 use std::time::{Duration, Instant};
@@ -173,4 +175,122 @@ fn a_killed_runs_temporary_is_removed_by_the_next_run() {
     assert!(out.exists());
     assert!(!stale.exists(), "the dead run's temporary is still there");
     assert!(live.exists(), "a living process's temporary was removed");
+}
+
+/// The scenes of items 4 and 5: each passed validation before and then gave NaN pixels with
+/// exit 0 (item 4) or an error naming an internal quantity with no file or line (item 5).
+/// Each is now refused when the scene loads, naming the key, its line and the allowed range.
+const REFUSED_SCENES: &[(&str, &str, &str)] = &[
+    ("[sun]\nintensity = 1e300\n", "sun.intensity", ":2:1:"),
+    ("[sun]\ncolor = [1, 4e38, 1]\n", "sun.color", ":2:1:"),
+    ("[water]\ncolor = [1e39, 0, 0]\n", "water.color", ":2:1:"),
+    (
+        "[[objects]]\nkind = \"box\"\ncenter = [0, 0, -50]\nsize = [2147483647, 1, 1]\n",
+        "objects.0.size",
+        ":4:1:",
+    ),
+    ("[camera]\nposition = [0, 1e7, 30]\n", "camera.position", ":2:1:"),
+    ("[ocean]\npatch_size_m = 1e-300\n", "ocean.patch_size_m", ":2:1:"),
+    ("[ocean]\npatch_size_m = 1e-310\n", "ocean.patch_size_m", ":2:1:"),
+    ("[ocean]\npatch_size_m = 1e9\n", "ocean.patch_size_m", ":2:1:"),
+    ("[ocean]\nspectrum = \"jonswap\"\nfetch_km = 1e9\n", "ocean.fetch_km", ":3:1:"),
+    ("[sun]\ndirection = [0, 1e-300, 0]\n", "sun.direction", ":2:1:"),
+    ("[camera]\nfov_y_deg = 5e-324\n", "camera.fov_y_deg", ":2:1:"),
+    (
+        "[ocean]\nspectrum = \"phillips\"\nphillips_amplitude = 1e308\n",
+        "ocean.phillips_amplitude",
+        ":3:1:",
+    ),
+    ("[camera]\nlook_at = [0, 1, -1e308]\n", "camera.look_at", ":2:1:"),
+    ("[ocean]\ntime_s = 5e307\n", "ocean.time_s", ":2:1:"),
+    ("[camera]\nexposure = 0\n", "camera.exposure", ":2:1:"),
+];
+
+#[test]
+fn values_that_overflowed_f32_or_failed_later_are_refused_with_their_key() {
+    let dir = tempfile::tempdir().unwrap();
+    for (i, (text, key, at)) in REFUSED_SCENES.iter().enumerate() {
+        let path = dir.path().join(format!("s{i}.toml"));
+        std::fs::write(&path, text).unwrap();
+        let out = dir.path().join(format!("s{i}.exr"));
+        let (o, _) = ocean(&[
+            "render",
+            path.to_str().unwrap(),
+            "--size",
+            "16x9",
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{text}: {e}");
+        assert!(e.contains(&format!("s{i}.toml{at} key `{key}`")), "{text}: {e}");
+        assert!(e.len() < 400 && !e.contains("000000000000"), "{text}: a short message: {e}");
+        assert!(!out.exists(), "{text}: no output");
+    }
+    // Negative control: the same check passes a scene that renders.
+    let path = dir.path().join("ok.toml");
+    std::fs::write(&path, "[sun]\nintensity = 1e6\n").unwrap();
+    let out = dir.path().join("ok.exr");
+    let (o, _) =
+        ocean(&["render", path.to_str().unwrap(), "--size", "16x9", "-o", out.to_str().unwrap()]);
+    assert!(o.status.success() && out.exists(), "{}", stderr(&o));
+}
+
+#[test]
+fn command_line_overrides_are_held_to_the_keys_limits() {
+    // Before: `render --time 1e307` rendered NaN pixels on the CPU (the flag bypassed the
+    // scene's validation), and the GPU's refusal printed a 300-digit number.
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("t.png");
+    let exr = dir.path().join("h.exr");
+    let (png, exr) = (png.to_str().unwrap(), exr.to_str().unwrap());
+    for (args, t) in [
+        (&["render", "--time", "1e307", "--size", "16x9", "-o", png][..], "1e307"),
+        (&["render", "--backend", "gpu", "--time", "1e300", "--size", "16x9", "-o", png], "1e300"),
+        (&["heightfield", "--time", "5e307", "-o", exr], "5e307"),
+    ] {
+        let (o, _) = ocean(args);
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {e}");
+        assert!(e.contains("key `ocean.time_s`") && e.contains("2^55"), "{args:?}: {e}");
+        assert!(e.contains(&format!("got {t};")) && !e.contains("0000000000"), "{args:?}: {e}");
+    }
+}
+
+#[test]
+fn a_scene_too_large_for_memory_is_refused_before_any_work() {
+    // Before: 10,000 spheres took 5.3 GB on the CPU and panicked inside wgpu on the GPU, and a
+    // 50 MB scene of spheres asked for one 14.5 GB allocation and aborted. Now the estimate
+    // refuses what exceeds the limit at once, naming `objects`.
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("spheres.toml");
+    let mut text = String::from("[camera]\nwidth = 64\nheight = 36\n");
+    for i in 0..20_000 {
+        text += &format!(
+            "[[objects]]\nkind = \"sphere\"\ncenter = [{}.0, 1.0, {}.0]\nradius = 0.5\n",
+            i % 100 - 50,
+            -(i / 100) - 5
+        );
+    }
+    std::fs::write(&path, text).unwrap();
+    let out = dir.path().join("s.png");
+    for backend in ["cpu", "gpu"] {
+        let (o, took) = ocean(&[
+            "render",
+            path.to_str().unwrap(),
+            "--backend",
+            backend,
+            "--memory-limit",
+            "2G",
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{backend}: {e}");
+        assert!(e.contains("set by `objects`") && e.contains("limit 2.0 GiB"), "{backend}: {e}");
+        assert!(took < Duration::from_secs(30), "{backend}: refused after {took:?}");
+        assert!(!out.exists());
+    }
+    let (o, _) = ocean(&["render", "--memory-limit", "lots", "-o", out.to_str().unwrap()]);
+    assert!(stderr(&o).contains("is not a size"), "{}", stderr(&o));
 }

@@ -33,7 +33,7 @@ use wgpu::util::DeviceExt;
 use crate::common::{Load, begin_render_pass, bind_group, uniform_buffer};
 use crate::device::{AdapterReport, Error, Gpu};
 use crate::fresnel_table::FresnelTableStage;
-use crate::objects::{ObjectsEntry, ObjectsStage};
+use crate::objects::{ObjectsEntry, ObjectsStage, VertexChunk, vertex_chunks};
 use crate::shadow::ShadowStage;
 use crate::sky::SkyStage;
 use crate::texture::{
@@ -123,6 +123,7 @@ pub struct Renderer {
     stages: Stages,
     wave_synthesis: WaveSynthesis,
     waves: WaveSlot,
+    max_vertex_buffer_bytes: u64,
 }
 
 fn wgpu_format(f: Format) -> wgpu::TextureFormat {
@@ -150,6 +151,7 @@ pub struct GpuBackend<'r> {
     frame_buffer: wgpu::Buffer,
     waves_cpu: Option<Duration>,
     wave_source: Option<&'static str>,
+    max_vertex_buffer_bytes: u64,
 }
 
 impl GpuBackend<'_> {
@@ -298,21 +300,13 @@ impl GpuBackend<'_> {
 
     /// The triangles of a pass's objects, camera-relative, in ocean-core's order; one zero
     /// vertex keeps a buffer non-empty.
-    fn object_vertices(&self, pass: &PlannedPass, frame: &FrameInputs<'_>) -> (wgpu::Buffer, u32) {
+    fn object_vertices(&self, pass: &PlannedPass, frame: &FrameInputs<'_>) -> Vec<VertexChunk> {
         let objects: Vec<Object> =
             pass.objects.iter().map(|&i| frame.scene.objects[i].clone()).collect();
         let tris = object_triangles(&objects, frame.camera.eye);
-        let mut vertices: Vec<ObjectVertex> = tris.iter().flatten().copied().collect();
-        let count = vertices.len() as u32;
-        if vertices.is_empty() {
-            vertices.push(bytemuck::Zeroable::zeroed());
-        }
-        let buffer = self.gpu.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("ocean.objects.vertices"),
-            contents: bytemuck::cast_slice(&vertices),
-            usage: wgpu::BufferUsages::VERTEX,
-        });
-        (buffer, count)
+        let vertices: &[ObjectVertex] = bytemuck::cast_slice(&tris);
+        let max = self.gpu.device.limits().max_buffer_size.min(self.max_vertex_buffer_bytes);
+        vertex_chunks(&self.gpu.device, vertices, max)
     }
 
     fn frame_group(&self, layout: &wgpu::BindGroupLayout, label: &str) -> wgpu::BindGroup {
@@ -320,7 +314,7 @@ impl GpuBackend<'_> {
     }
 
     fn object_pass(&mut self, pass: &PlannedPass, frame: &FrameInputs<'_>) {
-        let (vertices, count) = self.object_vertices(pass, frame);
+        let vertices = self.object_vertices(pass, frame);
         let device = &self.gpu.device;
         match pass.name {
             Pass::ShadowMap => {
@@ -333,7 +327,6 @@ impl GpuBackend<'_> {
                     &mut self.encoder,
                     &group,
                     &vertices,
-                    count,
                     &target.view,
                     &depth.view,
                     self.timer.render_writes(slot),
@@ -356,7 +349,6 @@ impl GpuBackend<'_> {
                     entry,
                     &group,
                     &vertices,
-                    count,
                     &target.view,
                     &depth.view,
                     (Load::Clear([0.0; 4]), Load::Clear(0.0)),
@@ -373,7 +365,6 @@ impl GpuBackend<'_> {
                     ObjectsEntry::Main,
                     &group,
                     &vertices,
-                    count,
                     &hdr.view,
                     &depth.view,
                     (Load::Keep, Load::Keep),
@@ -532,7 +523,14 @@ impl Renderer {
                 tonemap: TonemapStage::new(d)?,
             })
         })??;
-        Ok(Self { gpu, stages, wave_synthesis, waves: None })
+        Ok(Self { gpu, stages, wave_synthesis, waves: None, max_vertex_buffer_bytes: u64::MAX })
+    }
+
+    /// Caps each vertex buffer of the objects' triangles at `bytes` (below the device's own
+    /// `max_buffer_size`, which always applies): the geometry is cut into more buffers, drawn
+    /// in order, with the same picture. For tests of the cut with few objects.
+    pub fn set_max_vertex_buffer_bytes(&mut self, bytes: u64) {
+        self.max_vertex_buffer_bytes = bytes;
     }
 
     /// The device.
@@ -646,6 +644,7 @@ impl Renderer {
         let gpu = &self.gpu;
         let stages = &self.stages;
         let waves = &mut self.waves;
+        let max_vertex_buffer_bytes = self.max_vertex_buffer_bytes;
         let frame = gpu.scoped("rendering the frame", || -> Result<_, Error> {
             let device = &gpu.device;
             let mut backend = GpuBackend {
@@ -661,6 +660,7 @@ impl Renderer {
                 hdr_started: false,
                 frame_buffer: uniform_buffer(device, "ocean.frame.uniforms", &u),
                 waves_cpu: None,
+                max_vertex_buffer_bytes,
                 wave_source: None,
             };
             run_frame(&mut backend, &inputs, state, &mut |_| {})?;

@@ -98,7 +98,7 @@ impl ObjectsStage {
         })
     }
 
-    /// Records one pass drawing `vertex_count` vertices of `vertices` with `entry` into
+    /// Records one pass drawing every chunk of `vertices` with `entry` into
     /// `target`/`depth`. The reflection and refraction maps start cleared (colour 0, depth 0);
     /// the main view draws over the sky (`Load::Keep`).
     #[expect(clippy::too_many_arguments, reason = "one argument per binding and attachment")]
@@ -107,8 +107,7 @@ impl ObjectsStage {
         encoder: &mut wgpu::CommandEncoder,
         entry: ObjectsEntry,
         frame: &wgpu::BindGroup,
-        vertices: &wgpu::Buffer,
-        vertex_count: u32,
+        vertices: &[VertexChunk],
         target: &wgpu::TextureView,
         depth: &wgpu::TextureView,
         load: (Load<[f32; 4]>, Load<f32>),
@@ -123,7 +122,49 @@ impl ObjectsStage {
             ObjectsEntry::Refract => &self.refract,
         });
         pass.set_bind_group(0, frame, &[]);
-        pass.set_vertex_buffer(0, vertices.slice(..));
-        pass.draw(0..vertex_count, 0..1);
+        for chunk in vertices {
+            pass.set_vertex_buffer(0, chunk.buffer.slice(..));
+            pass.draw(0..chunk.count, 0..1);
+        }
     }
+}
+
+/// One vertex buffer of the objects' triangles and how many vertices it holds. The triangles
+/// are cut into buffers no larger than the device's `max_buffer_size`, drawn in order in one
+/// pass, so any number of objects that fits the memory limit draws the same picture.
+pub struct VertexChunk {
+    /// Whole triangles of [`ocean_core::frame::ObjectVertex`].
+    pub buffer: wgpu::Buffer,
+    /// Vertices in `buffer` (a multiple of 3; 0 for the one-vertex placeholder).
+    pub count: u32,
+}
+
+/// Vertex buffers of at most `max_bytes` each holding `vertices` (whole triangles), or one
+/// placeholder vertex when there are none (a buffer cannot be empty).
+pub fn vertex_chunks(
+    device: &wgpu::Device,
+    vertices: &[ocean_core::frame::ObjectVertex],
+    max_bytes: u64,
+) -> Vec<VertexChunk> {
+    use wgpu::util::DeviceExt;
+    let triangle = 3 * std::mem::size_of::<ocean_core::frame::ObjectVertex>() as u64;
+    // u32 vertex counts bound a draw too.
+    let per_chunk = (max_bytes / triangle).clamp(1, u64::from(u32::MAX / 3)) as usize * 3;
+    let placeholder = [bytemuck::Zeroable::zeroed()];
+    let chunks: Vec<&[ocean_core::frame::ObjectVertex]> = if vertices.is_empty() {
+        vec![&placeholder[..]]
+    } else {
+        vertices.chunks(per_chunk).collect()
+    };
+    chunks
+        .into_iter()
+        .map(|c| VertexChunk {
+            buffer: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("ocean.objects.vertices"),
+                contents: bytemuck::cast_slice(c),
+                usage: wgpu::BufferUsages::VERTEX,
+            }),
+            count: if vertices.is_empty() { 0 } else { c.len() as u32 },
+        })
+        .collect()
 }

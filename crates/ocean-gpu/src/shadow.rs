@@ -65,8 +65,7 @@ impl ShadowStage {
         &self,
         encoder: &mut wgpu::CommandEncoder,
         frame: &wgpu::BindGroup,
-        vertices: &wgpu::Buffer,
-        vertex_count: u32,
+        vertices: &[crate::objects::VertexChunk],
         target: &wgpu::TextureView,
         depth: &wgpu::TextureView,
         timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
@@ -82,7 +81,9 @@ impl ShadowStage {
         );
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, frame, &[]);
-        pass.set_vertex_buffer(0, vertices.slice(..));
-        pass.draw(0..vertex_count, 0..1);
+        for chunk in vertices {
+            pass.set_vertex_buffer(0, chunk.buffer.slice(..));
+            pass.draw(0..chunk.count, 0..1);
+        }
     }
 }

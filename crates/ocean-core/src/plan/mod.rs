@@ -33,6 +33,7 @@
 //! compare the bits.
 
 mod graph;
+pub mod memory;
 mod resource;
 mod technique;
 

@@ -1,0 +1,283 @@
+//! The memory a frame will need, estimated from its plan before anything is allocated, so
+//! that a render that cannot fit is refused at once with the figure and the scene key that
+//! drives it, instead of aborting in an allocation minutes in.
+//!
+//! The estimate is an upper bound by construction: it adds every item as if all were alive
+//! at once (the back ends free the wave scratch before the water pass, so the true peak is
+//! lower). `tests/memory_estimate.rs` measures the CPU back end's peak heap with a counting
+//! allocator and holds the estimate between that peak and a small multiple of it.
+//!
+//! Per-item costs, measured with that allocator on this project's back ends:
+//! - wave synthesis: [`WAVE_BYTES_PER_SAMPLE`] per sample of each N × N map (the modes, the
+//!   complex f64 spectra and FFT scratch, the f32 maps);
+//! - water mesh: [`MESH_BYTES_PER_TRIANGLE`] per triangle of the near patch's bintree (nodes,
+//!   vertices, indices) and of the far patch;
+//! - objects: [`OBJECT_BYTES_PER_TRIANGLE`] per triangle, once per pass that draws them;
+//! - each texture of the plan at its size and format, and a 4-byte depth buffer per render
+//!   target; the encoded output once more.
+
+use std::f64::consts::PI;
+
+use super::{Format, FramePlan, Pass, ResourceId};
+use crate::frame::{SPHERE_BANDS, SPHERE_SEGMENTS};
+use crate::scene::{Scene, Shape};
+
+/// Bytes per sample of a wave map's synthesis (calibrated: 1024² displacement maps peak at
+/// 163 MiB above the base frame, 155 B per sample).
+pub const WAVE_BYTES_PER_SAMPLE: u64 = 176;
+
+/// Bytes per triangle of the water mesh (calibrated: a full-depth 2048-cell near patch,
+/// 8.4 M triangles, peaks at 864 MiB, 103 B per triangle).
+pub const MESH_BYTES_PER_TRIANGLE: u64 = 128;
+
+/// Bytes per object triangle per pass: three 36-byte vertices and the rasteriser's
+/// transformed copy of them (calibrated: 2000 spheres, 4.4 M triangles drawn in three passes,
+/// peak at 1.6 GiB, 130 B per triangle per pass).
+pub const OBJECT_BYTES_PER_TRIANGLE: u64 = 2 * 3 * 36;
+
+/// The back end whose memory is estimated.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MemoryBackend {
+    /// The CPU oracle: everything in host memory.
+    Cpu,
+    /// The wgpu path: the same items, held by the driver (host memory on lavapipe, device
+    /// memory on a discrete GPU), plus the CPU-side modes and readback copies.
+    Gpu,
+}
+
+/// One line of the estimate.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MemoryItem {
+    /// What it is.
+    pub what: String,
+    /// Bytes.
+    pub bytes: u64,
+    /// The scene key that sets its size.
+    pub key: &'static str,
+}
+
+/// What a frame will allocate, item by item.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MemoryEstimate {
+    /// Every item, in plan order.
+    pub items: Vec<MemoryItem>,
+}
+
+/// A render refused by the memory limit.
+#[derive(Debug, thiserror::Error)]
+#[error(
+    "the frame needs an estimated {} (limit {}); the largest part is {} ({}, set by `{}`); \
+     lower that key or raise the limit with --memory-limit",
+    bytes(*total),
+    bytes(*limit),
+    largest.what,
+    bytes(largest.bytes),
+    largest.key
+)]
+pub struct OverLimit {
+    /// The estimate.
+    pub total: u64,
+    /// The limit.
+    pub limit: u64,
+    /// Its largest item.
+    pub largest: MemoryItem,
+}
+
+impl MemoryEstimate {
+    /// The estimate of `plan` (made for `scene`) on `backend`.
+    pub fn of(scene: &Scene, plan: &FramePlan, backend: MemoryBackend) -> Self {
+        let mut items = Vec::new();
+        let mut add = |what: String, bytes: u64, key: &'static str| {
+            items.push(MemoryItem { what, bytes, key });
+        };
+        let o = &scene.ocean;
+        if plan.runs(Pass::Waves) {
+            for (n, what, key) in [
+                (o.resolution, "displacement map synthesis", "ocean.resolution"),
+                (o.bump_resolution, "bump map synthesis", "ocean.bump_resolution"),
+            ] {
+                add(format!("{what} ({n}²)"), u64::from(n).pow(2) * WAVE_BYTES_PER_SAMPLE, key);
+            }
+        }
+        for r in plan.resources.iter().filter(|r| r.written) {
+            let [w, h] = r.size.map(u64::from);
+            let texel = match r.format {
+                Format::Rgba32Float => 16,
+                Format::R32Float | Format::Rgba8Unorm => 4,
+                Format::Uniform => 1,
+            };
+            let depth = matches!(
+                r.id,
+                ResourceId::Hdr
+                    | ResourceId::ReflectionMap
+                    | ResourceId::RefractionMap
+                    | ResourceId::ShadowMap
+            );
+            let copies = match backend {
+                // The GPU reads the output back into host memory.
+                MemoryBackend::Gpu if matches!(r.id, ResourceId::Hdr | ResourceId::Ldr) => 2,
+                _ => 1,
+            };
+            let key = match r.id {
+                ResourceId::Displacement | ResourceId::DisplacementSlopes => "ocean.resolution",
+                ResourceId::Bump => "ocean.bump_resolution",
+                ResourceId::FresnelAbove | ResourceId::FresnelBelow => "quality.fresnel_table_size",
+                ResourceId::ReflectionMap => "quality.reflection_map_scale",
+                ResourceId::ShadowMap => "sun",
+                _ => "camera.width",
+            };
+            let bytes = w * h * (texel * copies + if depth { 4 } else { 0 });
+            add(format!("{} ({w}×{h})", r.id.name()), bytes, key);
+        }
+        let (w, h) = (u64::from(scene.camera.width), u64::from(scene.camera.height));
+        if plan.runs(Pass::Tonemap) {
+            add("encoded PNG".into(), w * h * 4, "camera.width");
+        } else {
+            add("encoded EXR".into(), w * h * 16 * 2, "camera.width");
+        }
+        if plan.runs(Pass::Water) {
+            add(
+                "water mesh".into(),
+                water_triangles(scene) * MESH_BYTES_PER_TRIANGLE,
+                "quality.lod_split_threshold",
+            );
+        }
+        let object_passes: Vec<Pass> =
+            [Pass::ShadowMap, Pass::ReflectionMap, Pass::RefractionMap, Pass::Objects]
+                .into_iter()
+                .filter(|p| plan.runs(*p))
+                .collect();
+        let objects = plan.objects();
+        let triangles: u64 = object_passes
+            .iter()
+            .map(|p| objects.of(*p).iter().map(|&i| object_triangles(scene, i)).sum::<u64>())
+            .sum();
+        if triangles > 0 {
+            add(
+                format!(
+                    "object geometry ({} objects, {} passes)",
+                    scene.objects.len(),
+                    object_passes.len()
+                ),
+                triangles * OBJECT_BYTES_PER_TRIANGLE,
+                "objects",
+            );
+        }
+        Self { items }
+    }
+
+    /// The sum of every item, bytes.
+    pub fn total(&self) -> u64 {
+        self.items.iter().map(|i| i.bytes).sum()
+    }
+
+    /// The largest item (`None` for an empty estimate).
+    pub fn largest(&self) -> Option<&MemoryItem> {
+        self.items.iter().max_by_key(|i| i.bytes)
+    }
+
+    /// `Ok` when the estimate is within `limit` bytes.
+    ///
+    /// # Errors
+    /// [`OverLimit`] with the estimate and its largest item.
+    pub fn check(&self, limit: u64) -> Result<(), OverLimit> {
+        let total = self.total();
+        match self.largest() {
+            Some(largest) if total > limit => {
+                Err(OverLimit { total, limit, largest: largest.clone() })
+            }
+            _ => Ok(()),
+        }
+    }
+}
+
+/// Triangles of one object's mesh.
+fn object_triangles(scene: &Scene, index: usize) -> u64 {
+    match scene.objects.get(index).and_then(|o| o.shape()) {
+        Some(Shape::Sphere { .. }) => {
+            u64::from(2 * SPHERE_BANDS * SPHERE_SEGMENTS - 2 * SPHERE_SEGMENTS)
+        }
+        Some(Shape::Box { .. }) => 12,
+        None => 0,
+    }
+}
+
+/// An upper bound of the water mesh's triangles: the near patch refined where a triangle's
+/// hypotenuse exceeds `split_threshold ×` its distance (at most the full bintree), and the
+/// far patch's polar grid.
+///
+/// Near the eye, within d₀ = √2·g / θ, every triangle is at the finest level (area g²/2);
+/// beyond, a triangle at distance r has hypotenuse ≈ θ·r and area θ²r²/4, so the annulus out
+/// to the patch's half diagonal R holds ∫ 2πr dr / (θ²r²/4) = (8π/θ²) ln(R/d₀). The bintree's
+/// forced splits at most double the count.
+pub fn water_triangles(scene: &Scene) -> u64 {
+    let p = scene.patch_params();
+    let g = p.grid_spacing_m;
+    let levels = (p.near_size_m / g).log2().round().clamp(0.0, 31.0);
+    let full = 2.0 * 4f64.powf(levels);
+    let theta = p.split_threshold;
+    let d0 = std::f64::consts::SQRT_2 * g / theta;
+    let r = p.near_size_m / std::f64::consts::SQRT_2;
+    let refined = if r <= d0 {
+        full
+    } else {
+        2.0 * (2.0 * PI * d0 * d0 / (g * g) + 8.0 * PI / (theta * theta) * (r / d0).ln())
+    };
+    let rings = ((p.far_max_radius / p.far_min_radius).ln() / p.far_ring_ratio.ln()).ceil() + 1.0;
+    let far = 2.0 * rings * f64::from(p.far_segments);
+    (refined.min(full) + far) as u64
+}
+
+/// The default memory limit: three quarters of the machine's physical memory (what is left
+/// serves the system and, for `ocean compare`, the other back end's driver), or 8 GiB where
+/// the physical memory cannot be read.
+pub fn default_limit() -> u64 {
+    physical_memory().map_or(8 << 30, |m| m / 4 * 3)
+}
+
+/// Total physical memory, bytes (Linux `/proc/meminfo`).
+pub fn physical_memory() -> Option<u64> {
+    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = info.lines().find(|l| l.starts_with("MemTotal:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024)
+}
+
+/// Bytes as a person reads them: `512 B`, `3.2 MiB`, `14.5 GiB`.
+pub fn bytes(b: u64) -> String {
+    const UNITS: [&str; 5] = ["B", "KiB", "MiB", "GiB", "TiB"];
+    let mut v = b as f64;
+    let mut unit = 0;
+    while v >= 1024.0 && unit + 1 < UNITS.len() {
+        v /= 1024.0;
+        unit += 1;
+    }
+    if unit == 0 { format!("{b} B") } else { format!("{v:.1} {}", UNITS[unit]) }
+}
+
+/// Parses a memory size: a number of bytes, or a number with `K`, `M`, `G`, `T` (powers of
+/// 1024; `KiB`/`KB`/`k` and so on are read the same).
+///
+/// # Errors
+/// A message naming what was given and what is accepted.
+pub fn parse_bytes(s: &str) -> Result<u64, String> {
+    let t = s.trim();
+    let split = t.find(|c: char| !(c.is_ascii_digit() || c == '.')).unwrap_or(t.len());
+    let (number, unit) = t.split_at(split);
+    let scale: u64 = match unit.trim().to_ascii_lowercase().trim_end_matches('b') {
+        "" => 1,
+        "k" | "ki" => 1 << 10,
+        "m" | "mi" => 1 << 20,
+        "g" | "gi" => 1 << 30,
+        "t" | "ti" => 1 << 40,
+        _ => return Err(format!("`{s}` is not a size (use e.g. 512M, 16G or a number of bytes)")),
+    };
+    let v: f64 = number
+        .parse()
+        .map_err(|_| format!("`{s}` is not a size (use e.g. 512M, 16G or a number of bytes)"))?;
+    let b = v * scale as f64;
+    if !(b.is_finite() && b >= 1.0 && b < 1.8e19) {
+        return Err(format!("`{s}` must be from 1 byte to 16 EiB"));
+    }
+    Ok(b as u64)
+}
