@@ -12,6 +12,8 @@
 #[macro_use]
 #[path = "support/gpu_harness.rs"]
 mod gpu_harness;
+#[path = "support/extreme_scene.rs"]
+mod extreme_scene;
 #[path = "support/random_scene.rs"]
 mod random_scene;
 
@@ -179,11 +181,57 @@ fn the_size_check_fails_on_a_map_of_another_size() {
     assert!(!m.passed());
 }
 
+/// The GPU back end's HDR frame of `scene` (EXR plan: no tonemap).
+fn gpu_hdr(r: &mut Renderer, scene: &Scene) -> Vec<[f32; 4]> {
+    let plan = FramePlan::new(scene, OutputKind::Hdr);
+    let f = r.run_with(scene, &plan, Readback::Output).unwrap_or_else(|e| panic!("{e}"));
+    f.map(ocean_gpu::FrameMap::Hdr).expect("the HDR frame").texels.clone()
+}
+
+/// Issue 11, item 3: object geometry beyond the device's `max_buffer_size` is cut into
+/// several vertex buffers drawn in order (before, 10,000 spheres panicked inside wgpu). The
+/// cut is forced here with a small cap: 100 triangles a buffer, 23 buffers a sphere.
+fn object_geometry_cut_into_small_buffers_draws_the_same_picture() {
+    let mut r = renderer();
+    let mut scene = default_with("");
+    scene.objects.push(scene.objects[0].clone());
+    scene.objects[2].center[0] += 3.0;
+    let whole = gpu_hdr(&mut r, &scene);
+    r.set_max_vertex_buffer_bytes(100 * 3 * 36);
+    let cut = gpu_hdr(&mut r, &scene);
+    assert!(whole == cut, "the cut geometry draws another picture");
+    // Negative control: the comparison sees one object less.
+    scene.objects.pop();
+    assert!(gpu_hdr(&mut r, &scene) != cut, "removing an object changed nothing");
+}
+
+/// The invariant of issue 11 on the GPU: a sample of the scenes at the validation's limits
+/// (`tests/scene_properties.rs` runs them all on the CPU) renders only finite pixels.
+fn extreme_scenes_render_finite_pixels_on_the_gpu() {
+    let mut r = renderer();
+    let mut rng = extreme_scene::Rng(5);
+    let mut cases: Vec<(String, String)> =
+        extreme_scene::per_key_extremes().into_iter().step_by(3).collect();
+    cases.extend((0..12).map(|i| (format!("random {i}"), extreme_scene::random_extreme(&mut rng))));
+    let mut accepted = 0;
+    for (name, text) in &cases {
+        let Some(scene) = extreme_scene::parse(text) else { continue };
+        accepted += 1;
+        let hdr = gpu_hdr(&mut r, &scene);
+        let bad = hdr.iter().filter(|p| p.iter().any(|c| !c.is_finite())).count();
+        assert_eq!(bad, 0, "{name}: {bad} non-finite HDR pixels on the GPU\n{text}");
+    }
+    eprintln!("{accepted} of {} extreme scenes rendered on the GPU, all finite", cases.len());
+    assert!(accepted >= cases.len() / 2, "only {accepted} accepted");
+}
+
 fn main() -> std::process::ExitCode {
     run_tests!(gpu_harness::GPU_ADAPTER;
         cpu: the_size_check_fails_on_a_map_of_another_size;
         gpu: quality_scenes_match_the_cpu_oracle,
             every_resource_both_back_ends_allocate_has_the_plans_size,
-            the_gpu_plays_the_cycle_the_plan_precomputes;
+            the_gpu_plays_the_cycle_the_plan_precomputes,
+            object_geometry_cut_into_small_buffers_draws_the_same_picture,
+            extreme_scenes_render_finite_pixels_on_the_gpu;
     )
 }
