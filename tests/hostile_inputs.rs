@@ -294,3 +294,19 @@ fn a_scene_too_large_for_memory_is_refused_before_any_work() {
     let (o, _) = ocean(&["render", "--memory-limit", "lots", "-o", out.to_str().unwrap()]);
     assert!(stderr(&o).contains("is not a size"), "{}", stderr(&o));
 }
+
+#[test]
+fn the_viewer_without_a_display_says_so_without_winits_source_path() {
+    // Before: the message held `/root/.cargo/registry/src/…/winit-0.30.13/src/…/mod.rs:765`.
+    let o = Command::new(env!("CARGO_BIN_EXE_ocean"))
+        .args(["view", "--frames", "1"])
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .env_remove("WAYLAND_SOCKET")
+        .output()
+        .unwrap();
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    assert!(e.contains("needs a display") && e.contains("DISPLAY is set"), "{e}");
+    assert!(!e.contains(".cargo") && !e.contains(".rs:"), "{e}");
+}

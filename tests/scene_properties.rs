@@ -81,8 +81,17 @@ fn run_all(cases: &[(String, String)], refusals: Option<&[&str]>, min_accepted: 
 fn every_key_at_its_limits_renders_finite_pixels() {
     let cases = per_key_extremes();
     // Refused by a cross-key check by design: a divisor of 1 leaves the default 256² bump map
-    // no finer waves; ±f64::MAX s is beyond the wave phase without a loop period.
-    let refused = ["ocean.bump_patch_divisor = Min", "ocean.time_s = Min", "ocean.time_s = Max"];
+    // no finer waves; ±f64::MAX s is beyond the wave phase without a loop period; a camera
+    // 1e7 m up is beyond the water mesh; the largest patch over the default 256² grid is
+    // coarser than 16 m a sample.
+    let refused = [
+        "ocean.patch_size_m = Max",
+        "ocean.bump_patch_divisor = Min",
+        "ocean.time_s = Min",
+        "ocean.time_s = Max",
+        "camera.position = Min",
+        "camera.position = Max",
+    ];
     run_all(&cases, Some(&refused), 0);
 }
 
@@ -90,15 +99,16 @@ fn every_key_at_its_limits_renders_finite_pixels() {
 fn random_scenes_at_extreme_values_render_finite_pixels() {
     let mut rng = Rng(2026);
     let cases: Vec<(String, String)> =
-        (0..200).map(|i| (format!("random {i}"), random_extreme(&mut rng))).collect();
+        (0..400).map(|i| (format!("random {i}"), random_extreme(&mut rng))).collect();
     run_all(&cases, None, 100);
 }
 
 #[test]
 fn cost_keys_at_their_limits_render_finite_pixels() {
     let cases = cost_extremes();
-    // A 2² bump map holds no wave finer than the default displacement map's.
-    run_all(&cases, Some(&["ocean.bump_resolution = Min"]), 0);
+    // A 2² grid over the default 256 m patch is coarser than 16 m a sample; a 2² bump map
+    // holds no wave finer than the default displacement map's.
+    run_all(&cases, Some(&["ocean.resolution = Min", "ocean.bump_resolution = Min"]), 0);
 }
 
 #[test]

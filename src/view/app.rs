@@ -36,13 +36,24 @@ use super::{Args, Vsync, fixed_step_time};
 /// How long a minimised or occluded window sleeps between checks.
 const IDLE_WAIT: Duration = Duration::from_millis(100);
 
+/// winit's OS errors start with the place in winit's source that raised them (`os error at
+/// …/winit-0.30.13/src/platform_impl/linux/mod.rs:765: `), a path in the cargo registry that
+/// means nothing to a user: keep what follows it.
+fn without_source_location(message: &str) -> &str {
+    let Some(rest) = message.strip_prefix("os error at ") else { return message };
+    rest.find(".rs:")
+        .and_then(|i| rest[i..].find(": ").map(|j| &rest[i + j + 2..]))
+        .map_or(message, |m| m.trim_end_matches('.'))
+}
+
 /// Opens the window and runs the event loop until the window closes or `--frames` are done.
 pub(super) fn run(args: Args, scene: Scene) -> anyhow::Result<()> {
     let event_loop = EventLoop::new().map_err(|e| {
         anyhow!(
-            "cannot open a window: {e}. `ocean view` needs a display (X11 or Wayland: DISPLAY \
+            "cannot open a window: {}. `ocean view` needs a display (X11 or Wayland: DISPLAY \
              or WAYLAND_DISPLAY); without one, run it under Xvfb (`xvfb-run ocean view …`) or \
-             use `ocean render`"
+             use `ocean render`",
+            without_source_location(&e.to_string())
         )
     })?;
     event_loop.set_control_flow(ControlFlow::Poll);
@@ -921,5 +932,20 @@ impl ApplicationHandler for App {
         if let Some(w) = &self.window {
             w.request_redraw();
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn winit_source_locations_are_left_out() {
+        let m = "os error at /root/.cargo/registry/src/index.crates.io-1949cf8c6b5b557f/\
+                 winit-0.30.13/src/platform_impl/linux/mod.rs:765: neither WAYLAND_DISPLAY nor \
+                 WAYLAND_SOCKET nor DISPLAY is set.";
+        assert_eq!(
+            super::without_source_location(m),
+            "neither WAYLAND_DISPLAY nor WAYLAND_SOCKET nor DISPLAY is set"
+        );
+        assert_eq!(super::without_source_location("no adapter"), "no adapter");
     }
 }

@@ -20,6 +20,7 @@ pub mod dispersion;
 pub mod error;
 pub mod frame;
 pub mod fresnel;
+pub mod fuzz;
 pub mod geometry;
 pub mod plan;
 pub mod registry;

@@ -37,10 +37,11 @@ const fn whole(key: &'static str, min: f64, max: f64, why: &'static str) -> Limi
     Limit { key, min, max, why, whole: true }
 }
 
-/// The largest distance from the origin of any position, per axis, metres: the camera's
-/// height is bounded by the water mesh at [`crate::geometry::MAX_HEIGHT_M`], and the same
-/// bound on x and z keeps every camera-relative f32 coordinate below 4e6 m (within 0.25 m).
-pub const MAX_COORDINATE_M: f64 = crate::geometry::MAX_HEIGHT_M;
+/// The largest distance from the origin of any position, per axis, metres. At 1e7 m an f32
+/// holds a position to 1 m, and the frame works camera-relative, so coordinates this large
+/// still render finite pictures (the camera's own height is bounded more tightly, by the
+/// water mesh: [`crate::geometry::MAX_HEIGHT_M`]).
+pub const MAX_COORDINATE_M: f64 = 1.0e7;
 
 /// The largest colour component: albedos and radiances beyond a thousand carry no meaning the
 /// sun's intensity does not, and the bound keeps radiance × exposure far inside f32.
@@ -53,6 +54,13 @@ pub const MAX_SUN_INTENSITY: f64 = 1.0e6;
 /// The shortest camera-to-target distance and object size, metres: below a millimetre f32
 /// camera-relative positions of 1e6 m scenes can no longer tell the ends apart.
 pub const MIN_LENGTH_M: f64 = 1.0e-3;
+
+/// The coarsest displacement grid accepted, metres per sample (`patch_size_m / resolution`).
+/// The property test (`tests/scene_properties.rs`) found NaN pixels at the horizon with
+/// coarser grids: 21.3 m (a 256 m patch at resolution 12) and coarser, with the camera
+/// 1e5 m or more from the origin, at every field of view from 120° to 179°; 16 m never did.
+/// The cause, 1/w interpolating to exactly 0 on a far-patch triangle, is open.
+pub const MAX_GRID_SPACING_M: f64 = 16.0;
 
 /// Every numeric key's range, in scene-file order.
 pub const LIMITS: &[Limit] = &[
@@ -79,8 +87,8 @@ pub const LIMITS: &[Limit] = &[
     real(
         "ocean.patch_size_m",
         1.0e-2,
-        1.0e5,
-        "m; beyond 100 km the far patch (1e6 H) no longer reaches past the near patch from 0.5 m up",
+        65536.0,
+        "m; at most 16 m per sample of the largest grid (MAX_GRID_SPACING_M × 4096)",
     ),
     whole(
         "ocean.resolution",
@@ -119,7 +127,7 @@ pub const LIMITS: &[Limit] = &[
         "camera.position",
         -MAX_COORDINATE_M,
         MAX_COORDINATE_M,
-        "m; the water mesh is built for |eye.y| ≤ 1e6 m",
+        "m; the height y within ±1e6 m: the water mesh is built for |eye.y| ≤ 1e6 m",
     ),
     real("camera.look_at", -MAX_COORDINATE_M, MAX_COORDINATE_M, "m; as camera.position"),
     real(
@@ -377,6 +385,21 @@ impl Scene {
             }
         }
         let grid = self.patch_params();
+        if grid.grid_spacing_m > MAX_GRID_SPACING_M {
+            return Err((
+                "ocean.resolution".into(),
+                format!(
+                    "must be at least patch_size_m / {} = {} (a grid spacing of at most {} m), \
+                     got {} (a spacing of {} m): on coarser grids the water mesh's far patch can \
+                     leave non-finite pixels at the horizon",
+                    number(MAX_GRID_SPACING_M),
+                    (o.patch_size_m / MAX_GRID_SPACING_M).ceil(),
+                    number(MAX_GRID_SPACING_M),
+                    o.resolution,
+                    number(grid.grid_spacing_m)
+                ),
+            ));
+        }
         let refuse_grid = |e: crate::Error| {
             (
                 "ocean.patch_size_m".to_owned(),
@@ -390,6 +413,17 @@ impl Scene {
         };
         crate::geometry::near_patch_square(&grid, [c.position[0], c.position[2]])
             .map_err(refuse_grid)?;
+        if c.position[1].abs() > crate::geometry::MAX_HEIGHT_M {
+            return Err((
+                "camera.position".into(),
+                format!(
+                    "the height (y) must be within ±{} m of the sea plane (the water mesh's \
+                     range), got {}",
+                    number(crate::geometry::MAX_HEIGHT_M),
+                    number(c.position[1])
+                ),
+            ));
+        }
         crate::geometry::effective_height(&grid, c.position[1])
             .map_err(|e| ("camera.position".to_owned(), e.to_string()))?;
         Ok(())
