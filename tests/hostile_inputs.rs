@@ -310,3 +310,18 @@ fn the_viewer_without_a_display_says_so_without_winits_source_path() {
     assert!(e.contains("needs a display") && e.contains("DISPLAY is set"), "{e}");
     assert!(!e.contains(".cargo") && !e.contains(".rs:"), "{e}");
 }
+
+#[test]
+fn a_subnormal_wind_is_a_flat_sea() {
+    // Found by the mutation fuzzer (case 166180 of a 10⁶ run): wind_speed = 5e-324 passed
+    // validation and JONSWAP's densities were NaN ("invalid spectrum density = NaN").
+    for spectrum in ["jonswap", "tma", "pierson-moskowitz", "phillips"] {
+        let text =
+            format!("[ocean]\nspectrum = \"{spectrum}\"\nwind_speed = 5e-324\ndepth_m = 30.0\n");
+        let s = Scene::from_toml(&text, SceneSource::Text).unwrap();
+        let modes = s.ocean.displacement_modes().unwrap_or_else(|e| panic!("{spectrum}: {e}"));
+        let spectrum_ = s.ocean.wave_spectrum().unwrap();
+        assert!(spectrum_.is_flat(), "{spectrum}: a flat sea");
+        assert_eq!(modes.resolution(), 256);
+    }
+}

@@ -200,7 +200,7 @@ pub fn mutate(text: &str, rng: &mut Rng) -> String {
     }
     let at = rng.below(lines.len());
     match rng.below(10) {
-        0 | 1 | 2 => {
+        0..=2 => {
             // Replace the value of a `key = value` line, or one number inside an array.
             let line = &lines[at];
             if let Some((k, v)) = line.split_once('=') {

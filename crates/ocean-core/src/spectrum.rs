@@ -260,9 +260,8 @@ impl WaveSpectrum {
         // The depth was checked above; loop_period 0 is always valid.
         let dispersion = Dispersion::new(g, p.depth_m, 0.0)?;
 
-        let flat = u10 == 0.0;
         let u19_5 = U19_5_PER_U10 * u10;
-        let (alpha, omega_0, omega_p) = if flat {
+        let (alpha, omega_0, omega_p) = if u10 == 0.0 {
             (0.0, f64::INFINITY, f64::INFINITY)
         } else {
             match p.kind {
@@ -278,6 +277,12 @@ impl WaveSpectrum {
                 SpectrumKind::Phillips => (0.0, 0.0, pm_peak_factor(1.0) * g / u10),
             }
         };
+        // A wind so weak that its peak frequency or α overflows f64 (a subnormal U₁₀, below
+        // ~1e-308 m/s; found by the fuzzer: 5e-324 gave NaN densities) raises no wave a grid
+        // can hold: a flat sea.
+        let flat = u10 == 0.0 || !(omega_p.is_finite() && alpha.is_finite());
+        let (alpha, omega_0, omega_p) =
+            if flat { (0.0, f64::INFINITY, f64::INFINITY) } else { (alpha, omega_0, omega_p) };
         let phillips_l = u10 * u10 / g;
         let k_p = if flat {
             0.0

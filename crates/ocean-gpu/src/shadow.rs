@@ -60,7 +60,6 @@ impl ShadowStage {
     }
 
     /// Records the pass: clears the map to 1 (red) and depth to 1, draws the objects.
-    #[expect(clippy::too_many_arguments, reason = "one argument per binding and attachment")]
     pub fn encode(
         &self,
         encoder: &mut wgpu::CommandEncoder,

@@ -276,7 +276,7 @@ pub fn parse_bytes(s: &str) -> Result<u64, String> {
         .parse()
         .map_err(|_| format!("`{s}` is not a size (use e.g. 512M, 16G or a number of bytes)"))?;
     let b = v * scale as f64;
-    if !(b.is_finite() && b >= 1.0 && b < 1.8e19) {
+    if !(1.0..1.8e19).contains(&b) {
         return Err(format!("`{s}` must be from 1 byte to 16 EiB"));
     }
     Ok(b as u64)
