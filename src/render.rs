@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
-use anyhow::{Context, bail};
+use anyhow::{Context, anyhow, bail};
 use indicatif::{ProgressBar, ProgressStyle};
 use ocean_core::plan::{FramePlan, OutputKind, Pass};
 use ocean_gpu::FrameMap;
@@ -30,6 +30,12 @@ pub struct Args {
     /// Image size WIDTHxHEIGHT (overrides the scene's camera).
     #[arg(long, allow_hyphen_values = true)]
     size: Option<String>,
+    /// Samples per pixel N = k² (1, 4, 9, …, 256): the frame is rendered at k× the width and
+    /// height (a regular k × k grid of samples in each pixel) and its linear HDR radiance
+    /// box-filtered down, then tonemapped (the supersampled ground truth; on the GPU the
+    /// filter and the tonemap run on the CPU, after the read-back).
+    #[arg(long, default_value_t = 1, value_name = "N", allow_negative_numbers = true, value_parser = parse_spp)]
+    spp: u32,
     #[command(flatten)]
     memory: ocean::memory_arg::MemoryArg,
 }
@@ -61,6 +67,19 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     ocean::scene_arg::revalidate(&scene, "--time/--size")?;
     let (w, h) = (scene.camera.width, scene.camera.height);
+    let k = ocean_core::supersample::grid_side(args.spp).map_err(|e| anyhow!("--spp: {e}"))?;
+    let (scene, kind, output_kind) = if k > 1 {
+        let mut sampled = scene.clone();
+        sampled.camera.width = w * k;
+        sampled.camera.height = h * k;
+        ocean::scene_arg::revalidate(
+            &sampled,
+            &format!("--spp {} (a {}×{} frame)", args.spp, w * k, h * k),
+        )?;
+        (sampled, OutputKind::Hdr, kind)
+    } else {
+        (scene, kind, kind)
+    };
     let memory_backend = match args.backend {
         Backend::Cpu => ocean_core::plan::memory::MemoryBackend::Cpu,
         Backend::Gpu => ocean_core::plan::memory::MemoryBackend::Gpu,
@@ -91,7 +110,19 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             (f.ldr, hdr, passes, format!("GPU {}", f.adapter.name))
         }
     };
-    let bytes = match kind {
+    let (ldr, hdr) = if k > 1 {
+        let hdr = ocean_core::supersample::box_filter(&hdr, w, h, k);
+        let ldr = (output_kind == OutputKind::Ldr)
+            .then(|| {
+                let t = ocean_core::tonemap::TonemapUniforms::new(scene.camera.exposure)?;
+                anyhow::Ok(ocean_cpu::shaders::tonemap::tonemap_to_rgba8(&hdr, w, h, &t))
+            })
+            .transpose()?;
+        (ldr, hdr)
+    } else {
+        (ldr, hdr)
+    };
+    let bytes = match output_kind {
         OutputKind::Ldr => {
             let rgba = ldr.context("the plan has no tonemap pass")?;
             encode_png(rgba, w, h)?
@@ -108,8 +139,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     };
     out.commit(&bytes)?;
     let passes: Vec<String> = passes;
+    let spp = if k > 1 { format!(", {} spp", args.spp) } else { String::new() };
     eprintln!(
-        "wrote {} ({w}×{h}, {backend}, {:.2} s: {})",
+        "wrote {} ({w}×{h}{spp}, {backend}, {:.2} s: {})",
         args.output.display(),
         start.elapsed().as_secs_f64(),
         passes.join(", ")
@@ -144,4 +176,14 @@ fn render_cpu(
         b.finish_and_clear();
     }
     Ok(rendered)
+}
+
+/// `--spp`: a count, with a range error (not clap's "unexpected argument") for a negative one.
+fn parse_spp(s: &str) -> Result<u32, String> {
+    s.trim().parse::<u32>().map_err(|_| {
+        format!(
+            "`{s}` is not a sample count: a perfect square from 1 to {}",
+            ocean_core::supersample::MAX_SPP
+        )
+    })
 }

@@ -29,6 +29,7 @@ pub mod scene;
 pub mod shader_source;
 pub mod sky;
 pub mod spectrum;
+pub mod supersample;
 pub mod tables;
 pub mod tonemap;
 pub mod waves;
