@@ -9,22 +9,7 @@
 
 use ocean_core::scene::{LIMITS, Limit, Scene, SceneSource};
 
-/// SplitMix64: small, deterministic, no dependency.
-pub struct Rng(pub u64);
-
-impl Rng {
-    pub fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    /// Uniform in [0, 1).
-    pub fn unit(&mut self) -> f64 {
-        (self.next() >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+pub use ocean_core::fuzz::Rng;
 
 /// Keys whose value is a 3-vector (each component has the key's limit).
 pub const VECTOR_KEYS: &[&str] = &[
@@ -66,17 +51,17 @@ pub fn draw(limit: &Limit, how: Draw, rng: &mut Rng) -> f64 {
     let v = match how {
         Draw::Min => limit.min,
         Draw::Max => {
-            if limit.max.is_infinite() && rng.next().is_multiple_of(2) {
+            if limit.max.is_infinite() && rng.next_u64().is_multiple_of(2) {
                 f64::MAX
             } else {
                 limit.max
             }
         }
         Draw::Random => {
-            if rng.next().is_multiple_of(5) {
+            if rng.next_u64().is_multiple_of(5) {
                 return draw(
                     limit,
-                    if rng.next().is_multiple_of(2) { Draw::Min } else { Draw::Max },
+                    if rng.next_u64().is_multiple_of(2) { Draw::Min } else { Draw::Max },
                     rng,
                 );
             }
@@ -85,7 +70,7 @@ pub fn draw(limit: &Limit, how: Draw, rng: &mut Rng) -> f64 {
             // A magnitude from 1e-6 of the range's larger end up to it, log-uniform.
             let top = hi.abs().max(lo.abs()).max(1e-300);
             let m = top * 10f64.powf(-12.0 * rng.unit());
-            let v = if lo < 0.0 && rng.next().is_multiple_of(2) { -m } else { m };
+            let v = if lo < 0.0 && rng.next_u64().is_multiple_of(2) { -m } else { m };
             v.clamp(lo, hi)
         }
     };
@@ -192,14 +177,15 @@ pub fn random_extreme(rng: &mut Rng) -> String {
         if COST_KEYS.contains(&limit.key) {
             continue;
         }
-        if limit.key == "ocean.time_s" && rng.next().is_multiple_of(2) {
+        if limit.key == "ocean.time_s" && rng.next_u64().is_multiple_of(2) {
             // Half the time within the phase's range without a loop; else any finite time.
             values.push((limit.key, literal(limit, (rng.unit() - 0.5) * 7.0e16)));
             continue;
         }
         values.push((limit.key, drawn(limit, Draw::Random, rng)));
     }
-    let small = |rng: &mut Rng, xs: &[u32]| xs[(rng.next() % xs.len() as u64) as usize].to_string();
+    let small =
+        |rng: &mut Rng, xs: &[u32]| xs[(rng.next_u64() % xs.len() as u64) as usize].to_string();
     values.push(("ocean.resolution", small(rng, &[2, 3, 16, 64])));
     values.push(("ocean.bump_resolution", small(rng, &[16, 33, 64])));
     values.push(("camera.width", small(rng, &[1, 16, 17])));
@@ -207,10 +193,10 @@ pub fn random_extreme(rng: &mut Rng) -> String {
     values.push(("quality.fresnel_table_size", small(rng, &[2, 17, 64])));
     values.push((
         "quality.lod_split_threshold",
-        ["0.05", "0.5", "10.0"][(rng.next() % 3) as usize].into(),
+        ["0.05", "0.5", "10.0"][(rng.next_u64() % 3) as usize].into(),
     ));
-    let kinds: &[&str] =
-        [&[][..], &["sphere"], &["box"], &["sphere", "box", "sphere"]][(rng.next() % 4) as usize];
+    let kinds: &[&str] = [&[][..], &["sphere"], &["box"], &["sphere", "box", "sphere"]]
+        [(rng.next_u64() % 4) as usize];
     scene_text(&values, kinds)
 }
 
