@@ -424,8 +424,6 @@ impl Scene {
                 ),
             ));
         }
-        crate::geometry::effective_height(&grid, c.position[1])
-            .map_err(|e| ("camera.position".to_owned(), e.to_string()))?;
         Ok(())
     }
 }
