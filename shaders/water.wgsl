@@ -126,11 +126,33 @@ fn bumped_normal(in: VertexOut) -> vec3<f32> {
     return unit(vec3<f32>(-(sd.x + sb.x), 1.0, -(sd.y + sb.y)));
 }
 
+// √2 of the elliptical grid mapping's inverse.
+const SQRT2: f32 = 1.4142135623730951;
+
+// One axis of the disc-to-square map of the grazing mapping (ocean-core
+// tables::grazing_square), u = ½ sqrt(2 + a² − b² + 2√2 a) − ½ sqrt(2 + a² − b² − 2√2 a),
+// with each root's argument factorised, (√2 ± a)² − b² = (√2 ± a − b)(√2 ± a + b): where it
+// vanishes (the corners' images on the rim) the factors are accurate and the expanded sum is
+// not. max(0) guards round-off.
+fn grazing_square_axis(a: f32, b: f32) -> f32 {
+    let plus = (SQRT2 + a - b) * (SQRT2 + a + b);
+    let minus = (SQRT2 - a - b) * (SQRT2 - a + b);
+    return 0.5 * (sqrt(max(plus, 0.0)) - sqrt(max(minus, 0.0)));
+}
+
 // Fresnel bump mapping (§5.1, Fig. 4): the view vector bumped by (−du, −dv), (du, dv) the
-// horizontal components of the bumped unit normal, on the whole-hemisphere texture
-// (x, y) ∈ [−1, 1]² ↦ [0, 1]².
+// horizontal components of the bumped unit normal, looked up in the grazing-mapped texture
+// (the plan's `fresnel_mapping`): z = sqrt(1 − r²), the disc point d = (x, y)/sqrt(1 + z)
+// (|d|² = 1 − z), a bumped vector beyond the rim (r > 1) put on the rim at its azimuth by
+// max(…, r), then d to the square u ∈ [−1, 1]² and s = a·u + ½.
 fn fresnel_st(view: vec3<f32>, n: vec3<f32>) -> vec2<f32> {
-    return vec2<f32>(view.x - n.x, view.z - n.z) * 0.5 + 0.5;
+    let x = view.x - n.x;
+    let y = view.z - n.z;
+    let r2 = x * x + y * y;
+    let z = sqrt(max(1.0 - r2, 0.0));
+    let d = vec2<f32>(x, y) / max(sqrt(1.0 + z), sqrt(r2));
+    let u = vec2<f32>(grazing_square_axis(d.x, d.y), grazing_square_axis(d.y, d.x));
+    return u * frame.hu.fresnel_scale + 0.5;
 }
 
 @fragment

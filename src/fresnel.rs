@@ -22,13 +22,25 @@ pub struct Args {
     /// Write the N×N 2D Fresnel texture instead of the CSV (needs -o FILE.exr).
     #[arg(long, value_name = "N")]
     table: Option<usize>,
-    /// Map the texture as the paper prints it (V = (s−0.5, t−0.5, …), about ±30° only)
-    /// instead of the whole hemisphere.
-    #[arg(long, requires = "table")]
+    /// Which view vectors the texels stand for: `hemisphere` (DESIGN.md's contract: x = 2s−1,
+    /// y = 2t−1), `half-range` (the paper's V = (s−0.5, t−0.5, …), about ±30° only) or
+    /// `grazing` (the renderer's: the rim on the edge texels' centres, radius ∝ sqrt(1 − cos θ);
+    /// see the README).
+    #[arg(long, requires = "table", default_value = "hemisphere", value_parser = parse_mapping)]
+    mapping: TextureMapping,
+    /// Same as `--mapping half-range` (kept for scripts that used it).
+    #[arg(long, requires = "table", conflicts_with = "mapping")]
     paper_half_range: bool,
     /// Output file for --table.
     #[arg(short, long, requires = "table")]
     output: Option<PathBuf>,
+}
+
+fn parse_mapping(name: &str) -> Result<TextureMapping, String> {
+    TextureMapping::from_name(name).ok_or_else(|| {
+        let known: Vec<&str> = TextureMapping::ALL.iter().map(|m| m.name()).collect();
+        format!("unknown mapping `{name}`; known: {}", known.join(", "))
+    })
 }
 
 /// The largest texture side accepted: 8192² RGBA f32 is 1 GiB.
@@ -90,11 +102,7 @@ fn write_table(args: &Args, n: usize) -> anyhow::Result<()> {
     let path = args.output.as_ref().context("--table N needs -o FILE.exr")?;
     require_extension(path, "exr")?;
     let out = ocean::output::OutputFile::reserve(path)?;
-    let mapping = if args.paper_half_range {
-        TextureMapping::PaperHalfRange
-    } else {
-        TextureMapping::Hemisphere
-    };
+    let mapping = if args.paper_half_range { TextureMapping::PaperHalfRange } else { args.mapping };
     let tex = FresnelTexture::new(n, args.eta, mapping)?;
     let channel = |c: usize| tex.texels().iter().map(|t| t[c]).collect::<Vec<f32>>();
     let channels = ["R", "G", "B", "A"]
@@ -103,7 +111,7 @@ fn write_table(args: &Args, n: usize) -> anyhow::Result<()> {
         .map(|(c, name)| Channel { name, data: channel(c) })
         .collect();
     out.commit(&encode_exr(n, n, channels)?)?;
-    eprintln!("wrote {} ({n}×{n}, η = {}, {:?} mapping)", path.display(), args.eta, mapping);
+    eprintln!("wrote {} ({n}×{n}, η = {}, {} mapping)", path.display(), args.eta, mapping.name());
     Ok(())
 }
 

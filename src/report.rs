@@ -124,7 +124,8 @@ struct Knob {
 const KNOBS: &[Knob] = &[
     Knob {
         name: "fresnel",
-        varies: "how F is evaluated: eq. 2 per pixel, the 2D texture (whole hemisphere) at \
+        varies: "how F is evaluated: eq. 2 per pixel, the 2D texture (whole-hemisphere and \
+                 grazing mappings) at \
                  16² … 512², the paper's half-range texture, a 1D table in cos θ, Schlick; \
                  error over the hemisphere of view directions and over the water pixels of the \
                  default scene; time of the lookups of one 1280×720 frame",
@@ -221,14 +222,20 @@ fn frame_view_vectors(scene: &Scene) -> anyhow::Result<Vec<[f64; 3]>> {
         if view.y < 0.0 {
             return Some([0.0; 4]);
         }
-        let st = water::fresnel_st(view, n);
-        Some([st.x, st.y, 1.0, 1.0])
+        // The bumped local (x, y) itself, so the lookup of every method starts from the same
+        // vector whatever mapping the frame's texture uses.
+        Some([view.x - n.x, view.z - n.z, 1.0, 1.0])
     });
     Ok(target
         .color
         .iter()
         .filter(|p| p[2] == 1.0)
-        .map(|p| TextureMapping::Hemisphere.view_vector(f64::from(p[0]), f64::from(p[1])))
+        .map(|p| {
+            let (x, y) = (f64::from(p[0]), f64::from(p[1]));
+            let r2 = x * x + y * y;
+            // A bumped vector beyond the rim is looked up as the grazing view at its azimuth.
+            if r2 > 1.0 { [x / r2.sqrt(), y / r2.sqrt(), 0.0] } else { [x, y, (1.0 - r2).sqrt()] }
+        })
         .collect())
 }
 
@@ -259,6 +266,11 @@ fn fresnel_knob(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
     for n in [16, 32, 64, 128, 256, 512] {
         let t = FresnelTexture::new(n, eta, TextureMapping::Hemisphere)?;
         methods.push((format!("2D texture {n}²"), Box::new(move |v| t.lookup_fresnel(v))));
+    }
+    // The renderer's mapping: the rim on texel centres, radius ∝ sqrt(1 − cos θ).
+    for n in [16, 32, 64, 128, 256, 512] {
+        let t = FresnelTexture::new(n, eta, TextureMapping::Grazing)?;
+        methods.push((format!("2D grazing {n}²"), Box::new(move |v| t.lookup_fresnel(v))));
     }
     let half = FresnelTexture::new(256, eta, TextureMapping::PaperHalfRange)?;
     methods.push(("paper's half-range 256²".into(), Box::new(move |v| half.lookup_fresnel(v))));

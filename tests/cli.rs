@@ -114,6 +114,30 @@ fn fresnel_table_exr_contract() {
     }
 }
 
+/// `--mapping grazing`: the edge texels are the rim (B = z = 0, A = F = 1) and the centre of
+/// an odd table is the normal; an unknown mapping is refused with the known ones.
+fn fresnel_table_mappings() {
+    let dir = tempfile::tempdir().expect("a temp dir");
+    let path = dir.path().join("g.exr");
+    let p = path.to_str().unwrap();
+    let o = ocean(&["fresnel", "--eta", "1.333", "--table", "17", "--mapping", "grazing", "-o", p]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("grazing mapping"), "{}", stderr(&o));
+    let (_, _, channels) = read_exr(&path);
+    let get = |n: &str| &channels.iter().find(|c| c.0 == n).unwrap().1;
+    let (b, a) = (get("B"), get("A"));
+    let n = 17usize;
+    for k in 0..n {
+        for idx in [k, (n - 1) * n + k, k * n, k * n + n - 1] {
+            assert_eq!((b[idx], a[idx]), (0.0, 1.0), "edge texel {idx}");
+        }
+    }
+    assert_eq!(b[8 * n + 8], 1.0);
+    let o = ocean(&["fresnel", "--eta", "1.333", "--table", "17", "--mapping", "rim", "-o", p]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("hemisphere, half-range, grazing"), "{}", stderr(&o));
+}
+
 fn fresnel_table_needs_an_exr_output() {
     let dir = tempfile::tempdir().expect("a temp dir");
     let png = dir.path().join("f.png");
@@ -290,7 +314,7 @@ fn compare_prints_metrics_writes_images_and_passes() {
 fn main() -> std::process::ExitCode {
     run_tests!(gpu_harness::GPU_ADAPTER;
         cpu: fresnel_csv_contract, fresnel_rejects_bad_eta_without_panicking,
-            fresnel_table_exr_contract, fresnel_table_needs_an_exr_output,
+            fresnel_table_exr_contract, fresnel_table_mappings, fresnel_table_needs_an_exr_output,
             bad_scene_names_file_line_key_and_writes_nothing, heightfield_exr_contract,
             render_writes_png_and_exr_and_rejects_bad_input,
             gpu_without_an_adapter_says_what_to_do_and_writes_nothing;

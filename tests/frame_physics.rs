@@ -68,7 +68,7 @@ struct Comparison {
 /// table lookup and with eq. 2 for η = 1.333.
 fn compare(scene: &Scene, frame: &FrameBuffers) -> Comparison {
     let camera = Camera::from_scene(&scene.camera).expect("valid camera");
-    let table = FresnelTexture::new(FRESNEL_TABLE_SIZE as usize, 1.333, TextureMapping::Hemisphere)
+    let table = FresnelTexture::new(FRESNEL_TABLE_SIZE as usize, 1.333, TextureMapping::Grazing)
         .expect("valid table");
     let w = frame.uniforms.water.color[0] as f64;
     let (width, height) = (camera.width, camera.height);
@@ -180,10 +180,10 @@ fn bumped_fresnel_is_the_texture_lookup_of_the_bumped_view_vector() {
 
     let eta = 1.333f32;
     let table = |e: f32| {
-        fresnel_table::dispatch(&FresnelTableUniforms { eta: e, size: 256, mapping: 0, pad: 0 })
+        fresnel_table::dispatch(&FresnelTableUniforms::new(e, 256, TextureMapping::Grazing))
     };
     let (above, below) = (table(eta), table(1.0 / eta));
-    let reference = FresnelTexture::new(256, 1.333, TextureMapping::Hemisphere).expect("table");
+    let reference = FresnelTexture::new(256, 1.333, TextureMapping::Grazing).expect("table");
     let empty = Texture2D::new(1, 1, vec![[0.0; 4]]);
     let w = 0.01f32;
     let mut u: FrameUniforms = bytemuck::Zeroable::zeroed();
@@ -194,6 +194,7 @@ fn bumped_fresnel_is_the_texture_lookup_of_the_bumped_view_vector() {
     (u.water.color, u.water.extinction_per_m) = ([w, w, w], 0.1);
     (u.water.eta, u.water.inv_eta) = (eta, 1.0 / eta);
     (u.hu.reflection_distortion, u.hu.refraction_distortion) = (0.0, 0.0);
+    u.hu.fresnel_scale = TextureMapping::grazing_scale(256);
     let sky = |_: [f32; 3]| [1.0f32; 3];
     println!(
         "slope | max |F − F_texture(bumped V)| | max |F − eq.2(V·N)| for V·N > 0 and θ_V ≤ 30°, 60°, 80°"
@@ -238,12 +239,24 @@ fn bumped_fresnel_is_the_texture_lookup_of_the_bumped_view_vector() {
                     let (sx, sz) = (slope * phi_s.cos(), slope * phi_s.sin());
                     let n: [f32; 3] =
                         ocean_cpu::shaders::shared::frame::unit([-sx, 1.0, -sz].into()).into();
-                    let st =
-                        (((v[0] - n[0]) * 0.5 + 0.5) as f32, ((v[2] - n[2]) * 0.5 + 0.5) as f32);
+                    // The lookup coordinates of the bumped (x_v − du, z_v − dv) by ocean-core's
+                    // f64 inverse of the mapping, not by the shader's f32 one.
+                    let bumped = [f64::from(v[0] - n[0]), f64::from(v[2] - n[2]), 0.0];
+                    let st = reference.lookup_coords(bumped);
                     let f_texture = reference.sample_bilinear(st.0, st.1)[3] as f64;
+                    // The shader forms z = sqrt(1 − r²) of the bumped vector in f32: near the
+                    // rim that is ill-conditioned (dz/dr² unbounded), so F can be no closer
+                    // than its change over r² ± 4 ulp.
+                    let r2 = bumped[0] * bumped[0] + bumped[1] * bumped[1];
+                    let z_at = |k: f64| {
+                        (1.0 - r2 * (1.0 + k * 4.0 * f64::from(f32::EPSILON) / 2.0)).max(0.0).sqrt()
+                    };
+                    let ill = (ocean_core::fresnel::fresnel_exact(z_at(-1.0), 1.333)
+                        - ocean_core::fresnel::fresnel_exact(z_at(1.0), 1.333))
+                    .abs();
+                    worst_texture = worst_texture.max((f - f_texture).abs() - ill);
                     let vn = (v[0] * n[0] + v[1] * n[1] + v[2] * n[2]) as f64;
                     let f_exact = ocean_core::fresnel::fresnel_exact(vn, 1.333);
-                    worst_texture = worst_texture.max((f - f_texture).abs());
                     if vn > 0.0 {
                         for (b, limit) in [30.0f64, 60.0, 80.0].iter().enumerate() {
                             if theta <= limit.to_radians() + 1e-12 {
@@ -256,13 +269,16 @@ fn bumped_fresnel_is_the_texture_lookup_of_the_bumped_view_vector() {
         }
         let [e30, e60, e80] = worst_exact;
         println!("{slope:5} | {worst_texture:.2e} | {e30:.2e} {e60:.2e} {e80:.2e}");
-        // F in the picture is the texture's F at the bumped view vector (f32 vs f64 table:
-        // a few ulp of F, scaled by 1/(1 − W) in the read-back).
-        assert!(worst_texture < 2e-6, "slope {slope}: {worst_texture}");
+        // F in the picture is the texture's F at the bumped view vector, beyond the
+        // conditioning of z: the f32 inverse mapping's (s, t) are a few ulp (≤ 4 · 6e-8) from
+        // the f64 inverse's, and F changes by up to 50 per unit of s near the rim (dF/dz ≈ −6.3
+        // at grazing for water, |dz/ds| ≤ 4/a·ρ with a ≈ ½): 1.2e-5.
+        assert!(worst_texture < 1.2e-5, "slope {slope}: {worst_texture}");
         if slope == 0.0 {
-            // Unbumped, the lookup is the table's own error (≤ 6.5e-3 up to 80° at 256²,
-            // tests/fresnel.rs).
-            assert!(worst_exact[2] < 6.5e-3, "{worst_exact:?}");
+            // Unbumped, the lookup is the table's own error (grazing mapping at 256²: 3.3e-4
+            // up to 80° on tests/fresnel.rs's grid, which stops short of 80° itself) plus the
+            // f32 coordinates' rounding: 3.5e-4 measured here.
+            assert!(worst_exact[2] < 4e-4, "{worst_exact:?}");
         }
     }
 }

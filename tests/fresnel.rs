@@ -849,3 +849,135 @@ fn lookup_of_unit_view_vectors_matches_exact() -> ocean_core::Result<()> {
     }
     Ok(())
 }
+
+/// The grazing mapping's texel (i, j), written out from its definition independently of the
+/// library: u = 2i/(N − 1) − 1, v = 2j/(N − 1) − 1; the elliptical grid mapping
+/// d = (u·sqrt(1 − v²/2), v·sqrt(1 − u²/2)); ρ = |d| = sqrt(1 − z), so z = 1 − ρ² and the
+/// horizontal part is d/ρ·sin θ with sin θ = sqrt(1 − z²).
+fn grazing_vector(i: usize, j: usize, n: usize) -> [f64; 3] {
+    let u = 2.0 * i as f64 / (n as f64 - 1.0) - 1.0;
+    let v = 2.0 * j as f64 / (n as f64 - 1.0) - 1.0;
+    let d = [u * (1.0 - v * v / 2.0).sqrt(), v * (1.0 - u * u / 2.0).sqrt()];
+    let rho = d[0].hypot(d[1]).min(1.0);
+    let z = 1.0 - rho * rho;
+    if rho == 0.0 {
+        return [0.0, 0.0, 1.0];
+    }
+    let sin_theta = (1.0 - z * z).sqrt();
+    [d[0] / rho * sin_theta, d[1] / rho * sin_theta, z]
+}
+
+#[test]
+fn grazing_mapping_puts_the_rim_on_texel_centres() -> ocean_core::Result<()> {
+    for n in [2, 3, 16, 17, 256] {
+        let tex = FresnelTexture::new(n, WATER, TextureMapping::Grazing)?;
+        for j in 0..n {
+            for i in 0..n {
+                let [x, y, z, a] = tex.texel(i, j);
+                let want = grazing_vector(i, j, n);
+                for (got, want) in [x, y, z].iter().zip(want) {
+                    assert!((f64::from(*got) - want).abs() <= 2.4e-7, "N {n} ({i}, {j}): {want:?}");
+                }
+                assert_eq!(a, fresnel_exact(f64::from(z), WATER) as f32);
+                // The edge texels are the rim itself: grazing, F = 1.
+                if i == 0 || j == 0 || i == n - 1 || j == n - 1 {
+                    assert_eq!((z, a), (0.0, 1.0), "N {n} ({i}, {j})");
+                }
+            }
+        }
+    }
+    // The mapping needs two texels a side to have a rim at all.
+    assert!(FresnelTexture::new(1, WATER, TextureMapping::Grazing).is_err());
+    Ok(())
+}
+
+#[test]
+fn grazing_mapping_meets_2e3_over_the_whole_hemisphere() -> ocean_core::Result<()> {
+    const SAMPLES: usize = 1024;
+    eprintln!("2D Fresnel texture, eta {WATER}, grazing mapping, bilinear vs exact:");
+    eprintln!("    N | max abs (all) | at theta | RMS (solid angle)");
+    let mut previous: Option<f64> = None;
+    for n in [16, 32, 64, 128, 256, 512] {
+        let e = texture_error(n, WATER, TextureMapping::Grazing, SAMPLES)?;
+        eprintln!("{n:>5} | {:>13.3e} | {:>7.3}° | {:>17.3e}", e.max_abs, e.worst_theta_deg, e.rms);
+        // The mapping is smooth inside the square and the rim is sampled exactly, so the error
+        // over the whole hemisphere is second order: it falls by 4 per doubling of N once the
+        // cells resolve F at grazing (measured ratios 3.6, 3.8, 4.0, 4.0 from N = 64 on).
+        if let Some(prev) = previous {
+            let ratio = prev / e.max_abs;
+            if n >= 128 {
+                assert!((3.5..=4.5).contains(&ratio), "N {n}: ratio {ratio}");
+            }
+        }
+        previous = Some(e.max_abs);
+        if n == 256 {
+            // DESIGN.md's 2e-3 at 256², now over the whole hemisphere (measured 1.33e-3), where
+            // the contract's mapping is off by 0.41 at the horizon.
+            assert!(e.max_abs <= 2e-3, "{:e}", e.max_abs);
+            let hemisphere = texture_error(n, WATER, TextureMapping::Hemisphere, SAMPLES)?;
+            assert!(hemisphere.max_abs > 0.4, "{:e}", hemisphere.max_abs);
+            // Negative control: one texel next to the rim corrupted by 0.01 breaks the check.
+            let mut tex = FresnelTexture::new(n, WATER, TextureMapping::Grazing)?;
+            let k = (n / 2) * n + 1;
+            tex.texels_mut()[k][3] -= 0.01;
+            assert!(tex.measure_error(SAMPLES)?.max_abs > 2e-3, "corrupted texel not seen");
+        }
+    }
+    Ok(())
+}
+
+/// The renderer's own f32 path: the table the `fresnel_table` stage writes (CPU mirror of the
+/// WGSL) looked up at the water shader's `fresnel_st`, against eq. 2, over the hemisphere.
+#[test]
+fn the_water_shaders_grazing_lookup_meets_2e3() {
+    use ocean_core::frame::FresnelTableUniforms;
+    use ocean_cpu::sampler::texture_sample;
+    use ocean_cpu::shaders::{fresnel_table, water};
+    let n = 256u32;
+    let table = fresnel_table::dispatch(&FresnelTableUniforms::new(
+        WATER as f32,
+        n,
+        TextureMapping::Grazing,
+    ));
+    // The f32 table against the f64 one: the vector to f32 rounding, F within a few ulp.
+    let reference = FresnelTexture::new(n as usize, WATER, TextureMapping::Grazing).unwrap();
+    for (got, want) in table.texels.iter().zip(reference.texels()) {
+        for c in 0..4 {
+            assert!((got[c] - want[c]).abs() <= 5e-7, "{got:?} vs {want:?}");
+        }
+    }
+    let scale = TextureMapping::grazing_scale(n);
+    let lookup = |table: &ocean_cpu::sampler::Texture2D, v: [f64; 3]| {
+        // The shader's view vector is world (x, y up, z); the local frame has z up.
+        let view = [v[0] as f32, v[2] as f32, v[1] as f32];
+        let st = water::fresnel_st(view.into(), [0.0, 1.0, 0.0].into(), scale);
+        texture_sample(table, &water::CLAMP_LINEAR, st.into())[3]
+    };
+    let worst = |table: &ocean_cpu::sampler::Texture2D| {
+        let mut worst = (0.0f64, 0.0f64);
+        let rows = 720;
+        for k in 0..rows {
+            let theta = (k as f64 + 0.5) * FRAC_PI_2 / rows as f64;
+            for l in 0..4 * rows {
+                let phi = (l as f64 + 0.5) * std::f64::consts::TAU / (4 * rows) as f64;
+                let v = [theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos()];
+                let e = (f64::from(lookup(table, v)) - fresnel_exact(v[2], WATER)).abs();
+                if e > worst.0 {
+                    worst = (e, theta.to_degrees());
+                }
+            }
+        }
+        worst
+    };
+    let (e, at) = worst(&table);
+    eprintln!("water shader's grazing lookup at {n}²: max |F − eq. 2| = {e:.3e} at θ = {at:.2}°");
+    assert!(e <= 2e-3, "{e:e} at {at}°");
+    // Negative control: the contract's hemisphere table looked up with the grazing
+    // coordinates is far off.
+    let wrong = fresnel_table::dispatch(&FresnelTableUniforms::new(
+        WATER as f32,
+        n,
+        TextureMapping::Hemisphere,
+    ));
+    assert!(worst(&wrong).0 > 2e-3);
+}

@@ -44,7 +44,7 @@ struct HuShadingBlock {
     phong_exponent: f32,
     reflection_distortion: f32,
     refraction_distortion: f32,
-    pad: f32,
+    fresnel_scale: f32,
 }
 
 struct PassFlags {

@@ -124,8 +124,9 @@ pub struct HuShadingBlock {
     pub reflection_distortion: f32,
     /// The same for the refraction map.
     pub refraction_distortion: f32,
-    /// Padding to 16 bytes.
-    pub pad: f32,
+    /// a of the Fresnel textures' grazing lookup s = a·u + ½
+    /// ([`crate::tables::TextureMapping::grazing_scale`]).
+    pub fresnel_scale: f32,
 }
 
 /// Which optional maps the frame made: 1.0 when the pass ran, 0.0 when its 1×1 zero map is
@@ -186,10 +187,36 @@ pub struct FresnelTableUniforms {
     pub eta: f32,
     /// N of the N×N table.
     pub size: u32,
-    /// 0: the whole hemisphere (DESIGN.md), 1: the paper's half range.
+    /// [`crate::tables::TextureMapping::code`]: 0 the whole hemisphere (DESIGN.md), 1 the
+    /// paper's half range, 2 the grazing mapping.
     pub mapping: u32,
-    /// Padding to 16 bytes.
-    pub pad: u32,
+    /// 2/(N − 1), the step of the grazing mapping's u between texel centres, formed in f64
+    /// and rounded once (0 for N < 2). A multiplication by it, not a division in the shader:
+    /// lavapipe's f32 division is not always the correctly rounded one, and one ulp of u moved
+    /// a texel's F by 3e-5 next to the critical angle of the table seen from below.
+    pub step: f32,
+    /// 4/(N − 1)², the factor of the grazing mapping's 1 − u² = 4 i (N − 1 − i)/(N − 1)²,
+    /// likewise (0 for N < 2).
+    pub step2: f32,
+    /// Padding to 32 bytes.
+    pub pad0: u32,
+    /// Padding.
+    pub pad1: u32,
+    /// Padding.
+    pub pad2: u32,
+}
+
+impl FresnelTableUniforms {
+    /// The uniforms of an `size`² table for index ratio `eta` under `mapping`.
+    pub fn new(eta: f32, size: u32, mapping: crate::tables::TextureMapping) -> Self {
+        let last = f64::from(size) - 1.0;
+        let (step, step2) = if size >= 2 {
+            ((2.0 / last) as f32, (4.0 / (last * last)) as f32)
+        } else {
+            (0.0, 0.0)
+        };
+        Self { eta, size, mapping: mapping.code(), step, step2, pad0: 0, pad1: 0, pad2: 0 }
+    }
 }
 
 /// Vertex of the objects' meshes (WGSL `ObjectVertex`): camera-relative position, unit normal,
@@ -386,7 +413,9 @@ impl FrameUniforms {
                 phong_exponent: SUN_SPECULAR_EXPONENT,
                 reflection_distortion: REFLECTION_DISTORTION,
                 refraction_distortion: REFRACTION_DISTORTION,
-                pad: 0.0,
+                fresnel_scale: crate::tables::TextureMapping::grazing_scale(
+                    plan.fresnel_table_size,
+                ),
             },
             passes: PassFlags {
                 waves: flag(Pass::Waves),

@@ -224,7 +224,16 @@ pub const STAGES: &[StageEntry] = &[
         source: include_str!("../../../shaders/fresnel_table.wgsl"),
         entry_points: &[("main", Compute)],
         bindings: &[b(0, 0, "params"), b(0, 1, "table")],
-        blocks: &[block!(FresnelTableUniforms { eta, size, mapping, pad })],
+        blocks: &[block!(FresnelTableUniforms {
+            eta,
+            size,
+            mapping,
+            step,
+            step2,
+            pad0,
+            pad1,
+            pad2
+        })],
         cpu_mirror: "crates/ocean-cpu/src/shaders/fresnel_table.rs",
         gpu_module: "crates/ocean-gpu/src/fresnel_table.rs",
     },
@@ -350,7 +359,7 @@ pub const SHARED: &[SharedFile] = &[
                 phong_exponent,
                 reflection_distortion,
                 refraction_distortion,
-                pad
+                fresnel_scale
             }),
             block!(PassFlags { waves, reflection_map, refraction_map, shadow_map }),
             block!(AmbientBlock { sky, pad }),

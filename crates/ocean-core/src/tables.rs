@@ -110,7 +110,8 @@ impl FresnelTable1D {
 }
 
 /// Which view vectors the texels of a [`FresnelTexture`] stand for.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum TextureMapping {
     /// DESIGN.md's contract: texel coordinates (s, t) ∈ [0, 1]² stand for x = 2s − 1,
     /// y = 2t − 1, z = sqrt(max(0, 1 − x² − y²)), so the unit disc covers the whole hemisphere
@@ -121,12 +122,87 @@ pub enum TextureMapping {
     /// Its texels cover only |x|, |y| ≤ 0.5: view vectors within 30° of the normal along the
     /// axes, 45° along the diagonals. A view further from the normal has s = x + 0.5 outside
     /// [0, 1], and the clamp-to-edge sampler returns the edge texel's value.
+    #[serde(rename = "half-range")]
     PaperHalfRange,
+    /// The mapping the renderer uses (`--mapping grazing`): the rim falls on the edge texels'
+    /// centres and the radius goes as ρ = sqrt(1 − z), so grazing views, where F changes
+    /// fastest, get as many texels per unit of cos θ as the normal does. See
+    /// [`grazing_disc`] and [`grazing_square`] for the two halves of the map.
+    Grazing,
+}
+
+/// The texel coordinate u ∈ [−1, 1] of the grazing mapping at normalised coordinate `s` on an
+/// axis of `n` ≥ 2 texels: texel centre 0 at u = −1, centre n − 1 at u = +1, so the rim
+/// (|u| = 1) is sampled exactly, and beyond it the clamp-to-edge sampler holds the rim.
+pub fn grazing_u(s: f64, n: usize) -> f64 {
+    (s * n as f64 - 0.5) * 2.0 / (n as f64 - 1.0) - 1.0
+}
+
+/// The inverse of [`grazing_u`].
+pub fn grazing_s(u: f64, n: usize) -> f64 {
+    ((u + 1.0) * 0.5 * (n as f64 - 1.0) + 0.5) / n as f64
+}
+
+/// The square [−1, 1]² to the unit disc, the half of [`TextureMapping::Grazing`] that the
+/// table's texels go through: the elliptical grid mapping d = (u·sqrt(1 − v²/2),
+/// v·sqrt(1 − u²/2)) (Fong 2015, "Analytical methods for squaring the disc"), which sends the
+/// square's edge onto the unit circle, is smooth inside (so bilinear filtering keeps its
+/// second-order error; a radial stretch by max(|u|, |v|) has a kink on the diagonals that cost
+/// 1.3e-2 at 256²), and is arithmetic only (no trigonometry), so the CPU and the GPU map alike.
+pub fn grazing_disc(u: f64, v: f64) -> [f64; 2] {
+    [u * (1.0 - 0.5 * v * v).sqrt(), v * (1.0 - 0.5 * u * u).sqrt()]
+}
+
+/// The inverse of [`grazing_disc`] on the unit disc:
+/// u = ½ sqrt(2 + x² − y² + 2√2 x) − ½ sqrt(2 + x² − y² − 2√2 x), v likewise with x ↔ y.
+/// On the disc both roots' arguments are ≥ 0 ((√2 ∓ x)² − y² ≥ (1 ∓ √2 x)² ≥ 0 there); the
+/// max(0) guards round-off at the four corners' images, where one vanishes.
+pub fn grazing_square(dx: f64, dy: f64) -> [f64; 2] {
+    let two_sqrt2 = 2.0 * std::f64::consts::SQRT_2;
+    let axis = |a: f64, b: f64| {
+        let common = 2.0 + a * a - b * b;
+        0.5 * ((common + two_sqrt2 * a).max(0.0).sqrt() - (common - two_sqrt2 * a).max(0.0).sqrt())
+    };
+    [axis(dx, dy), axis(dy, dx)]
 }
 
 impl TextureMapping {
+    /// Every mapping, in the order of their [`Self::code`].
+    pub const ALL: [TextureMapping; 3] = [Self::Hemisphere, Self::PaperHalfRange, Self::Grazing];
+
+    /// The name on the command line (`ocean fresnel --mapping`) and in `ocean report`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Hemisphere => "hemisphere",
+            Self::PaperHalfRange => "half-range",
+            Self::Grazing => "grazing",
+        }
+    }
+
+    /// The mapping called `name`, if there is one.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|m| m.name() == name)
+    }
+
+    /// The value of `FresnelTableUniforms::mapping` that selects this mapping in
+    /// `shaders/fresnel_table.wgsl`.
+    pub fn code(self) -> u32 {
+        match self {
+            Self::Hemisphere => 0,
+            Self::PaperHalfRange => 1,
+            Self::Grazing => 2,
+        }
+    }
+
+    /// The factor a of the grazing lookup s = a·u + ½ (u ∈ [−1, 1], [`grazing_u`]'s inverse)
+    /// on an axis of `n` texels: a = (n − 1)/(2n), formed in f64 and rounded once.
+    pub fn grazing_scale(n: u32) -> f32 {
+        ((f64::from(n) - 1.0) / (2.0 * f64::from(n))) as f32
+    }
+
     /// The normalised local view vector that texture coordinates (s, t) stand for, in `f64`.
-    pub fn view_vector(self, s: f64, t: f64) -> [f64; 3] {
+    /// `n` is the table's side (only [`Self::Grazing`] depends on it, and needs n ≥ 2).
+    pub fn view_vector(self, s: f64, t: f64, n: usize) -> [f64; 3] {
         match self {
             Self::Hemisphere => {
                 let x = 2.0 * s - 1.0;
@@ -149,6 +225,18 @@ impl TextureMapping {
                 // for coordinates outside the texture, which no texel has.
                 [x, y, (1.0 - x * x - y * y).max(0.0).sqrt()]
             }
+            Self::Grazing => {
+                // The disc point d has |d| = ρ = sqrt(1 − z), and for the elliptical grid
+                // mapping 1 − ρ² = (1 − u²)(1 − v²): z is that product, exactly 0 on the edge
+                // texels and free of cancellation. The horizontal part d/ρ·sin θ =
+                // d·sqrt(1 + z) (sin² θ = 1 − z² = ρ²(1 + z)) needs no division at the
+                // normal. Outside the square (never a texel) the clamp keeps z ≥ 0.
+                let (u, v) = (grazing_u(s, n).clamp(-1.0, 1.0), grazing_u(t, n).clamp(-1.0, 1.0));
+                let [dx, dy] = grazing_disc(u, v);
+                let z = ((1.0 - u) * (1.0 + u)) * ((1.0 - v) * (1.0 + v));
+                let k = (1.0 + z).sqrt();
+                [dx * k, dy * k, z]
+            }
         }
     }
 
@@ -156,11 +244,22 @@ impl TextureMapping {
     /// of [`view_vector`](Self::view_vector) on the texture's domain. Only x and y are used, as
     /// in the paper's shader, which looks up the bumped (x_v − du, z_v − dv) without
     /// renormalising; pass a normalised vector to look up the Fresnel term of its direction.
-    pub fn coords(self, view_local: [f64; 3]) -> (f32, f32) {
+    /// `n` is the table's side, as for [`Self::view_vector`].
+    pub fn coords(self, view_local: [f64; 3], n: usize) -> (f32, f32) {
         let [x, y, _] = view_local;
         match self {
             Self::Hemisphere => ((0.5 * (x + 1.0)) as f32, (0.5 * (y + 1.0)) as f32),
             Self::PaperHalfRange => ((x + 0.5) as f32, (y + 0.5) as f32),
+            Self::Grazing => {
+                // d = (x, y)/sqrt(1 + z) inverts view_vector; beyond the rim (r > 1, z = 0)
+                // the same expression with max(…, r) puts the bumped vector on the rim at its
+                // azimuth.
+                let r = (x * x + y * y).sqrt();
+                let z = (1.0 - r * r).max(0.0).sqrt();
+                let scale = (1.0 + z).sqrt().max(r);
+                let [u, v] = grazing_square(x / scale, y / scale);
+                (grazing_s(u, n) as f32, grazing_s(v, n) as f32)
+            }
         }
     }
 }
@@ -198,12 +297,21 @@ impl FresnelTexture {
     pub fn new(n: usize, eta: f64, mapping: TextureMapping) -> Result<Self> {
         check_size(n)?;
         check_eta(eta)?;
+        if mapping == TextureMapping::Grazing && n < 2 {
+            return Err(Error::InvalidParameter {
+                name: "table size",
+                value: n as f64,
+                reason: "the grazing mapping puts the rim on the first and last texel centres, \
+                         so it needs at least 2 texels a side"
+                    .into(),
+            });
+        }
         let mut texels = Vec::with_capacity(n * n);
         for j in 0..n {
             let t = (j as f64 + 0.5) / n as f64;
             for i in 0..n {
                 let s = (i as f64 + 0.5) / n as f64;
-                let [x, y, z] = mapping.view_vector(s, t).map(|v| v as f32);
+                let [x, y, z] = mapping.view_vector(s, t, n).map(|v| v as f32);
                 let f = fresnel_exact(f64::from(z), eta) as f32;
                 texels.push([x, y, z, f]);
             }
@@ -245,7 +353,7 @@ impl FresnelTexture {
     /// The texture coordinates at which `view_local` (local frame, normal +Z) is looked up,
     /// under this texture's mapping; see [`TextureMapping::coords`].
     pub fn lookup_coords(&self, view_local: [f64; 3]) -> (f32, f32) {
-        self.mapping.coords(view_local)
+        self.mapping.coords(view_local, self.size)
     }
 
     /// The bilinear, clamp-to-edge sample at (s, t), all four channels, computed in `f32` by
@@ -426,15 +534,17 @@ mod tests {
     #[test]
     fn mappings_round_trip_at_texel_centres() {
         let n = 32;
-        for mapping in [TextureMapping::Hemisphere, TextureMapping::PaperHalfRange] {
+        for mapping in
+            [TextureMapping::Hemisphere, TextureMapping::PaperHalfRange, TextureMapping::Grazing]
+        {
             for j in 0..n {
                 for i in 0..n {
                     let s = (i as f64 + 0.5) / n as f64;
                     let t = (j as f64 + 0.5) / n as f64;
-                    let v = mapping.view_vector(s, t);
+                    let v = mapping.view_vector(s, t, n);
                     let inside = v[2] > 0.0;
                     if inside {
-                        let (s2, t2) = mapping.coords(v);
+                        let (s2, t2) = mapping.coords(v, n);
                         assert!(
                             (f64::from(s2) - s).abs() < 1e-7 && (f64::from(t2) - t).abs() < 1e-7
                         );

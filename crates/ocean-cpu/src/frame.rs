@@ -294,8 +294,11 @@ impl<'e> CpuBackend<'e> {
         let eta = frame.uniforms.water.eta;
         for (id, eta) in [(ResourceId::FresnelAbove, eta), (ResourceId::FresnelBelow, 1.0 / eta)] {
             let size = frame.plan.resource(id).map_or(1, |r| r.size[0]);
-            let t =
-                fresnel_table::dispatch(&FresnelTableUniforms { eta, size, mapping: 0, pad: 0 });
+            let t = fresnel_table::dispatch(&FresnelTableUniforms::new(
+                eta,
+                size,
+                frame.plan.fresnel_mapping,
+            ));
             self.put(id, t);
         }
     }

@@ -285,7 +285,7 @@ impl GpuBackend<'_> {
             let label = format!("ocean.fresnel_table.{}", id.name());
             let target =
                 GpuTexture::new(&self.gpu.device, &label, size, size, MAP_FORMAT, map_usage());
-            let params = FresnelTableUniforms { eta, size, mapping: 0, pad: 0 };
+            let params = FresnelTableUniforms::new(eta, size, frame.plan.fresnel_mapping);
             let slot = self.timer.slot(Pass::FresnelTable);
             self.stages.fresnel_table.encode(
                 &self.gpu.device,

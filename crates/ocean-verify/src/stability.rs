@@ -25,7 +25,7 @@ use ocean_core::fresnel::fresnel_exact;
 use ocean_core::plan::{FramePlan, OutputKind};
 use ocean_core::scene::{Scene, SceneSource, Sun};
 use ocean_core::sky::{PreethamSky, SkyParams};
-use ocean_core::tables::{FresnelTexture, TextureMapping};
+use ocean_core::tables::FresnelTexture;
 use ocean_core::waves::{MapFloat, Synthesizer, WaveMaps, WaveModes};
 
 use ocean_cpu::frame::{self, Error};
@@ -309,8 +309,8 @@ fn flat_sea_readback(camera_toml: &str) -> Result<(f64, usize, bool), Error> {
     let camera = Camera::from_scene(&scene.camera)?;
     let eta = scene.water.ior;
     let size = scene.quality.fresnel_table_size as usize;
-    let above = FresnelTexture::new(size, eta, TextureMapping::Hemisphere)?;
-    let below = FresnelTexture::new(size, 1.0 / eta, TextureMapping::Hemisphere)?;
+    let above = FresnelTexture::new(size, eta, plan.fresnel_mapping)?;
+    let below = FresnelTexture::new(size, 1.0 / eta, plan.fresnel_mapping)?;
     let w = f64::from(buffers.uniforms.water.color[0]);
     let (width, height) = (camera.width, camera.height);
     let finite = buffers.hdr.color.iter().all(|p| p.iter().all(|c| c.is_finite()));

@@ -5,12 +5,24 @@
 use ocean_core::frame::FresnelTableUniforms;
 
 use crate::sampler::Texture2D;
-use crate::shaders::wgsl::{Vec3, max, sqrt, vec3};
+use crate::shaders::wgsl::{Vec3, max, sqrt, vec2, vec3};
 
 /// Eq. 2 as the WGSL writes it: ocean-core's generic `fresnel_exact` in f32 takes the same
 /// branches in the same order for c ∈ [0, 1] and η > 0.
 pub fn fresnel_exact(c: f32, eta: f32) -> f32 {
     ocean_core::fresnel::fresnel_exact(c, eta)
+}
+
+/// `grazing_view_vector(id)`.
+pub fn grazing_view_vector(id: [u32; 2], params: &FresnelTableUniforms) -> Vec3 {
+    let u = id[0] as f32 * params.step - 1.0;
+    let v = id[1] as f32 * params.step - 1.0;
+    let d = vec2(u * sqrt(1.0 - 0.5 * v * v), v * sqrt(1.0 - 0.5 * u * u));
+    let last = params.size - 1;
+    let z = ((id[0] * (last - id[0])) as f32 * params.step2)
+        * ((id[1] * (last - id[1])) as f32 * params.step2);
+    let k = sqrt(1.0 + z);
+    vec3(d.x * k, d.y * k, z)
 }
 
 /// `view_vector(s, t)`.
@@ -35,10 +47,14 @@ pub fn main(id: [u32; 3], params: &FresnelTableUniforms) -> Option<[f32; 4]> {
     if id[0] >= params.size || id[1] >= params.size {
         return None;
     }
-    let n = params.size as f32;
-    let s = (id[0] as f32 + 0.5) / n;
-    let t = (id[1] as f32 + 0.5) / n;
-    let v = view_vector(s, t, params);
+    let v = if params.mapping == 2 {
+        grazing_view_vector([id[0], id[1]], params)
+    } else {
+        let n = params.size as f32;
+        let s = (id[0] as f32 + 0.5) / n;
+        let t = (id[1] as f32 + 0.5) / n;
+        view_vector(s, t, params)
+    };
     Some(v.extend(fresnel_exact(v.z, params.eta)).into())
 }
 

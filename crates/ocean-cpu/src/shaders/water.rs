@@ -167,10 +167,27 @@ pub fn bumped_normal(input: &VertexOut, b: &Bindings<'_>) -> Vec3 {
     unit(vec3(-(sd.x + sb.x), 1.0, -(sd.y + sb.y)))
 }
 
+/// `SQRT2`.
+const SQRT2: f32 = std::f32::consts::SQRT_2;
+
+/// `grazing_square_axis(a, b)`.
+pub fn grazing_square_axis(a: f32, b: f32) -> f32 {
+    let plus = (SQRT2 + a - b) * (SQRT2 + a + b);
+    let minus = (SQRT2 - a - b) * (SQRT2 - a + b);
+    0.5 * (sqrt(max(plus, 0.0)) - sqrt(max(minus, 0.0)))
+}
+
 /// `fresnel_st(view, n)`: the Fresnel texture's coordinates of the bumped view vector
-/// (§5.1, Fig. 4).
-pub fn fresnel_st(view: Vec3, n: Vec3) -> Vec2 {
-    vec2(view.x - n.x, view.z - n.z) * 0.5 + 0.5
+/// (§5.1, Fig. 4) under the grazing mapping; `fresnel_scale` is the frame's
+/// `hu.fresnel_scale`.
+pub fn fresnel_st(view: Vec3, n: Vec3, fresnel_scale: f32) -> Vec2 {
+    let x = view.x - n.x;
+    let y = view.z - n.z;
+    let r2 = x * x + y * y;
+    let z = sqrt(max(1.0 - r2, 0.0));
+    let d = vec2(x, y) / max(sqrt(1.0 + z), sqrt(r2));
+    let u = vec2(grazing_square_axis(d.x, d.y), grazing_square_axis(d.y, d.x));
+    u * fresnel_scale + 0.5
 }
 
 /// `fs_main(in)`; `input.clip` is the fragment's position.
@@ -182,7 +199,7 @@ pub fn fs_main(input: &VertexOut, b: &Bindings<'_>) -> [f32; 4] {
     let view = unit(-input.rel);
     let screen = input.clip.xy() * Vec2::from(frame.view.inv_viewport_size);
     if view.y >= 0.0 {
-        let st = fresnel_st(view, n);
+        let st = fresnel_st(view, n, frame.hu.fresnel_scale);
         let fres = texture_sample(b.fresnel_above, &CLAMP_LINEAR, st);
         let f = fres.w;
         let vn = dot3(view, n);
@@ -213,7 +230,7 @@ pub fn fs_main(input: &VertexOut, b: &Bindings<'_>) -> [f32; 4] {
         let c = c_reflect * f + c_refract * (1.0 - f) + spec * shadow;
         return c.extend(1.0).into();
     }
-    let st = fresnel_st(view, n);
+    let st = fresnel_st(view, n, frame.hu.fresnel_scale);
     let f = texture_sample(b.fresnel_below, &CLAMP_LINEAR, st).w;
     let eta = frame.water.eta;
     let i = -view;
