@@ -18,6 +18,7 @@ pub mod camera;
 pub mod camera_uniforms;
 pub mod dispersion;
 pub mod error;
+pub mod far_field;
 pub mod frame;
 pub mod fresnel;
 pub mod fuzz;

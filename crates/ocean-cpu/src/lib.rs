@@ -7,10 +7,12 @@
 //! - [`raster`]: triangle rasterizer (clipping, 8-bit sub-pixel snapping, top-left fill rule,
 //!   perspective-correct varyings, f32 depth test), parallel over disjoint row bands.
 //! - [`sampler`]: `textureSample` / `textureSampleLevel` on a 2D f32 texture, level 0.
+//! - [`mip`]: mip chains and `textureSampleLevel` between their levels, as lavapipe blends.
 //! - [`shaders`]: one module per WGSL stage (and per shared WGSL file), same names, same
 //!   order of operations.
 
 pub mod frame;
+pub mod mip;
 pub mod raster;
 pub mod render;
 pub mod sampler;

@@ -137,27 +137,53 @@ fn floor_to_i64(u: f32) -> i64 {
 }
 
 fn sample_nearest(texture: &Texture2D, sampler: &Sampler, coords: [f32; 2]) -> [f32; 4] {
-    let u = coords[0] * texture.width as f32;
-    let v = coords[1] * texture.height as f32;
-    let i = sampler.address_mode_u.apply(floor_to_i64(u), texture.width);
-    let j = sampler.address_mode_v.apply(floor_to_i64(v), texture.height);
-    texture.texel(i, j)
+    nearest_at(texture.width, texture.height, sampler, coords, |i, j| texture.texel(i, j))
 }
 
 fn sample_linear(texture: &Texture2D, sampler: &Sampler, coords: [f32; 2]) -> [f32; 4] {
-    let u = coords[0] * texture.width as f32 - 0.5;
-    let v = coords[1] * texture.height as f32 - 0.5;
+    bilinear_at(texture.width, texture.height, sampler, coords, |i, j| texture.texel(i, j))
+}
+
+/// The nearest-texel rule on a `width` × `height` image whose texel (i, j) `fetch` reads (a
+/// texture, or one level of a [`crate::mip::MipChain`]).
+#[inline]
+pub fn nearest_at(
+    width: u32,
+    height: u32,
+    sampler: &Sampler,
+    coords: [f32; 2],
+    fetch: impl Fn(u32, u32) -> [f32; 4],
+) -> [f32; 4] {
+    let u = coords[0] * width as f32;
+    let v = coords[1] * height as f32;
+    let i = sampler.address_mode_u.apply(floor_to_i64(u), width);
+    let j = sampler.address_mode_v.apply(floor_to_i64(v), height);
+    fetch(i, j)
+}
+
+/// The linear (bilinear) rule of the module doc on a `width` × `height` image whose texel
+/// (i, j) `fetch` reads.
+#[inline]
+pub fn bilinear_at(
+    width: u32,
+    height: u32,
+    sampler: &Sampler,
+    coords: [f32; 2],
+    fetch: impl Fn(u32, u32) -> [f32; 4],
+) -> [f32; 4] {
+    let u = coords[0] * width as f32 - 0.5;
+    let v = coords[1] * height as f32 - 0.5;
     let (u0, v0) = (u.floor(), v.floor());
     let (alpha, beta) = (u - u0, v - v0);
     let (i0, j0) = (floor_to_i64(u0), floor_to_i64(v0));
     let (mu, mv) = (sampler.address_mode_u, sampler.address_mode_v);
-    let i = [mu.apply(i0, texture.width), mu.apply(i0.saturating_add(1), texture.width)];
-    let j = [mv.apply(j0, texture.height), mv.apply(j0.saturating_add(1), texture.height)];
+    let i = [mu.apply(i0, width), mu.apply(i0.saturating_add(1), width)];
+    let j = [mv.apply(j0, height), mv.apply(j0.saturating_add(1), height)];
     bilinear(
-        texture.texel(i[0], j[0]),
-        texture.texel(i[1], j[0]),
-        texture.texel(i[0], j[1]),
-        texture.texel(i[1], j[1]),
+        fetch(i[0], j[0]),
+        fetch(i[1], j[0]),
+        fetch(i[0], j[1]),
+        fetch(i[1], j[1]),
         alpha,
         beta,
     )

@@ -1,0 +1,281 @@
+//! Stage `far_field` (DESIGN.md, "Filtering and ground truth"): what becomes of the wave
+//! detail a pixel cannot resolve, after Bruneton, Neyret & Holzschuch 2010.
+//!
+//! - `none`: the wave maps' level 0, bilinear (a far pixel picks one slope: it sparkles).
+//! - `mip`: the slope maps carry mip chains (each level the 2×2 box of the one below), and the
+//!   water pass samples them trilinearly at the LOD of the pixel's footprint on the sea.
+//! - `variance`: as `mip`, and the slopes the footprint averaged away are not dropped: each
+//!   level also holds the mean squared slopes, so E[s²] − E[s]² is the variance of the
+//!   unresolved slopes under the pixel (LEAN mapping's moments), and the shading takes the
+//!   expectation of the Fresnel term and of the sun's highlight over a Gaussian slope
+//!   distribution of that variance ([`FresnelFilterTable`], [`phong_filtered_exponent`]).
+//!
+//! **The footprint** ([`footprint_m`]): a pixel subtends δ = 2·tan(fov_y/2)/height radians at
+//! the image centre; at distance d the pixel is d·δ across, and a plane seen at cos θ_v from
+//! its normal stretches it to d·δ/cos θ_v along the view. The LOD is log2 of the longer side
+//! in texels of the map (the isotropic choice a GPU makes without anisotropic filtering): the
+//! shorter side is over-filtered, and the variance technique puts what that loses back into
+//! the BRDF. The LOD is explicit (`textureSampleLevel`), not the GPU's derivative-based one,
+//! so both back ends select levels from the same f32 arithmetic, with no 2×2 quads, and a
+//! footprint does not jump at the edges of the far patch's long triangles (see the README).
+
+use std::sync::{Arc, Mutex, OnceLock};
+
+use rayon::prelude::*;
+
+use crate::fresnel::fresnel_exact;
+
+/// Which far-field technique a frame runs (the plan's `far_field` technique).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FarField {
+    /// Level 0, bilinear.
+    #[default]
+    None,
+    /// Mip chains, trilinear at the footprint's LOD.
+    Mip,
+    /// Mip chains and the unresolved slope variance in the BRDF.
+    Variance,
+}
+
+impl FarField {
+    /// The technique called `name` (the technique table's names).
+    pub fn from_name(name: &str) -> Option<Self> {
+        match name {
+            "none" => Some(Self::None),
+            "mip" => Some(Self::Mip),
+            "variance" => Some(Self::Variance),
+            _ => None,
+        }
+    }
+
+    /// The value of `FarFieldBlock::mode` that selects it in the water shader.
+    pub fn code(self) -> f32 {
+        match self {
+            Self::None => 0.0,
+            Self::Mip => 1.0,
+            Self::Variance => 2.0,
+        }
+    }
+}
+
+/// The largest slope standard deviation the filtered Fresnel table holds; a larger σ reads
+/// the table's last row (clamp-to-edge). Cox & Munk's sea at 20 m/s has σ ≈ 0.32.
+pub const SIGMA_MAX: f64 = 0.5;
+
+/// The largest radius |(x_v − du, z_v − dv)| of the bumped view vector the table holds: a
+/// unit view minus a unit normal's horizontal part is under 2 long.
+pub const RADIUS_MAX: f64 = 2.0;
+
+/// Texels of the filtered Fresnel table along r ∈ [0, [`RADIUS_MAX`]]: 2/511 = 0.0039 apart,
+/// four to the narrowest blur the σ axis holds beside 0.
+pub const FILTER_RADII: u32 = 512;
+
+/// Texels of the table along the σ axis, t = sqrt(σ/[`SIGMA_MAX`]) ∈ [0, 1].
+pub const FILTER_SIGMAS: u32 = 32;
+
+/// The footprint's longer side on the sea, m: `distance`·`pixel_angle`/max(cos θ_v, 1e-4)
+/// (1e-4: a view along the plane, 89.994° from its normal, still has a finite footprint).
+pub fn footprint_m(distance: f32, cos_view: f32, pixel_angle: f32) -> f32 {
+    distance * pixel_angle / cos_view.abs().max(1e-4)
+}
+
+/// The exponent s' and the scale of the expected Phong lobe E[cos^s α] over slopes of variance
+/// σ² (per axis) about the mean: with cos^s α ≈ exp(−s α²/2) and α Gaussian,
+/// E = exp(−s ᾱ²/(2(1 + s σ²)))/(1 + s σ²) = cos^{s'} ᾱ / (1 + s σ²), s' = s/(1 + s σ²):
+/// the lobe widens and dims, its integral over the hemisphere kept (Toksvig 2005; Bruneton et
+/// al. 2010 eq. 11 for the Gaussian BRDF).
+pub fn phong_filtered_exponent(s: f64, variance: f64) -> (f64, f64) {
+    let k = 1.0 + s * variance;
+    (s / k, 1.0 / k)
+}
+
+/// I₀(x)·e^(−x), the exponentially scaled modified Bessel function of order 0, for x ≥ 0
+/// (Abramowitz & Stegun 9.8.1 and 9.8.2; relative error below 2e-7).
+pub fn bessel_i0e(x: f64) -> f64 {
+    if x < 3.75 {
+        let t = (x / 3.75).powi(2);
+        let i0 = 1.0
+            + t * (3.5156229
+                + t * (3.0899424
+                    + t * (1.2067492 + t * (0.2659732 + t * (0.0360768 + t * 0.0045813)))));
+        i0 * (-x).exp()
+    } else {
+        let t = 3.75 / x;
+        let p = 0.39894228
+            + t * (0.01328592
+                + t * (0.00225319
+                    + t * (-0.00157565
+                        + t * (0.00916281
+                            + t * (-0.02057706
+                                + t * (0.02635537 + t * (-0.01647633 + t * 0.00392377)))))));
+        p / x.sqrt()
+    }
+}
+
+/// F of the bumped view vector at radius r of the lookup plane: eq. 2 at cos θ =
+/// sqrt(1 − r²), and the rim's F = 1 beyond it (as the 2D table's lookup clamps it).
+pub fn fresnel_of_radius(r: f64, eta: f64) -> f64 {
+    fresnel_exact((1.0 - r * r).max(0.0).sqrt(), eta)
+}
+
+/// Composite Simpson's rule of `f` over [a, b] with `n` (even) intervals.
+fn simpson(a: f64, b: f64, n: usize, f: impl Fn(f64) -> f64) -> f64 {
+    if b <= a {
+        return 0.0;
+    }
+    let h = (b - a) / n as f64;
+    let mut sum = f(a) + f(b);
+    for i in 1..n {
+        sum += f(a + i as f64 * h) * if i % 2 == 1 { 4.0 } else { 2.0 };
+    }
+    sum * h / 3.0
+}
+
+/// The expectation of F over the bumped view vector's lookup point p + δ, δ ~ N(0, σ² I) in
+/// the plane, at |p| = r: since F depends on |p| only, this is the 1D integral of F(ρ) against
+/// the Rice density p(ρ | r, σ) = (ρ/σ²) exp(−(ρ − r)²/(2σ²)) I₀e(rρ/σ²) over ρ within 8σ of
+/// r (normalised by the same quadrature of p, so the truncation and the rule's error in the
+/// mass cancel). Inside the rim the substitution ρ = 1 − s² makes F(ρ) = F(sqrt(1 − ρ²))
+/// smooth in s (its derivative is unbounded at ρ = 1); beyond it F = 1.
+pub fn fresnel_filtered(r: f64, sigma: f64, eta: f64) -> f64 {
+    if sigma <= 0.0 {
+        return fresnel_of_radius(r, eta);
+    }
+    let s2 = sigma * sigma;
+    let density = |rho: f64| {
+        if rho <= 0.0 {
+            return 0.0;
+        }
+        rho / s2 * (-(rho - r) * (rho - r) / (2.0 * s2)).exp() * bessel_i0e(r * rho / s2)
+    };
+    let (lo, hi) = ((r - 8.0 * sigma).max(0.0), r + 8.0 * sigma);
+    const N: usize = 256;
+    let (mut mass, mut weighted) = (0.0, 0.0);
+    if lo < 1.0 {
+        // ρ = 1 − s², dρ = 2s ds, s from sqrt(1 − min(hi, 1)) to sqrt(1 − lo).
+        let (s_lo, s_hi) = ((1.0 - hi.min(1.0)).sqrt(), (1.0 - lo).sqrt());
+        let inner = |s: f64, with_f: bool| {
+            let rho = 1.0 - s * s;
+            let w = density(rho) * 2.0 * s;
+            if with_f { w * fresnel_of_radius(rho, eta) } else { w }
+        };
+        mass += simpson(s_lo, s_hi, N, |s| inner(s, false));
+        weighted += simpson(s_lo, s_hi, N, |s| inner(s, true));
+    }
+    if hi > 1.0 {
+        let outer = simpson(lo.max(1.0), hi, N, density);
+        mass += outer;
+        weighted += outer;
+    }
+    if mass > 0.0 { weighted / mass } else { fresnel_of_radius(r, eta) }
+}
+
+/// The radius and σ of texel (i, j) of the filtered Fresnel table: r = i·R/(N_r − 1),
+/// σ = (j/(N_σ − 1))²·Σ, so row 0 is σ = 0 and the rows crowd towards small σ, where F̄
+/// changes fastest at the rim (∝ sqrt σ there, ∝ σ² elsewhere).
+pub fn filter_texel_point(i: u32, j: u32) -> (f64, f64) {
+    let r = f64::from(i) * RADIUS_MAX / f64::from(FILTER_RADII - 1);
+    let t = f64::from(j) / f64::from(FILTER_SIGMAS - 1);
+    (r, t * t * SIGMA_MAX)
+}
+
+/// The filtered Fresnel table of the `variance` technique: [`FILTER_RADII`] ×
+/// [`FILTER_SIGMAS`] texels, texel (i, j) = (F̄ − F, F̄, 0, 0) at [`filter_texel_point`] (F̄
+/// by [`fresnel_filtered`], F = [`fresnel_of_radius`]). The water shader adds the first
+/// channel, bilinearly sampled at (r, σ), to the 2D texture's F: row 0 is exactly 0, so a
+/// pixel whose slope variance is 0 shades exactly as `mip`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FresnelFilterTable {
+    /// η of the table.
+    pub eta: f64,
+    /// Row-major texels, row j = σ index.
+    pub texels: Vec<[f32; 4]>,
+}
+
+impl FresnelFilterTable {
+    /// Builds the table for `eta` (f64 quadrature, rows in parallel; about 0.1 s).
+    pub fn new(eta: f64) -> Self {
+        let texels = (0..FILTER_SIGMAS)
+            .into_par_iter()
+            .flat_map_iter(|j| {
+                (0..FILTER_RADII).map(move |i| {
+                    let (r, sigma) = filter_texel_point(i, j);
+                    if j == 0 {
+                        let f = fresnel_of_radius(r, eta) as f32;
+                        return [0.0, f, 0.0, 0.0];
+                    }
+                    let filtered = fresnel_filtered(r, sigma, eta);
+                    [(filtered - fresnel_of_radius(r, eta)) as f32, filtered as f32, 0.0, 0.0]
+                })
+            })
+            .collect();
+        Self { eta, texels }
+    }
+
+    /// The table for `eta`, built once per process and η (the CPU frame, the GPU upload and
+    /// the report share it).
+    pub fn cached(eta: f64) -> Arc<Self> {
+        static CACHE: OnceLock<Mutex<Vec<Arc<FresnelFilterTable>>>> = OnceLock::new();
+        let cache = CACHE.get_or_init(|| Mutex::new(Vec::new()));
+        let mut tables = cache.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        if let Some(t) = tables.iter().find(|t| t.eta.to_bits() == eta.to_bits()) {
+            return Arc::clone(t);
+        }
+        let t = Arc::new(Self::new(eta));
+        tables.push(Arc::clone(&t));
+        t
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bessel_i0e_matches_its_power_series() {
+        // I₀(x) = Σ (x/2)^{2k}/(k!)², summed in f64 to convergence, times e^−x.
+        let series = |x: f64| {
+            let (mut term, mut sum, mut k) = (1.0f64, 1.0f64, 1.0f64);
+            while term > 1e-18 * sum {
+                term *= (x / 2.0) * (x / 2.0) / (k * k);
+                sum += term;
+                k += 1.0;
+            }
+            sum * (-x).exp()
+        };
+        for x in [0.0, 0.5, 1.0, 3.0, 3.75, 5.0, 10.0, 30.0] {
+            let (got, want) = (bessel_i0e(x), series(x));
+            assert!((got - want).abs() < 2e-7 * want, "x {x}: {got} vs {want}");
+        }
+        // Negative control: the unscaled I₀ is far from it.
+        assert!((bessel_i0e(5.0) - series(5.0) * 5f64.exp()).abs() > 1.0);
+    }
+
+    #[test]
+    fn filtered_fresnel_tends_to_the_unfiltered_and_stays_in_range() {
+        let eta = 1.333;
+        for r in [0.0, 0.3, 0.9, 0.99, 1.0, 1.2] {
+            let f = fresnel_of_radius(r, eta);
+            // Far from the rim a tiny blur changes F by ½σ²∇²F: 1e-6 for σ = 1e-3.
+            if (r - 1.0f64).abs() > 0.05 {
+                assert!((fresnel_filtered(r, 1e-3, eta) - f).abs() < 1e-5, "r {r}");
+            }
+            for sigma in [0.01, 0.1, 0.5] {
+                let g = fresnel_filtered(r, sigma, eta);
+                assert!((0.0..=1.0).contains(&g), "r {r} σ {sigma}: {g}");
+            }
+        }
+        // The mean over a wide blur at the centre exceeds F at the centre (F grows outwards).
+        assert!(fresnel_filtered(0.0, 0.3, eta) > fresnel_of_radius(0.0, eta));
+    }
+
+    #[test]
+    fn phong_filtering_keeps_the_lobes_integral() {
+        // ∫ exp(−s α²/2) 2π α dα = 2π/s; the filtered lobe's is 2π/s' · 1/(1 + sσ²) = 2π/s.
+        let (s, var) = (400.0, 0.01);
+        let (s2, scale) = phong_filtered_exponent(s, var);
+        assert!(((scale / s2) - 1.0 / s).abs() < 1e-15);
+        assert_eq!(phong_filtered_exponent(s, 0.0), (s, 1.0));
+    }
+}
