@@ -259,6 +259,7 @@ fn rust_consts() -> Vec<(&'static str, f64)> {
     use ocean_cpu::shaders::{objects, sky::preetham, tonemap, water, waves};
     vec![
         ("SHADOW_BIAS", f64::from(water::SHADOW_BIAS)),
+        ("SQRT2", f64::from(water::SQRT2)),
         ("HDR_MAX", f64::from(tonemap::HDR_MAX)),
         ("SRGB_INV_GAMMA", f64::from(tonemap::SRGB_INV_GAMMA)),
         ("TAU", f64::from(waves::TAU)),

@@ -168,7 +168,7 @@ pub fn bumped_normal(input: &VertexOut, b: &Bindings<'_>) -> Vec3 {
 }
 
 /// `SQRT2`.
-const SQRT2: f32 = std::f32::consts::SQRT_2;
+pub const SQRT2: f32 = std::f32::consts::SQRT_2;
 
 /// `grazing_square_axis(a, b)`.
 pub fn grazing_square_axis(a: f32, b: f32) -> f32 {
