@@ -407,6 +407,46 @@ fn trilinear_sampling_matches_lavapipe_bit_for_bit() {
     );
 }
 
+/// Stage `wave_mips`: the GPU's mip chain of a random 64×32 slope map (level 0 the moments,
+/// each level the 2×2 box of the one below, clamped at the 1-texel-wide levels), packed into
+/// the atlas both back ends share, against the CPU mirror's: every texel bit for bit.
+fn wave_mips_match_the_cpu_mirror_bit_for_bit() {
+    use ocean_cpu::sampler::Texture2D;
+    use ocean_cpu::shaders::wave_mips;
+    use ocean_gpu::texture::{GpuTexture, MAP_FORMAT, Readbacks, TexelData};
+    use ocean_gpu::wave_mips::{GpuMipChain, WaveMipsStage};
+
+    let renderer = renderer();
+    let gpu = renderer.gpu();
+    let d = &gpu.device;
+    let mut rng = Lcg(5);
+    let (w, h) = (64u32, 32u32);
+    let texels: Vec<[f32; 4]> =
+        (0..w * h).map(|_| std::array::from_fn(|_| rng.unit() * 2.0 - 1.0)).collect();
+    let cpu = wave_mips::dispatch(&Texture2D::new(w, h, texels.clone()));
+    let slopes = GpuTexture::upload_map(gpu, "wave-mips-check", w, h, &texels);
+    let chain = GpuMipChain::new(d, "wave-mips-check", w, h);
+    let stage = WaveMipsStage::new(d).expect("the wave_mips pipelines");
+    let mut encoder = d.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
+    stage.encode(d, &mut encoder, &slopes, &chain);
+    let atlas = chain.pack(d, &mut encoder);
+    let mut readback: Readbacks<()> = Readbacks::default();
+    readback.copy(d, &mut encoder, (), "wave-mips-check", &atlas, MAP_FORMAT);
+    gpu.queue.submit([encoder.finish()]);
+    let data = readback.finish(gpu).expect("readback");
+    let TexelData::Float(g) = &data[0].1 else { panic!("a float target") };
+    assert_eq!((g.width, g.height), (cpu.atlas.width, cpu.atlas.height));
+    let differing = (0..g.texels.len())
+        .filter(|&i| (0..4).any(|c| g.texels[i][c].to_bits() != cpu.atlas.texels[i][c].to_bits()))
+        .count();
+    eprintln!(
+        "wave_mips check: {} levels, {differing} of {} atlas texels differ",
+        cpu.levels,
+        g.texels.len()
+    );
+    assert_eq!(differing, 0);
+}
+
 /// The float comparator at its boundary: a value exactly at the allowance passes, one ULP
 /// beyond fails, for values where the relative and where the absolute limit governs.
 fn float_comparator_fails_one_ulp_past_the_limit() {
@@ -625,6 +665,6 @@ fn main() -> std::process::ExitCode {
         gpu: reference_scenes_match_the_cpu_oracle, rasterizer_matches_lavapipe_bit_for_bit,
             gpu_fft_frames_meet_the_image_tolerances,
             a_new_sea_on_a_running_renderer_equals_a_fresh_renderer,
-            trilinear_sampling_matches_lavapipe_bit_for_bit;
+            trilinear_sampling_matches_lavapipe_bit_for_bit, wave_mips_match_the_cpu_mirror_bit_for_bit;
     )
 }

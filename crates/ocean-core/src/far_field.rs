@@ -59,6 +59,23 @@ impl FarField {
     }
 }
 
+/// Number of levels of a full mip chain of a `width` × `height` map: ⌊log2 max(w, h)⌋ + 1.
+pub fn mip_level_count(width: u32, height: u32) -> u32 {
+    32 - width.max(height).max(1).leading_zeros()
+}
+
+/// Size of level `k`: max(1, w >> k) × max(1, h >> k) (Vulkan's rule).
+pub fn mip_level_size(width: u32, height: u32, k: u32) -> [u32; 2] {
+    [(width >> k).max(1), (height >> k).max(1)]
+}
+
+/// First row of level `k` in a chain's packed atlas (`w` wide, the levels stacked from row 0,
+/// each from column 0): the sum of the heights below it. Both back ends pack a chain so, and
+/// the cross-check compares the atlases.
+pub fn mip_level_row(height: u32, k: u32) -> u32 {
+    (0..k).map(|i| (height >> i).max(1)).sum()
+}
+
 /// The largest slope standard deviation the filtered Fresnel table holds; a larger σ reads
 /// the table's last row (clamp-to-edge). Cox & Munk's sea at 20 m/s has σ ≈ 0.32.
 pub const SIGMA_MAX: f64 = 0.5;

@@ -219,6 +219,27 @@ impl FresnelTableUniforms {
     }
 }
 
+/// Uniforms of the `wave_mips` stage (WGSL `WaveMipsUniforms`): one dispatch's level sizes.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct WaveMipsUniforms {
+    /// Width of the level written, texels.
+    pub width: u32,
+    /// Its height.
+    pub height: u32,
+    /// Width of the level read (`downsample`).
+    pub src_width: u32,
+    /// Its height.
+    pub src_height: u32,
+}
+
+impl WaveMipsUniforms {
+    /// The uniforms of a dispatch writing a `dst`-sized level from a `src`-sized one.
+    pub fn new(dst: [u32; 2], src: [u32; 2]) -> Self {
+        Self { width: dst[0], height: dst[1], src_width: src[0], src_height: src[1] }
+    }
+}
+
 /// Vertex of the objects' meshes (WGSL `ObjectVertex`): camera-relative position, unit normal,
 /// linear albedo.
 #[repr(C)]

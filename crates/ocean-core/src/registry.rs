@@ -15,7 +15,7 @@ use std::path::Path;
 use crate::camera_uniforms::CameraUniforms;
 use crate::frame::{
     AmbientBlock, FrameUniforms, FresnelTableUniforms, HuShadingBlock, PassFlags, SunBlock,
-    ViewBlock, WaterBlock, WaveTilingBlock,
+    ViewBlock, WaterBlock, WaveMipsUniforms, WaveTilingBlock,
 };
 use crate::plan::Stage as TechniqueStage;
 use crate::sky::SkyUniforms;
@@ -236,6 +236,16 @@ pub const STAGES: &[StageEntry] = &[
         })],
         cpu_mirror: "crates/ocean-cpu/src/shaders/fresnel_table.rs",
         gpu_module: "crates/ocean-gpu/src/fresnel_table.rs",
+    },
+    StageEntry {
+        name: "wave_mips",
+        file: "wave_mips.wgsl",
+        source: include_str!("../../../shaders/wave_mips.wgsl"),
+        entry_points: &[("moments", Compute), ("downsample", Compute)],
+        bindings: &[b(0, 0, "params"), b(0, 1, "src"), b(0, 2, "dst")],
+        blocks: &[block!(WaveMipsUniforms { width, height, src_width, src_height })],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/wave_mips.rs",
+        gpu_module: "crates/ocean-gpu/src/wave_mips.rs",
     },
     StageEntry {
         name: "sky",

@@ -37,20 +37,9 @@ pub struct MipChain {
     pub atlas: Texture2D,
 }
 
-/// Number of levels of a full chain of a `width` × `height` texture.
-pub fn level_count(width: u32, height: u32) -> u32 {
-    32 - width.max(height).max(1).leading_zeros()
-}
-
-/// Size of level `k`.
-pub fn level_size(width: u32, height: u32, k: u32) -> [u32; 2] {
-    [(width >> k).max(1), (height >> k).max(1)]
-}
-
-/// First atlas row of level `k`.
-pub fn level_row(height: u32, k: u32) -> u32 {
-    (0..k).map(|i| (height >> i).max(1)).sum()
-}
+pub use ocean_core::far_field::{
+    mip_level_count as level_count, mip_level_row as level_row, mip_level_size as level_size,
+};
 
 impl MipChain {
     /// A chain of one level: `texture` itself.

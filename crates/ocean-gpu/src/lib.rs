@@ -34,6 +34,7 @@ pub mod timing;
 pub mod tonemap;
 pub mod water;
 pub mod wave_maps;
+pub mod wave_mips;
 pub mod waves;
 
 pub use device::{AdapterReport, Error, Gpu};

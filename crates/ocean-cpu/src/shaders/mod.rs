@@ -18,5 +18,6 @@ pub mod shared;
 pub mod sky;
 pub mod tonemap;
 pub mod water;
+pub mod wave_mips;
 pub mod waves;
 pub mod wgsl;

@@ -1,0 +1,184 @@
+//! Stage `wave_mips` (`shaders/wave_mips.wgsl`): a slope map's mip chain with its second
+//! moments, one compute dispatch per level (`moments` for level 0, `downsample` for each
+//! level after), each reading the level below through a one-level view and writing its own
+//! through another. CPU mirror: `ocean-cpu/src/shaders/wave_mips.rs`.
+
+use ocean_core::far_field::{mip_level_count, mip_level_row, mip_level_size};
+use ocean_core::frame::WaveMipsUniforms;
+
+use crate::common::{bind_group, entry, label, pipeline_layout, shader_module, uniform_buffer};
+use crate::device::Error;
+use crate::texture::{GpuTexture, MAP_FORMAT, map_usage};
+
+/// `@workgroup_size(8, 8, 1)` of the WGSL.
+pub const WORKGROUP_SIZE: u32 = 8;
+
+/// An `Rgba32Float` texture with a full mip chain and a view of each level.
+pub struct GpuMipChain {
+    /// The texture.
+    pub texture: wgpu::Texture,
+    /// A view of every level (what the water pass samples).
+    pub view: wgpu::TextureView,
+    /// One view per level.
+    pub levels: Vec<wgpu::TextureView>,
+    /// Width of level 0.
+    pub width: u32,
+    /// Height of level 0.
+    pub height: u32,
+}
+
+impl GpuMipChain {
+    /// A chain of `width` × `height` at level 0.
+    pub fn new(device: &wgpu::Device, label: &str, width: u32, height: u32) -> Self {
+        let count = mip_level_count(width, height);
+        let texture = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some(label),
+            size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
+            mip_level_count: count,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: MAP_FORMAT,
+            usage: map_usage(),
+            view_formats: &[],
+        });
+        let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
+        let levels = (0..count)
+            .map(|k| {
+                texture.create_view(&wgpu::TextureViewDescriptor {
+                    base_mip_level: k,
+                    mip_level_count: Some(1),
+                    ..Default::default()
+                })
+            })
+            .collect();
+        Self { texture, view, levels, width, height }
+    }
+
+    /// Records copies of every level into one atlas texture laid out as
+    /// `ocean_core::far_field::mip_level_row` says (the read-back and the cross-check).
+    pub fn pack(&self, device: &wgpu::Device, encoder: &mut wgpu::CommandEncoder) -> GpuTexture {
+        let count = self.levels.len() as u32;
+        let rows = mip_level_row(self.height, count);
+        let atlas =
+            GpuTexture::new(device, "ocean.mip_atlas", self.width, rows, MAP_FORMAT, map_usage());
+        for k in 0..count {
+            let [w, h] = mip_level_size(self.width, self.height, k);
+            encoder.copy_texture_to_texture(
+                wgpu::TexelCopyTextureInfo {
+                    texture: &self.texture,
+                    mip_level: k,
+                    origin: wgpu::Origin3d::ZERO,
+                    aspect: wgpu::TextureAspect::All,
+                },
+                wgpu::TexelCopyTextureInfo {
+                    texture: &atlas.texture,
+                    mip_level: 0,
+                    origin: wgpu::Origin3d { x: 0, y: mip_level_row(self.height, k), z: 0 },
+                    aspect: wgpu::TextureAspect::All,
+                },
+                wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+            );
+        }
+        atlas
+    }
+}
+
+/// The stage's two pipelines and their bindings: group 0, binding 0 = `WaveMipsUniforms`,
+/// 1 = the level read, 2 = the level written (storage).
+pub struct WaveMipsStage {
+    moments: wgpu::ComputePipeline,
+    downsample: wgpu::ComputePipeline,
+    layout: wgpu::BindGroupLayout,
+}
+
+impl WaveMipsStage {
+    /// Creates the pipelines `"ocean.wave_mips"`.
+    ///
+    /// # Errors
+    /// [`Error::Core`] if the WGSL cannot be assembled or an entry point is not registered.
+    pub fn new(device: &wgpu::Device) -> Result<Self, Error> {
+        let name = label("wave_mips");
+        let module = shader_module(device, "wave_mips")?;
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some(&name),
+            entries: &[
+                crate::common::uniform_entry(0, wgpu::ShaderStages::COMPUTE),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 1,
+                    visibility: wgpu::ShaderStages::COMPUTE,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 2,
+                    visibility: wgpu::ShaderStages::COMPUTE,
+                    ty: wgpu::BindingType::StorageTexture {
+                        access: wgpu::StorageTextureAccess::WriteOnly,
+                        format: MAP_FORMAT,
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                    },
+                    count: None,
+                },
+            ],
+        });
+        let pipeline_layout = pipeline_layout(device, &name, &[&layout]);
+        let make = |entry_point: &str| -> Result<wgpu::ComputePipeline, Error> {
+            Ok(device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(&name),
+                layout: Some(&pipeline_layout),
+                module: &module,
+                entry_point: Some(entry("wave_mips", entry_point)?),
+                compilation_options: wgpu::PipelineCompilationOptions::default(),
+                cache: None,
+            }))
+        };
+        Ok(Self { moments: make("moments")?, downsample: make("downsample")?, layout })
+    }
+
+    /// Records the dispatches filling every level of `chain` from the slope map `slopes`
+    /// (the same size as the chain's level 0).
+    pub fn encode(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        slopes: &GpuTexture,
+        chain: &GpuMipChain,
+    ) {
+        let name = label("wave_mips");
+        let (w, h) = (chain.width, chain.height);
+        for k in 0..chain.levels.len() as u32 {
+            let dst = mip_level_size(w, h, k);
+            let (pipeline, src_view, src) = if k == 0 {
+                (&self.moments, &slopes.view, dst)
+            } else {
+                (&self.downsample, &chain.levels[k as usize - 1], mip_level_size(w, h, k - 1))
+            };
+            let uniforms = uniform_buffer(device, &name, &WaveMipsUniforms::new(dst, src));
+            let group = bind_group(
+                device,
+                &name,
+                &self.layout,
+                &[
+                    uniforms.as_entire_binding(),
+                    wgpu::BindingResource::TextureView(src_view),
+                    wgpu::BindingResource::TextureView(&chain.levels[k as usize]),
+                ],
+            );
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some(&name),
+                timestamp_writes: None,
+            });
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, &group, &[]);
+            pass.dispatch_workgroups(
+                dst[0].div_ceil(WORKGROUP_SIZE),
+                dst[1].div_ceil(WORKGROUP_SIZE),
+                1,
+            );
+        }
+    }
+}
