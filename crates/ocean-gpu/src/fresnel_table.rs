@@ -6,7 +6,7 @@ use ocean_core::frame::FresnelTableUniforms;
 
 use crate::common::{bind_group, entry, label, pipeline_layout, shader_module, uniform_buffer};
 use crate::device::Error;
-use crate::texture::{GpuTexture, MAP_FORMAT};
+use crate::texture::GpuTexture;
 
 /// `@workgroup_size(8, 8, 1)` of the WGSL.
 pub const WORKGROUP_SIZE: u32 = 8;
@@ -30,16 +30,7 @@ impl FresnelTableStage {
             label: Some(&name),
             entries: &[
                 crate::common::uniform_entry(0, wgpu::ShaderStages::COMPUTE),
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: wgpu::ShaderStages::COMPUTE,
-                    ty: wgpu::BindingType::StorageTexture {
-                        access: wgpu::StorageTextureAccess::WriteOnly,
-                        format: MAP_FORMAT,
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                    },
-                    count: None,
-                },
+                crate::common::storage_map_entry(1),
             ],
         });
         let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
