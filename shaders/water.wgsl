@@ -29,8 +29,12 @@
 @group(0) @binding(6) var reflection_map: texture_2d<f32>;
 @group(0) @binding(7) var refraction_map: texture_2d<f32>;
 @group(0) @binding(8) var shadow_map: texture_2d<f32>;
+// Repeat, bilinear, and linear between mip levels (the slope maps' chains of far fields `mip`
+// and `variance`; a one-level map samples as plain bilinear).
 @group(0) @binding(9) var wrap_linear: sampler;
 @group(0) @binding(10) var clamp_linear: sampler;
+// The filtered Fresnel table ΔF(r, σ) of far field `variance` (ocean-core far_field).
+@group(0) @binding(11) var fresnel_filter: texture_2d<f32>;
 // The environment the water reflects: the frame's sky technique (its interface: SkyUniforms,
 // sky_radiance), a resource of the plan that the water reads.
 @group(1) @binding(0) var<uniform> sky: SkyUniforms;
@@ -118,12 +122,56 @@ fn sun_visibility(rel: vec3<f32>) -> f32 {
     return 1.0;
 }
 
-// Bumped normal (§5): the slopes of the displacement map (faded with w like the displacement
-// itself) plus those of the bump map.
+// log2(x) for x in [1e-30, 1e30] by frexp (exact) and a cubic in the mantissa m ∈ [0, 1),
+// m (a + m (b + m c)) with a + b + c = 1 so that octaves meet continuously (within 2e-3 of
+// log2): arithmetic only, so both back ends pick the same mip levels and weights bit for bit
+// (lavapipe's log2 differs from the CPU's by ulps, which Snell's window near total internal
+// reflection magnified past the float tolerance).
+fn lod_log2(x: f32) -> f32 {
+    let f = frexp(x);
+    let m = f.fract * 2.0 - 1.0;
+    return f32(f.exp - 1) + m * (1.4425449 + m * (-0.7181452 + m * 0.2756003));
+}
+
+// The LOD of the pixel's footprint on each slope map (displacement, bump): log2 of the
+// footprint's longer side, dist·δ/cos θ_v (ocean-core far_field::footprint_m), in the map's
+// texels. Explicit, from the fragment's own position: no derivatives. Far field `none`: 0.
+fn footprint_lods(rel: vec3<f32>) -> vec2<f32> {
+    if (frame.far.mode == 0.0) {
+        return vec2<f32>(0.0, 0.0);
+    }
+    let dist = sqrt(rel.x * rel.x + rel.y * rel.y + rel.z * rel.z);
+    let cos_view = abs(rel.y) / max(dist, 1e-30);
+    let w = dist * frame.far.pixel_angle / max(cos_view, 1e-4);
+    let l = lod_log2(clamp(w, 1e-30, 1e30)) + frame.far.lod_bias;
+    return vec2<f32>(l + frame.far.lod_offset_d, l + frame.far.lod_offset_b);
+}
+
+// The slopes the pixel sees (§5): the displacement map's (faded with w like the displacement
+// itself) plus the bump map's, each at its footprint's LOD, and (far field `variance`) the
+// variance per axis of the slopes the footprint averaged away, E[s²] − E[s]² of the chains'
+// moments, summed over both maps (independent bands).
+fn filtered_slopes(in: VertexOut) -> vec3<f32> {
+    let lods = footprint_lods(in.rel);
+    let wd = in.weight * frame.passes.waves;
+    let wb = frame.passes.waves;
+    let d = textureSampleLevel(displacement_slopes, wrap_linear, in.uv_d, lods.x);
+    let b = textureSampleLevel(bump, wrap_linear, in.uv_b, lods.y);
+    var variance = 0.0;
+    if (frame.far.mode == 2.0) {
+        let vd = max(d.z - d.x * d.x, 0.0) + max(d.w - d.y * d.y, 0.0);
+        let vb = max(b.z - b.x * b.x, 0.0) + max(b.w - b.y * b.y, 0.0);
+        variance = 0.5 * (vd * (wd * wd) + vb * (wb * wb));
+    }
+    let sd = d.xy * wd;
+    let sb = b.xy * wb;
+    return vec3<f32>(sd.x + sb.x, sd.y + sb.y, variance);
+}
+
+// Bumped normal (§5) of the filtered slopes.
 fn bumped_normal(in: VertexOut) -> vec3<f32> {
-    let sd = textureSample(displacement_slopes, wrap_linear, in.uv_d).xy * (in.weight * frame.passes.waves);
-    let sb = textureSample(bump, wrap_linear, in.uv_b).xy * frame.passes.waves;
-    return unit(vec3<f32>(-(sd.x + sb.x), 1.0, -(sd.y + sb.y)));
+    let s = filtered_slopes(in);
+    return unit(vec3<f32>(-s.x, 1.0, -s.y));
 }
 
 // √2 of the elliptical grid mapping's inverse.
@@ -155,9 +203,69 @@ fn fresnel_st(view: vec3<f32>, n: vec3<f32>) -> vec2<f32> {
     return u * frame.hu.fresnel_scale + 0.5;
 }
 
+// F averaged over the unresolved slopes (far field `variance`): the table's ΔF at the bumped
+// view vector's radius r and t = sqrt(σ/Σ), added to the 2D texture's F.
+fn fresnel_filtered(f: f32, view: vec3<f32>, n: vec3<f32>, variance: f32) -> f32 {
+    let x = view.x - n.x;
+    let y = view.z - n.z;
+    let r = sqrt(x * x + y * y);
+    let t = sqrt(sqrt(variance) * frame.far.inv_sigma_max);
+    let uv = vec2<f32>(r * frame.far.filter_r_scale + frame.far.filter_r_offset, t * frame.far.filter_t_scale + frame.far.filter_t_offset);
+    return clamp(f + textureSampleLevel(fresnel_filter, clamp_linear, uv, 0.0).x, 0.0, 1.0);
+}
+
+// The sun's Phong lobe cos^s, or with unresolved slopes of variance σ² its expectation
+// cos^{s'}/(1 + sσ²), s' = s/(1 + sσ²) (ocean-core far_field::phong_filtered_exponent),
+// as c^⌊s'⌋ by multiplications times exp2(frac(s')·log2 c): the transcendental part sees an
+// exponent below 1, so the implementation's log2 error near c = 1 is not multiplied by s'.
+fn phong_lobe(cos_spec: f32, variance: f32) -> f32 {
+    let s = frame.hu.phong_exponent;
+    if (variance > 0.0) {
+        let k = 1.0 + s * variance;
+        if (cos_spec <= 0.0) {
+            return 0.0;
+        }
+        let e = s / k;
+        let whole = floor(e);
+        return pow_int(cos_spec, u32(whole)) * exp2((e - whole) * log2(cos_spec)) / k;
+    }
+    return pow_int(cos_spec, u32(s));
+}
+
+// The sky seen in the unresolved facets (far field `variance`): the reflected sky at the four
+// sigma points of the slope distribution, s̄ ± σ along each axis (exact for the quadratic
+// part of the radiance), each weighted by its facet's F so that the facets that reflect more
+// count more; the caller's F̄ carries the magnitude.
+fn sky_filtered(view: vec3<f32>, slopes: vec3<f32>, variance: f32) -> vec3<f32> {
+    let sigma = sqrt(variance);
+    var sum_fl = vec3<f32>(0.0, 0.0, 0.0);
+    var sum_f = 0.0;
+    for (var i = 0u; i < 4u; i = i + 1u) {
+        var o = vec2<f32>(0.0, 0.0);
+        if (i == 0u) {
+            o.x = sigma;
+        } else if (i == 1u) {
+            o.x = -sigma;
+        } else if (i == 2u) {
+            o.y = sigma;
+        } else {
+            o.y = -sigma;
+        }
+        let ni = unit(vec3<f32>(-(slopes.x + o.x), 1.0, -(slopes.y + o.y)));
+        let fi = textureSampleLevel(fresnel_above, clamp_linear, fresnel_st(view, ni), 0.0).w;
+        var ri = ni * (2.0 * dot3(view, ni)) - view;
+        ri.y = max(ri.y, 0.0);
+        sum_fl = sum_fl + sky_radiance(sky, unit(ri + vec3<f32>(0.0, 1e-6, 0.0))) * fi;
+        sum_f = sum_f + fi;
+    }
+    return sum_fl / max(sum_f, 1e-30);
+}
+
 @fragment
 fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
-    let n = bumped_normal(in);
+    let slopes = filtered_slopes(in);
+    let n = unit(vec3<f32>(-slopes.x, 1.0, -slopes.y));
+    let variance = slopes.z;
     // (du, dv) of §5: the horizontal components of the bumped unit normal.
     let du = n.x;
     let dv = n.z;
@@ -166,20 +274,26 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let screen = in.clip.xy * frame.view.inv_viewport_size;
     if (view.y >= 0.0) {
         let st = fresnel_st(view, n);
-        let fres = textureSample(fresnel_above, clamp_linear, st);
-        let f = fres.w;
+        let fres = textureSampleLevel(fresnel_above, clamp_linear, st, 0.0);
+        var f = fres.w;
+        if (variance > 0.0) {
+            f = fresnel_filtered(f, view, n, variance);
+        }
         // Reflection (§4.2, §5.2): sky along the bumped reflection direction, mirrored
         // objects from the reflection map shifted by the bump, over it by coverage.
         let vn = dot3(view, n);
         var r = n * (2.0 * vn) - view;
         r.y = max(r.y, 0.0);
-        let sky_r = sky_radiance(sky, unit(r + vec3<f32>(0.0, 1e-6, 0.0)));
-        let refl = textureSample(reflection_map, clamp_linear, screen + vec2<f32>(du, dv) * frame.hu.reflection_distortion);
+        var sky_r = sky_radiance(sky, unit(r + vec3<f32>(0.0, 1e-6, 0.0)));
+        if (variance > 0.0) {
+            sky_r = sky_filtered(view, slopes, variance);
+        }
+        let refl = textureSampleLevel(reflection_map, clamp_linear, screen + vec2<f32>(du, dv) * frame.hu.reflection_distortion, 0.0);
         let a_refl = refl.w * frame.passes.reflection_map;
         let c_reflect = sky_r * (1.0 - a_refl) + refl.xyz * a_refl;
         // Refraction (§5.2, eq. 4): the fogged objects under the water, over the water
         // volume colour.
-        let refr = textureSample(refraction_map, clamp_linear, screen + vec2<f32>(du, dv) * frame.hu.refraction_distortion);
+        let refr = textureSampleLevel(refraction_map, clamp_linear, screen + vec2<f32>(du, dv) * frame.hu.refraction_distortion, 0.0);
         let a_refr = refr.w * frame.passes.refraction_map;
         let c_refract = frame.water.color * (1.0 - a_refr) + refr.xyz * a_refr;
         // Specular (§5.3): (V·R)^s with V the bumped view vector stored in the texture's RGB
@@ -187,7 +301,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
         let vb = vec3<f32>(fres.x, fres.z, fres.y);
         let r_sun = vec3<f32>(-frame.sun.direction.x, frame.sun.direction.y, -frame.sun.direction.z);
         let cos_spec = max(dot3(vb, r_sun), 0.0);
-        let spec = frame.sun.radiance * (pow_int(cos_spec, u32(frame.hu.phong_exponent)) * frame.sun.lit);
+        let spec = frame.sun.radiance * (phong_lobe(cos_spec, variance) * frame.sun.lit);
         let shadow = sun_visibility(in.rel);
         let c = c_reflect * f + c_refract * (1.0 - f) + spec * shadow;
         return vec4<f32>(c, 1.0);
@@ -195,7 +309,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     // From below: the normal facing the eye is (n.x, −n.y, n.z), its horizontal part again
     // (du, dv); F for η⁻¹ (1 beyond the critical angle: total internal reflection).
     let st = fresnel_st(view, n);
-    let f = textureSample(fresnel_below, clamp_linear, st).w;
+    let f = textureSampleLevel(fresnel_below, clamp_linear, st, 0.0).w;
     // Snell's window: the ray i from the eye meets the surface from below (the normal facing
     // it is −n) and leaves into the air, η_i/η_t = η (water to air):
     // t = η i + (η cos θ_i − cos θ_t)(−n), cos θ_i = i·n, cos² θ_t = 1 − η² sin² θ_i.

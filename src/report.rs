@@ -199,11 +199,13 @@ fn frame_view_vectors(scene: &Scene) -> anyhow::Result<Vec<[f64; 3]>> {
     let camera = ocean_core::camera::Camera::from_scene(&scene.camera)?;
     let mesh = plan.water_mesh(scene, &camera)?;
     let sky = |_: [f32; 3]| [0.0f32; 3];
+    let (slope_chain, bump_chain) = fb.water_slopes(&plan);
     let b = water::Bindings {
         frame: &fb.uniforms,
         displacement: &fb.displacement,
-        displacement_slopes: &fb.displacement_slopes,
-        bump: &fb.bump,
+        displacement_slopes: &slope_chain,
+        bump: &bump_chain,
+        fresnel_filter: &fb.fresnel_filter,
         fresnel_above: &fb.fresnel_above,
         fresnel_below: &fb.fresnel_below,
         reflection_map: &fb.reflection_map,

@@ -203,18 +203,23 @@ fn bumped_fresnel_is_the_texture_lookup_of_the_bumped_view_vector() {
         let mut worst_texture = 0.0f64;
         let mut worst_exact = [0.0f64; 3];
         for (k, phi_s) in [0.0f32, 1.1, 2.5, 4.0].iter().enumerate() {
-            let slopes =
-                Texture2D::new(1, 1, vec![[slope * phi_s.cos(), slope * phi_s.sin(), 0.0, 0.0]]);
+            let slopes = ocean_cpu::mip::MipChain::single(Texture2D::new(
+                1,
+                1,
+                vec![[slope * phi_s.cos(), slope * phi_s.sin(), 0.0, 0.0]],
+            ));
+            let no_bump = ocean_cpu::mip::MipChain::single(empty.clone());
             let b = water::Bindings {
                 frame: &u,
                 displacement: &empty,
                 displacement_slopes: &slopes,
-                bump: &empty,
+                bump: &no_bump,
                 fresnel_above: &above,
                 fresnel_below: &below,
                 reflection_map: &empty,
                 refraction_map: &empty,
                 shadow_map: &empty,
+                fresnel_filter: &empty,
                 sky_radiance: &sky,
             };
             for i in 0..=40 {

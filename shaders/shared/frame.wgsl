@@ -59,6 +59,21 @@ struct AmbientBlock {
     pad: f32,
 }
 
+struct FarFieldBlock {
+    mode: f32,
+    lod_bias: f32,
+    pixel_angle: f32,
+    inv_sigma_max: f32,
+    lod_offset_d: f32,
+    lod_offset_b: f32,
+    filter_r_scale: f32,
+    filter_r_offset: f32,
+    filter_t_scale: f32,
+    filter_t_offset: f32,
+    pad0: f32,
+    pad1: f32,
+}
+
 struct FrameUniforms {
     view: ViewBlock,
     sun: SunBlock,
@@ -67,6 +82,7 @@ struct FrameUniforms {
     hu: HuShadingBlock,
     passes: PassFlags,
     ambient: AmbientBlock,
+    far: FarFieldBlock,
 }
 
 // m · (p, 1), written out so that the order of operations is fixed (the CPU mirror,

@@ -129,6 +129,70 @@ pub struct HuShadingBlock {
     pub fresnel_scale: f32,
 }
 
+/// Parameters of the far-field technique (`crate::far_field`), all f32.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct FarFieldBlock {
+    /// [`crate::far_field::FarField::code`]: 0 none, 1 mip, 2 variance.
+    pub mode: f32,
+    /// Added to every LOD (0: the footprint's).
+    pub lod_bias: f32,
+    /// δ = 2·tan(fov_y/2)/height: radians a pixel subtends at the image centre.
+    pub pixel_angle: f32,
+    /// 1/[`crate::far_field::SIGMA_MAX`].
+    pub inv_sigma_max: f32,
+    /// log2(N/L) of the displacement map: LOD = log2(footprint in m) + this.
+    pub lod_offset_d: f32,
+    /// The same for the bump map.
+    pub lod_offset_b: f32,
+    /// u = r·a + b of the filtered Fresnel table (r on texel centres i·R/(N_r − 1)).
+    pub filter_r_scale: f32,
+    /// b of that.
+    pub filter_r_offset: f32,
+    /// v = t·c + d (t = sqrt(σ/Σ) on texel centres j/(N_σ − 1)).
+    pub filter_t_scale: f32,
+    /// d of that.
+    pub filter_t_offset: f32,
+    /// Padding.
+    pub pad0: f32,
+    /// Padding.
+    pub pad1: f32,
+}
+
+impl FarFieldBlock {
+    /// The block of `far_field` for a camera of vertical field of view `fov_y` (rad) and
+    /// `height` pixels, over maps of `n_d` and `n_b` texels on `l_d` and `l_b` metres.
+    pub fn new(
+        far_field: crate::far_field::FarField,
+        fov_y: f64,
+        height: u32,
+        (n_d, l_d): (u32, f64),
+        (n_b, l_b): (u32, f64),
+    ) -> Self {
+        use crate::far_field::{FILTER_RADII, FILTER_SIGMAS, RADIUS_MAX, SIGMA_MAX};
+        let centres = |n: u32, range: f64| {
+            let n = f64::from(n);
+            ((((n - 1.0) / n) / range) as f32, (0.5 / n) as f32)
+        };
+        let (filter_r_scale, filter_r_offset) = centres(FILTER_RADII, RADIUS_MAX);
+        let (filter_t_scale, filter_t_offset) = centres(FILTER_SIGMAS, 1.0);
+        Self {
+            mode: far_field.code(),
+            lod_bias: 0.0,
+            pixel_angle: (2.0 * (0.5 * fov_y).tan() / f64::from(height.max(1))) as f32,
+            inv_sigma_max: (1.0 / SIGMA_MAX) as f32,
+            lod_offset_d: (f64::from(n_d) / l_d).log2() as f32,
+            lod_offset_b: (f64::from(n_b) / l_b).log2() as f32,
+            filter_r_scale,
+            filter_r_offset,
+            filter_t_scale,
+            filter_t_offset,
+            pad0: 0.0,
+            pad1: 0.0,
+        }
+    }
+}
+
 /// Which optional maps the frame made: 1.0 when the pass ran, 0.0 when its 1×1 zero map is
 /// bound in its place (the shaders multiply what they read by it).
 #[repr(C)]
@@ -176,6 +240,8 @@ pub struct FrameUniforms {
     pub passes: PassFlags,
     /// The environment's ambient light.
     pub ambient: AmbientBlock,
+    /// The far-field technique.
+    pub far: FarFieldBlock,
 }
 
 /// Uniforms of the `fresnel_table` stage (WGSL `FresnelTableUniforms`).
@@ -445,6 +511,16 @@ impl FrameUniforms {
                 shadow_map: flag(Pass::ShadowMap),
             },
             ambient: AmbientBlock { sky: [0.0; 3], pad: 0.0 },
+            far: FarFieldBlock::new(
+                crate::far_field::FarField::from_name(
+                    plan.techniques.of(crate::plan::Stage::FarField).name,
+                )
+                .unwrap_or_default(),
+                camera.fov_y,
+                camera.height,
+                (o.resolution, l_d),
+                (o.bump_resolution, l_b),
+            ),
         }
     }
 }

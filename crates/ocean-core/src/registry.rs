@@ -14,8 +14,8 @@ use std::path::Path;
 
 use crate::camera_uniforms::CameraUniforms;
 use crate::frame::{
-    AmbientBlock, FrameUniforms, FresnelTableUniforms, HuShadingBlock, PassFlags, SunBlock,
-    ViewBlock, WaterBlock, WaveMipsUniforms, WaveTilingBlock,
+    AmbientBlock, FarFieldBlock, FrameUniforms, FresnelTableUniforms, HuShadingBlock, PassFlags,
+    SunBlock, ViewBlock, WaterBlock, WaveMipsUniforms, WaveTilingBlock,
 };
 use crate::plan::Stage as TechniqueStage;
 use crate::sky::SkyUniforms;
@@ -85,7 +85,16 @@ macro_rules! nested {
     ($($t:ident),* $(,)?) => { $(impl WgslType for $t { const WGSL: &'static str = stringify!($t); })* };
 }
 
-nested!(ViewBlock, SunBlock, WaveTilingBlock, WaterBlock, HuShadingBlock, PassFlags, AmbientBlock);
+nested!(
+    ViewBlock,
+    SunBlock,
+    WaveTilingBlock,
+    WaterBlock,
+    HuShadingBlock,
+    PassFlags,
+    AmbientBlock,
+    FarFieldBlock
+);
 
 /// The kind of an entry point.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -303,6 +312,7 @@ pub const STAGES: &[StageEntry] = &[
             b(0, 8, "shadow_map"),
             b(0, 9, "wrap_linear"),
             b(0, 10, "clamp_linear"),
+            b(0, 11, "fresnel_filter"),
             b(1, 0, "sky"),
         ],
         blocks: &[],
@@ -373,7 +383,21 @@ pub const SHARED: &[SharedFile] = &[
             }),
             block!(PassFlags { waves, reflection_map, refraction_map, shadow_map }),
             block!(AmbientBlock { sky, pad }),
-            block!(FrameUniforms { view, sun, tiling, water, hu, passes, ambient }),
+            block!(FarFieldBlock {
+                mode,
+                lod_bias,
+                pixel_angle,
+                inv_sigma_max,
+                lod_offset_d,
+                lod_offset_b,
+                filter_r_scale,
+                filter_r_offset,
+                filter_t_scale,
+                filter_t_offset,
+                pad0,
+                pad1
+            }),
+            block!(FrameUniforms { view, sun, tiling, water, hu, passes, ambient, far }),
         ],
         cpu_mirror: "crates/ocean-cpu/src/shaders/shared/frame.rs",
     },

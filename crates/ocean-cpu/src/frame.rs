@@ -17,10 +17,11 @@ use ocean_core::plan::{
 use ocean_core::scene::{Object, Scene};
 use ocean_core::waves::{Synthesizer, WaveMaps};
 
+use crate::mip::MipChain;
 use crate::raster::{self, BlendMode, CompareFunction, RasterState, RenderTarget, Vertex};
 use crate::sampler::Texture2D;
 use crate::shaders::waves::WavesMirror;
-use crate::shaders::{fresnel_table, objects, shadow, sky, tonemap, water};
+use crate::shaders::{fresnel_table, objects, shadow, sky, tonemap, water, wave_mips};
 
 /// Default side of the 2D Fresnel textures (the error table in the README: 256² is within 2e-3
 /// of eq. 2 up to 76° from the normal); a scene's `[quality] fresnel_table_size` and the plan
@@ -58,6 +59,12 @@ pub struct FrameBuffers {
     pub displacement_slopes: Texture2D,
     /// (slope_x, slope_z, height, jacobian) of the bump map.
     pub bump: Texture2D,
+    /// The displacement map's slope chain (far fields `mip`, `variance`; else 1×1 zero).
+    pub displacement_slope_mips: MipChain,
+    /// The bump map's.
+    pub bump_mips: MipChain,
+    /// The filtered Fresnel table (far field `variance`; else 1×1 zero).
+    pub fresnel_filter: Texture2D,
     /// Fresnel texture for η (surface seen from above).
     pub fresnel_above: Texture2D,
     /// Fresnel texture for 1/η (seen from below).
@@ -79,12 +86,28 @@ pub struct FrameBuffers {
 }
 
 impl FrameBuffers {
+    /// The slope maps as the water pass bound them: the chains when `wave_mips` ran, else
+    /// the maps themselves as one level.
+    pub fn water_slopes(&self, plan: &FramePlan) -> (MipChain, MipChain) {
+        if plan.runs(Pass::WaveMips) {
+            (self.displacement_slope_mips.clone(), self.bump_mips.clone())
+        } else {
+            (
+                MipChain::single(self.displacement_slopes.clone()),
+                MipChain::single(self.bump.clone()),
+            )
+        }
+    }
+
     /// A float map by its resource id (`ldr` is not a float map: `None`).
     pub fn map(&self, id: ResourceId) -> Option<(u32, u32, &[[f32; 4]])> {
         let t = match id {
             ResourceId::Displacement => &self.displacement,
             ResourceId::DisplacementSlopes => &self.displacement_slopes,
             ResourceId::Bump => &self.bump,
+            ResourceId::DisplacementSlopeMips => &self.displacement_slope_mips.atlas,
+            ResourceId::BumpMips => &self.bump_mips.atlas,
+            ResourceId::FresnelFilter => &self.fresnel_filter,
             ResourceId::FresnelAbove => &self.fresnel_above,
             ResourceId::FresnelBelow => &self.fresnel_below,
             ResourceId::ShadowMap => &self.shadow_map,
@@ -116,6 +139,7 @@ pub enum Environment<'a> {
 pub struct CpuBackend<'e> {
     environment: Environment<'e>,
     maps: Vec<(ResourceId, Texture2D)>,
+    chains: Vec<(ResourceId, MipChain)>,
     hdr: Option<RenderTarget>,
     ldr: Option<Vec<u8>>,
 }
@@ -204,7 +228,7 @@ fn planned_target(plan: &FramePlan, id: ResourceId) -> RenderTarget {
 impl<'e> CpuBackend<'e> {
     /// A back end for one frame with the given environment.
     pub fn new(environment: Environment<'e>) -> Self {
-        Self { environment, maps: Vec::new(), hdr: None, ldr: None }
+        Self { environment, maps: Vec::new(), chains: Vec::new(), hdr: None, ldr: None }
     }
 
     fn put(&mut self, id: ResourceId, t: Texture2D) {
@@ -217,6 +241,35 @@ impl<'e> CpuBackend<'e> {
         match self.maps.iter().position(|(m, _)| *m == id) {
             Some(i) => self.maps.swap_remove(i).1,
             None => Texture2D::new(1, 1, vec![[0.0; 4]]),
+        }
+    }
+
+    /// A chain `wave_mips` wrote, or a 1×1 zero chain.
+    fn take_chain(&mut self, id: ResourceId) -> MipChain {
+        match self.chains.iter().position(|(m, _)| *m == id) {
+            Some(i) => self.chains.swap_remove(i).1,
+            None => MipChain::single(Texture2D::new(1, 1, vec![[0.0; 4]])),
+        }
+    }
+
+    /// `wave_mips`: the two chains from the slope maps, and the filtered Fresnel table when
+    /// the plan sizes it.
+    fn mip_chains(&mut self, frame: &FrameInputs<'_>) {
+        let empty = Texture2D::new(1, 1, vec![[0.0; 4]]);
+        for (src, dst) in [
+            (ResourceId::DisplacementSlopes, ResourceId::DisplacementSlopeMips),
+            (ResourceId::Bump, ResourceId::BumpMips),
+        ] {
+            let map = self.maps.iter().find(|(m, _)| *m == src).map_or(&empty, |(_, t)| t);
+            let chain = wave_mips::dispatch(map);
+            self.chains.retain(|(m, _)| *m != dst);
+            self.chains.push((dst, chain));
+        }
+        if frame.plan.resource(ResourceId::FresnelFilter).is_some_and(|r| r.written) {
+            let table = ocean_core::far_field::FresnelFilterTable::cached(frame.scene.water.ior);
+            let (w, h) =
+                (ocean_core::far_field::FILTER_RADII, ocean_core::far_field::FILTER_SIGMAS);
+            self.put(ResourceId::FresnelFilter, Texture2D::new(w, h, table.texels.clone()));
         }
     }
 
@@ -236,6 +289,9 @@ impl<'e> CpuBackend<'e> {
             displacement: self.take(ResourceId::Displacement),
             displacement_slopes: self.take(ResourceId::DisplacementSlopes),
             bump: self.take(ResourceId::Bump),
+            displacement_slope_mips: self.take_chain(ResourceId::DisplacementSlopeMips),
+            bump_mips: self.take_chain(ResourceId::BumpMips),
+            fresnel_filter: self.take(ResourceId::FresnelFilter),
             fresnel_above: self.take(ResourceId::FresnelAbove),
             fresnel_below: self.take(ResourceId::FresnelBelow),
             shadow_map: self.take(ResourceId::ShadowMap),
@@ -364,11 +420,21 @@ impl<'e> CpuBackend<'e> {
         let empty = Texture2D::new(1, 1, vec![[0.0; 4]]);
         let maps = &self.maps;
         let map = |id| maps.iter().find(|(m, _)| *m == id).map_or(&empty, |(_, t)| t);
+        // The chains when `wave_mips` made them, else the maps themselves as one level.
+        let chain = |mips: ResourceId, plain: ResourceId| {
+            self.chains
+                .iter()
+                .find(|(m, _)| *m == mips)
+                .map_or_else(|| MipChain::single(map(plain).clone()), |(_, c)| c.clone())
+        };
+        let slope_chain = chain(ResourceId::DisplacementSlopeMips, ResourceId::DisplacementSlopes);
+        let bump_chain = chain(ResourceId::BumpMips, ResourceId::Bump);
         let bindings = water::Bindings {
             frame: &frame.uniforms,
             displacement: map(ResourceId::Displacement),
-            displacement_slopes: map(ResourceId::DisplacementSlopes),
-            bump: map(ResourceId::Bump),
+            displacement_slopes: &slope_chain,
+            bump: &bump_chain,
+            fresnel_filter: map(ResourceId::FresnelFilter),
             fresnel_above: map(ResourceId::FresnelAbove),
             fresnel_below: map(ResourceId::FresnelBelow),
             reflection_map: map(ResourceId::ReflectionMap),
@@ -387,6 +453,11 @@ impl Backend for CpuBackend<'_> {
 
     fn waves(&mut self, frame: &FrameInputs<'_>, state: &FrameState) -> Result<(), Error> {
         self.wave_maps(frame, state)
+    }
+
+    fn wave_mips(&mut self, frame: &FrameInputs<'_>) -> Result<(), Error> {
+        self.mip_chains(frame);
+        Ok(())
     }
 
     fn fresnel_tables(&mut self, frame: &FrameInputs<'_>) -> Result<(), Error> {

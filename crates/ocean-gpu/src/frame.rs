@@ -43,6 +43,7 @@ use crate::timing::{PassTimer, PendingTimings};
 use crate::tonemap::TonemapStage;
 use crate::water::{WaterMeshBuffers, WaterStage, WaterTextures};
 use crate::wave_maps::{WaveMapSource, WaveSynthesis, make_source_from};
+use crate::wave_mips::{GpuMipChain, WaveMipsStage};
 
 /// What identifies an ocean's wave modes: everything but the time.
 pub fn wave_key(ocean: &Ocean) -> Ocean {
@@ -104,6 +105,7 @@ impl GpuFrame {
 
 /// Every stage's pipelines, made once.
 struct Stages {
+    wave_mips: WaveMipsStage,
     fresnel_table: FresnelTableStage,
     sky: SkyStage,
     objects: ObjectsStage,
@@ -146,6 +148,7 @@ pub struct GpuBackend<'r> {
     encoder: wgpu::CommandEncoder,
     timer: PassTimer,
     maps: Vec<(ResourceId, GpuTexture)>,
+    chains: Vec<(ResourceId, GpuMipChain)>,
     depth: Option<GpuTexture>,
     hdr_started: bool,
     frame_buffer: wgpu::Buffer,
@@ -278,6 +281,29 @@ impl GpuBackend<'_> {
         Ok(())
     }
 
+    /// `wave_mips`: the two chains from the slope maps, and the filtered Fresnel table when
+    /// the plan sizes it (ocean-core's texels, uploaded: the CPU binds the same).
+    fn mip_chains(&mut self, frame: &FrameInputs<'_>) {
+        for (src, dst) in [
+            (ResourceId::DisplacementSlopes, ResourceId::DisplacementSlopeMips),
+            (ResourceId::Bump, ResourceId::BumpMips),
+        ] {
+            let slopes = self.map(src);
+            let label = format!("ocean.{}", dst.name());
+            let chain = GpuMipChain::new(&self.gpu.device, &label, slopes.width, slopes.height);
+            self.stages.wave_mips.encode(&self.gpu.device, &mut self.encoder, &slopes, &chain);
+            self.chains.retain(|(m, _)| *m != dst);
+            self.chains.push((dst, chain));
+        }
+        if frame.plan.resource(ResourceId::FresnelFilter).is_some_and(|r| r.written) {
+            let table = ocean_core::far_field::FresnelFilterTable::cached(frame.scene.water.ior);
+            let (w, h) =
+                (ocean_core::far_field::FILTER_RADII, ocean_core::far_field::FILTER_SIGMAS);
+            let t = GpuTexture::upload_map(self.gpu, "ocean.fresnel_filter", w, h, &table.texels);
+            self.put(ResourceId::FresnelFilter, t);
+        }
+    }
+
     fn fresnel_textures(&mut self, frame: &FrameInputs<'_>) {
         let eta = frame.uniforms.water.eta;
         for (id, eta) in [(ResourceId::FresnelAbove, eta), (ResourceId::FresnelBelow, 1.0 / eta)] {
@@ -395,6 +421,14 @@ impl GpuBackend<'_> {
             ResourceId::RefractionMap,
         ]
         .map(|id| self.map(id));
+        let fresnel_filter = self.map(ResourceId::FresnelFilter);
+        // The chains when `wave_mips` made them, else the maps themselves (one level).
+        let chain_view = |id: ResourceId| {
+            self.chains.iter().find(|(m, _)| *m == id).map(|(_, c)| c.view.clone())
+        };
+        let slopes_view = chain_view(ResourceId::DisplacementSlopeMips)
+            .unwrap_or_else(|| displacement_slopes.view.clone());
+        let bump_view = chain_view(ResourceId::BumpMips).unwrap_or_else(|| bump.view.clone());
         let (hdr, depth) = self.start_hdr(frame.plan);
         let device = &self.gpu.device;
         let mesh = &frame.mesh;
@@ -417,13 +451,14 @@ impl GpuBackend<'_> {
             &sky_buffer,
             &WaterTextures {
                 displacement: &displacement.view,
-                displacement_slopes: &displacement_slopes.view,
-                bump: &bump.view,
+                displacement_slopes: &slopes_view,
+                bump: &bump_view,
                 fresnel_above: &fresnel_above.view,
                 fresnel_below: &fresnel_below.view,
                 reflection_map: &reflection_map.view,
                 refraction_map: &refraction_map.view,
                 shadow_map: &shadow_map.view,
+                fresnel_filter: &fresnel_filter.view,
             },
             &WaterMeshBuffers {
                 vertices: &water_vertices,
@@ -442,6 +477,11 @@ impl Backend for GpuBackend<'_> {
 
     fn waves(&mut self, frame: &FrameInputs<'_>, state: &FrameState) -> Result<(), Error> {
         self.wave_maps(frame, state)
+    }
+
+    fn wave_mips(&mut self, frame: &FrameInputs<'_>) -> Result<(), Error> {
+        self.mip_chains(frame);
+        Ok(())
     }
 
     fn fresnel_tables(&mut self, frame: &FrameInputs<'_>) -> Result<(), Error> {
@@ -515,6 +555,7 @@ impl Renderer {
         let d = &gpu.device;
         let stages = gpu.scoped("creating the pipelines", || -> Result<_, Error> {
             Ok(Stages {
+                wave_mips: WaveMipsStage::new(d)?,
                 fresnel_table: FresnelTableStage::new(d)?,
                 sky: SkyStage::new(d)?,
                 objects: ObjectsStage::new(d)?,
@@ -614,7 +655,13 @@ impl Renderer {
         // The pipelines hold the techniques they were assembled for; a plan composing another
         // one into a stage's WGSL would need other pipelines (none is built yet).
         let built = crate::common::pipeline_techniques();
-        if let Some((stage, t)) = plan.techniques.iter().find(|(s, t)| built.of(*s) != *t) {
+        // The far field is a uniform of the water pipeline (every technique is in its WGSL),
+        // not a composed file.
+        if let Some((stage, t)) = plan
+            .techniques
+            .iter()
+            .find(|(s, t)| *s != ocean_core::plan::Stage::FarField && built.of(*s) != *t)
+        {
             return Err(Error::Unavailable(format!(
                 "the GPU pipelines are built for {stage} technique `{}`, the plan asks for `{}`",
                 built.of(stage).name,
@@ -656,6 +703,7 @@ impl Renderer {
                 }),
                 timer: PassTimer::new(gpu),
                 maps: Vec::new(),
+                chains: Vec::new(),
                 depth: None,
                 hdr_started: false,
                 frame_buffer: uniform_buffer(device, "ocean.frame.uniforms", &u),
@@ -664,7 +712,8 @@ impl Renderer {
                 wave_source: None,
             };
             run_frame(&mut backend, &inputs, state, &mut |_| {})?;
-            let GpuBackend { mut encoder, timer, waves_cpu, wave_source, maps, .. } = backend;
+            let GpuBackend { mut encoder, timer, waves_cpu, wave_source, maps, chains, .. } =
+                backend;
             timer.resolve(&mut encoder);
 
             // readback
@@ -680,6 +729,12 @@ impl Renderer {
                     continue;
                 }
                 let format = plan.resource(id).map_or(MAP_FORMAT, |r| wgpu_format(r.format));
+                // A chain comes back packed, as ocean-cpu's MipChain holds it.
+                if let Some((_, chain)) = chains.iter().find(|(m, _)| *m == id) {
+                    let atlas = chain.pack(device, &mut encoder);
+                    readbacks.copy(device, &mut encoder, id, id.name(), &atlas, format);
+                    continue;
+                }
                 let texture = find(id).unwrap_or(&empty);
                 readbacks.copy(device, &mut encoder, id, id.name(), texture, format);
             }

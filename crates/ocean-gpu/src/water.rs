@@ -41,6 +41,8 @@ pub struct WaterTextures<'a> {
     pub refraction_map: &'a wgpu::TextureView,
     /// binding 8.
     pub shadow_map: &'a wgpu::TextureView,
+    /// binding 11: the filtered Fresnel table of far field `variance`.
+    pub fresnel_filter: &'a wgpu::TextureView,
 }
 
 /// The water mesh on the GPU.
@@ -73,7 +75,9 @@ fn linear_sampler(device: &wgpu::Device, label: &str, mode: wgpu::AddressMode) -
         address_mode_w: mode,
         mag_filter: wgpu::FilterMode::Linear,
         min_filter: wgpu::FilterMode::Linear,
-        mipmap_filter: wgpu::MipmapFilterMode::Nearest,
+        // Linear between levels: the slope maps' chains (far fields `mip`, `variance`) are
+        // sampled at explicit LODs; every other map has one level.
+        mipmap_filter: wgpu::MipmapFilterMode::Linear,
         ..Default::default()
     })
 }
@@ -102,6 +106,7 @@ impl WaterStage {
                 texture_entry(8, fragment, false),
                 sampler_entry(9, vf),
                 sampler_entry(10, fragment),
+                texture_entry(11, fragment, true),
             ],
         });
         let sky_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -178,6 +183,7 @@ impl WaterStage {
                 wgpu::BindingResource::TextureView(t.shadow_map),
                 wgpu::BindingResource::Sampler(&self.wrap_linear),
                 wgpu::BindingResource::Sampler(&self.clamp_linear),
+                wgpu::BindingResource::TextureView(t.fresnel_filter),
             ],
         );
         let sky_group = crate::common::bind_group(

@@ -144,7 +144,10 @@ pub fn check_plan(
             Some(g) => compare_float(which.name(), ran, cpu_map(&cpu.buffers, which), gpu_map(g)),
             None => compare_float(which.name(), ran, cpu_map(&cpu.buffers, which), ((0, 0), &[])),
         };
-        stats.plan_size = plan.resource(which).map(|r| (r.size[0], r.size[1]));
+        stats.plan_size = plan.resource(which).map(|r| {
+            let [w, h] = r.readback_size();
+            (w, h)
+        });
         maps.push(stats);
     }
     let (w, h) = (scene.camera.width, scene.camera.height);

@@ -198,6 +198,13 @@ pub trait Backend {
     /// Whatever the synthesis reports.
     fn waves(&mut self, frame: &FrameInputs<'_>, state: &FrameState) -> Result<(), Self::Error>;
 
+    /// `wave_mips`: the slope maps' mip chains with their second moments, and for far field
+    /// `variance` the filtered Fresnel table.
+    ///
+    /// # Errors
+    /// A device error.
+    fn wave_mips(&mut self, frame: &FrameInputs<'_>) -> Result<(), Self::Error>;
+
     /// `fresnel_table`: the two Fresnel textures (η and 1/η).
     ///
     /// # Errors
@@ -252,6 +259,7 @@ pub fn run_frame<B: Backend>(
             }
             Pass::FarPatch => {}
             Pass::Waves => backend.waves(frame, state)?,
+            Pass::WaveMips => backend.wave_mips(frame)?,
             Pass::FresnelTable => backend.fresnel_tables(frame)?,
             Pass::ShadowMap | Pass::ReflectionMap | Pass::RefractionMap | Pass::Objects => {
                 backend.objects(pass, frame)?

@@ -64,6 +64,8 @@ pub enum Pass {
     Cycle,
     /// Displacement and bump maps of the sea at time t (stage `waves`).
     Waves,
+    /// The slope maps' mip chains (stage `wave_mips`, far fields `mip` and `variance`).
+    WaveMips,
     /// The 2D Fresnel texture (stage `fresnel_table`).
     FresnelTable,
     /// Depth of the objects seen from the sun (stage `shadow`).
@@ -86,9 +88,10 @@ pub enum Pass {
 
 impl Pass {
     /// Every pass, in execution order.
-    pub const ALL: [Pass; 11] = [
+    pub const ALL: [Pass; 12] = [
         Pass::Cycle,
         Pass::Waves,
+        Pass::WaveMips,
         Pass::FresnelTable,
         Pass::ShadowMap,
         Pass::ReflectionMap,
@@ -107,6 +110,7 @@ impl Pass {
             Pass::Cycle | Pass::Waves => Some(Stage::Waves),
             Pass::FresnelTable | Pass::Water => Some(Stage::Shading),
             Pass::Sky => Some(Stage::Sky),
+            Pass::WaveMips => Some(Stage::FarField),
             Pass::FarPatch => Some(Stage::Surface),
             Pass::Tonemap => Some(Stage::Post),
             Pass::ShadowMap | Pass::ReflectionMap | Pass::RefractionMap | Pass::Objects => None,
@@ -119,6 +123,7 @@ impl Pass {
         match self {
             Pass::Cycle | Pass::FarPatch => None,
             Pass::Waves => Some("waves"),
+            Pass::WaveMips => Some("wave_mips"),
             Pass::FresnelTable => Some("fresnel_table"),
             Pass::ShadowMap => Some("shadow"),
             Pass::ReflectionMap | Pass::RefractionMap | Pass::Objects => Some("objects"),
@@ -136,6 +141,9 @@ impl Pass {
                 R::Displacement,
                 R::DisplacementSlopes,
                 R::Bump,
+                R::DisplacementSlopeMips,
+                R::BumpMips,
+                R::FresnelFilter,
                 R::FresnelAbove,
                 R::FresnelBelow,
                 R::ShadowMap,
@@ -145,6 +153,7 @@ impl Pass {
             ],
             Pass::Tonemap => &[R::Hdr],
             Pass::Sky => &[R::Environment],
+            Pass::WaveMips => &[R::DisplacementSlopes, R::Bump],
             _ => &[],
         }
     }
@@ -155,6 +164,7 @@ impl Pass {
         match self {
             Pass::Cycle | Pass::FarPatch => &[],
             Pass::Waves => &[R::Displacement, R::DisplacementSlopes, R::Bump],
+            Pass::WaveMips => &[R::DisplacementSlopeMips, R::BumpMips, R::FresnelFilter],
             Pass::FresnelTable => &[R::FresnelAbove, R::FresnelBelow],
             Pass::ShadowMap => &[R::ShadowMap],
             Pass::ReflectionMap => &[R::ReflectionMap],
@@ -169,6 +179,7 @@ impl Pass {
         match self {
             Pass::Cycle => "cycle",
             Pass::Waves => "waves",
+            Pass::WaveMips => "wave_mips",
             Pass::FresnelTable => "fresnel_table",
             Pass::ShadowMap => "shadow_map",
             Pass::ReflectionMap => "reflection_map",
@@ -524,6 +535,23 @@ impl FramePlan {
                         (false, "no wind: the sea is flat".to_string())
                     }
                 }
+                Pass::WaveMips => {
+                    let far = techniques.of(Stage::FarField).name;
+                    if far == "none" {
+                        (false, "far_field = none: the slope maps are sampled at level 0".into())
+                    } else if !waves_on {
+                        (false, "no wind: the sea is flat, nothing to filter".into())
+                    } else {
+                        (
+                            true,
+                            format!(
+                                "far_field = {far}: mip chains of the slope maps with their \
+                                 second moments ({0}², {1}²), sampled at the footprint's LOD",
+                                scene.ocean.resolution, scene.ocean.bump_resolution
+                            ),
+                        )
+                    }
+                }
                 Pass::FresnelTable => (
                     true,
                     format!(
@@ -691,6 +719,12 @@ impl FramePlan {
                     (Format::Rgba32Float, [o.resolution; 2])
                 }
                 ResourceId::Bump => (Format::Rgba32Float, [o.bump_resolution; 2]),
+                ResourceId::DisplacementSlopeMips => (Format::Rgba32Float, [o.resolution; 2]),
+                ResourceId::BumpMips => (Format::Rgba32Float, [o.bump_resolution; 2]),
+                ResourceId::FresnelFilter => (
+                    Format::Rgba32Float,
+                    [crate::far_field::FILTER_RADII, crate::far_field::FILTER_SIGMAS],
+                ),
                 ResourceId::FresnelAbove | ResourceId::FresnelBelow => {
                     (Format::Rgba32Float, [self.fresnel_table_size; 2])
                 }
@@ -703,7 +737,10 @@ impl FramePlan {
                     (Format::Uniform, [std::mem::size_of::<crate::sky::SkyUniforms>() as u32, 1])
                 }
             };
-            let is_written = written(id);
+            // Only the `variance` technique reads the filtered Fresnel table.
+            let is_written = written(id)
+                && (id != ResourceId::FresnelFilter
+                    || self.techniques.of(Stage::FarField).name == "variance");
             if id == ResourceId::Ldr && !is_written {
                 continue;
             }
@@ -822,7 +859,7 @@ mod tests {
         assert_eq!(p.skipped.len(), 2);
         assert!(!p.runs(Pass::Tonemap));
         // The full plan of a scene that needs everything is the pruned one.
-        assert_eq!(FramePlan::full(&s, OutputKind::Ldr).passes.len(), 10);
+        assert_eq!(FramePlan::full(&s, OutputKind::Ldr).passes.len(), 11);
     }
 
     #[test]

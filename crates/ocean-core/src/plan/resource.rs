@@ -33,6 +33,14 @@ pub enum ResourceId {
     Hdr,
     /// The 8-bit sRGB picture.
     Ldr,
+    /// The displacement map's slopes with their second moments, a mip chain (stage
+    /// `wave_mips`).
+    DisplacementSlopeMips,
+    /// The bump map's, likewise.
+    BumpMips,
+    /// The filtered Fresnel table ΔF(r, σ) of far field `variance` (ocean-core's
+    /// `far_field::FresnelFilterTable`, computed on the CPU, the same texels on both back ends).
+    FresnelFilter,
     /// The environment the water reflects and the `sky` pass draws: the sky technique's
     /// uniform block, prepared with the frame's inputs (a `preetham` sky is a fit of the
     /// Perez coefficients, computed on the CPU for both back ends).
@@ -42,10 +50,13 @@ pub enum ResourceId {
 impl ResourceId {
     /// The float maps both back ends keep and the cross-check compares, in the order the
     /// frame makes them.
-    pub const MAPS: [ResourceId; 9] = [
+    pub const MAPS: [ResourceId; 12] = [
         ResourceId::Displacement,
         ResourceId::DisplacementSlopes,
         ResourceId::Bump,
+        ResourceId::DisplacementSlopeMips,
+        ResourceId::BumpMips,
+        ResourceId::FresnelFilter,
         ResourceId::FresnelAbove,
         ResourceId::FresnelBelow,
         ResourceId::ShadowMap,
@@ -55,10 +66,13 @@ impl ResourceId {
     ];
 
     /// Every resource.
-    pub const ALL: [ResourceId; 11] = [
+    pub const ALL: [ResourceId; 14] = [
         ResourceId::Displacement,
         ResourceId::DisplacementSlopes,
         ResourceId::Bump,
+        ResourceId::DisplacementSlopeMips,
+        ResourceId::BumpMips,
+        ResourceId::FresnelFilter,
         ResourceId::FresnelAbove,
         ResourceId::FresnelBelow,
         ResourceId::ShadowMap,
@@ -76,6 +90,9 @@ impl ResourceId {
             ResourceId::Displacement => "displacement",
             ResourceId::DisplacementSlopes => "displacement_slopes",
             ResourceId::Bump => "bump",
+            ResourceId::DisplacementSlopeMips => "displacement_slope_mips",
+            ResourceId::BumpMips => "bump_mips",
+            ResourceId::FresnelFilter => "fresnel_filter",
             ResourceId::FresnelAbove => "fresnel_above",
             ResourceId::FresnelBelow => "fresnel_below",
             ResourceId::ShadowMap => "shadow_map",
@@ -94,6 +111,9 @@ impl ResourceId {
             ResourceId::Displacement | ResourceId::DisplacementSlopes | ResourceId::Bump => {
                 Pass::Waves
             }
+            ResourceId::DisplacementSlopeMips
+            | ResourceId::BumpMips
+            | ResourceId::FresnelFilter => Pass::WaveMips,
             ResourceId::FresnelAbove | ResourceId::FresnelBelow => Pass::FresnelTable,
             ResourceId::ShadowMap => Pass::ShadowMap,
             ResourceId::ReflectionMap => Pass::ReflectionMap,
@@ -136,6 +156,19 @@ pub struct Resource {
 }
 
 impl Resource {
+    /// The size its read-back has: a mip chain (`displacement_slope_mips`, `bump_mips`) comes
+    /// back as its packed atlas ([`crate::far_field::mip_level_row`]), `size[0]` wide and the
+    /// sum of its levels' heights tall; any other resource at its size.
+    pub fn readback_size(&self) -> [u32; 2] {
+        match self.id {
+            ResourceId::DisplacementSlopeMips | ResourceId::BumpMips if self.written => {
+                let [w, h] = self.size;
+                [w, crate::far_field::mip_level_row(h, crate::far_field::mip_level_count(w, h))]
+            }
+            _ => self.size,
+        }
+    }
+
     /// Texels (width × height).
     pub fn texels(&self) -> u64 {
         u64::from(self.size[0]) * u64::from(self.size[1])

@@ -112,8 +112,8 @@ pub const TECHNIQUES: &[TechniqueInfo] = &[
     t(Stage::Sky, "preetham_clouds", "Preetham + clouds (seed 001 eq. 4)", false),
     t(Stage::Sky, "atmosphere", "Rayleigh/Mie scattering (seed 002)", false),
     t(Stage::FarField, "none", "point-sampled wave maps", true),
-    t(Stage::FarField, "mip", "mip-mapped wave maps", false),
-    t(Stage::FarField, "variance", "unresolved slope variance in the BRDF (Bruneton 2010)", false),
+    t(Stage::FarField, "mip", "mip-mapped slope maps, trilinear at the footprint", true),
+    t(Stage::FarField, "variance", "unresolved slope variance in the BRDF (Bruneton 2010)", true),
     t(Stage::Foam, "none", "no foam", true),
     t(Stage::Foam, "heuristic", "from normal and height (seed 002)", false),
     t(Stage::Foam, "jacobian", "where the Jacobian folds", false),
@@ -165,7 +165,7 @@ pub const SYSTEMS: &[SystemInfo] = &[
         system: System::Hu,
         name: "hu",
         paper: "Hu, Velho, Tong, Guo & Shum 2004 (seed 000)",
-        techniques: ["fft", "hu_patches", "hu", "preetham", "none", "none", "none", "tonemap"],
+        techniques: ["fft", "hu_patches", "hu", "preetham", "variance", "none", "none", "tonemap"],
     },
     SystemInfo {
         system: System::Chiu,
@@ -451,8 +451,10 @@ mod tests {
         let t = Techniques::with_overrides(System::Hu, [(Stage::FarField, "mip")]).unwrap();
         assert_eq!(t.of(Stage::FarField).name, "mip");
         assert_eq!(t.of(Stage::Waves).name, "fft");
+        assert!(t.check().is_ok());
+        let t = Techniques::with_overrides(System::Hu, [(Stage::Foam, "jacobian")]).unwrap();
         let e = t.check().unwrap_err().to_string();
-        assert!(e.contains("techniques.far_field") && e.contains("`mip`"), "{e}");
+        assert!(e.contains("techniques.foam") && e.contains("`jacobian`"), "{e}");
         let e = Techniques::with_overrides(System::Hu, [(Stage::Sky, "nope")]).unwrap_err();
         assert!(e.to_string().contains("preetham"), "{e}");
     }

@@ -4,10 +4,12 @@
 use ocean_core::frame::FrameUniforms;
 
 use super::shared::frame::{dot3, transform_point, unit};
-use super::wgsl::{Vec2, Vec3, Vec4, max, sqrt, texture_sample, texture_sample_level, vec2, vec3};
+use super::wgsl::{Vec2, Vec3, Vec4, abs, clamp, max, sqrt, texture_sample_level, vec2, vec3};
+use crate::mip::{MipChain, texture_sample_level_mip};
 use crate::sampler::{AddressMode, FilterMode, Sampler, Texture2D};
 
-/// `wrap_linear`: repeat addressing, bilinear (the tiled wave maps).
+/// `wrap_linear`: repeat addressing, bilinear, linear between mip levels (the tiled wave maps
+/// and their chains).
 pub const WRAP_LINEAR: Sampler = Sampler {
     address_mode_u: AddressMode::Repeat,
     address_mode_v: AddressMode::Repeat,
@@ -31,10 +33,11 @@ pub struct Bindings<'a> {
     pub frame: &'a FrameUniforms,
     /// binding 1: (disp_x, height, disp_z, jacobian).
     pub displacement: &'a Texture2D,
-    /// binding 2: (slope_x, slope_z, 0, 0).
-    pub displacement_slopes: &'a Texture2D,
-    /// binding 3: (slope_x, slope_z, height, jacobian).
-    pub bump: &'a Texture2D,
+    /// binding 2: (slope_x, slope_z, 0, 0), or with far field `mip`/`variance` the chain of
+    /// (slope_x, slope_z, slope_x², slope_z²).
+    pub displacement_slopes: &'a MipChain,
+    /// binding 3: (slope_x, slope_z, height, jacobian), or its chain likewise.
+    pub bump: &'a MipChain,
     /// binding 4.
     pub fresnel_above: &'a Texture2D,
     /// binding 5.
@@ -45,6 +48,8 @@ pub struct Bindings<'a> {
     pub refraction_map: &'a Texture2D,
     /// binding 8.
     pub shadow_map: &'a Texture2D,
+    /// binding 11: the filtered Fresnel table.
+    pub fresnel_filter: &'a Texture2D,
     /// `sky_radiance(dir)`.
     pub sky_radiance: &'a (dyn Fn([f32; 3]) -> [f32; 3] + Sync),
 }
@@ -158,13 +163,90 @@ fn sun_visibility(rel: Vec3, b: &Bindings<'_>) -> f32 {
     1.0
 }
 
+/// WGSL `frexp(x)` for a normal, finite x: (fract ∈ [0.5, 1), exp) with x = fract·2^exp
+/// (exact: the exponent field rewritten).
+fn frexp(x: f32) -> (f32, i32) {
+    let bits = x.to_bits();
+    let e = ((bits >> 23) & 0xff) as i32;
+    (f32::from_bits((bits & 0x807f_ffff) | (126 << 23)), e - 126)
+}
+
+/// `lod_log2(x)`.
+pub fn lod_log2(x: f32) -> f32 {
+    let (fract, exp) = frexp(x);
+    let m = fract * 2.0 - 1.0;
+    (exp - 1) as f32 + m * (1.442_544_9 + m * (-0.718_145_2 + m * 0.275_600_3))
+}
+
+/// `footprint_lods(rel)`.
+pub fn footprint_lods(rel: Vec3, frame: &FrameUniforms) -> Vec2 {
+    if frame.far.mode == 0.0 {
+        return vec2(0.0, 0.0);
+    }
+    let dist = sqrt(rel.x * rel.x + rel.y * rel.y + rel.z * rel.z);
+    let cos_view = abs(rel.y) / max(dist, 1e-30);
+    let w = dist * frame.far.pixel_angle / max(cos_view, 1e-4);
+    let l = lod_log2(clamp(w, 1e-30, 1e30)) + frame.far.lod_bias;
+    vec2(l + frame.far.lod_offset_d, l + frame.far.lod_offset_b)
+}
+
+/// `textureSampleLevel` on a chain (a one-level chain is a plain texture).
+fn sample_chain(chain: &MipChain, coords: Vec2, lod: f32) -> Vec4 {
+    texture_sample_level_mip(chain, &WRAP_LINEAR, coords.into(), lod).into()
+}
+
+/// `filtered_slopes(in)`: (s_x, s_z, unresolved variance per axis).
+pub fn filtered_slopes(input: &VertexOut, b: &Bindings<'_>) -> Vec3 {
+    let frame = b.frame;
+    let lods = footprint_lods(input.rel, frame);
+    let wd = input.weight * frame.passes.waves;
+    let wb = frame.passes.waves;
+    let d = sample_chain(b.displacement_slopes, input.uv_d, lods.x);
+    let bm = sample_chain(b.bump, input.uv_b, lods.y);
+    let mut variance = 0.0;
+    if frame.far.mode == 2.0 {
+        let vd = max(d.z - d.x * d.x, 0.0) + max(d.w - d.y * d.y, 0.0);
+        let vb = max(bm.z - bm.x * bm.x, 0.0) + max(bm.w - bm.y * bm.y, 0.0);
+        variance = 0.5 * (vd * (wd * wd) + vb * (wb * wb));
+    }
+    let sd = d.xy() * wd;
+    let sb = bm.xy() * wb;
+    vec3(sd.x + sb.x, sd.y + sb.y, variance)
+}
+
 /// `bumped_normal(in)`: the bumped unit normal (§5).
 pub fn bumped_normal(input: &VertexOut, b: &Bindings<'_>) -> Vec3 {
-    let frame = b.frame;
-    let sd = texture_sample(b.displacement_slopes, &WRAP_LINEAR, input.uv_d).xy()
-        * (input.weight * frame.passes.waves);
-    let sb = texture_sample(b.bump, &WRAP_LINEAR, input.uv_b).xy() * frame.passes.waves;
-    unit(vec3(-(sd.x + sb.x), 1.0, -(sd.y + sb.y)))
+    let s = filtered_slopes(input, b);
+    unit(vec3(-s.x, 1.0, -s.y))
+}
+
+/// `fresnel_filtered(f, view, n, variance)`.
+pub fn fresnel_filtered(f: f32, view: Vec3, n: Vec3, variance: f32, b: &Bindings<'_>) -> f32 {
+    let far = &b.frame.far;
+    let x = view.x - n.x;
+    let y = view.z - n.z;
+    let r = sqrt(x * x + y * y);
+    let t = sqrt(sqrt(variance) * far.inv_sigma_max);
+    let uv = vec2(
+        r * far.filter_r_scale + far.filter_r_offset,
+        t * far.filter_t_scale + far.filter_t_offset,
+    );
+    clamp(f + texture_sample_level(b.fresnel_filter, &CLAMP_LINEAR, uv, 0.0).x, 0.0, 1.0)
+}
+
+/// `phong_lobe(cos_spec, variance)`.
+pub fn phong_lobe(cos_spec: f32, variance: f32, frame: &FrameUniforms) -> f32 {
+    let s = frame.hu.phong_exponent;
+    if variance > 0.0 {
+        let k = 1.0 + s * variance;
+        if cos_spec <= 0.0 {
+            return 0.0;
+        }
+        let e = s / k;
+        let whole = e.floor();
+        return pow_int(cos_spec, whole as u32) * ((e - whole) * cos_spec.log2()).exp2() / k;
+    }
+    pow_int(cos_spec, s as u32)
 }
 
 /// `SQRT2`.
@@ -190,33 +272,67 @@ pub fn fresnel_st(view: Vec3, n: Vec3, fresnel_scale: f32) -> Vec2 {
     u * fresnel_scale + 0.5
 }
 
+/// `sky_filtered(view, slopes, variance)`.
+pub fn sky_filtered(view: Vec3, slopes: Vec3, variance: f32, b: &Bindings<'_>) -> Vec3 {
+    let sigma = sqrt(variance);
+    let mut sum_fl = vec3(0.0, 0.0, 0.0);
+    let mut sum_f = 0.0;
+    for i in 0..4u32 {
+        let mut o = vec2(0.0, 0.0);
+        match i {
+            0 => o.x = sigma,
+            1 => o.x = -sigma,
+            2 => o.y = sigma,
+            _ => o.y = -sigma,
+        }
+        let ni = unit(vec3(-(slopes.x + o.x), 1.0, -(slopes.y + o.y)));
+        let st = fresnel_st(view, ni, b.frame.hu.fresnel_scale);
+        let fi = texture_sample_level(b.fresnel_above, &CLAMP_LINEAR, st, 0.0).w;
+        let mut ri = ni * (2.0 * dot3(view, ni)) - view;
+        ri.y = max(ri.y, 0.0);
+        sum_fl = sum_fl + sky_radiance(b, unit(ri + vec3(0.0, 1e-6, 0.0))) * fi;
+        sum_f += fi;
+    }
+    sum_fl / max(sum_f, 1e-30)
+}
+
 /// `fs_main(in)`; `input.clip` is the fragment's position.
 pub fn fs_main(input: &VertexOut, b: &Bindings<'_>) -> [f32; 4] {
     let frame = b.frame;
-    let n = bumped_normal(input, b);
+    let slopes = filtered_slopes(input, b);
+    let n = unit(vec3(-slopes.x, 1.0, -slopes.y));
+    let variance = slopes.z;
     let du = n.x;
     let dv = n.z;
     let view = unit(-input.rel);
     let screen = input.clip.xy() * Vec2::from(frame.view.inv_viewport_size);
     if view.y >= 0.0 {
         let st = fresnel_st(view, n, frame.hu.fresnel_scale);
-        let fres = texture_sample(b.fresnel_above, &CLAMP_LINEAR, st);
-        let f = fres.w;
+        let fres = texture_sample_level(b.fresnel_above, &CLAMP_LINEAR, st, 0.0);
+        let mut f = fres.w;
+        if variance > 0.0 {
+            f = fresnel_filtered(f, view, n, variance, b);
+        }
         let vn = dot3(view, n);
         let mut r = n * (2.0 * vn) - view;
         r.y = max(r.y, 0.0);
-        let sky_r = sky_radiance(b, unit(r + vec3(0.0, 1e-6, 0.0)));
-        let refl = texture_sample(
+        let mut sky_r = sky_radiance(b, unit(r + vec3(0.0, 1e-6, 0.0)));
+        if variance > 0.0 {
+            sky_r = sky_filtered(view, slopes, variance, b);
+        }
+        let refl = texture_sample_level(
             b.reflection_map,
             &CLAMP_LINEAR,
             screen + vec2(du, dv) * frame.hu.reflection_distortion,
+            0.0,
         );
         let a_refl = refl.w * frame.passes.reflection_map;
         let c_reflect = sky_r * (1.0 - a_refl) + refl.xyz() * a_refl;
-        let refr = texture_sample(
+        let refr = texture_sample_level(
             b.refraction_map,
             &CLAMP_LINEAR,
             screen + vec2(du, dv) * frame.hu.refraction_distortion,
+            0.0,
         );
         let a_refr = refr.w * frame.passes.refraction_map;
         let c_refract = Vec3::from(frame.water.color) * (1.0 - a_refr) + refr.xyz() * a_refr;
@@ -225,13 +341,13 @@ pub fn fs_main(input: &VertexOut, b: &Bindings<'_>) -> [f32; 4] {
         let r_sun = vec3(-sun_direction.x, sun_direction.y, -sun_direction.z);
         let cos_spec = max(dot3(vb, r_sun), 0.0);
         let spec = Vec3::from(frame.sun.radiance)
-            * (pow_int(cos_spec, frame.hu.phong_exponent as u32) * frame.sun.lit);
+            * (phong_lobe(cos_spec, variance, frame) * frame.sun.lit);
         let shadow = sun_visibility(input.rel, b);
         let c = c_reflect * f + c_refract * (1.0 - f) + spec * shadow;
         return c.extend(1.0).into();
     }
     let st = fresnel_st(view, n, frame.hu.fresnel_scale);
-    let f = texture_sample(b.fresnel_below, &CLAMP_LINEAR, st).w;
+    let f = texture_sample_level(b.fresnel_below, &CLAMP_LINEAR, st, 0.0).w;
     let eta = frame.water.eta;
     let i = -view;
     let cos_i = dot3(i, n);

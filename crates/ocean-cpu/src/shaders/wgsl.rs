@@ -300,6 +300,18 @@ pub fn exp<T: Components>(e: T) -> T {
     e.map(f32::exp)
 }
 
+/// `log2(e)`, per component.
+#[inline]
+pub fn log2<T: Components>(e: T) -> T {
+    e.map(f32::log2)
+}
+
+/// `abs(e)`, per component.
+#[inline]
+pub fn abs<T: Components>(e: T) -> T {
+    e.map(f32::abs)
+}
+
 /// `pow(e1, e2)`, per component.
 #[inline]
 pub fn pow<T: Components>(e1: T, e2: T) -> T {
