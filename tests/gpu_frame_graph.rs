@@ -97,6 +97,12 @@ fn quality_scenes_match_the_cpu_oracle() {
     under.camera.position = [0.0, -2.5, 20.0];
     under.camera.look_at = [0.0, 25.0, -15.0];
     failures.extend(failures_of(&mut r, "underwater_fresnel64", &under, None));
+    // Every far field (the reference scenes run the default, `variance`).
+    for far in ["none", "mip"] {
+        let mut s = default_with("fresnel_table_size = 128");
+        s.techniques.far_field = Some(far.to_string());
+        failures.extend(failures_of(&mut r, &format!("far_field_{far}"), &s, None));
+    }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
