@@ -61,7 +61,7 @@ mod tests {
                 for i in 0..lw {
                     // The block of level 0 the texel stands for, cut at the map's edge (a
                     // level one texel wide clamps, averaging the same texels twice).
-                    let block = |n: u32, len: u32| (n << k..((n + 1) << k).min(len));
+                    let block = |n: u32, len: u32| n << k..((n + 1) << k).min(len);
                     let mut sum = [0.0f64; 4];
                     let mut count = 0.0;
                     for y in block(j, h) {
