@@ -134,7 +134,7 @@ fn lod_log2(x: f32) -> f32 {
 }
 
 // The LOD of the pixel's footprint on each slope map (displacement, bump): log2 of the
-// footprint's longer side, dist·δ/cos θ_v (ocean-core far_field::footprint_m), in the map's
+// footprint's longer side, dist·δ/max(cos θ_v, 1e-4) (ocean-core far_field's module doc), in the map's
 // texels. Explicit, from the fragment's own position: no derivatives. Far field `none`: 0.
 fn footprint_lods(rel: vec3<f32>) -> vec2<f32> {
     if (frame.far.mode == 0.0) {

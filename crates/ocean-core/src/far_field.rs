@@ -10,7 +10,7 @@
 //!   expectation of the Fresnel term and of the sun's highlight over a Gaussian slope
 //!   distribution of that variance ([`FresnelFilterTable`], [`phong_filtered_exponent`]).
 //!
-//! **The footprint** ([`footprint_m`]): a pixel subtends δ = 2·tan(fov_y/2)/height radians at
+//! **The footprint** (the water shader's `footprint_lods`): a pixel subtends δ = 2·tan(fov_y/2)/height radians at
 //! the image centre; at distance d the pixel is d·δ across, and a plane seen at cos θ_v from
 //! its normal stretches it to d·δ/cos θ_v along the view. The LOD is log2 of the longer side
 //! in texels of the map (the isotropic choice a GPU makes without anisotropic filtering): the
@@ -90,12 +90,6 @@ pub const FILTER_RADII: u32 = 512;
 
 /// Texels of the table along the σ axis, t = sqrt(σ/[`SIGMA_MAX`]) ∈ [0, 1].
 pub const FILTER_SIGMAS: u32 = 32;
-
-/// The footprint's longer side on the sea, m: `distance`·`pixel_angle`/max(cos θ_v, 1e-4)
-/// (1e-4: a view along the plane, 89.994° from its normal, still has a finite footprint).
-pub fn footprint_m(distance: f32, cos_view: f32, pixel_angle: f32) -> f32 {
-    distance * pixel_angle / cos_view.abs().max(1e-4)
-}
 
 /// The exponent s' and the scale of the expected Phong lobe E[cos^s α] over slopes of variance
 /// σ² (per axis) about the mean: with cos^s α ≈ exp(−s α²/2) and α Gaussian,

@@ -256,17 +256,13 @@ impl<'e> CpuBackend<'e> {
     /// the plan sizes it.
     fn mip_chains(&mut self, frame: &FrameInputs<'_>) {
         let empty = Texture2D::new(1, 1, vec![[0.0; 4]]);
-        for (src, dst) in [
-            (ResourceId::DisplacementSlopes, ResourceId::DisplacementSlopeMips),
-            (ResourceId::Bump, ResourceId::BumpMips),
-        ] {
+        for (src, dst) in ResourceId::SLOPE_CHAINS {
             let map = self.maps.iter().find(|(m, _)| *m == src).map_or(&empty, |(_, t)| t);
             let chain = wave_mips::dispatch(map);
             self.chains.retain(|(m, _)| *m != dst);
             self.chains.push((dst, chain));
         }
-        if frame.plan.resource(ResourceId::FresnelFilter).is_some_and(|r| r.written) {
-            let table = ocean_core::far_field::FresnelFilterTable::cached(frame.scene.water.ior);
+        if let Some(table) = frame.plan.fresnel_filter(frame.scene) {
             let (w, h) =
                 (ocean_core::far_field::FILTER_RADII, ocean_core::far_field::FILTER_SIGMAS);
             self.put(ResourceId::FresnelFilter, Texture2D::new(w, h, table.texels.clone()));

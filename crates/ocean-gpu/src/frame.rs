@@ -284,10 +284,7 @@ impl GpuBackend<'_> {
     /// `wave_mips`: the two chains from the slope maps, and the filtered Fresnel table when
     /// the plan sizes it (ocean-core's texels, uploaded: the CPU binds the same).
     fn mip_chains(&mut self, frame: &FrameInputs<'_>) {
-        for (src, dst) in [
-            (ResourceId::DisplacementSlopes, ResourceId::DisplacementSlopeMips),
-            (ResourceId::Bump, ResourceId::BumpMips),
-        ] {
+        for (src, dst) in ResourceId::SLOPE_CHAINS {
             let slopes = self.map(src);
             let label = format!("ocean.{}", dst.name());
             let chain = GpuMipChain::new(&self.gpu.device, &label, slopes.width, slopes.height);
@@ -295,8 +292,7 @@ impl GpuBackend<'_> {
             self.chains.retain(|(m, _)| *m != dst);
             self.chains.push((dst, chain));
         }
-        if frame.plan.resource(ResourceId::FresnelFilter).is_some_and(|r| r.written) {
-            let table = ocean_core::far_field::FresnelFilterTable::cached(frame.scene.water.ior);
+        if let Some(table) = frame.plan.fresnel_filter(frame.scene) {
             let (w, h) =
                 (ocean_core::far_field::FILTER_RADII, ocean_core::far_field::FILTER_SIGMAS);
             let t = GpuTexture::upload_map(self.gpu, "ocean.fresnel_filter", w, h, &table.texels);

@@ -786,6 +786,18 @@ impl FramePlan {
         self.passes.iter().find(|p| p.name == pass)
     }
 
+    /// The filtered Fresnel table the frame binds, when the plan writes it (far field
+    /// `variance`): ocean-core's, built once per process and η, the same texels on both
+    /// back ends.
+    pub fn fresnel_filter(
+        &self,
+        scene: &Scene,
+    ) -> Option<std::sync::Arc<crate::far_field::FresnelFilterTable>> {
+        self.resource(ResourceId::FresnelFilter)
+            .is_some_and(|r| r.written)
+            .then(|| crate::far_field::FresnelFilterTable::cached(scene.water.ior))
+    }
+
     /// Whether the plan runs a pass.
     pub fn runs(&self, pass: Pass) -> bool {
         self.passes.iter().any(|p| p.name == pass)

@@ -65,6 +65,13 @@ impl ResourceId {
         ResourceId::Hdr,
     ];
 
+    /// The slope maps and the mip chains pass `wave_mips` makes of them (source, chain): the
+    /// water pass binds the chain where the pass ran, else the map as one level.
+    pub const SLOPE_CHAINS: [(ResourceId, ResourceId); 2] = [
+        (ResourceId::DisplacementSlopes, ResourceId::DisplacementSlopeMips),
+        (ResourceId::Bump, ResourceId::BumpMips),
+    ];
+
     /// Every resource.
     pub const ALL: [ResourceId; 14] = [
         ResourceId::Displacement,

@@ -300,12 +300,6 @@ pub fn exp<T: Components>(e: T) -> T {
     e.map(f32::exp)
 }
 
-/// `log2(e)`, per component.
-#[inline]
-pub fn log2<T: Components>(e: T) -> T {
-    e.map(f32::log2)
-}
-
 /// `abs(e)`, per component.
 #[inline]
 pub fn abs<T: Components>(e: T) -> T {
