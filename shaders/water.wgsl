@@ -133,39 +133,161 @@ fn lod_log2(x: f32) -> f32 {
     return f32(f.exp - 1) + m * (1.4425449 + m * (-0.7181452 + m * 0.2756003));
 }
 
-// The LOD of the pixel's footprint on each slope map (displacement, bump): log2 of the
-// footprint's longer side, dist·δ/max(cos θ_v, 1e-4) (ocean-core far_field's module doc), in the map's
-// texels. Explicit, from the fragment's own position: no derivatives. Far field `none`: 0.
-fn footprint_lods(rel: vec3<f32>) -> vec2<f32> {
+// Where the pixel's taps on the slope maps lie (ocean-core far_field's module doc): the
+// footprint on the sea is dist·δ across and dist·δ/cos θ_v along the view's horizontal
+// direction. 2^k taps, k = ceil(log2(long/short)) ≤ max_aniso_log2, spaced long/2^k along
+// that direction, each a trilinear sample at the LOD of max(short, long/2^k) in the map's
+// texels. Explicit, from the fragment's own position: no derivatives. Far field `none`: one
+// tap at LOD 0.
+struct Footprint {
+    lods: vec2<f32>,
+    taps_log2: f32,
+    step: vec2<f32>,
+}
+
+fn footprint(rel: vec3<f32>) -> Footprint {
+    var fp: Footprint;
     if (frame.far.mode == 0.0) {
-        return vec2<f32>(0.0, 0.0);
+        fp.lods = vec2<f32>(0.0, 0.0);
+        fp.taps_log2 = 0.0;
+        fp.step = vec2<f32>(0.0, 0.0);
+        return fp;
     }
     let dist = sqrt(rel.x * rel.x + rel.y * rel.y + rel.z * rel.z);
     let cos_view = abs(rel.y) / max(dist, 1e-30);
-    let w = dist * frame.far.pixel_angle / max(cos_view, 1e-4);
-    let l = lod_log2(clamp(w, 1e-30, 1e30)) + frame.far.lod_bias;
-    return vec2<f32>(l + frame.far.lod_offset_d, l + frame.far.lod_offset_b);
+    let short = clamp(dist * frame.far.pixel_angle, 1e-30, 1e30);
+    let long = clamp(short / max(cos_view, 1e-4), 1e-30, 1e30);
+    let l_short = lod_log2(short);
+    let l_long = lod_log2(long);
+    let k = clamp(ceil(l_long - l_short), 0.0, frame.far.max_aniso_log2);
+    let l = max(l_short, l_long - k) + frame.far.lod_bias;
+    let horizontal = sqrt(rel.x * rel.x + rel.z * rel.z);
+    let spacing = long * ldexp(1.0, -i32(k));
+    fp.lods = vec2<f32>(l + frame.far.lod_offset_d, l + frame.far.lod_offset_b);
+    fp.taps_log2 = k;
+    fp.step = vec2<f32>(rel.x, rel.z) * (spacing / max(horizontal, 1e-30));
+    return fp;
+}
+
+// A slope chain averaged over the footprint's taps: the mean of the samples, and the mean of
+// the squared slope along h (the horizontal direction towards the eye) over the taps.
+struct Taps {
+    mean: vec4<f32>,
+    along_sq: f32,
+}
+
+// The chain's trilinear samples at the 2^k taps uv + step_uv·(i − (2^k − 1)/2), summed in
+// order of i (the CPU mirror keeps the order; the scale by 2^−k is exact).
+fn sample_footprint(chain: texture_2d<f32>, uv: vec2<f32>, step_uv: vec2<f32>, lod: f32, taps_log2: f32, h: vec2<f32>) -> Taps {
+    let n = ldexp(1.0, i32(taps_log2));
+    let centre = 0.5 * (n - 1.0);
+    var sum = vec4<f32>(0.0, 0.0, 0.0, 0.0);
+    var sq = 0.0;
+    for (var i = 0.0; i < n; i = i + 1.0) {
+        let t = textureSampleLevel(chain, wrap_linear, uv + step_uv * (i - centre), lod);
+        let a = t.x * h.x + t.y * h.y;
+        sum = sum + t;
+        sq = sq + a * a;
+    }
+    let inv = ldexp(1.0, -i32(taps_log2));
+    return Taps(sum * inv, sq * inv);
+}
+
+// exp_arith's arguments are clamped to [EXP_MIN, 0] (e^−80 ≈ 2e-35: zero for its uses).
+const EXP_MIN: f32 = -80.0;
+
+// e^x for x ≤ 0 by + − × only, so both back ends round alike (exp() is the implementation's
+// approximation; lavapipe's differs from the CPU's by ulps, and the sun's lobe magnified
+// that past the float tolerance): 2^n · e^y, n = ⌊x·log2 e + ½⌋ (ldexp: exact), |y| ≤ ½ ln 2,
+// e^y by its Taylor polynomial to y⁷ (relative error < 6e-9 plus rounding).
+fn exp_arith(x: f32) -> f32 {
+    let z = clamp(x, EXP_MIN, 0.0) * 1.442695;
+    let n = floor(z + 0.5);
+    let y = (z - n) * 0.6931472;
+    let p = 1.0 + y * (1.0 + y * (0.5 + y * (0.16666667 + y * (0.041666668 + y * (0.008333334 + y * (0.0013888889 + y * 0.0001984127))))));
+    return p * ldexp(1.0, i32(n));
+}
+
+// Φ(a), the standard normal distribution function, by Abramowitz & Stegun 7.1.26
+// (|error| < 1.5e-7).
+fn normal_cdf(a: f32) -> f32 {
+    let x = abs(a) * 0.70710677;
+    let t = 1.0 / (1.0 + 0.3275911 * x);
+    let poly = ((((1.0614054 * t - 1.453152) * t + 1.4214138) * t - 0.28449674) * t + 0.2548296) * t;
+    let erf = 1.0 - poly * exp_arith(-(x * x));
+    if (a < 0.0) {
+        return 0.5 - 0.5 * erf;
+    }
+    return 0.5 + 0.5 * erf;
+}
+
+// Below this standardised mean the facets' weights are clamped (the truncated moments lose
+// every digit in f32 below it; the eye then sees the front-facing tail of a wave field whose
+// mean faces away).
+const VISIBLE_A_MIN: f32 = -2.0;
+// Above it the reweighting is below f32's resolution and skipped.
+const VISIBLE_A_MAX: f32 = 1e4;
+
+// The geometric slopes the eye sees (ocean-core far_field's module doc): along h the facets'
+// slope s is Gaussian (mean mu, variance var_geo), and a facet shows in proportion to its
+// area projected towards the eye, ∝ max(0, v·n)/n_y = max(0, t), t = v_y − v_h·s. Returns the
+// (mean, variance) of s over the facets weighted so. With t = st·(a + u), u ~ N(0, 1), the
+// weight (a + u) on u > −a gives W₀ = aΦ + φ, W₁ = Φ, W₂ = aΦ + 2φ (Φ, φ at a): the mean of
+// u is W₁/W₀ and its variance W₂/W₀ − (W₁/W₀)², both O(1) for every a (the raw moments of t
+// cancel catastrophically in f32 once a is large).
+fn visible_slopes(mu: f32, var_geo: f32, vy: f32, vh: f32) -> vec2<f32> {
+    let mt = vy - vh * mu;
+    let st = vh * sqrt(var_geo);
+    if (st <= 0.0 || mt >= VISIBLE_A_MAX * st) {
+        return vec2<f32>(mu, var_geo);
+    }
+    let a = max(mt / st, VISIBLE_A_MIN);
+    let pdf = 0.3989423 * exp_arith(-0.5 * a * a);
+    let cdf = normal_cdf(a);
+    let w0 = a * cdf + pdf;
+    let mean_u = cdf / w0;
+    let var_u = max((a * cdf + 2.0 * pdf) / w0 - mean_u * mean_u, 0.0);
+    return vec2<f32>((vy - st * (a + mean_u)) / vh, var_u * (st * st) / (vh * vh));
 }
 
 // The slopes the pixel sees (§5): the displacement map's (faded with w like the displacement
-// itself) plus the bump map's, each at its footprint's LOD, and (far field `variance`) the
-// variance per axis of the slopes the footprint averaged away, E[s²] − E[s]² of the chains'
-// moments, summed over both maps (independent bands).
+// itself) plus the bump map's, each averaged over its footprint's taps, and (far field
+// `variance`) the variance per axis of the slopes the footprint averaged away,
+// E[s²] − E[s]² of the chains' moments, summed over both maps (independent bands). The
+// displacement map's slopes are geometry, so the eye above the sea sees its facets weighted
+// by their projected area: the variance of its taps' slopes along h (the waves the footprint
+// spans lengthwise) is replaced by that of the visible facets and the mean slope shifted by
+// theirs. The bump map's slopes only bend the normal: no facet of theirs hides another.
 fn filtered_slopes(in: VertexOut) -> vec3<f32> {
-    let lods = footprint_lods(in.rel);
+    let rel = in.rel;
+    let fp = footprint(rel);
     let wd = in.weight * frame.passes.waves;
     let wb = frame.passes.waves;
-    let d = textureSampleLevel(displacement_slopes, wrap_linear, in.uv_d, lods.x);
-    let b = textureSampleLevel(bump, wrap_linear, in.uv_b, lods.y);
+    let horizontal = sqrt(rel.x * rel.x + rel.z * rel.z);
+    let h = vec2<f32>(-rel.x, -rel.z) * (1.0 / max(horizontal, 1e-30));
+    let dt = sample_footprint(displacement_slopes, in.uv_d, fp.step * frame.tiling.inv_displacement_size, fp.lods.x, fp.taps_log2, h);
+    let bt = sample_footprint(bump, in.uv_b, fp.step * frame.tiling.inv_bump_size, fp.lods.y, fp.taps_log2, h);
+    let d = dt.mean;
+    let b = bt.mean;
+    let sd = d.xy * wd;
+    let sb = b.xy * wb;
+    var s = vec2<f32>(sd.x + sb.x, sd.y + sb.y);
     var variance = 0.0;
     if (frame.far.mode == 2.0) {
         let vd = max(d.z - d.x * d.x, 0.0) + max(d.w - d.y * d.y, 0.0);
         let vb = max(b.z - b.x * b.x, 0.0) + max(b.w - b.y * b.y, 0.0);
         variance = 0.5 * (vd * (wd * wd) + vb * (wb * wb));
+        if (rel.y < 0.0) {
+            let mu_raw = d.x * h.x + d.y * h.y;
+            let mu = mu_raw * wd;
+            let var_geo = max(dt.along_sq - mu_raw * mu_raw, 0.0) * (wd * wd);
+            let dist = sqrt(rel.x * rel.x + rel.y * rel.y + rel.z * rel.z);
+            let vis = visible_slopes(mu, var_geo, -rel.y / dist, horizontal / dist);
+            s = s + h * (vis.x - mu);
+            variance = max(variance + 0.5 * (vis.y - var_geo), 0.0);
+        }
     }
-    let sd = d.xy * wd;
-    let sb = b.xy * wb;
-    return vec3<f32>(sd.x + sb.x, sd.y + sb.y, variance);
+    return vec3<f32>(s.x, s.y, variance);
 }
 
 // Bumped normal (§5) of the filtered slopes.

@@ -220,3 +220,129 @@ fn slope_variance_per_footprint_is_the_spectrum_beyond_it() {
         }
     }
 }
+
+/// The visible facets' slope moments, by direct quadrature in f64 (independent of the
+/// truncated-normal closed form): ∫ s^k N(s; μ, σ²) max(0, v_y − v_h s) ds over the facets.
+fn visible_moments_direct(mu: f64, sigma: f64, vy: f64, vh: f64) -> (f64, f64) {
+    let n = 200_000;
+    let (lo, hi) = (mu - 10.0 * sigma, mu + 10.0 * sigma);
+    let ds = (hi - lo) / f64::from(n);
+    let (mut w0, mut w1, mut w2) = (0.0, 0.0, 0.0);
+    for i in 0..n {
+        let s = lo + (f64::from(i) + 0.5) * ds;
+        let p = (-0.5 * ((s - mu) / sigma).powi(2)).exp() * (vy - vh * s).max(0.0);
+        w0 += p;
+        w1 += p * s;
+        w2 += p * s * s;
+    }
+    let mean = w1 / w0;
+    (mean, w2 / w0 - mean * mean)
+}
+
+/// The water shader's `visible_slopes` (far field `variance`: the displacement map's facets
+/// weighted by their area projected towards the eye) against direct quadrature, over view
+/// elevations from 0.5° to 80°, mean slopes towards and away from the eye and slope spreads
+/// from 0.01 to 0.3, where its standardised mean is at least `VISIBLE_A_MIN`; below that it
+/// is clamped by design and must still be finite and face the eye. Negative control: the
+/// unweighted moments (μ, σ²) miss by more than the tolerance at grazing views.
+#[test]
+fn visible_slopes_match_direct_quadrature() {
+    use ocean_cpu::shaders::water::{VISIBLE_A_MIN, visible_slopes};
+    let mut checked = 0;
+    let mut control_misses = 0;
+    for elevation_deg in [0.5f64, 2.0, 5.0, 15.0, 40.0, 80.0] {
+        let (vy, vh) = (elevation_deg.to_radians().sin(), elevation_deg.to_radians().cos());
+        for sigma in [0.01f64, 0.05, 0.1, 0.3] {
+            for mu in [-0.2f64, -0.05, 0.0, 0.03, 0.1] {
+                let got = visible_slopes(mu as f32, (sigma * sigma) as f32, vy as f32, vh as f32);
+                let (gm, gv) = (f64::from(got.x), f64::from(got.y));
+                assert!(gm.is_finite() && gv.is_finite() && gv >= 0.0, "{got:?}");
+                let a = (vy - vh * mu) / (vh * sigma);
+                if a < f64::from(VISIBLE_A_MIN) {
+                    assert!(vy - vh * gm > 0.0, "clamped: the mean facet faces the eye");
+                    continue;
+                }
+                let (mean, var) = visible_moments_direct(mu, sigma, vy, vh);
+                // f32 arithmetic and A&S 7.1.26's 1.5e-7 in Φ: relative to the spread.
+                let tol = 2e-4 * sigma;
+                assert!(
+                    (gm - mean).abs() <= tol,
+                    "mean {gm} vs {mean} (μ {mu}, σ {sigma}, {elevation_deg}°)"
+                );
+                assert!(
+                    (gv.sqrt() - var.sqrt()).abs() <= 2e-3 * sigma,
+                    "σ {} vs {} (μ {mu}, σ {sigma}, {elevation_deg}°)",
+                    gv.sqrt(),
+                    var.sqrt()
+                );
+                checked += 1;
+                if (mu - mean).abs() > tol || (sigma - var.sqrt()).abs() > 2e-3 * sigma {
+                    control_misses += 1;
+                }
+            }
+        }
+    }
+    assert!(checked >= 80, "{checked} cases in the unclamped range");
+    assert!(control_misses >= 40, "the unweighted moments miss only {control_misses} cases");
+}
+
+/// Φ of the shader (A&S 7.1.26) against the f64 error function of the spectrum code's
+/// independent series, across the range the visible-slope weights use.
+#[test]
+fn normal_cdf_is_within_its_published_bound() {
+    use ocean_cpu::shaders::water::normal_cdf;
+    for i in -400..=400 {
+        let a = f64::from(i) * 0.02;
+        let exact = 0.5 * libm_erfc(-a / std::f64::consts::SQRT_2);
+        let got = f64::from(normal_cdf(a as f32));
+        assert!((got - exact).abs() < 5e-7, "Φ({a}) = {got}, exact {exact}");
+    }
+}
+
+/// erfc(x) by the Taylor series of erf (|x| < 3) or its continued fraction (x ≥ 3),
+/// in f64 to ~1e-14: an evaluation independent of A&S 7.1.26.
+fn libm_erfc(x: f64) -> f64 {
+    if x < 0.0 {
+        return 2.0 - libm_erfc(-x);
+    }
+    if x < 3.0 {
+        // erf(x) = 2/√π Σ (−1)^n x^(2n+1) / (n! (2n+1)).
+        let mut term = x;
+        let mut sum = x;
+        for n in 1..200 {
+            term *= -x * x / f64::from(n);
+            sum += term / f64::from(2 * n + 1);
+            if term.abs() < 1e-18 {
+                break;
+            }
+        }
+        return 1.0 - 2.0 / std::f64::consts::PI.sqrt() * sum;
+    }
+    // Lentz's continued fraction erfc(x) = e^{−x²}/√π · 1/(x + 1/2/(x + 1/(x + 3/2/(x + …)))).
+    let mut f = x;
+    for k in (1..200).rev() {
+        f = x + f64::from(k) / 2.0 / f;
+    }
+    (-x * x).exp() / std::f64::consts::PI.sqrt() / f
+}
+
+/// The water shader's arithmetic-only e^x (so both back ends round alike) against f64's exp
+/// over its whole range [EXP_MIN, 0], relative: within 2e-7 (the polynomial and its rounding)
+/// plus |x|·1e-7 (x·log2 e rounded to f32 moves e^x by |x|·2⁻²⁴ relative, as in any f32 exp
+/// with this reduction); and it clamps outside the range.
+#[test]
+fn arithmetic_exp_matches_exp() {
+    use ocean_cpu::shaders::water::{EXP_MIN, exp_arith};
+    let mut worst = 0.0f64;
+    for i in 0..=80_000 {
+        let x = f64::from(EXP_MIN) * f64::from(i) / 80_000.0;
+        let got = f64::from(exp_arith(x as f32));
+        let exact = f64::from(x as f32).exp();
+        let err = (got / exact - 1.0).abs();
+        assert!(err <= 2e-7 + x.abs() * 1e-7, "e^{x}: relative error {err}");
+        worst = worst.max(err);
+    }
+    eprintln!("exp_arith: worst relative error {worst:.2e} over [{EXP_MIN}, 0]");
+    assert_eq!(exp_arith(1.0), 1.0, "clamped to e^0 above 0");
+    assert_eq!(exp_arith(-1e30), exp_arith(EXP_MIN), "clamped below EXP_MIN");
+}

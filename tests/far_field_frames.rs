@@ -9,15 +9,10 @@
 use ocean_core::camera::Camera;
 use ocean_core::plan::OutputKind;
 use ocean_core::scene::Scene;
-use ocean_core::supersample::{box_filter, grid_side};
+use ocean_core::supersample::{band_error, band_luminance, box_filter, grid_side, sea_bands};
 
 const W: u32 = 160;
 const H: u32 = 90;
-
-/// log(1 + luminance) (Rec. 709 weights).
-fn log_l(p: &[f32; 4]) -> f64 {
-    (1.0 + 0.2126 * f64::from(p[0]) + 0.7152 * f64::from(p[1]) + 0.0722 * f64::from(p[2])).ln()
-}
 
 /// The scene's HDR frame at W × H, `spp` samples per pixel, far field `far`, time + `dt`.
 fn frame(scene: &Scene, far: &str, spp: u32, dt: f64) -> Vec<[f32; 4]> {
@@ -30,52 +25,15 @@ fn frame(scene: &Scene, far: &str, spp: u32, dt: f64) -> Vec<[f32; 4]> {
     box_filter(&r.buffers.hdr.color, W, H, k)
 }
 
-/// The rows of the three bands of sea (by the depression of the pixel row's centre ray
-/// below the horizon): horizon < 2°, middle 2°–8°, near > 8°.
+/// The rows of the three bands of sea (ocean-core's `sea_bands`).
 fn bands(scene: &Scene) -> [Vec<u32>; 3] {
     let mut s = scene.clone();
     (s.camera.width, s.camera.height) = (W, H);
-    let camera = Camera::from_scene(&s.camera).unwrap();
-    let mut out = [Vec::new(), Vec::new(), Vec::new()];
-    for y in 0..H {
-        let ndc_y = 1.0 - (f64::from(y) + 0.5) / f64::from(H) * 2.0;
-        let d = camera.ray_direction(0.0, ndc_y);
-        let depression = (-d.y).asin().to_degrees();
-        if depression <= 0.0 {
-            continue;
-        }
-        out[if depression < 2.0 {
-            0
-        } else if depression < 8.0 {
-            1
-        } else {
-            2
-        }]
-        .push(y);
-    }
-    out
-}
-
-fn band_error(a: &[[f32; 4]], b: &[[f32; 4]], rows: &[u32]) -> f64 {
-    let mut sum = 0.0;
-    for &y in rows {
-        for x in 0..W {
-            let i = (y * W + x) as usize;
-            sum += (log_l(&a[i]) - log_l(&b[i])).abs();
-        }
-    }
-    sum / (rows.len() as f64 * f64::from(W))
+    sea_bands(&Camera::from_scene(&s.camera).unwrap(), H)
 }
 
 fn band_mean(a: &[[f32; 4]], rows: &[u32]) -> f64 {
-    let mut sum = 0.0;
-    for &y in rows {
-        for x in 0..W {
-            let p = a[(y * W + x) as usize];
-            sum += 0.2126 * f64::from(p[0]) + 0.7152 * f64::from(p[1]) + 0.0722 * f64::from(p[2]);
-        }
-    }
-    sum / (rows.len() as f64 * f64::from(W))
+    band_luminance(a, W, rows)
 }
 
 fn scenes() -> Vec<(&'static str, Scene)> {
@@ -94,9 +52,8 @@ fn scenes() -> Vec<(&'static str, Scene)> {
 /// The checks that hold (and the table the note quotes): in every band of every scene,
 /// `variance` and `mip` flicker at most 1.5× as much as the 64-sample frames between two
 /// frames 1/30 s apart, and `none` (negative control) more; `variance` is closer to the
-/// 64-sample frame than `none`. DESIGN's 0.06 per band is not yet met everywhere (the table:
-/// the middle band of the grazing views is 17–37 % too bright), so it is printed, not
-/// asserted.
+/// 64-sample frame than `none`. DESIGN's 0.06 per band is met in 11 of the 12 bands; the
+/// default scene's middle band is at 0.068 (README's table), so it is printed, not asserted.
 #[test]
 fn far_fields_against_the_64_sample_frame() {
     let dt = 1.0 / 30.0;
@@ -116,10 +73,10 @@ fn far_fields_against_the_64_sample_frame() {
                 if rows.is_empty() {
                     continue;
                 }
-                let e = band_error(&a, &truth, rows);
+                let e = band_error(&a, &truth, W, rows);
                 let ratio = band_mean(&a, rows) / band_mean(&truth, rows);
-                let flicker = band_error(&a, &b, rows);
-                let truth_flicker = band_error(&truth, &truth_next, rows);
+                let flicker = band_error(&a, &b, W, rows);
+                let truth_flicker = band_error(&truth, &truth_next, W, rows);
                 eprintln!(
                     "{name} | {far} | {band} | {e:.4} | {ratio:.3} | {flicker:.4} ({truth_flicker:.4})"
                 );

@@ -260,6 +260,9 @@ fn rust_consts() -> Vec<(&'static str, f64)> {
     vec![
         ("SHADOW_BIAS", f64::from(water::SHADOW_BIAS)),
         ("SQRT2", f64::from(water::SQRT2)),
+        ("VISIBLE_A_MIN", f64::from(water::VISIBLE_A_MIN)),
+        ("VISIBLE_A_MAX", f64::from(water::VISIBLE_A_MAX)),
+        ("EXP_MIN", f64::from(water::EXP_MIN)),
         ("HDR_MAX", f64::from(tonemap::HDR_MAX)),
         ("SRGB_INV_GAMMA", f64::from(tonemap::SRGB_INV_GAMMA)),
         ("TAU", f64::from(waves::TAU)),

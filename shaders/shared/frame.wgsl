@@ -70,7 +70,7 @@ struct FarFieldBlock {
     filter_r_offset: f32,
     filter_t_scale: f32,
     filter_t_offset: f32,
-    pad0: f32,
+    max_aniso_log2: f32,
     pad1: f32,
 }
 

@@ -10,14 +10,27 @@
 //!   expectation of the Fresnel term and of the sun's highlight over a Gaussian slope
 //!   distribution of that variance ([`FresnelFilterTable`], [`phong_filtered_exponent`]).
 //!
-//! **The footprint** (the water shader's `footprint_lods`): a pixel subtends δ = 2·tan(fov_y/2)/height radians at
-//! the image centre; at distance d the pixel is d·δ across, and a plane seen at cos θ_v from
-//! its normal stretches it to d·δ/cos θ_v along the view. The LOD is log2 of the longer side
-//! in texels of the map (the isotropic choice a GPU makes without anisotropic filtering): the
-//! shorter side is over-filtered, and the variance technique puts what that loses back into
-//! the BRDF. The LOD is explicit (`textureSampleLevel`), not the GPU's derivative-based one,
-//! so both back ends select levels from the same f32 arithmetic, with no 2×2 quads, and a
-//! footprint does not jump at the edges of the far patch's long triangles (see the README).
+//! **The footprint** (the water shader's `footprint`): a pixel subtends δ = 2·tan(fov_y/2)/height
+//! radians at the image centre; at distance d it is d·δ across, and a plane seen at cos θ_v
+//! from its normal stretches it to d·δ/cos θ_v along the view's horizontal direction. The
+//! pixel takes 2^k taps along that long axis, k = ⌈log2(long/short)⌉ ≤ log2
+//! [`MAX_ANISOTROPY`], spaced long/2^k apart, each a trilinear sample at the LOD of
+//! max(short, long/2^k) in the map's texels, and averages them (anisotropic filtering; with
+//! k = 0 the isotropic choice of the longer side, which over-filters the shorter one and
+//! stretched the unresolved variance over 16× the area at grazing views). The LOD is explicit
+//! (`textureSampleLevel`), not the GPU's derivative-based one, so both back ends select
+//! levels from the same f32 arithmetic, with no 2×2 quads, and a footprint does not jump at
+//! the edges of the far patch's long triangles (see the README).
+//!
+//! **Visible facets** (far field `variance`): the displacement map's slopes are geometry, and
+//! at a grazing view the eye sees the wave faces turned towards it and not their backs. A
+//! facet of slope s along h (the horizontal direction towards the eye) shows in proportion to
+//! its area projected towards the eye, ∝ max(0, v_y − v_h s) per unit of sea; the shader
+//! replaces the Gaussian of the displacement slopes the taps span lengthwise (mean and
+//! variance of their slopes along h) by that of the visible facets — a truncated-normal
+//! moment, in closed form — which tilts the mean normal towards the eye (at 4° above the sea
+//! by about as much as the view's own elevation). The bump map's slopes only bend the normal,
+//! as in the 64-sample frame: no facet of theirs hides another, and they are not reweighted.
 
 use std::sync::{Arc, Mutex, OnceLock};
 
@@ -75,6 +88,10 @@ pub fn mip_level_size(width: u32, height: u32, k: u32) -> [u32; 2] {
 pub fn mip_level_row(height: u32, k: u32) -> u32 {
     (0..k).map(|i| (height >> i).max(1)).sum()
 }
+
+/// The most taps a pixel takes along its footprint's long axis (a power of two; the common
+/// GPU limit of 16). Beyond a 16:1 footprint the taps' LOD rises to the long side / 16.
+pub const MAX_ANISOTROPY: u32 = 16;
 
 /// The largest slope standard deviation the filtered Fresnel table holds; a larger σ reads
 /// the table's last row (clamp-to-edge). Cox & Munk's sea at 20 m/s has σ ≈ 0.32.

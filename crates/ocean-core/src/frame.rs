@@ -153,8 +153,9 @@ pub struct FarFieldBlock {
     pub filter_t_scale: f32,
     /// d of that.
     pub filter_t_offset: f32,
-    /// Padding.
-    pub pad0: f32,
+    /// log2 of the most taps a pixel takes along its footprint's long axis (anisotropic
+    /// filtering; 0: isotropic, the long side's LOD).
+    pub max_aniso_log2: f32,
     /// Padding.
     pub pad1: f32,
 }
@@ -187,7 +188,7 @@ impl FarFieldBlock {
             filter_r_offset,
             filter_t_scale,
             filter_t_offset,
-            pad0: 0.0,
+            max_aniso_log2: crate::far_field::MAX_ANISOTROPY.ilog2() as f32,
             pad1: 0.0,
         }
     }

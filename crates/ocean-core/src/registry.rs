@@ -394,7 +394,7 @@ pub const SHARED: &[SharedFile] = &[
                 filter_r_offset,
                 filter_t_scale,
                 filter_t_offset,
-                pad0,
+                max_aniso_log2,
                 pad1
             }),
             block!(FrameUniforms { view, sun, tiling, water, hu, passes, ambient, far }),

@@ -62,6 +62,59 @@ pub fn box_filter(samples: &[[f32; 4]], width: u32, height: u32, k: u32) -> Vec<
     out
 }
 
+/// The bands of sea the far-field checks measure separately, by the depression of a pixel
+/// row's centre ray below the horizon (DESIGN.md, "Filtering and ground truth").
+pub const BAND_NAMES: [&str; 3] = ["horizon", "middle", "near"];
+
+/// Upper bounds of the horizon and middle bands' depressions, degrees: horizon below 2°,
+/// middle 2°–8°, near beyond.
+pub const BAND_EDGES_DEG: [f64; 2] = [2.0, 8.0];
+
+/// The pixel rows of each band of [`BAND_NAMES`] for `camera` at `height` rows (rows whose
+/// centre ray does not point below the horizon belong to none). The rows' rays are taken at
+/// the image's centre column: a band is a set of whole rows.
+pub fn sea_bands(camera: &crate::camera::Camera, height: u32) -> [Vec<u32>; 3] {
+    let mut out = [Vec::new(), Vec::new(), Vec::new()];
+    for y in 0..height {
+        let ndc_y = 1.0 - (f64::from(y) + 0.5) / f64::from(height) * 2.0;
+        let d = camera.ray_direction(0.0, ndc_y);
+        let depression = (-d.y).asin().to_degrees();
+        if depression > 0.0 {
+            let band = BAND_EDGES_DEG.iter().filter(|&&e| depression >= e).count();
+            out[band].push(y);
+        }
+    }
+    out
+}
+
+/// log(1 + luminance) of a linear RGBA pixel (Rec. 709 weights), the metric's scale: close
+/// to relative error in bright pixels, to absolute error in dark ones.
+pub fn log_luminance(p: &[f32; 4]) -> f64 {
+    (1.0 + luminance(p)).ln()
+}
+
+/// Rec. 709 luminance of a linear RGBA pixel.
+pub fn luminance(p: &[f32; 4]) -> f64 {
+    0.2126 * f64::from(p[0]) + 0.7152 * f64::from(p[1]) + 0.0722 * f64::from(p[2])
+}
+
+/// Mean |log(1 + L_a) − log(1 + L_b)| over the rows `rows` of two `width`-wide frames; NaN
+/// for no rows.
+pub fn band_error(a: &[[f32; 4]], b: &[[f32; 4]], width: u32, rows: &[u32]) -> f64 {
+    band_mean(width, rows, |i| (log_luminance(&a[i]) - log_luminance(&b[i])).abs())
+}
+
+/// Mean luminance over the rows `rows` of a `width`-wide frame; NaN for no rows.
+pub fn band_luminance(a: &[[f32; 4]], width: u32, rows: &[u32]) -> f64 {
+    band_mean(width, rows, |i| luminance(&a[i]))
+}
+
+fn band_mean(width: u32, rows: &[u32], f: impl Fn(usize) -> f64) -> f64 {
+    let w = width as usize;
+    let sum: f64 = rows.iter().flat_map(|&y| (0..w).map(move |x| y as usize * w + x)).map(f).sum();
+    sum / (rows.len() * w) as f64
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -85,5 +138,38 @@ mod tests {
         assert_eq!(out, vec![[1.5, 3.0, 0.0, 1.0], [8.0, 16.0, 0.0, 1.0]]);
         // k = 1 is the identity.
         assert_eq!(box_filter(&samples, 4, 2, 1), samples.to_vec());
+    }
+
+    #[test]
+    fn band_metrics_average_their_rows_only() {
+        // 2 × 3 frame: row 0 luminance 1, row 1 luminance e − 1 (log 1), row 2 luminance 3.
+        let grey = |v: f32| [v, v, v, 1.0];
+        let e1 = std::f32::consts::E - 1.0;
+        let a = [grey(1.0), grey(1.0), grey(e1), grey(e1), grey(3.0), grey(3.0)];
+        let b = [grey(0.0); 6];
+        assert!((band_luminance(&a, 2, &[0, 2]) - 2.0).abs() < 1e-6);
+        assert!((band_error(&a, &b, 2, &[1]) - 1.0).abs() < 1e-6);
+        assert_eq!(band_error(&a, &a, 2, &[0, 1, 2]), 0.0);
+        assert!(band_error(&a, &b, 2, &[]).is_nan());
+    }
+
+    #[test]
+    fn bands_split_the_rows_below_the_horizon_by_depression() {
+        let scene = crate::scene::Scene::builtin();
+        let mut cam = scene.camera.clone();
+        cam.height = 180;
+        let camera = crate::camera::Camera::from_scene(&cam).expect("the built-in camera");
+        let bands = sea_bands(&camera, 180);
+        for (band, rows) in bands.iter().enumerate() {
+            for &y in rows {
+                let ndc_y = 1.0 - (f64::from(y) + 0.5) / 180.0 * 2.0;
+                let dep = (-camera.ray_direction(0.0, ndc_y).y).asin().to_degrees();
+                let (lo, hi) = [(0.0, 2.0), (2.0, 8.0), (8.0, 90.0)][band];
+                assert!(dep > lo && dep <= hi + 1e-9 && (band == 2 || dep < hi), "{y}: {dep}");
+            }
+        }
+        // Every band of the built-in view holds rows, and rows are in order horizon → near.
+        assert!(bands.iter().all(|r| !r.is_empty()));
+        assert!(bands[0].last() < bands[1].first() && bands[1].last() < bands[2].first());
     }
 }

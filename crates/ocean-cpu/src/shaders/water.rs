@@ -178,16 +178,43 @@ pub fn lod_log2(x: f32) -> f32 {
     (exp - 1) as f32 + m * (1.442_544_9 + m * (-0.718_145_2 + m * 0.275_600_3))
 }
 
-/// `footprint_lods(rel)`.
-pub fn footprint_lods(rel: Vec3, frame: &FrameUniforms) -> Vec2 {
-    if frame.far.mode == 0.0 {
-        return vec2(0.0, 0.0);
+/// `Footprint`: where the pixel's taps on the slope maps lie.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Footprint {
+    /// LOD of every tap on the displacement map (x) and the bump map (y).
+    pub lods: Vec2,
+    /// log2 of the number of taps along the footprint's long axis (a whole number).
+    pub taps_log2: f32,
+    /// Metres between two taps along the long axis, as a vector on the sea plane (x, z).
+    pub step: Vec2,
+}
+
+/// `footprint(rel)`.
+pub fn footprint(rel: Vec3, frame: &FrameUniforms) -> Footprint {
+    let far = &frame.far;
+    if far.mode == 0.0 {
+        return Footprint { lods: vec2(0.0, 0.0), taps_log2: 0.0, step: vec2(0.0, 0.0) };
     }
     let dist = sqrt(rel.x * rel.x + rel.y * rel.y + rel.z * rel.z);
     let cos_view = abs(rel.y) / max(dist, 1e-30);
-    let w = dist * frame.far.pixel_angle / max(cos_view, 1e-4);
-    let l = lod_log2(clamp(w, 1e-30, 1e30)) + frame.far.lod_bias;
-    vec2(l + frame.far.lod_offset_d, l + frame.far.lod_offset_b)
+    let short = clamp(dist * far.pixel_angle, 1e-30, 1e30);
+    let long = clamp(short / max(cos_view, 1e-4), 1e-30, 1e30);
+    let l_short = lod_log2(short);
+    let l_long = lod_log2(long);
+    let k = clamp((l_long - l_short).ceil(), 0.0, far.max_aniso_log2);
+    let l = max(l_short, l_long - k) + far.lod_bias;
+    let horizontal = sqrt(rel.x * rel.x + rel.z * rel.z);
+    let spacing = long * ldexp(1.0, -(k as i32));
+    Footprint {
+        lods: vec2(l + far.lod_offset_d, l + far.lod_offset_b),
+        taps_log2: k,
+        step: vec2(rel.x, rel.z) * (spacing / max(horizontal, 1e-30)),
+    }
+}
+
+/// WGSL `ldexp(x, e)` for the exponents the footprint uses (|e| < 126: exact).
+fn ldexp(x: f32, e: i32) -> f32 {
+    x * f32::from_bits(((127 + e) as u32) << 23)
 }
 
 /// `textureSampleLevel` on a chain (a one-level chain is a plain texture).
@@ -195,23 +222,136 @@ fn sample_chain(chain: &MipChain, coords: Vec2, lod: f32) -> Vec4 {
     texture_sample_level_mip(chain, &WRAP_LINEAR, coords.into(), lod).into()
 }
 
+/// `Taps`: a chain averaged over the footprint's taps.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Taps {
+    /// The mean of the taps' samples.
+    pub mean: Vec4,
+    /// The mean of the squared slope along `h`, (x·h.x + y·h.y)², over the taps.
+    pub along_sq: f32,
+}
+
+/// `sample_footprint(chain, uv, step_uv, lod, taps_log2, h)`.
+pub fn sample_footprint(
+    chain: &MipChain,
+    uv: Vec2,
+    step_uv: Vec2,
+    lod: f32,
+    taps_log2: f32,
+    h: Vec2,
+) -> Taps {
+    let n = ldexp(1.0, taps_log2 as i32);
+    let centre = 0.5 * (n - 1.0);
+    let mut sum = Vec4::from([0.0; 4]);
+    let mut sq = 0.0;
+    let mut i = 0.0;
+    while i < n {
+        let t = sample_chain(chain, uv + step_uv * (i - centre), lod);
+        let a = t.x * h.x + t.y * h.y;
+        sum = sum + t;
+        sq += a * a;
+        i += 1.0;
+    }
+    let inv = ldexp(1.0, -(taps_log2 as i32));
+    Taps { mean: sum * inv, along_sq: sq * inv }
+}
+
+/// `EXP_MIN`: `exp_arith`'s arguments are clamped to [EXP_MIN, 0].
+pub const EXP_MIN: f32 = -80.0;
+
+/// `exp_arith(x)`: e^x for x ≤ 0 by + − × only (the WGSL's).
+pub fn exp_arith(x: f32) -> f32 {
+    let z = clamp(x, EXP_MIN, 0.0) * std::f32::consts::LOG2_E;
+    let n = (z + 0.5).floor();
+    let y = (z - n) * std::f32::consts::LN_2;
+    let p = 1.0
+        + y * (1.0
+            + y * (0.5
+                + y * (0.166_666_67
+                    + y * (0.041_666_668
+                        + y * (0.008_333_334 + y * (0.001_388_888_9 + y * 0.000_198_412_7))))));
+    p * ldexp(1.0, n as i32)
+}
+
+/// `normal_cdf(a)`: Φ(a) by Abramowitz & Stegun 7.1.26 (|error| < 1.5e-7).
+pub fn normal_cdf(a: f32) -> f32 {
+    let x = abs(a) * std::f32::consts::FRAC_1_SQRT_2;
+    let t = 1.0 / (1.0 + 0.327_591_1 * x);
+    let poly = ((((1.061_405_4 * t - 1.453_152) * t + 1.421_413_8) * t - 0.284_496_74) * t
+        + 0.254_829_6)
+        * t;
+    let erf = 1.0 - poly * exp_arith(-(x * x));
+    if a < 0.0 { 0.5 - 0.5 * erf } else { 0.5 + 0.5 * erf }
+}
+
+/// `VISIBLE_A_MIN`: below this standardised mean the facets' weights are clamped.
+pub const VISIBLE_A_MIN: f32 = -2.0;
+
+/// `VISIBLE_A_MAX`: above it the reweighting is below f32's resolution and skipped.
+pub const VISIBLE_A_MAX: f32 = 1e4;
+
+/// `visible_slopes(mu, var_geo, vy, vh)`: (mean, variance) of the slope along `h` over the
+/// facets the eye sees.
+pub fn visible_slopes(mu: f32, var_geo: f32, vy: f32, vh: f32) -> Vec2 {
+    let mt = vy - vh * mu;
+    let st = vh * sqrt(var_geo);
+    if st <= 0.0 || mt >= VISIBLE_A_MAX * st {
+        return vec2(mu, var_geo);
+    }
+    let a = max(mt / st, VISIBLE_A_MIN);
+    let pdf = 0.398_942_3 * exp_arith(-0.5 * a * a);
+    let cdf = normal_cdf(a);
+    let w0 = a * cdf + pdf;
+    let mean_u = cdf / w0;
+    let var_u = max((a * cdf + 2.0 * pdf) / w0 - mean_u * mean_u, 0.0);
+    vec2((vy - st * (a + mean_u)) / vh, var_u * (st * st) / (vh * vh))
+}
+
 /// `filtered_slopes(in)`: (s_x, s_z, unresolved variance per axis).
 pub fn filtered_slopes(input: &VertexOut, b: &Bindings<'_>) -> Vec3 {
     let frame = b.frame;
-    let lods = footprint_lods(input.rel, frame);
+    let rel = input.rel;
+    let fp = footprint(rel, frame);
     let wd = input.weight * frame.passes.waves;
     let wb = frame.passes.waves;
-    let d = sample_chain(b.displacement_slopes, input.uv_d, lods.x);
-    let bm = sample_chain(b.bump, input.uv_b, lods.y);
+    let horizontal = sqrt(rel.x * rel.x + rel.z * rel.z);
+    let h = vec2(-rel.x, -rel.z) * (1.0 / max(horizontal, 1e-30));
+    let dt = sample_footprint(
+        b.displacement_slopes,
+        input.uv_d,
+        fp.step * frame.tiling.inv_displacement_size,
+        fp.lods.x,
+        fp.taps_log2,
+        h,
+    );
+    let bt = sample_footprint(
+        b.bump,
+        input.uv_b,
+        fp.step * frame.tiling.inv_bump_size,
+        fp.lods.y,
+        fp.taps_log2,
+        h,
+    );
+    let (d, bm) = (dt.mean, bt.mean);
+    let sd = d.xy() * wd;
+    let sb = bm.xy() * wb;
+    let mut s = vec2(sd.x + sb.x, sd.y + sb.y);
     let mut variance = 0.0;
     if frame.far.mode == 2.0 {
         let vd = max(d.z - d.x * d.x, 0.0) + max(d.w - d.y * d.y, 0.0);
         let vb = max(bm.z - bm.x * bm.x, 0.0) + max(bm.w - bm.y * bm.y, 0.0);
         variance = 0.5 * (vd * (wd * wd) + vb * (wb * wb));
+        if rel.y < 0.0 {
+            let mu_raw = d.x * h.x + d.y * h.y;
+            let mu = mu_raw * wd;
+            let var_geo = max(dt.along_sq - mu_raw * mu_raw, 0.0) * (wd * wd);
+            let dist = sqrt(rel.x * rel.x + rel.y * rel.y + rel.z * rel.z);
+            let vis = visible_slopes(mu, var_geo, -rel.y / dist, horizontal / dist);
+            s = s + h * (vis.x - mu);
+            variance = max(variance + 0.5 * (vis.y - var_geo), 0.0);
+        }
     }
-    let sd = d.xy() * wd;
-    let sb = bm.xy() * wb;
-    vec3(sd.x + sb.x, sd.y + sb.y, variance)
+    vec3(s.x, s.y, variance)
 }
 
 /// `bumped_normal(in)`: the bumped unit normal (§5).
