@@ -32,6 +32,8 @@ use ocean_cpu::shaders::water;
 
 use ocean::output::write_atomic;
 
+mod far_field;
+
 /// Arguments of `ocean report`.
 #[derive(clap::Args, Debug)]
 pub struct Args {
@@ -174,6 +176,17 @@ const KNOBS: &[Knob] = &[
         steps: |c| 2 * (c.runs as u64 + 1),
         ordered: false,
         measure: backend_knob,
+    },
+    Knob {
+        name: "far_field",
+        varies: "what becomes of the waves a pixel cannot resolve ([techniques] far_field: none, \
+                 mip, variance) on the default scene: mean |Δ log(1 + L)| per band of the sea \
+                 (horizon < 2°, middle 2°–8°, near, by depression) against its --spp 64 frame \
+                 of far field none; frame time on the CPU and the GPU (HDR read-back); and the \
+                 cost of --spp itself (4, 16, 64 samples, CPU)",
+        steps: far_field::steps,
+        ordered: false,
+        measure: far_field::measure,
     },
     Knob {
         name: "lod",

@@ -45,6 +45,7 @@ fn csv_problems(text: &str) -> Vec<String> {
         "bump_resolution",
         "reflection_map_resolution",
         "backend",
+        "far_field",
         "lod",
     ] {
         if !knobs.contains(&want) {

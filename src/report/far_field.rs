@@ -1,0 +1,113 @@
+//! The report's `far_field` knob (issue 12): far fields `none`, `mip` and `variance` on the
+//! default scene against its `--spp 64` frame (far field `none`, the same model point-sampled
+//! 64 times per pixel), per band of the sea (ocean-core's `sea_bands`: the depression below
+//! the horizon < 2°, 2°–8°, beyond), and each one's frame time on the CPU and, where an
+//! adapter exists, on the GPU; and the cost of `--spp` itself (4 and 16 samples against 64).
+
+use anyhow::Context;
+use ocean_core::camera::Camera;
+use ocean_core::plan::{FramePlan, OutputKind};
+use ocean_core::scene::Scene;
+use ocean_core::supersample::{BAND_NAMES, band_error, box_filter, grid_side, sea_bands};
+use ocean_gpu::FrameMap;
+
+use super::{CPU, Ctx, Row};
+
+/// The far fields the knob measures, in the technique table's names.
+const FAR_FIELDS: [&str; 3] = ["none", "mip", "variance"];
+
+/// Sample counts whose cost the knob measures against the 64-sample truth.
+const SPPS: [u32; 2] = [4, 16];
+
+/// The error metric of band `b`: mean |Δ log(1 + L)| over its rows.
+const METRICS: [&str; 3] = ["log_l_horizon", "log_l_middle", "log_l_near"];
+
+/// Progress steps of [`measure`]: per timed setting one warm-up and `runs` timed frames.
+pub(super) fn steps(ctx: &Ctx) -> u64 {
+    (2 * FAR_FIELDS.len() + SPPS.len() + 1) as u64 * (ctx.runs as u64 + 1)
+}
+
+/// The default scene at the knob's size with far field `far`, rendered at k× the size.
+fn scene(ctx: &Ctx, far: &str, k: u32) -> Scene {
+    let mut s = Scene::builtin();
+    let (w, h) = ctx.frame_size();
+    (s.camera.width, s.camera.height) = (w * k, h * k);
+    s.techniques.far_field = Some(far.to_string());
+    s
+}
+
+/// The HDR frame of `scene` on the CPU, box-filtered down by `k`.
+fn cpu_hdr(ctx: &Ctx, scene: &Scene, k: u32) -> anyhow::Result<Vec<[f32; 4]>> {
+    let r = ocean_cpu::render_scene(scene, OutputKind::Hdr, &mut |_| {})?;
+    let (w, h) = ctx.frame_size();
+    Ok(box_filter(&r.buffers.hdr.color, w, h, k))
+}
+
+/// Measures the knob: three rows (one per band) per far field and back end, and per sample
+/// count.
+pub(super) fn measure(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
+    let (w, h) = ctx.frame_size();
+    let base = scene(ctx, "none", 1);
+    let bands = sea_bands(&Camera::from_scene(&base.camera)?, h);
+    let truth_scene = scene(ctx, "none", 8);
+    let (truth_ms, truth) = ctx.time(|| {
+        let f = cpu_hdr(ctx, &truth_scene, 8);
+        ctx.step("far_field 64 spp");
+        f
+    })?;
+    let mut rows = Vec::new();
+    let mut push = |setting: String, frame: &[[f32; 4]], ms: f64, backend: &'static str| {
+        for (b, rows_b) in bands.iter().enumerate() {
+            if !rows_b.is_empty() {
+                rows.push(Row {
+                    knob: "far_field",
+                    setting: setting.clone(),
+                    error_metric: METRICS[b],
+                    error: band_error(frame, &truth, w, rows_b),
+                    time_ms: ms,
+                    backend,
+                });
+            }
+        }
+    };
+    push("none 64 spp".into(), &truth, truth_ms, CPU);
+    for spp in SPPS {
+        let k = grid_side(spp)?;
+        let s = scene(ctx, "none", k);
+        let (ms, f) = ctx.time(|| {
+            let f = cpu_hdr(ctx, &s, k);
+            ctx.step("far_field spp");
+            f
+        })?;
+        push(format!("none {spp} spp"), &f, ms, CPU);
+    }
+    for far in FAR_FIELDS {
+        let s = scene(ctx, far, 1);
+        let (ms, f) = ctx.time(|| {
+            let f = cpu_hdr(ctx, &s, 1);
+            ctx.step("far_field cpu");
+            f
+        })?;
+        push(far.to_string(), &f, ms, CPU);
+    }
+    match ocean_gpu::Renderer::new() {
+        Ok(mut gpu) => {
+            for far in FAR_FIELDS {
+                let s = scene(ctx, far, 1);
+                let plan = FramePlan::new(&s, OutputKind::Hdr);
+                let (ms, f) = ctx.time(|| {
+                    let frame = gpu.run_with(&s, &plan, ocean_gpu::Readback::Output)?;
+                    let hdr = frame.map(FrameMap::Hdr).context("the HDR frame")?.texels.clone();
+                    ctx.step("far_field gpu");
+                    Ok(hdr)
+                })?;
+                push(far.to_string(), &f, ms, "gpu");
+            }
+        }
+        Err(e) => {
+            ctx.bar.suspend(|| eprintln!("report: far_field knob has no GPU rows: {e}"));
+        }
+    }
+    debug_assert_eq!(BAND_NAMES.len(), METRICS.len());
+    Ok(rows)
+}
