@@ -36,6 +36,8 @@ fn band_mean(a: &[[f32; 4]], rows: &[u32]) -> f64 {
     band_luminance(a, W, rows)
 }
 
+/// The scenes: the four the issue names (whose table the README quotes), then three more
+/// reference scenes; every check below runs on all seven.
 fn scenes() -> Vec<(&'static str, Scene)> {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("reference/scenes");
     let load = |name: &str| Scene::load(&root.join(format!("{name}.toml"))).unwrap();
@@ -46,14 +48,22 @@ fn scenes() -> Vec<(&'static str, Scene)> {
         ("40 m up", high),
         ("grazing sun", load("grazing_sun")),
         ("storm", load("storm")),
+        ("calm", load("calm")),
+        ("phillips", load("phillips")),
+        ("shallow_reef", load("shallow_reef")),
     ]
 }
+
+/// DESIGN's limit per band against the 64-sample frame (printed against each band: not yet
+/// met everywhere, see the test's doc).
+const BAND_LIMIT: f64 = 0.06;
 
 /// The checks that hold (and the table the note quotes): in every band of every scene,
 /// `variance` and `mip` flicker at most 1.5× as much as the 64-sample frames between two
 /// frames 1/30 s apart, and `none` (negative control) more; `variance` is closer to the
-/// 64-sample frame than `none`. DESIGN's 0.06 per band is met in 11 of the 12 bands; the
-/// default scene's middle band is at 0.068 (README's table), so it is printed, not asserted.
+/// 64-sample frame than `none`. DESIGN's 0.06 per band holds in 11 of the named scenes' 12
+/// bands (the default scene's middle band: 0.068) and the horizon brightness within 10 % in
+/// three of four (grazing sun: 1.17; README's table), so those are printed, not asserted.
 #[test]
 fn far_fields_against_the_64_sample_frame() {
     let dt = 1.0 / 30.0;
@@ -66,6 +76,7 @@ fn far_fields_against_the_64_sample_frame() {
         let truth_next = frame(&scene, "none", 64, dt);
         let bands = bands(&scene);
         let mut none_error = [0.0f64; 3];
+
         for far in ["none", "mip", "variance"] {
             let a = frame(&scene, far, 1, 0.0);
             let b = frame(&scene, far, 1, dt);
@@ -77,8 +88,9 @@ fn far_fields_against_the_64_sample_frame() {
                 let ratio = band_mean(&a, rows) / band_mean(&truth, rows);
                 let flicker = band_error(&a, &b, W, rows);
                 let truth_flicker = band_error(&truth, &truth_next, W, rows);
+                let over = if e > BAND_LIMIT { " (over DESIGN's limit)" } else { "" };
                 eprintln!(
-                    "{name} | {far} | {band} | {e:.4} | {ratio:.3} | {flicker:.4} ({truth_flicker:.4})"
+                    "{name} | {far} | {band} | {e:.4}{over} | {ratio:.3} | {flicker:.4} ({truth_flicker:.4})"
                 );
                 let steady = flicker <= 1.5 * truth_flicker;
                 match far {
