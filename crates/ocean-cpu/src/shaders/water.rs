@@ -231,7 +231,8 @@ pub struct Taps {
     pub along_sq: f32,
 }
 
-/// `sample_footprint(chain, uv, step_uv, lod, taps_log2, h)`.
+/// `sample_footprint(chain, uv, step_uv, lod, taps_log2, h)`: the taps summed pairwise (tap
+/// i into the partial sums by the binary counter of i), so equal taps sum exactly.
 pub fn sample_footprint(
     chain: &MipChain,
     uv: Vec2,
@@ -242,18 +243,28 @@ pub fn sample_footprint(
 ) -> Taps {
     let n = ldexp(1.0, taps_log2 as i32);
     let centre = 0.5 * (n - 1.0);
-    let mut sum = Vec4::from([0.0; 4]);
-    let mut sq = 0.0;
+    let mut partial = [Vec4::from([0.0; 4]); 5];
+    let mut sq_partial = [0.0f32; 5];
     let mut i = 0.0;
     while i < n {
-        let t = sample_chain(chain, uv + step_uv * (i - centre), lod);
+        let mut t = sample_chain(chain, uv + step_uv * (i - centre), lod);
         let a = t.x * h.x + t.y * h.y;
-        sum = sum + t;
-        sq += a * a;
+        let mut q = a * a;
+        let mut carry = i as u32;
+        let mut j = 0;
+        while carry & 1 == 1 {
+            t = partial[j] + t;
+            q += sq_partial[j];
+            carry >>= 1;
+            j += 1;
+        }
+        partial[j] = t;
+        sq_partial[j] = q;
         i += 1.0;
     }
+    let k = taps_log2 as usize;
     let inv = ldexp(1.0, -(taps_log2 as i32));
-    Taps { mean: sum * inv, along_sq: sq * inv }
+    Taps { mean: partial[k] * inv, along_sq: sq_partial[k] * inv }
 }
 
 /// `EXP_MIN`: `exp_arith`'s arguments are clamped to [EXP_MIN, 0].
@@ -307,6 +318,14 @@ pub fn visible_slopes(mu: f32, var_geo: f32, vy: f32, vh: f32) -> Vec2 {
     vec2((vy - st * (a + mean_u)) / vh, var_u * (st * st) / (vh * vh))
 }
 
+/// `subtexel(lod)`: the share of level 0's E[s²] − E[s]² a footprint of LOD `lod` < 0 holds.
+pub fn subtexel(lod: f32) -> f32 {
+    if lod >= 0.0 {
+        return 1.0;
+    }
+    exp_arith(lod * (2.0 * std::f32::consts::LN_2))
+}
+
 /// `filtered_slopes(in)`: (s_x, s_z, unresolved variance per axis).
 pub fn filtered_slopes(input: &VertexOut, b: &Bindings<'_>) -> Vec3 {
     let frame = b.frame;
@@ -338,8 +357,9 @@ pub fn filtered_slopes(input: &VertexOut, b: &Bindings<'_>) -> Vec3 {
     let mut s = vec2(sd.x + sb.x, sd.y + sb.y);
     let mut variance = 0.0;
     if frame.far.mode == 2.0 {
-        let vd = max(d.z - d.x * d.x, 0.0) + max(d.w - d.y * d.y, 0.0);
-        let vb = max(bm.z - bm.x * bm.x, 0.0) + max(bm.w - bm.y * bm.y, 0.0);
+        let vd = (max(d.z - d.x * d.x, 0.0) + max(d.w - d.y * d.y, 0.0)) * subtexel(fp.lods.x);
+        let vb =
+            (max(bm.z - bm.x * bm.x, 0.0) + max(bm.w - bm.y * bm.y, 0.0)) * subtexel(fp.lods.y);
         variance = 0.5 * (vd * (wd * wd) + vb * (wb * wb));
         if rel.y < 0.0 {
             let mu_raw = d.x * h.x + d.y * h.y;
