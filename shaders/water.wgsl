@@ -143,6 +143,11 @@ struct Footprint {
     lods: vec2<f32>,
     taps_log2: f32,
     step: vec2<f32>,
+    // Unit horizontal direction from the point towards the eye (x, z); 0 for `none`.
+    h: vec2<f32>,
+    // The view vector's vertical and horizontal parts, |rel.y|/dist and horizontal/dist.
+    vy: f32,
+    vh: f32,
 }
 
 fn footprint(rel: vec3<f32>) -> Footprint {
@@ -151,6 +156,9 @@ fn footprint(rel: vec3<f32>) -> Footprint {
         fp.lods = vec2<f32>(0.0, 0.0);
         fp.taps_log2 = 0.0;
         fp.step = vec2<f32>(0.0, 0.0);
+        fp.h = vec2<f32>(0.0, 0.0);
+        fp.vy = 0.0;
+        fp.vh = 0.0;
         return fp;
     }
     let dist = sqrt(rel.x * rel.x + rel.y * rel.y + rel.z * rel.z);
@@ -166,6 +174,9 @@ fn footprint(rel: vec3<f32>) -> Footprint {
     fp.lods = vec2<f32>(l + frame.far.lod_offset_d, l + frame.far.lod_offset_b);
     fp.taps_log2 = k;
     fp.step = vec2<f32>(rel.x, rel.z) * (spacing / max(horizontal, 1e-30));
+    fp.h = vec2<f32>(-rel.x, -rel.z) * (1.0 / max(horizontal, 1e-30));
+    fp.vy = abs(rel.y) / max(dist, 1e-30);
+    fp.vh = horizontal / max(dist, 1e-30);
     return fp;
 }
 
@@ -194,7 +205,7 @@ fn sample_footprint(chain: texture_2d<f32>, uv: vec2<f32>, step_uv: vec2<f32>, l
         var j = 0u;
         while ((carry & 1u) == 1u) {
             t = partial[j] + t;
-            q = sq_partial[j] + q;
+            q = q + sq_partial[j];
             carry = carry >> 1u;
             j = j + 1u;
         }
@@ -289,8 +300,7 @@ fn filtered_slopes(in: VertexOut) -> vec3<f32> {
     let fp = footprint(rel);
     let wd = in.weight * frame.passes.waves;
     let wb = frame.passes.waves;
-    let horizontal = sqrt(rel.x * rel.x + rel.z * rel.z);
-    let h = vec2<f32>(-rel.x, -rel.z) * (1.0 / max(horizontal, 1e-30));
+    let h = fp.h;
     let dt = sample_footprint(displacement_slopes, in.uv_d, fp.step * frame.tiling.inv_displacement_size, fp.lods.x, fp.taps_log2, h);
     let bt = sample_footprint(bump, in.uv_b, fp.step * frame.tiling.inv_bump_size, fp.lods.y, fp.taps_log2, h);
     let d = dt.mean;
@@ -307,8 +317,7 @@ fn filtered_slopes(in: VertexOut) -> vec3<f32> {
             let mu_raw = d.x * h.x + d.y * h.y;
             let mu = mu_raw * wd;
             let var_geo = max(dt.along_sq - mu_raw * mu_raw, 0.0) * (wd * wd);
-            let dist = sqrt(rel.x * rel.x + rel.y * rel.y + rel.z * rel.z);
-            let vis = visible_slopes(mu, var_geo, -rel.y / dist, horizontal / dist);
+            let vis = visible_slopes(mu, var_geo, fp.vy, fp.vh);
             s = s + h * (vis.x - mu);
             variance = max(variance + 0.5 * (vis.y - var_geo), 0.0);
         }

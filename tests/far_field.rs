@@ -263,20 +263,22 @@ fn visible_slopes_match_direct_quadrature() {
                     continue;
                 }
                 let (mean, var) = visible_moments_direct(mu, sigma, vy, vh);
-                // f32 arithmetic and A&S 7.1.26's 1.5e-7 in Φ: relative to the spread.
+                // f32: the results are (v_y − s_t(a + ū))/v_h, a difference of terms of size
+                // σ that cancel at grazing views; measured worst 4.9e-5 σ (mean) and
+                // 6.7e-5 σ (spread), the bound 2e-4 σ for both. A&S's 1.5e-7 in Φ is far below.
                 let tol = 2e-4 * sigma;
                 assert!(
                     (gm - mean).abs() <= tol,
                     "mean {gm} vs {mean} (μ {mu}, σ {sigma}, {elevation_deg}°)"
                 );
                 assert!(
-                    (gv.sqrt() - var.sqrt()).abs() <= 2e-3 * sigma,
+                    (gv.sqrt() - var.sqrt()).abs() <= tol,
                     "σ {} vs {} (μ {mu}, σ {sigma}, {elevation_deg}°)",
                     gv.sqrt(),
                     var.sqrt()
                 );
                 checked += 1;
-                if (mu - mean).abs() > tol || (sigma - var.sqrt()).abs() > 2e-3 * sigma {
+                if (mu - mean).abs() > tol || (sigma - var.sqrt()).abs() > tol {
                     control_misses += 1;
                 }
             }
@@ -286,16 +288,18 @@ fn visible_slopes_match_direct_quadrature() {
     assert!(control_misses >= 40, "the unweighted moments miss only {control_misses} cases");
 }
 
-/// Φ of the shader (A&S 7.1.26) against the f64 error function of the spectrum code's
-/// independent series, across the range the visible-slope weights use.
+/// Φ of the shader (A&S 7.1.26) against an independent f64 erfc (below), across the range
+/// the visible-slope weights use: within the published 1.5e-7 plus four f32 roundings of a
+/// value ≤ 1 (4·2⁻²⁴); measured worst 1.7e-7.
 #[test]
 fn normal_cdf_is_within_its_published_bound() {
     use ocean_cpu::shaders::water::normal_cdf;
+    let bound = 1.5e-7 + 4.0 * f64::from(f32::EPSILON) / 2.0;
     for i in -400..=400 {
         let a = f64::from(i) * 0.02;
         let exact = 0.5 * libm_erfc(-a / std::f64::consts::SQRT_2);
         let got = f64::from(normal_cdf(a as f32));
-        assert!((got - exact).abs() < 5e-7, "Φ({a}) = {got}, exact {exact}");
+        assert!((got - exact).abs() < bound, "Φ({a}) = {got}, exact {exact}");
     }
 }
 

@@ -28,9 +28,9 @@
 //! its area projected towards the eye, ∝ max(0, v_y − v_h s) per unit of sea; the shader
 //! replaces the Gaussian of the displacement slopes the taps span lengthwise (mean and
 //! variance of their slopes along h) by that of the visible facets — a truncated-normal
-//! moment, in closed form — which tilts the mean normal towards the eye (at 4° above the sea
-//! by about as much as the view's own elevation). The bump map's slopes only bend the normal,
-//! as in the 64-sample frame: no facet of theirs hides another, and they are not reweighted.
+//! moment, in closed form — which tilts the mean normal towards the eye. The bump map's
+//! slopes only bend the normal, as in the 64-sample frame: no facet of theirs hides another,
+//! and they are not reweighted.
 
 use std::sync::{Arc, Mutex, OnceLock};
 

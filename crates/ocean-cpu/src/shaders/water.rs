@@ -4,7 +4,9 @@
 use ocean_core::frame::FrameUniforms;
 
 use super::shared::frame::{dot3, transform_point, unit};
-use super::wgsl::{Vec2, Vec3, Vec4, abs, clamp, max, sqrt, texture_sample_level, vec2, vec3};
+use super::wgsl::{
+    Vec2, Vec3, Vec4, abs, clamp, frexp, ldexp, max, sqrt, texture_sample_level, vec2, vec3,
+};
 use crate::mip::{MipChain, texture_sample_level_mip};
 use crate::sampler::{AddressMode, FilterMode, Sampler, Texture2D};
 
@@ -163,14 +165,6 @@ fn sun_visibility(rel: Vec3, b: &Bindings<'_>) -> f32 {
     1.0
 }
 
-/// WGSL `frexp(x)` for a normal, finite x: (fract ∈ [0.5, 1), exp) with x = fract·2^exp
-/// (exact: the exponent field rewritten).
-fn frexp(x: f32) -> (f32, i32) {
-    let bits = x.to_bits();
-    let e = ((bits >> 23) & 0xff) as i32;
-    (f32::from_bits((bits & 0x807f_ffff) | (126 << 23)), e - 126)
-}
-
 /// `lod_log2(x)`.
 pub fn lod_log2(x: f32) -> f32 {
     let (fract, exp) = frexp(x);
@@ -187,13 +181,20 @@ pub struct Footprint {
     pub taps_log2: f32,
     /// Metres between two taps along the long axis, as a vector on the sea plane (x, z).
     pub step: Vec2,
+    /// Unit horizontal direction from the point towards the eye (x, z); 0 for `none`.
+    pub h: Vec2,
+    /// The view vector's vertical and horizontal parts, |rel.y|/dist and horizontal/dist.
+    pub vy: f32,
+    /// See `vy`.
+    pub vh: f32,
 }
 
 /// `footprint(rel)`.
 pub fn footprint(rel: Vec3, frame: &FrameUniforms) -> Footprint {
     let far = &frame.far;
     if far.mode == 0.0 {
-        return Footprint { lods: vec2(0.0, 0.0), taps_log2: 0.0, step: vec2(0.0, 0.0) };
+        let zero = vec2(0.0, 0.0);
+        return Footprint { lods: zero, taps_log2: 0.0, step: zero, h: zero, vy: 0.0, vh: 0.0 };
     }
     let dist = sqrt(rel.x * rel.x + rel.y * rel.y + rel.z * rel.z);
     let cos_view = abs(rel.y) / max(dist, 1e-30);
@@ -209,12 +210,10 @@ pub fn footprint(rel: Vec3, frame: &FrameUniforms) -> Footprint {
         lods: vec2(l + far.lod_offset_d, l + far.lod_offset_b),
         taps_log2: k,
         step: vec2(rel.x, rel.z) * (spacing / max(horizontal, 1e-30)),
+        h: vec2(-rel.x, -rel.z) * (1.0 / max(horizontal, 1e-30)),
+        vy: abs(rel.y) / max(dist, 1e-30),
+        vh: horizontal / max(dist, 1e-30),
     }
-}
-
-/// WGSL `ldexp(x, e)` for the exponents the footprint uses (|e| < 126: exact).
-fn ldexp(x: f32, e: i32) -> f32 {
-    x * f32::from_bits(((127 + e) as u32) << 23)
 }
 
 /// `textureSampleLevel` on a chain (a one-level chain is a plain texture).
@@ -333,8 +332,7 @@ pub fn filtered_slopes(input: &VertexOut, b: &Bindings<'_>) -> Vec3 {
     let fp = footprint(rel, frame);
     let wd = input.weight * frame.passes.waves;
     let wb = frame.passes.waves;
-    let horizontal = sqrt(rel.x * rel.x + rel.z * rel.z);
-    let h = vec2(-rel.x, -rel.z) * (1.0 / max(horizontal, 1e-30));
+    let h = fp.h;
     let dt = sample_footprint(
         b.displacement_slopes,
         input.uv_d,
@@ -365,8 +363,7 @@ pub fn filtered_slopes(input: &VertexOut, b: &Bindings<'_>) -> Vec3 {
             let mu_raw = d.x * h.x + d.y * h.y;
             let mu = mu_raw * wd;
             let var_geo = max(dt.along_sq - mu_raw * mu_raw, 0.0) * (wd * wd);
-            let dist = sqrt(rel.x * rel.x + rel.y * rel.y + rel.z * rel.z);
-            let vis = visible_slopes(mu, var_geo, -rel.y / dist, horizontal / dist);
+            let vis = visible_slopes(mu, var_geo, fp.vy, fp.vh);
             s = s + h * (vis.x - mu);
             variance = max(variance + 0.5 * (vis.y - var_geo), 0.0);
         }
