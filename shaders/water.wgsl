@@ -371,22 +371,41 @@ fn fresnel_filtered(f: f32, view: vec3<f32>, n: vec3<f32>, variance: f32) -> f32
     return clamp(f + textureSampleLevel(fresnel_filter, clamp_linear, uv, 0.0).x, 0.0, 1.0);
 }
 
-// The sun's Phong lobe cos^s, or with unresolved slopes of variance σ² its expectation
-// cos^{s'}/(1 + sσ²), s' = s/(1 + sσ²) (ocean-core far_field::phong_filtered_exponent),
-// as c^⌊s'⌋ by multiplications times exp2(frac(s')·log2 c): the transcendental part sees an
-// exponent below 1, so the implementation's log2 error near c = 1 is not multiplied by s'.
-fn phong_lobe(cos_spec: f32, variance: f32) -> f32 {
-    let s = frame.hu.phong_exponent;
-    if (variance > 0.0) {
-        let k = 1.0 + s * variance;
-        if (cos_spec <= 0.0) {
-            return 0.0;
-        }
-        let e = s / k;
-        let whole = floor(e);
-        return pow_int(cos_spec, u32(whole)) * exp2((e - whole) * log2(cos_spec)) / k;
+// The sun's lobe averaged over unresolved slopes of per-axis variance σ² > 0, at u, the
+// bumped view vector's horizontal part (the Fresnel table's axes, which move one for one
+// with the slope). In u the lobe is a Gaussian across the sun's azimuth (variance 1/s) times,
+// along it, two half Gaussians meeting at cos α (the side towards the rim cut there) plus the
+// rim's clamped value beyond (ocean-core far_field::SunLobe, whose constants the block
+// carries); each piece has a closed-form expectation over a Gaussian: a wider, dimmer
+// Gaussian, cut by Φ. A low sun's lobe is squeezed against the rim in u, which an isotropic
+// blur of cos^s in angle (Toksvig) misses: it kept the glitter at the horizon, 17 % too bright.
+fn sun_lobe_filtered(u: vec2<f32>, variance: f32) -> f32 {
+    let far = frame.far;
+    let rh = vec2<f32>(-frame.sun.direction.x, -frame.sun.direction.z);
+    let len = sqrt(rh.x * rh.x + rh.y * rh.y);
+    var rho = vec2<f32>(1.0, 0.0);
+    if (len > 1e-6) {
+        rho = rh * (1.0 / len);
     }
-    return pow_int(cos_spec, u32(s));
+    let ur = u.x * rho.x + u.y * rho.y;
+    let ut = u.y * rho.x - u.x * rho.y;
+    let v = variance;
+    let at = far.sun_tangential;
+    let across = sqrt(at / (at + v)) * exp_arith(-0.5 * ut * ut / (at + v));
+    let beyond = far.sun_rim * normal_cdf((ur - 1.0) / sqrt(v));
+    let c = far.sun_centre;
+    let d = ur - c;
+    // The side towards the zenith, u_r < c: a half Gaussian of variance a₁ over N(ū_r, v).
+    let a1 = far.sun_above;
+    let m1 = (ur * a1 + c * v) / (a1 + v);
+    let w1 = max(sqrt(v * a1 / (v + a1)), 1e-30);
+    let above = sqrt(a1 / (a1 + v)) * exp_arith(-0.5 * d * d / (a1 + v)) * normal_cdf((c - m1) / w1);
+    // The side towards the rim, c < u_r < 1.
+    let a2 = far.sun_below;
+    let m2 = (ur * a2 + c * v) / (a2 + v);
+    let w2 = max(sqrt(v * a2 / (v + a2)), 1e-30);
+    let below = sqrt(a2 / (a2 + v)) * exp_arith(-0.5 * d * d / (a2 + v)) * (normal_cdf((1.0 - m2) / w2) - normal_cdf((c - m2) / w2));
+    return across * (beyond + above + below);
 }
 
 // The sky seen in the unresolved facets (far field `variance`): the reflected sky at the four
@@ -458,7 +477,11 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
         let vb = vec3<f32>(fres.x, fres.z, fres.y);
         let r_sun = vec3<f32>(-frame.sun.direction.x, frame.sun.direction.y, -frame.sun.direction.z);
         let cos_spec = max(dot3(vb, r_sun), 0.0);
-        let spec = frame.sun.radiance * (phong_lobe(cos_spec, variance) * frame.sun.lit);
+        var lobe = pow_int(cos_spec, u32(frame.hu.phong_exponent));
+        if (variance > 0.0) {
+            lobe = sun_lobe_filtered(vec2<f32>(view.x - n.x, view.z - n.z), variance);
+        }
+        let spec = frame.sun.radiance * (lobe * frame.sun.lit);
         let shadow = sun_visibility(in.rel);
         let c = c_reflect * f + c_refract * (1.0 - f) + spec * shadow;
         return vec4<f32>(c, 1.0);

@@ -1,13 +1,13 @@
 //! The `variance` far field's physics (ocean-core `far_field`), against independent
 //! evaluations: the filtered Fresnel term against a direct 2D average of eq. 2 over the slope
-//! distribution, the table against both, and the filtered Phong lobe against a direct average
+//! distribution, the table against both, and the filtered sun lobe against a direct average
 //! of the lobe. Run with `--nocapture` for the figures.
 
 #![allow(clippy::unwrap_used, reason = "a panic in a test is its failure report")]
 
 use ocean_core::far_field::{
     FILTER_RADII, FILTER_SIGMAS, FresnelFilterTable, RADIUS_MAX, SIGMA_MAX, filter_texel_point,
-    fresnel_filtered, fresnel_of_radius, phong_filtered_exponent,
+    fresnel_filtered, fresnel_of_radius,
 };
 use ocean_core::fresnel::fresnel_exact;
 
@@ -102,32 +102,101 @@ fn filtered_table_interpolates_the_filtered_fresnel() {
     assert!(worst.0 < 2e-3, "{worst:?}");
 }
 
+/// The sun's lobe exactly as one point sample of the water shader evaluates it at slope
+/// `slope`: the bumped view vector's horizontal part u = v_h − n_h, the Fresnel table's unit
+/// vector (u, √(1 − |u|²)) or, beyond |u| = 1, its rim (u/|u|, 0), and cos^e of its angle to
+/// the mirrored sun (−l_x, l_y, −l_z). `v_h` is the view vector's horizontal part.
+fn lobe_at(v_h: [f64; 2], slope: [f64; 2], sun: [f64; 3], e: f64) -> f64 {
+    let k = 1.0 / (1.0 + slope[0] * slope[0] + slope[1] * slope[1]).sqrt();
+    let u = [v_h[0] + slope[0] * k, v_h[1] + slope[1] * k];
+    let r2 = u[0] * u[0] + u[1] * u[1];
+    let (x, y, z) = if r2 < 1.0 {
+        (u[0], u[1], (1.0 - r2).sqrt())
+    } else {
+        (u[0] / r2.sqrt(), u[1] / r2.sqrt(), 0.0)
+    };
+    (-x * sun[0] + z * sun[1] - y * sun[2]).max(0.0).powf(e)
+}
+
+/// E[lobe] over slopes N(0, σ² I) by the midpoint rule over ±5.5σ, the step a third of the
+/// lobe's narrowest width in u (sin α/√e, at least 1/e) and at most σ/6.
+fn lobe_average(v_h: [f64; 2], sigma: f64, sun: [f64; 3], e: f64) -> f64 {
+    let width = (sun[1] / e.sqrt()).max(1.0 / e);
+    let h = (width / 3.0).min(sigma / 6.0);
+    let m = (11.0 * sigma / h).ceil() as usize;
+    let h = 11.0 * sigma / m as f64;
+    let (mut sw, mut swl) = (0.0, 0.0);
+    for a in 0..m {
+        let x = -5.5 * sigma + (a as f64 + 0.5) * h;
+        let wx = (-x * x / (2.0 * sigma * sigma)).exp();
+        for b in 0..m {
+            let y = -5.5 * sigma + (b as f64 + 0.5) * h;
+            let w = wx * (-y * y / (2.0 * sigma * sigma)).exp();
+            sw += w;
+            swl += w * lobe_at(v_h, [x, y], sun, e);
+        }
+    }
+    swl / sw
+}
+
+/// The far field's sun lobe (the water shader's `sun_lobe_filtered`, through the CPU mirror
+/// and the block's f64 constants) against a direct average of the lobe the point-sampled
+/// frame evaluates, for suns from 3° to 89° high and slope deviations 0.03–0.15, at views
+/// around the glitter's peak and across it. The error is measured against the brightest
+/// average of the same sun and σ (the glint's scale). Negative control: the isotropic blur of
+/// cos^s in angle (Toksvig), which the far field used before, misses a low sun's lobe.
 #[test]
-fn filtered_phong_matches_a_direct_average_of_the_lobe() {
-    // E over α ~ N(ᾱ, σ² I) of exp(−s|α|²/2), by the midpoint rule, against the closed form
-    // exp(−s'|ᾱ|²/2)/(1 + sσ²).
-    for (s, var, mean) in [(400.0f64, 1e-3f64, 0.02f64), (400.0, 1e-2, 0.1), (50.0, 4e-3, 0.0)] {
-        let sigma = var.sqrt();
-        let m = 600;
-        let h = 12.0 * sigma / m as f64;
-        let (mut sw, mut swf) = (0.0, 0.0);
-        for a in 0..m {
-            let x = mean - 6.0 * sigma + (a as f64 + 0.5) * h;
-            for b in 0..m {
-                let y = -6.0 * sigma + (b as f64 + 0.5) * h;
-                let w = (-((x - mean).powi(2) + y * y) / (2.0 * var)).exp();
-                sw += w;
-                swf += w * (-s * (x * x + y * y) / 2.0).exp();
+fn filtered_sun_lobe_matches_a_direct_average_of_the_lobe() {
+    use ocean_cpu::shaders::water::sun_lobe_filtered;
+    let e = 400.0;
+    let mut u: ocean_core::frame::FrameUniforms = bytemuck::Zeroable::zeroed();
+    u.hu.phong_exponent = e as f32;
+    let (mut worst, mut worst_toksvig) = (0.0f64, 0.0f64);
+    for alpha_deg in [3.0f64, 10.0, 30.0, 60.0, 89.0] {
+        let alpha = alpha_deg.to_radians();
+        // Ahead of the eye, which looks along −z: the view vector's horizontal part is +z.
+        let sun = [0.0, alpha.sin(), -alpha.cos()];
+        u.sun.direction = sun.map(|c| c as f32);
+        u.far = u.far.with_sun(sun[1], e);
+        for sigma in [0.005f64, 0.03, 0.08, 0.15] {
+            let mut rows = Vec::new();
+            for beta_deg in [0.3f64, 1.0, 2.0, 4.0, 8.0, 15.0, 30.0, 60.0, 85.0] {
+                for azimuth in [0.0f64, 0.04, 0.1, 0.25] {
+                    let beta = beta_deg.to_radians();
+                    let v_h = [beta.cos() * azimuth.sin(), beta.cos() * azimuth.cos()];
+                    let direct = lobe_average(v_h, sigma, sun, e);
+                    let var = (sigma * sigma) as f32;
+                    let ours = f64::from(sun_lobe_filtered(
+                        ocean_cpu::shaders::wgsl::vec2(v_h[0] as f32, v_h[1] as f32),
+                        var,
+                        &u,
+                    ));
+                    // Toksvig: cos^{s'} of the mean angle / (1 + sσ²), s' = s/(1 + sσ²).
+                    let k = 1.0 + e * sigma * sigma;
+                    let toksvig = lobe_at(v_h, [0.0, 0.0], sun, e / k) / k;
+                    rows.push((beta_deg, azimuth, direct, ours, toksvig));
+                }
+            }
+            let scale = rows.iter().map(|r| r.2).fold(0.0, f64::max);
+            for &(beta_deg, azimuth, direct, ours, toksvig) in &rows {
+                let err = (ours - direct).abs() / scale;
+                let err_t = (toksvig - direct).abs() / scale;
+                if err > worst {
+                    eprintln!(
+                        "α {alpha_deg}° σ {sigma} view {beta_deg}° az {azimuth}: direct {direct:.4e} ours {ours:.4e} (toksvig {toksvig:.4e}) scale {scale:.3e} err {err:.3}"
+                    );
+                }
+                worst = worst.max(err);
+                worst_toksvig = worst_toksvig.max(err_t);
             }
         }
-        let direct = swf / sw;
-        let (s2, scale) = phong_filtered_exponent(s, var);
-        let closed = scale * (-s2 * mean * mean / 2.0).exp();
-        assert!(
-            (direct - closed).abs() < 1e-6 * closed.max(1e-3),
-            "s {s} σ² {var}: {direct} vs {closed}"
-        );
     }
+    eprintln!("worst error / glint scale: {worst:.3} (Toksvig's: {worst_toksvig:.3})");
+    // Measured worst 0.105, at a 3° sun, σ = 0.15, the view at the rim: there u moves as
+    // s/√(1 + s²), not s, and beyond the rim the clamp widens the lobe across by |u|, both
+    // left out of the closed form; at σ ≤ 0.08 it is within 0.05. Toksvig's: 4.2.
+    assert!(worst < 0.12, "{worst}");
+    assert!(worst_toksvig > 1.0, "negative control: Toksvig's blur within {worst_toksvig}");
 }
 
 /// The slope variance a mip level's footprint averages away, against the spectrum: level ℓ's

@@ -71,7 +71,11 @@ struct FarFieldBlock {
     filter_t_scale: f32,
     filter_t_offset: f32,
     max_aniso_log2: f32,
-    pad1: f32,
+    sun_centre: f32,
+    sun_above: f32,
+    sun_below: f32,
+    sun_tangential: f32,
+    sun_rim: f32,
 }
 
 struct FrameUniforms {

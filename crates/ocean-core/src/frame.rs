@@ -156,8 +156,17 @@ pub struct FarFieldBlock {
     /// log2 of the most taps a pixel takes along its footprint's long axis (anisotropic
     /// filtering; 0: isotropic, the long side's LOD).
     pub max_aniso_log2: f32,
-    /// Padding.
-    pub pad1: f32,
+    /// The sun's lobe in the Fresnel table's coordinates ([`crate::far_field::SunLobe`]):
+    /// cos α, where it peaks along the sun's azimuth.
+    pub sun_centre: f32,
+    /// Its radial half Gaussian's variance towards the zenith.
+    pub sun_above: f32,
+    /// Its radial half Gaussian's variance towards the rim.
+    pub sun_below: f32,
+    /// Its tangential Gaussian's variance, 1/s.
+    pub sun_tangential: f32,
+    /// Its value beyond the table's rim, exp(−s α²/2).
+    pub sun_rim: f32,
 }
 
 impl FarFieldBlock {
@@ -189,7 +198,26 @@ impl FarFieldBlock {
             filter_t_scale,
             filter_t_offset,
             max_aniso_log2: crate::far_field::MAX_ANISOTROPY.ilog2() as f32,
-            pad1: 0.0,
+            sun_centre: 1.0,
+            sun_above: 0.0,
+            sun_below: 0.0,
+            sun_tangential: 0.0,
+            sun_rim: 0.0,
+        }
+    }
+
+    /// The block with the sun's lobe for a sun whose unit direction has vertical component
+    /// `sin_elevation`, under a Phong exponent `exponent`
+    /// ([`crate::far_field::sun_lobe`], in f64, so both back ends read the same constants).
+    pub fn with_sun(self, sin_elevation: f64, exponent: f64) -> Self {
+        let lobe = crate::far_field::sun_lobe(sin_elevation, exponent);
+        Self {
+            sun_centre: lobe.centre as f32,
+            sun_above: lobe.above as f32,
+            sun_below: lobe.below as f32,
+            sun_tangential: lobe.tangential as f32,
+            sun_rim: lobe.rim as f32,
+            ..self
         }
     }
 }
@@ -521,7 +549,8 @@ impl FrameUniforms {
                 camera.height,
                 (o.resolution, l_d),
                 (o.bump_resolution, l_b),
-            ),
+            )
+            .with_sun(sun_dir.normalize_or_zero().y, f64::from(SUN_SPECULAR_EXPONENT)),
         }
     }
 }

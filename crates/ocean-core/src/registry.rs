@@ -395,7 +395,11 @@ pub const SHARED: &[SharedFile] = &[
                 filter_t_scale,
                 filter_t_offset,
                 max_aniso_log2,
-                pad1
+                sun_centre,
+                sun_above,
+                sun_below,
+                sun_tangential,
+                sun_rim
             }),
             block!(FrameUniforms { view, sun, tiling, water, hu, passes, ambient, far }),
         ],

@@ -391,19 +391,38 @@ pub fn fresnel_filtered(f: f32, view: Vec3, n: Vec3, variance: f32, b: &Bindings
     clamp(f + texture_sample_level(b.fresnel_filter, &CLAMP_LINEAR, uv, 0.0).x, 0.0, 1.0)
 }
 
-/// `phong_lobe(cos_spec, variance)`.
-pub fn phong_lobe(cos_spec: f32, variance: f32, frame: &FrameUniforms) -> f32 {
-    let s = frame.hu.phong_exponent;
-    if variance > 0.0 {
-        let k = 1.0 + s * variance;
-        if cos_spec <= 0.0 {
-            return 0.0;
-        }
-        let e = s / k;
-        let whole = e.floor();
-        return pow_int(cos_spec, whole as u32) * ((e - whole) * cos_spec.log2()).exp2() / k;
+/// `sun_lobe_filtered(u, variance)`: the sun's lobe averaged over slopes of per-axis
+/// variance `variance` > 0 about the bumped view vector's horizontal part `u`
+/// (ocean-core `far_field::SunLobe`; the block carries its constants).
+pub fn sun_lobe_filtered(u: Vec2, variance: f32, frame: &FrameUniforms) -> f32 {
+    let far = &frame.far;
+    let l = frame.sun.direction;
+    let rh = vec2(-l[0], -l[2]);
+    let len = sqrt(rh.x * rh.x + rh.y * rh.y);
+    let mut rho = vec2(1.0, 0.0);
+    if len > 1e-6 {
+        rho = rh * (1.0 / len);
     }
-    pow_int(cos_spec, s as u32)
+    let ur = u.x * rho.x + u.y * rho.y;
+    let ut = u.y * rho.x - u.x * rho.y;
+    let v = variance;
+    let at = far.sun_tangential;
+    let across = sqrt(at / (at + v)) * exp_arith(-0.5 * ut * ut / (at + v));
+    let beyond = far.sun_rim * normal_cdf((ur - 1.0) / sqrt(v));
+    let c = far.sun_centre;
+    let d = ur - c;
+    let a1 = far.sun_above;
+    let m1 = (ur * a1 + c * v) / (a1 + v);
+    let w1 = max(sqrt(v * a1 / (v + a1)), 1e-30);
+    let above =
+        sqrt(a1 / (a1 + v)) * exp_arith(-0.5 * d * d / (a1 + v)) * normal_cdf((c - m1) / w1);
+    let a2 = far.sun_below;
+    let m2 = (ur * a2 + c * v) / (a2 + v);
+    let w2 = max(sqrt(v * a2 / (v + a2)), 1e-30);
+    let below = sqrt(a2 / (a2 + v))
+        * exp_arith(-0.5 * d * d / (a2 + v))
+        * (normal_cdf((1.0 - m2) / w2) - normal_cdf((c - m2) / w2));
+    across * (beyond + above + below)
 }
 
 /// `SQRT2`.
@@ -497,8 +516,11 @@ pub fn fs_main(input: &VertexOut, b: &Bindings<'_>) -> [f32; 4] {
         let sun_direction = Vec3::from(frame.sun.direction);
         let r_sun = vec3(-sun_direction.x, sun_direction.y, -sun_direction.z);
         let cos_spec = max(dot3(vb, r_sun), 0.0);
-        let spec = Vec3::from(frame.sun.radiance)
-            * (phong_lobe(cos_spec, variance, frame) * frame.sun.lit);
+        let mut lobe = pow_int(cos_spec, frame.hu.phong_exponent as u32);
+        if variance > 0.0 {
+            lobe = sun_lobe_filtered(vec2(view.x - n.x, view.z - n.z), variance, frame);
+        }
+        let spec = Vec3::from(frame.sun.radiance) * (lobe * frame.sun.lit);
         let shadow = sun_visibility(input.rel, b);
         let c = c_reflect * f + c_refract * (1.0 - f) + spec * shadow;
         return c.extend(1.0).into();
