@@ -33,7 +33,7 @@
 // and `variance`; a one-level map samples as plain bilinear).
 @group(0) @binding(9) var wrap_linear: sampler;
 @group(0) @binding(10) var clamp_linear: sampler;
-// The filtered Fresnel table ΔF(r, σ) of far field `variance` (ocean-core far_field).
+// The filtered Fresnel table F̄(r, σ) of far field `variance` (ocean-core far_field).
 @group(0) @binding(11) var fresnel_filter: texture_2d<f32>;
 // The environment the water reflects: the frame's sky technique (its interface: SkyUniforms,
 // sky_radiance), a resource of the plan that the water reads.
@@ -148,6 +148,11 @@ struct Footprint {
     // The view vector's vertical and horizontal parts, |rel.y|/dist and horizontal/dist.
     vy: f32,
     vh: f32,
+    // The share of the taps' lengthwise slope spread that the water mesh resolves, whose
+    // wave backs the eye cannot see: the octaves between the mesh's triangle leg and the
+    // footprint's length over the k octaves the taps span (the sea's slope variance is
+    // spread evenly over octaves, k⁻⁴ spectra); 1 where the mesh is finer than the taps.
+    mesh_share: f32,
 }
 
 fn footprint(rel: vec3<f32>) -> Footprint {
@@ -159,6 +164,7 @@ fn footprint(rel: vec3<f32>) -> Footprint {
         fp.h = vec2<f32>(0.0, 0.0);
         fp.vy = 0.0;
         fp.vh = 0.0;
+        fp.mesh_share = 0.0;
         return fp;
     }
     let dist = sqrt(rel.x * rel.x + rel.y * rel.y + rel.z * rel.z);
@@ -177,6 +183,11 @@ fn footprint(rel: vec3<f32>) -> Footprint {
     fp.h = vec2<f32>(-rel.x, -rel.z) * (1.0 / max(horizontal, 1e-30));
     fp.vy = abs(rel.y) / max(dist, 1e-30);
     fp.vh = horizontal / max(dist, 1e-30);
+    fp.mesh_share = 0.0;
+    if (k > 0.0) {
+        let leg = max(frame.far.mesh_leg_scale * dist, frame.far.mesh_leg_min);
+        fp.mesh_share = clamp((l_long - max(lod_log2(leg), l_long - k)) / k, 0.0, 1.0);
+    }
     return fp;
 }
 
@@ -316,7 +327,7 @@ fn filtered_slopes(in: VertexOut) -> vec3<f32> {
         if (rel.y < 0.0) {
             let mu_raw = d.x * h.x + d.y * h.y;
             let mu = mu_raw * wd;
-            let var_geo = max(dt.along_sq - mu_raw * mu_raw, 0.0) * (wd * wd);
+            let var_geo = max(dt.along_sq - mu_raw * mu_raw, 0.0) * (wd * wd) * fp.mesh_share;
             let vis = visible_slopes(mu, var_geo, fp.vy, fp.vh);
             s = s + h * (vis.x - mu);
             variance = max(variance + 0.5 * (vis.y - var_geo), 0.0);
@@ -360,15 +371,17 @@ fn fresnel_st(view: vec3<f32>, n: vec3<f32>) -> vec2<f32> {
     return u * frame.hu.fresnel_scale + 0.5;
 }
 
-// F averaged over the unresolved slopes (far field `variance`): the table's ΔF at the bumped
-// view vector's radius r and t = sqrt(σ/Σ), added to the 2D texture's F.
-fn fresnel_filtered(f: f32, view: vec3<f32>, n: vec3<f32>, variance: f32) -> f32 {
+// F averaged over the unresolved slopes (far field `variance`): the table's F̄ at the bumped
+// view vector's radius r and t = sqrt(σ/Σ). F̄ itself, not F̄ − F added to the 2D texture's
+// F: F falls from 1 to 0.6 within one texel of the rim, so F̄ − F does too, and its bilinear
+// lookup there was off by tenths (the horizon band 10 % too bright); F̄ is smooth for σ > 0.
+fn fresnel_filtered(view: vec3<f32>, n: vec3<f32>, variance: f32) -> f32 {
     let x = view.x - n.x;
     let y = view.z - n.z;
     let r = sqrt(x * x + y * y);
     let t = sqrt(sqrt(variance) * frame.far.inv_sigma_max);
     let uv = vec2<f32>(r * frame.far.filter_r_scale + frame.far.filter_r_offset, t * frame.far.filter_t_scale + frame.far.filter_t_offset);
-    return clamp(f + textureSampleLevel(fresnel_filter, clamp_linear, uv, 0.0).x, 0.0, 1.0);
+    return clamp(textureSampleLevel(fresnel_filter, clamp_linear, uv, 0.0).x, 0.0, 1.0);
 }
 
 // The sun's lobe averaged over unresolved slopes of per-axis variance σ² > 0, at u, the
@@ -453,7 +466,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
         let fres = textureSampleLevel(fresnel_above, clamp_linear, st, 0.0);
         var f = fres.w;
         if (variance > 0.0) {
-            f = fresnel_filtered(f, view, n, variance);
+            f = fresnel_filtered(view, n, variance);
         }
         // Reflection (§4.2, §5.2): sky along the bumped reflection direction, mirrored
         // objects from the reflection map shifted by the bump, over it by coverage.

@@ -66,7 +66,7 @@ fn table_lookup(t: &FresnelFilterTable, r: f64, sigma: f64) -> f64 {
     let (i1, j1) =
         ((i0 + 1).min(FILTER_RADII as usize - 1), (j0 + 1).min(FILTER_SIGMAS as usize - 1));
     let (a, b) = (u - i0 as f64, v - j0 as f64);
-    let at = |i: usize, j: usize| f64::from(t.texels[j * FILTER_RADII as usize + i][1]);
+    let at = |i: usize, j: usize| f64::from(t.texels[j * FILTER_RADII as usize + i][0]);
     let lo = at(i0, j0) + a * (at(i1, j0) - at(i0, j0));
     let hi = at(i0, j1) + a * (at(i1, j1) - at(i0, j1));
     lo + b * (hi - lo)
@@ -80,10 +80,9 @@ fn filtered_table_interpolates_the_filtered_fresnel() {
         "filtered Fresnel table {FILTER_RADII}×{FILTER_SIGMAS} built in {:.0} ms",
         start.elapsed().as_secs_f64() * 1e3
     );
-    // Row 0 is σ = 0: ΔF exactly 0 and F̄ = F.
+    // Row 0 is σ = 0: F̄ = F.
     for i in 0..FILTER_RADII {
-        let [d, f, _, _] = table.texels[i as usize];
-        assert_eq!(d, 0.0);
+        let [f, _, _, _] = table.texels[i as usize];
         assert_eq!(f, fresnel_of_radius(filter_texel_point(i, 0).0, WATER) as f32);
     }
     // Between texels: the bilinear lookup against the quadrature at off-grid points.

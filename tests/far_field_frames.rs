@@ -1,8 +1,8 @@
 //! Far fields `none`, `mip` and `variance` against the supersampled ground truth (issue 12):
 //! per band of the sea, the mean |Δ log(1 + L)| of the 1-sample frame against the 64-sample
 //! frame of `none` (the same model, point-sampled 64 times per pixel), the horizon band's mean
-//! brightness, and the flicker between two frames 1/30 s apart. Run with `--nocapture` for
-//! the table.
+//! brightness, and the flicker between two frames 1/30 s apart, at 320×180 (the size the issue
+//! measured the sparkle at). Run with `--nocapture` for the table.
 
 #![allow(clippy::unwrap_used, reason = "a panic in a test is its failure report")]
 
@@ -13,8 +13,8 @@ use ocean_core::supersample::{
     BAND_NAMES, band_error, band_luminance, box_filter, grid_side, sea_bands,
 };
 
-const W: u32 = 160;
-const H: u32 = 90;
+const W: u32 = 320;
+const H: u32 = 180;
 
 /// The scene's HDR frame at W × H, `spp` samples per pixel, far field `far`, time + `dt`.
 fn frame(scene: &Scene, far: &str, spp: u32, dt: f64) -> Vec<[f32; 4]> {
@@ -61,7 +61,8 @@ const HORIZON_BRIGHTNESS: f64 = 0.10;
 /// The checks (and the table the note quotes), in every band of every scene: `variance` is
 /// within DESIGN's 0.06 of the 64-sample frame, its horizon band's mean brightness within
 /// 10 %, and it and `mip` flicker at most 1.5× as much as the 64-sample frames between two
-/// frames 1/30 s apart. Negative control: `none` is over 0.06 and flickers more.
+/// frames 1/30 s apart. Negative control: `none` flickers more, and is over 0.06 in the
+/// horizon and middle bands (the near band's pixels resolve its waves at this size).
 #[test]
 fn far_fields_against_the_64_sample_frame() {
     let dt = 1.0 / 30.0;
@@ -97,7 +98,8 @@ fn far_fields_against_the_64_sample_frame() {
                         if steady {
                             failures.push(format!("{name} {band}: `none` does not flicker"));
                         }
-                        if e <= BAND_LIMIT {
+                        // The near band is resolved at this size (within 0.06 in two scenes).
+                        if k < 2 && e <= BAND_LIMIT {
                             failures.push(format!("{name} {band}: `none` within {e}"));
                         }
                     }

@@ -76,6 +76,10 @@ struct FarFieldBlock {
     sun_below: f32,
     sun_tangential: f32,
     sun_rim: f32,
+    mesh_leg_scale: f32,
+    mesh_leg_min: f32,
+    pad0: f32,
+    pad1: f32,
 }
 
 struct FrameUniforms {

@@ -281,10 +281,12 @@ pub fn filter_texel_point(i: u32, j: u32) -> (f64, f64) {
 }
 
 /// The filtered Fresnel table of the `variance` technique: [`FILTER_RADII`] ×
-/// [`FILTER_SIGMAS`] texels, texel (i, j) = (F̄ − F, F̄, 0, 0) at [`filter_texel_point`] (F̄
-/// by [`fresnel_filtered`], F = [`fresnel_of_radius`]). The water shader adds the first
-/// channel, bilinearly sampled at (r, σ), to the 2D texture's F: row 0 is exactly 0, so a
-/// pixel whose slope variance is 0 shades exactly as `mip`.
+/// [`FILTER_SIGMAS`] texels, texel (i, j) = (F̄, 0, 0, 0) at [`filter_texel_point`] (F̄ by
+/// [`fresnel_filtered`]; row 0, σ = 0, is F = [`fresnel_of_radius`]). The water shader reads
+/// it bilinearly at (r, σ) for a pixel with unresolved slopes (σ > 0), in place of the 2D
+/// texture's F (a pixel whose slope variance is 0 does not read it and shades exactly as
+/// `mip`). It holds F̄, not F̄ − F: F falls from 1 to 0.6 within one of its texels of the rim,
+/// where a bilinear F̄ − F was off by tenths; F̄ is smooth there for σ > 0.
 #[derive(Clone, Debug, PartialEq)]
 pub struct FresnelFilterTable {
     /// η of the table.
@@ -301,12 +303,12 @@ impl FresnelFilterTable {
             .flat_map_iter(|j| {
                 (0..FILTER_RADII).map(move |i| {
                     let (r, sigma) = filter_texel_point(i, j);
-                    if j == 0 {
-                        let f = fresnel_of_radius(r, eta) as f32;
-                        return [0.0, f, 0.0, 0.0];
-                    }
-                    let filtered = fresnel_filtered(r, sigma, eta);
-                    [(filtered - fresnel_of_radius(r, eta)) as f32, filtered as f32, 0.0, 0.0]
+                    let f = if j == 0 {
+                        fresnel_of_radius(r, eta)
+                    } else {
+                        fresnel_filtered(r, sigma, eta)
+                    };
+                    [f as f32, 0.0, 0.0, 0.0]
                 })
             })
             .collect();

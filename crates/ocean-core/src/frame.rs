@@ -167,6 +167,16 @@ pub struct FarFieldBlock {
     pub sun_tangential: f32,
     /// Its value beyond the table's rim, exp(−s α²/2).
     pub sun_rim: f32,
+    /// 2^(−3/4)·τ: the water mesh's typical triangle leg per metre of distance (the near
+    /// patch splits a triangle whose hypotenuse subtends more than τ, so a leaf's leg lies in
+    /// (τd/2, τd/√2]; this is their geometric mean).
+    pub mesh_leg_scale: f32,
+    /// The mesh's finest leg, the displacement grid's spacing, m.
+    pub mesh_leg_min: f32,
+    /// Padding.
+    pub pad0: f32,
+    /// Padding.
+    pub pad1: f32,
 }
 
 impl FarFieldBlock {
@@ -203,6 +213,21 @@ impl FarFieldBlock {
             sun_below: 0.0,
             sun_tangential: 0.0,
             sun_rim: 0.0,
+            mesh_leg_scale: 0.0,
+            mesh_leg_min: 1e-30,
+            pad0: 0.0,
+            pad1: 0.0,
+        }
+    }
+
+    /// The block with the water mesh's scale: its split threshold τ (rad) and its finest leg
+    /// (m). Without it the mesh counts as finer than any footprint (every displacement slope
+    /// under the pixel is geometry).
+    pub fn with_mesh(self, split_threshold: f64, finest_leg_m: f64) -> Self {
+        Self {
+            mesh_leg_scale: (2f64.powf(-0.75) * split_threshold) as f32,
+            mesh_leg_min: finest_leg_m as f32,
+            ..self
         }
     }
 
@@ -550,7 +575,8 @@ impl FrameUniforms {
                 (o.resolution, l_d),
                 (o.bump_resolution, l_b),
             )
-            .with_sun(sun_dir.normalize_or_zero().y, f64::from(SUN_SPECULAR_EXPONENT)),
+            .with_sun(sun_dir.normalize_or_zero().y, f64::from(SUN_SPECULAR_EXPONENT))
+            .with_mesh(scene.quality.lod_split_threshold, l_d / f64::from(o.resolution.max(1))),
         }
     }
 }

@@ -399,7 +399,11 @@ pub const SHARED: &[SharedFile] = &[
                 sun_above,
                 sun_below,
                 sun_tangential,
-                sun_rim
+                sun_rim,
+                mesh_leg_scale,
+                mesh_leg_min,
+                pad0,
+                pad1
             }),
             block!(FrameUniforms { view, sun, tiling, water, hu, passes, ambient, far }),
         ],

@@ -38,7 +38,7 @@ pub enum ResourceId {
     DisplacementSlopeMips,
     /// The bump map's, likewise.
     BumpMips,
-    /// The filtered Fresnel table ΔF(r, σ) of far field `variance` (ocean-core's
+    /// The filtered Fresnel table F̄(r, σ) of far field `variance` (ocean-core's
     /// `far_field::FresnelFilterTable`, computed on the CPU, the same texels on both back ends).
     FresnelFilter,
     /// The environment the water reflects and the `sky` pass draws: the sky technique's

@@ -187,6 +187,9 @@ pub struct Footprint {
     pub vy: f32,
     /// See `vy`.
     pub vh: f32,
+    /// The share of the taps' lengthwise slope spread the water mesh resolves (1 where the
+    /// mesh is finer than the taps).
+    pub mesh_share: f32,
 }
 
 /// `footprint(rel)`.
@@ -194,7 +197,15 @@ pub fn footprint(rel: Vec3, frame: &FrameUniforms) -> Footprint {
     let far = &frame.far;
     if far.mode == 0.0 {
         let zero = vec2(0.0, 0.0);
-        return Footprint { lods: zero, taps_log2: 0.0, step: zero, h: zero, vy: 0.0, vh: 0.0 };
+        return Footprint {
+            lods: zero,
+            taps_log2: 0.0,
+            step: zero,
+            h: zero,
+            vy: 0.0,
+            vh: 0.0,
+            mesh_share: 0.0,
+        };
     }
     let dist = sqrt(rel.x * rel.x + rel.y * rel.y + rel.z * rel.z);
     let cos_view = abs(rel.y) / max(dist, 1e-30);
@@ -206,6 +217,11 @@ pub fn footprint(rel: Vec3, frame: &FrameUniforms) -> Footprint {
     let l = max(l_short, l_long - k) + far.lod_bias;
     let horizontal = sqrt(rel.x * rel.x + rel.z * rel.z);
     let spacing = long * ldexp(1.0, -(k as i32));
+    let mut mesh_share = 0.0;
+    if k > 0.0 {
+        let leg = max(far.mesh_leg_scale * dist, far.mesh_leg_min);
+        mesh_share = clamp((l_long - max(lod_log2(leg), l_long - k)) / k, 0.0, 1.0);
+    }
     Footprint {
         lods: vec2(l + far.lod_offset_d, l + far.lod_offset_b),
         taps_log2: k,
@@ -213,6 +229,7 @@ pub fn footprint(rel: Vec3, frame: &FrameUniforms) -> Footprint {
         h: vec2(-rel.x, -rel.z) * (1.0 / max(horizontal, 1e-30)),
         vy: abs(rel.y) / max(dist, 1e-30),
         vh: horizontal / max(dist, 1e-30),
+        mesh_share,
     }
 }
 
@@ -362,7 +379,7 @@ pub fn filtered_slopes(input: &VertexOut, b: &Bindings<'_>) -> Vec3 {
         if rel.y < 0.0 {
             let mu_raw = d.x * h.x + d.y * h.y;
             let mu = mu_raw * wd;
-            let var_geo = max(dt.along_sq - mu_raw * mu_raw, 0.0) * (wd * wd);
+            let var_geo = max(dt.along_sq - mu_raw * mu_raw, 0.0) * (wd * wd) * fp.mesh_share;
             let vis = visible_slopes(mu, var_geo, fp.vy, fp.vh);
             s = s + h * (vis.x - mu);
             variance = max(variance + 0.5 * (vis.y - var_geo), 0.0);
@@ -377,8 +394,8 @@ pub fn bumped_normal(input: &VertexOut, b: &Bindings<'_>) -> Vec3 {
     unit(vec3(-s.x, 1.0, -s.y))
 }
 
-/// `fresnel_filtered(f, view, n, variance)`.
-pub fn fresnel_filtered(f: f32, view: Vec3, n: Vec3, variance: f32, b: &Bindings<'_>) -> f32 {
+/// `fresnel_filtered(view, n, variance)`.
+pub fn fresnel_filtered(view: Vec3, n: Vec3, variance: f32, b: &Bindings<'_>) -> f32 {
     let far = &b.frame.far;
     let x = view.x - n.x;
     let y = view.z - n.z;
@@ -388,7 +405,7 @@ pub fn fresnel_filtered(f: f32, view: Vec3, n: Vec3, variance: f32, b: &Bindings
         r * far.filter_r_scale + far.filter_r_offset,
         t * far.filter_t_scale + far.filter_t_offset,
     );
-    clamp(f + texture_sample_level(b.fresnel_filter, &CLAMP_LINEAR, uv, 0.0).x, 0.0, 1.0)
+    clamp(texture_sample_level(b.fresnel_filter, &CLAMP_LINEAR, uv, 0.0).x, 0.0, 1.0)
 }
 
 /// `sun_lobe_filtered(u, variance)`: the sun's lobe averaged over slopes of per-axis
@@ -487,7 +504,7 @@ pub fn fs_main(input: &VertexOut, b: &Bindings<'_>) -> [f32; 4] {
         let fres = texture_sample_level(b.fresnel_above, &CLAMP_LINEAR, st, 0.0);
         let mut f = fres.w;
         if variance > 0.0 {
-            f = fresnel_filtered(f, view, n, variance, b);
+            f = fresnel_filtered(view, n, variance, b);
         }
         let vn = dot3(view, n);
         let mut r = n * (2.0 * vn) - view;
