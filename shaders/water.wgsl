@@ -373,8 +373,8 @@ fn fresnel_st(view: vec3<f32>, n: vec3<f32>) -> vec2<f32> {
 
 // F averaged over the unresolved slopes (far field `variance`): the table's F̄ at the bumped
 // view vector's radius r and t = sqrt(σ/Σ). F̄ itself, not F̄ − F added to the 2D texture's
-// F: F falls from 1 to 0.6 within one texel of the rim, so F̄ − F does too, and its bilinear
-// lookup there was off by tenths (the horizon band 10 % too bright); F̄ is smooth for σ > 0.
+// F: F rises from 0.68 to 1 within one texel of the rim, so F̄ − F falls as fast, and its
+// bilinear lookup there was off by up to 0.16 (the horizon band 10 % too bright); F̄ is smooth for σ > 0.
 fn fresnel_filtered(view: vec3<f32>, n: vec3<f32>, variance: f32) -> f32 {
     let x = view.x - n.x;
     let y = view.z - n.z;

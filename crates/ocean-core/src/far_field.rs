@@ -285,8 +285,8 @@ pub fn filter_texel_point(i: u32, j: u32) -> (f64, f64) {
 /// [`fresnel_filtered`]; row 0, σ = 0, is F = [`fresnel_of_radius`]). The water shader reads
 /// it bilinearly at (r, σ) for a pixel with unresolved slopes (σ > 0), in place of the 2D
 /// texture's F (a pixel whose slope variance is 0 does not read it and shades exactly as
-/// `mip`). It holds F̄, not F̄ − F: F falls from 1 to 0.6 within one of its texels of the rim,
-/// where a bilinear F̄ − F was off by tenths; F̄ is smooth there for σ > 0.
+/// `mip`). It holds F̄, not F̄ − F: F rises from 0.68 to 1 within one of its texels of the rim,
+/// where a bilinear F̄ − F was off by up to 0.16; F̄ is smooth there for σ > 0.
 #[derive(Clone, Debug, PartialEq)]
 pub struct FresnelFilterTable {
     /// η of the table.
