@@ -26,6 +26,7 @@ mod far;
 mod mesh;
 mod near;
 mod params;
+mod projected;
 
 pub use far::{FarPatch, PlacedFarPatch, visible_half_angle};
 pub use mesh::{MeshSummary, WaterMesh};
@@ -34,6 +35,7 @@ pub use params::{
     DEFAULT_NEAR_SIZE_M, MAX_HEIGHT_M, MAX_NEAR_LEVELS, PatchParams, STITCH_CLEARANCE,
     stitch_radius,
 };
+pub use projected::ProjectedGrid;
 
 use crate::Result;
 use params::invalid;
