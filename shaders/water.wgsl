@@ -82,19 +82,44 @@ fn pow_int(x: f32, n: u32) -> f32 {
 
 @vertex
 fn vs_main(v: WaterVertex) -> VertexOut {
+    return water_vertex(v.pos, v.weight);
+}
+
+// Surface `projected_grid`: vertex k of the grid's triangle list (six per quad, quads row by
+// row; triangles (0,0) (1,0) (1,1) and (0,0) (1,1) (0,1) of each), on the sea plane at the
+// bilinear blend of the corners in homogeneous coordinates, which is the projector ray's
+// point exactly (ocean-core geometry::ProjectedGrid). No vertex buffer.
+@vertex
+fn vs_projected_grid(@builtin(vertex_index) k: u32) -> VertexOut {
+    let g = frame.grid;
+    let cols = u32(g.cols);
+    let quad = k / 6u;
+    let corner = k % 6u;
+    var di = array<u32, 6>(0u, 1u, 1u, 0u, 1u, 0u);
+    var dj = array<u32, 6>(0u, 0u, 1u, 0u, 1u, 1u);
+    let u = f32(quad % cols + di[corner]) / g.cols;
+    let v = f32(quad / cols + dj[corner]) / g.rows;
+    let h = (g.corners[0] * (1.0 - u) + g.corners[1] * u) * (1.0 - v) + (g.corners[2] * (1.0 - u) + g.corners[3] * u) * v;
+    let inv_w = 1.0 / h.w;
+    return water_vertex(vec2<f32>(h.x * inv_w, h.z * inv_w) - frame.tiling.mesh_offset, 1.0);
+}
+
+// A water vertex at `pos` (m, relative to the mesh's reference point c) displaced by the
+// displacement map times `weight`.
+fn water_vertex(pos: vec2<f32>, weight: f32) -> VertexOut {
     // Texel (i, j) of an N×N map holds the sample at (i, j)·L/N: u = x/L + ½/N.
-    let uv_d = (v.pos + frame.tiling.displacement_origin) * frame.tiling.inv_displacement_size + frame.tiling.displacement_half_texel;
-    let uv_b = (v.pos + frame.tiling.bump_origin) * frame.tiling.inv_bump_size + frame.tiling.bump_half_texel;
-    let d = textureSampleLevel(displacement, wrap_linear, uv_d, 0.0) * (v.weight * frame.passes.waves);
+    let uv_d = (pos + frame.tiling.displacement_origin) * frame.tiling.inv_displacement_size + frame.tiling.displacement_half_texel;
+    let uv_b = (pos + frame.tiling.bump_origin) * frame.tiling.inv_bump_size + frame.tiling.bump_half_texel;
+    let d = textureSampleLevel(displacement, wrap_linear, uv_d, 0.0) * (weight * frame.passes.waves);
     // Camera-relative: c − eye (formed in f64 on the CPU) plus the vertex's offset from c.
-    let plane = v.pos + frame.tiling.mesh_offset;
+    let plane = pos + frame.tiling.mesh_offset;
     let rel = vec3<f32>(plane.x + d.x, d.y - frame.view.eye_height, plane.y + d.z);
     var out: VertexOut;
     out.clip = transform_point(frame.view.view_proj, rel);
     out.rel = rel;
     out.uv_d = uv_d;
     out.uv_b = uv_b;
-    out.weight = v.weight;
+    out.weight = weight;
     return out;
 }
 

@@ -82,6 +82,15 @@ struct FarFieldBlock {
     pad1: f32,
 }
 
+struct ProjectedGridBlock {
+    // Columns: the corners (u, v) = (0, 0), (1, 0), (0, 1), (1, 1).
+    corners: mat4x4<f32>,
+    cols: f32,
+    rows: f32,
+    pad0: f32,
+    pad1: f32,
+}
+
 struct FrameUniforms {
     view: ViewBlock,
     sun: SunBlock,
@@ -91,6 +100,7 @@ struct FrameUniforms {
     passes: PassFlags,
     ambient: AmbientBlock,
     far: FarFieldBlock,
+    grid: ProjectedGridBlock,
 }
 
 // m · (p, 1), written out so that the order of operations is fixed (the CPU mirror,

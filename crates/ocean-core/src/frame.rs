@@ -296,6 +296,54 @@ pub struct FrameUniforms {
     pub ambient: AmbientBlock,
     /// The far-field technique.
     pub far: FarFieldBlock,
+    /// Surface `projected_grid`.
+    pub grid: ProjectedGridBlock,
+}
+
+/// Surface `projected_grid` ([`crate::geometry::ProjectedGrid`]): the grid's corners and size.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct ProjectedGridBlock {
+    /// The corners (u, v) = (0, 0), (1, 0), (0, 1), (1, 1) on the sea plane, homogeneous and
+    /// relative to the eye ((p − eye)·w, w).
+    pub corners: [[f32; 4]; 4],
+    /// Quads across (u); 0 when the view holds no sea or the surface is another technique.
+    pub cols: f32,
+    /// Quads along v.
+    pub rows: f32,
+    /// Padding.
+    pub pad0: f32,
+    /// Padding.
+    pub pad1: f32,
+}
+
+impl ProjectedGridBlock {
+    /// The margin of the wave bound over the sea's significant wave height: the crests and
+    /// the horizontal (choppy) displacement stay within 3·H_s of the plane but for a chance of
+    /// about e^(−18) per wave (Rayleigh crests, P(a > x) = e^(−2x²/H_s²)).
+    pub const BOUND_OVER_HS: f64 = 3.0;
+
+    /// The block of a `width` × `height` view through `camera` over a sea of significant wave
+    /// height `hs`, `cell_px` pixels between grid lines (at most 4096 quads a side).
+    pub fn new(camera: &crate::camera::Camera, hs: f64, cell_px: f64) -> Self {
+        let Some(grid) = crate::geometry::ProjectedGrid::new(camera, Self::BOUND_OVER_HS * hs)
+        else {
+            return Self::zeroed();
+        };
+        let quads = |px: u32| (f64::from(px) / cell_px).ceil().clamp(1.0, 4096.0) as f32;
+        Self {
+            corners: grid.corners.map(|c| c.as_vec4().to_array()),
+            cols: quads(camera.width),
+            rows: quads(camera.height),
+            pad0: 0.0,
+            pad1: 0.0,
+        }
+    }
+
+    /// Vertices the water pass draws (a triangle list, six per quad).
+    pub fn vertex_count(&self) -> u32 {
+        6 * self.cols as u32 * self.rows as u32
+    }
 }
 
 /// Uniforms of the `fresnel_table` stage (WGSL `FresnelTableUniforms`).
@@ -577,6 +625,13 @@ impl FrameUniforms {
             )
             .with_sun(sun_dir.normalize_or_zero().y, f64::from(SUN_SPECULAR_EXPONENT))
             .with_mesh(scene.quality.lod_split_threshold, l_d / f64::from(o.resolution.max(1))),
+            grid: if plan.techniques.of(crate::plan::Stage::Surface).name == "projected_grid" {
+                // A validated scene's spectrum exists; without one the sea is flat.
+                let hs = o.wave_spectrum().map_or(0.0, |s| s.significant_wave_height());
+                ProjectedGridBlock::new(camera, hs, scene.quality.projected_grid_cell_px)
+            } else {
+                ProjectedGridBlock::zeroed()
+            },
         }
     }
 }

@@ -171,6 +171,7 @@ const KEYS: &[&str] = &[
     "center",
     "fresnel_table_size",
     "lod_split_threshold",
+    "projected_grid_cell_px",
     "waves",
     "shading",
     "resolutoin",

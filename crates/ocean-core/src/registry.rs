@@ -15,7 +15,7 @@ use std::path::Path;
 use crate::camera_uniforms::CameraUniforms;
 use crate::frame::{
     AmbientBlock, FarFieldBlock, FrameUniforms, FresnelTableUniforms, HuShadingBlock, PassFlags,
-    SunBlock, ViewBlock, WaterBlock, WaveMipsUniforms, WaveTilingBlock,
+    ProjectedGridBlock, SunBlock, ViewBlock, WaterBlock, WaveMipsUniforms, WaveTilingBlock,
 };
 use crate::plan::Stage as TechniqueStage;
 use crate::sky::SkyUniforms;
@@ -93,7 +93,8 @@ nested!(
     HuShadingBlock,
     PassFlags,
     AmbientBlock,
-    FarFieldBlock
+    FarFieldBlock,
+    ProjectedGridBlock
 );
 
 /// The kind of an entry point.
@@ -299,7 +300,12 @@ pub const STAGES: &[StageEntry] = &[
         name: "water",
         file: "water.wgsl",
         source: include_str!("../../../shaders/water.wgsl"),
-        entry_points: VS_FS,
+        entry_points: &[
+            ("vs_main", Vertex),
+            ("fs_main", Fragment),
+            // Surface `projected_grid`: the grid from the vertex index.
+            ("vs_projected_grid", Vertex),
+        ],
         bindings: &[
             b(0, 0, "frame"),
             b(0, 1, "displacement"),
@@ -405,7 +411,8 @@ pub const SHARED: &[SharedFile] = &[
                 pad0,
                 pad1
             }),
-            block!(FrameUniforms { view, sun, tiling, water, hu, passes, ambient, far }),
+            block!(ProjectedGridBlock { corners, cols, rows, pad0, pad1 }),
+            block!(FrameUniforms { view, sun, tiling, water, hu, passes, ambient, far, grid }),
         ],
         cpu_mirror: "crates/ocean-cpu/src/shaders/shared/frame.rs",
     },

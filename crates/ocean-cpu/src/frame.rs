@@ -177,7 +177,8 @@ fn draw_objects(
     });
 }
 
-/// The water pass's draw: `water::vs_main` on every vertex of `mesh`, then `fragment` on
+/// The water pass's draw: `water::vs_main` on every vertex of `mesh` (surface
+/// `projected_grid`: `water::vs_projected_grid` on every vertex index), then `fragment` on
 /// every covered pixel, reversed-Z with `Greater`, no blending. The frame's water pass runs it
 /// with `water::fs_main`; a probe (`ocean report`'s Fresnel lookups) runs it with another
 /// fragment function of the same mirror.
@@ -187,16 +188,18 @@ pub fn draw_water(
     bindings: &water::Bindings<'_>,
     fragment: &(dyn Fn(&water::VertexOut, &water::Bindings<'_>) -> Option<[f32; 4]> + Sync),
 ) {
-    let verts: Vec<Vertex<{ water::VARYINGS }>> = mesh
-        .vertices
-        .iter()
-        .map(|v| {
-            let o = water::vs_main(v, bindings);
-            Vertex::new(o.clip.into(), o.varyings())
-        })
-        .collect();
+    let vertex = |o: water::VertexOut| Vertex::new(o.clip.into(), o.varyings());
+    let grid = bindings.frame.grid.vertex_count();
+    let (verts, indices): (Vec<Vertex<{ water::VARYINGS }>>, Vec<[u32; 3]>) = if grid > 0 {
+        // Surface `projected_grid`: the vertex-index draw of a triangle list.
+        let verts = (0..grid).map(|k| vertex(water::vs_projected_grid(k, bindings))).collect();
+        (verts, (0..grid / 3).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect())
+    } else {
+        let verts = mesh.vertices.iter().map(|v| vertex(water::vs_main(v, bindings))).collect();
+        (verts, mesh.indices.clone())
+    };
     let state = RasterState { blend: BlendMode::Replace, ..eye_state() };
-    raster::draw_indexed(target, &state, &verts, &mesh.indices, |frag| {
+    raster::draw_indexed(target, &state, &verts, &indices, |frag| {
         fragment(&water::VertexOut::from_fragment(frag.frag_coord, &frag.varyings), bindings)
     });
 }

@@ -41,7 +41,7 @@ use crate::texture::{
 };
 use crate::timing::{PassTimer, PendingTimings};
 use crate::tonemap::TonemapStage;
-use crate::water::{WaterMeshBuffers, WaterStage, WaterTextures};
+use crate::water::{WaterDraw, WaterMeshBuffers, WaterStage, WaterTextures};
 use crate::wave_maps::{WaveMapSource, WaveSynthesis, make_source_from};
 use crate::wave_mips::{GpuMipChain, WaveMipsStage};
 
@@ -456,10 +456,13 @@ impl GpuBackend<'_> {
                 shadow_map: &shadow_map.view,
                 fresnel_filter: &fresnel_filter.view,
             },
-            &WaterMeshBuffers {
-                vertices: &water_vertices,
-                indices: &water_indices,
-                index_count: 3 * mesh.indices.len() as u32,
+            &match frame.uniforms.grid.vertex_count() {
+                0 => WaterDraw::Mesh(WaterMeshBuffers {
+                    vertices: &water_vertices,
+                    indices: &water_indices,
+                    index_count: 3 * mesh.indices.len() as u32,
+                }),
+                n => WaterDraw::Grid(n),
             },
             &hdr.view,
             &depth.view,
@@ -652,11 +655,17 @@ impl Renderer {
         // one into a stage's WGSL would need other pipelines (none is built yet).
         let built = crate::common::pipeline_techniques();
         // The far field is a uniform of the water pipeline (every technique is in its WGSL),
-        // not a composed file.
+        // not a composed file; the surface is its vertex entry point (`vs_main` draws the
+        // mesh of `hu_patches`, `vs_projected_grid` the grid of `projected_grid`).
+        use ocean_core::plan::Stage;
+        let in_water_pipeline = |s: Stage, name: &str| {
+            s == Stage::FarField
+                || (s == Stage::Surface && matches!(name, "hu_patches" | "projected_grid"))
+        };
         if let Some((stage, t)) = plan
             .techniques
             .iter()
-            .find(|(s, t)| *s != ocean_core::plan::Stage::FarField && built.of(*s) != *t)
+            .find(|(s, t)| !in_water_pipeline(*s, t.name) && built.of(*s) != *t)
         {
             return Err(Error::Unavailable(format!(
                 "the GPU pipelines are built for {stage} technique `{}`, the plan asks for `{}`",

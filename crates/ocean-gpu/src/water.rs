@@ -45,6 +45,14 @@ pub struct WaterTextures<'a> {
     pub fresnel_filter: &'a wgpu::TextureView,
 }
 
+/// What the water pass draws.
+pub enum WaterDraw<'a> {
+    /// Surface `hu_patches`: the mesh's buffers.
+    Mesh(WaterMeshBuffers<'a>),
+    /// Surface `projected_grid`: this many vertices of `vs_projected_grid`, no buffer.
+    Grid(u32),
+}
+
 /// The water mesh on the GPU.
 pub struct WaterMeshBuffers<'a> {
     /// `WaterVertex` buffer.
@@ -58,6 +66,7 @@ pub struct WaterMeshBuffers<'a> {
 /// The stage's pipeline, layouts and samplers.
 pub struct WaterStage {
     pipeline: wgpu::RenderPipeline,
+    grid_pipeline: wgpu::RenderPipeline,
     layout: wgpu::BindGroupLayout,
     sky_layout: wgpu::BindGroupLayout,
     wrap_linear: wgpu::Sampler,
@@ -113,29 +122,35 @@ impl WaterStage {
             label: Some("ocean.water.sky"),
             entries: &[uniform_entry(0, fragment)],
         });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some(&name),
-            layout: Some(&pipeline_layout(device, &name, &[&layout, &sky_layout])),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some(entry("water", "vs_main")?),
-                compilation_options: Default::default(),
-                buffers: &[Some(WATER_VERTEX_LAYOUT)],
-            },
-            primitive: primitive(),
-            depth_stencil: Some(eye_depth()),
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some(entry("water", "fs_main")?),
-                compilation_options: Default::default(),
-                targets: &replace_target(MAP_FORMAT),
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
+        let pipeline_layout = pipeline_layout(device, &name, &[&layout, &sky_layout]);
+        let make = |vs: &str, buffers: &[Option<wgpu::VertexBufferLayout<'_>>]| {
+            Ok::<_, Error>(device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(&name),
+                layout: Some(&pipeline_layout),
+                vertex: wgpu::VertexState {
+                    module: &module,
+                    entry_point: Some(entry("water", vs)?),
+                    compilation_options: Default::default(),
+                    buffers,
+                },
+                primitive: primitive(),
+                depth_stencil: Some(eye_depth()),
+                multisample: wgpu::MultisampleState::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module: &module,
+                    entry_point: Some(entry("water", "fs_main")?),
+                    compilation_options: Default::default(),
+                    targets: &replace_target(MAP_FORMAT),
+                }),
+                multiview_mask: None,
+                cache: None,
+            }))
+        };
+        let pipeline = make("vs_main", &[Some(WATER_VERTEX_LAYOUT)])?;
+        let grid_pipeline = make("vs_projected_grid", &[])?;
         Ok(Self {
             pipeline,
+            grid_pipeline,
             layout,
             sky_layout,
             wrap_linear: linear_sampler(
@@ -160,7 +175,7 @@ impl WaterStage {
         frame: &wgpu::Buffer,
         sky: &wgpu::Buffer,
         textures: &WaterTextures<'_>,
-        mesh: &WaterMeshBuffers<'_>,
+        draw: &WaterDraw<'_>,
         hdr: &wgpu::TextureView,
         depth: &wgpu::TextureView,
         timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
@@ -200,11 +215,23 @@ impl WaterStage {
             Some((depth, Load::Keep)),
             timestamps,
         );
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, &group, &[]);
-        pass.set_bind_group(1, &sky_group, &[]);
-        pass.set_vertex_buffer(0, mesh.vertices.slice(..));
-        pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
-        pass.draw_indexed(0..mesh.index_count, 0, 0..1);
+        match draw {
+            WaterDraw::Mesh(mesh) => {
+                pass.set_pipeline(&self.pipeline);
+                pass.set_bind_group(0, &group, &[]);
+                pass.set_bind_group(1, &sky_group, &[]);
+                if mesh.index_count > 0 {
+                    pass.set_vertex_buffer(0, mesh.vertices.slice(..));
+                    pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
+                    pass.draw_indexed(0..mesh.index_count, 0, 0..1);
+                }
+            }
+            WaterDraw::Grid(vertices) => {
+                pass.set_pipeline(&self.grid_pipeline);
+                pass.set_bind_group(0, &group, &[]);
+                pass.set_bind_group(1, &sky_group, &[]);
+                pass.draw(0..*vertices, 0..1);
+            }
+        }
     }
 }

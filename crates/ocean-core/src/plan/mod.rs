@@ -665,6 +665,13 @@ impl FramePlan {
                         ),
                     }
                 }
+                Pass::FarPatch if techniques.of(Stage::Surface).name != "hu_patches" => (
+                    false,
+                    format!(
+                        "surface {} has no far patch: its grid reaches the horizon",
+                        techniques.of(Stage::Surface).name
+                    ),
+                ),
                 Pass::FarPatch => match far_hidden {
                     Some((b, sq)) => (
                         false,
@@ -684,6 +691,18 @@ impl FramePlan {
                     None if opt.prune => (true, "the view reaches beyond the near patch".into()),
                     None => (true, full.into()),
                 },
+                Pass::Water if techniques.of(Stage::Surface).name == "projected_grid" => {
+                    let cell = scene.quality.projected_grid_cell_px;
+                    let quads = |px: u32| (f64::from(px) / cell).ceil().clamp(1.0, 4096.0);
+                    (
+                        true,
+                        format!(
+                            "the sea surface, eq. 3, on a projected grid of {}×{} quads from the vertex index",
+                            quads(scene.camera.width),
+                            quads(scene.camera.height)
+                        ),
+                    )
+                }
                 Pass::Water => (true, "the sea surface, eq. 3".into()),
                 Pass::Tonemap => match output {
                     OutputKind::Ldr => (true, "8-bit sRGB output".into()),
@@ -807,6 +826,25 @@ impl FramePlan {
     /// patch alone where the plan leaves the far patch out.
     pub fn water_mesh(&self, scene: &Scene, camera: &Camera) -> crate::Result<WaterMesh> {
         let params = scene.patch_params();
+        if self.techniques.of(Stage::Surface).name == "projected_grid" {
+            // The grid is drawn from the vertex index (frame::ProjectedGridBlock); the mesh
+            // only fixes the reference point, the eye's (x, z) on the displacement grid.
+            let g = params.grid_spacing_m;
+            let cell = |x: f64| (x / g).round() as i64;
+            let origin_cell = [cell(camera.eye.x), cell(camera.eye.z)];
+            return Ok(WaterMesh {
+                origin: origin_cell.map(|c| c as f64 * g),
+                origin_cell,
+                vertices: Vec::new(),
+                indices: Vec::new(),
+                near_vertices: 0,
+                near_triangles: 0,
+                stitch_triangles: 0,
+                far_first_ring: 0,
+                far_inner_radius_m: 0.0,
+                far_outer_radius_m: 0.0,
+            });
+        }
         if self.runs(Pass::FarPatch) {
             WaterMesh::for_view(
                 &params,

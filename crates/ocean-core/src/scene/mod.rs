@@ -166,6 +166,9 @@ pub struct Quality {
     /// Near-patch refinement: a triangle is split while its hypotenuse subtends more than this
     /// angle, radians (`geometry::PatchParams::split_threshold`).
     pub lod_split_threshold: f64,
+    /// Surface `projected_grid`: pixels between two grid lines of the projector's image (the
+    /// grid has ⌈width/cell⌉ × ⌈height/cell⌉ quads).
+    pub projected_grid_cell_px: f64,
 }
 
 impl Default for Quality {
@@ -174,6 +177,7 @@ impl Default for Quality {
             fresnel_table_size: DEFAULT_FRESNEL_TABLE_SIZE,
             reflection_map_scale: 1.0,
             lod_split_threshold: 0.05,
+            projected_grid_cell_px: 4.0,
         }
     }
 }

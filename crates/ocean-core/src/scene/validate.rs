@@ -179,6 +179,12 @@ pub const LIMITS: &[Limit] = &[
         10.0,
         "radians; small values make large meshes (the memory estimate bounds them)",
     ),
+    real(
+        "quality.projected_grid_cell_px",
+        0.5,
+        64.0,
+        "pixels between the projected grid's lines (surface `projected_grid`)",
+    ),
     real("objects.*.center", -MAX_COORDINATE_M, MAX_COORDINATE_M, "m; as camera.position"),
     real("objects.*.radius", MIN_LENGTH_M, MAX_COORDINATE_M, "m"),
     real("objects.*.size", MIN_LENGTH_M, MAX_COORDINATE_M, "m, each edge"),
@@ -269,6 +275,7 @@ impl Scene {
         check_u32("quality.fresnel_table_size", q.fresnel_table_size)?;
         check("quality.reflection_map_scale", &[q.reflection_map_scale])?;
         check("quality.lod_split_threshold", &[q.lod_split_threshold])?;
+        check("quality.projected_grid_cell_px", &[q.projected_grid_cell_px])?;
         self.check_objects()?;
         self.check_derived()
     }

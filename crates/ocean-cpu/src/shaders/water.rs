@@ -103,24 +103,38 @@ fn sky_radiance(b: &Bindings<'_>, dir: Vec3) -> Vec3 {
 
 /// `vs_main`.
 pub fn vs_main(v: &WaterVertex, b: &Bindings<'_>) -> VertexOut {
+    water_vertex(Vec2::from(v.pos), v.weight, b)
+}
+
+/// `vs_projected_grid(k)`: vertex k of surface `projected_grid`'s triangle list.
+pub fn vs_projected_grid(k: u32, b: &Bindings<'_>) -> VertexOut {
+    let g = &b.frame.grid;
+    let cols = g.cols as u32;
+    let quad = k / 6;
+    let corner = (k % 6) as usize;
+    let di = [0u32, 1, 1, 0, 1, 0];
+    let dj = [0u32, 0, 1, 0, 1, 1];
+    let u = (quad % cols + di[corner]) as f32 / g.cols;
+    let v = (quad / cols + dj[corner]) as f32 / g.rows;
+    let c = g.corners.map(Vec4::from);
+    let h = (c[0] * (1.0 - u) + c[1] * u) * (1.0 - v) + (c[2] * (1.0 - u) + c[3] * u) * v;
+    let inv_w = 1.0 / h.w;
+    water_vertex(vec2(h.x * inv_w, h.z * inv_w) - Vec2::from(b.frame.tiling.mesh_offset), 1.0, b)
+}
+
+/// `water_vertex(pos, weight)`.
+pub fn water_vertex(pos: Vec2, weight: f32, b: &Bindings<'_>) -> VertexOut {
     let frame = b.frame;
-    let pos = Vec2::from(v.pos);
     let uv_d = (pos + Vec2::from(frame.tiling.displacement_origin))
         * frame.tiling.inv_displacement_size
         + frame.tiling.displacement_half_texel;
     let uv_b = (pos + Vec2::from(frame.tiling.bump_origin)) * frame.tiling.inv_bump_size
         + frame.tiling.bump_half_texel;
     let d = texture_sample_level(b.displacement, &WRAP_LINEAR, uv_d, 0.0)
-        * (v.weight * frame.passes.waves);
+        * (weight * frame.passes.waves);
     let plane = pos + Vec2::from(frame.tiling.mesh_offset);
     let rel = vec3(plane.x + d.x, d.y - frame.view.eye_height, plane.y + d.z);
-    VertexOut {
-        clip: transform_point(&frame.view.view_proj, rel),
-        rel,
-        uv_d,
-        uv_b,
-        weight: v.weight,
-    }
+    VertexOut { clip: transform_point(&frame.view.view_proj, rel), rel, uv_d, uv_b, weight }
 }
 
 /// `pow_int(x, n)`: x^n by binary exponentiation, multiplications in the WGSL's order.
