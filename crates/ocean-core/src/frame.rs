@@ -330,14 +330,21 @@ impl ProjectedGridBlock {
         else {
             return Self::zeroed();
         };
-        let quads = |px: u32| (f64::from(px) / cell_px).ceil().clamp(1.0, 4096.0) as f32;
+        let (cols, rows) = Self::quads(camera.width, camera.height, cell_px);
         Self {
             corners: grid.corners.map(|c| c.as_vec4().to_array()),
-            cols: quads(camera.width),
-            rows: quads(camera.height),
+            cols: cols as f32,
+            rows: rows as f32,
             pad0: 0.0,
             pad1: 0.0,
         }
+    }
+
+    /// The grid's quads across and along for a `width` × `height` image, `cell_px` pixels
+    /// between lines: ⌈width/cell⌉ × ⌈height/cell⌉, each from 1 to 4096.
+    pub fn quads(width: u32, height: u32, cell_px: f64) -> (u32, u32) {
+        let q = |px: u32| (f64::from(px) / cell_px).ceil().clamp(1.0, 4096.0) as u32;
+        (q(width), q(height))
     }
 
     /// Vertices the water pass draws (a triangle list, six per quad).

@@ -12,6 +12,7 @@
 //!   complex f64 spectra and FFT scratch, the f32 maps);
 //! - water mesh: [`MESH_BYTES_PER_TRIANGLE`] per triangle of the near patch's bintree (nodes,
 //!   vertices, indices) and of the far patch;
+//! - surface `projected_grid`: [`GRID_BYTES_PER_TRIANGLE`] per triangle of its list (counted);
 //! - objects: [`OBJECT_BYTES_PER_TRIANGLE`] per triangle, once per pass that draws them;
 //! - each texture of the plan at its size and format, and a 4-byte depth buffer per render
 //!   target; the encoded output once more.
@@ -29,6 +30,11 @@ pub const WAVE_BYTES_PER_SAMPLE: u64 = 176;
 /// Bytes per triangle of the water mesh (calibrated: a full-depth 2048-cell near patch,
 /// 8.4 M triangles, peaks at 864 MiB, 103 B per triangle).
 pub const MESH_BYTES_PER_TRIANGLE: u64 = 128;
+
+/// Bytes per triangle of surface `projected_grid` on the CPU (counted, not calibrated: its
+/// triangle list shares no vertex, three transformed vertices of 16 + 4·8 bytes and a 12-byte
+/// index triple).
+pub const GRID_BYTES_PER_TRIANGLE: u64 = 3 * 48 + 12;
 
 /// Bytes per object triangle per pass: three 36-byte vertices and the rasteriser's
 /// transformed copy of them (calibrated: 2000 spheres, 4.4 M triangles drawn in three passes,
@@ -136,11 +142,24 @@ impl MemoryEstimate {
             add("encoded EXR".into(), w * h * 16 * 2, "camera.width");
         }
         if plan.runs(Pass::Water) {
-            add(
-                "water mesh".into(),
-                water_triangles(scene) * MESH_BYTES_PER_TRIANGLE,
-                "quality.lod_split_threshold",
-            );
+            if plan.techniques.of(crate::plan::Stage::Surface).name == "projected_grid" {
+                let (cols, rows) = crate::frame::ProjectedGridBlock::quads(
+                    scene.camera.width,
+                    scene.camera.height,
+                    scene.quality.projected_grid_cell_px,
+                );
+                add(
+                    "projected grid".into(),
+                    2 * u64::from(cols) * u64::from(rows) * GRID_BYTES_PER_TRIANGLE,
+                    "quality.projected_grid_cell_px",
+                );
+            } else {
+                add(
+                    "water mesh".into(),
+                    water_triangles(scene) * MESH_BYTES_PER_TRIANGLE,
+                    "quality.lod_split_threshold",
+                );
+            }
         }
         let object_passes: Vec<Pass> =
             [Pass::ShadowMap, Pass::ReflectionMap, Pass::RefractionMap, Pass::Objects]

@@ -692,14 +692,16 @@ impl FramePlan {
                     None => (true, full.into()),
                 },
                 Pass::Water if techniques.of(Stage::Surface).name == "projected_grid" => {
-                    let cell = scene.quality.projected_grid_cell_px;
-                    let quads = |px: u32| (f64::from(px) / cell).ceil().clamp(1.0, 4096.0);
+                    let (cols, rows) = crate::frame::ProjectedGridBlock::quads(
+                        scene.camera.width,
+                        scene.camera.height,
+                        scene.quality.projected_grid_cell_px,
+                    );
                     (
                         true,
                         format!(
-                            "the sea surface, eq. 3, on a projected grid of {}×{} quads from the vertex index",
-                            quads(scene.camera.width),
-                            quads(scene.camera.height)
+                            "the sea surface, eq. 3, on a projected grid of {cols}×{rows} quads \
+                             from the vertex index"
                         ),
                     )
                 }
