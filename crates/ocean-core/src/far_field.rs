@@ -5,7 +5,7 @@
 //! - `mip`: the slope maps carry mip chains (each level the 2×2 box of the one below), and the
 //!   water pass samples them trilinearly at the LOD of the pixel's footprint on the sea.
 //! - `variance`: as `mip`, and the slopes the footprint averaged away are not dropped: each
-//!   level also holds the mean squared slopes, so E[s²] − E[s]² is the variance of the
+//!   level also holds the mean squared slopes, so E\[s²\] − E\[s\]² is the variance of the
 //!   unresolved slopes under the pixel (LEAN mapping's moments), and the shading takes the
 //!   expectation of the Fresnel term and of the sun's highlight over a Gaussian slope
 //!   distribution of that variance ([`FresnelFilterTable`], [`SunLobe`]).

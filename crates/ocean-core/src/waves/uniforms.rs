@@ -202,7 +202,7 @@ pub fn wave_mode_table(modes: &WaveModes) -> Vec<WaveModeData> {
         .collect()
 }
 
-/// W[m] = e^{+2πi m/N} for m < N/2 (the inverse transform's twiddles), in f64 rounded to f32.
+/// W\[m\] = e^{+2πi m/N} for m < N/2 (the inverse transform's twiddles), in f64 rounded to f32.
 pub fn fft_twiddles(resolution: usize) -> Vec<[f32; 2]> {
     let n = resolution as f64;
     (0..resolution / 2)

@@ -348,7 +348,7 @@ pub fn visible_slopes(mu: f32, var_geo: f32, vy: f32, vh: f32) -> Vec2 {
     vec2((vy - st * (a + mean_u)) / vh, var_u * (st * st) / (vh * vh))
 }
 
-/// `subtexel(lod)`: the share of level 0's E[s²] − E[s]² a footprint of LOD `lod` < 0 holds.
+/// `subtexel(lod)`: the share of level 0's E\[s²\] − E\[s\]² a footprint of LOD `lod` < 0 holds.
 pub fn subtexel(lod: f32) -> f32 {
     if lod >= 0.0 {
         return 1.0;

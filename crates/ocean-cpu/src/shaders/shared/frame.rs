@@ -2,7 +2,7 @@
 
 use crate::shaders::wgsl::{Mat4, Vec3, Vec4};
 
-/// `transform_point(m, p)` = m[0]·p.x + m[1]·p.y + m[2]·p.z + m[3], summed left to right.
+/// `transform_point(m, p)` = m\[0\]·p.x + m\[1\]·p.y + m\[2\]·p.z + m\[3\], summed left to right.
 #[inline]
 pub fn transform_point(m: &Mat4, p: Vec3) -> Vec4 {
     let m = m.map(Vec4::from);
