@@ -173,11 +173,9 @@ struct Footprint {
     // The view vector's vertical and horizontal parts, |rel.y|/dist and horizontal/dist.
     vy: f32,
     vh: f32,
-    // The share of the taps' lengthwise slope spread that the water mesh resolves, whose
-    // wave backs the eye cannot see: the octaves between the mesh's triangle leg and the
-    // footprint's length over the k octaves the taps span (the sea's slope variance is
-    // spread evenly over octaves, k⁻⁴ spectra); 1 where the mesh is finer than the taps.
-    mesh_share: f32,
+    // The distance to the eye and log2 of the footprint's length (for mesh_share).
+    dist: f32,
+    l_long: f32,
 }
 
 fn footprint(rel: vec3<f32>) -> Footprint {
@@ -189,7 +187,8 @@ fn footprint(rel: vec3<f32>) -> Footprint {
         fp.h = vec2<f32>(0.0, 0.0);
         fp.vy = 0.0;
         fp.vh = 0.0;
-        fp.mesh_share = 0.0;
+        fp.dist = 0.0;
+        fp.l_long = 0.0;
         return fp;
     }
     let dist = sqrt(rel.x * rel.x + rel.y * rel.y + rel.z * rel.z);
@@ -208,12 +207,22 @@ fn footprint(rel: vec3<f32>) -> Footprint {
     fp.h = vec2<f32>(-rel.x, -rel.z) * (1.0 / max(horizontal, 1e-30));
     fp.vy = abs(rel.y) / max(dist, 1e-30);
     fp.vh = horizontal / max(dist, 1e-30);
-    fp.mesh_share = 0.0;
-    if (k > 0.0) {
-        let leg = max(frame.far.mesh_leg_scale * dist, frame.far.mesh_leg_min);
-        fp.mesh_share = clamp((l_long - max(lod_log2(leg), l_long - k)) / k, 0.0, 1.0);
-    }
+    fp.dist = dist;
+    fp.l_long = l_long;
     return fp;
+}
+
+// The share of the taps' lengthwise slope spread that the water mesh resolves, whose wave
+// backs the eye cannot see: the octaves between the mesh's triangle leg and the footprint's
+// length over the k octaves the taps span (the sea's slope variance is spread evenly over
+// octaves, k⁻⁴ spectra); 0 with one tap.
+fn mesh_share(fp: Footprint) -> f32 {
+    let k = fp.taps_log2;
+    if (k <= 0.0) {
+        return 0.0;
+    }
+    let leg = max(frame.far.mesh_leg_scale * fp.dist, frame.far.mesh_leg_min);
+    return clamp((fp.l_long - max(lod_log2(leg), fp.l_long - k)) / k, 0.0, 1.0);
 }
 
 // A slope chain averaged over the footprint's taps: the mean of the samples, and the mean of
@@ -352,7 +361,7 @@ fn filtered_slopes(in: VertexOut) -> vec3<f32> {
         if (rel.y < 0.0) {
             let mu_raw = d.x * h.x + d.y * h.y;
             let mu = mu_raw * wd;
-            let var_geo = max(dt.along_sq - mu_raw * mu_raw, 0.0) * (wd * wd) * fp.mesh_share;
+            let var_geo = max(dt.along_sq - mu_raw * mu_raw, 0.0) * (wd * wd) * mesh_share(fp);
             let vis = visible_slopes(mu, var_geo, fp.vy, fp.vh);
             s = s + h * (vis.x - mu);
             variance = max(variance + 0.5 * (vis.y - var_geo), 0.0);
@@ -381,14 +390,20 @@ fn grazing_square_axis(a: f32, b: f32) -> f32 {
     return 0.5 * (sqrt(max(plus, 0.0)) - sqrt(max(minus, 0.0)));
 }
 
-// Fresnel bump mapping (§5.1, Fig. 4): the view vector bumped by (−du, −dv), (du, dv) the
-// horizontal components of the bumped unit normal, looked up in the grazing-mapped texture
+// Fresnel bump mapping (§5.1, Fig. 4): the view vector's horizontal part bumped by (−du, −dv),
+// (du, dv) the horizontal components of the bumped unit normal: the Fresnel texture's axes,
+// which the slopes move one for one.
+fn bumped_view(view: vec3<f32>, n: vec3<f32>) -> vec2<f32> {
+    return vec2<f32>(view.x - n.x, view.z - n.z);
+}
+
+// The bumped view vector `u_bumped` looked up in the grazing-mapped texture
 // (the plan's `fresnel_mapping`): z = sqrt(1 − r²), the disc point d = (x, y)/sqrt(1 + z)
 // (|d|² = 1 − z), a bumped vector beyond the rim (r > 1) put on the rim at its azimuth by
 // max(…, r), then d to the square u ∈ [−1, 1]² and s = a·u + ½.
-fn fresnel_st(view: vec3<f32>, n: vec3<f32>) -> vec2<f32> {
-    let x = view.x - n.x;
-    let y = view.z - n.z;
+fn fresnel_st(u_bumped: vec2<f32>) -> vec2<f32> {
+    let x = u_bumped.x;
+    let y = u_bumped.y;
     let r2 = x * x + y * y;
     let z = sqrt(max(1.0 - r2, 0.0));
     let d = vec2<f32>(x, y) / max(sqrt(1.0 + z), sqrt(r2));
@@ -399,14 +414,23 @@ fn fresnel_st(view: vec3<f32>, n: vec3<f32>) -> vec2<f32> {
 // F averaged over the unresolved slopes (far field `variance`): the table's F̄ at the bumped
 // view vector's radius r and t = sqrt(σ/Σ). F̄ itself, not F̄ − F added to the 2D texture's
 // F: F rises from 0.68 to 1 within one texel of the rim, so F̄ − F falls as fast, and its
-// bilinear lookup there was off by up to 0.16 (the horizon band 10 % too bright); F̄ is smooth for σ > 0.
-fn fresnel_filtered(view: vec3<f32>, n: vec3<f32>, variance: f32) -> f32 {
-    let x = view.x - n.x;
-    let y = view.z - n.z;
-    let r = sqrt(x * x + y * y);
+// bilinear lookup there was off by up to 0.16 (the horizon bands 5–11 % too bright); F̄ is smooth for σ > 0.
+fn fresnel_filtered(u_bumped: vec2<f32>, variance: f32) -> f32 {
+    let r = sqrt(u_bumped.x * u_bumped.x + u_bumped.y * u_bumped.y);
     let t = sqrt(sqrt(variance) * frame.far.inv_sigma_max);
     let uv = vec2<f32>(r * frame.far.filter_r_scale + frame.far.filter_r_offset, t * frame.far.filter_t_scale + frame.far.filter_t_offset);
     return clamp(textureSampleLevel(fresnel_filter, clamp_linear, uv, 0.0).x, 0.0, 1.0);
+}
+
+// One side of the sun's lobe along u_r: a half Gaussian of variance a about c (the lobe's
+// peak), averaged over u_r ~ N(ur, v). The product of the two Gaussians is (x) the peak's
+// scale times a Gaussian in u_r of mean (y) and deviation (z); the caller cuts it to the
+// side's interval with Φ.
+fn lobe_side(ur: f32, c: f32, v: f32, a: f32) -> vec3<f32> {
+    let d = ur - c;
+    let m = (ur * a + c * v) / (a + v);
+    let w = max(sqrt(v * a / (v + a)), 1e-30);
+    return vec3<f32>(sqrt(a / (a + v)) * exp_arith(-0.5 * d * d / (a + v)), m, w);
 }
 
 // The sun's lobe averaged over unresolved slopes of per-axis variance σ² > 0, at u, the
@@ -432,18 +456,12 @@ fn sun_lobe_filtered(u: vec2<f32>, variance: f32) -> f32 {
     let across = sqrt(at / (at + v)) * exp_arith(-0.5 * ut * ut / (at + v));
     let beyond = far.sun_rim * normal_cdf((ur - 1.0) / sqrt(v));
     let c = far.sun_centre;
-    let d = ur - c;
-    // The side towards the zenith, u_r < c: a half Gaussian of variance a₁ over N(ū_r, v).
-    let a1 = far.sun_above;
-    let m1 = (ur * a1 + c * v) / (a1 + v);
-    let w1 = max(sqrt(v * a1 / (v + a1)), 1e-30);
-    let above = sqrt(a1 / (a1 + v)) * exp_arith(-0.5 * d * d / (a1 + v)) * normal_cdf((c - m1) / w1);
-    // The side towards the rim, c < u_r < 1.
-    let a2 = far.sun_below;
-    let m2 = (ur * a2 + c * v) / (a2 + v);
-    let w2 = max(sqrt(v * a2 / (v + a2)), 1e-30);
-    let below = sqrt(a2 / (a2 + v)) * exp_arith(-0.5 * d * d / (a2 + v)) * (normal_cdf((1.0 - m2) / w2) - normal_cdf((c - m2) / w2));
-    return across * (beyond + above + below);
+    // The side towards the zenith, u_r < c, and the side towards the rim, c < u_r < 1.
+    let above = lobe_side(ur, c, v, far.sun_above);
+    let below = lobe_side(ur, c, v, far.sun_below);
+    let p_above = above.x * normal_cdf((c - above.y) / above.z);
+    let p_below = below.x * (normal_cdf((1.0 - below.y) / below.z) - normal_cdf((c - below.y) / below.z));
+    return across * (beyond + p_above + p_below);
 }
 
 // The sky seen in the unresolved facets (far field `variance`): the reflected sky at the four
@@ -466,7 +484,7 @@ fn sky_filtered(view: vec3<f32>, slopes: vec3<f32>, variance: f32) -> vec3<f32> 
             o.y = -sigma;
         }
         let ni = unit(vec3<f32>(-(slopes.x + o.x), 1.0, -(slopes.y + o.y)));
-        let fi = textureSampleLevel(fresnel_above, clamp_linear, fresnel_st(view, ni), 0.0).w;
+        let fi = textureSampleLevel(fresnel_above, clamp_linear, fresnel_st(bumped_view(view, ni)), 0.0).w;
         var ri = ni * (2.0 * dot3(view, ni)) - view;
         ri.y = max(ri.y, 0.0);
         sum_fl = sum_fl + sky_radiance(sky, unit(ri + vec3<f32>(0.0, 1e-6, 0.0))) * fi;
@@ -484,14 +502,15 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let du = n.x;
     let dv = n.z;
     let view = unit(-in.rel);
+    let u_bumped = bumped_view(view, n);
     // In the fragment stage `clip` is the fragment's position: (x + 0.5, y + 0.5, depth, 1/w).
     let screen = in.clip.xy * frame.view.inv_viewport_size;
     if (view.y >= 0.0) {
-        let st = fresnel_st(view, n);
+        let st = fresnel_st(u_bumped);
         let fres = textureSampleLevel(fresnel_above, clamp_linear, st, 0.0);
         var f = fres.w;
         if (variance > 0.0) {
-            f = fresnel_filtered(view, n, variance);
+            f = fresnel_filtered(u_bumped, variance);
         }
         // Reflection (§4.2, §5.2): sky along the bumped reflection direction, mirrored
         // objects from the reflection map shifted by the bump, over it by coverage.
@@ -517,7 +536,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
         let cos_spec = max(dot3(vb, r_sun), 0.0);
         var lobe = pow_int(cos_spec, u32(frame.hu.phong_exponent));
         if (variance > 0.0) {
-            lobe = sun_lobe_filtered(vec2<f32>(view.x - n.x, view.z - n.z), variance);
+            lobe = sun_lobe_filtered(u_bumped, variance);
         }
         let spec = frame.sun.radiance * (lobe * frame.sun.lit);
         let shadow = sun_visibility(in.rel);
@@ -526,7 +545,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     }
     // From below: the normal facing the eye is (n.x, −n.y, n.z), its horizontal part again
     // (du, dv); F for η⁻¹ (1 beyond the critical angle: total internal reflection).
-    let st = fresnel_st(view, n);
+    let st = fresnel_st(u_bumped);
     let f = textureSampleLevel(fresnel_below, clamp_linear, st, 0.0).w;
     // Snell's window: the ray i from the eye meets the surface from below (the normal facing
     // it is −n) and leaves into the air, η_i/η_t = η (water to air):

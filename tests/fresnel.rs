@@ -950,7 +950,7 @@ fn the_water_shaders_grazing_lookup_meets_2e3() {
     let lookup = |table: &ocean_cpu::sampler::Texture2D, v: [f64; 3]| {
         // The shader's view vector is world (x, y up, z); the local frame has z up.
         let view = [v[0] as f32, v[2] as f32, v[1] as f32];
-        let st = water::fresnel_st(view.into(), [0.0, 1.0, 0.0].into(), scale);
+        let st = water::fresnel_st(water::bumped_view(view.into(), [0.0, 1.0, 0.0].into()), scale);
         texture_sample(table, &water::CLAMP_LINEAR, st.into())[3]
     };
     let worst = |table: &ocean_cpu::sampler::Texture2D| {

@@ -323,11 +323,11 @@ impl ProjectedGridBlock {
     /// about e^(−18) per wave (Rayleigh crests, P(a > x) = e^(−2x²/H_s²)).
     pub const BOUND_OVER_HS: f64 = 3.0;
 
-    /// The block of a `width` × `height` view through `camera` over a sea of significant wave
-    /// height `hs`, `cell_px` pixels between grid lines (at most 4096 quads a side).
-    pub fn new(camera: &crate::camera::Camera, hs: f64, cell_px: f64) -> Self {
-        let Some(grid) = crate::geometry::ProjectedGrid::new(camera, Self::BOUND_OVER_HS * hs)
-        else {
+    /// The block of a `width` × `height` view through `camera` over a sea whose waves stay
+    /// within `wave_bound` m of the plane (the plan's `wave_bound_m`, [`Self::BOUND_OVER_HS`]
+    /// times H_s), `cell_px` pixels between grid lines (at most 4096 quads a side).
+    pub fn new(camera: &crate::camera::Camera, wave_bound: f64, cell_px: f64) -> Self {
+        let Some(grid) = crate::geometry::ProjectedGrid::new(camera, wave_bound) else {
             return Self::zeroed();
         };
         let (cols, rows) = Self::quads(camera.width, camera.height, cell_px);
@@ -633,9 +633,11 @@ impl FrameUniforms {
             .with_sun(sun_dir.normalize_or_zero().y, f64::from(SUN_SPECULAR_EXPONENT))
             .with_mesh(scene.quality.lod_split_threshold, l_d / f64::from(o.resolution.max(1))),
             grid: if plan.techniques.of(crate::plan::Stage::Surface).name == "projected_grid" {
-                // A validated scene's spectrum exists; without one the sea is flat.
-                let hs = o.wave_spectrum().map_or(0.0, |s| s.significant_wave_height());
-                ProjectedGridBlock::new(camera, hs, scene.quality.projected_grid_cell_px)
+                ProjectedGridBlock::new(
+                    camera,
+                    plan.wave_bound_m,
+                    scene.quality.projected_grid_cell_px,
+                )
             } else {
                 ProjectedGridBlock::zeroed()
             },

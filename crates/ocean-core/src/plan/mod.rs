@@ -313,6 +313,10 @@ pub struct FramePlan {
     /// Width and height of the reflection map, pixels (`[quality] reflection_map_scale` of the
     /// viewport, at least 1).
     pub reflection_map_size: [u32; 2],
+    /// How far the waves may reach above and below the sea plane, m: the projected grid's
+    /// slab (surface `projected_grid`; 0 for other surfaces). Computed once here (the
+    /// spectrum's significant wave height is a quadrature), not per frame's uniforms.
+    pub wave_bound_m: f64,
 }
 
 /// The vertical extent of an object, m.
@@ -491,6 +495,13 @@ impl FramePlan {
             reflection_map_size: [scene.camera.width, scene.camera.height].map(|side| {
                 ((f64::from(side) * scene.quality.reflection_map_scale).round() as u32).max(1)
             }),
+            wave_bound_m: if techniques.of(Stage::Surface).name == "projected_grid" {
+                // A validated scene's spectrum exists; without one the sea is flat.
+                let hs = scene.ocean.wave_spectrum().map_or(0.0, |s| s.significant_wave_height());
+                crate::frame::ProjectedGridBlock::BOUND_OVER_HS * hs
+            } else {
+                0.0
+            },
         };
         let full = "full plan: every pass the scene can use";
         let mut objects = PassObjects::default();

@@ -201,9 +201,10 @@ pub struct Footprint {
     pub vy: f32,
     /// See `vy`.
     pub vh: f32,
-    /// The share of the taps' lengthwise slope spread the water mesh resolves (1 where the
-    /// mesh is finer than the taps).
-    pub mesh_share: f32,
+    /// The distance to the eye.
+    pub dist: f32,
+    /// log2 of the footprint's length.
+    pub l_long: f32,
 }
 
 /// `footprint(rel)`.
@@ -218,7 +219,8 @@ pub fn footprint(rel: Vec3, frame: &FrameUniforms) -> Footprint {
             h: zero,
             vy: 0.0,
             vh: 0.0,
-            mesh_share: 0.0,
+            dist: 0.0,
+            l_long: 0.0,
         };
     }
     let dist = sqrt(rel.x * rel.x + rel.y * rel.y + rel.z * rel.z);
@@ -231,11 +233,6 @@ pub fn footprint(rel: Vec3, frame: &FrameUniforms) -> Footprint {
     let l = max(l_short, l_long - k) + far.lod_bias;
     let horizontal = sqrt(rel.x * rel.x + rel.z * rel.z);
     let spacing = long * ldexp(1.0, -(k as i32));
-    let mut mesh_share = 0.0;
-    if k > 0.0 {
-        let leg = max(far.mesh_leg_scale * dist, far.mesh_leg_min);
-        mesh_share = clamp((l_long - max(lod_log2(leg), l_long - k)) / k, 0.0, 1.0);
-    }
     Footprint {
         lods: vec2(l + far.lod_offset_d, l + far.lod_offset_b),
         taps_log2: k,
@@ -243,8 +240,20 @@ pub fn footprint(rel: Vec3, frame: &FrameUniforms) -> Footprint {
         h: vec2(-rel.x, -rel.z) * (1.0 / max(horizontal, 1e-30)),
         vy: abs(rel.y) / max(dist, 1e-30),
         vh: horizontal / max(dist, 1e-30),
-        mesh_share,
+        dist,
+        l_long,
     }
+}
+
+/// `mesh_share(fp)`: the share of the taps' lengthwise slope spread the water mesh resolves
+/// (0 with one tap).
+pub fn mesh_share(fp: &Footprint, frame: &FrameUniforms) -> f32 {
+    let k = fp.taps_log2;
+    if k <= 0.0 {
+        return 0.0;
+    }
+    let leg = max(frame.far.mesh_leg_scale * fp.dist, frame.far.mesh_leg_min);
+    clamp((fp.l_long - max(lod_log2(leg), fp.l_long - k)) / k, 0.0, 1.0)
 }
 
 /// `textureSampleLevel` on a chain (a one-level chain is a plain texture).
@@ -393,7 +402,8 @@ pub fn filtered_slopes(input: &VertexOut, b: &Bindings<'_>) -> Vec3 {
         if rel.y < 0.0 {
             let mu_raw = d.x * h.x + d.y * h.y;
             let mu = mu_raw * wd;
-            let var_geo = max(dt.along_sq - mu_raw * mu_raw, 0.0) * (wd * wd) * fp.mesh_share;
+            let var_geo =
+                max(dt.along_sq - mu_raw * mu_raw, 0.0) * (wd * wd) * mesh_share(&fp, frame);
             let vis = visible_slopes(mu, var_geo, fp.vy, fp.vh);
             s = s + h * (vis.x - mu);
             variance = max(variance + 0.5 * (vis.y - var_geo), 0.0);
@@ -408,18 +418,25 @@ pub fn bumped_normal(input: &VertexOut, b: &Bindings<'_>) -> Vec3 {
     unit(vec3(-s.x, 1.0, -s.y))
 }
 
-/// `fresnel_filtered(view, n, variance)`.
-pub fn fresnel_filtered(view: Vec3, n: Vec3, variance: f32, b: &Bindings<'_>) -> f32 {
+/// `fresnel_filtered(u_bumped, variance)`.
+pub fn fresnel_filtered(u_bumped: Vec2, variance: f32, b: &Bindings<'_>) -> f32 {
     let far = &b.frame.far;
-    let x = view.x - n.x;
-    let y = view.z - n.z;
-    let r = sqrt(x * x + y * y);
+    let r = sqrt(u_bumped.x * u_bumped.x + u_bumped.y * u_bumped.y);
     let t = sqrt(sqrt(variance) * far.inv_sigma_max);
     let uv = vec2(
         r * far.filter_r_scale + far.filter_r_offset,
         t * far.filter_t_scale + far.filter_t_offset,
     );
     clamp(texture_sample_level(b.fresnel_filter, &CLAMP_LINEAR, uv, 0.0).x, 0.0, 1.0)
+}
+
+/// `lobe_side(ur, c, v, a)`: one half Gaussian of the sun's lobe averaged over N(ur, v):
+/// (peak scale, mean, deviation) of the product.
+pub fn lobe_side(ur: f32, c: f32, v: f32, a: f32) -> Vec3 {
+    let d = ur - c;
+    let m = (ur * a + c * v) / (a + v);
+    let w = max(sqrt(v * a / (v + a)), 1e-30);
+    vec3(sqrt(a / (a + v)) * exp_arith(-0.5 * d * d / (a + v)), m, w)
 }
 
 /// `sun_lobe_filtered(u, variance)`: the sun's lobe averaged over slopes of per-axis
@@ -441,19 +458,12 @@ pub fn sun_lobe_filtered(u: Vec2, variance: f32, frame: &FrameUniforms) -> f32 {
     let across = sqrt(at / (at + v)) * exp_arith(-0.5 * ut * ut / (at + v));
     let beyond = far.sun_rim * normal_cdf((ur - 1.0) / sqrt(v));
     let c = far.sun_centre;
-    let d = ur - c;
-    let a1 = far.sun_above;
-    let m1 = (ur * a1 + c * v) / (a1 + v);
-    let w1 = max(sqrt(v * a1 / (v + a1)), 1e-30);
-    let above =
-        sqrt(a1 / (a1 + v)) * exp_arith(-0.5 * d * d / (a1 + v)) * normal_cdf((c - m1) / w1);
-    let a2 = far.sun_below;
-    let m2 = (ur * a2 + c * v) / (a2 + v);
-    let w2 = max(sqrt(v * a2 / (v + a2)), 1e-30);
-    let below = sqrt(a2 / (a2 + v))
-        * exp_arith(-0.5 * d * d / (a2 + v))
-        * (normal_cdf((1.0 - m2) / w2) - normal_cdf((c - m2) / w2));
-    across * (beyond + above + below)
+    let above = lobe_side(ur, c, v, far.sun_above);
+    let below = lobe_side(ur, c, v, far.sun_below);
+    let p_above = above.x * normal_cdf((c - above.y) / above.z);
+    let p_below =
+        below.x * (normal_cdf((1.0 - below.y) / below.z) - normal_cdf((c - below.y) / below.z));
+    across * (beyond + p_above + p_below)
 }
 
 /// `SQRT2`.
@@ -466,12 +476,18 @@ pub fn grazing_square_axis(a: f32, b: f32) -> f32 {
     0.5 * (sqrt(max(plus, 0.0)) - sqrt(max(minus, 0.0)))
 }
 
-/// `fresnel_st(view, n)`: the Fresnel texture's coordinates of the bumped view vector
+/// `bumped_view(view, n)`: the view vector's horizontal part bumped by the normal's
+/// (§5.1, Fig. 4).
+pub fn bumped_view(view: Vec3, n: Vec3) -> Vec2 {
+    vec2(view.x - n.x, view.z - n.z)
+}
+
+/// `fresnel_st(u_bumped)`: the Fresnel texture's coordinates of the bumped view vector
 /// (§5.1, Fig. 4) under the grazing mapping; `fresnel_scale` is the frame's
 /// `hu.fresnel_scale`.
-pub fn fresnel_st(view: Vec3, n: Vec3, fresnel_scale: f32) -> Vec2 {
-    let x = view.x - n.x;
-    let y = view.z - n.z;
+pub fn fresnel_st(u_bumped: Vec2, fresnel_scale: f32) -> Vec2 {
+    let x = u_bumped.x;
+    let y = u_bumped.y;
     let r2 = x * x + y * y;
     let z = sqrt(max(1.0 - r2, 0.0));
     let d = vec2(x, y) / max(sqrt(1.0 + z), sqrt(r2));
@@ -493,7 +509,7 @@ pub fn sky_filtered(view: Vec3, slopes: Vec3, variance: f32, b: &Bindings<'_>) -
             _ => o.y = -sigma,
         }
         let ni = unit(vec3(-(slopes.x + o.x), 1.0, -(slopes.y + o.y)));
-        let st = fresnel_st(view, ni, b.frame.hu.fresnel_scale);
+        let st = fresnel_st(bumped_view(view, ni), b.frame.hu.fresnel_scale);
         let fi = texture_sample_level(b.fresnel_above, &CLAMP_LINEAR, st, 0.0).w;
         let mut ri = ni * (2.0 * dot3(view, ni)) - view;
         ri.y = max(ri.y, 0.0);
@@ -512,13 +528,14 @@ pub fn fs_main(input: &VertexOut, b: &Bindings<'_>) -> [f32; 4] {
     let du = n.x;
     let dv = n.z;
     let view = unit(-input.rel);
+    let u_bumped = bumped_view(view, n);
     let screen = input.clip.xy() * Vec2::from(frame.view.inv_viewport_size);
     if view.y >= 0.0 {
-        let st = fresnel_st(view, n, frame.hu.fresnel_scale);
+        let st = fresnel_st(u_bumped, frame.hu.fresnel_scale);
         let fres = texture_sample_level(b.fresnel_above, &CLAMP_LINEAR, st, 0.0);
         let mut f = fres.w;
         if variance > 0.0 {
-            f = fresnel_filtered(view, n, variance, b);
+            f = fresnel_filtered(u_bumped, variance, b);
         }
         let vn = dot3(view, n);
         let mut r = n * (2.0 * vn) - view;
@@ -549,14 +566,14 @@ pub fn fs_main(input: &VertexOut, b: &Bindings<'_>) -> [f32; 4] {
         let cos_spec = max(dot3(vb, r_sun), 0.0);
         let mut lobe = pow_int(cos_spec, frame.hu.phong_exponent as u32);
         if variance > 0.0 {
-            lobe = sun_lobe_filtered(vec2(view.x - n.x, view.z - n.z), variance, frame);
+            lobe = sun_lobe_filtered(u_bumped, variance, frame);
         }
         let spec = Vec3::from(frame.sun.radiance) * (lobe * frame.sun.lit);
         let shadow = sun_visibility(input.rel, b);
         let c = c_reflect * f + c_refract * (1.0 - f) + spec * shadow;
         return c.extend(1.0).into();
     }
-    let st = fresnel_st(view, n, frame.hu.fresnel_scale);
+    let st = fresnel_st(u_bumped, frame.hu.fresnel_scale);
     let f = texture_sample_level(b.fresnel_below, &CLAMP_LINEAR, st, 0.0).w;
     let eta = frame.water.eta;
     let i = -view;
