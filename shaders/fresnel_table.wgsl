@@ -22,42 +22,10 @@ struct FresnelTableUniforms {
     pad2: u32,
 }
 
+// #import shared/fresnel.wgsl
+
 @group(0) @binding(0) var<uniform> params: FresnelTableUniforms;
 @group(0) @binding(1) var table: texture_storage_2d<rgba32float, write>;
-
-// Eq. 2 in the stable form of ocean-core's fresnel::fresnel_exact (same branches, same order
-// of operations), for c ∈ [0, 1] and η > 0.
-fn fresnel_exact(c: f32, eta: f32) -> f32 {
-    if (eta == 1.0) {
-        return 0.0;
-    }
-    if (c == 0.0) {
-        return 1.0;
-    }
-    if (c == 1.0) {
-        let r = (eta - 1.0) / (eta + 1.0);
-        return r * r;
-    }
-    let sin2_theta_i = (1.0 - c) * (1.0 + c);
-    var g: f32;
-    var g_minus_c: f32;
-    if (eta <= 2.0) {
-        let eta2_minus_1 = (eta - 1.0) * (eta + 1.0);
-        let g2 = eta2_minus_1 + c * c;
-        if (g2 < 0.0) {
-            return 1.0;
-        }
-        g = sqrt(g2);
-        g_minus_c = eta2_minus_1 / (g + c);
-    } else {
-        g = eta * sqrt(1.0 - sin2_theta_i / eta / eta);
-        g_minus_c = g - c;
-    }
-    let r_s = g_minus_c / (g + c);
-    let cg = c * g;
-    let p_over_s = (cg - sin2_theta_i) / (cg + sin2_theta_i);
-    return min(0.5 * r_s * r_s * (1.0 + p_over_s * p_over_s), 1.0);
-}
 
 // The grazing mapping's view vector of texel `id` (ocean-core tables::TextureMapping):
 // u = i·step − 1, the elliptical grid mapping d = (u sqrt(1 − v²/2), v sqrt(1 − u²/2)), and

@@ -4,10 +4,12 @@
 // - vs_reflect / fs_reflect: mirrored in the plane y = 0 and seen from the eye, the parts
 //   above the water only — the reflection map (alpha = coverage);
 // - vs_refract / fs_refract: the parts under the water, scaled along y by 1/η (the apparent
-//   depth of a flat interface seen from above), fogged by eq. 4 — the refraction map.
+//   depth of a flat interface seen from above), fogged by eq. 4 (seed 001's eq. 7 with the
+//   colour of its eq. 8 under shading `chiu`) — the refraction map.
 // CPU mirror: crates/ocean-cpu/src/shaders/objects.rs.
 
 // #import shared/frame.wgsl
+// #import shared/optics.wgsl
 
 @group(0) @binding(0) var<uniform> frame: FrameUniforms;
 
@@ -107,5 +109,7 @@ fn fs_refract(in: VertexOut) -> @location(0) vec4<f32> {
     // The light reaching the object is the downwelling irradiance at its depth, which falls
     // as e^{−K z} (K is the diffuse extinction coefficient, §4.3).
     let obj = shade(in.normal, in.color) * exp(-frame.water.extinction_per_m * -in.world_y);
-    return vec4<f32>(frame.water.color * fog + obj * (1.0 - fog), 1.0);
+    // The water's colour at the object's depth: `hu`'s constant, or eq. 8 (shading `chiu`,
+    // whose eq. 7 is this same blend with atten = K).
+    return vec4<f32>(water_volume_colour(-in.world_y) * fog + obj * (1.0 - fog), 1.0);
 }

@@ -1,19 +1,19 @@
-// Stage `water`: the final pass of seed 000 (§2.3, §5, eq. 3),
-//   C_water = F·C_reflect + (1 − F)·C_refract + A_shadow·C_specular,
-// on the near/far patch mesh (§3): the vertex shader displaces the mesh by the displacement
-// map (§5.4; the weight w forces the near patch's boundary and the far patch flat), the
-// fragment shader bumps the normal with the bump map (§5), looks the Fresnel term and the
-// bumped view vector up in the 2D Fresnel texture (§5.1, §5.3), shifts the reflection- and
-// refraction-map lookups by the bump (§5.2), and adds the sun's Phong highlight attenuated
-// by the shadow map (§5.3). The environment (the sky technique's radiance, imported as
-// `technique/sky`) is reflected analytically along the bumped reflection direction; the
-// reflection map adds the mirrored objects over it by coverage.
+// Stage `water`: the sea surface. The vertex shaders displace the surface's mesh by the
+// displacement map (vs_main: the near/far patch mesh of surface `hu_patches`, seed 000 §3,
+// §5.4, the weight w forcing the near patch's boundary and the far patch flat;
+// vs_projected_grid: surface `projected_grid`'s grid, seed 001 §3.1). The fragment shader
+// bumps the normal with the bump map (§5), filtered by the far-field technique, and shades
+// the water seen from above by the shading technique, imported as `technique/shading`
+// (shade_above: `hu` seed 000's eq. 3, `chiu` seed 001's eqs. 2–8); the environment is the
+// sky technique's radiance, imported as `technique/sky`.
 // Seen from below (camera under the water) the surface reflects the water volume and
 // transmits the sky through Snell's window, with F for η⁻¹ (total internal reflection).
 // CPU mirror: crates/ocean-cpu/src/shaders/water.rs.
 
 // #import shared/frame.wgsl
+// #import shared/optics.wgsl
 // #import technique/sky
+// #import technique/shading
 
 @group(0) @binding(0) var<uniform> frame: FrameUniforms;
 // (disp_x, height, disp_z, jacobian) of the displacement map.
@@ -262,21 +262,6 @@ fn sample_footprint(chain: texture_2d<f32>, uv: vec2<f32>, step_uv: vec2<f32>, l
     return Taps(partial[k] * inv, sq_partial[k] * inv);
 }
 
-// exp_arith's arguments are clamped to [EXP_MIN, 0] (e^−80 ≈ 2e-35: zero for its uses).
-const EXP_MIN: f32 = -80.0;
-
-// e^x for x ≤ 0 by + − × only, so both back ends round alike (exp() is the implementation's
-// approximation; lavapipe's differs from the CPU's by ulps, and the sun's lobe magnified
-// that past the float tolerance): 2^n · e^y, n = ⌊x·log2 e + ½⌋ (ldexp: exact), |y| ≤ ½ ln 2,
-// e^y by its Taylor polynomial to y⁷ (relative error < 6e-9 plus rounding).
-fn exp_arith(x: f32) -> f32 {
-    let z = clamp(x, EXP_MIN, 0.0) * 1.442695;
-    let n = floor(z + 0.5);
-    let y = (z - n) * 0.6931472;
-    let p = 1.0 + y * (1.0 + y * (0.5 + y * (0.16666667 + y * (0.041666668 + y * (0.008333334 + y * (0.0013888889 + y * 0.0001984127))))));
-    return p * ldexp(1.0, i32(n));
-}
-
 // Φ(a), the standard normal distribution function, by Abramowitz & Stegun 7.1.26
 // (|error| < 1.5e-7).
 fn normal_cdf(a: f32) -> f32 {
@@ -493,55 +478,28 @@ fn sky_filtered(view: vec3<f32>, slopes: vec3<f32>, variance: f32) -> vec3<f32> 
     return sum_fl / max(sum_f, 1e-30);
 }
 
+// What the shading technique's shade_above needs of the surface point: the filtered slopes
+// (s_x, s_z, unresolved variance per axis), the bumped unit normal, the unit vector to the
+// eye, the bumped view vector's horizontal part (the Fresnel texture's axes) and the
+// fragment's normalised screen position.
+struct SurfacePoint {
+    slopes: vec3<f32>,
+    n: vec3<f32>,
+    view: vec3<f32>,
+    u_bumped: vec2<f32>,
+    screen: vec2<f32>,
+}
+
 @fragment
 fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let slopes = filtered_slopes(in);
     let n = unit(vec3<f32>(-slopes.x, 1.0, -slopes.y));
-    let variance = slopes.z;
-    // (du, dv) of §5: the horizontal components of the bumped unit normal.
-    let du = n.x;
-    let dv = n.z;
     let view = unit(-in.rel);
     let u_bumped = bumped_view(view, n);
     // In the fragment stage `clip` is the fragment's position: (x + 0.5, y + 0.5, depth, 1/w).
     let screen = in.clip.xy * frame.view.inv_viewport_size;
     if (view.y >= 0.0) {
-        let st = fresnel_st(u_bumped);
-        let fres = textureSampleLevel(fresnel_above, clamp_linear, st, 0.0);
-        var f = fres.w;
-        if (variance > 0.0) {
-            f = fresnel_filtered(u_bumped, variance);
-        }
-        // Reflection (§4.2, §5.2): sky along the bumped reflection direction, mirrored
-        // objects from the reflection map shifted by the bump, over it by coverage.
-        let vn = dot3(view, n);
-        var r = n * (2.0 * vn) - view;
-        r.y = max(r.y, 0.0);
-        var sky_r = sky_radiance(sky, unit(r + vec3<f32>(0.0, 1e-6, 0.0)));
-        if (variance > 0.0) {
-            sky_r = sky_filtered(view, slopes, variance);
-        }
-        let refl = textureSampleLevel(reflection_map, clamp_linear, screen + vec2<f32>(du, dv) * frame.hu.reflection_distortion, 0.0);
-        let a_refl = refl.w * frame.passes.reflection_map;
-        let c_reflect = sky_r * (1.0 - a_refl) + refl.xyz * a_refl;
-        // Refraction (§5.2, eq. 4): the fogged objects under the water, over the water
-        // volume colour.
-        let refr = textureSampleLevel(refraction_map, clamp_linear, screen + vec2<f32>(du, dv) * frame.hu.refraction_distortion, 0.0);
-        let a_refr = refr.w * frame.passes.refraction_map;
-        let c_refract = frame.water.color * (1.0 - a_refr) + refr.xyz * a_refr;
-        // Specular (§5.3): (V·R)^s with V the bumped view vector stored in the texture's RGB
-        // (local z = world y) and R the sun's reflection about (0, 1, 0); s is whole.
-        let vb = vec3<f32>(fres.x, fres.z, fres.y);
-        let r_sun = vec3<f32>(-frame.sun.direction.x, frame.sun.direction.y, -frame.sun.direction.z);
-        let cos_spec = max(dot3(vb, r_sun), 0.0);
-        var lobe = pow_int(cos_spec, u32(frame.hu.phong_exponent));
-        if (variance > 0.0) {
-            lobe = sun_lobe_filtered(u_bumped, variance);
-        }
-        let spec = frame.sun.radiance * (lobe * frame.sun.lit);
-        let shadow = sun_visibility(in.rel);
-        let c = c_reflect * f + c_refract * (1.0 - f) + spec * shadow;
-        return vec4<f32>(c, 1.0);
+        return vec4<f32>(shade_above(in, SurfacePoint(slopes, n, view, u_bumped, screen)), 1.0);
     }
     // From below: the normal facing the eye is (n.x, −n.y, n.z), its horizontal part again
     // (du, dv); F for η⁻¹ (1 beyond the critical angle: total internal reflection).

@@ -225,6 +225,7 @@ fn frame_view_vectors(scene: &Scene) -> anyhow::Result<Vec<[f64; 3]>> {
         refraction_map: &fb.refraction_map,
         shadow_map: &fb.shadow_map,
         sky_radiance: &sky,
+        shade_above: ocean_cpu::shaders::shading::hu::shade_above,
     };
     let mut target = RenderTarget::new(camera.width, camera.height);
     target.clear_depth(0.0);

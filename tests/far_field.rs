@@ -503,6 +503,7 @@ fn variance_without_unresolved_slopes_shades_as_mip() {
                 shadow_map: &empty,
                 fresnel_filter: &filter,
                 sky_radiance: &sky,
+                shade_above: ocean_cpu::shaders::shading::hu::shade_above,
             };
             water::fs_main(&input, &b).map(f32::to_bits)
         };

@@ -180,7 +180,10 @@ fn render_with_an_unknown_system_exits_1_lists_the_systems_and_writes_nothing() 
     let o = ocean(&["render", "--system", "chiu", "--size", "16x9", "-o", out.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1));
     let e = String::from_utf8_lossy(&o.stderr);
-    assert!(e.contains("not yet available") && e.contains("shading technique `chiu`"), "{e}");
+    assert!(
+        e.contains("not yet available") && e.contains("sky technique `preetham_clouds`"),
+        "{e}"
+    );
     assert!(!out.exists());
     for cmd in ["plan", "compare", "view"] {
         let o = ocean(&[cmd, "--system", "no-such-system"]);

@@ -221,6 +221,7 @@ fn bumped_fresnel_is_the_texture_lookup_of_the_bumped_view_vector() {
                 shadow_map: &empty,
                 fresnel_filter: &empty,
                 sky_radiance: &sky,
+                shade_above: ocean_cpu::shaders::shading::hu::shade_above,
             };
             for i in 0..=40 {
                 let theta = (i as f64 / 40.0) * 80f64.to_radians();

@@ -9,10 +9,11 @@ use std::path::{Path, PathBuf};
 
 use naga::valid::{Capabilities, ValidationFlags, Validator};
 use ocean_core::plan::Pass;
+use ocean_core::plan::{System, Techniques};
 use ocean_core::registry::{
     self, Block, EntryKind, SHARED, STAGES, StageEntry, TECHNIQUE_FILES, WAVE_MODE,
 };
-use ocean_core::shader_source::{embedded_files, stage_source};
+use ocean_core::shader_source::{embedded_files, stage_source, stage_source_with};
 
 /// The stages written so far; a missing one is a failure, not a pass over fewer stages.
 const EXPECTED_STAGES: &[&str] =
@@ -256,9 +257,14 @@ fn layout_checker_rejects_wrong_structs() {
 /// Every WGSL `const` of every stage and its Rust twin (the CPU mirror's, or ocean-core's).
 /// A WGSL constant not listed here fails: each one needs its twin.
 fn rust_consts() -> Vec<(&'static str, f64)> {
-    use ocean_cpu::shaders::{objects, sky::preetham, tonemap, water, waves};
+    use ocean_cpu::shaders::{objects, shading::chiu, shared::optics, sky::preetham, tonemap};
+    use ocean_cpu::shaders::{water, waves};
     vec![
         ("SHADOW_BIAS", f64::from(water::SHADOW_BIAS)),
+        ("EQ8_LN_R", f64::from(optics::EQ8_LN_R)),
+        ("EQ8_LN_G", f64::from(optics::EQ8_LN_G)),
+        ("EQ8_LN_B", f64::from(optics::EQ8_LN_B)),
+        ("CHIU_MAX_EXPONENT", f64::from(chiu::CHIU_MAX_EXPONENT)),
         ("SQRT2", f64::from(water::SQRT2)),
         ("VISIBLE_A_MIN", f64::from(water::VISIBLE_A_MIN)),
         ("VISIBLE_A_MAX", f64::from(water::VISIBLE_A_MAX)),
@@ -299,17 +305,44 @@ fn wgsl_consts(m: &naga::Module) -> Vec<(String, f64)> {
         .collect()
 }
 
+/// Every stage's module with the default techniques, and each composing stage once more for
+/// every other available technique of the stages it imports.
+fn composed_modules() -> Vec<(String, naga::Module)> {
+    let mut out: Vec<_> = STAGES.iter().map(|s| (s.name.to_owned(), module(s.name))).collect();
+    for t in TECHNIQUE_FILES {
+        for (name, m) in modules_with(t) {
+            out.push((format!("{name} with {}/{}", t.stage, t.technique), m));
+        }
+    }
+    out
+}
+
+/// The stages that import `technique/<t.stage>`, assembled with technique `t`.
+fn modules_with(t: &registry::TechniqueFile) -> Vec<(String, naga::Module)> {
+    let chosen =
+        Techniques::with_overrides(System::Hu, [(t.stage, t.technique)]).unwrap_or_else(|e| {
+            panic!("{}: {e}", t.file);
+        });
+    let import = format!("// #import technique/{}", t.stage);
+    STAGES
+        .iter()
+        .filter(|s| s.source.contains(&import))
+        .map(|s| {
+            let src = stage_source_with(s.name, &chosen).unwrap_or_else(|e| panic!("{e}"));
+            (s.name.to_owned(), parse(&format!("{} with {}", s.file, t.file), &src))
+        })
+        .collect()
+}
+
 fn const_errors(rust: &[(&str, f64)]) -> Vec<String> {
     let mut errors = Vec::new();
-    for stage in STAGES {
-        for (name, v) in wgsl_consts(&module(stage.name)) {
+    for (stage, m) in composed_modules() {
+        for (name, v) in wgsl_consts(&m) {
             match rust.iter().find(|(n, _)| *n == name) {
                 // Both are f32 values: equal bits, not a tolerance.
                 Some((_, r)) if (*r as f32).to_bits() == (v as f32).to_bits() => {}
-                Some((_, r)) => {
-                    errors.push(format!("{}: {name} = {v} in WGSL, {r} in Rust", stage.name))
-                }
-                None => errors.push(format!("{}: const {name} has no Rust twin", stage.name)),
+                Some((_, r)) => errors.push(format!("{stage}: {name} = {v} in WGSL, {r} in Rust")),
+                None => errors.push(format!("{stage}: const {name} has no Rust twin")),
             }
         }
     }
@@ -332,11 +365,19 @@ fn every_wgsl_const_equals_its_rust_twin() {
 #[test]
 fn every_technique_file_implements_its_stages_interface() {
     for t in TECHNIQUE_FILES {
-        let m = parse(t.file, t.source);
+        // Each stage that imports the technique's stage, assembled with it, validates; the
+        // interface is defined by the technique's own file.
+        let stages = modules_with(t);
+        assert!(!stages.is_empty(), "{}: no stage imports technique/{}", t.file, t.stage);
         for name in t.interface {
-            let found = m.functions.iter().any(|(_, f)| f.name.as_deref() == Some(name))
-                || m.types.iter().any(|(_, ty)| ty.name.as_deref() == Some(name));
-            assert!(found, "{}: the {} interface needs `{name}`", t.file, t.stage);
+            let own = t.source.contains(&format!("fn {name}("))
+                || t.source.contains(&format!("struct {name} "));
+            assert!(own, "{}: the {} interface needs `{name}`", t.file, t.stage);
+            for (stage, m) in &stages {
+                let found = m.functions.iter().any(|(_, f)| f.name.as_deref() == Some(name))
+                    || m.types.iter().any(|(_, ty)| ty.name.as_deref() == Some(name));
+                assert!(found, "{stage} with {}: `{name}` is missing", t.file);
+            }
         }
     }
     // Negative control: a source without the interface's function.

@@ -36,8 +36,8 @@ struct WaterBlock {
     extinction_per_m: f32,
     eta: f32,
     inv_eta: f32,
-    pad0: f32,
-    pad1: f32,
+    volume_model: f32,
+    kd_per_m: f32,
 }
 
 struct HuShadingBlock {
@@ -91,6 +91,18 @@ struct ProjectedGridBlock {
     pad1: f32,
 }
 
+struct ChiuShadingBlock {
+    zeta_m: f32,
+    shininess_per_m: f32,
+    pad0: f32,
+    pad1: f32,
+}
+
+struct TerrainBlock {
+    // (∂y/∂x, ∂y/∂z, y under the eye, 0): the floor's plane in camera-relative (x, z).
+    floor: vec4<f32>,
+}
+
 struct FrameUniforms {
     view: ViewBlock,
     sun: SunBlock,
@@ -101,6 +113,8 @@ struct FrameUniforms {
     ambient: AmbientBlock,
     far: FarFieldBlock,
     grid: ProjectedGridBlock,
+    chiu: ChiuShadingBlock,
+    terrain: TerrainBlock,
 }
 
 // m · (p, 1), written out so that the order of operations is fixed (the CPU mirror,

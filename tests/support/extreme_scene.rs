@@ -18,10 +18,14 @@ pub const VECTOR_KEYS: &[&str] = &[
     "sun.direction",
     "sun.color",
     "water.color",
+    "terrain.color",
     "objects.*.center",
     "objects.*.size",
     "objects.*.color",
 ];
+
+/// Keys whose value is a 2-vector, (x, z).
+pub const VECTOR2_KEYS: &[&str] = &["terrain.center"];
 
 /// Keys that set the cost of a frame (grid sizes, table size, image size, mesh density): the
 /// random scenes keep them small, and [`cost_extremes`] takes each to its limit once.
@@ -135,10 +139,17 @@ pub fn scene_text(values: &[(&str, String)], objects: &[&str]) -> String {
     text
 }
 
-/// The literal of `key` drawn by `how` (three components for a vector key).
+/// The literal of `key` drawn by `how` (three or two components for a vector key).
 pub fn drawn(limit: &Limit, how: Draw, rng: &mut Rng) -> String {
-    if VECTOR_KEYS.contains(&limit.key) {
-        let c: Vec<String> = (0..3).map(|_| literal(limit, draw(limit, how, rng))).collect();
+    let n = if VECTOR_KEYS.contains(&limit.key) {
+        3
+    } else if VECTOR2_KEYS.contains(&limit.key) {
+        2
+    } else {
+        1
+    };
+    if n > 1 {
+        let c: Vec<String> = (0..n).map(|_| literal(limit, draw(limit, how, rng))).collect();
         format!("[{}]", c.join(", "))
     } else {
         literal(limit, draw(limit, how, rng))

@@ -11,7 +11,7 @@ use glam::{DMat4, DVec3, DVec4};
 
 use crate::camera::{Camera, to_cols_f32};
 use crate::plan::{FramePlan, Pass};
-use crate::scene::{Object, Scene, Shape, Sun};
+use crate::scene::{Object, Scene, Shape, Sun, Terrain};
 use crate::sky::{PreethamSky, SkyParams};
 use crate::waves::WaveMaps;
 
@@ -108,10 +108,35 @@ pub struct WaterBlock {
     pub eta: f32,
     /// 1/η: the refraction map's apparent-depth scale.
     pub inv_eta: f32,
+    /// The water-volume colour's model: 0 the constant `color` (shading `hu`), 1 seed 001's
+    /// eq. 8, (0.30, 0.73, 0.63)^(k_d·y) under the downwelling light at depth y.
+    pub volume_model: f32,
+    /// Eq. 8's k_d, 1/m.
+    pub kd_per_m: f32,
+}
+
+/// Parameters of shading technique `chiu` (seed 001 eqs. 2–8; the scene's `[chiu]`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct ChiuShadingBlock {
+    /// Eq. 6's ζ, m.
+    pub zeta_m: f32,
+    /// Eq. 5's shininess per metre of view depth.
+    pub shininess_per_m: f32,
     /// Padding to 16 bytes.
     pub pad0: f32,
     /// Padding.
     pub pad1: f32,
+}
+
+/// The sea floor under the water (`[terrain]`), for eq. 8's depth: its height is the plane
+/// y = floor.z + floor.x·rel.x + floor.y·rel.z in camera-relative (x, z) (formed in f64
+/// about the eye). A bottomless sea is the flat plane at `[chiu] open_sea_depth_m`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct TerrainBlock {
+    /// (∂y/∂x, ∂y/∂z, y under the eye, 0).
+    pub floor: [f32; 4],
 }
 
 /// Parameters of shading technique `hu` (seed 000 eq. 3).
@@ -298,6 +323,10 @@ pub struct FrameUniforms {
     pub far: FarFieldBlock,
     /// Surface `projected_grid`.
     pub grid: ProjectedGridBlock,
+    /// Shading technique `chiu`.
+    pub chiu: ChiuShadingBlock,
+    /// The sea floor.
+    pub terrain: TerrainBlock,
 }
 
 /// Surface `projected_grid` ([`crate::geometry::ProjectedGrid`]): the grid's corners and size.
@@ -494,6 +523,49 @@ pub fn object_triangles(objects: &[Object], eye: DVec3) -> Vec<[ObjectVertex; 3]
     tris
 }
 
+/// Quads per side of the sea floor's drawn square (a plane: more would only cost).
+pub const TERRAIN_QUADS: u32 = 8;
+/// Triangles of the sea floor's mesh.
+pub const TERRAIN_TRIANGLES: u64 = 2 * (TERRAIN_QUADS as u64) * (TERRAIN_QUADS as u64);
+
+/// Triangles of the sea floor's drawn square, camera-relative, counter-clockwise seen from
+/// above.
+pub fn terrain_triangles(t: &Terrain, eye: DVec3) -> Vec<[ObjectVertex; 3]> {
+    let (gx, gz) = t.gradient();
+    let normal = DVec3::new(-gx, 1.0, -gz).normalize().as_vec3().to_array();
+    let color = t.color.map(|v| v as f32);
+    let step = t.extent_m / f64::from(TERRAIN_QUADS);
+    let vertex = |i: u32, j: u32| {
+        let x = t.center[0] - 0.5 * t.extent_m + f64::from(i) * step;
+        let z = t.center[1] - 0.5 * t.extent_m + f64::from(j) * step;
+        let p = DVec3::new(x, t.height(x, z), z) - eye;
+        ObjectVertex { position: p.as_vec3().to_array(), normal, color }
+    };
+    let mut tris = Vec::with_capacity(TERRAIN_TRIANGLES as usize);
+    for i in 0..TERRAIN_QUADS {
+        for j in 0..TERRAIN_QUADS {
+            tris.push([vertex(i, j), vertex(i, j + 1), vertex(i + 1, j)]);
+            tris.push([vertex(i + 1, j), vertex(i, j + 1), vertex(i + 1, j + 1)]);
+        }
+    }
+    tris
+}
+
+/// The triangles an object pass of the plan draws: its objects', then the sea floor's when
+/// the pass draws it.
+pub fn pass_triangles(
+    scene: &Scene,
+    pass: &crate::plan::PlannedPass,
+    eye: DVec3,
+) -> Vec<[ObjectVertex; 3]> {
+    let objects: Vec<Object> = pass.objects.iter().map(|&i| scene.objects[i].clone()).collect();
+    let mut tris = object_triangles(&objects, eye);
+    if let (true, Some(t)) = (pass.terrain, &scene.terrain) {
+        tris.extend(terrain_triangles(t, eye));
+    }
+    tris
+}
+
 /// The sun's orthographic shadow camera: looks along −sun_dir at the bounding sphere of the
 /// objects above the water (camera-relative), depth 0 at the sphere's sun-side and 1 behind.
 /// `None` without such objects.
@@ -563,6 +635,7 @@ impl FrameUniforms {
         let shadow = sun_view_proj(&scene.objects, eye, sun_dir).unwrap_or(DMat4::IDENTITY);
         let flag = |p: Pass| if plan.runs(p) { 1.0 } else { 0.0 };
         let eta = scene.water.ior as f32;
+        let shading = plan.techniques.of(crate::plan::Stage::Shading).name;
         FrameUniforms {
             view: ViewBlock {
                 view_proj: to_cols_f32(camera.view_proj()),
@@ -602,8 +675,8 @@ impl FrameUniforms {
                 extinction_per_m: scene.water.extinction_per_m as f32,
                 eta,
                 inv_eta: 1.0 / eta,
-                pad0: 0.0,
-                pad1: 0.0,
+                volume_model: if shading == "chiu" { 1.0 } else { 0.0 },
+                kd_per_m: scene.chiu.kd_per_m as f32,
             },
             hu: HuShadingBlock {
                 phong_exponent: SUN_SPECULAR_EXPONENT,
@@ -640,6 +713,21 @@ impl FrameUniforms {
                 )
             } else {
                 ProjectedGridBlock::zeroed()
+            },
+            chiu: ChiuShadingBlock {
+                zeta_m: scene.chiu.zeta_m as f32,
+                shininess_per_m: scene.chiu.shininess_per_m as f32,
+                pad0: 0.0,
+                pad1: 0.0,
+            },
+            terrain: TerrainBlock {
+                floor: match &scene.terrain {
+                    Some(t) => {
+                        let (gx, gz) = t.gradient();
+                        [gx as f32, gz as f32, t.height(eye.x, eye.z) as f32, 0.0]
+                    }
+                    None => [0.0, 0.0, -scene.chiu.open_sea_depth_m as f32, 0.0],
+                },
             },
         }
     }

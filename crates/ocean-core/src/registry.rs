@@ -14,8 +14,9 @@ use std::path::Path;
 
 use crate::camera_uniforms::CameraUniforms;
 use crate::frame::{
-    AmbientBlock, FarFieldBlock, FrameUniforms, FresnelTableUniforms, HuShadingBlock, PassFlags,
-    ProjectedGridBlock, SunBlock, ViewBlock, WaterBlock, WaveMipsUniforms, WaveTilingBlock,
+    AmbientBlock, ChiuShadingBlock, FarFieldBlock, FrameUniforms, FresnelTableUniforms,
+    HuShadingBlock, PassFlags, ProjectedGridBlock, SunBlock, TerrainBlock, ViewBlock, WaterBlock,
+    WaveMipsUniforms, WaveTilingBlock,
 };
 use crate::plan::Stage as TechniqueStage;
 use crate::sky::SkyUniforms;
@@ -94,7 +95,9 @@ nested!(
     PassFlags,
     AmbientBlock,
     FarFieldBlock,
-    ProjectedGridBlock
+    ProjectedGridBlock,
+    ChiuShadingBlock,
+    TerrainBlock
 );
 
 /// The kind of an entry point.
@@ -380,7 +383,7 @@ pub const SHARED: &[SharedFile] = &[
                 displacement_half_texel,
                 bump_half_texel,
             }),
-            block!(WaterBlock { color, extinction_per_m, eta, inv_eta, pad0, pad1 }),
+            block!(WaterBlock { color, extinction_per_m, eta, inv_eta, volume_model, kd_per_m }),
             block!(HuShadingBlock {
                 phong_exponent,
                 reflection_distortion,
@@ -412,9 +415,35 @@ pub const SHARED: &[SharedFile] = &[
                 pad1
             }),
             block!(ProjectedGridBlock { corners, cols, rows, pad0, pad1 }),
-            block!(FrameUniforms { view, sun, tiling, water, hu, passes, ambient, far, grid }),
+            block!(ChiuShadingBlock { zeta_m, shininess_per_m, pad0, pad1 }),
+            block!(TerrainBlock { floor }),
+            block!(FrameUniforms {
+                view,
+                sun,
+                tiling,
+                water,
+                hu,
+                passes,
+                ambient,
+                far,
+                grid,
+                chiu,
+                terrain
+            }),
         ],
         cpu_mirror: "crates/ocean-cpu/src/shaders/shared/frame.rs",
+    },
+    SharedFile {
+        file: "shared/fresnel.wgsl",
+        source: include_str!("../../../shaders/shared/fresnel.wgsl"),
+        blocks: &[],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/shared/fresnel.rs",
+    },
+    SharedFile {
+        file: "shared/optics.wgsl",
+        source: include_str!("../../../shaders/shared/optics.wgsl"),
+        blocks: &[],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/shared/optics.rs",
     },
     SharedFile {
         file: "shared/fullscreen.wgsl",
@@ -424,30 +453,53 @@ pub const SHARED: &[SharedFile] = &[
     },
 ];
 
+/// The shading technique's interface: what `water.wgsl` calls.
+const SHADING_INTERFACE: &[&str] = &["shade_above"];
+
 /// Every technique file.
-pub const TECHNIQUE_FILES: &[TechniqueFile] = &[TechniqueFile {
-    stage: TechniqueStage::Sky,
-    technique: "preetham",
-    file: "sky/preetham.wgsl",
-    source: include_str!("../../../shaders/sky/preetham.wgsl"),
-    interface: &["SkyUniforms", "sky_radiance", "sun_disc"],
-    blocks: &[block!(SkyUniforms {
-        perez_a,
-        perez_b,
-        perez_c,
-        perez_d,
-        perez_e,
-        zenith,
-        perez_zenith,
-        sun_direction,
-        sun_radiance,
-        sky_scale,
-        cos_theta_min,
-        sun_sin_inner,
-        sun_sin_outer,
-    })],
-    cpu_mirror: "crates/ocean-cpu/src/shaders/sky/preetham.rs",
-}];
+pub const TECHNIQUE_FILES: &[TechniqueFile] = &[
+    TechniqueFile {
+        stage: TechniqueStage::Sky,
+        technique: "preetham",
+        file: "sky/preetham.wgsl",
+        source: include_str!("../../../shaders/sky/preetham.wgsl"),
+        interface: &["SkyUniforms", "sky_radiance", "sun_disc"],
+        blocks: &[block!(SkyUniforms {
+            perez_a,
+            perez_b,
+            perez_c,
+            perez_d,
+            perez_e,
+            zenith,
+            perez_zenith,
+            sun_direction,
+            sun_radiance,
+            sky_scale,
+            cos_theta_min,
+            sun_sin_inner,
+            sun_sin_outer,
+        })],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/sky/preetham.rs",
+    },
+    TechniqueFile {
+        stage: TechniqueStage::Shading,
+        technique: "hu",
+        file: "shading/hu.wgsl",
+        source: include_str!("../../../shaders/shading/hu.wgsl"),
+        interface: SHADING_INTERFACE,
+        blocks: &[],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/shading/hu.rs",
+    },
+    TechniqueFile {
+        stage: TechniqueStage::Shading,
+        technique: "chiu",
+        file: "shading/chiu.wgsl",
+        source: include_str!("../../../shaders/shading/chiu.wgsl"),
+        interface: SHADING_INTERFACE,
+        blocks: &[],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/shading/chiu.rs",
+    },
+];
 
 /// The storage table's element of stage `waves` (its size is the array stride).
 pub const WAVE_MODE: Block =
@@ -495,7 +547,7 @@ pub fn missing_pieces(
     }
     // A stage whose technique is composed into WGSL needs a file for every technique that is
     // available.
-    for stage in [TechniqueStage::Sky] {
+    for stage in [TechniqueStage::Sky, TechniqueStage::Shading] {
         for t in stage.techniques().filter(|t| t.available) {
             if !techniques.iter().any(|f| f.stage == stage && f.technique == t.name) {
                 out.push(format!(

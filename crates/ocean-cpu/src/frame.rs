@@ -8,13 +8,13 @@ use std::time::Duration;
 use ocean_core::camera::Camera;
 use ocean_core::frame::{
     FrameUniforms, FresnelTableUniforms, ObjectVertex, bump_texels, displacement_slope_texels,
-    displacement_texels, object_triangles,
+    displacement_texels, pass_triangles,
 };
 use ocean_core::plan::{
     Backend, FrameInputs, FramePlan, FrameState, Pass, PlannedPass, ResourceId, Stage, WavesKernel,
     run_frame,
 };
-use ocean_core::scene::{Object, Scene};
+use ocean_core::scene::Scene;
 use ocean_core::waves::{Synthesizer, WaveMaps};
 
 use crate::mip::MipChain;
@@ -360,8 +360,7 @@ impl<'e> CpuBackend<'e> {
 
     fn object_pass(&mut self, pass: &PlannedPass, frame: &FrameInputs<'_>) {
         let scene = frame.scene;
-        let objects: Vec<Object> = pass.objects.iter().map(|&i| scene.objects[i].clone()).collect();
-        let tris = object_triangles(&objects, frame.camera.eye);
+        let tris = pass_triangles(scene, pass, frame.camera.eye);
         let u = &frame.uniforms;
         match pass.name {
             Pass::ShadowMap => {
@@ -409,6 +408,13 @@ impl<'e> CpuBackend<'e> {
                 reason: format!("sky technique `{technique}` has no CPU mirror"),
             })
         })?;
+        let shading = frame.plan.techniques.of(Stage::Shading).name;
+        let shade_above = crate::shaders::shading::shade_above(shading).ok_or_else(|| {
+            Error::Core(ocean_core::Error::ShaderSource {
+                stage: "water".into(),
+                reason: format!("shading technique `{shading}` has no CPU mirror"),
+            })
+        })?;
         let planned_sky = move |d: [f32; 3]| radiance(&env, d);
         let sky_radiance: &(dyn Fn([f32; 3]) -> [f32; 3] + Sync) = match self.environment {
             Environment::Planned => &planned_sky,
@@ -440,6 +446,7 @@ impl<'e> CpuBackend<'e> {
             refraction_map: map(ResourceId::RefractionMap),
             shadow_map: map(ResourceId::ShadowMap),
             sky_radiance,
+            shade_above,
         };
         draw_water(&mut hdr, &frame.mesh, &bindings, &|input, b| Some(water::fs_main(input, b)));
         self.hdr = Some(hdr);

@@ -11,20 +11,39 @@ pub fn label(stage: &str) -> String {
     format!("ocean.{stage}")
 }
 
-/// The techniques the pipelines are assembled for: system `hu`'s, the only ones built (a
-/// frame whose plan composes another technique into a stage's WGSL is refused by the renderer,
-/// `Renderer::run_frame`, rather than drawn with these).
+/// The techniques a renderer's pipelines are first assembled for: system `hu`'s. The stages
+/// that compose a technique's WGSL (`sky`, `water`: techniques of the sky and of the shading)
+/// are assembled again when a plan asks for other ones (`Renderer::run_frame`).
 pub fn pipeline_techniques() -> ocean_core::plan::Techniques {
     ocean_core::plan::Techniques::of_system(ocean_core::plan::System::Hu)
 }
 
-/// The shader module of `stage`, from `ocean_core::shader_source::stage_source_with` (imports
-/// resolved), labelled `"ocean.<stage>"`.
+/// The technique stages whose technique is composed into a stage's WGSL
+/// (`// #import technique/<stage>`).
+pub const COMPOSED: [ocean_core::plan::Stage; 2] =
+    [ocean_core::plan::Stage::Sky, ocean_core::plan::Stage::Shading];
+
+/// The shader module of `stage` (one that imports no technique), from
+/// `ocean_core::shader_source::stage_source_with` (imports resolved), labelled
+/// `"ocean.<stage>"`.
 ///
 /// # Errors
 /// [`Error::Core`] if the source cannot be assembled (an unknown stage or import).
 pub fn shader_module(device: &wgpu::Device, stage: &str) -> Result<wgpu::ShaderModule, Error> {
-    let source = ocean_core::shader_source::stage_source_with(stage, &pipeline_techniques())?;
+    shader_module_with(device, stage, &pipeline_techniques())
+}
+
+/// The shader module of `stage` with the files of `techniques` composed in.
+///
+/// # Errors
+/// [`Error::Core`] if the source cannot be assembled (an unknown stage or import, a technique
+/// without WGSL).
+pub fn shader_module_with(
+    device: &wgpu::Device,
+    stage: &str,
+    techniques: &ocean_core::plan::Techniques,
+) -> Result<wgpu::ShaderModule, Error> {
+    let source = ocean_core::shader_source::stage_source_with(stage, techniques)?;
     Ok(device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some(&label(stage)),
         source: wgpu::ShaderSource::Wgsl(source.into()),

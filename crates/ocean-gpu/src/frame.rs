@@ -20,13 +20,13 @@ use std::time::{Duration, Instant};
 
 use ocean_core::frame::{
     FrameUniforms, FresnelTableUniforms, ObjectVertex, bump_texels, displacement_slope_texels,
-    displacement_texels, object_triangles,
+    displacement_texels, pass_triangles,
 };
 use ocean_core::plan::{
     Backend, Format, FrameInputs, FramePlan, FrameState, Pass, PlannedPass, ResourceId,
     WavesKernel, run_frame,
 };
-use ocean_core::scene::{Object, Ocean, Scene};
+use ocean_core::scene::{Ocean, Scene};
 use ocean_core::waves::OceanSurface;
 use wgpu::util::DeviceExt;
 
@@ -126,6 +126,8 @@ pub struct Renderer {
     wave_synthesis: WaveSynthesis,
     waves: WaveSlot,
     max_vertex_buffer_bytes: u64,
+    /// The techniques the composing stages (`sky`, `water`) were assembled for.
+    built: ocean_core::plan::Techniques,
 }
 
 fn wgpu_format(f: Format) -> wgpu::TextureFormat {
@@ -323,9 +325,7 @@ impl GpuBackend<'_> {
     /// The triangles of a pass's objects, camera-relative, in ocean-core's order; one zero
     /// vertex keeps a buffer non-empty.
     fn object_vertices(&self, pass: &PlannedPass, frame: &FrameInputs<'_>) -> Vec<VertexChunk> {
-        let objects: Vec<Object> =
-            pass.objects.iter().map(|&i| frame.scene.objects[i].clone()).collect();
-        let tris = object_triangles(&objects, frame.camera.eye);
+        let tris = pass_triangles(frame.scene, pass, frame.camera.eye);
         let vertices: &[ObjectVertex] = bytemuck::cast_slice(&tris);
         let max = self.gpu.device.limits().max_buffer_size.min(self.max_vertex_buffer_bytes);
         vertex_chunks(&self.gpu.device, vertices, max)
@@ -552,18 +552,26 @@ impl Renderer {
     /// cannot be assembled.
     pub fn with_gpu(gpu: Gpu, wave_synthesis: WaveSynthesis) -> Result<Self, Error> {
         let d = &gpu.device;
+        let built = crate::common::pipeline_techniques();
         let stages = gpu.scoped("creating the pipelines", || -> Result<_, Error> {
             Ok(Stages {
                 wave_mips: WaveMipsStage::new(d)?,
                 fresnel_table: FresnelTableStage::new(d)?,
-                sky: SkyStage::new(d)?,
+                sky: SkyStage::new(d, &built)?,
                 objects: ObjectsStage::new(d)?,
                 shadow: ShadowStage::new(d)?,
-                water: WaterStage::new(d)?,
+                water: WaterStage::new(d, &built)?,
                 tonemap: TonemapStage::new(d)?,
             })
         })??;
-        Ok(Self { gpu, stages, wave_synthesis, waves: None, max_vertex_buffer_bytes: u64::MAX })
+        Ok(Self {
+            gpu,
+            stages,
+            wave_synthesis,
+            waves: None,
+            max_vertex_buffer_bytes: u64::MAX,
+            built,
+        })
     }
 
     /// Caps each vertex buffer of the objects' triangles at `bytes` (below the device's own
@@ -651,27 +659,36 @@ impl Renderer {
         readback: Readback,
     ) -> Result<GpuFrame, Error> {
         let start = Instant::now();
-        // The pipelines hold the techniques they were assembled for; a plan composing another
-        // one into a stage's WGSL would need other pipelines (none is built yet).
-        let built = crate::common::pipeline_techniques();
         // The far field is a uniform of the water pipeline (every technique is in its WGSL),
         // not a composed file; the surface is its vertex entry point (`vs_main` draws the
-        // mesh of `hu_patches`, `vs_projected_grid` the grid of `projected_grid`).
+        // mesh of `hu_patches`, `vs_projected_grid` the grid of `projected_grid`); the sky's
+        // and the shading's files are composed into the `sky` and `water` stages, assembled
+        // again for the plan's choice. Any other stage's technique must be the one built.
         use ocean_core::plan::Stage;
         let in_water_pipeline = |s: Stage, name: &str| {
             s == Stage::FarField
                 || (s == Stage::Surface && matches!(name, "hu_patches" | "projected_grid"))
         };
-        if let Some((stage, t)) = plan
-            .techniques
-            .iter()
-            .find(|(s, t)| !in_water_pipeline(*s, t.name) && built.of(*s) != *t)
-        {
+        if let Some((stage, t)) = plan.techniques.iter().find(|(s, t)| {
+            !crate::common::COMPOSED.contains(s)
+                && !in_water_pipeline(*s, t.name)
+                && self.built.of(*s) != *t
+        }) {
             return Err(Error::Unavailable(format!(
                 "the GPU pipelines are built for {stage} technique `{}`, the plan asks for `{}`",
-                built.of(stage).name,
+                self.built.of(stage).name,
                 t.name
             )));
+        }
+        if crate::common::COMPOSED.iter().any(|s| plan.techniques.of(*s) != self.built.of(*s)) {
+            let t = plan.techniques;
+            let d = &self.gpu.device;
+            let (sky, water) = self.gpu.scoped("assembling the pipelines", || {
+                Ok::<_, Error>((SkyStage::new(d, &t)?, WaterStage::new(d, &t)?))
+            })??;
+            self.stages.sky = sky;
+            self.stages.water = water;
+            self.built = t;
         }
         let inputs = FrameInputs::new(scene, plan, state)?;
         let (w, h) = (inputs.camera.width, inputs.camera.height);

@@ -1,7 +1,7 @@
 //! Stage `sky` (`shaders/sky.wgsl`): the environment behind everything, one full-screen
 //! triangle into the HDR frame. The sky model is the technique `shaders/sky.wgsl` imports as
 //! `technique/sky`: `preetham` (`shaders/sky/preetham.wgsl`, the only one built), assembled by
-//! [`crate::common::shader_module`] for [`crate::common::pipeline_techniques`]. Bindings:
+//! [`crate::common::shader_module_with`] for the renderer's techniques. Bindings:
 //! group 0 = `CameraUniforms`, group 1 = `SkyUniforms`. CPU mirror: `ocean-cpu/src/shaders/sky.rs` (its `RASTER_STATE`: depth test
 //! `Always`, no depth writes, no blending — the same here).
 
@@ -10,7 +10,7 @@ use ocean_core::sky::SkyUniforms;
 
 use crate::common::{
     Load, begin_render_pass, bind_group, depth_state, entry, label, pipeline_layout, primitive,
-    replace_target, shader_module, uniform_buffer, uniform_entry,
+    replace_target, shader_module_with, uniform_buffer, uniform_entry,
 };
 use crate::device::Error;
 use crate::texture::MAP_FORMAT;
@@ -23,13 +23,16 @@ pub struct SkyStage {
 }
 
 impl SkyStage {
-    /// Creates the pipeline `"ocean.sky"`.
+    /// Creates the pipeline `"ocean.sky"` for the sky technique of `techniques`.
     ///
     /// # Errors
     /// [`Error::Core`] if the WGSL cannot be assembled.
-    pub fn new(device: &wgpu::Device) -> Result<Self, Error> {
+    pub fn new(
+        device: &wgpu::Device,
+        techniques: &ocean_core::plan::Techniques,
+    ) -> Result<Self, Error> {
         let name = label("sky");
-        let module = shader_module(device, "sky")?;
+        let module = shader_module_with(device, "sky", techniques)?;
         let layout = |l: &str| {
             device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                 label: Some(l),

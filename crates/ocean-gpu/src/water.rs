@@ -1,5 +1,5 @@
-//! Stage `water` (`shaders/water.wgsl`): the final pass of seed 000, eq. 3, on the near/far
-//! patch mesh. Bindings (as the WGSL declares them): group 0 — 0 `FrameUniforms`,
+//! Stage `water` (`shaders/water.wgsl`): the sea surface, shaded by the shading technique
+//! composed into its WGSL. Bindings (as the WGSL declares them): group 0 — 0 `FrameUniforms`,
 //! 1 `displacement`, 2 `displacement_slopes`, 3 `bump`, 4 `fresnel_above`, 5 `fresnel_below`,
 //! 6 `reflection_map`, 7 `refraction_map`, 8 `shadow_map` (`textureLoad` only),
 //! 9 `wrap_linear`, 10 `clamp_linear`; group 1 — 0 `SkyUniforms`. Vertices: ocean-core's
@@ -11,7 +11,7 @@ use ocean_core::geometry::WaterVertex;
 
 use crate::common::{
     Load, begin_render_pass, entry, eye_depth, label, pipeline_layout, primitive, replace_target,
-    sampler_entry, shader_module, texture_entry, uniform_entry,
+    sampler_entry, shader_module_with, texture_entry, uniform_entry,
 };
 use crate::device::Error;
 use crate::texture::MAP_FORMAT;
@@ -92,13 +92,17 @@ fn linear_sampler(device: &wgpu::Device, label: &str, mode: wgpu::AddressMode) -
 }
 
 impl WaterStage {
-    /// Creates the pipeline `"ocean.water"` and its samplers.
+    /// Creates the pipeline `"ocean.water"` for the sky and shading techniques of
+    /// `techniques`, and its samplers.
     ///
     /// # Errors
     /// [`Error::Core`] if the WGSL cannot be assembled.
-    pub fn new(device: &wgpu::Device) -> Result<Self, Error> {
+    pub fn new(
+        device: &wgpu::Device,
+        techniques: &ocean_core::plan::Techniques,
+    ) -> Result<Self, Error> {
         let name = label("water");
-        let module = shader_module(device, "water")?;
+        let module = shader_module_with(device, "water", techniques)?;
         let vf = wgpu::ShaderStages::VERTEX_FRAGMENT;
         let fragment = wgpu::ShaderStages::FRAGMENT;
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {

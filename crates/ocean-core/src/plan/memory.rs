@@ -169,7 +169,14 @@ impl MemoryEstimate {
         let objects = plan.objects();
         let triangles: u64 = object_passes
             .iter()
-            .map(|p| objects.of(*p).iter().map(|&i| object_triangles(scene, i)).sum::<u64>())
+            .map(|p| {
+                let floor = if plan.passes.iter().any(|q| q.name == *p && q.terrain) {
+                    crate::frame::TERRAIN_TRIANGLES
+                } else {
+                    0
+                };
+                objects.of(*p).iter().map(|&i| object_triangles(scene, i)).sum::<u64>() + floor
+            })
             .sum();
         if triangles > 0 {
             add(

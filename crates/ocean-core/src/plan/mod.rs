@@ -259,6 +259,8 @@ pub struct PlannedPass {
     pub writes: &'static [ResourceId],
     /// The objects it draws (indices into the scene's `objects`; object passes only).
     pub objects: Vec<usize>,
+    /// Whether it draws the sea floor (`[terrain]`; object passes only).
+    pub terrain: bool,
 }
 
 /// Which objects (indices into the scene's `objects`) each object pass draws.
@@ -722,6 +724,22 @@ impl FramePlan {
                     OutputKind::Hdr => (false, "EXR output keeps linear HDR".into()),
                 },
             };
+            // The sea floor: in the main view, in the refraction map where it lies under the
+            // water and in the reflection map where it rises above it (never culled).
+            let terrain = scene.terrain.as_ref().is_some_and(|t| {
+                let (lo, hi) = t.y_range();
+                match pass {
+                    Pass::Objects => true,
+                    Pass::RefractionMap => lo < 0.0,
+                    Pass::ReflectionMap => hi > 0.0,
+                    _ => false,
+                }
+            });
+            let (run, reason) = match (terrain, run) {
+                (false, _) => (run, reason),
+                (true, false) => (true, "the sea floor ([terrain])".to_owned()),
+                (true, true) => (true, format!("{reason}; and the sea floor ([terrain])")),
+            };
             let planned = PlannedPass {
                 name: pass,
                 reason,
@@ -731,6 +749,7 @@ impl FramePlan {
                 reads: pass.reads(),
                 writes: pass.writes(),
                 objects: objects.of(pass).to_vec(),
+                terrain,
             };
             if run { plan.passes.push(planned) } else { plan.skipped.push(planned) }
         }

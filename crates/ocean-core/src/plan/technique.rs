@@ -105,7 +105,7 @@ pub const TECHNIQUES: &[TechniqueInfo] = &[
     t(Stage::Surface, "clipmap", "GPU clipmaps (seed 002)", false),
     t(Stage::Surface, "shore_grid", "camera-aligned shore grid (seed 004)", false),
     t(Stage::Shading, "hu", "eq. 3: 2D Fresnel texture + Phong (seed 000)", true),
-    t(Stage::Shading, "chiu", "local optics and water colour, eqs. 2–8 (seed 001)", false),
+    t(Stage::Shading, "chiu", "local optics and water colour, eqs. 2–8 (seed 001)", true),
     t(Stage::Shading, "ggx", "Cook–Torrance with GGX (seed 002)", false),
     t(Stage::Shading, "coastal", "Blinn–Phong + dull colour (seed 004)", false),
     t(Stage::Sky, "preetham", "Preetham et al. 1999 daylight", true),
@@ -176,7 +176,9 @@ pub const SYSTEMS: &[SystemInfo] = &[
             "projected_grid",
             "chiu",
             "preetham_clouds",
-            "none",
+            // The paper point-samples; its far sea then sparkles (issue 12), and the mip-mapped
+            // slopes are the filtering its shading can take (it has no variance term).
+            "mip",
             "none",
             "particles",
             "tonemap",

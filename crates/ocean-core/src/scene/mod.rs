@@ -95,6 +95,10 @@ pub struct Scene {
     pub water: Water,
     /// Objects above and below the water.
     pub objects: Vec<Object>,
+    /// The sea floor; absent means a bottomless sea.
+    pub terrain: Option<Terrain>,
+    /// Parameters of seed 001's techniques (shading `chiu`).
+    pub chiu: Chiu,
     /// Cost/accuracy knobs of the renderer (what `ocean report` measures).
     pub quality: Quality,
 }
@@ -395,7 +399,102 @@ impl Default for Water {
     }
 }
 
-/// What an object is (`kind = "sphere"` or `"box"`; terrain and meshes may come).
+/// The `[chiu]` table: the constants of Chiu & Chang's optics (seed 001 §3.5), which the
+/// paper leaves to the user.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Chiu {
+    /// Eq. 6's ζ, m: the local reflection and refraction maps are looked up at
+    /// screen + ζ·n_xz/d, d the point's view depth, so the shift by the bump shrinks with
+    /// distance (0.5 m shifts by hu's fixed 0.04 at 12.5 m).
+    pub zeta_m: f64,
+    /// Eq. 5's shininess per metre of view depth: the sun's Phong exponent is
+    /// shininess_per_m · d, so the glitter narrows with distance (4 gives hu's 400 at 100 m).
+    pub shininess_per_m: f64,
+    /// Eq. 8's k_d, 1/m: the water colour (0.30, 0.73, 0.63)^(k_d·y) at depth y, i.e.
+    /// attenuation coefficients −k_d·ln(0.30, 0.73, 0.63) per metre. 0.3 puts red's at
+    /// 0.36 /m, pure water's absorption at 650 nm (Pope & Fry 1997: 0.34 /m); green's and
+    /// blue's are then 0.09 and 0.14 /m, coastal water's.
+    pub kd_per_m: f64,
+    /// Eq. 8's depth y, m, where there is no sea floor (a bottomless sea): eq. 8 goes to black
+    /// as y grows, so the open sea's colour is that of this depth (20 m: a dark sea green).
+    pub open_sea_depth_m: f64,
+}
+
+impl Default for Chiu {
+    fn default() -> Self {
+        Self { zeta_m: 0.5, shininess_per_m: 4.0, kd_per_m: 0.3, open_sea_depth_m: 20.0 }
+    }
+}
+
+/// What a sea floor is (`kind = "plane"`; heightmaps and islands may come).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum TerrainKind {
+    /// A flat or sloping plane: `depth_m` below the sea plane at `center`, rising by `slope`
+    /// metres per metre towards `slope_direction_deg`.
+    #[default]
+    Plane,
+}
+
+/// The `[terrain]` table: the sea floor (DESIGN.md). Drawn as a square of side `extent_m`
+/// about `center` in the refraction map and the main view; its depth under each point of the
+/// sea is eq. 8's y (shading `chiu`), the plane's everywhere, also beyond the drawn square.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Terrain {
+    /// What the floor is.
+    pub kind: TerrainKind,
+    /// Depth of the floor below the sea plane at `center`, m (negative: above the water).
+    pub depth_m: f64,
+    /// (x, z) of the floor's reference point, m.
+    pub center: [f64; 2],
+    /// Rise of the floor per metre along `slope_direction_deg` (0: flat).
+    pub slope: f64,
+    /// The direction in which the floor rises, degrees from +x towards +z.
+    pub slope_direction_deg: f64,
+    /// Side of the drawn square, m.
+    pub extent_m: f64,
+    /// Linear RGB albedo (sand).
+    pub color: [f64; 3],
+}
+
+impl Default for Terrain {
+    fn default() -> Self {
+        Self {
+            kind: TerrainKind::Plane,
+            depth_m: 10.0,
+            center: [0.0, 0.0],
+            slope: 0.0,
+            slope_direction_deg: 0.0,
+            extent_m: 400.0,
+            color: [0.76, 0.70, 0.50],
+        }
+    }
+}
+
+impl Terrain {
+    /// The floor's height (y, m) at world (x, z).
+    pub fn height(&self, x: f64, z: f64) -> f64 {
+        let (gx, gz) = self.gradient();
+        -self.depth_m + gx * (x - self.center[0]) + gz * (z - self.center[1])
+    }
+
+    /// ∂y/∂x and ∂y/∂z of the floor.
+    pub fn gradient(&self) -> (f64, f64) {
+        let a = self.slope_direction_deg.to_radians();
+        (self.slope * a.cos(), self.slope * a.sin())
+    }
+
+    /// The lowest and highest floor height over the drawn square, m.
+    pub fn y_range(&self) -> (f64, f64) {
+        let (gx, gz) = self.gradient();
+        let spread = 0.5 * self.extent_m * (gx.abs() + gz.abs());
+        (-self.depth_m - spread, -self.depth_m + spread)
+    }
+}
+
+/// What an object is (`kind = "sphere"` or `"box"`; meshes may come).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum ObjectKind {

@@ -185,6 +185,16 @@ pub const LIMITS: &[Limit] = &[
         64.0,
         "pixels between the projected grid's lines (surface `projected_grid`)",
     ),
+    real("terrain.depth_m", -1.0e4, 1.0e4, "m below the sea plane at terrain.center"),
+    real("terrain.center", -MAX_COORDINATE_M, MAX_COORDINATE_M, "m; as camera.position"),
+    real("terrain.slope", 0.0, 10.0, "metres of rise per metre; 10 is 84°"),
+    real("terrain.slope_direction_deg", -360.0, 360.0, "degrees from +x towards +z"),
+    real("terrain.extent_m", 1.0, 1.0e5, "m, the side of the drawn square"),
+    real("terrain.color", 0.0, MAX_COLOUR, "linear RGB albedo"),
+    real("chiu.zeta_m", 0.0, 100.0, "m; eq. 6's map shift at 1 m of view depth"),
+    real("chiu.shininess_per_m", 1.0e-3, 1.0e3, "eq. 5's Phong exponent per metre of depth"),
+    real("chiu.kd_per_m", 0.0, 10.0, "1/m; eq. 8's k_d"),
+    real("chiu.open_sea_depth_m", 0.0, 1.0e4, "m; eq. 8's y without a sea floor"),
     real("objects.*.center", -MAX_COORDINATE_M, MAX_COORDINATE_M, "m; as camera.position"),
     real("objects.*.radius", MIN_LENGTH_M, MAX_COORDINATE_M, "m"),
     real("objects.*.size", MIN_LENGTH_M, MAX_COORDINATE_M, "m, each edge"),
@@ -276,6 +286,19 @@ impl Scene {
         check("quality.reflection_map_scale", &[q.reflection_map_scale])?;
         check("quality.lod_split_threshold", &[q.lod_split_threshold])?;
         check("quality.projected_grid_cell_px", &[q.projected_grid_cell_px])?;
+        if let Some(t) = &self.terrain {
+            check("terrain.depth_m", &[t.depth_m])?;
+            check("terrain.center", &t.center)?;
+            check("terrain.slope", &[t.slope])?;
+            check("terrain.slope_direction_deg", &[t.slope_direction_deg])?;
+            check("terrain.extent_m", &[t.extent_m])?;
+            check("terrain.color", &t.color)?;
+        }
+        let ch = &self.chiu;
+        check("chiu.zeta_m", &[ch.zeta_m])?;
+        check("chiu.shininess_per_m", &[ch.shininess_per_m])?;
+        check("chiu.kd_per_m", &[ch.kd_per_m])?;
+        check("chiu.open_sea_depth_m", &[ch.open_sea_depth_m])?;
         self.check_objects()?;
         self.check_derived()
     }

@@ -7,11 +7,7 @@ use ocean_core::frame::FresnelTableUniforms;
 use crate::sampler::Texture2D;
 use crate::shaders::wgsl::{Vec3, max, sqrt, vec2, vec3};
 
-/// Eq. 2 as the WGSL writes it: ocean-core's generic `fresnel_exact` in f32 takes the same
-/// branches in the same order for c ∈ [0, 1] and η > 0.
-pub fn fresnel_exact(c: f32, eta: f32) -> f32 {
-    ocean_core::fresnel::fresnel_exact(c, eta)
-}
+pub use super::shared::fresnel::fresnel_exact;
 
 /// `grazing_view_vector(id)`.
 pub fn grazing_view_vector(id: [u32; 2], params: &FresnelTableUniforms) -> Vec3 {

@@ -13,6 +13,7 @@
 pub mod fresnel_table;
 pub mod objects;
 pub mod present;
+pub mod shading;
 pub mod shadow;
 pub mod shared;
 pub mod sky;

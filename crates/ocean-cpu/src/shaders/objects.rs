@@ -4,6 +4,7 @@
 use ocean_core::frame::{FrameUniforms, ObjectVertex};
 
 use super::shared::frame::{dot3, transform_point, unit};
+use super::shared::optics::water_volume_colour;
 use super::wgsl::{Vec3, Vec4, exp, max, sqrt, vec3};
 
 /// `VertexOut` of objects.wgsl (clip position and the varyings, in declaration order).
@@ -120,5 +121,5 @@ pub fn fs_refract(input: &VertexOut, frame: &FrameUniforms) -> Option<[f32; 4]> 
     let fog = 1.0 - exp(-frame.water.extinction_per_m * d);
     let obj = shade(frame, input.normal, input.color)
         * exp(-frame.water.extinction_per_m * -input.world_y);
-    Some((Vec3::from(frame.water.color) * fog + obj * (1.0 - fog)).extend(1.0).into())
+    Some((water_volume_colour(-input.world_y, frame) * fog + obj * (1.0 - fog)).extend(1.0).into())
 }

@@ -1,4 +1,5 @@
-//! CPU mirror of `shaders/water.wgsl`: the final pass of seed 000, eq. 3.
+//! CPU mirror of `shaders/water.wgsl`: the sea surface (its shading from above is the
+//! shading technique's, [`super::shading`]).
 #![expect(clippy::manual_range_contains, reason = "mirrors the WGSL comparisons one to one")]
 
 use ocean_core::frame::FrameUniforms;
@@ -54,6 +55,8 @@ pub struct Bindings<'a> {
     pub fresnel_filter: &'a Texture2D,
     /// `sky_radiance(dir)`.
     pub sky_radiance: &'a (dyn Fn([f32; 3]) -> [f32; 3] + Sync),
+    /// The shading technique's `shade_above` (`technique/shading`).
+    pub shade_above: super::shading::ShadeAbove,
 }
 
 /// `WaterVertex`: the vertex format is defined once, in ocean-core.
@@ -97,7 +100,7 @@ impl VertexOut {
 }
 
 /// `sky_radiance(sky, dir)` of the bindings (the sky function takes and gives arrays).
-fn sky_radiance(b: &Bindings<'_>, dir: Vec3) -> Vec3 {
+pub fn sky_radiance(b: &Bindings<'_>, dir: Vec3) -> Vec3 {
     (b.sky_radiance)(dir.into()).into()
 }
 
@@ -156,7 +159,7 @@ pub fn pow_int(x: f32, n: u32) -> f32 {
 }
 
 /// `sun_visibility(rel)`.
-fn sun_visibility(rel: Vec3, b: &Bindings<'_>) -> f32 {
+pub fn sun_visibility(rel: Vec3, b: &Bindings<'_>) -> f32 {
     let frame = b.frame;
     if frame.passes.shadow_map == 0.0 {
         return 1.0;
@@ -306,22 +309,7 @@ pub fn sample_footprint(
     Taps { mean: partial[k] * inv, along_sq: sq_partial[k] * inv }
 }
 
-/// `EXP_MIN`: `exp_arith`'s arguments are clamped to [EXP_MIN, 0].
-pub const EXP_MIN: f32 = -80.0;
-
-/// `exp_arith(x)`: e^x for x ≤ 0 by + − × only (the WGSL's).
-pub fn exp_arith(x: f32) -> f32 {
-    let z = clamp(x, EXP_MIN, 0.0) * std::f32::consts::LOG2_E;
-    let n = (z + 0.5).floor();
-    let y = (z - n) * std::f32::consts::LN_2;
-    let p = 1.0
-        + y * (1.0
-            + y * (0.5
-                + y * (0.166_666_67
-                    + y * (0.041_666_668
-                        + y * (0.008_333_334 + y * (0.001_388_888_9 + y * 0.000_198_412_7))))));
-    p * ldexp(1.0, n as i32)
-}
+pub use super::shared::optics::{EXP_MIN, exp_arith};
 
 /// `normal_cdf(a)`: Φ(a) by Abramowitz & Stegun 7.1.26 (|error| < 1.5e-7).
 pub fn normal_cdf(a: f32) -> f32 {
@@ -519,59 +507,32 @@ pub fn sky_filtered(view: Vec3, slopes: Vec3, variance: f32, b: &Bindings<'_>) -
     sum_fl / max(sum_f, 1e-30)
 }
 
+/// `SurfacePoint`: what the shading technique's `shade_above` needs of the surface point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfacePoint {
+    /// The filtered slopes (s_x, s_z, unresolved variance per axis).
+    pub slopes: Vec3,
+    /// The bumped unit normal.
+    pub n: Vec3,
+    /// The unit vector to the eye.
+    pub view: Vec3,
+    /// The bumped view vector's horizontal part.
+    pub u_bumped: Vec2,
+    /// The fragment's normalised screen position.
+    pub screen: Vec2,
+}
+
 /// `fs_main(in)`; `input.clip` is the fragment's position.
 pub fn fs_main(input: &VertexOut, b: &Bindings<'_>) -> [f32; 4] {
     let frame = b.frame;
     let slopes = filtered_slopes(input, b);
     let n = unit(vec3(-slopes.x, 1.0, -slopes.y));
-    let variance = slopes.z;
-    let du = n.x;
-    let dv = n.z;
     let view = unit(-input.rel);
     let u_bumped = bumped_view(view, n);
     let screen = input.clip.xy() * Vec2::from(frame.view.inv_viewport_size);
     if view.y >= 0.0 {
-        let st = fresnel_st(u_bumped, frame.hu.fresnel_scale);
-        let fres = texture_sample_level(b.fresnel_above, &CLAMP_LINEAR, st, 0.0);
-        let mut f = fres.w;
-        if variance > 0.0 {
-            f = fresnel_filtered(u_bumped, variance, b);
-        }
-        let vn = dot3(view, n);
-        let mut r = n * (2.0 * vn) - view;
-        r.y = max(r.y, 0.0);
-        let mut sky_r = sky_radiance(b, unit(r + vec3(0.0, 1e-6, 0.0)));
-        if variance > 0.0 {
-            sky_r = sky_filtered(view, slopes, variance, b);
-        }
-        let refl = texture_sample_level(
-            b.reflection_map,
-            &CLAMP_LINEAR,
-            screen + vec2(du, dv) * frame.hu.reflection_distortion,
-            0.0,
-        );
-        let a_refl = refl.w * frame.passes.reflection_map;
-        let c_reflect = sky_r * (1.0 - a_refl) + refl.xyz() * a_refl;
-        let refr = texture_sample_level(
-            b.refraction_map,
-            &CLAMP_LINEAR,
-            screen + vec2(du, dv) * frame.hu.refraction_distortion,
-            0.0,
-        );
-        let a_refr = refr.w * frame.passes.refraction_map;
-        let c_refract = Vec3::from(frame.water.color) * (1.0 - a_refr) + refr.xyz() * a_refr;
-        let vb = vec3(fres.x, fres.z, fres.y);
-        let sun_direction = Vec3::from(frame.sun.direction);
-        let r_sun = vec3(-sun_direction.x, sun_direction.y, -sun_direction.z);
-        let cos_spec = max(dot3(vb, r_sun), 0.0);
-        let mut lobe = pow_int(cos_spec, frame.hu.phong_exponent as u32);
-        if variance > 0.0 {
-            lobe = sun_lobe_filtered(u_bumped, variance, frame);
-        }
-        let spec = Vec3::from(frame.sun.radiance) * (lobe * frame.sun.lit);
-        let shadow = sun_visibility(input.rel, b);
-        let c = c_reflect * f + c_refract * (1.0 - f) + spec * shadow;
-        return c.extend(1.0).into();
+        let p = SurfacePoint { slopes, n, view, u_bumped, screen };
+        return (b.shade_above)(input, &p, b).extend(1.0).into();
     }
     let st = fresnel_st(u_bumped, frame.hu.fresnel_scale);
     let f = texture_sample_level(b.fresnel_below, &CLAMP_LINEAR, st, 0.0).w;

@@ -2,4 +2,6 @@
 
 pub mod camera;
 pub mod frame;
+pub mod fresnel;
 pub mod fullscreen;
+pub mod optics;
