@@ -181,7 +181,7 @@ fn render_with_an_unknown_system_exits_1_lists_the_systems_and_writes_nothing() 
     assert_eq!(o.status.code(), Some(1));
     let e = String::from_utf8_lossy(&o.stderr);
     assert!(
-        e.contains("not yet available") && e.contains("sky technique `preetham_clouds`"),
+        e.contains("not yet available") && e.contains("spray technique `particles`"),
         "{e}"
     );
     assert!(!out.exists());

@@ -12,7 +12,17 @@ use ocean_core::sky::{
     TURBIDITY_MIN, TWILIGHT_DEPTH,
 };
 use ocean_cpu::raster::RenderTarget;
-use ocean_cpu::shaders::sky::{VertexOut, fs_main, render_sky, vs_main};
+use ocean_cpu::shaders::sky::{VertexOut, fs_main, vs_main};
+
+/// The `sky` pass with technique `preetham`.
+fn render_sky(
+    target: &mut ocean_cpu::raster::RenderTarget,
+    camera: &ocean_core::camera_uniforms::CameraUniforms,
+    sky: &ocean_core::sky::SkyUniforms,
+) {
+    let t = ocean_cpu::shaders::sky::technique("preetham").expect("preetham");
+    ocean_cpu::shaders::sky::render_sky(target, camera, sky, &t);
+}
 
 const TURBIDITIES: [f64; 6] = [TURBIDITY_MIN, 2.0, 3.0, 6.0, 10.0, TURBIDITY_MAX];
 
@@ -233,7 +243,8 @@ fn finite_and_non_negative_everywhere() {
                     "f32 T={t} el={el}"
                 );
             }
-            let px = fs_main(&VertexOut { position: [0.5, 0.5, 0.0, 1.0].into() }, &camera, &u);
+            let t = ocean_cpu::shaders::sky::technique("preetham").expect("preetham");
+            let px = fs_main(&VertexOut { position: [0.5, 0.5, 0.0, 1.0].into() }, &camera, &u, &t);
             assert!(px.iter().all(|c| c.is_finite()));
         }
     }

@@ -1,84 +1,15 @@
-// Preetham, Shirley & Smits (1999), "A practical analytic model for daylight": sky radiance in
-// a direction, and the sun disc. Physics, equations and the choices at the model's edges:
-// ocean_core::sky (f64 reference). Rust struct: ocean_core::sky::SkyUniforms.
-// CPU mirror: ocean-cpu/src/shaders/sky/preetham.rs. Technique `preetham` of stage `sky`:
-// it implements the sky interface (SkyUniforms, sky_radiance, sun_disc) that `sky.wgsl` and
-// the water's shading import as `technique/sky`.
-//
-// Channels are ordered (Y, x, y): luminance Y in kcd/m2, CIE chromaticities x and y.
+// Sky technique `preetham`: the clear Preetham sky (shared/preetham.wgsl). It implements the
+// sky interface (sky_radiance, sun_disc; SkyUniforms) that `sky.wgsl` and the water's shading
+// import as `technique/sky`. CPU mirror: ocean-cpu/src/shaders/sky/preetham.rs.
 
-struct SkyUniforms {
-    // Perez coefficients A..E of (Y, x, y); w unused.
-    perez_a: vec4<f32>,
-    perez_b: vec4<f32>,
-    perez_c: vec4<f32>,
-    perez_d: vec4<f32>,
-    perez_e: vec4<f32>,
-    // Zenith values (Y_z, x_z, y_z).
-    zenith: vec4<f32>,
-    // F(0, theta_s) of (Y, x, y): the normalisation of eq. 4.
-    perez_zenith: vec4<f32>,
-    // Unit direction towards the sun.
-    sun_direction: vec4<f32>,
-    // Radiance of the sun disc, linear sRGB, scene units.
-    sun_radiance: vec4<f32>,
-    // Scene units per kcd/m2, the twilight fade included.
-    sky_scale: f32,
-    // Lower clamp of cos(theta) (views at and below the horizon).
-    cos_theta_min: f32,
-    // sin of the inner and outer radius of the sun disc's rim.
-    sun_sin_inner: f32,
-    sun_sin_outer: f32,
-}
-
-// Smallest chromaticity y in xyY -> XYZ (ocean_core::sky::MIN_CHROMATICITY_Y).
-const MIN_CHROMATICITY_Y: f32 = 0.0001;
-
-// Perez et al. (1993) distribution, Preetham et al. eq. 3, for (Y, x, y) at once:
-// F(theta, gamma) = (1 + A exp(B / cos theta)) (1 + C exp(D gamma) + E cos^2 gamma).
-fn perez(sky: SkyUniforms, cos_theta: f32, gamma: f32, cos_gamma: f32) -> vec3<f32> {
-    let a = sky.perez_a.xyz;
-    let b = sky.perez_b.xyz;
-    let c = sky.perez_c.xyz;
-    let d = sky.perez_d.xyz;
-    let e = sky.perez_e.xyz;
-    return (1.0 + a * exp(b / cos_theta)) * (1.0 + c * exp(d * gamma) + e * cos_gamma * cos_gamma);
-}
-
-// CIE XYZ -> linear sRGB, IEC 61966-2-1 (ocean_core::sky::XYZ_TO_LINEAR_SRGB).
-fn xyz_to_linear_srgb(xyz: vec3<f32>) -> vec3<f32> {
-    let r = 3.2406 * xyz.x - 1.5372 * xyz.y - 0.4986 * xyz.z;
-    let g = -0.9689 * xyz.x + 1.8758 * xyz.y + 0.0415 * xyz.z;
-    let b = 0.0557 * xyz.x - 0.2040 * xyz.y + 1.0570 * xyz.z;
-    return vec3<f32>(r, g, b);
-}
+// #import shared/preetham.wgsl
 
 // Sky radiance without the sun disc in unit direction dir: linear sRGB, scene units.
-// Y(theta, gamma) = Y_z F(theta, gamma) / F(0, theta_s), likewise x and y (eq. 4), with
-// cos(theta) clamped below; gamma = atan2(|dir x sun|, dir . sun), accurate near the sun.
 fn sky_radiance(sky: SkyUniforms, dir: vec3<f32>) -> vec3<f32> {
-    let sun = sky.sun_direction.xyz;
-    let cos_theta = max(dir.y, sky.cos_theta_min);
-    let cos_gamma = dot(dir, sun);
-    let sin_gamma = length(cross(dir, sun));
-    let gamma = atan2(sin_gamma, cos_gamma);
-    let f = perez(sky, cos_theta, gamma, cos_gamma);
-    let yxy = sky.zenith.xyz * f / sky.perez_zenith.xyz;
-    let big_y = yxy.x;
-    let x = yxy.y;
-    let y = max(yxy.z, MIN_CHROMATICITY_Y);
-    let xyz = vec3<f32>(x / y * big_y, big_y, (1.0 - x - y) / y * big_y);
-    let rgb = xyz_to_linear_srgb(xyz);
-    return max(rgb, vec3<f32>(0.0)) * sky.sky_scale;
+    return preetham_radiance(sky, dir);
 }
 
-// The sun disc in unit direction dir: sun_radiance times a weight that is 1 inside the disc,
-// falls linearly in sin(gamma) across the rim, and is 0 outside and below the horizon.
+// The sun disc in unit direction dir.
 fn sun_disc(sky: SkyUniforms, dir: vec3<f32>) -> vec3<f32> {
-    let sun = sky.sun_direction.xyz;
-    let cos_gamma = dot(dir, sun);
-    let sin_gamma = length(cross(dir, sun));
-    let ramp = clamp((sky.sun_sin_outer - sin_gamma) / (sky.sun_sin_outer - sky.sun_sin_inner), 0.0, 1.0);
-    let weight = select(0.0, ramp, cos_gamma > 0.0 && dir.y >= 0.0);
-    return sky.sun_radiance.xyz * weight;
+    return preetham_sun_disc(sky, dir);
 }

@@ -25,7 +25,7 @@ pub const VECTOR_KEYS: &[&str] = &[
 ];
 
 /// Keys whose value is a 2-vector, (x, z).
-pub const VECTOR2_KEYS: &[&str] = &["terrain.center"];
+pub const VECTOR2_KEYS: &[&str] = &["terrain.center", "clouds.wind"];
 
 /// Keys that set the cost of a frame (grid sizes, table size, image size, mesh density): the
 /// random scenes keep them small, and [`cost_extremes`] takes each to its limit once.

@@ -16,6 +16,7 @@
 
 pub mod camera;
 pub mod camera_uniforms;
+pub mod clouds;
 pub mod dispersion;
 pub mod error;
 pub mod far_field;

@@ -434,6 +434,28 @@ pub const SHARED: &[SharedFile] = &[
         cpu_mirror: "crates/ocean-cpu/src/shaders/shared/frame.rs",
     },
     SharedFile {
+        file: "shared/preetham.wgsl",
+        source: include_str!("../../../shaders/shared/preetham.wgsl"),
+        blocks: &[block!(SkyUniforms {
+            perez_a,
+            perez_b,
+            perez_c,
+            perez_d,
+            perez_e,
+            zenith,
+            perez_zenith,
+            sun_direction,
+            sun_radiance,
+            sky_scale,
+            cos_theta_min,
+            sun_sin_inner,
+            sun_sin_outer,
+            cloud_origin,
+            cloud_color,
+        })],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/shared/preetham.rs",
+    },
+    SharedFile {
         file: "shared/fresnel.wgsl",
         source: include_str!("../../../shaders/shared/fresnel.wgsl"),
         blocks: &[],
@@ -453,6 +475,9 @@ pub const SHARED: &[SharedFile] = &[
     },
 ];
 
+/// The sky technique's interface: what `sky.wgsl` and the water's shading call.
+const SKY_INTERFACE: &[&str] = &["sky_radiance", "sun_disc"];
+
 /// The shading technique's interface: what `water.wgsl` calls.
 const SHADING_INTERFACE: &[&str] = &["shade_above"];
 
@@ -463,23 +488,18 @@ pub const TECHNIQUE_FILES: &[TechniqueFile] = &[
         technique: "preetham",
         file: "sky/preetham.wgsl",
         source: include_str!("../../../shaders/sky/preetham.wgsl"),
-        interface: &["SkyUniforms", "sky_radiance", "sun_disc"],
-        blocks: &[block!(SkyUniforms {
-            perez_a,
-            perez_b,
-            perez_c,
-            perez_d,
-            perez_e,
-            zenith,
-            perez_zenith,
-            sun_direction,
-            sun_radiance,
-            sky_scale,
-            cos_theta_min,
-            sun_sin_inner,
-            sun_sin_outer,
-        })],
+        interface: SKY_INTERFACE,
+        blocks: &[],
         cpu_mirror: "crates/ocean-cpu/src/shaders/sky/preetham.rs",
+    },
+    TechniqueFile {
+        stage: TechniqueStage::Sky,
+        technique: "preetham_clouds",
+        file: "sky/preetham_clouds.wgsl",
+        source: include_str!("../../../shaders/sky/preetham_clouds.wgsl"),
+        interface: SKY_INTERFACE,
+        blocks: &[],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/sky/preetham_clouds.rs",
     },
     TechniqueFile {
         stage: TechniqueStage::Shading,

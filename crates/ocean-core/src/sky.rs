@@ -361,6 +361,8 @@ impl PreethamSky {
             cos_theta_min: COS_THETA_MIN as f32,
             sun_sin_inner: sun_sin_inner as f32,
             sun_sin_outer: sun_sin_outer as f32,
+            cloud_origin: [0.0; 4],
+            cloud_color: [0.0; 4],
         }
     }
 }
@@ -372,7 +374,7 @@ fn sun_rim_sines() -> [f64; 2] {
 }
 
 /// The uniforms of the `sky` stage (`SkyUniforms` in `shaders/shared/preetham.wgsl`), built by
-/// [`PreethamSky::uniforms`]. Vectors are `vec4<f32>` with an unused `w` = 0; channels are
+/// [`PreethamSky::uniforms`] (the cloud layer's fields by the frame's inputs). Vectors are `vec4<f32>` with an unused `w` = 0; channels are
 /// ordered (Y, x, y).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
@@ -403,6 +405,12 @@ pub struct SkyUniforms {
     pub sun_sin_inner: f32,
     /// sin of the outer radius of the disc's rim.
     pub sun_sin_outer: f32,
+    /// Sky technique `preetham_clouds`' layer ([`crate::clouds::cloud_origin`]): the eye's
+    /// (x, z) on the noise lattice, the layer's height above the eye in cells, the opacity's
+    /// threshold.
+    pub cloud_origin: [f32; 4],
+    /// The lit cloud's radiance (rgb) and the layer's mean opacity (w).
+    pub cloud_color: [f32; 4],
 }
 
 fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {

@@ -481,7 +481,14 @@ impl Backend for CpuBackend<'_> {
         let hdr = self.hdr(frame.plan);
         match environment {
             Environment::Planned => {
-                sky::render_sky(hdr, &frame.camera_uniforms, &frame.environment)
+                let name = frame.plan.techniques.of(Stage::Sky).name;
+                let technique = sky::technique(name).ok_or_else(|| {
+                    Error::Core(ocean_core::Error::ShaderSource {
+                        stage: "sky".into(),
+                        reason: format!("sky technique `{name}` has no CPU mirror"),
+                    })
+                })?;
+                sky::render_sky(hdr, &frame.camera_uniforms, &frame.environment, &technique)
             }
             Environment::Given { draw, .. } => draw(hdr),
         }

@@ -49,7 +49,8 @@ pub struct FrameInputs<'a> {
     pub mesh_time: Duration,
     /// The uniforms of the `objects`, `shadow` and `water` stages.
     pub uniforms: FrameUniforms,
-    /// The environment the water reflects and the `sky` stage draws (technique `preetham`).
+    /// The environment the water reflects and the `sky` stage draws (the sky technique's
+    /// uniforms).
     pub environment: SkyUniforms,
     /// The `sky` stage's camera block.
     pub camera_uniforms: CameraUniforms,
@@ -86,6 +87,26 @@ impl<'a> FrameInputs<'a> {
         let sky = scene_sky(scene)?;
         let mut uniforms = FrameUniforms::new(scene, &camera, plan, mesh.origin);
         uniforms.ambient.sky = sky_ambient(&sky);
+        let time_s = state.time_s(scene);
+        let mut environment = sky.uniforms();
+        if plan.techniques.of(crate::plan::Stage::Sky).name == "preetham_clouds" {
+            // The layer (crate::clouds): its place over the eye, its colour under the objects'
+            // light, and the sun dimmed by the cloud in front of it.
+            let c = &scene.clouds;
+            let origin = crate::clouds::cloud_origin(c, camera.eye.to_array(), time_s);
+            let mean = crate::clouds::cloud_mean_opacity(origin[3]);
+            let s = uniforms.sun;
+            let light: [f32; 3] = std::array::from_fn(|i| {
+                let direct = f64::from(s.radiance[i])
+                    * (f64::from(s.direction[1]).max(0.0) * f64::from(s.lit))
+                    / std::f64::consts::PI;
+                ((direct + f64::from(uniforms.ambient.sky[i])) * c.albedo) as f32
+            });
+            environment.cloud_origin = origin;
+            environment.cloud_color = [light[0], light[1], light[2], mean];
+            let through = 1.0 - crate::clouds::cloud_alpha(origin, mean, s.direction);
+            uniforms.sun.radiance = s.radiance.map(|r| r * through);
+        }
         let camera_uniforms = CameraUniforms::new(
             camera.view_proj().to_cols_array_2d(),
             [0.0; 3],
@@ -103,10 +124,10 @@ impl<'a> FrameInputs<'a> {
             mesh,
             mesh_time,
             uniforms,
-            environment: sky.uniforms(),
+            environment,
             camera_uniforms,
             tonemap,
-            time_s: state.time_s(scene),
+            time_s,
         })
     }
 }

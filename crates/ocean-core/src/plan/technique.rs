@@ -109,7 +109,7 @@ pub const TECHNIQUES: &[TechniqueInfo] = &[
     t(Stage::Shading, "ggx", "Cook–Torrance with GGX (seed 002)", false),
     t(Stage::Shading, "coastal", "Blinn–Phong + dull colour (seed 004)", false),
     t(Stage::Sky, "preetham", "Preetham et al. 1999 daylight", true),
-    t(Stage::Sky, "preetham_clouds", "Preetham + clouds (seed 001 eq. 4)", false),
+    t(Stage::Sky, "preetham_clouds", "Preetham + clouds (seed 001 eq. 4)", true),
     t(Stage::Sky, "atmosphere", "Rayleigh/Mie scattering (seed 002)", false),
     t(Stage::FarField, "none", "point-sampled wave maps", true),
     t(Stage::FarField, "mip", "mip-mapped slope maps, trilinear at the footprint", true),

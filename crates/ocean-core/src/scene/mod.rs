@@ -99,6 +99,8 @@ pub struct Scene {
     pub terrain: Option<Terrain>,
     /// Parameters of seed 001's techniques (shading `chiu`).
     pub chiu: Chiu,
+    /// The cloud layer of sky technique `preetham_clouds`.
+    pub clouds: Clouds,
     /// Cost/accuracy knobs of the renderer (what `ocean report` measures).
     pub quality: Quality,
 }
@@ -424,6 +426,39 @@ pub struct Chiu {
 impl Default for Chiu {
     fn default() -> Self {
         Self { zeta_m: 0.5, shininess_per_m: 4.0, kd_per_m: 0.3, open_sea_depth_m: 20.0 }
+    }
+}
+
+/// The `[clouds]` table: the cloud layer of sky technique `preetham_clouds` (seed 001 eq. 4;
+/// the model is `crate::clouds`'). Deterministic: the sky is a function of the scene and the
+/// time.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Clouds {
+    /// 0 a clear sky, 1 an overcast one.
+    pub coverage: f64,
+    /// Height of the layer above the sea, m.
+    pub altitude_m: f64,
+    /// Side of a cell of the noise's coarsest octave, m (clouds are about this wide).
+    pub scale_m: f64,
+    /// The layer's drift (x, z), m/s.
+    pub wind: [f64; 2],
+    /// The clouds' albedo: their colour is this times the light on a white surface.
+    pub albedo: f64,
+    /// Which sky of these statistics.
+    pub seed: u32,
+}
+
+impl Default for Clouds {
+    fn default() -> Self {
+        Self {
+            coverage: 0.5,
+            altitude_m: 2000.0,
+            scale_m: 1500.0,
+            wind: [8.0, 2.0],
+            albedo: 0.8,
+            seed: 1,
+        }
     }
 }
 

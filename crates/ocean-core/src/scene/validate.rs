@@ -195,6 +195,12 @@ pub const LIMITS: &[Limit] = &[
     real("chiu.shininess_per_m", 1.0e-3, 1.0e3, "eq. 5's Phong exponent per metre of depth"),
     real("chiu.kd_per_m", 0.0, 10.0, "1/m; eq. 8's k_d"),
     real("chiu.open_sea_depth_m", 0.0, 1.0e4, "m; eq. 8's y without a sea floor"),
+    real("clouds.coverage", 0.0, 1.0, "0 a clear sky, 1 overcast"),
+    real("clouds.altitude_m", 1.0, 1.0e5, "m above the sea"),
+    real("clouds.scale_m", 1.0, 1.0e6, "m, the noise's coarsest cell"),
+    real("clouds.wind", -200.0, 200.0, "m/s, (x, z)"),
+    real("clouds.albedo", 0.0, 1.0, "the clouds' reflectance"),
+    whole("clouds.seed", 0.0, 4_294_967_295.0, "any u32"),
     real("objects.*.center", -MAX_COORDINATE_M, MAX_COORDINATE_M, "m; as camera.position"),
     real("objects.*.radius", MIN_LENGTH_M, MAX_COORDINATE_M, "m"),
     real("objects.*.size", MIN_LENGTH_M, MAX_COORDINATE_M, "m, each edge"),
@@ -299,6 +305,13 @@ impl Scene {
         check("chiu.shininess_per_m", &[ch.shininess_per_m])?;
         check("chiu.kd_per_m", &[ch.kd_per_m])?;
         check("chiu.open_sea_depth_m", &[ch.open_sea_depth_m])?;
+        let cl = &self.clouds;
+        check("clouds.coverage", &[cl.coverage])?;
+        check("clouds.altitude_m", &[cl.altitude_m])?;
+        check("clouds.scale_m", &[cl.scale_m])?;
+        check("clouds.wind", &cl.wind)?;
+        check("clouds.albedo", &[cl.albedo])?;
+        check_u32("clouds.seed", cl.seed)?;
         self.check_objects()?;
         self.check_derived()
     }

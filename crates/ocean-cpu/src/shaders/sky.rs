@@ -2,25 +2,51 @@
 //! at the far plane; its techniques are the submodules (`shaders/sky/<technique>.wgsl`).
 
 pub mod preetham;
+pub mod preetham_clouds;
 
 use crate::raster::{
     BlendMode, CompareFunction, CullMode, FrontFace, RasterState, RenderTarget, Vertex, draw,
 };
 use crate::shaders::shared::camera::{CameraUniforms, view_ray};
 use crate::shaders::shared::fullscreen::fullscreen_position;
-use crate::shaders::sky::preetham::{SkyUniforms, sky_radiance, sun_disc};
-use crate::shaders::wgsl::Vec4;
+use crate::shaders::shared::preetham::SkyUniforms;
+use crate::shaders::wgsl::{Vec3, Vec4};
 
 /// A sky technique's `sky_radiance`: radiance of a world direction (arrays at this boundary
 /// to the frame and the water's bindings).
 pub type SkyRadiance = fn(&SkyUniforms, [f32; 3]) -> [f32; 3];
 
-/// The environment's radiance of a world direction for the frame's sky technique: what
-/// `sky_radiance` of the WGSL's `// #import technique/sky` is (`None` for a technique without
-/// a mirror, which the planner never chooses: it is not available).
-pub fn environment_radiance(technique: &str) -> Option<SkyRadiance> {
+/// A sky technique's interface: `sky_radiance` and `sun_disc`.
+#[derive(Clone, Copy, Debug)]
+pub struct SkyTechnique {
+    /// `sky_radiance(sky, dir)`.
+    pub sky_radiance: fn(&SkyUniforms, Vec3) -> Vec3,
+    /// `sun_disc(sky, dir)`.
+    pub sun_disc: fn(&SkyUniforms, Vec3) -> Vec3,
+}
+
+/// The mirror of sky technique `technique` (`None` for one without a mirror, which the planner
+/// never chooses: it is not available).
+pub fn technique(technique: &str) -> Option<SkyTechnique> {
     match technique {
-        "preetham" => Some(|sky, dir| sky_radiance(sky, dir.into()).into()),
+        "preetham" => Some(SkyTechnique {
+            sky_radiance: preetham::sky_radiance,
+            sun_disc: preetham::sun_disc,
+        }),
+        "preetham_clouds" => Some(SkyTechnique {
+            sky_radiance: preetham_clouds::sky_radiance,
+            sun_disc: preetham_clouds::sun_disc,
+        }),
+        _ => None,
+    }
+}
+
+/// The environment's radiance of a world direction for the frame's sky technique: what
+/// `sky_radiance` of the WGSL's `// #import technique/sky` is.
+pub fn environment_radiance(name: &str) -> Option<SkyRadiance> {
+    match name {
+        "preetham" => Some(|sky, dir| preetham::sky_radiance(sky, dir.into()).into()),
+        "preetham_clouds" => Some(|sky, dir| preetham_clouds::sky_radiance(sky, dir.into()).into()),
         _ => None,
     }
 }
@@ -50,17 +76,28 @@ pub fn vs_main(vertex_index: u32) -> VertexOut {
 }
 
 /// `fs_main(in: VertexOut) -> @location(0) vec4<f32>`: linear HDR radiance, alpha 1.
-pub fn fs_main(input: &VertexOut, camera: &CameraUniforms, sky: &SkyUniforms) -> [f32; 4] {
+pub fn fs_main(
+    input: &VertexOut,
+    camera: &CameraUniforms,
+    sky: &SkyUniforms,
+    t: &SkyTechnique,
+) -> [f32; 4] {
     let dir = view_ray(camera, input.position.xy());
-    let radiance = sky_radiance(sky, dir) + sun_disc(sky, dir);
+    let radiance = (t.sky_radiance)(sky, dir) + (t.sun_disc)(sky, dir);
     radiance.extend(1.0).into()
 }
 
 /// Draws the `sky` pass into `target` with the rasterizer: vertices 0, 1, 2 through
-/// [`vs_main`], every covered pixel through [`fs_main`], [`RASTER_STATE`].
+/// [`vs_main`], every covered pixel through [`fs_main`] with sky technique `t`,
+/// [`RASTER_STATE`].
 ///
 /// `camera.viewport` must describe `target` (checked in debug builds).
-pub fn render_sky(target: &mut RenderTarget, camera: &CameraUniforms, sky: &SkyUniforms) {
+pub fn render_sky(
+    target: &mut RenderTarget,
+    camera: &CameraUniforms,
+    sky: &SkyUniforms,
+    t: &SkyTechnique,
+) {
     debug_assert!(
         camera.viewport[0] == target.width as f32 && camera.viewport[1] == target.height as f32,
         "camera viewport {:?} does not match the {}x{} target",
@@ -70,6 +107,6 @@ pub fn render_sky(target: &mut RenderTarget, camera: &CameraUniforms, sky: &SkyU
     );
     let triangle: [Vertex<0>; 3] = [0, 1, 2].map(|i| Vertex::new(vs_main(i).position.into(), []));
     draw(target, &RASTER_STATE, &[triangle], |frag| {
-        Some(fs_main(&VertexOut { position: frag.frag_coord.into() }, camera, sky))
+        Some(fs_main(&VertexOut { position: frag.frag_coord.into() }, camera, sky, t))
     });
 }

@@ -5,3 +5,4 @@ pub mod frame;
 pub mod fresnel;
 pub mod fullscreen;
 pub mod optics;
+pub mod preetham;
