@@ -141,7 +141,10 @@ fn sun_visibility(rel: vec3<f32>) -> f32 {
         min(i32(floor(v * f32(dims.y))), dims.y - 1),
     );
     let occluder = textureLoad(shadow_map, texel, 0).x;
-    if (occluder < s.z - SHADOW_BIAS) {
+    // A texel left at the clear value 1 has no caster: the point is lit, also beyond the map's
+    // far plane (water farther from the sun than the casters' bounding sphere has s.z > 1, and
+    // was shadowed wherever the map held nothing).
+    if (occluder < 1.0 && occluder < s.z - SHADOW_BIAS) {
         return 0.0;
     }
     return 1.0;

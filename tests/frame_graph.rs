@@ -177,13 +177,10 @@ fn render_with_an_unknown_system_exits_1_lists_the_systems_and_writes_nothing() 
     assert!(!out.exists());
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "no temporary file either");
     // A known system that is not built yet: the same, naming what is missing.
-    let o = ocean(&["render", "--system", "chiu", "--size", "16x9", "-o", out.to_str().unwrap()]);
+    let o = ocean(&["render", "--system", "welch", "--size", "16x9", "-o", out.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1));
     let e = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        e.contains("not yet available") && e.contains("spray technique `particles`"),
-        "{e}"
-    );
+    assert!(e.contains("not yet available") && e.contains("waves technique `gerstner`"), "{e}");
     assert!(!out.exists());
     for cmd in ["plan", "compare", "view"] {
         let o = ocean(&[cmd, "--system", "no-such-system"]);

@@ -13,7 +13,7 @@ use std::sync::{Arc, Mutex, mpsc};
 use std::time::{Duration, Instant};
 
 use anyhow::{Context, anyhow, bail};
-use ocean_core::plan::{FramePlan, OutputKind};
+use ocean_core::plan::{FramePlan, FrameState, OutputKind};
 use ocean_core::scene::{Ocean, Scene};
 use ocean_core::waves::OceanSurface;
 use ocean_gpu::frame::wave_key;
@@ -274,6 +274,9 @@ struct App {
     t0: f64,
     sim_time: f64,
     frame_index: u64,
+    /// What lives across the viewer's frames (the spray's particle pool's step count): the
+    /// sea's time is the scene's, set each frame, so the state's own step is 0.
+    frame_state: FrameState,
     last_frame: Option<Instant>,
     stats: Stats,
     last_plan: Option<FramePlan>,
@@ -315,6 +318,7 @@ impl App {
             t0,
             sim_time: t0,
             frame_index: 0,
+            frame_state: FrameState::new(0.0),
             last_frame: None,
             stats: Stats::default(),
             last_plan: None,
@@ -637,14 +641,15 @@ impl App {
         scene.ocean.time_s = self.sim_time;
         let plan = FramePlan::new(&scene, OutputKind::Ldr);
         let cpu_start = Instant::now();
-        let frame = match gfx.renderer.run_with(&scene, &plan, Readback::None) {
-            Ok(f) => f,
-            Err(e) if gfx.device_lost() => {
-                eprintln!("view: frame {} failed on a lost device ({e})", self.frame_index);
-                return Ok(());
-            }
-            Err(e) => return Err(e.into()),
-        };
+        let frame =
+            match gfx.renderer.run_frame(&scene, &plan, &mut self.frame_state, Readback::None) {
+                Ok(f) => f,
+                Err(e) if gfx.device_lost() => {
+                    eprintln!("view: frame {} failed on a lost device ({e})", self.frame_index);
+                    return Ok(());
+                }
+                Err(e) => return Err(e.into()),
+            };
 
         let view = texture.texture.create_view(&wgpu::TextureViewDescriptor {
             format: Some(gfx.view_format),

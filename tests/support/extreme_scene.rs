@@ -19,6 +19,7 @@ pub const VECTOR_KEYS: &[&str] = &[
     "sun.color",
     "water.color",
     "terrain.color",
+    "spray.color",
     "objects.*.center",
     "objects.*.size",
     "objects.*.color",
@@ -36,6 +37,8 @@ pub const COST_KEYS: &[&str] = &[
     "camera.height",
     "quality.fresnel_table_size",
     "quality.lod_split_threshold",
+    "spray.particles",
+    "spray.warmup_steps",
 ];
 
 /// How to draw a value in a limit's range.

@@ -31,6 +31,7 @@ pub mod scene;
 pub mod shader_source;
 pub mod sky;
 pub mod spectrum;
+pub mod spray;
 pub mod supersample;
 pub mod tables;
 pub mod tonemap;

@@ -20,6 +20,7 @@ use crate::frame::{
 };
 use crate::plan::Stage as TechniqueStage;
 use crate::sky::SkyUniforms;
+use crate::spray::{Emitter, Particle, SprayUniforms};
 use crate::tonemap::TonemapUniforms;
 use crate::waves::uniforms::{FftPassUniforms, WaveModeData, WavesUniforms};
 
@@ -327,6 +328,47 @@ pub const STAGES: &[StageEntry] = &[
         blocks: &[],
         cpu_mirror: "crates/ocean-cpu/src/shaders/water.rs",
         gpu_module: "crates/ocean-gpu/src/water.rs",
+    },
+    StageEntry {
+        name: "spray",
+        file: "spray.wgsl",
+        source: include_str!("../../../shaders/spray.wgsl"),
+        entry_points: &[("step", Compute), ("vs_main", Vertex), ("fs_main", Fragment)],
+        bindings: &[
+            b(0, 0, "params"),
+            b(0, 1, "particles"),
+            b(0, 2, "emitters"),
+            b(0, 3, "displacement"),
+            b(0, 4, "wrap_linear"),
+            b(0, 5, "frame"),
+            b(0, 6, "sprites"),
+            b(0, 7, "draw"),
+        ],
+        blocks: &[
+            block!(SprayUniforms {
+                step,
+                count,
+                emitters,
+                seed,
+                dt,
+                gravity,
+                speed,
+                lifetime,
+                emit_chance,
+                inv_patch,
+                half_texel,
+                waves,
+                origin_rel,
+                sprite,
+                color,
+                right,
+                up
+            }),
+            block!(Particle { pos, vel }),
+            block!(Emitter { pos, dir }),
+        ],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/spray.rs",
+        gpu_module: "crates/ocean-gpu/src/spray.rs",
     },
     StageEntry {
         name: "tonemap",

@@ -15,13 +15,14 @@ use ocean_core::plan::{
     run_frame,
 };
 use ocean_core::scene::Scene;
+use ocean_core::spray::{SprayFrame, SprayState};
 use ocean_core::waves::{Synthesizer, WaveMaps};
 
 use crate::mip::MipChain;
 use crate::raster::{self, BlendMode, CompareFunction, RasterState, RenderTarget, Vertex};
 use crate::sampler::Texture2D;
 use crate::shaders::waves::WavesMirror;
-use crate::shaders::{fresnel_table, objects, shadow, sky, tonemap, water, wave_mips};
+use crate::shaders::{fresnel_table, objects, shadow, sky, spray, tonemap, water, wave_mips};
 
 /// Default side of the 2D Fresnel textures (the error table in the README: 256² is within 2e-3
 /// of eq. 2 up to 76° from the normal); a scene's `[quality] fresnel_table_size` and the plan
@@ -497,6 +498,36 @@ impl Backend for CpuBackend<'_> {
 
     fn water(&mut self, frame: &FrameInputs<'_>) -> Result<(), Error> {
         self.water_pass(frame)
+    }
+
+    fn spray(
+        &mut self,
+        frame: &FrameInputs<'_>,
+        state: &mut FrameState,
+        steps: u64,
+    ) -> Result<(), Error> {
+        let work =
+            SprayFrame::new(frame.scene, frame.plan, &frame.camera, state.spray_steps, steps);
+        let n = frame.scene.spray.particles as usize;
+        // A pool of another size, or a state the GPU advanced, starts again from free slots.
+        let fresh = |steps| SprayState { particles: vec![spray::Particle::default(); n], steps };
+        let pool = state.spray.get_or_insert_with(|| fresh(0));
+        if pool.particles.len() != n || pool.steps != state.spray_steps {
+            *pool = fresh(state.spray_steps);
+        }
+        let empty = Texture2D::new(1, 1, vec![[0.0; 4]]);
+        let displacement = self
+            .maps
+            .iter()
+            .find(|(m, _)| *m == ResourceId::Displacement)
+            .map_or(&empty, |(_, t)| t);
+        for u in &work.steps {
+            spray::step(&mut pool.particles, u, &work.emitters, displacement);
+        }
+        pool.steps = state.spray_steps + steps;
+        let hdr = self.hdr.get_or_insert_with(|| new_hdr(frame.plan));
+        spray::draw_sprites(hdr, &pool.particles, &frame.uniforms, &work.draw);
+        Ok(())
     }
 
     fn tonemap(&mut self, frame: &FrameInputs<'_>) -> Result<(), Error> {

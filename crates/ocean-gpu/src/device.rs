@@ -8,7 +8,8 @@
 //!
 //! Features the frame needs: `FLOAT32_FILTERABLE` (the water stage filters its `Rgba32Float`
 //! maps bilinearly, DESIGN.md: "intermediate textures use float formats"). `TIMESTAMP_QUERY`
-//! is requested when the adapter has it, for GPU time per pass. Errors never panic: an absent
+//! is requested when the adapter has it, for GPU time per pass, and `FLOAT32_BLENDABLE` for
+//! the spray's additive sprites (pass `spray` is refused without it). Errors never panic: an absent
 //! adapter or feature is an [`Error`] that says what to install or to use `--backend cpu`.
 
 use std::fmt;
@@ -187,6 +188,11 @@ impl Gpu {
         }
         let timestamps = available.contains(wgpu::Features::TIMESTAMP_QUERY);
         let mut required_features = wgpu::Features::FLOAT32_FILTERABLE;
+        // The spray's sprites add into the Rgba32Float frame; without it, pass `spray` is
+        // refused (the rest of the frame does not need it).
+        if available.contains(wgpu::Features::FLOAT32_BLENDABLE) {
+            required_features |= wgpu::Features::FLOAT32_BLENDABLE;
+        }
         if timestamps {
             required_features |= wgpu::Features::TIMESTAMP_QUERY;
         }

@@ -36,6 +36,7 @@ use crate::fresnel_table::FresnelTableStage;
 use crate::objects::{ObjectsEntry, ObjectsStage, VertexChunk, vertex_chunks};
 use crate::shadow::ShadowStage;
 use crate::sky::SkyStage;
+use crate::spray::{GpuSpray, SprayStage};
 use crate::texture::{
     FloatMap, GpuTexture, LDR_FORMAT, MAP_FORMAT, Readbacks, SHADOW_FORMAT, TexelData, map_usage,
 };
@@ -111,6 +112,7 @@ struct Stages {
     objects: ObjectsStage,
     shadow: ShadowStage,
     water: WaterStage,
+    spray: SprayStage,
     tonemap: TonemapStage,
 }
 
@@ -128,6 +130,8 @@ pub struct Renderer {
     max_vertex_buffer_bytes: u64,
     /// The techniques the composing stages (`sky`, `water`) were assembled for.
     built: ocean_core::plan::Techniques,
+    /// The spray's particle pool, kept on the device across frames.
+    spray: Option<GpuSpray>,
 }
 
 fn wgpu_format(f: Format) -> wgpu::TextureFormat {
@@ -147,6 +151,7 @@ pub struct GpuBackend<'r> {
     gpu: &'r Gpu,
     stages: &'r Stages,
     waves: &'r mut WaveSlot,
+    spray: &'r mut Option<GpuSpray>,
     encoder: wgpu::CommandEncoder,
     timer: PassTimer,
     maps: Vec<(ResourceId, GpuTexture)>,
@@ -514,6 +519,63 @@ impl Backend for GpuBackend<'_> {
         Ok(())
     }
 
+    fn spray(
+        &mut self,
+        frame: &FrameInputs<'_>,
+        state: &mut FrameState,
+        steps: u64,
+    ) -> Result<(), Error> {
+        if !self.stages.spray.can_draw() {
+            return Err(Error::Unavailable(
+                "spray technique `particles` adds its sprites into the Rgba32Float frame, which \
+                 needs the adapter feature FLOAT32_BLENDABLE; this adapter lacks it (use \
+                 --backend cpu, or [techniques] spray = \"none\")"
+                    .into(),
+            ));
+        }
+        let scene = frame.scene;
+        let work = ocean_core::spray::SprayFrame::new(
+            scene,
+            frame.plan,
+            &frame.camera,
+            state.spray_steps,
+            steps,
+        );
+        let device = &self.gpu.device;
+        // The pool stays on the device while the scene's spray and the animation's step count
+        // agree with it; otherwise (another scene, a fresh state) it starts again from free
+        // slots, as the CPU's does.
+        let keep = self.spray.as_ref().is_some_and(|p| {
+            p.key.0 == scene.spray && p.key.1 == work.emitters && p.steps == state.spray_steps
+        });
+        if !keep {
+            let mut pool = GpuSpray::new(device, &scene.spray, work.emitters.clone());
+            pool.steps = state.spray_steps;
+            *self.spray = Some(pool);
+        }
+        let displacement = self.map(ResourceId::Displacement);
+        let Some(pool) = self.spray.as_mut() else { return Ok(()) };
+        for u in &work.steps {
+            self.stages.spray.encode_step(device, &mut self.encoder, pool, u, &displacement.view);
+        }
+        pool.steps += steps;
+        let u = work.draw;
+        let (hdr, depth) = self.hdr(frame.plan);
+        let slot = self.timer.slot(Pass::Spray);
+        let Some(pool) = self.spray.as_ref() else { return Ok(()) };
+        self.stages.spray.encode_draw(
+            &self.gpu.device,
+            &mut self.encoder,
+            &self.frame_buffer,
+            pool,
+            &u,
+            &hdr.view,
+            &depth.view,
+            self.timer.render_writes(slot),
+        );
+        Ok(())
+    }
+
     fn tonemap(&mut self, frame: &FrameInputs<'_>) -> Result<(), Error> {
         if let Some(t) = &frame.tonemap {
             let (hdr, _) = self.hdr(frame.plan);
@@ -561,6 +623,7 @@ impl Renderer {
                 objects: ObjectsStage::new(d)?,
                 shadow: ShadowStage::new(d)?,
                 water: WaterStage::new(d, &built)?,
+                spray: SprayStage::new(d)?,
                 tonemap: TonemapStage::new(d)?,
             })
         })??;
@@ -571,7 +634,38 @@ impl Renderer {
             waves: None,
             max_vertex_buffer_bytes: u64::MAX,
             built,
+            spray: None,
         })
+    }
+
+    /// The spray's particle pool as the last frame left it (`None` before a frame with pass
+    /// `spray`), read back from the device.
+    ///
+    /// # Errors
+    /// A device error while mapping the copy.
+    pub fn spray_particles(&self) -> Result<Option<Vec<ocean_core::spray::Particle>>, Error> {
+        let Some(pool) = &self.spray else { return Ok(None) };
+        let device = &self.gpu.device;
+        let staging = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("ocean.spray.readback"),
+            size: pool.particles.size(),
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        let mut encoder = device.create_command_encoder(&Default::default());
+        encoder.copy_buffer_to_buffer(&pool.particles, 0, &staging, 0, pool.particles.size());
+        self.gpu.queue.submit([encoder.finish()]);
+        let (tx, rx) = std::sync::mpsc::channel();
+        staging.slice(..).map_async(wgpu::MapMode::Read, move |r| {
+            // The receiver outlives the wait below; a failed send only means nobody listens.
+            let _ = tx.send(r);
+        });
+        let fail = |e: String| Error::Unavailable(format!("reading the spray back: {e}"));
+        device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| fail(e.to_string()))?;
+        rx.recv().map_err(|e| fail(e.to_string()))?.map_err(|e| fail(e.to_string()))?;
+        let bytes = staging.slice(..).get_mapped_range().map_err(|e| fail(e.to_string()))?.to_vec();
+        staging.unmap();
+        Ok(Some(bytemuck::cast_slice(&bytes).to_vec()))
     }
 
     /// Caps each vertex buffer of the objects' triangles at `bytes` (below the device's own
@@ -661,13 +755,16 @@ impl Renderer {
         let start = Instant::now();
         // The far field is a uniform of the water pipeline (every technique is in its WGSL),
         // not a composed file; the surface is its vertex entry point (`vs_main` draws the
-        // mesh of `hu_patches`, `vs_projected_grid` the grid of `projected_grid`); the sky's
+        // mesh of `hu_patches`, `vs_projected_grid` the grid of `projected_grid`); the spray is
+        // a pass of its own stage, run or skipped by the plan; the sky's
         // and the shading's files are composed into the `sky` and `water` stages, assembled
         // again for the plan's choice. Any other stage's technique must be the one built.
         use ocean_core::plan::Stage;
         let in_water_pipeline = |s: Stage, name: &str| {
             s == Stage::FarField
                 || (s == Stage::Surface && matches!(name, "hu_patches" | "projected_grid"))
+                // Pass `spray` runs stage `spray`'s pipelines or is skipped.
+                || (s == Stage::Spray && matches!(name, "none" | "particles"))
         };
         if let Some((stage, t)) = plan.techniques.iter().find(|(s, t)| {
             !crate::common::COMPOSED.contains(s)
@@ -713,6 +810,7 @@ impl Renderer {
         let gpu = &self.gpu;
         let stages = &self.stages;
         let waves = &mut self.waves;
+        let spray = &mut self.spray;
         let max_vertex_buffer_bytes = self.max_vertex_buffer_bytes;
         let frame = gpu.scoped("rendering the frame", || -> Result<_, Error> {
             let device = &gpu.device;
@@ -720,6 +818,7 @@ impl Renderer {
                 gpu,
                 stages,
                 waves,
+                spray,
                 encoder: device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
                     label: Some("ocean.frame"),
                 }),

@@ -29,6 +29,7 @@ pub mod objects;
 pub mod present;
 pub mod shadow;
 pub mod sky;
+pub mod spray;
 pub mod texture;
 pub mod timing;
 pub mod tonemap;

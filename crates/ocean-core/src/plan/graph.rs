@@ -149,12 +149,22 @@ pub struct FrameState {
     /// Seconds between frames.
     pub step_s: f64,
     cycle: Option<Cycle>,
+    /// Steps of the spray's particle pool run so far (pass `spray`).
+    pub spray_steps: u64,
+    /// The CPU back end's particle pool.
+    pub spray: Option<crate::spray::SprayState>,
 }
 
 impl FrameState {
     /// Frames `step_s` apart, starting at frame 0.
     pub fn new(step_s: f64) -> Self {
-        Self { frame: 0, step_s, cycle: None }
+        Self { frame: 0, step_s, cycle: None, spray_steps: 0, spray: None }
+    }
+
+    /// How many spray steps this frame runs: the scene's warm-up and one on the state's
+    /// first, one on every later frame.
+    pub fn spray_steps_this_frame(&self, scene: &Scene) -> u64 {
+        if self.spray_steps == 0 { u64::from(scene.spray.warmup_steps) + 1 } else { 1 }
     }
 
     /// The sea's time of the current frame: the scene's `time_s` plus `frame · step_s`
@@ -251,6 +261,19 @@ pub trait Backend {
     /// A technique without an implementation; a device error.
     fn water(&mut self, frame: &FrameInputs<'_>) -> Result<(), Self::Error>;
 
+    /// `spray`: `steps` fixed steps of the particle pool, from step `state.spray_steps`
+    /// (the CPU keeps its pool in `state.spray`, a GPU in its own buffer), then the sprites
+    /// added to the frame.
+    ///
+    /// # Errors
+    /// A device error.
+    fn spray(
+        &mut self,
+        frame: &FrameInputs<'_>,
+        state: &mut FrameState,
+        steps: u64,
+    ) -> Result<(), Self::Error>;
+
     /// `tonemap`: HDR → 8-bit.
     ///
     /// # Errors
@@ -287,6 +310,11 @@ pub fn run_frame<B: Backend>(
             }
             Pass::Sky => backend.sky(frame)?,
             Pass::Water => backend.water(frame)?,
+            Pass::Spray => {
+                let steps = state.spray_steps_this_frame(frame.scene);
+                backend.spray(frame, state, steps)?;
+                state.spray_steps += steps;
+            }
             Pass::Tonemap => backend.tonemap(frame)?,
         }
         let mut elapsed = t0.elapsed();

@@ -82,13 +82,15 @@ pub enum Pass {
     FarPatch,
     /// The water surface, eq. 3 (stage `water`).
     Water,
+    /// Spray particles: one fixed step of the pool, then their sprites (stage `spray`).
+    Spray,
     /// HDR → 8-bit sRGB (stage `tonemap`).
     Tonemap,
 }
 
 impl Pass {
     /// Every pass, in execution order.
-    pub const ALL: [Pass; 12] = [
+    pub const ALL: [Pass; 13] = [
         Pass::Cycle,
         Pass::Waves,
         Pass::WaveMips,
@@ -100,6 +102,7 @@ impl Pass {
         Pass::Objects,
         Pass::FarPatch,
         Pass::Water,
+        Pass::Spray,
         Pass::Tonemap,
     ];
 
@@ -113,6 +116,7 @@ impl Pass {
             Pass::WaveMips => Some(Stage::FarField),
             Pass::FarPatch => Some(Stage::Surface),
             Pass::Tonemap => Some(Stage::Post),
+            Pass::Spray => Some(Stage::Spray),
             Pass::ShadowMap | Pass::ReflectionMap | Pass::RefractionMap | Pass::Objects => None,
         }
     }
@@ -130,6 +134,7 @@ impl Pass {
             Pass::Sky => Some("sky"),
             Pass::Water => Some("water"),
             Pass::Tonemap => Some("tonemap"),
+            Pass::Spray => Some("spray"),
         }
     }
 
@@ -152,6 +157,7 @@ impl Pass {
                 R::Environment,
             ],
             Pass::Tonemap => &[R::Hdr],
+            Pass::Spray => &[R::Displacement, R::Hdr],
             Pass::Sky => &[R::Environment],
             Pass::WaveMips => &[R::DisplacementSlopes, R::Bump],
             _ => &[],
@@ -169,7 +175,7 @@ impl Pass {
             Pass::ShadowMap => &[R::ShadowMap],
             Pass::ReflectionMap => &[R::ReflectionMap],
             Pass::RefractionMap => &[R::RefractionMap],
-            Pass::Sky | Pass::Objects | Pass::Water => &[R::Hdr],
+            Pass::Sky | Pass::Objects | Pass::Water | Pass::Spray => &[R::Hdr],
             Pass::Tonemap => &[R::Ldr],
         }
     }
@@ -188,6 +194,7 @@ impl Pass {
             Pass::Objects => "objects",
             Pass::FarPatch => "far_patch",
             Pass::Water => "water",
+            Pass::Spray => "spray",
             Pass::Tonemap => "tonemap",
         }
     }
@@ -719,6 +726,35 @@ impl FramePlan {
                     )
                 }
                 Pass::Water => (true, "the sea surface, eq. 3".into()),
+                Pass::Spray => {
+                    let t = techniques.of(Stage::Spray).name;
+                    if t != "particles" {
+                        (false, format!("spray = {t}"))
+                    } else {
+                        let n =
+                            crate::spray::emitters(scene, crate::spray::wave_bound(scene)).len();
+                        if n == 0 && opt.prune {
+                            (
+                                false,
+                                "no object surface lies between the waves' lower and upper \
+                                 bounds: nothing emits spray"
+                                    .into(),
+                            )
+                        } else {
+                            (
+                                true,
+                                format!(
+                                    "{} particles from {n} emitter(s) on the objects in the \
+                                     waves' band, one {:.4} s step a frame ({} before the first), \
+                                     drawn as additive sprites",
+                                    scene.spray.particles,
+                                    scene.spray.step_s,
+                                    scene.spray.warmup_steps
+                                ),
+                            )
+                        }
+                    }
+                }
                 Pass::Tonemap => match output {
                     OutputKind::Ldr => (true, "8-bit sRGB output".into()),
                     OutputKind::Hdr => (false, "EXR output keeps linear HDR".into()),
@@ -929,16 +965,17 @@ mod tests {
     }
 
     #[test]
-    fn builtin_scene_runs_every_pass_but_the_cycle_and_the_tonemap_for_exr() {
+    fn builtin_scene_runs_every_pass_but_the_cycle_the_spray_and_the_tonemap_for_exr() {
         let s = Scene::builtin();
         let p = FramePlan::new(&s, OutputKind::Ldr);
         let skipped: Vec<_> = p.skipped.iter().map(|p| p.name).collect();
-        assert_eq!(skipped, [Pass::Cycle], "{p}");
+        assert_eq!(skipped, [Pass::Cycle, Pass::Spray], "{p}");
         let names: Vec<_> = p.passes.iter().map(|p| p.name).collect();
-        assert_eq!(names, Pass::ALL[1..]);
+        let want: Vec<_> = Pass::ALL[1..].iter().copied().filter(|p| *p != Pass::Spray).collect();
+        assert_eq!(names, want);
         assert_eq!(p.objects().objects, [0, 1]);
         let p = FramePlan::new(&s, OutputKind::Hdr);
-        assert_eq!(p.skipped.len(), 2);
+        assert_eq!(p.skipped.len(), 3);
         assert!(!p.runs(Pass::Tonemap));
         // The full plan of a scene that needs everything is the pruned one.
         assert_eq!(FramePlan::full(&s, OutputKind::Ldr).passes.len(), 11);

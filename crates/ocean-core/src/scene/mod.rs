@@ -101,6 +101,8 @@ pub struct Scene {
     pub chiu: Chiu,
     /// The cloud layer of sky technique `preetham_clouds`.
     pub clouds: Clouds,
+    /// The particles of spray technique `particles`.
+    pub spray: Spray,
     /// Cost/accuracy knobs of the renderer (what `ocean report` measures).
     pub quality: Quality,
 }
@@ -458,6 +460,47 @@ impl Default for Clouds {
             wind: [8.0, 2.0],
             albedo: 0.8,
             seed: 1,
+        }
+    }
+}
+
+/// The `[spray]` table: spray technique `particles` (seed 001 §3.4; the model is
+/// `crate::spray`'s).
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Spray {
+    /// Particle slots.
+    pub particles: u32,
+    /// Chance per step that a free slot whose emitter is under the water is launched.
+    pub emit_chance: f64,
+    /// Launch speed, m/s.
+    pub speed: f64,
+    /// A particle's lifetime, s.
+    pub lifetime_s: f64,
+    /// The fixed time step, s (one per frame).
+    pub step_s: f64,
+    /// Steps run before a state's first frame (a still frame shows steady spray).
+    pub warmup_steps: u32,
+    /// A sprite's side, m.
+    pub size_m: f64,
+    /// Radiance of a sprite's centre (additive).
+    pub intensity: f64,
+    /// The sprites' colour, linear RGB.
+    pub color: [f64; 3],
+}
+
+impl Default for Spray {
+    fn default() -> Self {
+        Self {
+            particles: 8192,
+            emit_chance: 0.05,
+            speed: 4.0,
+            lifetime_s: 1.5,
+            step_s: 1.0 / 30.0,
+            warmup_steps: 90,
+            size_m: 0.15,
+            intensity: 0.25,
+            color: [0.9, 0.95, 1.0],
         }
     }
 }

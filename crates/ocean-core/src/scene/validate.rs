@@ -201,6 +201,15 @@ pub const LIMITS: &[Limit] = &[
     real("clouds.wind", -200.0, 200.0, "m/s, (x, z)"),
     real("clouds.albedo", 0.0, 1.0, "the clouds' reflectance"),
     whole("clouds.seed", 0.0, 4_294_967_295.0, "any u32"),
+    whole("spray.particles", 1.0, 1_048_576.0, "slots; 2^20 particles are 32 MiB of state"),
+    real("spray.emit_chance", 0.0, 1.0, "per step and free slot"),
+    real("spray.speed", 0.0, 100.0, "m/s"),
+    real("spray.lifetime_s", 1.0e-3, 100.0, "s"),
+    real("spray.step_s", 1.0e-4, 1.0, "s, one step per frame"),
+    whole("spray.warmup_steps", 0.0, 10_000.0, "steps before a state's first frame"),
+    real("spray.size_m", 1.0e-3, 10.0, "m, a sprite's side"),
+    real("spray.intensity", 0.0, MAX_COLOUR, "radiance of a sprite's centre"),
+    real("spray.color", 0.0, MAX_COLOUR, "linear RGB"),
     real("objects.*.center", -MAX_COORDINATE_M, MAX_COORDINATE_M, "m; as camera.position"),
     real("objects.*.radius", MIN_LENGTH_M, MAX_COORDINATE_M, "m"),
     real("objects.*.size", MIN_LENGTH_M, MAX_COORDINATE_M, "m, each edge"),
@@ -312,6 +321,16 @@ impl Scene {
         check("clouds.wind", &cl.wind)?;
         check("clouds.albedo", &[cl.albedo])?;
         check_u32("clouds.seed", cl.seed)?;
+        let sp = &self.spray;
+        check_u32("spray.particles", sp.particles)?;
+        check("spray.emit_chance", &[sp.emit_chance])?;
+        check("spray.speed", &[sp.speed])?;
+        check("spray.lifetime_s", &[sp.lifetime_s])?;
+        check("spray.step_s", &[sp.step_s])?;
+        check_u32("spray.warmup_steps", sp.warmup_steps)?;
+        check("spray.size_m", &[sp.size_m])?;
+        check("spray.intensity", &[sp.intensity])?;
+        check("spray.color", &sp.color)?;
         self.check_objects()?;
         self.check_derived()
     }

@@ -17,6 +17,7 @@ pub mod shading;
 pub mod shadow;
 pub mod shared;
 pub mod sky;
+pub mod spray;
 pub mod tonemap;
 pub mod water;
 pub mod wave_mips;

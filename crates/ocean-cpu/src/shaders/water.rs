@@ -176,7 +176,8 @@ pub fn sun_visibility(rel: Vec3, b: &Bindings<'_>) -> f32 {
         ((v * dims[1] as f32).floor() as i32).min(dims[1] - 1),
     ];
     let occluder = b.shadow_map.texel(texel[0] as u32, texel[1] as u32)[0];
-    if occluder < s.z - SHADOW_BIAS {
+    // The clear value 1: no caster (also beyond the map's far plane).
+    if occluder < 1.0 && occluder < s.z - SHADOW_BIAS {
         return 0.0;
     }
     1.0

@@ -1,0 +1,261 @@
+//! Stage `spray` (`shaders/spray.wgsl`, spray technique `particles`): the `step` compute
+//! pipeline that advances the particle pool in place in a storage buffer that stays on the
+//! device (nothing per frame is uploaded but the step's uniforms), and the sprite pipeline
+//! that adds the active particles to the HDR frame. Group 0 has two layouts: `step`'s
+//! (0 `SprayUniforms`, 1 the pool read-write, 2 the emitters, 3 `displacement`,
+//! 4 `wrap_linear`) and the draw's (5 `FrameUniforms`, 6 the pool read-only, 7
+//! `SprayUniforms`). Draw state: reversed-Z `Greater` against the frame's depth, no depth
+//! write, blend One + One, no culling. CPU mirror: `ocean-cpu/src/shaders/spray.rs`.
+
+use ocean_core::spray::{Emitter, Particle, SprayUniforms};
+use wgpu::util::DeviceExt;
+
+use crate::common::{
+    Load, begin_render_pass, bind_group, depth_state, entry, label, pipeline_layout, primitive,
+    sampler_entry, shader_module, texture_entry, uniform_buffer, uniform_entry,
+};
+use crate::device::Error;
+use crate::texture::MAP_FORMAT;
+
+/// Invocations per workgroup of `step` (the WGSL's `@workgroup_size`).
+pub const WORKGROUP_SIZE: u32 = 64;
+
+fn storage_entry(
+    binding: u32,
+    visibility: wgpu::ShaderStages,
+    read_only: bool,
+) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only },
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
+/// The stage's pipelines.
+pub struct SprayStage {
+    step: wgpu::ComputePipeline,
+    /// `None` without `FLOAT32_BLENDABLE` (the frame is Rgba32Float).
+    draw: Option<wgpu::RenderPipeline>,
+    step_layout: wgpu::BindGroupLayout,
+    draw_layout: wgpu::BindGroupLayout,
+    sampler: wgpu::Sampler,
+}
+
+/// A particle pool on the device: the slots, the emitters, and the steps run.
+pub struct GpuSpray {
+    /// The scene's spray and emitters it was made for.
+    pub key: (ocean_core::scene::Spray, Vec<Emitter>),
+    /// The slots (`Particle`, storage, copy source for read-back).
+    pub particles: wgpu::Buffer,
+    /// The emitters (at least one element: a buffer cannot be empty).
+    pub emitters: wgpu::Buffer,
+    /// Slots.
+    pub count: u32,
+    /// Steps run.
+    pub steps: u64,
+}
+
+impl GpuSpray {
+    /// A pool of `count` free slots for `emitters` (zeroed once, at creation).
+    pub fn new(
+        device: &wgpu::Device,
+        spray: &ocean_core::scene::Spray,
+        emitters: Vec<Emitter>,
+    ) -> Self {
+        let count = spray.particles;
+        let particles = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("ocean.spray.particles"),
+            contents: bytemuck::cast_slice(&vec![Particle::default(); count as usize]),
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        });
+        let placeholder = [Emitter::default()];
+        let e: &[Emitter] = if emitters.is_empty() { &placeholder } else { &emitters };
+        let emitter_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("ocean.spray.emitters"),
+            contents: bytemuck::cast_slice(e),
+            usage: wgpu::BufferUsages::STORAGE,
+        });
+        Self {
+            key: (spray.clone(), emitters),
+            particles,
+            emitters: emitter_buffer,
+            count,
+            steps: 0,
+        }
+    }
+}
+
+impl SprayStage {
+    /// Creates the pipelines `"ocean.spray"`.
+    ///
+    /// # Errors
+    /// [`Error::Core`] if the WGSL cannot be assembled or an entry point is not registered.
+    pub fn new(device: &wgpu::Device) -> Result<Self, Error> {
+        let name = label("spray");
+        let module = shader_module(device, "spray")?;
+        let compute = wgpu::ShaderStages::COMPUTE;
+        let step_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("ocean.spray.step"),
+            entries: &[
+                uniform_entry(0, compute),
+                storage_entry(1, compute, false),
+                storage_entry(2, compute, true),
+                texture_entry(3, compute, true),
+                sampler_entry(4, compute),
+            ],
+        });
+        let vf = wgpu::ShaderStages::VERTEX_FRAGMENT;
+        let draw_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("ocean.spray.draw"),
+            entries: &[
+                uniform_entry(5, vf),
+                storage_entry(6, wgpu::ShaderStages::VERTEX, true),
+                uniform_entry(7, vf),
+            ],
+        });
+        let step = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some(&name),
+            layout: Some(&pipeline_layout(device, "ocean.spray.step", &[&step_layout])),
+            module: &module,
+            entry_point: Some(entry("spray", "step")?),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        let blendable = device.features().contains(wgpu::Features::FLOAT32_BLENDABLE);
+        let (vs, fs) = (entry("spray", "vs_main")?, entry("spray", "fs_main")?);
+        let draw = blendable.then(|| {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(&name),
+                layout: Some(&pipeline_layout(device, "ocean.spray.draw", &[&draw_layout])),
+                vertex: wgpu::VertexState {
+                    module: &module,
+                    entry_point: Some(vs),
+                    compilation_options: Default::default(),
+                    buffers: &[],
+                },
+                primitive: primitive(),
+                depth_stencil: Some(depth_state(wgpu::CompareFunction::Greater, false)),
+                multisample: wgpu::MultisampleState::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module: &module,
+                    entry_point: Some(fs),
+                    compilation_options: Default::default(),
+                    targets: &[Some(wgpu::ColorTargetState {
+                        format: MAP_FORMAT,
+                        blend: Some(wgpu::BlendState {
+                            color: wgpu::BlendComponent {
+                                src_factor: wgpu::BlendFactor::One,
+                                dst_factor: wgpu::BlendFactor::One,
+                                operation: wgpu::BlendOperation::Add,
+                            },
+                            alpha: wgpu::BlendComponent {
+                                src_factor: wgpu::BlendFactor::One,
+                                dst_factor: wgpu::BlendFactor::One,
+                                operation: wgpu::BlendOperation::Add,
+                            },
+                        }),
+                        write_mask: wgpu::ColorWrites::ALL,
+                    })],
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        });
+        // The CPU mirror's WRAP_LINEAR: repeat, bilinear, one level.
+        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("ocean.spray.wrap_linear"),
+            address_mode_u: wgpu::AddressMode::Repeat,
+            address_mode_v: wgpu::AddressMode::Repeat,
+            address_mode_w: wgpu::AddressMode::Repeat,
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            mipmap_filter: wgpu::MipmapFilterMode::Linear,
+            ..Default::default()
+        });
+        Ok(Self { step, draw, step_layout, draw_layout, sampler })
+    }
+
+    /// Records one `step` dispatch of `pool` with `params` (the step's uniforms), reading the
+    /// sea's height from `displacement`.
+    pub fn encode_step(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        pool: &GpuSpray,
+        params: &SprayUniforms,
+        displacement: &wgpu::TextureView,
+    ) {
+        let name = label("spray");
+        let u = uniform_buffer(device, &name, params);
+        let group = bind_group(
+            device,
+            &name,
+            &self.step_layout,
+            &[
+                u.as_entire_binding(),
+                pool.particles.as_entire_binding(),
+                pool.emitters.as_entire_binding(),
+                wgpu::BindingResource::TextureView(displacement),
+                wgpu::BindingResource::Sampler(&self.sampler),
+            ],
+        );
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some(&name),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(&self.step);
+        pass.set_bind_group(0, &group, &[]);
+        pass.dispatch_workgroups(pool.count.div_ceil(WORKGROUP_SIZE), 1, 1);
+    }
+
+    /// Whether the device can draw the sprites (`FLOAT32_BLENDABLE`).
+    pub fn can_draw(&self) -> bool {
+        self.draw.is_some()
+    }
+
+    /// Records the sprites of `pool` added to `target` behind `depth` (nothing without
+    /// [`Self::can_draw`]).
+    #[expect(clippy::too_many_arguments, reason = "one argument per binding and attachment")]
+    pub fn encode_draw(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        frame: &wgpu::Buffer,
+        pool: &GpuSpray,
+        params: &SprayUniforms,
+        target: &wgpu::TextureView,
+        depth: &wgpu::TextureView,
+        timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
+    ) {
+        let Some(draw) = &self.draw else { return };
+        let name = label("spray");
+        let u = uniform_buffer(device, &name, params);
+        // Bindings 5–7: the draw's layout of group 0.
+        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some(&name),
+            layout: &self.draw_layout,
+            entries: &[
+                wgpu::BindGroupEntry { binding: 5, resource: frame.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 6, resource: pool.particles.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 7, resource: u.as_entire_binding() },
+            ],
+        });
+        let mut pass = begin_render_pass(
+            encoder,
+            &name,
+            target,
+            Load::Keep,
+            Some((depth, Load::Keep)),
+            timestamps,
+        );
+        pass.set_pipeline(draw);
+        pass.set_bind_group(0, &group, &[]);
+        pass.draw(0..6 * pool.count, 0..1);
+    }
+}

@@ -1,0 +1,157 @@
+//! Spray technique `particles` (seed 001 §3.4): the particle pool's books balance and every
+//! transition follows the model's rules (`ocean_core::spray`); the CPU's pool is the same bits
+//! over runs and thread counts; and the GPU's pool, kept on the device across frames, equals
+//! the CPU's bit for bit after 100 steps of system `chiu`'s rock scene.
+
+#![allow(clippy::unwrap_used, reason = "a panic in a test is its failure report")]
+
+#[macro_use]
+#[path = "support/gpu_harness.rs"]
+mod gpu_harness;
+
+use std::path::PathBuf;
+
+use ocean_core::plan::{FramePlan, FrameState, OutputKind};
+use ocean_core::scene::{Scene, SceneSource};
+use ocean_core::spray::{Emitter, Particle, SprayUniforms};
+use ocean_cpu::sampler::Texture2D;
+use ocean_cpu::shaders::spray;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// `reference/scenes/chiu_rock.toml` made small: 64×36, 64² maps, no warm-up (every frame one
+/// step, so frame n has run n steps).
+fn rock() -> Scene {
+    let text = std::fs::read_to_string(root().join("reference/scenes/chiu_rock.toml")).unwrap();
+    let mut s = Scene::from_toml(&text, SceneSource::Text).unwrap_or_else(|e| panic!("{e}"));
+    (s.camera.width, s.camera.height) = (64, 36);
+    (s.ocean.resolution, s.ocean.bump_resolution) = (64, 64);
+    s.spray.warmup_steps = 0;
+    s.spray.particles = 4096;
+    s
+}
+
+/// The CPU's pool after `frames` frames of `scene`.
+fn cpu_pool(scene: &Scene, frames: u64) -> Vec<Particle> {
+    let mut state = FrameState::new(1.0 / 30.0);
+    for _ in 0..frames {
+        let plan = FramePlan::new(scene, OutputKind::Hdr);
+        ocean_cpu::render::render_animation_frame(scene, plan, &mut state, &mut |_| {}).unwrap();
+    }
+    state.spray.unwrap().particles
+}
+
+fn bits(p: &[Particle]) -> Vec<u32> {
+    bytemuck::cast_slice::<Particle, u32>(p).to_vec()
+}
+
+fn cpu_pool_is_the_same_over_runs_and_threads() {
+    let scene = rock();
+    let pool = |threads| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| cpu_pool(&scene, 40))
+    };
+    let (one, two, again) = (pool(1), pool(2), pool(2));
+    let active = one.iter().filter(|p| p.pos[3] > 0.0).count();
+    println!("40 steps: {active} of {} slots active; 1 and 2 threads, twice", one.len());
+    assert!(active > 50, "the rock must throw spray: {active}");
+    assert_eq!(bits(&one), bits(&two));
+    assert_eq!(bits(&two), bits(&again));
+}
+
+fn books_balance_and_every_transition_follows_the_rules() {
+    // A sea 1 m above the plane everywhere (a constant displacement map): the emitters below
+    // y = 1 are under the water, the others never launch.
+    let sea = Texture2D::new(4, 4, vec![[0.0, 1.0, 0.0, 1.0]; 16]);
+    let emitters: Vec<Emitter> = (0..40)
+        .map(|k| {
+            let y = -1.0 + k as f32 * 0.1;
+            Emitter { pos: [k as f32, y, 0.0, 0.0], dir: [0.0, 1.0, 0.0, 0.0] }
+        })
+        .collect();
+    let n = 2000u32;
+    let mut u = SprayUniforms {
+        count: n,
+        emitters: emitters.len() as u32,
+        seed: 7,
+        dt: 1.0 / 30.0,
+        gravity: 9.81,
+        speed: 4.0,
+        lifetime: 1.0,
+        emit_chance: 0.1,
+        inv_patch: 1.0 / 16.0,
+        half_texel: 0.125,
+        waves: 1.0,
+        ..Default::default()
+    };
+    let mut pool = vec![Particle::default(); n as usize];
+    let (mut launched, mut freed) = (0u64, 0u64);
+    for step in 0..300u32 {
+        u.step = step;
+        let before = pool.clone();
+        spray::step(&mut pool, &u, &emitters, &sea);
+        for (i, (a, b)) in before.iter().zip(&pool).enumerate() {
+            let e = emitters[i % emitters.len()];
+            match (a.pos[3] > 0.0, b.pos[3] > 0.0) {
+                (false, true) => {
+                    launched += 1;
+                    assert!(e.pos[1] < 1.0, "slot {i} launched from an emitter above the water");
+                    assert_eq!(&b.pos[..3], &e.pos[..3], "launched at its emitter");
+                    let speed = (b.vel[0].powi(2) + b.vel[1].powi(2) + b.vel[2].powi(2)).sqrt();
+                    // 0.6..1.4 × speed along dir, plus a jitter of at most 0.15·√3·speed.
+                    assert!(speed <= 4.0 * (1.4 + 0.15 * 3f32.sqrt()) && b.vel[3] == 0.0);
+                }
+                (true, false) => {
+                    freed += 1;
+                    let old = b.vel[3] > u.lifetime;
+                    let back_in = b.vel[1] < 0.0 && b.pos[1] < 1.0;
+                    assert!(old || back_in, "slot {i} freed in flight: {b:?}");
+                }
+                (true, true) => {
+                    assert!(b.vel[3] <= u.lifetime && (b.pos[1] >= 1.0 || b.vel[1] >= 0.0))
+                }
+                (false, false) => assert_eq!(a, b, "a free slot stays as it was"),
+            }
+        }
+        let active = pool.iter().filter(|p| p.pos[3] > 0.0).count() as u64;
+        assert_eq!(launched - freed, active, "step {step}: the books of the pool");
+    }
+    let active = pool.iter().filter(|p| p.pos[3] > 0.0).count();
+    println!("300 steps: {launched} launched, {freed} freed, {active} active of {n}");
+    assert!(launched > 1000 && freed > 1000);
+}
+
+fn gpu_pool_equals_the_cpu_pool_after_100_steps() {
+    let scene = rock();
+    let cpu = cpu_pool(&scene, 100);
+    let earlier = cpu_pool(&scene, 99);
+    let gpu = ocean_gpu::Gpu::new().unwrap_or_else(|e| panic!("{e}"));
+    let mut r = ocean_gpu::Renderer::with_gpu(gpu, ocean_gpu::WaveSynthesis::GpuFft).unwrap();
+    let mut state = FrameState::new(1.0 / 30.0);
+    for _ in 0..100 {
+        let plan = FramePlan::new(&scene, OutputKind::Hdr);
+        r.run_frame(&scene, &plan, &mut state, ocean_gpu::Readback::None).unwrap();
+    }
+    let gpu = r.spray_particles().unwrap().expect("the GPU's pool");
+    let active = gpu.iter().filter(|p| p.pos[3] > 0.0).count();
+    let differ = bits(&gpu).iter().zip(bits(&cpu)).filter(|(a, b)| **a != *b).count();
+    println!(
+        "after 100 steps on {}: {active} active; {differ} words differ from the CPU's",
+        r.adapter()
+    );
+    assert!(active > 50);
+    assert_eq!(differ, 0, "the GPU's pool must equal the CPU's bit for bit");
+    // Negative control: the CPU's pool one step earlier is not the GPU's.
+    assert_ne!(bits(&gpu), bits(&earlier));
+}
+
+fn main() -> std::process::ExitCode {
+    run_tests!(gpu_harness::GPU_ADAPTER;
+        cpu: cpu_pool_is_the_same_over_runs_and_threads, books_balance_and_every_transition_follows_the_rules;
+        gpu: gpu_pool_equals_the_cpu_pool_after_100_steps)
+}
