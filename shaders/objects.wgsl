@@ -12,6 +12,10 @@
 // #import shared/optics.wgsl
 
 @group(0) @binding(0) var<uniform> frame: FrameUniforms;
+// (disp_x, height, disp_z, jacobian): the wave height under a fragment, for the exact-height
+// clipping of shading `chiu` (§3.5.1).
+@group(0) @binding(1) var displacement: texture_2d<f32>;
+@group(0) @binding(2) var wrap_linear: sampler;
 
 struct ObjectVertex {
     @location(0) position: vec3<f32>,
@@ -68,10 +72,23 @@ fn vs_reflect(v: ObjectVertex) -> VertexOut {
     return out;
 }
 
+// The water's height (m) under the camera-relative point `rel` where the maps clip the objects:
+// shading `chiu` clips at the wave height there (seed 001 §3.5.1, Fig. 4: the displacement
+// map's height at the point's (x, z), as the water's vertices sample it; its horizontal
+// displacement is not inverted), every other shading at the plane y = 0.
+fn clip_height(rel: vec3<f32>) -> f32 {
+    if (frame.chiu.clip_waves == 0.0) {
+        return 0.0;
+    }
+    let pos = vec2<f32>(rel.x, rel.z) - frame.tiling.mesh_offset;
+    let uv = (pos + frame.tiling.displacement_origin) * frame.tiling.inv_displacement_size + frame.tiling.displacement_half_texel;
+    return textureSampleLevel(displacement, wrap_linear, uv, 0.0).y * frame.passes.waves;
+}
+
 @fragment
 fn fs_reflect(in: VertexOut) -> @location(0) vec4<f32> {
     // Only what is above the water is reflected.
-    if (in.world_y < 0.0) {
+    if (in.world_y < clip_height(in.rel)) {
         discard;
     }
     // The mirrored normal lit by the mirrored sun is the original normal lit by the sun.
@@ -96,19 +113,21 @@ fn vs_refract(v: ObjectVertex) -> VertexOut {
 @fragment
 fn fs_refract(in: VertexOut) -> @location(0) vec4<f32> {
     // Only what is under the water is seen through it.
-    if (in.world_y > 0.0) {
+    if (in.world_y > clip_height(in.rel)) {
         discard;
     }
     // Eq. 4: C = α(d)·C_deep + (1 − α(d))·C_obj, α = 1 − e^{−K d}, d the path length in the
     // water from the (apparent) point towards the eye: the part of the segment below y = 0.
-    let depth_below = -(in.rel.y + frame.view.eye_height);
+    // A point between the plane and the wave above it (shading `chiu`'s clipping) is at the
+    // surface: no path in the water, the full light.
+    let depth_below = max(-(in.rel.y + frame.view.eye_height), 0.0);
     let height_above = max(frame.view.eye_height, 0.0);
     let dist = sqrt(dot3(in.rel, in.rel));
     let d = dist * (depth_below / (depth_below + height_above));
     let fog = 1.0 - exp(-frame.water.extinction_per_m * d);
     // The light reaching the object is the downwelling irradiance at its depth, which falls
     // as e^{−K z} (K is the diffuse extinction coefficient, §4.3).
-    let obj = shade(in.normal, in.color) * exp(-frame.water.extinction_per_m * -in.world_y);
+    let obj = shade(in.normal, in.color) * exp(-frame.water.extinction_per_m * max(-in.world_y, 0.0));
     // The water's colour at the object's depth: `hu`'s constant, or eq. 8 (shading `chiu`,
     // whose eq. 7 is this same blend with atten = K).
     return vec4<f32>(water_volume_colour(-in.world_y) * fog + obj * (1.0 - fog), 1.0);

@@ -149,3 +149,97 @@ fn eq8_water_colour_is_in_the_picture_per_pixel() {
     println!("  negative controls: {deeper} (y + 0.2 m), {kd_off} (k_d × 1.05) pixels off");
     assert!(deeper > checked / 2 && kd_off > checked / 2, "{deeper} {kd_off}");
 }
+
+/// The sea's height at world (x, z): the displacement map's height channel, bilinear between
+/// its samples at (i, j)·L/N (f64, from the map's texels).
+fn wave_height(map: &ocean_cpu::sampler::Texture2D, patch: f64, x: f64, z: f64) -> f64 {
+    let n = f64::from(map.width);
+    let (u, v) = (x / patch * n, z / patch * n);
+    let (i, j) = (u.floor(), v.floor());
+    let (fu, fv) = (u - i, v - j);
+    let at = |di: f64, dj: f64| {
+        let w = map.width as i64;
+        let (a, b) = (((i + di) as i64).rem_euclid(w), ((j + dj) as i64).rem_euclid(w));
+        f64::from(map.texel(a as u32, b as u32)[1])
+    };
+    let top = at(0.0, 0.0) * (1.0 - fu) + at(1.0, 0.0) * fu;
+    let bottom = at(0.0, 1.0) * (1.0 - fu) + at(1.0, 1.0) * fu;
+    top * (1.0 - fv) + bottom * fv
+}
+
+/// A sphere of radius 2 centred on the sea plane in 10 m/s waves, its reflection map read
+/// back: (pixels where the mirrored ray meets the sphere, covered pixels whose sphere point is
+/// below the wave by more than 2 cm, uncovered ones above it by more than 2 cm).
+fn clipped_reflection(shading: &str) -> (usize, usize, usize) {
+    let text = format!(
+        "[techniques]\nshading = \"{shading}\"\nsurface = \"projected_grid\"\nfar_field = \"none\"\n\
+         [ocean]\nwind_speed = 10.0\npatch_size_m = 64.0\nresolution = 128\nbump_resolution = 128\n\
+         time_s = 3.0\n\
+         [camera]\nposition = [0.0, 1.5, 9.0]\nlook_at = [0.0, -0.5, 0.0]\nfov_y_deg = 50.0\n\
+         width = 160\nheight = 90\n\
+         [sun]\ndirection = [0.3, 0.6, -1.0]\n\
+         [[objects]]\nkind = \"sphere\"\ncenter = [0.0, 0.0, 0.0]\nradius = 2.0\n"
+    );
+    let scene = Scene::from_toml(&text, SceneSource::Text).expect("scene");
+    let plan = FramePlan::new(&scene, OutputKind::Hdr);
+    let fb = ocean_cpu::render::render_scene_with_plan(&scene, plan, &mut |_| {})
+        .expect("render")
+        .buffers;
+    let camera = Camera::from_scene(&scene.camera).expect("camera");
+    let map = &fb.reflection_map;
+    let (w, h) = (map.width, map.height);
+    let (r, c) = (2.0f64, DVec3::ZERO);
+    let eps = 0.02;
+    let (mut hits, mut under, mut missing) = (0, 0, 0);
+    for py in 0..h {
+        for px in 0..w {
+            let ndc = (
+                (px as f64 + 0.5) / w as f64 * 2.0 - 1.0,
+                1.0 - (py as f64 + 0.5) / h as f64 * 2.0,
+            );
+            let d = camera.ray_direction(ndc.0, ndc.1);
+            // The map draws the sphere mirrored in y = 0: meet the mirrored sphere.
+            let mc = DVec3::new(c.x, -c.y, c.z);
+            let oc = camera.eye - mc;
+            let b = oc.dot(d);
+            let disc = b * b - (oc.length_squared() - r * r);
+            if disc < 0.0 {
+                continue;
+            }
+            // Near the silhouette the tessellated sphere and the true one part: skip the rim.
+            if disc < 0.05 * r * r {
+                continue;
+            }
+            hits += 1;
+            // The front and the back of the sphere along the ray (with the front clipped away,
+            // the back shows): each point's height over the wave under it.
+            let over = [-1.0, 1.0].map(|s| {
+                let m = camera.eye + d * (-b + s * disc.sqrt());
+                let sea = wave_height(&fb.displacement, scene.ocean.patch_size_m, m.x, m.z);
+                -m.y - sea
+            });
+            let covered = map.texel(px, py)[3] > 0.0;
+            under += usize::from(covered && over.iter().all(|&o| o < -eps));
+            missing += usize::from(!covered && over.iter().any(|&o| o > eps));
+        }
+    }
+    (hits, under, missing)
+}
+
+#[test]
+fn the_reflection_map_clips_a_sphere_at_the_wave_height() {
+    let (hits, under, missing) = clipped_reflection("chiu");
+    println!(
+        "sphere in waves, shading chiu: {hits} pixels on it in the reflection map, {under} \
+         shown under the wave, {missing} above it left out"
+    );
+    assert!(hits > 500, "{hits}");
+    assert_eq!((under, missing), (0, 0));
+    // Negative control: clipped at y = 0 (shading hu), the map shows the sphere under crests
+    // and leaves it out above troughs.
+    let (_, under, missing) = clipped_reflection("hu");
+    println!(
+        "  clipped at y = 0 (shading hu): {under} under the wave, {missing} above it left out"
+    );
+    assert!(under + missing > 50, "{under} {missing}");
+}

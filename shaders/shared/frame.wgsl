@@ -94,7 +94,7 @@ struct ProjectedGridBlock {
 struct ChiuShadingBlock {
     zeta_m: f32,
     shininess_per_m: f32,
-    pad0: f32,
+    clip_waves: f32,
     pad1: f32,
 }
 

@@ -123,9 +123,10 @@ pub struct ChiuShadingBlock {
     pub zeta_m: f32,
     /// Eq. 5's shininess per metre of view depth.
     pub shininess_per_m: f32,
+    /// 1: the reflection and refraction maps clip the objects at the wave height under each
+    /// fragment (§3.5.1, Fig. 4), 0: at the plane y = 0 (seed 000).
+    pub clip_waves: f32,
     /// Padding to 16 bytes.
-    pub pad0: f32,
-    /// Padding.
     pub pad1: f32,
 }
 
@@ -717,7 +718,7 @@ impl FrameUniforms {
             chiu: ChiuShadingBlock {
                 zeta_m: scene.chiu.zeta_m as f32,
                 shininess_per_m: scene.chiu.shininess_per_m as f32,
-                pad0: 0.0,
+                clip_waves: if shading == "chiu" { 1.0 } else { 0.0 },
                 pad1: 0.0,
             },
             terrain: TerrainBlock {

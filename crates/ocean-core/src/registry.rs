@@ -283,7 +283,7 @@ pub const STAGES: &[StageEntry] = &[
             ("vs_refract", Vertex),
             ("fs_refract", Fragment),
         ],
-        bindings: &[b(0, 0, "frame")],
+        bindings: &[b(0, 0, "frame"), b(0, 1, "displacement"), b(0, 2, "wrap_linear")],
         // ObjectVertex is a vertex-buffer layout (tightly packed), not a WGSL memory layout:
         // ocean-gpu's OBJECT_VERTEX_LAYOUT describes it.
         blocks: &[],
@@ -457,7 +457,7 @@ pub const SHARED: &[SharedFile] = &[
                 pad1
             }),
             block!(ProjectedGridBlock { corners, cols, rows, pad0, pad1 }),
-            block!(ChiuShadingBlock { zeta_m, shininess_per_m, pad0, pad1 }),
+            block!(ChiuShadingBlock { zeta_m, shininess_per_m, clip_waves, pad1 }),
             block!(TerrainBlock { floor }),
             block!(FrameUniforms {
                 view,

@@ -162,7 +162,7 @@ fn draw_objects(
     tris: &[[ObjectVertex; 3]],
     u: &FrameUniforms,
     vs: fn(&ObjectVertex, &FrameUniforms) -> objects::VertexOut,
-    fs: fn(&objects::VertexOut, &FrameUniforms) -> Option<[f32; 4]>,
+    fs: &(dyn Fn(&objects::VertexOut, &FrameUniforms) -> Option<[f32; 4]> + Sync),
 ) {
     let verts: Vec<[Vertex<{ objects::VARYINGS }>; 3]> = tris
         .iter()
@@ -380,20 +380,28 @@ impl<'e> CpuBackend<'e> {
             // Both maps are looked up at normalised screen coordinates, so they may be
             // smaller than the viewport (the plan's sizes).
             Pass::ReflectionMap | Pass::RefractionMap => {
-                let (id, vs, fs): (_, fn(&_, &_) -> _, fn(&_, &_) -> _) =
+                let (id, vs, fs): (_, fn(&_, &_) -> _, fn(&_, &_, &_) -> _) =
                     if pass.name == Pass::ReflectionMap {
                         (ResourceId::ReflectionMap, objects::vs_reflect, objects::fs_reflect)
                     } else {
                         (ResourceId::RefractionMap, objects::vs_refract, objects::fs_refract)
                     };
+                let empty = Texture2D::new(1, 1, vec![[0.0; 4]]);
+                let displacement = self
+                    .maps
+                    .iter()
+                    .find(|(m, _)| *m == ResourceId::Displacement)
+                    .map_or(&empty, |(_, t)| t);
                 let mut target = planned_target(frame.plan, id);
                 target.clear_depth(0.0);
-                draw_objects(&mut target, &eye_state(), &tris, u, vs, fs);
+                draw_objects(&mut target, &eye_state(), &tris, u, vs, &|o, u| {
+                    fs(o, u, displacement)
+                });
                 self.put(id, target_texture(target));
             }
             _ => {
                 let hdr = self.hdr(frame.plan);
-                draw_objects(hdr, &eye_state(), &tris, u, objects::vs_main, |o, u| {
+                draw_objects(hdr, &eye_state(), &tris, u, objects::vs_main, &|o, u| {
                     Some(objects::fs_main(o, u))
                 });
             }

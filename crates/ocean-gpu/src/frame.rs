@@ -336,6 +336,11 @@ impl GpuBackend<'_> {
         vertex_chunks(&self.gpu.device, vertices, max)
     }
 
+    fn objects_group(&mut self) -> wgpu::BindGroup {
+        let displacement = self.map(ResourceId::Displacement);
+        self.stages.objects.group(&self.gpu.device, &self.frame_buffer, &displacement.view)
+    }
+
     fn frame_group(&self, layout: &wgpu::BindGroupLayout, label: &str) -> wgpu::BindGroup {
         bind_group(&self.gpu.device, label, layout, &[self.frame_buffer.as_entire_binding()])
     }
@@ -369,7 +374,7 @@ impl GpuBackend<'_> {
                 let target = self.target(frame.plan, id);
                 let label = format!("ocean.objects.{}", id.name());
                 let depth = GpuTexture::depth(device, &label, target.width, target.height);
-                let group = self.frame_group(&self.stages.objects.frame_layout, "ocean.objects");
+                let group = self.objects_group();
                 let slot = self.timer.slot(pass.name);
                 self.stages.objects.encode(
                     &mut self.encoder,
@@ -385,7 +390,7 @@ impl GpuBackend<'_> {
             }
             _ => {
                 let (hdr, depth) = self.start_hdr(frame.plan);
-                let group = self.frame_group(&self.stages.objects.frame_layout, "ocean.objects");
+                let group = self.objects_group();
                 let slot = self.timer.slot(Pass::Objects);
                 self.stages.objects.encode(
                     &mut self.encoder,

@@ -1,7 +1,8 @@
 //! Stage `objects` (`shaders/objects.wgsl`): the scene's spheres and boxes with three pairs of
 //! entry points — `vs_main`/`fs_main` (main view, into the HDR frame), `vs_reflect`/`fs_reflect`
 //! (the reflection map) and `vs_refract`/`fs_refract` (the refraction map). Bindings: group 0,
-//! binding 0 = `FrameUniforms`. Vertices: ocean-core's `ObjectVertex` (36 bytes), drawn as a
+//! binding 0 = `FrameUniforms`, 1 = `displacement`, 2 = `wrap_linear` (the maps' clipping at
+//! the wave height, shading `chiu`). Vertices: ocean-core's `ObjectVertex` (36 bytes), drawn as a
 //! triangle list in the order `object_triangles` gives. State: reversed-Z `Greater` with depth
 //! writes, no blending, no culling (the CPU's `eye_state`).
 //! CPU mirror: `ocean-cpu/src/shaders/objects.rs`.
@@ -10,7 +11,7 @@ use ocean_core::frame::ObjectVertex;
 
 use crate::common::{
     Load, begin_render_pass, entry, eye_depth, label, pipeline_layout, primitive, replace_target,
-    shader_module, uniform_entry,
+    sampler_entry, shader_module, texture_entry, uniform_entry,
 };
 use crate::device::Error;
 use crate::texture::MAP_FORMAT;
@@ -48,8 +49,9 @@ pub struct ObjectsStage {
     main: wgpu::RenderPipeline,
     reflect: wgpu::RenderPipeline,
     refract: wgpu::RenderPipeline,
-    /// Group 0: the frame's uniforms.
+    /// Group 0: the frame's uniforms, the displacement map and its sampler.
     pub frame_layout: wgpu::BindGroupLayout,
+    wrap_linear: wgpu::Sampler,
 }
 
 impl ObjectsStage {
@@ -62,7 +64,22 @@ impl ObjectsStage {
         let module = shader_module(device, "objects")?;
         let frame_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some(&name),
-            entries: &[uniform_entry(0, wgpu::ShaderStages::VERTEX_FRAGMENT)],
+            entries: &[
+                uniform_entry(0, wgpu::ShaderStages::VERTEX_FRAGMENT),
+                texture_entry(1, wgpu::ShaderStages::FRAGMENT, true),
+                sampler_entry(2, wgpu::ShaderStages::FRAGMENT),
+            ],
+        });
+        // The CPU mirror's WRAP_LINEAR (the water's displacement sampler).
+        let wrap_linear = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("ocean.objects.wrap_linear"),
+            address_mode_u: wgpu::AddressMode::Repeat,
+            address_mode_v: wgpu::AddressMode::Repeat,
+            address_mode_w: wgpu::AddressMode::Repeat,
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            mipmap_filter: wgpu::MipmapFilterMode::Linear,
+            ..Default::default()
         });
         let layout = pipeline_layout(device, &name, &[&frame_layout]);
         let pipeline = |which: ObjectsEntry| -> Result<wgpu::RenderPipeline, Error> {
@@ -95,7 +112,28 @@ impl ObjectsStage {
             reflect: pipeline(ObjectsEntry::Reflect)?,
             refract: pipeline(ObjectsEntry::Refract)?,
             frame_layout,
+            wrap_linear,
         })
+    }
+
+    /// Group 0 of every pass: the frame's uniforms, and the displacement map under the
+    /// fragments for the exact-height clipping of shading `chiu`.
+    pub fn group(
+        &self,
+        device: &wgpu::Device,
+        frame: &wgpu::Buffer,
+        displacement: &wgpu::TextureView,
+    ) -> wgpu::BindGroup {
+        crate::common::bind_group(
+            device,
+            "ocean.objects",
+            &self.frame_layout,
+            &[
+                frame.as_entire_binding(),
+                wgpu::BindingResource::TextureView(displacement),
+                wgpu::BindingResource::Sampler(&self.wrap_linear),
+            ],
+        )
     }
 
     /// Records one pass drawing every chunk of `vertices` with `entry` into

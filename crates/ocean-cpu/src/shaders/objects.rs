@@ -5,7 +5,9 @@ use ocean_core::frame::{FrameUniforms, ObjectVertex};
 
 use super::shared::frame::{dot3, transform_point, unit};
 use super::shared::optics::water_volume_colour;
-use super::wgsl::{Vec3, Vec4, exp, max, sqrt, vec3};
+use super::water::WRAP_LINEAR;
+use super::wgsl::{Vec2, Vec3, Vec4, exp, max, sqrt, texture_sample_level, vec2, vec3};
+use crate::sampler::Texture2D;
 
 /// `VertexOut` of objects.wgsl (clip position and the varyings, in declaration order).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -85,9 +87,26 @@ pub fn vs_reflect(v: &ObjectVertex, frame: &FrameUniforms) -> VertexOut {
     }
 }
 
+/// `clip_height(rel)`: where the maps clip the objects (the wave height under the point for
+/// shading `chiu`, else 0); `displacement` is binding 1.
+pub fn clip_height(rel: Vec3, frame: &FrameUniforms, displacement: &Texture2D) -> f32 {
+    if frame.chiu.clip_waves == 0.0 {
+        return 0.0;
+    }
+    let t = &frame.tiling;
+    let pos = vec2(rel.x, rel.z) - Vec2::from(t.mesh_offset);
+    let uv = (pos + Vec2::from(t.displacement_origin)) * t.inv_displacement_size
+        + t.displacement_half_texel;
+    texture_sample_level(displacement, &WRAP_LINEAR, uv, 0.0).y * frame.passes.waves
+}
+
 /// `fs_reflect`; `None` is `discard`.
-pub fn fs_reflect(input: &VertexOut, frame: &FrameUniforms) -> Option<[f32; 4]> {
-    if input.world_y < 0.0 {
+pub fn fs_reflect(
+    input: &VertexOut,
+    frame: &FrameUniforms,
+    displacement: &Texture2D,
+) -> Option<[f32; 4]> {
+    if input.world_y < clip_height(input.rel, frame, displacement) {
         return None;
     }
     let n = vec3(input.normal.x, -input.normal.y, input.normal.z);
@@ -110,16 +129,20 @@ pub fn vs_refract(v: &ObjectVertex, frame: &FrameUniforms) -> VertexOut {
 }
 
 /// `fs_refract`; `None` is `discard`.
-pub fn fs_refract(input: &VertexOut, frame: &FrameUniforms) -> Option<[f32; 4]> {
-    if input.world_y > 0.0 {
+pub fn fs_refract(
+    input: &VertexOut,
+    frame: &FrameUniforms,
+    displacement: &Texture2D,
+) -> Option<[f32; 4]> {
+    if input.world_y > clip_height(input.rel, frame, displacement) {
         return None;
     }
-    let depth_below = -(input.rel.y + frame.view.eye_height);
+    let depth_below = max(-(input.rel.y + frame.view.eye_height), 0.0);
     let height_above = max(frame.view.eye_height, 0.0);
     let dist = sqrt(dot3(input.rel, input.rel));
     let d = dist * (depth_below / (depth_below + height_above));
     let fog = 1.0 - exp(-frame.water.extinction_per_m * d);
     let obj = shade(frame, input.normal, input.color)
-        * exp(-frame.water.extinction_per_m * -input.world_y);
+        * exp(-frame.water.extinction_per_m * max(-input.world_y, 0.0));
     Some((water_volume_colour(-input.world_y, frame) * fog + obj * (1.0 - fog)).extend(1.0).into())
 }
