@@ -141,6 +141,16 @@ impl MemoryEstimate {
         } else {
             add("encoded EXR".into(), w * h * 16 * 2, "camera.width");
         }
+        if plan.runs(Pass::Spray) {
+            // The pool (two vec4 a slot) and, on the CPU, its sprites' triangle list (two
+            // triangles a slot, each vertex a position and a corner: as the grid's triangles).
+            let n = u64::from(scene.spray.particles);
+            add(
+                format!("spray ({n} particles and their sprites)"),
+                n * 32 + 2 * n * GRID_BYTES_PER_TRIANGLE,
+                "spray.particles",
+            );
+        }
         if plan.runs(Pass::Water) {
             if plan.techniques.of(crate::plan::Stage::Surface).name == "projected_grid" {
                 let (cols, rows) = crate::frame::ProjectedGridBlock::quads(

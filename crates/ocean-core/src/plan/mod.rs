@@ -720,12 +720,16 @@ impl FramePlan {
                     (
                         true,
                         format!(
-                            "the sea surface, eq. 3, on a projected grid of {cols}×{rows} quads \
-                             from the vertex index"
+                            "the sea surface, shading {}, on a projected grid of {cols}×{rows} \
+                             quads from the vertex index",
+                            techniques.of(Stage::Shading).name
                         ),
                     )
                 }
-                Pass::Water => (true, "the sea surface, eq. 3".into()),
+                Pass::Water => (
+                    true,
+                    format!("the sea surface, shading {}", techniques.of(Stage::Shading).name),
+                ),
                 Pass::Spray => {
                     let t = techniques.of(Stage::Spray).name;
                     if t != "particles" {
