@@ -54,6 +54,8 @@ struct VertexOut {
     @location(1) uv_d: vec2<f32>,
     @location(2) uv_b: vec2<f32>,
     @location(3) weight: f32,
+    // The undisplaced point relative to the mesh's reference point (eq. 1's scales).
+    @location(4) pos: vec2<f32>,
 }
 
 // Bias of the shadow-map depth comparison (depth units of the sun's ortho projection).
@@ -110,7 +112,10 @@ fn water_vertex(pos: vec2<f32>, weight: f32) -> VertexOut {
     // Texel (i, j) of an N×N map holds the sample at (i, j)·L/N: u = x/L + ½/N.
     let uv_d = (pos + frame.tiling.displacement_origin) * frame.tiling.inv_displacement_size + frame.tiling.displacement_half_texel;
     let uv_b = (pos + frame.tiling.bump_origin) * frame.tiling.inv_bump_size + frame.tiling.bump_half_texel;
-    let d = textureSampleLevel(displacement, wrap_linear, uv_d, 0.0) * (weight * frame.passes.waves);
+    var d = textureSampleLevel(displacement, wrap_linear, uv_d, 0.0) * (weight * frame.passes.waves);
+    if (frame.scales.count > 0.0) {
+        d = multi_scale_displacement(pos) * (weight * frame.passes.waves);
+    }
     // Camera-relative: c − eye (formed in f64 on the CPU) plus the vertex's offset from c.
     let plane = pos + frame.tiling.mesh_offset;
     let rel = vec3<f32>(plane.x + d.x, d.y - frame.view.eye_height, plane.y + d.z);
@@ -120,7 +125,38 @@ fn water_vertex(pos: vec2<f32>, weight: f32) -> VertexOut {
     out.uv_d = uv_d;
     out.uv_b = uv_b;
     out.weight = weight;
+    out.pos = pos;
     return out;
+}
+
+// Eq. 1 of seed 001: Σ_i a_i·D((pos + origin_i)/(L·s_i)), the displacement map sampled at the
+// point's object-space position at every scale (so the surface does not swim as the grid
+// moves), in the scales' order.
+fn multi_scale_displacement(pos: vec2<f32>) -> vec4<f32> {
+    let m = frame.scales;
+    var sum = vec4<f32>(0.0, 0.0, 0.0, 0.0);
+    for (var i = 0u; i < u32(m.count); i = i + 1u) {
+        let uv = (pos + vec2<f32>(m.origin_x[i], m.origin_z[i])) * m.inv_size[i] + frame.tiling.displacement_half_texel;
+        sum = sum + textureSampleLevel(displacement, wrap_linear, uv, 0.0) * m.weight[i];
+    }
+    return sum;
+}
+
+// The slope chain's taps summed over eq. 1's scales: scale i's slopes are a_i/s_i times the
+// map's at the stretched point (the chain rule), its squared slopes (a_i/s_i)² times the map's
+// (the scales' cross terms left out), each at the footprint's LOD less log2 s_i.
+fn multi_scale_taps(pos: vec2<f32>, fp: Footprint, h: vec2<f32>) -> Taps {
+    let m = frame.scales;
+    var mean = vec4<f32>(0.0, 0.0, 0.0, 0.0);
+    var along_sq = 0.0;
+    for (var i = 0u; i < u32(m.count); i = i + 1u) {
+        let uv = (pos + vec2<f32>(m.origin_x[i], m.origin_z[i])) * m.inv_size[i] + frame.tiling.displacement_half_texel;
+        let t = sample_footprint(displacement_slopes, uv, fp.step * m.inv_size[i], fp.lods.x + m.lod_offset[i], fp.taps_log2, h);
+        let c = m.weight[i] * (m.inv_size[i] / frame.tiling.inv_displacement_size);
+        mean = mean + vec4<f32>(t.mean.x * c, t.mean.y * c, t.mean.z * (c * c), t.mean.w * (c * c));
+        along_sq = along_sq + t.along_sq * (c * c);
+    }
+    return Taps(mean, along_sq);
 }
 
 // 1 where the sun reaches the point, 0 where the shadow map holds something nearer the sun.
@@ -334,7 +370,10 @@ fn filtered_slopes(in: VertexOut) -> vec3<f32> {
     let wd = in.weight * frame.passes.waves;
     let wb = frame.passes.waves;
     let h = fp.h;
-    let dt = sample_footprint(displacement_slopes, in.uv_d, fp.step * frame.tiling.inv_displacement_size, fp.lods.x, fp.taps_log2, h);
+    var dt = sample_footprint(displacement_slopes, in.uv_d, fp.step * frame.tiling.inv_displacement_size, fp.lods.x, fp.taps_log2, h);
+    if (frame.scales.count > 0.0) {
+        dt = multi_scale_taps(in.pos, fp, h);
+    }
     let bt = sample_footprint(bump, in.uv_b, fp.step * frame.tiling.inv_bump_size, fp.lods.y, fp.taps_log2, h);
     let d = dt.mean;
     let b = bt.mean;

@@ -235,6 +235,7 @@ fn bumped_fresnel_is_the_texture_lookup_of_the_bumped_view_vector() {
                         uv_d: [0.5, 0.5].into(),
                         uv_b: [0.5, 0.5].into(),
                         weight: 1.0,
+                        pos: [0.0, 0.0].into(),
                     };
                     let c = water::fs_main(&input, &b);
                     let f = (c[0] as f64 - w as f64) / (1.0 - w as f64);

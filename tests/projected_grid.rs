@@ -41,7 +41,7 @@ fn the_grid_covers_every_view_of_the_sea_once() {
         for pitch in [-89.99, -60.0, -20.0, -5.0, 0.0, 5.0, 20.0, 60.0, 89.99] {
             for yaw in [0.0, 37.0, 200.0] {
                 let cam = camera(height, pitch, yaw);
-                let Some(grid) = ProjectedGrid::new(&cam, WAVE_BOUND) else {
+                let Some(grid) = ProjectedGrid::new(&cam, WAVE_BOUND, 0.0) else {
                     // No grid: then no pixel may see the slab |y| ≤ A.
                     for (px, py) in pixels() {
                         let d = cam.ray_direction(px, py);
@@ -102,7 +102,7 @@ fn a_grid_short_of_the_range_misses_pixels() {
     // Negative control for the coverage check: the same grid pulled in by 2 % of its range
     // on every side (corners at u, v = 0.02 and 0.98, affine so still exact) misses pixels.
     let cam = camera(8.0, -5.0, 37.0);
-    let grid = ProjectedGrid::new(&cam, WAVE_BOUND).unwrap();
+    let grid = ProjectedGrid::new(&cam, WAVE_BOUND, 0.0).unwrap();
     let at = |u: f64, v: f64| {
         let [c00, c10, c01, _] = grid.corners;
         c00 + (c10 - c00) * u + (c01 - c00) * v
@@ -128,11 +128,11 @@ fn a_grid_short_of_the_range_misses_pixels() {
 
 #[test]
 fn a_view_of_the_sky_alone_has_no_grid_and_the_sea_one_has() {
-    assert!(ProjectedGrid::new(&camera(10.0, 80.0, 0.0), WAVE_BOUND).is_none());
-    assert!(ProjectedGrid::new(&camera(10.0, -80.0, 0.0), WAVE_BOUND).is_some());
+    assert!(ProjectedGrid::new(&camera(10.0, 80.0, 0.0), WAVE_BOUND, 0.0).is_none());
+    assert!(ProjectedGrid::new(&camera(10.0, -80.0, 0.0), WAVE_BOUND, 0.0).is_some());
     // From under the water, looking down into the deep: no surface in view.
-    assert!(ProjectedGrid::new(&camera(-50.0, -80.0, 0.0), WAVE_BOUND).is_none());
-    assert!(ProjectedGrid::new(&camera(-50.0, 80.0, 0.0), WAVE_BOUND).is_some());
+    assert!(ProjectedGrid::new(&camera(-50.0, -80.0, 0.0), WAVE_BOUND, 0.0).is_none());
+    assert!(ProjectedGrid::new(&camera(-50.0, 80.0, 0.0), WAVE_BOUND, 0.0).is_some());
 }
 
 #[test]
@@ -140,7 +140,7 @@ fn the_bilinear_term_vanishes_so_vertices_lie_on_the_projector_rays() {
     // The corners are affine in (u, v): c11 = c10 + c01 − c00 up to rounding, so the bilinear
     // blend the vertex shader takes is the exact ray–plane intersection.
     for (h, pitch) in [(8.0, -10.0), (1000.0, -45.0), (-5.0, 30.0), (0.0, -2.0)] {
-        let g = ProjectedGrid::new(&camera(h, pitch, 15.0), WAVE_BOUND).unwrap();
+        let g = ProjectedGrid::new(&camera(h, pitch, 15.0), WAVE_BOUND, 0.0).unwrap();
         let [c00, c10, c01, c11] = g.corners;
         let scale = c00.abs().max(c11.abs()).max_element();
         assert!((c11 - c10 - c01 + c00).abs().max_element() < 1e-12 * scale, "h {h}");
@@ -164,7 +164,7 @@ fn share_of_the_grid_in_view() {
     ] {
         let cam = camera(h, pitch, 0.0);
         let bound = 6.0;
-        let grid = ProjectedGrid::new(&cam, bound).unwrap();
+        let grid = ProjectedGrid::new(&cam, bound, 0.0).unwrap();
         let vp = cam.view_proj();
         let mut inside = 0usize;
         for j in 0..=rows {
@@ -188,4 +188,48 @@ fn share_of_the_grid_in_view() {
             assert!(share > 0.5, "{name}: {share}");
         }
     }
+}
+
+#[test]
+fn the_grid_covers_the_horizontal_displacement_of_a_choppy_sea() {
+    // A vertex displaced horizontally by up to H must still be able to reach every point the
+    // eye sees: the undisplaced points within H of each seen point lie inside the grid.
+    let h = WAVE_BOUND;
+    let (mut checked, mut outside_without) = (0usize, 0usize);
+    for height in [0.5, 3.0, 8.0, 40.0] {
+        for pitch in [-60.0, -20.0, -5.0, 0.0] {
+            for yaw in [0.0, 37.0] {
+                let cam = camera(height, pitch, yaw);
+                let grid = ProjectedGrid::new(&cam, WAVE_BOUND, h).unwrap();
+                let plain = ProjectedGrid::new(&cam, WAVE_BOUND, 0.0).unwrap();
+                for (px, py) in pixels() {
+                    let d = cam.ray_direction(px, py);
+                    for level in [-WAVE_BOUND, 0.0, WAVE_BOUND] {
+                        let t = (level - cam.eye.y) / d.y;
+                        let q = d * t;
+                        if !(t > 0.0 && t.is_finite()) || q.x.hypot(q.z) > 1e4 {
+                            continue;
+                        }
+                        for (dx, dz) in [(h, 0.0), (-h, 0.0), (0.0, h), (0.0, -h)] {
+                            let g = DVec3::new(q.x + dx, -cam.eye.y, q.z + dz);
+                            let inside = |grid: &ProjectedGrid| {
+                                let (u, v) = grid_coordinates(grid, g);
+                                let eps = 1e-9;
+                                (-eps..=1.0 + eps).contains(&u) && (-eps..=1.0 + eps).contains(&v)
+                            };
+                            assert!(inside(&grid), "h {height} pitch {pitch}: ({px}, {py}) {g}");
+                            outside_without += usize::from(!inside(&plain));
+                            checked += 1;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    eprintln!(
+        "{checked} displaced points inside; {outside_without} outside a grid without the margin"
+    );
+    assert!(checked > 10_000);
+    // Negative control: without the horizontal margin some fall outside.
+    assert!(outside_without > 100, "{outside_without}");
 }

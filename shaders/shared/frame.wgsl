@@ -103,6 +103,20 @@ struct TerrainBlock {
     floor: vec4<f32>,
 }
 
+// Eq. 1 (seed 001): per scale i, 1/(L·s_i), a_i, the mesh's reference point modulo L·s_i,
+// −log2 s_i; count 0 = the single map.
+struct MultiScaleBlock {
+    inv_size: vec4<f32>,
+    weight: vec4<f32>,
+    origin_x: vec4<f32>,
+    origin_z: vec4<f32>,
+    lod_offset: vec4<f32>,
+    count: f32,
+    pad0: f32,
+    pad1: f32,
+    pad2: f32,
+}
+
 struct FrameUniforms {
     view: ViewBlock,
     sun: SunBlock,
@@ -115,6 +129,7 @@ struct FrameUniforms {
     grid: ProjectedGridBlock,
     chiu: ChiuShadingBlock,
     terrain: TerrainBlock,
+    scales: MultiScaleBlock,
 }
 
 // m · (p, 1), written out so that the order of operations is fixed (the CPU mirror,

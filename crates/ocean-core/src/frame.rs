@@ -130,6 +130,56 @@ pub struct ChiuShadingBlock {
     pub pad1: f32,
 }
 
+/// The most scales of eq. 1 ([`MultiScaleBlock`]).
+pub const MAX_SCALES: usize = 4;
+
+/// Eq. 1 of seed 001 (shading `chiu`): the surface Σ_i a_i·D(x/s_i) of the displacement map
+/// D, per scale i (up to [`MAX_SCALES`]; unused ones have weight 0): 1/(L·s_i), a_i, the
+/// mesh's reference point modulo L·s_i (f64, rounded once), and −log2 s_i (the footprint's
+/// LOD on the stretched map). `count` = 0: the single map of seed 000.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct MultiScaleBlock {
+    /// 1/(L·s_i).
+    pub inv_size: [f32; 4],
+    /// a_i = 1/√n.
+    pub weight: [f32; 4],
+    /// The reference point's x modulo L·s_i.
+    pub origin_x: [f32; 4],
+    /// The reference point's z modulo L·s_i.
+    pub origin_z: [f32; 4],
+    /// −log2 s_i.
+    pub lod_offset: [f32; 4],
+    /// The number of scales (0: eq. 1 off).
+    pub count: f32,
+    /// Padding to 16 bytes.
+    pub pad0: f32,
+    /// Padding.
+    pub pad1: f32,
+    /// Padding.
+    pub pad2: f32,
+}
+
+impl MultiScaleBlock {
+    /// The block for `scales` over a displacement patch of side `patch` with the mesh's
+    /// reference point at `origin` (world x, z).
+    pub fn new(scales: &[f64], patch: f64, origin: [f64; 2]) -> Self {
+        let mut b = Self::zeroed();
+        let n = scales.len().min(MAX_SCALES);
+        let a = 1.0 / (n as f64).sqrt();
+        for (i, &s) in scales.iter().take(n).enumerate() {
+            let size = patch * s;
+            b.inv_size[i] = (1.0 / size) as f32;
+            b.weight[i] = a as f32;
+            b.origin_x[i] = origin[0].rem_euclid(size) as f32;
+            b.origin_z[i] = origin[1].rem_euclid(size) as f32;
+            b.lod_offset[i] = (-s.log2()) as f32;
+        }
+        b.count = n as f32;
+        b
+    }
+}
+
 /// The sea floor under the water (`[terrain]`), for eq. 8's depth: its height is the plane
 /// y = floor.z + floor.x·rel.x + floor.y·rel.z in camera-relative (x, z) (formed in f64
 /// about the eye). A bottomless sea is the flat plane at `[chiu] open_sea_depth_m`.
@@ -328,6 +378,8 @@ pub struct FrameUniforms {
     pub chiu: ChiuShadingBlock,
     /// The sea floor.
     pub terrain: TerrainBlock,
+    /// Eq. 1's multi-scale sampling.
+    pub scales: MultiScaleBlock,
 }
 
 /// Surface `projected_grid` ([`crate::geometry::ProjectedGrid`]): the grid's corners and size.
@@ -354,10 +406,12 @@ impl ProjectedGridBlock {
     pub const BOUND_OVER_HS: f64 = 3.0;
 
     /// The block of a `width` × `height` view through `camera` over a sea whose waves stay
-    /// within `wave_bound` m of the plane (the plan's `wave_bound_m`, [`Self::BOUND_OVER_HS`]
-    /// times H_s), `cell_px` pixels between grid lines (at most 4096 quads a side).
-    pub fn new(camera: &crate::camera::Camera, wave_bound: f64, cell_px: f64) -> Self {
-        let Some(grid) = crate::geometry::ProjectedGrid::new(camera, wave_bound) else {
+    /// within `wave_bound` = (vertical, horizontal) m of their undisplaced point (the plan's
+    /// `wave_bound_m`, [`Self::BOUND_OVER_HS`] times H_s, and that times the choppiness),
+    /// `cell_px` pixels between grid lines (at most 4096 quads a side).
+    pub fn new(camera: &crate::camera::Camera, wave_bound: [f64; 2], cell_px: f64) -> Self {
+        let Some(grid) = crate::geometry::ProjectedGrid::new(camera, wave_bound[0], wave_bound[1])
+        else {
             return Self::zeroed();
         };
         let (cols, rows) = Self::quads(camera.width, camera.height, cell_px);
@@ -730,8 +784,33 @@ impl FrameUniforms {
                     None => [0.0, 0.0, -scene.chiu.open_sea_depth_m as f32, 0.0],
                 },
             },
+            scales: if shading == "chiu" {
+                MultiScaleBlock::new(&scene.chiu.scales, l_d, mesh_origin)
+            } else {
+                MultiScaleBlock::zeroed()
+            },
         }
     }
+}
+
+/// The height query of a frame of `plan` at time `t` (s): the displacement map's field,
+/// summed over eq. 1's scales when the frame's shading is `chiu` (as the water's vertices
+/// sample it), so a floating object agrees with the picture.
+///
+/// # Errors
+/// The scene's spectrum or modes cannot be built, or a non-finite time.
+pub fn surface_query(
+    scene: &Scene,
+    plan: &FramePlan,
+    t: f64,
+) -> crate::Result<crate::waves::SurfaceQuery> {
+    let o = &scene.ocean;
+    let q = crate::waves::SurfaceQuery::new(&o.displacement_modes()?, t, o.choppiness)?;
+    Ok(if plan.techniques.of(crate::plan::Stage::Shading).name == "chiu" {
+        q.with_scales(&scene.chiu.scales)
+    } else {
+        q
+    })
 }
 
 /// The sky of a scene: its sun, or, without one, the default sun's sky at zero intensity (the

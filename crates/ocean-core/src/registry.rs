@@ -15,8 +15,8 @@ use std::path::Path;
 use crate::camera_uniforms::CameraUniforms;
 use crate::frame::{
     AmbientBlock, ChiuShadingBlock, FarFieldBlock, FrameUniforms, FresnelTableUniforms,
-    HuShadingBlock, PassFlags, ProjectedGridBlock, SunBlock, TerrainBlock, ViewBlock, WaterBlock,
-    WaveMipsUniforms, WaveTilingBlock,
+    HuShadingBlock, MultiScaleBlock, PassFlags, ProjectedGridBlock, SunBlock, TerrainBlock,
+    ViewBlock, WaterBlock, WaveMipsUniforms, WaveTilingBlock,
 };
 use crate::plan::Stage as TechniqueStage;
 use crate::sky::SkyUniforms;
@@ -98,7 +98,8 @@ nested!(
     FarFieldBlock,
     ProjectedGridBlock,
     ChiuShadingBlock,
-    TerrainBlock
+    TerrainBlock,
+    MultiScaleBlock
 );
 
 /// The kind of an entry point.
@@ -459,6 +460,17 @@ pub const SHARED: &[SharedFile] = &[
             block!(ProjectedGridBlock { corners, cols, rows, pad0, pad1 }),
             block!(ChiuShadingBlock { zeta_m, shininess_per_m, clip_waves, pad1 }),
             block!(TerrainBlock { floor }),
+            block!(MultiScaleBlock {
+                inv_size,
+                weight,
+                origin_x,
+                origin_z,
+                lod_offset,
+                count,
+                pad0,
+                pad1,
+                pad2
+            }),
             block!(FrameUniforms {
                 view,
                 sun,
@@ -470,7 +482,8 @@ pub const SHARED: &[SharedFile] = &[
                 far,
                 grid,
                 chiu,
-                terrain
+                terrain,
+                scales
             }),
         ],
         cpu_mirror: "crates/ocean-cpu/src/shaders/shared/frame.rs",

@@ -60,9 +60,11 @@ pub struct ProjectedGrid {
 
 impl ProjectedGrid {
     /// The grid of `camera`'s view over a sea whose surface stays within ±`wave_bound_m` of
-    /// the plane; `None` when the eye sees no part of that slab.
-    pub fn new(camera: &Camera, wave_bound_m: f64) -> Option<Self> {
+    /// the plane and within `horizontal_m` of its undisplaced point horizontally (the choppy
+    /// displacement); `None` when the eye sees no part of that slab.
+    pub fn new(camera: &Camera, wave_bound_m: f64, horizontal_m: f64) -> Option<Self> {
         let a = wave_bound_m.max(0.0);
+        let reach_h = horizontal_m.max(0.0);
         let eye = camera.eye;
         // Work above the water: mirror an eye below it (and its directions) in the plane.
         let side = if eye.y < 0.0 { -1.0 } else { 1.0 };
@@ -77,8 +79,17 @@ impl ProjectedGrid {
         // The vertices of (frustum ∩ slab), projected vertically onto the plane.
         let t = (0.5 * camera.fov_y).tan();
         let (tx, ty) = (t * camera.aspect(), t);
-        let mut ground = Vec::with_capacity(8 * EDGE_SAMPLES + 1);
-        let mut add = |q: DVec3| ground.push(DVec3::new(q.x, 0.0, q.z));
+        let mut ground = Vec::with_capacity(5 * (8 * EDGE_SAMPLES + 1));
+        // Each point, and (with a choppy sea) the points the horizontal displacement could
+        // bring it from, so the grid's displaced edge still reaches the view's edge.
+        let mut add = |q: DVec3| {
+            ground.push(DVec3::new(q.x, 0.0, q.z));
+            if reach_h > 0.0 {
+                for (dx, dz) in [(1.0, 0.0), (-1.0, 0.0), (0.0, 1.0), (0.0, -1.0)] {
+                    ground.push(DVec3::new(q.x + dx * reach_h, 0.0, q.z + dz * reach_h));
+                }
+            }
+        };
         if e.y <= a {
             add(e);
         }

@@ -322,10 +322,11 @@ pub struct FramePlan {
     /// Width and height of the reflection map, pixels (`[quality] reflection_map_scale` of the
     /// viewport, at least 1).
     pub reflection_map_size: [u32; 2],
-    /// How far the waves may reach above and below the sea plane, m: the projected grid's
-    /// slab (surface `projected_grid`; 0 for other surfaces). Computed once here (the
-    /// spectrum's significant wave height is a quadrature), not per frame's uniforms.
-    pub wave_bound_m: f64,
+    /// How far the waves may reach above and below the sea plane, and horizontally (the
+    /// choppy displacement), m: the projected grid's slab and its edge's margin (surface
+    /// `projected_grid`; 0 for other surfaces). Computed once here (the spectrum's
+    /// significant wave height is a quadrature), not per frame's uniforms.
+    pub wave_bound_m: [f64; 2],
 }
 
 /// The vertical extent of an object, m.
@@ -507,9 +508,10 @@ impl FramePlan {
             wave_bound_m: if techniques.of(Stage::Surface).name == "projected_grid" {
                 // A validated scene's spectrum exists; without one the sea is flat.
                 let hs = scene.ocean.wave_spectrum().map_or(0.0, |s| s.significant_wave_height());
-                crate::frame::ProjectedGridBlock::BOUND_OVER_HS * hs
+                let a = crate::frame::ProjectedGridBlock::BOUND_OVER_HS * hs;
+                [a, a * scene.ocean.choppiness]
             } else {
-                0.0
+                [0.0; 2]
             },
         };
         let full = "full plan: every pass the scene can use";

@@ -423,11 +423,21 @@ pub struct Chiu {
     /// Eq. 8's depth y, m, where there is no sea floor (a bottomless sea): eq. 8 goes to black
     /// as y grows, so the open sea's colour is that of this depth (20 m: a dark sea green).
     pub open_sea_depth_m: f64,
+    /// Eq. 1's scales s_i (one to four): the surface is Σ a_i·D(x/s_i) of the displacement map
+    /// D, a_i = 1/√n so the sea's variance is kept. Scales that are not ratios of small whole
+    /// numbers keep the sum from repeating (the default's 2.618 = φ² is irrational).
+    pub scales: Vec<f64>,
 }
 
 impl Default for Chiu {
     fn default() -> Self {
-        Self { zeta_m: 0.5, shininess_per_m: 4.0, kd_per_m: 0.3, open_sea_depth_m: 20.0 }
+        Self {
+            zeta_m: 0.5,
+            shininess_per_m: 4.0,
+            kd_per_m: 0.3,
+            open_sea_depth_m: 20.0,
+            scales: vec![1.0, 2.618_034],
+        }
     }
 }
 

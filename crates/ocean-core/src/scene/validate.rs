@@ -195,6 +195,7 @@ pub const LIMITS: &[Limit] = &[
     real("chiu.shininess_per_m", 1.0e-3, 1.0e3, "eq. 5's Phong exponent per metre of depth"),
     real("chiu.kd_per_m", 0.0, 10.0, "1/m; eq. 8's k_d"),
     real("chiu.open_sea_depth_m", 0.0, 1.0e4, "m; eq. 8's y without a sea floor"),
+    real("chiu.scales", 0.01, 100.0, "eq. 1's scale factors, one to four"),
     real("clouds.coverage", 0.0, 1.0, "0 a clear sky, 1 overcast"),
     real("clouds.altitude_m", 1.0, 1.0e5, "m above the sea"),
     real("clouds.scale_m", 1.0, 1.0e6, "m, the noise's coarsest cell"),
@@ -314,6 +315,17 @@ impl Scene {
         check("chiu.shininess_per_m", &[ch.shininess_per_m])?;
         check("chiu.kd_per_m", &[ch.kd_per_m])?;
         check("chiu.open_sea_depth_m", &[ch.open_sea_depth_m])?;
+        check("chiu.scales", &ch.scales)?;
+        if !(1..=crate::frame::MAX_SCALES).contains(&ch.scales.len()) {
+            return Err((
+                "chiu.scales".into(),
+                format!(
+                    "eq. 1 takes one to {} scales, got {}",
+                    crate::frame::MAX_SCALES,
+                    ch.scales.len()
+                ),
+            ));
+        }
         let cl = &self.clouds;
         check("clouds.coverage", &[cl.coverage])?;
         check("clouds.altitude_m", &[cl.altitude_m])?;

@@ -110,6 +110,9 @@ pub struct SurfaceQuery {
     choppiness: f64,
     axis_k: Vec<f64>,
     modes: Vec<QueryMode>,
+    /// Eq. 1 of seed 001 (shading `chiu`): (s_i, a_i), the surface Σ a_i·f(x/s_i); empty for
+    /// the single field.
+    scales: Vec<(f64, f64)>,
 }
 
 impl SurfaceQuery {
@@ -135,7 +138,23 @@ impl SurfaceQuery {
                 htilde: h,
             })
             .collect();
-        Ok(Self { patch_size_m: modes.patch_size_m(), choppiness, axis_k, modes: live })
+        Ok(Self {
+            patch_size_m: modes.patch_size_m(),
+            choppiness,
+            axis_k,
+            modes: live,
+            scales: Vec::new(),
+        })
+    }
+
+    /// The same field sampled as eq. 1 of seed 001 sums it: Σ_i a_i·f(x/s_i) over `scales`,
+    /// a_i = 1/√n, as the renderer does with shading `chiu` (`frame::MultiScaleBlock`), so a
+    /// floating object agrees with the picture. The slopes and the displacement's derivatives
+    /// take the chain rule's a_i/s_i. An empty list is the single field.
+    pub fn with_scales(mut self, scales: &[f64]) -> Self {
+        let a = 1.0 / (scales.len().max(1) as f64).sqrt();
+        self.scales = scales.iter().map(|&s| (s, a)).collect();
+        self
     }
 
     /// The number of modes with h̃ ≠ 0.
@@ -148,6 +167,29 @@ impl SurfaceQuery {
     /// reproducible bit for bit). The field is L-periodic, and the point is first reduced to
     /// [0, L)², so that kx·x stays small. Non-finite coordinates give NaN fields.
     pub fn sample(&self, x0: f64, z0: f64) -> SurfaceSample {
+        if self.scales.is_empty() {
+            return self.sample_field(x0, z0);
+        }
+        let mut sum = SurfaceSample::default();
+        for &(scale, a) in &self.scales {
+            let f = self.sample_field(x0 / scale, z0 / scale);
+            let c = a / scale;
+            sum.height += a * f.height;
+            sum.disp_x += a * f.disp_x;
+            sum.disp_z += a * f.disp_z;
+            sum.slope_x += c * f.slope_x;
+            sum.slope_z += c * f.slope_z;
+            sum.disp_x_dx += c * f.disp_x_dx;
+            sum.disp_z_dz += c * f.disp_z_dz;
+            sum.disp_x_dz += c * f.disp_x_dz;
+        }
+        sum.jacobian =
+            (1.0 + sum.disp_x_dx) * (1.0 + sum.disp_z_dz) - sum.disp_x_dz * sum.disp_x_dz;
+        sum
+    }
+
+    /// [`Self::sample`] of the single field.
+    fn sample_field(&self, x0: f64, z0: f64) -> SurfaceSample {
         let l = self.patch_size_m;
         let (x, z) = (x0.rem_euclid(l), z0.rem_euclid(l));
         // e^{i kx x} and e^{i kz z} per axis bin: N sines and cosines, not N².
@@ -201,7 +243,12 @@ impl SurfaceQuery {
         let l = self.patch_size_m;
         // Solve in the period containing the point, relative to its origin, so that the
         // residual is not swamped by the round-off of a large coordinate.
-        let (x_base, z_base) = (x - x.rem_euclid(l), z - z.rem_euclid(l));
+        // (A sum over several scales has no period: it is solved where it is.)
+        let (x_base, z_base) = if self.scales.is_empty() {
+            (x - x.rem_euclid(l), z - z.rem_euclid(l))
+        } else {
+            (0.0, 0.0)
+        };
         let (tx, tz) = (x - x_base, z - z_base);
         let tolerance = INVERSION_TOLERANCE_REL * l;
         let residual =

@@ -75,16 +75,18 @@ pub struct VertexOut {
     pub uv_b: Vec2,
     /// `@location(3)`.
     pub weight: f32,
+    /// `@location(4)`: the undisplaced point relative to the mesh's reference point.
+    pub pos: Vec2,
 }
 
 /// Number of f32 varyings of [`VertexOut`].
-pub const VARYINGS: usize = 8;
+pub const VARYINGS: usize = 10;
 
 impl VertexOut {
     /// The varyings in declaration order.
     pub fn varyings(&self) -> [f32; VARYINGS] {
-        let (r, d, b) = (self.rel, self.uv_d, self.uv_b);
-        [r.x, r.y, r.z, d.x, d.y, b.x, b.y, self.weight]
+        let (r, d, b, p) = (self.rel, self.uv_d, self.uv_b, self.pos);
+        [r.x, r.y, r.z, d.x, d.y, b.x, b.y, self.weight, p.x, p.y]
     }
 
     /// The fragment stage's input: `clip` is the fragment's position (frag_coord).
@@ -95,6 +97,7 @@ impl VertexOut {
             uv_d: vec2(v[3], v[4]),
             uv_b: vec2(v[5], v[6]),
             weight: v[7],
+            pos: vec2(v[8], v[9]),
         }
     }
 }
@@ -133,11 +136,50 @@ pub fn water_vertex(pos: Vec2, weight: f32, b: &Bindings<'_>) -> VertexOut {
         + frame.tiling.displacement_half_texel;
     let uv_b = (pos + Vec2::from(frame.tiling.bump_origin)) * frame.tiling.inv_bump_size
         + frame.tiling.bump_half_texel;
-    let d = texture_sample_level(b.displacement, &WRAP_LINEAR, uv_d, 0.0)
+    let mut d = texture_sample_level(b.displacement, &WRAP_LINEAR, uv_d, 0.0)
         * (weight * frame.passes.waves);
+    if frame.scales.count > 0.0 {
+        d = multi_scale_displacement(pos, b) * (weight * frame.passes.waves);
+    }
     let plane = pos + Vec2::from(frame.tiling.mesh_offset);
     let rel = vec3(plane.x + d.x, d.y - frame.view.eye_height, plane.y + d.z);
-    VertexOut { clip: transform_point(&frame.view.view_proj, rel), rel, uv_d, uv_b, weight }
+    VertexOut { clip: transform_point(&frame.view.view_proj, rel), rel, uv_d, uv_b, weight, pos }
+}
+
+/// `multi_scale_displacement(pos)`: eq. 1's Σ_i a_i·D at the scales' points.
+pub fn multi_scale_displacement(pos: Vec2, b: &Bindings<'_>) -> Vec4 {
+    let m = &b.frame.scales;
+    let mut sum = Vec4::from([0.0; 4]);
+    for i in 0..m.count as usize {
+        let uv = (pos + vec2(m.origin_x[i], m.origin_z[i])) * m.inv_size[i]
+            + b.frame.tiling.displacement_half_texel;
+        sum = sum + texture_sample_level(b.displacement, &WRAP_LINEAR, uv, 0.0) * m.weight[i];
+    }
+    sum
+}
+
+/// `multi_scale_taps(pos, fp, h)`: the slope chain's taps summed over eq. 1's scales.
+pub fn multi_scale_taps(pos: Vec2, fp: &Footprint, h: Vec2, b: &Bindings<'_>) -> Taps {
+    let m = &b.frame.scales;
+    let mut mean = Vec4::from([0.0; 4]);
+    let mut along_sq = 0.0;
+    for i in 0..m.count as usize {
+        let uv = (pos + vec2(m.origin_x[i], m.origin_z[i])) * m.inv_size[i]
+            + b.frame.tiling.displacement_half_texel;
+        let t = sample_footprint(
+            b.displacement_slopes,
+            uv,
+            fp.step * m.inv_size[i],
+            fp.lods.x + m.lod_offset[i],
+            fp.taps_log2,
+            h,
+        );
+        let c = m.weight[i] * (m.inv_size[i] / b.frame.tiling.inv_displacement_size);
+        mean =
+            mean + Vec4::from([t.mean.x * c, t.mean.y * c, t.mean.z * (c * c), t.mean.w * (c * c)]);
+        along_sq += t.along_sq * (c * c);
+    }
+    Taps { mean, along_sq }
 }
 
 /// `pow_int(x, n)`: x^n by binary exponentiation, multiplications in the WGSL's order.
@@ -362,7 +404,7 @@ pub fn filtered_slopes(input: &VertexOut, b: &Bindings<'_>) -> Vec3 {
     let wd = input.weight * frame.passes.waves;
     let wb = frame.passes.waves;
     let h = fp.h;
-    let dt = sample_footprint(
+    let mut dt = sample_footprint(
         b.displacement_slopes,
         input.uv_d,
         fp.step * frame.tiling.inv_displacement_size,
@@ -370,6 +412,9 @@ pub fn filtered_slopes(input: &VertexOut, b: &Bindings<'_>) -> Vec3 {
         fp.taps_log2,
         h,
     );
+    if frame.scales.count > 0.0 {
+        dt = multi_scale_taps(input.pos, &fp, h, b);
+    }
     let bt = sample_footprint(
         b.bump,
         input.uv_b,
