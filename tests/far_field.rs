@@ -486,6 +486,7 @@ fn variance_without_unresolved_slopes_shades_as_mip() {
             uv_d: [0.31, 0.77].into(),
             uv_b: [0.13, 0.52].into(),
             weight: 0.8,
+            pos: [0.0, 0.0].into(),
         };
         let shade = |code: f32| {
             let mut frame = u;
