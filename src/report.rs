@@ -33,6 +33,7 @@ use ocean_cpu::shaders::water;
 use ocean::output::write_atomic;
 
 mod far_field;
+mod surface;
 
 /// Arguments of `ocean report`.
 #[derive(clap::Args, Debug)]
@@ -187,6 +188,27 @@ const KNOBS: &[Knob] = &[
         steps: far_field::steps,
         ordered: false,
         measure: far_field::measure,
+    },
+    Knob {
+        name: "surface",
+        varies: "the water mesh ([techniques] surface: hu_patches; projected_grid at 8, 4, 2 px \
+                 cells) on the default scene's sea without its objects, against a projected grid \
+                 of half-pixel cells: mean error of the height and of the position of the point \
+                 each pixel sees (depth buffer), per band of the sea; in the setting, the \
+                 vertices submitted and the share inside the view; frame time on the CPU and the \
+                 GPU (the GPU rows carry the CPU's geometry, which the cross-check holds it to)",
+        steps: surface::steps,
+        ordered: false,
+        measure: surface::measure,
+    },
+    Knob {
+        name: "clouds",
+        varies: "sky preetham against preetham_clouds (seed 001 eq. 4) under shading chiu on the \
+                 default scene: what the clouds cost per frame on the CPU and the GPU, and how far \
+                 they move the picture (mean |Δ log(1 + L)| against the clear sky's frame)",
+        steps: surface::clouds_steps,
+        ordered: false,
+        measure: surface::measure_clouds,
     },
     Knob {
         name: "lod",
