@@ -311,6 +311,28 @@ fn compare_prints_metrics_writes_images_and_passes() {
     assert!(json["adapter"]["name"].as_str().is_some_and(|n| !n.is_empty()));
 }
 
+/// `ocean compare --system chiu` on the built-in scene: every pass of Chiu & Chang's system
+/// (projected grid, shading chiu, clouds, spray) within DESIGN.md's tolerances, exit 0.
+fn compare_system_chiu_passes() {
+    let dir = tempfile::tempdir().expect("a temp dir");
+    let out = dir.path().join("cmp");
+    let o = ocean(&[
+        "compare",
+        "--system",
+        "chiu",
+        "--size",
+        "64x36",
+        "--out-dir",
+        out.to_str().unwrap(),
+    ]);
+    let text = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert!(o.status.success(), "{text}\n{}", stderr(&o));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("default.json")).unwrap()).unwrap();
+    assert_eq!(json["passed"], true, "{json}");
+    assert!(text.contains("within 1/255"), "{text}");
+}
+
 fn main() -> std::process::ExitCode {
     run_tests!(gpu_harness::GPU_ADAPTER;
         cpu: fresnel_csv_contract, fresnel_rejects_bad_eta_without_panicking,
@@ -318,6 +340,7 @@ fn main() -> std::process::ExitCode {
             bad_scene_names_file_line_key_and_writes_nothing, heightfield_exr_contract,
             render_writes_png_and_exr_and_rejects_bad_input,
             gpu_without_an_adapter_says_what_to_do_and_writes_nothing;
-        gpu: render_on_the_gpu_writes_png_and_exr, compare_prints_metrics_writes_images_and_passes;
+        gpu: render_on_the_gpu_writes_png_and_exr, compare_prints_metrics_writes_images_and_passes,
+            compare_system_chiu_passes;
     )
 }
