@@ -133,7 +133,8 @@ pub(super) fn measure(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
         })?;
         let seen = seen_points(&camera, &r.buffers.hdr.depth);
         let (n, share) = vertices_in_view(&r, &s)?;
-        let setting = format!("{name} ({n} vertices, {:.0} % in view)", 100.0 * share);
+        // No comma in a setting: the CSV contract splits on commas.
+        let setting = format!("{name} ({n} vertices; {:.0} % in view)", 100.0 * share);
         // Per band: mean |Δy| and |ΔP| over the pixels where both see the sea.
         let errors: Vec<[f64; 2]> = bands
             .iter()
