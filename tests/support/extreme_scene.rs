@@ -25,6 +25,9 @@ pub const VECTOR_KEYS: &[&str] = &[
     "objects.*.color",
 ];
 
+/// Keys whose value is a list (one element is drawn).
+pub const LIST_KEYS: &[&str] = &["chiu.scales"];
+
 /// Keys whose value is a 2-vector, (x, z).
 pub const VECTOR2_KEYS: &[&str] = &["terrain.center", "clouds.wind"];
 
@@ -151,7 +154,7 @@ pub fn drawn(limit: &Limit, how: Draw, rng: &mut Rng) -> String {
     } else {
         1
     };
-    if n > 1 {
+    if n > 1 || LIST_KEYS.contains(&limit.key) {
         let c: Vec<String> = (0..n).map(|_| literal(limit, draw(limit, how, rng))).collect();
         format!("[{}]", c.join(", "))
     } else {
