@@ -6,16 +6,24 @@
 // - vs_refract / fs_refract: the parts under the water, scaled along y by 1/η (the apparent
 //   depth of a flat interface seen from above), fogged by eq. 4 (seed 001's eq. 7 with the
 //   colour of its eq. 8 under shading `chiu`) — the refraction map.
+// Under the water they are lit by the downwelling light: the sun through the surface, shadowed
+// by the casters above the water and by the floor's relief (shared/floor.wgsl), and the sky.
 // CPU mirror: crates/ocean-cpu/src/shaders/objects.rs.
 
 // #import shared/frame.wgsl
 // #import shared/optics.wgsl
+// #import shared/floor.wgsl
 
 @group(0) @binding(0) var<uniform> frame: FrameUniforms;
 // (disp_x, height, disp_z, jacobian): the wave height under a fragment, for the exact-height
 // clipping of shading `chiu` (§3.5.1).
 @group(0) @binding(1) var displacement: texture_2d<f32>;
 @group(0) @binding(2) var wrap_linear: sampler;
+// The sun's shadow map and the sea floor's relief: the sun reaching what lies under the water
+// (shared/floor.wgsl).
+@group(0) @binding(3) var shadow_map: texture_2d<f32>;
+@group(0) @binding(4) var floor_map: texture_2d<f32>;
+@group(0) @binding(5) var clamp_linear: sampler;
 
 struct ObjectVertex {
     @location(0) position: vec3<f32>,
@@ -35,10 +43,11 @@ struct VertexOut {
 
 const INV_PI: f32 = 0.31830988618;
 
-// Lambert: albedo/π · (E_sun cos θ + π·ambient).
-fn shade(normal: vec3<f32>, color: vec3<f32>) -> vec3<f32> {
+// Lambert: albedo/π · (E_sun cos θ·sun + π·ambient), `sun` the share of the sun that reaches
+// the point (1 above the water, sun_reaches under it).
+fn shade(normal: vec3<f32>, color: vec3<f32>, sun: f32) -> vec3<f32> {
     let n = unit(normal);
-    let cos_sun = max(dot3(n, frame.sun.direction), 0.0) * frame.sun.lit;
+    let cos_sun = max(dot3(n, frame.sun.direction), 0.0) * (frame.sun.lit * sun);
     let direct = frame.sun.radiance * (cos_sun * INV_PI);
     return color * (direct + frame.ambient.sky);
 }
@@ -56,7 +65,7 @@ fn vs_main(v: ObjectVertex) -> VertexOut {
 
 @fragment
 fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
-    return vec4<f32>(shade(in.normal, in.color), 1.0);
+    return vec4<f32>(shade(in.normal, in.color, sun_reaches(in.rel, in.world_y)), 1.0);
 }
 
 @vertex
@@ -93,7 +102,7 @@ fn fs_reflect(in: VertexOut) -> @location(0) vec4<f32> {
     }
     // The mirrored normal lit by the mirrored sun is the original normal lit by the sun.
     let n = vec3<f32>(in.normal.x, -in.normal.y, in.normal.z);
-    return vec4<f32>(shade(n, in.color), 1.0);
+    return vec4<f32>(shade(n, in.color, 1.0), 1.0);
 }
 
 @vertex
@@ -127,7 +136,10 @@ fn fs_refract(in: VertexOut) -> @location(0) vec4<f32> {
     let fog = 1.0 - exp(-frame.water.extinction_per_m * d);
     // The light reaching the object is the downwelling irradiance at its depth, which falls
     // as e^{−K z} (K is the diffuse extinction coefficient, §4.3).
-    let obj = shade(in.normal, in.color) * exp(-frame.water.extinction_per_m * max(-in.world_y, 0.0));
+    // The sun at the point itself, not at its apparent (scaled) position.
+    let at = vec3<f32>(in.rel.x, in.world_y - frame.view.eye_height, in.rel.z);
+    let sun = sun_reaches(at, in.world_y);
+    let obj = shade(in.normal, in.color, sun) * exp(-frame.water.extinction_per_m * max(-in.world_y, 0.0));
     // The water's colour at the object's depth: `hu`'s constant, or eq. 8 (shading `chiu`,
     // whose eq. 7 is this same blend with atten = K).
     return vec4<f32>(water_volume_colour(-in.world_y) * fog + obj * (1.0 - fog), 1.0);

@@ -12,6 +12,7 @@
 
 // #import shared/frame.wgsl
 // #import shared/optics.wgsl
+// #import shared/floor.wgsl
 // #import technique/sky
 // #import technique/shading
 
@@ -35,6 +36,8 @@
 @group(0) @binding(10) var clamp_linear: sampler;
 // The filtered Fresnel table F̄(r, σ) of far field `variance` (ocean-core far_field).
 @group(0) @binding(11) var fresnel_filter: texture_2d<f32>;
+// The sea floor's relief (height in red, m), for eq. 8's depth (shared/floor.wgsl).
+@group(0) @binding(12) var floor_map: texture_2d<f32>;
 // The environment the water reflects: the frame's sky technique (its interface: SkyUniforms,
 // sky_radiance), a resource of the plan that the water reads.
 @group(1) @binding(0) var<uniform> sky: SkyUniforms;
@@ -57,9 +60,6 @@ struct VertexOut {
     // The undisplaced point relative to the mesh's reference point (eq. 1's scales).
     @location(4) pos: vec2<f32>,
 }
-
-// Bias of the shadow-map depth comparison (depth units of the sun's ortho projection).
-const SHADOW_BIAS: f32 = 0.002;
 
 // x^n for a whole n by binary exponentiation: multiplications only, so every implementation
 // rounds alike. (pow() is exp2(n·log2(x)) with the implementation's approximations: on
@@ -157,33 +157,6 @@ fn multi_scale_taps(pos: vec2<f32>, fp: Footprint, h: vec2<f32>) -> Taps {
         along_sq = along_sq + t.along_sq * (c * c);
     }
     return Taps(mean, along_sq);
-}
-
-// 1 where the sun reaches the point, 0 where the shadow map holds something nearer the sun.
-fn sun_visibility(rel: vec3<f32>) -> f32 {
-    if (frame.passes.shadow_map == 0.0) {
-        return 1.0;
-    }
-    let s = transform_point(frame.sun.shadow_view_proj, rel);
-    let u = s.x * 0.5 + 0.5;
-    let v = 0.5 - s.y * 0.5;
-    if (u < 0.0 || u >= 1.0 || v < 0.0 || v >= 1.0) {
-        return 1.0;
-    }
-    let dims = vec2<i32>(textureDimensions(shadow_map));
-    // u < 1 can still round to u·size = size: clamp to the last texel.
-    let texel = vec2<i32>(
-        min(i32(floor(u * f32(dims.x))), dims.x - 1),
-        min(i32(floor(v * f32(dims.y))), dims.y - 1),
-    );
-    let occluder = textureLoad(shadow_map, texel, 0).x;
-    // A texel left at the clear value 1 has no caster: the point is lit, also beyond the map's
-    // far plane (water farther from the sun than the casters' bounding sphere has s.z > 1, and
-    // was shadowed wherever the map held nothing).
-    if (occluder < 1.0 && occluder < s.z - SHADOW_BIAS) {
-        return 0.0;
-    }
-    return 1.0;
 }
 
 // log2(x) for x in [1e-30, 1e30] by frexp (exact) and a cubic in the mantissa m ∈ [0, 1),

@@ -235,20 +235,11 @@ fn frame_view_vectors(scene: &Scene) -> anyhow::Result<Vec<[f64; 3]>> {
     let mesh = plan.water_mesh(scene, &camera)?;
     let sky = |_: [f32; 3]| [0.0f32; 3];
     let (slope_chain, bump_chain) = fb.water_slopes(&plan);
-    let b = water::Bindings {
-        frame: &fb.uniforms,
-        displacement: &fb.displacement,
-        displacement_slopes: &slope_chain,
-        bump: &bump_chain,
-        fresnel_filter: &fb.fresnel_filter,
-        fresnel_above: &fb.fresnel_above,
-        fresnel_below: &fb.fresnel_below,
-        reflection_map: &fb.reflection_map,
-        refraction_map: &fb.refraction_map,
-        shadow_map: &fb.shadow_map,
-        sky_radiance: &sky,
-        shade_above: ocean_cpu::shaders::shading::hu::shade_above,
-    };
+    let b = fb.water_bindings(
+        (&slope_chain, &bump_chain),
+        &sky,
+        ocean_cpu::shaders::shading::hu::shade_above,
+    );
     let mut target = RenderTarget::new(camera.width, camera.height);
     target.clear_depth(0.0);
     target.clear_color([0.0; 4]);

@@ -106,8 +106,7 @@ fn eq8_misses(scene: &Scene, frame: &FrameBuffers, kd: f64, extra_depth: f64) ->
     let (mut checked, mut misses) = (0, 0);
     for py in 0..h {
         for px in 0..w {
-            let ndc_x = (px as f64 + 0.5) / w as f64 * 2.0 - 1.0;
-            let ndc_y = 1.0 - (py as f64 + 0.5) / h as f64 * 2.0;
+            let (ndc_x, ndc_y) = ocean_core::camera::pixel_centre_ndc(px, py, w, h);
             if camera.ray_direction(ndc_x, ndc_y).y > -0.05 {
                 continue;
             }
@@ -193,10 +192,7 @@ fn clipped_reflection(shading: &str) -> (usize, usize, usize) {
     let (mut hits, mut under, mut missing) = (0, 0, 0);
     for py in 0..h {
         for px in 0..w {
-            let ndc = (
-                (px as f64 + 0.5) / w as f64 * 2.0 - 1.0,
-                1.0 - (py as f64 + 0.5) / h as f64 * 2.0,
-            );
+            let ndc = ocean_core::camera::pixel_centre_ndc(px, py, w, h);
             let d = camera.ray_direction(ndc.0, ndc.1);
             // The map draws the sphere mirrored in y = 0: meet the mirrored sphere.
             let mc = DVec3::new(c.x, -c.y, c.z);

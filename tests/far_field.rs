@@ -502,6 +502,7 @@ fn variance_without_unresolved_slopes_shades_as_mip() {
                 reflection_map: &empty,
                 refraction_map: &empty,
                 shadow_map: &empty,
+                floor_map: &empty,
                 fresnel_filter: &filter,
                 sky_radiance: &sky,
                 shade_above: ocean_cpu::shaders::shading::hu::shade_above,

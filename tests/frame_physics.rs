@@ -219,6 +219,7 @@ fn bumped_fresnel_is_the_texture_lookup_of_the_bumped_view_vector() {
                 reflection_map: &empty,
                 refraction_map: &empty,
                 shadow_map: &empty,
+                floor_map: &empty,
                 fresnel_filter: &empty,
                 sky_radiance: &sky,
                 shade_above: ocean_cpu::shaders::shading::hu::shade_above,

@@ -42,6 +42,7 @@ fn vertex(fb: &FrameBuffers, eye: DVec3, x: f64, z: f64) -> DVec3 {
         reflection_map: &empty,
         refraction_map: &empty,
         shadow_map: &empty,
+        floor_map: &empty,
         fresnel_filter: &empty,
         sky_radiance: &sky,
         shade_above: ocean_cpu::shaders::shading::chiu::shade_above,

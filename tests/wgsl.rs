@@ -257,10 +257,12 @@ fn layout_checker_rejects_wrong_structs() {
 /// Every WGSL `const` of every stage and its Rust twin (the CPU mirror's, or ocean-core's).
 /// A WGSL constant not listed here fails: each one needs its twin.
 fn rust_consts() -> Vec<(&'static str, f64)> {
+    use ocean_cpu::shaders::shared::{floor, shadow};
     use ocean_cpu::shaders::{objects, shading::chiu, shared::optics, shared::preetham, tonemap};
     use ocean_cpu::shaders::{water, waves};
     vec![
-        ("SHADOW_BIAS", f64::from(water::SHADOW_BIAS)),
+        ("SHADOW_BIAS", f64::from(shadow::SHADOW_BIAS)),
+        ("RELIEF_SHADOW_BIAS", f64::from(floor::RELIEF_SHADOW_BIAS)),
         ("EQ8_LN_R", f64::from(optics::EQ8_LN_R)),
         ("EQ8_LN_G", f64::from(optics::EQ8_LN_G)),
         ("EQ8_LN_B", f64::from(optics::EQ8_LN_B)),

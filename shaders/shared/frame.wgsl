@@ -99,8 +99,16 @@ struct ChiuShadingBlock {
 }
 
 struct TerrainBlock {
-    // (∂y/∂x, ∂y/∂z, y under the eye, 0): the floor's plane in camera-relative (x, z).
+    // (∂y/∂x, ∂y/∂z, y under the eye, 1 with a relief map): the floor's plane in
+    // camera-relative (x, z).
     floor: vec4<f32>,
+    // (du/dx, dv/dz, u under the eye, v under the eye) of the relief map.
+    relief: vec4<f32>,
+    // The unit vector towards the sun under the water, and the relief march's horizontal step
+    // (m; 0: no march).
+    sun_under: vec4<f32>,
+    // (highest floor height over the drawn square, world y; steps of the march; 0; 0).
+    top: vec4<f32>,
 }
 
 // Eq. 1 (seed 001): per scale i, 1/(L·s_i), a_i, the mesh's reference point modulo L·s_i,

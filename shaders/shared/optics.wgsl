@@ -1,6 +1,6 @@
 // Water optics shared by the stages that shade water or what lies under it (`water`,
-// `objects`): arithmetic-only e^x, the water-volume colour (the constant of shading `hu` or
-// seed 001's eq. 8) and the sea floor's depth under a point. Reads the importing stage's
+// `objects`): arithmetic-only e^x and the water-volume colour (the constant of shading `hu` or
+// seed 001's eq. 8). Reads the importing stage's
 // `frame` (FrameUniforms). CPU mirror: ocean-cpu/src/shaders/shared/optics.rs.
 
 // #import shared/fresnel.wgsl
@@ -41,11 +41,4 @@ fn water_volume_colour(depth: f32) -> vec3<f32> {
     }
     let k = frame.water.kd_per_m * max(depth, 0.0);
     return downwelling() * vec3<f32>(exp_arith(k * EQ8_LN_R), exp_arith(k * EQ8_LN_G), exp_arith(k * EQ8_LN_B));
-}
-
-// The sea floor's depth below the sea plane under the camera-relative point `rel` (m, ≥ 0):
-// `[terrain]`'s plane, or the open sea's depth of `[chiu]` without a floor.
-fn floor_depth(rel: vec3<f32>) -> f32 {
-    let f = frame.terrain.floor;
-    return max(-(f.z + f.x * rel.x + f.y * rel.z), 0.0);
 }

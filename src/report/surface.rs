@@ -53,10 +53,7 @@ fn seen_points(camera: &Camera, depth: &[f32]) -> Vec<Option<DVec3>> {
             if z <= 0.0 {
                 return None;
             }
-            let ndc = (
-                (f64::from(x) + 0.5) / f64::from(w) * 2.0 - 1.0,
-                1.0 - (f64::from(y) + 0.5) / f64::from(h) * 2.0,
-            );
+            let ndc = ocean_core::camera::pixel_centre_ndc(x, y, w, h);
             let d = camera.ray_direction(ndc.0, ndc.1);
             let view_depth = ocean_core::camera::NEAR_PLANE_M / z;
             Some(camera.eye + d * (view_depth / d.dot(camera.forward)))
@@ -70,20 +67,7 @@ fn vertices_in_view(r: &ocean_cpu::Rendered, scene: &Scene) -> anyhow::Result<(u
     let camera = Camera::from_scene(&scene.camera)?;
     let (slopes, bump) = fb.water_slopes(&r.plan);
     let sky = |_: [f32; 3]| [0.0f32; 3];
-    let b = water::Bindings {
-        frame: &fb.uniforms,
-        displacement: &fb.displacement,
-        displacement_slopes: &slopes,
-        bump: &bump,
-        fresnel_filter: &fb.fresnel_filter,
-        fresnel_above: &fb.fresnel_above,
-        fresnel_below: &fb.fresnel_below,
-        reflection_map: &fb.reflection_map,
-        refraction_map: &fb.refraction_map,
-        shadow_map: &fb.shadow_map,
-        sky_radiance: &sky,
-        shade_above: ocean_cpu::shaders::shading::hu::shade_above,
-    };
+    let b = fb.water_bindings((&slopes, &bump), &sky, ocean_cpu::shaders::shading::hu::shade_above);
     let inside = |o: water::VertexOut| {
         let c = o.clip;
         c.w > 0.0 && c.x.abs() <= c.w && c.y.abs() <= c.w

@@ -25,11 +25,14 @@ pub const VECTOR_KEYS: &[&str] = &[
     "objects.*.color",
 ];
 
+/// The reef's heightmap, the floor of scenes that set `terrain.height_range_m`.
+pub const REEF: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/reference/terrain/reef.png");
+
 /// Keys whose value is a list (one element is drawn).
 pub const LIST_KEYS: &[&str] = &["chiu.scales"];
 
 /// Keys whose value is a 2-vector, (x, z).
-pub const VECTOR2_KEYS: &[&str] = &["terrain.center", "clouds.wind"];
+pub const VECTOR2_KEYS: &[&str] = &["terrain.center", "terrain.height_range_m", "clouds.wind"];
 
 /// Keys that set the cost of a frame (grid sizes, table size, image size, mesh density): the
 /// random scenes keep them small, and [`cost_extremes`] takes each to its limit once.
@@ -118,7 +121,12 @@ pub fn scene_text(values: &[(&str, String)], objects: &[&str]) -> String {
         }
     }
     let mut text = String::new();
-    for (table, lines) in tables {
+    for (table, mut lines) in tables {
+        // A relief's range only acts on a heightmap floor: give it the reef's.
+        if table == "terrain" && lines.iter().any(|l| l.starts_with("height_range_m")) {
+            lines.push("kind = \"heightmap\"".to_owned());
+            lines.push(format!("heightmap = {REEF:?}"));
+        }
         text += &format!("[{table}]\n{}\n", lines.join("\n"));
     }
     for kind in objects {

@@ -125,6 +125,15 @@ impl Camera {
     }
 }
 
+/// NDC (x right, y up) of the centre of pixel (px, py) of a `w × h` image whose row 0 is at
+/// the top.
+pub fn pixel_centre_ndc(px: u32, py: u32, w: u32, h: u32) -> (f64, f64) {
+    (
+        (f64::from(px) + 0.5) / f64::from(w) * 2.0 - 1.0,
+        1.0 - (f64::from(py) + 0.5) / f64::from(h) * 2.0,
+    )
+}
+
 /// An f64 matrix as the column arrays of an f32 `mat4x4<f32>` uniform.
 pub fn to_cols_f32(m: DMat4) -> [[f32; 4]; 4] {
     let c = m.to_cols_array_2d();

@@ -11,8 +11,9 @@ use glam::{DMat4, DVec3, DVec4};
 
 use crate::camera::{Camera, to_cols_f32};
 use crate::plan::{FramePlan, Pass};
-use crate::scene::{Object, Scene, Shape, Sun, Terrain};
+use crate::scene::{Object, Scene, Shape, Sun};
 use crate::sky::{PreethamSky, SkyParams};
+pub use crate::terrain::{TerrainBlock, terrain_triangles};
 use crate::waves::WaveMaps;
 
 /// Phong exponent s of the sun's specular term, a whole number (the water stage raises to it
@@ -178,16 +179,6 @@ impl MultiScaleBlock {
         b.count = n as f32;
         b
     }
-}
-
-/// The sea floor under the water (`[terrain]`), for eq. 8's depth: its height is the plane
-/// y = floor.z + floor.x·rel.x + floor.y·rel.z in camera-relative (x, z) (formed in f64
-/// about the eye). A bottomless sea is the flat plane at `[chiu] open_sea_depth_m`.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-pub struct TerrainBlock {
-    /// (∂y/∂x, ∂y/∂z, y under the eye, 0).
-    pub floor: [f32; 4],
 }
 
 /// Parameters of shading technique `hu` (seed 000 eq. 3).
@@ -578,34 +569,6 @@ pub fn object_triangles(objects: &[Object], eye: DVec3) -> Vec<[ObjectVertex; 3]
     tris
 }
 
-/// Quads per side of the sea floor's drawn square (a plane: more would only cost).
-pub const TERRAIN_QUADS: u32 = 8;
-/// Triangles of the sea floor's mesh.
-pub const TERRAIN_TRIANGLES: u64 = 2 * (TERRAIN_QUADS as u64) * (TERRAIN_QUADS as u64);
-
-/// Triangles of the sea floor's drawn square, camera-relative, counter-clockwise seen from
-/// above.
-pub fn terrain_triangles(t: &Terrain, eye: DVec3) -> Vec<[ObjectVertex; 3]> {
-    let (gx, gz) = t.gradient();
-    let normal = DVec3::new(-gx, 1.0, -gz).normalize().as_vec3().to_array();
-    let color = t.color.map(|v| v as f32);
-    let step = t.extent_m / f64::from(TERRAIN_QUADS);
-    let vertex = |i: u32, j: u32| {
-        let x = t.center[0] - 0.5 * t.extent_m + f64::from(i) * step;
-        let z = t.center[1] - 0.5 * t.extent_m + f64::from(j) * step;
-        let p = DVec3::new(x, t.height(x, z), z) - eye;
-        ObjectVertex { position: p.as_vec3().to_array(), normal, color }
-    };
-    let mut tris = Vec::with_capacity(TERRAIN_TRIANGLES as usize);
-    for i in 0..TERRAIN_QUADS {
-        for j in 0..TERRAIN_QUADS {
-            tris.push([vertex(i, j), vertex(i, j + 1), vertex(i + 1, j)]);
-            tris.push([vertex(i + 1, j), vertex(i, j + 1), vertex(i + 1, j + 1)]);
-        }
-    }
-    tris
-}
-
 /// The triangles an object pass of the plan draws: its objects', then the sea floor's when
 /// the pass draws it.
 pub fn pass_triangles(
@@ -775,15 +738,13 @@ impl FrameUniforms {
                 clip_waves: if shading == "chiu" { 1.0 } else { 0.0 },
                 pad1: 0.0,
             },
-            terrain: TerrainBlock {
-                floor: match &scene.terrain {
-                    Some(t) => {
-                        let (gx, gz) = t.gradient();
-                        [gx as f32, gz as f32, t.height(eye.x, eye.z) as f32, 0.0]
-                    }
-                    None => [0.0, 0.0, -scene.chiu.open_sea_depth_m as f32, 0.0],
-                },
-            },
+            terrain: TerrainBlock::new(
+                scene.terrain.as_ref(),
+                scene.chiu.open_sea_depth_m,
+                eye,
+                sun_on.then_some(sun_dir),
+                scene.water.ior,
+            ),
             scales: if shading == "chiu" {
                 MultiScaleBlock::new(&scene.chiu.scales, l_d, mesh_origin)
             } else {

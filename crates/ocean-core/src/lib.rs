@@ -34,6 +34,7 @@ pub mod spectrum;
 pub mod spray;
 pub mod supersample;
 pub mod tables;
+pub mod terrain;
 pub mod tonemap;
 pub mod waves;
 

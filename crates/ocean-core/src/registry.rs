@@ -284,7 +284,14 @@ pub const STAGES: &[StageEntry] = &[
             ("vs_refract", Vertex),
             ("fs_refract", Fragment),
         ],
-        bindings: &[b(0, 0, "frame"), b(0, 1, "displacement"), b(0, 2, "wrap_linear")],
+        bindings: &[
+            b(0, 0, "frame"),
+            b(0, 1, "displacement"),
+            b(0, 2, "wrap_linear"),
+            b(0, 3, "shadow_map"),
+            b(0, 4, "floor_map"),
+            b(0, 5, "clamp_linear"),
+        ],
         // ObjectVertex is a vertex-buffer layout (tightly packed), not a WGSL memory layout:
         // ocean-gpu's OBJECT_VERTEX_LAYOUT describes it.
         blocks: &[],
@@ -324,6 +331,7 @@ pub const STAGES: &[StageEntry] = &[
             b(0, 9, "wrap_linear"),
             b(0, 10, "clamp_linear"),
             b(0, 11, "fresnel_filter"),
+            b(0, 12, "floor_map"),
             b(1, 0, "sky"),
         ],
         blocks: &[],
@@ -459,7 +467,7 @@ pub const SHARED: &[SharedFile] = &[
             }),
             block!(ProjectedGridBlock { corners, cols, rows, pad0, pad1 }),
             block!(ChiuShadingBlock { zeta_m, shininess_per_m, clip_waves, pad1 }),
-            block!(TerrainBlock { floor }),
+            block!(TerrainBlock { floor, relief, sun_under, top }),
             block!(MultiScaleBlock {
                 inv_size,
                 weight,
@@ -521,6 +529,18 @@ pub const SHARED: &[SharedFile] = &[
         source: include_str!("../../../shaders/shared/optics.wgsl"),
         blocks: &[],
         cpu_mirror: "crates/ocean-cpu/src/shaders/shared/optics.rs",
+    },
+    SharedFile {
+        file: "shared/shadow.wgsl",
+        source: include_str!("../../../shaders/shared/shadow.wgsl"),
+        blocks: &[],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/shared/shadow.rs",
+    },
+    SharedFile {
+        file: "shared/floor.wgsl",
+        source: include_str!("../../../shaders/shared/floor.wgsl"),
+        blocks: &[],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/shared/floor.rs",
     },
     SharedFile {
         file: "shared/fullscreen.wgsl",

@@ -21,6 +21,7 @@ use ocean_core::waves::{Synthesizer, WaveMaps};
 use crate::mip::MipChain;
 use crate::raster::{self, BlendMode, CompareFunction, RasterState, RenderTarget, Vertex};
 use crate::sampler::Texture2D;
+use crate::shaders::shared::floor::FloorMaps;
 use crate::shaders::waves::WavesMirror;
 use crate::shaders::{fresnel_table, objects, shadow, sky, spray, tonemap, water, wave_mips};
 
@@ -76,6 +77,8 @@ pub struct FrameBuffers {
     pub reflection_map: Texture2D,
     /// Fogged objects under the water, alpha = coverage.
     pub refraction_map: Texture2D,
+    /// The sea floor's relief as the stages bound it (one zero texel without one).
+    pub floor_map: Texture2D,
     /// The frame, linear HDR RGBA.
     pub hdr: RenderTarget,
     /// The 8-bit sRGB RGBA picture, when the plan tonemaps.
@@ -97,6 +100,31 @@ impl FrameBuffers {
                 MipChain::single(self.displacement_slopes.clone()),
                 MipChain::single(self.bump.clone()),
             )
+        }
+    }
+
+    /// The water pass's bindings over these buffers, with the slope chains of
+    /// [`Self::water_slopes`] and a given sky and shading (tools that rerun parts of the pass).
+    pub fn water_bindings<'a>(
+        &'a self,
+        (slopes, bump): (&'a MipChain, &'a MipChain),
+        sky_radiance: &'a (dyn Fn([f32; 3]) -> [f32; 3] + Sync),
+        shade_above: crate::shaders::shading::ShadeAbove,
+    ) -> water::Bindings<'a> {
+        water::Bindings {
+            frame: &self.uniforms,
+            displacement: &self.displacement,
+            displacement_slopes: slopes,
+            bump,
+            fresnel_filter: &self.fresnel_filter,
+            fresnel_above: &self.fresnel_above,
+            fresnel_below: &self.fresnel_below,
+            reflection_map: &self.reflection_map,
+            refraction_map: &self.refraction_map,
+            shadow_map: &self.shadow_map,
+            floor_map: &self.floor_map,
+            sky_radiance,
+            shade_above,
         }
     }
 
@@ -210,6 +238,16 @@ fn eye_state() -> RasterState {
     RasterState { depth_compare: CompareFunction::Greater, ..RasterState::default() }
 }
 
+/// What a stage reads for a map whose pass did not run: one zero texel.
+static EMPTY_MAP: std::sync::LazyLock<Texture2D> =
+    std::sync::LazyLock::new(|| Texture2D::new(1, 1, vec![[0.0; 4]]));
+
+/// The sea floor's relief as the stages bind it (`floor_map`).
+fn floor_texture(scene: &Scene) -> Texture2D {
+    let (w, h, texels) = ocean_core::terrain::relief_texels(scene.terrain.as_ref());
+    Texture2D::new(w, h, texels)
+}
+
 fn target_texture(t: RenderTarget) -> Texture2D {
     Texture2D::new(t.width, t.height, t.color)
 }
@@ -297,6 +335,7 @@ impl<'e> CpuBackend<'e> {
             shadow_map: self.take(ResourceId::ShadowMap),
             reflection_map: self.take(ResourceId::ReflectionMap),
             refraction_map: self.take(ResourceId::RefractionMap),
+            floor_map: floor_texture(frame.scene),
             hdr,
             ldr: self.ldr.take(),
             uniforms: frame.uniforms,
@@ -359,6 +398,19 @@ impl<'e> CpuBackend<'e> {
         }
     }
 
+    /// A map the frame made so far, or one zero texel before its pass ran.
+    fn map_or_empty(&self, id: ResourceId) -> &Texture2D {
+        self.maps.iter().find(|(m, _)| *m == id).map_or(&EMPTY_MAP, |(_, t)| t)
+    }
+
+    /// The objects stage's maps (bindings 1, 3, 4).
+    fn object_maps<'a>(&'a self, floor_map: &'a Texture2D) -> objects::Maps<'a> {
+        objects::Maps {
+            displacement: self.map_or_empty(ResourceId::Displacement),
+            floor: FloorMaps { shadow_map: self.map_or_empty(ResourceId::ShadowMap), floor_map },
+        }
+    }
+
     fn object_pass(&mut self, pass: &PlannedPass, frame: &FrameInputs<'_>) {
         let scene = frame.scene;
         let tris = pass_triangles(scene, pass, frame.camera.eye);
@@ -380,30 +432,28 @@ impl<'e> CpuBackend<'e> {
             // Both maps are looked up at normalised screen coordinates, so they may be
             // smaller than the viewport (the plan's sizes).
             Pass::ReflectionMap | Pass::RefractionMap => {
-                let (id, vs, fs): (_, fn(&_, &_) -> _, fn(&_, &_, &_) -> _) =
+                let (id, vs, fs): (_, objects::VertexEntry, objects::MapFragmentEntry) =
                     if pass.name == Pass::ReflectionMap {
                         (ResourceId::ReflectionMap, objects::vs_reflect, objects::fs_reflect)
                     } else {
                         (ResourceId::RefractionMap, objects::vs_refract, objects::fs_refract)
                     };
-                let empty = Texture2D::new(1, 1, vec![[0.0; 4]]);
-                let displacement = self
-                    .maps
-                    .iter()
-                    .find(|(m, _)| *m == ResourceId::Displacement)
-                    .map_or(&empty, |(_, t)| t);
                 let mut target = planned_target(frame.plan, id);
                 target.clear_depth(0.0);
-                draw_objects(&mut target, &eye_state(), &tris, u, vs, &|o, u| {
-                    fs(o, u, displacement)
-                });
+                let floor_map = floor_texture(scene);
+                let maps = self.object_maps(&floor_map);
+                draw_objects(&mut target, &eye_state(), &tris, u, vs, &|o, u| fs(o, u, maps));
                 self.put(id, target_texture(target));
             }
             _ => {
-                let hdr = self.hdr(frame.plan);
-                draw_objects(hdr, &eye_state(), &tris, u, objects::vs_main, &|o, u| {
-                    Some(objects::fs_main(o, u))
+                let floor_map = floor_texture(scene);
+                // Taken out while the maps are borrowed, put back after the draw.
+                let mut hdr = self.hdr.take().unwrap_or_else(|| new_hdr(frame.plan));
+                let maps = self.object_maps(&floor_map);
+                draw_objects(&mut hdr, &eye_state(), &tris, u, objects::vs_main, &|o, u| {
+                    Some(objects::fs_main(o, u, maps))
                 });
+                self.hdr = Some(hdr);
             }
         }
     }
@@ -431,9 +481,7 @@ impl<'e> CpuBackend<'e> {
         };
         // Taken out while the bindings borrow the other maps, put back after the draw.
         let mut hdr = self.hdr.take().unwrap_or_else(|| new_hdr(frame.plan));
-        let empty = Texture2D::new(1, 1, vec![[0.0; 4]]);
-        let maps = &self.maps;
-        let map = |id| maps.iter().find(|(m, _)| *m == id).map_or(&empty, |(_, t)| t);
+        let map = |id| self.map_or_empty(id);
         // The chains when `wave_mips` made them, else the maps themselves as one level.
         let chain = |mips: ResourceId, plain: ResourceId| {
             self.chains
@@ -443,6 +491,7 @@ impl<'e> CpuBackend<'e> {
         };
         let slope_chain = chain(ResourceId::DisplacementSlopeMips, ResourceId::DisplacementSlopes);
         let bump_chain = chain(ResourceId::BumpMips, ResourceId::Bump);
+        let floor_map = floor_texture(frame.scene);
         let bindings = water::Bindings {
             frame: &frame.uniforms,
             displacement: map(ResourceId::Displacement),
@@ -454,6 +503,7 @@ impl<'e> CpuBackend<'e> {
             reflection_map: map(ResourceId::ReflectionMap),
             refraction_map: map(ResourceId::RefractionMap),
             shadow_map: map(ResourceId::ShadowMap),
+            floor_map: &floor_map,
             sky_radiance,
             shade_above,
         };

@@ -147,6 +147,28 @@ pub fn storage_map_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
     }
 }
 
+/// A bilinear sampler with one address mode on every axis: the CPU mirror's `WRAP_LINEAR`
+/// (repeat) and `CLAMP_LINEAR` (clamp to edge); the CPU's `Sampler` has one filter for
+/// magnification and minification.
+pub fn linear_sampler(
+    device: &wgpu::Device,
+    label: &str,
+    mode: wgpu::AddressMode,
+) -> wgpu::Sampler {
+    device.create_sampler(&wgpu::SamplerDescriptor {
+        label: Some(label),
+        address_mode_u: mode,
+        address_mode_v: mode,
+        address_mode_w: mode,
+        mag_filter: wgpu::FilterMode::Linear,
+        min_filter: wgpu::FilterMode::Linear,
+        // Linear between levels: the slope maps' chains (far fields `mip`, `variance`) are
+        // sampled at explicit LODs; every other map has one level.
+        mipmap_filter: wgpu::MipmapFilterMode::Linear,
+        ..Default::default()
+    })
+}
+
 /// A filtering sampler entry.
 pub fn sampler_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {

@@ -16,6 +16,7 @@
 //!
 //! A skipped pass leaves the plan's 1×1 zero texture where its map would be, as on the CPU.
 
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use ocean_core::frame::{
@@ -27,6 +28,7 @@ use ocean_core::plan::{
     WavesKernel, run_frame,
 };
 use ocean_core::scene::{Ocean, Scene};
+use ocean_core::terrain::{Relief, relief_texels};
 use ocean_core::waves::OceanSurface;
 use wgpu::util::DeviceExt;
 
@@ -132,6 +134,9 @@ pub struct Renderer {
     built: ocean_core::plan::Techniques,
     /// The spray's particle pool, kept on the device across frames.
     spray: Option<GpuSpray>,
+    /// The sea floor's relief as uploaded, and the relief it was made from (uploaded again
+    /// only when the scene's relief changes).
+    floor: Option<(Option<Arc<Relief>>, GpuTexture)>,
 }
 
 fn wgpu_format(f: Format) -> wgpu::TextureFormat {
@@ -152,6 +157,7 @@ pub struct GpuBackend<'r> {
     stages: &'r Stages,
     waves: &'r mut WaveSlot,
     spray: &'r mut Option<GpuSpray>,
+    floor_map: &'r GpuTexture,
     encoder: wgpu::CommandEncoder,
     timer: PassTimer,
     maps: Vec<(ResourceId, GpuTexture)>,
@@ -338,7 +344,14 @@ impl GpuBackend<'_> {
 
     fn objects_group(&mut self) -> wgpu::BindGroup {
         let displacement = self.map(ResourceId::Displacement);
-        self.stages.objects.group(&self.gpu.device, &self.frame_buffer, &displacement.view)
+        let shadow_map = self.map(ResourceId::ShadowMap);
+        self.stages.objects.group(
+            &self.gpu.device,
+            &self.frame_buffer,
+            &displacement.view,
+            &shadow_map.view,
+            &self.floor_map.view,
+        )
     }
 
     fn frame_group(&self, layout: &wgpu::BindGroupLayout, label: &str) -> wgpu::BindGroup {
@@ -465,6 +478,7 @@ impl GpuBackend<'_> {
                 refraction_map: &refraction_map.view,
                 shadow_map: &shadow_map.view,
                 fresnel_filter: &fresnel_filter.view,
+                floor_map: &self.floor_map.view,
             },
             &match frame.uniforms.grid.vertex_count() {
                 0 => WaterDraw::Mesh(WaterMeshBuffers {
@@ -640,6 +654,7 @@ impl Renderer {
             max_vertex_buffer_bytes: u64::MAX,
             built,
             spray: None,
+            floor: None,
         })
     }
 
@@ -812,6 +827,22 @@ impl Renderer {
             self.set_waves(&scene.ocean, scene.ocean.surface()?)?;
         }
         let u: FrameUniforms = inputs.uniforms;
+        let relief = scene.terrain.as_ref().and_then(|t| t.relief.clone());
+        let same = |kept: &Option<Arc<Relief>>| match (kept, &relief) {
+            (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+            (None, None) => true,
+            _ => false,
+        };
+        if !self.floor.as_ref().is_some_and(|(kept, _)| same(kept)) {
+            self.floor = None;
+        }
+        let floor_map = &self
+            .floor
+            .get_or_insert_with(|| {
+                let (w, h, texels) = relief_texels(scene.terrain.as_ref());
+                (relief, GpuTexture::upload_map(&self.gpu, "ocean.floor_map", w, h, &texels))
+            })
+            .1;
         let gpu = &self.gpu;
         let stages = &self.stages;
         let waves = &mut self.waves;
@@ -824,6 +855,7 @@ impl Renderer {
                 stages,
                 waves,
                 spray,
+                floor_map,
                 encoder: device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
                     label: Some("ocean.frame"),
                 }),

@@ -2,7 +2,8 @@
 //! entry points — `vs_main`/`fs_main` (main view, into the HDR frame), `vs_reflect`/`fs_reflect`
 //! (the reflection map) and `vs_refract`/`fs_refract` (the refraction map). Bindings: group 0,
 //! binding 0 = `FrameUniforms`, 1 = `displacement`, 2 = `wrap_linear` (the maps' clipping at
-//! the wave height, shading `chiu`). Vertices: ocean-core's `ObjectVertex` (36 bytes), drawn as a
+//! the wave height, shading `chiu`), 3 = `shadow_map` (`textureLoad` only), 4 = `floor_map`,
+//! 5 = `clamp_linear` (the sun under the water, shared/floor.wgsl). Vertices: ocean-core's `ObjectVertex` (36 bytes), drawn as a
 //! triangle list in the order `object_triangles` gives. State: reversed-Z `Greater` with depth
 //! writes, no blending, no culling (the CPU's `eye_state`).
 //! CPU mirror: `ocean-cpu/src/shaders/objects.rs`.
@@ -10,8 +11,8 @@
 use ocean_core::frame::ObjectVertex;
 
 use crate::common::{
-    Load, begin_render_pass, entry, eye_depth, label, pipeline_layout, primitive, replace_target,
-    sampler_entry, shader_module, texture_entry, uniform_entry,
+    Load, begin_render_pass, entry, eye_depth, label, linear_sampler, pipeline_layout, primitive,
+    replace_target, sampler_entry, shader_module, texture_entry, uniform_entry,
 };
 use crate::device::Error;
 use crate::texture::MAP_FORMAT;
@@ -49,9 +50,11 @@ pub struct ObjectsStage {
     main: wgpu::RenderPipeline,
     reflect: wgpu::RenderPipeline,
     refract: wgpu::RenderPipeline,
-    /// Group 0: the frame's uniforms, the displacement map and its sampler.
+    /// Group 0: the frame's uniforms, the displacement map and its sampler, the shadow map,
+    /// the floor's relief and its sampler.
     pub frame_layout: wgpu::BindGroupLayout,
     wrap_linear: wgpu::Sampler,
+    clamp_linear: wgpu::Sampler,
 }
 
 impl ObjectsStage {
@@ -68,19 +71,16 @@ impl ObjectsStage {
                 uniform_entry(0, wgpu::ShaderStages::VERTEX_FRAGMENT),
                 texture_entry(1, wgpu::ShaderStages::FRAGMENT, true),
                 sampler_entry(2, wgpu::ShaderStages::FRAGMENT),
+                texture_entry(3, wgpu::ShaderStages::FRAGMENT, false),
+                texture_entry(4, wgpu::ShaderStages::FRAGMENT, true),
+                sampler_entry(5, wgpu::ShaderStages::FRAGMENT),
             ],
         });
-        // The CPU mirror's WRAP_LINEAR (the water's displacement sampler).
-        let wrap_linear = device.create_sampler(&wgpu::SamplerDescriptor {
-            label: Some("ocean.objects.wrap_linear"),
-            address_mode_u: wgpu::AddressMode::Repeat,
-            address_mode_v: wgpu::AddressMode::Repeat,
-            address_mode_w: wgpu::AddressMode::Repeat,
-            mag_filter: wgpu::FilterMode::Linear,
-            min_filter: wgpu::FilterMode::Linear,
-            mipmap_filter: wgpu::MipmapFilterMode::Linear,
-            ..Default::default()
-        });
+        // The CPU mirror's WRAP_LINEAR and CLAMP_LINEAR (the water's samplers).
+        let wrap_linear =
+            linear_sampler(device, "ocean.objects.wrap_linear", wgpu::AddressMode::Repeat);
+        let clamp_linear =
+            linear_sampler(device, "ocean.objects.clamp_linear", wgpu::AddressMode::ClampToEdge);
         let layout = pipeline_layout(device, &name, &[&frame_layout]);
         let pipeline = |which: ObjectsEntry| -> Result<wgpu::RenderPipeline, Error> {
             let (vs, fs) = which.entry_points();
@@ -113,16 +113,20 @@ impl ObjectsStage {
             refract: pipeline(ObjectsEntry::Refract)?,
             frame_layout,
             wrap_linear,
+            clamp_linear,
         })
     }
 
-    /// Group 0 of every pass: the frame's uniforms, and the displacement map under the
-    /// fragments for the exact-height clipping of shading `chiu`.
+    /// Group 0 of every pass: the frame's uniforms, the displacement map under the
+    /// fragments for the exact-height clipping of shading `chiu`, and the shadow map and the
+    /// floor's relief for the sun under the water.
     pub fn group(
         &self,
         device: &wgpu::Device,
         frame: &wgpu::Buffer,
         displacement: &wgpu::TextureView,
+        shadow_map: &wgpu::TextureView,
+        floor_map: &wgpu::TextureView,
     ) -> wgpu::BindGroup {
         crate::common::bind_group(
             device,
@@ -132,6 +136,9 @@ impl ObjectsStage {
                 frame.as_entire_binding(),
                 wgpu::BindingResource::TextureView(displacement),
                 wgpu::BindingResource::Sampler(&self.wrap_linear),
+                wgpu::BindingResource::TextureView(shadow_map),
+                wgpu::BindingResource::TextureView(floor_map),
+                wgpu::BindingResource::Sampler(&self.clamp_linear),
             ],
         )
     }

@@ -167,17 +167,12 @@ impl SprayStage {
                 cache: None,
             })
         });
-        // The CPU mirror's WRAP_LINEAR: repeat, bilinear, one level.
-        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
-            label: Some("ocean.spray.wrap_linear"),
-            address_mode_u: wgpu::AddressMode::Repeat,
-            address_mode_v: wgpu::AddressMode::Repeat,
-            address_mode_w: wgpu::AddressMode::Repeat,
-            mag_filter: wgpu::FilterMode::Linear,
-            min_filter: wgpu::FilterMode::Linear,
-            mipmap_filter: wgpu::MipmapFilterMode::Linear,
-            ..Default::default()
-        });
+        // The CPU mirror's WRAP_LINEAR.
+        let sampler = crate::common::linear_sampler(
+            device,
+            "ocean.spray.wrap_linear",
+            wgpu::AddressMode::Repeat,
+        );
         Ok(Self { step, draw, step_layout, draw_layout, sampler })
     }
 

@@ -2,7 +2,7 @@
 //! composed into its WGSL. Bindings (as the WGSL declares them): group 0 — 0 `FrameUniforms`,
 //! 1 `displacement`, 2 `displacement_slopes`, 3 `bump`, 4 `fresnel_above`, 5 `fresnel_below`,
 //! 6 `reflection_map`, 7 `refraction_map`, 8 `shadow_map` (`textureLoad` only),
-//! 9 `wrap_linear`, 10 `clamp_linear`; group 1 — 0 `SkyUniforms`. Vertices: ocean-core's
+//! 9 `wrap_linear`, 10 `clamp_linear`, 11 `fresnel_filter`, 12 `floor_map`; group 1 — 0 `SkyUniforms`. Vertices: ocean-core's
 //! `geometry::WaterVertex` (12 bytes), u32 indices. State: reversed-Z `Greater` with depth
 //! writes, no blending, no culling (the surface is seen from below under water).
 //! CPU mirror: `ocean-cpu/src/shaders/water.rs` (samplers `WRAP_LINEAR`, `CLAMP_LINEAR`).
@@ -10,8 +10,8 @@
 use ocean_core::geometry::WaterVertex;
 
 use crate::common::{
-    Load, begin_render_pass, entry, eye_depth, label, pipeline_layout, primitive, replace_target,
-    sampler_entry, shader_module_with, texture_entry, uniform_entry,
+    Load, begin_render_pass, entry, eye_depth, label, linear_sampler, pipeline_layout, primitive,
+    replace_target, sampler_entry, shader_module_with, texture_entry, uniform_entry,
 };
 use crate::device::Error;
 use crate::texture::MAP_FORMAT;
@@ -23,7 +23,7 @@ pub const WATER_VERTEX_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexB
     attributes: &wgpu::vertex_attr_array![0 => Float32x2, 1 => Float32],
 };
 
-/// The textures of group 0, in binding order 1–8.
+/// The textures of group 0, in binding order 1–8, 11, 12.
 pub struct WaterTextures<'a> {
     /// binding 1.
     pub displacement: &'a wgpu::TextureView,
@@ -43,6 +43,8 @@ pub struct WaterTextures<'a> {
     pub shadow_map: &'a wgpu::TextureView,
     /// binding 11: the filtered Fresnel table of far field `variance`.
     pub fresnel_filter: &'a wgpu::TextureView,
+    /// binding 12: the sea floor's relief.
+    pub floor_map: &'a wgpu::TextureView,
 }
 
 /// What the water pass draws.
@@ -71,24 +73,6 @@ pub struct WaterStage {
     sky_layout: wgpu::BindGroupLayout,
     wrap_linear: wgpu::Sampler,
     clamp_linear: wgpu::Sampler,
-}
-
-/// A bilinear sampler with one address mode on both axes (the CPU's `Sampler` has one
-/// filter for magnification and minification; there is one level, so the mipmap filter is
-/// moot).
-fn linear_sampler(device: &wgpu::Device, label: &str, mode: wgpu::AddressMode) -> wgpu::Sampler {
-    device.create_sampler(&wgpu::SamplerDescriptor {
-        label: Some(label),
-        address_mode_u: mode,
-        address_mode_v: mode,
-        address_mode_w: mode,
-        mag_filter: wgpu::FilterMode::Linear,
-        min_filter: wgpu::FilterMode::Linear,
-        // Linear between levels: the slope maps' chains (far fields `mip`, `variance`) are
-        // sampled at explicit LODs; every other map has one level.
-        mipmap_filter: wgpu::MipmapFilterMode::Linear,
-        ..Default::default()
-    })
 }
 
 impl WaterStage {
@@ -120,6 +104,7 @@ impl WaterStage {
                 sampler_entry(9, vf),
                 sampler_entry(10, fragment),
                 texture_entry(11, fragment, true),
+                texture_entry(12, fragment, true),
             ],
         });
         let sky_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -203,6 +188,7 @@ impl WaterStage {
                 wgpu::BindingResource::Sampler(&self.wrap_linear),
                 wgpu::BindingResource::Sampler(&self.clamp_linear),
                 wgpu::BindingResource::TextureView(t.fresnel_filter),
+                wgpu::BindingResource::TextureView(t.floor_map),
             ],
         );
         let sky_group = crate::common::bind_group(

@@ -463,8 +463,7 @@ fn raster_cases() -> Vec<Case> {
         (0..h)
             .flat_map(|y| (0..w).map(move |x| (x, y)))
             .map(|(x, y)| {
-                let ndc_x = (f64::from(x) + 0.5) / f64::from(w) * 2.0 - 1.0;
-                let ndc_y = 1.0 - (f64::from(y) + 0.5) / f64::from(h) * 2.0;
+                let (ndc_x, ndc_y) = ocean_core::camera::pixel_centre_ndc(x, y, w, h);
                 u32::from(inside(ndc_x, ndc_y))
             })
             .collect()

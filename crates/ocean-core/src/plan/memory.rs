@@ -180,10 +180,11 @@ impl MemoryEstimate {
         let triangles: u64 = object_passes
             .iter()
             .map(|p| {
-                let floor = if plan.passes.iter().any(|q| q.name == *p && q.terrain) {
-                    crate::frame::TERRAIN_TRIANGLES
-                } else {
-                    0
+                let floor = match &scene.terrain {
+                    Some(t) if plan.passes.iter().any(|q| q.name == *p && q.terrain) => {
+                        t.mesh_triangles()
+                    }
+                    _ => 0,
                 };
                 objects.of(*p).iter().map(|&i| object_triangles(scene, i)).sum::<u64>() + floor
             })
@@ -197,6 +198,14 @@ impl MemoryEstimate {
                 ),
                 triangles * OBJECT_BYTES_PER_TRIANGLE,
                 "objects",
+            );
+        }
+        if let Some(r) = scene.terrain.as_ref().and_then(crate::scene::Terrain::relief) {
+            // The file's heights as f32, and the RGBA f32 texture both back ends bind.
+            add(
+                format!("sea floor relief ({}×{})", r.width, r.height),
+                u64::from(r.width) * u64::from(r.height) * (4 + 16),
+                "terrain.heightmap",
             );
         }
         Self { items }

@@ -779,8 +779,8 @@ impl FramePlan {
             });
             let (run, reason) = match (terrain, run) {
                 (false, _) => (run, reason),
-                (true, false) => (true, "the sea floor ([terrain])".to_owned()),
-                (true, true) => (true, format!("{reason}; and the sea floor ([terrain])")),
+                (true, false) => (true, floor_reason(scene)),
+                (true, true) => (true, format!("{reason}; and {}", floor_reason(scene))),
             };
             let planned = PlannedPass {
                 name: pass,
@@ -952,6 +952,22 @@ impl fmt::Display for FramePlan {
             writeln!(f, "  skip  {:<15} {}", p.name.name(), p.reason)?;
         }
         Ok(())
+    }
+}
+
+/// How the plan names the sea floor a pass draws.
+fn floor_reason(scene: &Scene) -> String {
+    match scene.terrain.as_ref() {
+        Some(t) => match t.relief() {
+            Some(r) => format!(
+                "the sea floor ([terrain], a {}×{} heightmap, {} triangles)",
+                r.width,
+                r.height,
+                t.mesh_triangles()
+            ),
+            None => format!("the sea floor ([terrain], a plane, {} triangles)", t.mesh_triangles()),
+        },
+        None => String::new(),
     }
 }
 

@@ -515,7 +515,7 @@ impl Default for Spray {
     }
 }
 
-/// What a sea floor is (`kind = "plane"`; heightmaps and islands may come).
+/// What a sea floor is (`kind = "plane"` or `"heightmap"`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum TerrainKind {
@@ -523,28 +523,41 @@ pub enum TerrainKind {
     /// metres per metre towards `slope_direction_deg`.
     #[default]
     Plane,
+    /// The plane plus a relief read from `heightmap` (a 16-bit grayscale PNG or an EXR) over
+    /// the square of side `extent_m`, its samples mapped onto `height_range_m`.
+    Heightmap,
 }
 
-/// The `[terrain]` table: the sea floor (DESIGN.md). Drawn as a square of side `extent_m`
-/// about `center` in the refraction map and the main view; its depth under each point of the
-/// sea is eq. 8's y (shading `chiu`), the plane's everywhere, also beyond the drawn square.
+/// The `[terrain]` table: the sea floor (DESIGN.md; [`crate::terrain`] has its geometry).
+/// Drawn as a square of side `extent_m` about `center` in the main view, the refraction map
+/// and the reflection map; its depth under each point of the sea is eq. 8's y (shading
+/// `chiu`), the plane's (and the relief's edge) also beyond the drawn square.
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Terrain {
     /// What the floor is.
     pub kind: TerrainKind,
-    /// Depth of the floor below the sea plane at `center`, m (negative: above the water).
+    /// Depth of the floor's plane below the sea plane at `center`, m (negative: above).
     pub depth_m: f64,
-    /// (x, z) of the floor's reference point, m.
+    /// (x, z) of the floor's reference point and the centre of the drawn square, m.
     pub center: [f64; 2],
-    /// Rise of the floor per metre along `slope_direction_deg` (0: flat).
+    /// Rise of the plane per metre along `slope_direction_deg` (0: flat).
     pub slope: f64,
-    /// The direction in which the floor rises, degrees from +x towards +z.
+    /// The direction in which the plane rises, degrees from +x towards +z.
     pub slope_direction_deg: f64,
-    /// Side of the drawn square, m.
+    /// Side of the drawn square (and of the heightmap), m.
     pub extent_m: f64,
     /// Linear RGB albedo (sand).
     pub color: [f64; 3],
+    /// `kind = "heightmap"`: the file, relative to the scene file's folder (to the working
+    /// folder for scene text).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub heightmap: Option<PathBuf>,
+    /// The relief's height at sample 0 and at sample 1 (65535 in a PNG), m, added to the plane.
+    pub height_range_m: [f64; 2],
+    /// The relief read from `heightmap` when the scene was loaded.
+    #[serde(skip)]
+    pub relief: Option<std::sync::Arc<crate::terrain::Relief>>,
 }
 
 impl Default for Terrain {
@@ -557,28 +570,10 @@ impl Default for Terrain {
             slope_direction_deg: 0.0,
             extent_m: 400.0,
             color: [0.76, 0.70, 0.50],
+            heightmap: None,
+            height_range_m: [0.0, 1.0],
+            relief: None,
         }
-    }
-}
-
-impl Terrain {
-    /// The floor's height (y, m) at world (x, z).
-    pub fn height(&self, x: f64, z: f64) -> f64 {
-        let (gx, gz) = self.gradient();
-        -self.depth_m + gx * (x - self.center[0]) + gz * (z - self.center[1])
-    }
-
-    /// ∂y/∂x and ∂y/∂z of the floor.
-    pub fn gradient(&self) -> (f64, f64) {
-        let a = self.slope_direction_deg.to_radians();
-        (self.slope * a.cos(), self.slope * a.sin())
-    }
-
-    /// The lowest and highest floor height over the drawn square, m.
-    pub fn y_range(&self) -> (f64, f64) {
-        let (gx, gz) = self.gradient();
-        let spread = 0.5 * self.extent_m * (gx.abs() + gz.abs());
-        (-self.depth_m - spread, -self.depth_m + spread)
     }
 }
 
@@ -688,7 +683,8 @@ impl Scene {
                 message: e.message().trim().to_string(),
             }
         })?;
-        if let Err((key, message)) = scene.validate() {
+        let mut scene = scene;
+        if let Err((key, message)) = scene.validate().and_then(|()| scene.load_assets(&source)) {
             let (line, column) = key_position(text, &key).unwrap_or((0, 0));
             return Err(SceneError::Invalid {
                 source_name: source,
@@ -699,6 +695,23 @@ impl Scene {
             });
         }
         Ok(scene)
+    }
+
+    /// Reads the files the scene names (a `heightmap` floor's relief), relative to the scene
+    /// file's folder, or to the working folder for text.
+    fn load_assets(&mut self, source: &SceneSource) -> Result<(), (String, String)> {
+        let base = match source {
+            SceneSource::File(p) => p.parent().map(Path::to_owned).unwrap_or_default(),
+            SceneSource::BuiltIn | SceneSource::Text => PathBuf::new(),
+        };
+        if let Some(t) = &mut self.terrain
+            && let (TerrainKind::Heightmap, Some(path)) = (t.kind, &t.heightmap)
+        {
+            let relief = crate::terrain::load_relief(path, &base, t.height_range_m)
+                .map_err(|e| ("terrain.heightmap".to_owned(), e))?;
+            t.relief = Some(relief);
+        }
+        Ok(())
     }
 
     /// The technique of every stage: the system's, with `[techniques]` applied (the

@@ -191,6 +191,12 @@ pub const LIMITS: &[Limit] = &[
     real("terrain.slope_direction_deg", -360.0, 360.0, "degrees from +x towards +z"),
     real("terrain.extent_m", 1.0, 1.0e5, "m, the side of the drawn square"),
     real("terrain.color", 0.0, MAX_COLOUR, "linear RGB albedo"),
+    real(
+        "terrain.height_range_m",
+        -1.0e4,
+        1.0e4,
+        "m at heightmap samples 0 and 1, added to the plane",
+    ),
     real("chiu.zeta_m", 0.0, 100.0, "m; eq. 6's map shift at 1 m of view depth"),
     real("chiu.shininess_per_m", 1.0e-3, 1.0e3, "eq. 5's Phong exponent per metre of depth"),
     real("chiu.kd_per_m", 0.0, 10.0, "1/m; eq. 8's k_d"),
@@ -309,6 +315,24 @@ impl Scene {
             check("terrain.slope_direction_deg", &[t.slope_direction_deg])?;
             check("terrain.extent_m", &[t.extent_m])?;
             check("terrain.color", &t.color)?;
+            check("terrain.height_range_m", &t.height_range_m)?;
+            match (t.kind, &t.heightmap) {
+                (crate::scene::TerrainKind::Heightmap, None) => {
+                    return Err((
+                        "terrain.kind".into(),
+                        "a `heightmap` floor needs `heightmap = \"FILE\"` (a 16-bit grayscale \
+                         PNG or an EXR)"
+                            .into(),
+                    ));
+                }
+                (crate::scene::TerrainKind::Plane, Some(_)) => {
+                    return Err((
+                        "terrain.heightmap".into(),
+                        "a `plane` floor has no heightmap (set `kind = \"heightmap\"`)".into(),
+                    ));
+                }
+                _ => {}
+            }
         }
         let ch = &self.chiu;
         check("chiu.zeta_m", &[ch.zeta_m])?;

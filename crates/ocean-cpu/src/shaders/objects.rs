@@ -3,6 +3,7 @@
 
 use ocean_core::frame::{FrameUniforms, ObjectVertex};
 
+use super::shared::floor::{FloorMaps, sun_reaches};
 use super::shared::frame::{dot3, transform_point, unit};
 use super::shared::optics::water_volume_colour;
 use super::water::WRAP_LINEAR;
@@ -49,10 +50,24 @@ impl VertexOut {
 /// WGSL `INV_PI` (0.31830988618 rounds to the same f32).
 pub const INV_PI: f32 = std::f32::consts::FRAC_1_PI;
 
-/// `shade(normal, color)`: Lambert under the sun plus the sky's ambient.
-fn shade(frame: &FrameUniforms, normal: Vec3, color: Vec3) -> Vec3 {
+/// The stage's textures: binding 1 (`displacement`), 3 (`shadow_map`) and 4 (`floor_map`).
+#[derive(Clone, Copy)]
+pub struct Maps<'a> {
+    /// binding 1.
+    pub displacement: &'a Texture2D,
+    /// bindings 3 and 4.
+    pub floor: FloorMaps<'a>,
+}
+
+/// A vertex entry point of the stage.
+pub type VertexEntry = fn(&ObjectVertex, &FrameUniforms) -> VertexOut;
+/// A map pass's fragment entry point (`None` is `discard`).
+pub type MapFragmentEntry = fn(&VertexOut, &FrameUniforms, Maps<'_>) -> Option<[f32; 4]>;
+
+/// `shade(normal, color, sun)`: Lambert under the share `sun` of the sun plus the sky's ambient.
+fn shade(frame: &FrameUniforms, normal: Vec3, color: Vec3, sun: f32) -> Vec3 {
     let n = unit(normal);
-    let cos_sun = max(dot3(n, frame.sun.direction.into()), 0.0) * frame.sun.lit;
+    let cos_sun = max(dot3(n, frame.sun.direction.into()), 0.0) * (frame.sun.lit * sun);
     let direct = Vec3::from(frame.sun.radiance) * (cos_sun * INV_PI);
     color * (direct + Vec3::from(frame.ambient.sky))
 }
@@ -70,8 +85,9 @@ pub fn vs_main(v: &ObjectVertex, frame: &FrameUniforms) -> VertexOut {
 }
 
 /// `fs_main`.
-pub fn fs_main(input: &VertexOut, frame: &FrameUniforms) -> [f32; 4] {
-    shade(frame, input.normal, input.color).extend(1.0).into()
+pub fn fs_main(input: &VertexOut, frame: &FrameUniforms, maps: Maps<'_>) -> [f32; 4] {
+    let sun = sun_reaches(input.rel, input.world_y, frame, maps.floor);
+    shade(frame, input.normal, input.color, sun).extend(1.0).into()
 }
 
 /// `vs_reflect`.
@@ -101,16 +117,12 @@ pub fn clip_height(rel: Vec3, frame: &FrameUniforms, displacement: &Texture2D) -
 }
 
 /// `fs_reflect`; `None` is `discard`.
-pub fn fs_reflect(
-    input: &VertexOut,
-    frame: &FrameUniforms,
-    displacement: &Texture2D,
-) -> Option<[f32; 4]> {
-    if input.world_y < clip_height(input.rel, frame, displacement) {
+pub fn fs_reflect(input: &VertexOut, frame: &FrameUniforms, maps: Maps<'_>) -> Option<[f32; 4]> {
+    if input.world_y < clip_height(input.rel, frame, maps.displacement) {
         return None;
     }
     let n = vec3(input.normal.x, -input.normal.y, input.normal.z);
-    Some(shade(frame, n, input.color).extend(1.0).into())
+    Some(shade(frame, n, input.color, 1.0).extend(1.0).into())
 }
 
 /// `vs_refract`.
@@ -129,12 +141,8 @@ pub fn vs_refract(v: &ObjectVertex, frame: &FrameUniforms) -> VertexOut {
 }
 
 /// `fs_refract`; `None` is `discard`.
-pub fn fs_refract(
-    input: &VertexOut,
-    frame: &FrameUniforms,
-    displacement: &Texture2D,
-) -> Option<[f32; 4]> {
-    if input.world_y > clip_height(input.rel, frame, displacement) {
+pub fn fs_refract(input: &VertexOut, frame: &FrameUniforms, maps: Maps<'_>) -> Option<[f32; 4]> {
+    if input.world_y > clip_height(input.rel, frame, maps.displacement) {
         return None;
     }
     let depth_below = max(-(input.rel.y + frame.view.eye_height), 0.0);
@@ -142,7 +150,9 @@ pub fn fs_refract(
     let dist = sqrt(dot3(input.rel, input.rel));
     let d = dist * (depth_below / (depth_below + height_above));
     let fog = 1.0 - exp(-frame.water.extinction_per_m * d);
-    let obj = shade(frame, input.normal, input.color)
+    let at = vec3(input.rel.x, input.world_y - frame.view.eye_height, input.rel.z);
+    let sun = sun_reaches(at, input.world_y, frame, maps.floor);
+    let obj = shade(frame, input.normal, input.color, sun)
         * exp(-frame.water.extinction_per_m * max(-input.world_y, 0.0));
     Some((water_volume_colour(-input.world_y, frame) * fog + obj * (1.0 - fog)).extend(1.0).into())
 }

@@ -1,6 +1,5 @@
 //! CPU mirror of `shaders/water.wgsl`: the sea surface (its shading from above is the
 //! shading technique's, [`super::shading`]).
-#![expect(clippy::manual_range_contains, reason = "mirrors the WGSL comparisons one to one")]
 
 use ocean_core::frame::FrameUniforms;
 
@@ -26,9 +25,6 @@ pub const CLAMP_LINEAR: Sampler = Sampler {
     filter: FilterMode::Linear,
 };
 
-/// Bias of the shadow-map depth comparison.
-pub const SHADOW_BIAS: f32 = 0.002;
-
 /// The stage's bindings (group 0 in binding order, then the sky function of
 /// `shared/preetham.wgsl` with its uniforms).
 pub struct Bindings<'a> {
@@ -53,6 +49,8 @@ pub struct Bindings<'a> {
     pub shadow_map: &'a Texture2D,
     /// binding 11: the filtered Fresnel table.
     pub fresnel_filter: &'a Texture2D,
+    /// binding 12: the sea floor's relief (shared/floor.wgsl).
+    pub floor_map: &'a Texture2D,
     /// `sky_radiance(dir)`.
     pub sky_radiance: &'a (dyn Fn([f32; 3]) -> [f32; 3] + Sync),
     /// The shading technique's `shade_above` (`technique/shading`).
@@ -200,29 +198,9 @@ pub fn pow_int(x: f32, n: u32) -> f32 {
     result
 }
 
-/// `sun_visibility(rel)`.
+/// `sun_visibility(rel)` (shared/shadow.wgsl) with this stage's `shadow_map`.
 pub fn sun_visibility(rel: Vec3, b: &Bindings<'_>) -> f32 {
-    let frame = b.frame;
-    if frame.passes.shadow_map == 0.0 {
-        return 1.0;
-    }
-    let s = transform_point(&frame.sun.shadow_view_proj, rel);
-    let u = s.x * 0.5 + 0.5;
-    let v = 0.5 - s.y * 0.5;
-    if u < 0.0 || u >= 1.0 || v < 0.0 || v >= 1.0 {
-        return 1.0;
-    }
-    let dims = [b.shadow_map.width as i32, b.shadow_map.height as i32];
-    let texel = [
-        ((u * dims[0] as f32).floor() as i32).min(dims[0] - 1),
-        ((v * dims[1] as f32).floor() as i32).min(dims[1] - 1),
-    ];
-    let occluder = b.shadow_map.texel(texel[0] as u32, texel[1] as u32)[0];
-    // The clear value 1: no caster (also beyond the map's far plane).
-    if occluder < 1.0 && occluder < s.z - SHADOW_BIAS {
-        return 0.0;
-    }
-    1.0
+    super::shared::shadow::sun_visibility(rel, b.frame, b.shadow_map)
 }
 
 /// `lod_log2(x)`.

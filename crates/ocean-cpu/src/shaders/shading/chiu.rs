@@ -1,7 +1,8 @@
 //! CPU mirror of `shaders/shading/chiu.wgsl`: seed 001's eqs. 2–8 seen from above.
 
+use crate::shaders::shared::floor::floor_depth;
 use crate::shaders::shared::frame::{dot3, transform_point, unit};
-use crate::shaders::shared::optics::{floor_depth, fresnel_exact, water_volume_colour};
+use crate::shaders::shared::optics::{fresnel_exact, water_volume_colour};
 use crate::shaders::water::{
     Bindings, CLAMP_LINEAR, SurfacePoint, VertexOut, pow_int, sky_radiance, sun_visibility,
 };
@@ -38,7 +39,8 @@ pub fn shade_above(input: &VertexOut, p: &SurfacePoint, b: &Bindings<'_>) -> Vec
     let c_reflect = c_sky * (1.0 - a_refl) + refl.xyz() * a_refl + c_sun;
     let refr = texture_sample_level(b.refraction_map, &CLAMP_LINEAR, p.screen + shift, 0.0);
     let a_refr = refr.w * frame.passes.refraction_map;
-    let c_refract = water_volume_colour(floor_depth(input.rel, frame), frame) * (1.0 - a_refr)
+    let c_refract = water_volume_colour(floor_depth(input.rel, frame, b.floor_map), frame)
+        * (1.0 - a_refr)
         + refr.xyz() * a_refr;
     c_reflect * f + c_refract * (1.0 - f)
 }

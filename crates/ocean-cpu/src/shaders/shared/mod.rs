@@ -1,8 +1,10 @@
 //! Mirrors of `shaders/shared/*.wgsl`: functions several stages import.
 
 pub mod camera;
+pub mod floor;
 pub mod frame;
 pub mod fresnel;
 pub mod fullscreen;
 pub mod optics;
 pub mod preetham;
+pub mod shadow;

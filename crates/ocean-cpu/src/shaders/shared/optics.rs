@@ -1,5 +1,4 @@
-//! Mirror of `shaders/shared/optics.wgsl`: arithmetic-only e^x, the water-volume colour and
-//! the sea floor's depth.
+//! Mirror of `shaders/shared/optics.wgsl`: arithmetic-only e^x and the water-volume colour.
 
 pub use super::fresnel::fresnel_exact;
 
@@ -46,10 +45,4 @@ pub fn water_volume_colour(depth: f32, frame: &FrameUniforms) -> Vec3 {
     let k = frame.water.kd_per_m * max(depth, 0.0);
     downwelling(frame)
         * vec3(exp_arith(k * EQ8_LN_R), exp_arith(k * EQ8_LN_G), exp_arith(k * EQ8_LN_B))
-}
-
-/// `floor_depth(rel)`.
-pub fn floor_depth(rel: Vec3, frame: &FrameUniforms) -> f32 {
-    let f = frame.terrain.floor;
-    max(-(f[2] + f[0] * rel.x + f[1] * rel.z), 0.0)
 }

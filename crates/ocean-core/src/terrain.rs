@@ -1,0 +1,375 @@
+//! The sea floor (`[terrain]`, DESIGN.md): its height anywhere, its drawn mesh and what the
+//! shaders need of it (the uniforms of [`TerrainBlock`] and the relief map).
+//!
+//! The floor is a plane — `depth_m` below the sea plane at `center`, rising by `slope` towards
+//! `slope_direction_deg` — plus, for `kind = "heightmap"`, a relief read from a 16-bit
+//! grayscale PNG or an EXR: a sample v maps linearly onto `height_range_m` (v = 0 → the
+//! first value, v = 1 → the second) and is added to the plane. The map covers the square of
+//! side `extent_m` about `center` with its outermost texel centres on the square's edges:
+//! column i lies at x = x₀ + i·extent/(W − 1), row j (the image's top row first) at
+//! z = z₀ + j·extent/(H − 1). Between texel centres the height is bilinear; beyond the
+//! square it is the edge's (clamp to edge), which is how both back ends sample the map.
+
+use std::fmt;
+use std::path::Path;
+use std::sync::Arc;
+
+use bytemuck::{Pod, Zeroable};
+use glam::DVec3;
+
+use crate::frame::ObjectVertex;
+use crate::scene::{Terrain, TerrainKind};
+
+/// The largest relief map side, texels (a 16384² f32 RGBA texture is 4 GiB).
+pub const MAX_RELIEF_SIDE: u32 = 8192;
+/// Quads per side of a plane floor's drawn square (a plane: more would only cost).
+pub const TERRAIN_QUADS: u32 = 8;
+/// The most quads per side of a relief's mesh; a larger map is drawn through every k-th texel
+/// (its shading and eq. 8's depth still read every texel).
+pub const MAX_RELIEF_QUADS: u32 = 256;
+/// Steps of the relief's self-shadow march (shared/floor.wgsl `relief_sun`), half a texel
+/// each: 48 texels of shadow at most, which a sun 41° up under the water (the lowest there is)
+/// casts from a ridge 42 texels tall.
+pub const RELIEF_SHADOW_STEPS: u32 = 96;
+
+/// A relief map: heights in metres (the v of the file already mapped onto `height_range_m`),
+/// as f32 because that is what both back ends sample.
+#[derive(Clone, PartialEq)]
+pub struct Relief {
+    /// Texels per row.
+    pub width: u32,
+    /// Rows.
+    pub height: u32,
+    /// Row-major heights, m; row 0 at the square's lowest z.
+    pub heights: Vec<f32>,
+    /// The lowest and highest texel, m.
+    pub range: (f32, f32),
+}
+
+impl fmt::Debug for Relief {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "Relief {}×{} in [{}, {}] m", self.width, self.height, self.range.0, self.range.1)
+    }
+}
+
+impl Relief {
+    /// A relief from normalised samples v (row-major, `width × height`), v ↦ lo + v·(hi − lo).
+    ///
+    /// # Errors
+    /// A message when the size is zero or too large, the count is wrong, or a sample is not
+    /// finite.
+    pub fn from_normalised(
+        width: u32,
+        height: u32,
+        v: &[f64],
+        range: [f64; 2],
+    ) -> Result<Self, String> {
+        if width == 0 || height == 0 || width > MAX_RELIEF_SIDE || height > MAX_RELIEF_SIDE {
+            return Err(format!(
+                "a heightmap must be 1 to {MAX_RELIEF_SIDE} texels per side, got {width}×{height}"
+            ));
+        }
+        if v.len() != width as usize * height as usize {
+            return Err(format!("{width}×{height} texels need {} samples", width * height));
+        }
+        if let Some(i) = v.iter().position(|s| !s.is_finite()) {
+            let (x, y) = (i % width as usize, i / width as usize);
+            return Err(format!("the heightmap's texel ({x}, {y}) is not finite"));
+        }
+        let heights: Vec<f32> =
+            v.iter().map(|s| (range[0] + s * (range[1] - range[0])) as f32).collect();
+        let lo = heights.iter().copied().fold(f32::INFINITY, f32::min);
+        let hi = heights.iter().copied().fold(f32::NEG_INFINITY, f32::max);
+        Ok(Self { width, height, heights, range: (lo, hi) })
+    }
+
+    /// Reads a 16-bit grayscale PNG (v = value/65535) or an EXR (v = the first layer's `Y`,
+    /// `R` or only channel, as stored) and maps it onto `range`.
+    ///
+    /// # Errors
+    /// A message naming the file: unreadable, not a 16-bit grayscale PNG nor an EXR, or as
+    /// [`Self::from_normalised`].
+    pub fn load(path: &Path, range: [f64; 2]) -> Result<Self, String> {
+        let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+        let (w, h, v) = match ext.as_deref() {
+            Some("png") => read_png16(path)?,
+            Some("exr") => read_exr(path)?,
+            _ => {
+                return Err(format!(
+                    "{}: a heightmap is a 16-bit grayscale .png or an .exr",
+                    path.display()
+                ));
+            }
+        };
+        Self::from_normalised(w, h, &v, range).map_err(|e| format!("{}: {e}", path.display()))
+    }
+
+    /// Texel (i, j), clamped to the map.
+    pub fn texel(&self, i: i64, j: i64) -> f32 {
+        let i = i.clamp(0, i64::from(self.width) - 1) as usize;
+        let j = j.clamp(0, i64::from(self.height) - 1) as usize;
+        self.heights[j * self.width as usize + i]
+    }
+
+    /// The bilinear height at texture coordinates (u, v) (texel centres at (i + ½)/W),
+    /// clamped to the edge, in f64.
+    pub fn sample(&self, u: f64, v: f64) -> f64 {
+        let x = u * f64::from(self.width) - 0.5;
+        let y = v * f64::from(self.height) - 0.5;
+        let (i, j) = (x.floor(), y.floor());
+        let (fx, fy) = (x - i, y - j);
+        let (i, j) = (i as i64, j as i64);
+        let t = |a: i64, b: i64| f64::from(self.texel(a, b));
+        let top = t(i, j) * (1.0 - fx) + t(i + 1, j) * fx;
+        let bottom = t(i, j + 1) * (1.0 - fx) + t(i + 1, j + 1) * fx;
+        top * (1.0 - fy) + bottom * fy
+    }
+}
+
+fn read_png16(path: &Path) -> Result<(u32, u32, Vec<f64>), String> {
+    let img = image::ImageReader::open(path)
+        .map_err(|e| format!("{}: {e}", path.display()))?
+        .decode()
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    match img {
+        image::DynamicImage::ImageLuma16(g) => {
+            let (w, h) = g.dimensions();
+            Ok((w, h, g.into_raw().into_iter().map(|s| f64::from(s) / 65535.0).collect()))
+        }
+        other => Err(format!(
+            "{}: a heightmap PNG must be 16-bit grayscale, this one is {:?} (8 bits would \
+             quantise the relief to 1/255 of its range)",
+            path.display(),
+            other.color()
+        )),
+    }
+}
+
+fn read_exr(path: &Path) -> Result<(u32, u32, Vec<f64>), String> {
+    use exr::prelude::*;
+    let image =
+        read_all_flat_layers_from_file(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let layer = image
+        .layer_data
+        .first()
+        .ok_or_else(|| format!("{}: the EXR has no layer", path.display()))?;
+    let channels = &layer.channel_data.list;
+    let channel = ["Y", "R"]
+        .iter()
+        .find_map(|n| channels.iter().find(|c| c.name.to_string() == *n))
+        .or(if channels.len() == 1 { channels.first() } else { None })
+        .ok_or_else(|| {
+            format!(
+                "{}: the EXR needs a `Y` or `R` channel, or exactly one channel",
+                path.display()
+            )
+        })?;
+    let v: Vec<f64> = match &channel.sample_data {
+        FlatSamples::F16(s) => s.iter().map(|x| f64::from(x.to_f32())).collect(),
+        FlatSamples::F32(s) => s.iter().map(|&x| f64::from(x)).collect(),
+        FlatSamples::U32(s) => s.iter().map(|&x| f64::from(x)).collect(),
+    };
+    let (w, h) = (layer.size.0, layer.size.1);
+    Ok((w as u32, h as u32, v))
+}
+
+impl Terrain {
+    /// ∂y/∂x and ∂y/∂z of the plane.
+    pub fn gradient(&self) -> (f64, f64) {
+        let a = self.slope_direction_deg.to_radians();
+        (self.slope * a.cos(), self.slope * a.sin())
+    }
+
+    /// The plane's height (y, m) at world (x, z), without the relief.
+    pub fn plane_height(&self, x: f64, z: f64) -> f64 {
+        let (gx, gz) = self.gradient();
+        -self.depth_m + gx * (x - self.center[0]) + gz * (z - self.center[1])
+    }
+
+    /// The loaded relief of a `heightmap` floor (`None` for a plane, or before
+    /// [`crate::scene::Scene::load`] read the file).
+    pub fn relief(&self) -> Option<&Relief> {
+        match self.kind {
+            TerrainKind::Heightmap => self.relief.as_deref(),
+            TerrainKind::Plane => None,
+        }
+    }
+
+    /// The map's texture coordinates (u, v) at world (x, z): see the module doc.
+    pub fn relief_uv(&self, r: &Relief, x: f64, z: f64) -> (f64, f64) {
+        let (a_u, a_v) = self.relief_scale(r);
+        let (x0, z0) = self.corner();
+        (0.5 / f64::from(r.width) + (x - x0) * a_u, 0.5 / f64::from(r.height) + (z - z0) * a_v)
+    }
+
+    /// d(u, v)/d(x, z) of the map: (W − 1)/(W·extent), 0 for a single texel.
+    fn relief_scale(&self, r: &Relief) -> (f64, f64) {
+        let s = |n: u32| f64::from(n - 1) / (f64::from(n) * self.extent_m);
+        (s(r.width), s(r.height))
+    }
+
+    /// The drawn square's corner of least (x, z).
+    fn corner(&self) -> (f64, f64) {
+        (self.center[0] - 0.5 * self.extent_m, self.center[1] - 0.5 * self.extent_m)
+    }
+
+    /// The floor's height (y, m) at world (x, z): the plane plus the relief (bilinear,
+    /// clamped to the edge beyond the square).
+    pub fn height(&self, x: f64, z: f64) -> f64 {
+        let relief = self.relief().map_or(0.0, |r| {
+            let (u, v) = self.relief_uv(r, x, z);
+            r.sample(u, v)
+        });
+        self.plane_height(x, z) + relief
+    }
+
+    /// The lowest and highest floor height over the drawn square, m.
+    pub fn y_range(&self) -> (f64, f64) {
+        let (gx, gz) = self.gradient();
+        let spread = 0.5 * self.extent_m * (gx.abs() + gz.abs());
+        let (lo, hi) =
+            self.relief().map_or((0.0, 0.0), |r| (f64::from(r.range.0), f64::from(r.range.1)));
+        (-self.depth_m - spread + lo, -self.depth_m + spread + hi)
+    }
+
+    /// Quads per side of the drawn mesh (x, z): [`TERRAIN_QUADS`] for a plane; a relief's
+    /// texel spacing, every k-th texel beyond [`MAX_RELIEF_QUADS`].
+    pub fn mesh_quads(&self) -> (u32, u32) {
+        match self.relief() {
+            None => (TERRAIN_QUADS, TERRAIN_QUADS),
+            Some(r) => {
+                let q = |n: u32| (n.saturating_sub(1)).clamp(1, MAX_RELIEF_QUADS);
+                (q(r.width), q(r.height))
+            }
+        }
+    }
+
+    /// Triangles of the drawn mesh.
+    pub fn mesh_triangles(&self) -> u64 {
+        let (qx, qz) = self.mesh_quads();
+        2 * u64::from(qx) * u64::from(qz)
+    }
+}
+
+/// Triangles of the sea floor's drawn square, camera-relative, counter-clockwise seen from
+/// above; normals from the floor's central differences (the plane's own for a plane).
+pub fn terrain_triangles(t: &Terrain, eye: DVec3) -> Vec<[ObjectVertex; 3]> {
+    let color = t.color.map(|v| v as f32);
+    let (qx, qz) = t.mesh_quads();
+    let (x0, z0) = t.corner();
+    let (sx, sz) = (t.extent_m / f64::from(qx), t.extent_m / f64::from(qz));
+    // Half a vertex spacing: the differences span the mesh's own resolution.
+    let (hx, hz) = (0.5 * sx, 0.5 * sz);
+    let vertex = |i: u32, j: u32| {
+        let x = x0 + f64::from(i) * sx;
+        let z = z0 + f64::from(j) * sz;
+        let dx = (t.height(x + hx, z) - t.height(x - hx, z)) / (2.0 * hx);
+        let dz = (t.height(x, z + hz) - t.height(x, z - hz)) / (2.0 * hz);
+        let normal = DVec3::new(-dx, 1.0, -dz).normalize().as_vec3().to_array();
+        let p = DVec3::new(x, t.height(x, z), z) - eye;
+        ObjectVertex { position: p.as_vec3().to_array(), normal, color }
+    };
+    let row = |j: u32| (0..=qx).map(|i| vertex(i, j)).collect::<Vec<_>>();
+    let mut tris = Vec::with_capacity(t.mesh_triangles() as usize);
+    let mut below = row(0);
+    for j in 0..qz {
+        let above = row(j + 1);
+        for i in 0..qx as usize {
+            tris.push([below[i], above[i], below[i + 1]]);
+            tris.push([below[i + 1], above[i], above[i + 1]]);
+        }
+        below = above;
+    }
+    tris
+}
+
+/// The sea floor under the water (`[terrain]`), for eq. 8's depth and the floor's shadows: its
+/// height is the plane y = floor.z + floor.x·rel.x + floor.y·rel.z in camera-relative (x, z)
+/// (formed in f64 about the eye) plus the relief map sampled at
+/// uv = (rel.x·relief.x + relief.z, rel.z·relief.y + relief.w). A bottomless sea is the flat
+/// plane at `[chiu] open_sea_depth_m`, a plane floor has a one-texel zero map.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct TerrainBlock {
+    /// (∂y/∂x, ∂y/∂z, y under the eye, 1 with a relief map else 0).
+    pub floor: [f32; 4],
+    /// (du/dx, dv/dz, u under the eye, v under the eye) of the relief map.
+    pub relief: [f32; 4],
+    /// The unit vector towards the sun under the water (refracted at a flat surface), and the
+    /// horizontal length of a step of the relief's self-shadow march, m (0: no march).
+    pub sun_under: [f32; 4],
+    /// (highest floor height over the drawn square (world y, m), steps of the march, 0, 0).
+    pub top: [f32; 4],
+}
+
+impl TerrainBlock {
+    /// The block of `terrain` (or of the open sea at `open_sea_depth_m` without a floor) seen
+    /// from `eye`, with the sun at `sun_dir` (unit, towards the sun; `None`: no sun) and the
+    /// water's index `eta`.
+    pub fn new(
+        terrain: Option<&Terrain>,
+        open_sea_depth_m: f64,
+        eye: DVec3,
+        sun_dir: Option<DVec3>,
+        eta: f64,
+    ) -> Self {
+        // Snell at a flat surface, towards the sun: the horizontal part shrinks by 1/η.
+        let sun_under = match sun_dir {
+            Some(d) if d.y > 0.0 => {
+                let (tx, tz) = (d.x / eta, d.z / eta);
+                let ty = (1.0 - tx * tx - tz * tz).max(0.0).sqrt();
+                [tx as f32, ty as f32, tz as f32, 0.0]
+            }
+            _ => [0.0; 4],
+        };
+        let flat_map = [0.0, 0.0, 0.5, 0.5];
+        let Some(t) = terrain else {
+            return Self {
+                floor: [0.0, 0.0, -open_sea_depth_m as f32, 0.0],
+                relief: flat_map,
+                sun_under,
+                top: [0.0; 4],
+            };
+        };
+        let (gx, gz) = t.gradient();
+        let plane = [gx as f32, gz as f32, t.plane_height(eye.x, eye.z) as f32];
+        let Some(r) = t.relief() else {
+            return Self {
+                floor: [plane[0], plane[1], plane[2], 0.0],
+                relief: flat_map,
+                sun_under,
+                top: [0.0; 4],
+            };
+        };
+        let (a_u, a_v) = t.relief_scale(r);
+        let (u, v) = t.relief_uv(r, eye.x, eye.z);
+        // Half a texel: a step of one misses ridges a texel wide that a ray grazes (the bilinear
+        // peak between two samples; tests/terrain.rs measures what half a texel still misses).
+        let step = 0.5 * t.extent_m / f64::from(r.width.max(r.height).max(2) - 1);
+        Self {
+            floor: [plane[0], plane[1], plane[2], 1.0],
+            relief: [a_u as f32, a_v as f32, u as f32, v as f32],
+            sun_under: [sun_under[0], sun_under[1], sun_under[2], step as f32],
+            top: [t.y_range().1 as f32, RELIEF_SHADOW_STEPS as f32, 0.0, 0.0],
+        }
+    }
+}
+
+/// The relief map as RGBA texels (height in red), or one zero texel without one: what both
+/// back ends bind as `floor_map`.
+pub fn relief_texels(terrain: Option<&Terrain>) -> (u32, u32, Vec<[f32; 4]>) {
+    match terrain.and_then(Terrain::relief) {
+        Some(r) => (r.width, r.height, r.heights.iter().map(|&h| [h, 0.0, 0.0, 0.0]).collect()),
+        None => (1, 1, vec![[0.0; 4]]),
+    }
+}
+
+/// The relief of a `heightmap` floor loaded from `path` (relative paths against `base`),
+/// shared so that clones of a scene do not copy it.
+///
+/// # Errors
+/// As [`Relief::load`].
+pub fn load_relief(path: &Path, base: &Path, range: [f64; 2]) -> Result<Arc<Relief>, String> {
+    let full = if path.is_absolute() { path.to_owned() } else { base.join(path) };
+    Relief::load(&full, range).map(Arc::new)
+}

@@ -1,0 +1,71 @@
+//! Mirror of `shaders/shared/floor.wgsl`: the sea floor's height and depth under a point and
+//! the sun reaching a point under the water.
+
+use ocean_core::frame::FrameUniforms;
+
+use super::shadow::sun_visibility;
+use crate::sampler::Texture2D;
+use crate::shaders::water::CLAMP_LINEAR;
+use crate::shaders::wgsl::{Vec3, max, sqrt, texture_sample_level, vec2, vec3};
+
+/// `RELIEF_SHADOW_BIAS`, m.
+pub const RELIEF_SHADOW_BIAS: f32 = 0.05;
+
+/// What the floor's functions read besides `frame`: the importing stage's `shadow_map` and
+/// `floor_map` bindings.
+#[derive(Clone, Copy)]
+pub struct FloorMaps<'a> {
+    /// `shadow_map`.
+    pub shadow_map: &'a Texture2D,
+    /// `floor_map`.
+    pub floor_map: &'a Texture2D,
+}
+
+/// `floor_height(x, z)`.
+pub fn floor_height(x: f32, z: f32, frame: &FrameUniforms, floor_map: &Texture2D) -> f32 {
+    let f = frame.terrain.floor;
+    let r = frame.terrain.relief;
+    let uv = vec2(x * r[0] + r[2], z * r[1] + r[3]);
+    let relief = texture_sample_level(floor_map, &CLAMP_LINEAR, uv, 0.0).x;
+    f[2] + f[0] * x + f[1] * z + relief
+}
+
+/// `floor_depth(rel)`.
+pub fn floor_depth(rel: Vec3, frame: &FrameUniforms, floor_map: &Texture2D) -> f32 {
+    max(-floor_height(rel.x, rel.z, frame, floor_map), 0.0)
+}
+
+/// `relief_sun(rel)`.
+pub fn relief_sun(rel: Vec3, frame: &FrameUniforms, floor_map: &Texture2D) -> f32 {
+    let t = frame.terrain.sun_under;
+    if frame.terrain.floor[3] == 0.0 || t[3] == 0.0 {
+        return 1.0;
+    }
+    let across = sqrt(t[0] * t[0] + t[2] * t[2]);
+    if across < 1e-4 {
+        return 1.0;
+    }
+    let step = vec3(t[0], t[1], t[2]) * (t[3] / across);
+    let steps = frame.terrain.top[1] as u32;
+    for i in 1..=steps {
+        let q = rel + step * i as f32;
+        let y = q.y + frame.view.eye_height;
+        if y > frame.terrain.top[0] {
+            return 1.0;
+        }
+        if floor_height(q.x, q.z, frame, floor_map) > y + RELIEF_SHADOW_BIAS {
+            return 0.0;
+        }
+    }
+    1.0
+}
+
+/// `sun_reaches(rel, world_y)`.
+pub fn sun_reaches(rel: Vec3, world_y: f32, frame: &FrameUniforms, maps: FloorMaps<'_>) -> f32 {
+    let t = frame.terrain.sun_under;
+    if world_y >= 0.0 || t[1] <= 0.0 {
+        return 1.0;
+    }
+    let surface = rel + vec3(t[0], t[1], t[2]) * (-world_y / t[1]);
+    sun_visibility(surface, frame, maps.shadow_map) * relief_sun(rel, frame, maps.floor_map)
+}

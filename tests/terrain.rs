@@ -1,0 +1,314 @@
+//! The sea floor (`[terrain]`): heightmaps read from 16-bit PNG and EXR files to the stated
+//! heights, bad files reported with the key and line, the floor shadowed under the water by
+//! the casters above it (through the refracted sun) and by its own relief, each against an
+//! independent f64 evaluation here.
+
+use std::path::Path;
+
+use glam::DVec3;
+use ocean_core::camera::Camera;
+use ocean_core::plan::{OutputKind, Pass};
+use ocean_core::scene::{Scene, SceneError, SceneSource};
+use ocean_cpu::shaders::shared::floor;
+use ocean_cpu::shaders::wgsl::vec3;
+
+/// Writes a 16-bit grayscale PNG of `w × h` samples (row-major, row 0 first).
+fn write_png16(path: &Path, w: u32, h: u32, samples: &[u16]) {
+    let img = image::ImageBuffer::<image::Luma<u16>, Vec<u16>>::from_raw(w, h, samples.to_vec())
+        .expect("sample count");
+    img.save(path).expect("write PNG");
+}
+
+/// Writes a single-channel (`Y`) f32 EXR.
+fn write_exr(path: &Path, w: usize, h: usize, samples: Vec<f32>) {
+    use exr::prelude::*;
+    let list = vec![AnyChannel::new("Y", FlatSamples::F32(samples))];
+    let channels = AnyChannels::sort(list.into());
+    let layer = Layer::new((w, h), LayerAttributes::named("h"), Encoding::SMALL_LOSSLESS, channels);
+    Image::from_layer(layer).write().to_file(path).expect("write EXR");
+}
+
+fn heightmap_scene(file: &Path, extra: &str) -> Result<Scene, SceneError> {
+    let text = format!(
+        "[terrain]\nkind = \"heightmap\"\nheightmap = {:?}\nheight_range_m = [-2.0, 6.0]\n\
+         depth_m = 10.0\ncenter = [5.0, -7.0]\nextent_m = 30.0\n{extra}",
+        file.to_str().expect("utf-8 path")
+    );
+    Scene::from_toml(&text, SceneSource::Text)
+}
+
+/// Texel centre (i, j) of a map of side n over the square: x₀ + i·extent/(n − 1).
+fn texel_xz(i: u32, j: u32, n: u32) -> (f64, f64) {
+    let step = 30.0 / f64::from(n - 1);
+    (5.0 - 15.0 + f64::from(i) * step, -7.0 - 15.0 + f64::from(j) * step)
+}
+
+#[test]
+fn heightmaps_load_to_the_stated_heights_from_png_and_exr() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let n = 5u32;
+    let samples: Vec<u16> = (0..n * n).map(|k| (k * 2731 % 65536) as u16).collect();
+    let png = dir.path().join("relief.png");
+    write_png16(&png, n, n, &samples);
+    let exr = dir.path().join("relief.exr");
+    write_exr(
+        &exr,
+        n as usize,
+        n as usize,
+        samples.iter().map(|&s| f32::from(s) / 65535.0).collect(),
+    );
+    for file in [&png, &exr] {
+        let scene = heightmap_scene(file, "").expect("valid heightmap scene");
+        let t = scene.terrain.as_ref().expect("terrain");
+        assert!(t.relief().is_some(), "{}: relief loaded", file.display());
+        // At texel centres: the plane (−10 m) plus −2 + 8·v, v = sample/65535, to f32.
+        for j in 0..n {
+            for i in 0..n {
+                let v = f64::from(samples[(j * n + i) as usize]) / 65535.0;
+                let want = -10.0 + f64::from((-2.0 + 8.0 * v) as f32);
+                let (x, z) = texel_xz(i, j, n);
+                let got = t.height(x, z);
+                assert!(
+                    (got - want).abs() < 1e-5,
+                    "{} ({i}, {j}): {got} vs {want}",
+                    file.display()
+                );
+            }
+        }
+        // Halfway between texels (1, 2) and (2, 2): their mean; beyond the square: the edge.
+        let (a, b) = (
+            t.height(texel_xz(1, 2, n).0, texel_xz(1, 2, n).1),
+            t.height(texel_xz(2, 2, n).0, texel_xz(2, 2, n).1),
+        );
+        let mid = texel_xz(1, 2, n);
+        let got = t.height(mid.0 + 0.5 * 30.0 / f64::from(n - 1), mid.1);
+        assert!((got - 0.5 * (a + b)).abs() < 1e-9, "bilinear: {got} vs {}", 0.5 * (a + b));
+        let corner = texel_xz(0, 0, n);
+        assert_eq!(t.height(corner.0 - 50.0, corner.1 - 50.0), t.height(corner.0, corner.1));
+        // The range the plan and the mesh use.
+        let (lo, hi) = t.y_range();
+        let vmin = f64::from(*samples.iter().min().unwrap()) / 65535.0;
+        let vmax = f64::from(*samples.iter().max().unwrap()) / 65535.0;
+        assert!(
+            (lo - (-12.0 + 8.0 * vmin)).abs() < 1e-5 && (hi - (-12.0 + 8.0 * vmax)).abs() < 1e-5
+        );
+        assert_eq!(t.mesh_triangles(), 2 * u64::from((n - 1) * (n - 1)));
+    }
+}
+
+#[test]
+fn bad_heightmaps_are_reported_with_the_key_and_line() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let eight = dir.path().join("eight.png");
+    image::GrayImage::from_raw(2, 2, vec![0, 64, 128, 255])
+        .expect("size")
+        .save(&eight)
+        .expect("png");
+    let missing = dir.path().join("missing.png");
+    let text_file = dir.path().join("relief.txt");
+    std::fs::write(&text_file, "not an image").expect("write");
+    let expect = |r: Result<Scene, SceneError>, key: &str, needle: &str| match r {
+        Err(SceneError::Invalid { key: Some(k), line, message, .. }) => {
+            assert_eq!(k, key, "{message}");
+            assert!(line > 0, "the line of `{key}` is named");
+            assert!(message.contains(needle), "{message:?} should mention {needle:?}");
+        }
+        other => panic!("expected an error about {key}, got {other:?}"),
+    };
+    expect(heightmap_scene(&eight, ""), "terrain.heightmap", "16-bit");
+    expect(heightmap_scene(&missing, ""), "terrain.heightmap", "missing.png");
+    expect(heightmap_scene(&text_file, ""), "terrain.heightmap", ".exr");
+    let no_file = Scene::from_toml("[terrain]\nkind = \"heightmap\"\n", SceneSource::Text);
+    expect(no_file, "terrain.kind", "needs `heightmap");
+    let plane_with_file =
+        Scene::from_toml("[terrain]\nkind = \"plane\"\nheightmap = \"a.png\"\n", SceneSource::Text);
+    expect(plane_with_file, "terrain.heightmap", "plane");
+    // A relative path is read against the scene file's folder.
+    write_png16(&dir.path().join("ok.png"), 2, 2, &[0, 1, 2, 3]);
+    let scene_file = dir.path().join("s.toml");
+    std::fs::write(&scene_file, "[terrain]\nkind = \"heightmap\"\nheightmap = \"ok.png\"\n")
+        .expect("write");
+    let s = Scene::load(&scene_file).expect("relative heightmap path");
+    assert!(s.terrain.unwrap().relief().is_some());
+}
+
+// ---------------------------------------------------------------------------------------------
+// Shadows under the water
+
+/// The sun's direction refracted into the water (unit, towards the sun), by Snell in f64.
+fn refracted(sun: DVec3, eta: f64) -> DVec3 {
+    let (x, z) = (sun.x / eta, sun.z / eta);
+    DVec3::new(x, (1.0 - x * x - z * z).sqrt(), z)
+}
+
+/// Whether the ray from `p` along `d` meets the box of centre `c` and half-size `h`.
+fn hits_box(p: DVec3, d: DVec3, c: DVec3, h: DVec3) -> bool {
+    let (mut t0, mut t1) = (0.0f64, f64::MAX);
+    for a in 0..3 {
+        let (o, v, lo, hi) = (p[a], d[a], c[a] - h[a], c[a] + h[a]);
+        if v.abs() < 1e-12 {
+            if o < lo || o > hi {
+                return false;
+            }
+            continue;
+        }
+        let (ta, tb) = ((lo - o) / v, (hi - o) / v);
+        t0 = t0.max(ta.min(tb));
+        t1 = t1.min(ta.max(tb));
+    }
+    t0 <= t1
+}
+
+const ROCK_CENTER: [f64; 3] = [0.0, 3.0, -6.0];
+const ROCK_HALF: f64 = 1.5;
+const FLOOR_DEPTH_M: f64 = 6.0;
+
+fn under_water_view(with_rock: bool) -> Scene {
+    let rock = if with_rock {
+        format!("[[objects]]\nkind = \"box\"\ncenter = {ROCK_CENTER:?}\nsize = [3.0, 3.0, 3.0]\n")
+    } else {
+        String::new()
+    };
+    let text = format!(
+        "[ocean]\nwind_speed = 0.0\n\
+         [camera]\nposition = [0.0, -1.0, 10.0]\nlook_at = [0.0, -6.0, -8.0]\nfov_y_deg = 70.0\n\
+         width = 160\nheight = 90\n\
+         [sun]\ndirection = [0.3, 0.6, -1.0]\nintensity = 3.0\n\
+         [terrain]\ndepth_m = {FLOOR_DEPTH_M}\nextent_m = 200.0\n{rock}"
+    );
+    Scene::from_toml(&text, SceneSource::Text).expect("valid scene")
+}
+
+/// Floor pixels of the view compared with the shadow expected here: (checked, shadowed as
+/// expected, disagreeing). `sun_under` is the direction the expectation follows under the
+/// water (towards the sun); pixels within `margin` m of the shadow's edge are left out.
+fn rock_shadow_agreement(sun_under: DVec3, margin: f64) -> (usize, usize, usize) {
+    let lit = ocean_cpu::render_scene(&under_water_view(false), OutputKind::Hdr, &mut |_| {})
+        .expect("render");
+    let scene = under_water_view(true);
+    let shadowed = ocean_cpu::render_scene(&scene, OutputKind::Hdr, &mut |_| {}).expect("render");
+    assert!(shadowed.plan.runs(Pass::ShadowMap), "the rock above the water casts");
+    let camera = Camera::from_scene(&scene.camera).expect("camera");
+    let sun = DVec3::new(0.3, 0.6, -1.0).normalize();
+    let centre = DVec3::from_array(ROCK_CENTER);
+    let in_shadow = |p: DVec3, grow: f64| {
+        let surface = p + sun_under * (-p.y / sun_under.y);
+        hits_box(surface, sun, centre, DVec3::splat(ROCK_HALF + grow))
+    };
+    let (w, h) = (camera.width, camera.height);
+    let (mut checked, mut dark, mut wrong) = (0, 0, 0);
+    for py in 0..h {
+        for px in 0..w {
+            let ndc = ocean_core::camera::pixel_centre_ndc(px, py, w, h);
+            let d = camera.ray_direction(ndc.0, ndc.1);
+            if d.y > -0.1 {
+                continue;
+            }
+            let p = camera.eye + d * ((-FLOOR_DEPTH_M - camera.eye.y) / d.y);
+            let (outer, inner) = (in_shadow(p, margin), in_shadow(p, -margin));
+            if outer != inner {
+                continue;
+            }
+            let (a, b) = (shadowed.buffers.hdr.pixel(px, py)[1], lit.buffers.hdr.pixel(px, py)[1]);
+            let got = a < 0.9 * b;
+            checked += 1;
+            dark += usize::from(got && inner);
+            wrong += usize::from(got != inner);
+        }
+    }
+    (checked, dark, wrong)
+}
+
+#[test]
+fn a_rock_above_the_water_shadows_the_floor_through_the_refracted_sun() {
+    let sun = DVec3::new(0.3, 0.6, -1.0).normalize();
+    let (checked, dark, wrong) = rock_shadow_agreement(refracted(sun, 1.333), 0.15);
+    println!("rock shadow on the floor: {checked} floor pixels, {dark} in shadow, {wrong} off");
+    assert!(checked > 5000, "the view must show the floor: {checked}");
+    assert!(dark > 200, "the shadow must be in view: {dark}");
+    assert_eq!(wrong, 0);
+    // Negative control: the shadow expected along the unrefracted sun lies elsewhere.
+    let (_, _, straight) = rock_shadow_agreement(sun, 0.15);
+    println!("  negative control (sun not refracted): {straight} pixels off");
+    assert!(straight > dark / 4, "{straight}");
+}
+
+/// A ridge along z through x = 0 on a 64² relief over 64 m, 3 m high, Gaussian across
+/// (σ = 0.85 m: steeper than the steepest sun under the water, 41° above the horizon).
+fn ridge_scene(dir: &Path) -> Scene {
+    let n = 64u32;
+    let samples: Vec<u16> = (0..n * n)
+        .map(|k| {
+            let x = -32.0 + f64::from(k % n) * 64.0 / f64::from(n - 1);
+            (65535.0 * (-(x / 1.2).powi(2)).exp()).round() as u16
+        })
+        .collect();
+    let file = dir.join("ridge.png");
+    write_png16(&file, n, n, &samples);
+    let text = format!(
+        "[ocean]\nwind_speed = 0.0\n\
+         [camera]\nposition = [0.0, 10.0, 40.0]\nlook_at = [0.0, -5.0, 0.0]\nwidth = 32\nheight = 18\n\
+         [sun]\ndirection = [1.0, 0.2, 0.3]\n\
+         [terrain]\nkind = \"heightmap\"\nheightmap = {:?}\nheight_range_m = [0.0, 3.0]\n\
+         depth_m = 8.0\nextent_m = 64.0\n",
+        file.to_str().expect("utf-8")
+    );
+    Scene::from_toml(&text, SceneSource::Text).expect("valid scene")
+}
+
+#[test]
+fn the_relief_shadows_itself_as_an_independent_march_finds() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let scene = ridge_scene(dir.path());
+    let r = ocean_cpu::render_scene(&scene, OutputKind::Hdr, &mut |_| {}).expect("render");
+    let (u, map) = (&r.buffers.uniforms, &r.buffers.floor_map);
+    let t = scene.terrain.as_ref().expect("terrain");
+    let eye = Camera::from_scene(&scene.camera).expect("camera").eye;
+    let sun = DVec3::new(1.0, 0.2, 0.3).normalize();
+    let texel = 64.0 / 63.0;
+    let top = t.y_range().1;
+    // Shadowed when the floor rises above the ray towards the sun (half a texel on, as the
+    // shader starts) by more than the bias; `None` within 4 cm of that call.
+    let expected = |p: DVec3, dir: DVec3| -> Option<bool> {
+        let across = (dir.x * dir.x + dir.z * dir.z).sqrt();
+        let mut clearance = f64::MAX;
+        let mut s = 0.5 * texel / across;
+        while s <= 48.0 * texel / across {
+            let q = p + dir * s;
+            if q.y > top {
+                break;
+            }
+            clearance =
+                clearance.min(q.y + f64::from(floor::RELIEF_SHADOW_BIAS) - t.height(q.x, q.z));
+            s += 0.02 * texel / across;
+        }
+        if clearance.abs() < 0.04 { None } else { Some(clearance < 0.0) }
+    };
+    let count = |dir: DVec3| {
+        let (mut checked, mut dark, mut wrong) = (0, 0, 0);
+        for j in 0..40 {
+            for i in 0..40 {
+                let (x, z) = (-6.0 + f64::from(i) * 0.2013, -20.0 + f64::from(j) * 1.007);
+                let p = DVec3::new(x, t.height(x, z), z);
+                let Some(want) = expected(p, dir) else { continue };
+                let rel = p - eye;
+                let got = floor::relief_sun(vec3(rel.x as f32, rel.y as f32, rel.z as f32), u, map)
+                    == 0.0;
+                checked += 1;
+                dark += usize::from(want);
+                wrong += usize::from(got != want);
+            }
+        }
+        (checked, dark, wrong)
+    };
+    let (checked, dark, wrong) = count(refracted(sun, 1.333));
+    println!("relief self-shadow: {checked} floor points, {dark} in shadow, {wrong} off");
+    assert!(checked > 1200 && dark > 100, "{checked} {dark}");
+    assert!(wrong * 200 <= checked, "{wrong} of {checked} disagree");
+    // Negative control: the march along the unrefracted sun disagrees widely.
+    let (_, _, straight) = count(sun);
+    println!("  negative control (sun not refracted): {straight} off");
+    assert!(straight > 4 * wrong.max(10), "{straight}");
+    // The picture uses it: the plan draws the floor and the frame marks the relief.
+    assert!(r.plan.runs(Pass::RefractionMap) && u.terrain.floor[3] == 1.0);
+}
