@@ -25,6 +25,8 @@
 //! `warmup_steps` steps before its own against its sea, so the spray is in the state of a
 //! steady emission; each later frame runs one step.
 
+use std::sync::Arc;
+
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 
@@ -97,14 +99,34 @@ pub struct SprayUniforms {
     pub up: [f32; 4],
 }
 
+/// What a particle pool was made for: the scene's `[spray]` and the emitters. Both back ends
+/// keep a pool across frames only while its key and its step count agree with the frame's
+/// ([`SprayFrame::continues`]); otherwise it starts again from free slots.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PoolKey {
+    /// The scene's spray.
+    pub spray: crate::scene::Spray,
+    /// The emitters (shared with the plan that found them).
+    pub emitters: Arc<Vec<Emitter>>,
+}
+
 /// The particles of a scene, living across frames in `FrameState` (the CPU's copy; the GPU
 /// keeps its own in a storage buffer).
 #[derive(Clone, Debug, PartialEq)]
 pub struct SprayState {
+    /// What the pool was made for.
+    pub key: PoolKey,
     /// The slots.
     pub particles: Vec<Particle>,
     /// Steps run so far.
     pub steps: u64,
+}
+
+impl SprayState {
+    /// A pool of free slots for `key`, `steps` steps into the animation.
+    pub fn fresh(key: PoolKey, steps: u64) -> Self {
+        Self { particles: vec![Particle::default(); key.spray.particles as usize], key, steps }
+    }
 }
 
 /// The random number of stream `k` for slot `i` at step `step`, in [0, 1): a counter-based
@@ -204,13 +226,6 @@ pub fn emitters(scene: &Scene, bound: f64) -> Vec<Emitter> {
     all
 }
 
-/// The wave bound the spray's emitters lie within: 3·H_s of the scene's spectrum (0 for a
-/// flat sea).
-pub fn wave_bound(scene: &Scene) -> f64 {
-    crate::frame::ProjectedGridBlock::BOUND_OVER_HS
-        * scene.ocean.wave_spectrum().map_or(0.0, |s| s.significant_wave_height())
-}
-
 /// The uniforms of step `step` of the scene's spray seen by `camera`.
 pub fn spray_uniforms(
     scene: &Scene,
@@ -252,8 +267,10 @@ pub fn spray_uniforms(
 /// uniforms of each of its steps (from step `first`), and the draw's uniforms (after them).
 #[derive(Clone, Debug)]
 pub struct SprayFrame {
-    /// The scene's emitters.
-    pub emitters: Vec<Emitter>,
+    /// The pool this frame continues (or starts).
+    pub key: PoolKey,
+    /// Steps the pool has run before this frame.
+    pub first: u64,
     /// One per step, in order.
     pub steps: Vec<SprayUniforms>,
     /// The sprites' draw.
@@ -261,7 +278,8 @@ pub struct SprayFrame {
 }
 
 impl SprayFrame {
-    /// The pass of a frame of `plan` seen by `camera` running `steps` steps from `first`.
+    /// The pass of a frame of `plan` seen by `camera` running `steps` steps from `first`; the
+    /// emitters are the plan's ([`crate::plan::FramePlan::spray_emitters`], found once).
     pub fn new(
         scene: &Scene,
         plan: &crate::plan::FramePlan,
@@ -269,10 +287,20 @@ impl SprayFrame {
         first: u64,
         steps: u64,
     ) -> Self {
-        let emitters = emitters(scene, wave_bound(scene));
+        let emitters = Arc::clone(&plan.spray_emitters);
         let waves = plan.runs(crate::plan::Pass::Waves);
         let n = emitters.len() as u32;
         let at = |k| spray_uniforms(scene, camera, waves, n, k);
-        Self { steps: (first..first + steps).map(at).collect(), draw: at(first + steps), emitters }
+        Self {
+            key: PoolKey { spray: scene.spray.clone(), emitters },
+            first,
+            steps: (first..first + steps).map(at).collect(),
+            draw: at(first + steps),
+        }
+    }
+
+    /// Whether a pool made for `key` that has run `steps` steps goes on into this frame.
+    pub fn continues(&self, key: &PoolKey, steps: u64) -> bool {
+        *key == self.key && steps == self.first
     }
 }

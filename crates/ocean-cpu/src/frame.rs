@@ -282,7 +282,7 @@ impl<'e> CpuBackend<'e> {
     fn take(&mut self, id: ResourceId) -> Texture2D {
         match self.maps.iter().position(|(m, _)| *m == id) {
             Some(i) => self.maps.swap_remove(i).1,
-            None => Texture2D::new(1, 1, vec![[0.0; 4]]),
+            None => EMPTY_MAP.clone(),
         }
     }
 
@@ -290,17 +290,15 @@ impl<'e> CpuBackend<'e> {
     fn take_chain(&mut self, id: ResourceId) -> MipChain {
         match self.chains.iter().position(|(m, _)| *m == id) {
             Some(i) => self.chains.swap_remove(i).1,
-            None => MipChain::single(Texture2D::new(1, 1, vec![[0.0; 4]])),
+            None => MipChain::single(EMPTY_MAP.clone()),
         }
     }
 
     /// `wave_mips`: the two chains from the slope maps, and the filtered Fresnel table when
     /// the plan sizes it.
     fn mip_chains(&mut self, frame: &FrameInputs<'_>) {
-        let empty = Texture2D::new(1, 1, vec![[0.0; 4]]);
         for (src, dst) in ResourceId::SLOPE_CHAINS {
-            let map = self.maps.iter().find(|(m, _)| *m == src).map_or(&empty, |(_, t)| t);
-            let chain = wave_mips::dispatch(map);
+            let chain = wave_mips::dispatch(self.map_or_empty(src));
             self.chains.retain(|(m, _)| *m != dst);
             self.chains.push((dst, chain));
         }
@@ -566,21 +564,15 @@ impl Backend for CpuBackend<'_> {
     ) -> Result<(), Error> {
         let work =
             SprayFrame::new(frame.scene, frame.plan, &frame.camera, state.spray_steps, steps);
-        let n = frame.scene.spray.particles as usize;
-        // A pool of another size, or a state the GPU advanced, starts again from free slots.
-        let fresh = |steps| SprayState { particles: vec![spray::Particle::default(); n], steps };
-        let pool = state.spray.get_or_insert_with(|| fresh(0));
-        if pool.particles.len() != n || pool.steps != state.spray_steps {
-            *pool = fresh(state.spray_steps);
-        }
-        let empty = Texture2D::new(1, 1, vec![[0.0; 4]]);
-        let displacement = self
-            .maps
-            .iter()
-            .find(|(m, _)| *m == ResourceId::Displacement)
-            .map_or(&empty, |(_, t)| t);
+        // Another scene's pool, or a state the GPU advanced, starts again from free slots.
+        let pool = match state.spray.take() {
+            Some(p) if work.continues(&p.key, p.steps) => p,
+            _ => SprayState::fresh(work.key.clone(), state.spray_steps),
+        };
+        let pool = state.spray.insert(pool);
+        let displacement = self.map_or_empty(ResourceId::Displacement);
         for u in &work.steps {
-            spray::step(&mut pool.particles, u, &work.emitters, displacement);
+            spray::step(&mut pool.particles, u, &work.key.emitters, displacement);
         }
         pool.steps = state.spray_steps + steps;
         let hdr = self.hdr.get_or_insert_with(|| new_hdr(frame.plan));

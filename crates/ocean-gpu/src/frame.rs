@@ -564,11 +564,8 @@ impl Backend for GpuBackend<'_> {
         // The pool stays on the device while the scene's spray and the animation's step count
         // agree with it; otherwise (another scene, a fresh state) it starts again from free
         // slots, as the CPU's does.
-        let keep = self.spray.as_ref().is_some_and(|p| {
-            p.key.0 == scene.spray && p.key.1 == work.emitters && p.steps == state.spray_steps
-        });
-        if !keep {
-            let mut pool = GpuSpray::new(device, &scene.spray, work.emitters.clone());
+        if !self.spray.as_ref().is_some_and(|p| work.continues(&p.key, p.steps)) {
+            let mut pool = GpuSpray::new(device, work.key.clone());
             pool.steps = state.spray_steps;
             *self.spray = Some(pool);
         }

@@ -49,8 +49,8 @@ pub struct SprayStage {
 
 /// A particle pool on the device: the slots, the emitters, and the steps run.
 pub struct GpuSpray {
-    /// The scene's spray and emitters it was made for.
-    pub key: (ocean_core::scene::Spray, Vec<Emitter>),
+    /// What it was made for.
+    pub key: ocean_core::spray::PoolKey,
     /// The slots (`Particle`, storage, copy source for read-back).
     pub particles: wgpu::Buffer,
     /// The emitters (at least one element: a buffer cannot be empty).
@@ -62,32 +62,22 @@ pub struct GpuSpray {
 }
 
 impl GpuSpray {
-    /// A pool of `count` free slots for `emitters` (zeroed once, at creation).
-    pub fn new(
-        device: &wgpu::Device,
-        spray: &ocean_core::scene::Spray,
-        emitters: Vec<Emitter>,
-    ) -> Self {
-        let count = spray.particles;
+    /// A pool of free slots for `key` (zeroed once, at creation).
+    pub fn new(device: &wgpu::Device, key: ocean_core::spray::PoolKey) -> Self {
+        let count = key.spray.particles;
         let particles = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("ocean.spray.particles"),
             contents: bytemuck::cast_slice(&vec![Particle::default(); count as usize]),
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
         });
         let placeholder = [Emitter::default()];
-        let e: &[Emitter] = if emitters.is_empty() { &placeholder } else { &emitters };
+        let e: &[Emitter] = if key.emitters.is_empty() { &placeholder } else { &key.emitters };
         let emitter_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("ocean.spray.emitters"),
             contents: bytemuck::cast_slice(e),
             usage: wgpu::BufferUsages::STORAGE,
         });
-        Self {
-            key: (spray.clone(), emitters),
-            particles,
-            emitters: emitter_buffer,
-            count,
-            steps: 0,
-        }
+        Self { key, particles, emitters: emitter_buffer, count, steps: 0 }
     }
 }
 

@@ -323,10 +323,14 @@ pub struct FramePlan {
     /// viewport, at least 1).
     pub reflection_map_size: [u32; 2],
     /// How far the waves may reach above and below the sea plane, and horizontally (the
-    /// choppy displacement), m: the projected grid's slab and its edge's margin (surface
-    /// `projected_grid`; 0 for other surfaces). Computed once here (the spectrum's
-    /// significant wave height is a quadrature), not per frame's uniforms.
+    /// choppy displacement), m: the projected grid's slab and its edge's margin, the spray's
+    /// band (0 where neither surface `projected_grid` nor spray `particles` is used).
+    /// Computed once here (the spectrum's significant wave height is a quadrature), not per
+    /// frame's uniforms.
     pub wave_bound_m: [f64; 2],
+    /// The spray's emitters (spray `particles`; empty otherwise), found once per plan.
+    #[serde(skip)]
+    pub spray_emitters: std::sync::Arc<Vec<crate::spray::Emitter>>,
 }
 
 /// The vertical extent of an object, m.
@@ -505,7 +509,9 @@ impl FramePlan {
             reflection_map_size: [scene.camera.width, scene.camera.height].map(|side| {
                 ((f64::from(side) * scene.quality.reflection_map_scale).round() as u32).max(1)
             }),
-            wave_bound_m: if techniques.of(Stage::Surface).name == "projected_grid" {
+            wave_bound_m: if techniques.of(Stage::Surface).name == "projected_grid"
+                || techniques.of(Stage::Spray).name == "particles"
+            {
                 // A validated scene's spectrum exists; without one the sea is flat.
                 let hs = scene.ocean.wave_spectrum().map_or(0.0, |s| s.significant_wave_height());
                 let a = crate::frame::ProjectedGridBlock::BOUND_OVER_HS * hs;
@@ -513,7 +519,12 @@ impl FramePlan {
             } else {
                 [0.0; 2]
             },
+            spray_emitters: std::sync::Arc::default(),
         };
+        if techniques.of(Stage::Spray).name == "particles" {
+            plan.spray_emitters =
+                std::sync::Arc::new(crate::spray::emitters(scene, plan.wave_bound_m[0]));
+        }
         let full = "full plan: every pass the scene can use";
         let mut objects = PassObjects::default();
         for pass in Pass::ALL {
@@ -737,8 +748,7 @@ impl FramePlan {
                     if t != "particles" {
                         (false, format!("spray = {t}"))
                     } else {
-                        let n =
-                            crate::spray::emitters(scene, crate::spray::wave_bound(scene)).len();
+                        let n = plan.spray_emitters.len();
                         if n == 0 && opt.prune {
                             (
                                 false,
