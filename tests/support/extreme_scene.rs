@@ -108,9 +108,14 @@ pub fn literal(limit: &Limit, v: f64) -> String {
 pub fn scene_text(values: &[(&str, String)], objects: &[&str]) -> String {
     let mut tables: Vec<(&str, Vec<String>)> = Vec::new();
     let mut object_lines = Vec::new();
+    let mut wave_lines = Vec::new();
     for (key, value) in values {
         if let Some(field) = key.strip_prefix("objects.*.") {
             object_lines.push((field, value.clone()));
+            continue;
+        }
+        if let Some(field) = key.strip_prefix("gerstner.waves.*.") {
+            wave_lines.push(format!("{field} = {value}"));
             continue;
         }
         let (table, field) = key.split_once('.').unwrap_or(("", key));
@@ -128,6 +133,15 @@ pub fn scene_text(values: &[(&str, String)], objects: &[&str]) -> String {
             lines.push(format!("heightmap = {REEF:?}"));
         }
         text += &format!("[{table}]\n{}\n", lines.join("\n"));
+    }
+    if !wave_lines.is_empty() {
+        // One explicit wave with the drawn fields; the two it needs default here.
+        for (field, default) in [("amplitude_m", "0.5"), ("wavelength_m", "20.0")] {
+            if !wave_lines.iter().any(|l| l.starts_with(field)) {
+                wave_lines.push(format!("{field} = {default}"));
+            }
+        }
+        text += &format!("[[gerstner.waves]]\n{}\n", wave_lines.join("\n"));
     }
     for kind in objects {
         text += &format!("[[objects]]\nkind = \"{kind}\"\n");
@@ -208,6 +222,15 @@ pub fn random_extreme(rng: &mut Rng) -> String {
             continue;
         }
         values.push((limit.key, drawn(limit, Draw::Random, rng)));
+    }
+    // A lifetime range is drawn as two ends in order (validation refuses them swapped).
+    let life = |k: &str| values.iter().position(|(key, _)| *key == k);
+    if let (Some(a), Some(b)) = (life("gerstner.min_lifetime_s"), life("gerstner.max_lifetime_s")) {
+        let num = |i: usize| values[i].1.parse::<f64>().unwrap_or(0.0);
+        if num(a) > num(b) {
+            let (lo, hi) = (values[b].1.clone(), values[a].1.clone());
+            (values[a].1, values[b].1) = (lo, hi);
+        }
     }
     let small =
         |rng: &mut Rng, xs: &[u32]| xs[(rng.next_u64() % xs.len() as u64) as usize].to_string();

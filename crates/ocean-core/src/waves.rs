@@ -11,6 +11,7 @@
 //! - Everything up to the FFT is f64; maps are f32 or f64 ([`MapFloat`]).
 
 pub mod cycle;
+pub mod gerstner;
 pub mod modes;
 pub mod query;
 pub mod surface;
@@ -21,7 +22,7 @@ pub use cycle::{FrameCycle, MAX_FRAME_CYCLE_BYTES};
 pub use modes::{Band, MAX_RESOLUTION, Mode, ModeParams, WaveModes, signed_index};
 pub use query::{
     INVERSION_TOLERANCE_REL, Inversion, MAX_INVERSION_ITERATIONS, SurfaceQuery, SurfaceSample,
-    eval_direct,
+    eval_direct, invert_displacement,
 };
 pub use surface::{OceanParams, OceanSurface};
 pub use synthesis::{MapFloat, Synthesizer, WaveMaps};

@@ -95,6 +95,8 @@ pub struct Scene {
     pub water: Water,
     /// Objects above and below the water.
     pub objects: Vec<Object>,
+    /// Waves technique `gerstner`'s waves (seed 002).
+    pub gerstner: crate::waves::gerstner::Gerstner,
     /// The sea floor; absent means a bottomless sea.
     pub terrain: Option<Terrain>,
     /// Parameters of seed 001's techniques (shading `chiu`).

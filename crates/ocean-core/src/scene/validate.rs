@@ -13,6 +13,7 @@
 
 use super::{ObjectKind, Scene, Shape};
 use crate::error::number;
+use crate::waves::gerstner::MAX_GERSTNER_WAVES;
 
 /// The accepted range of one numeric scene key, inclusive at both ends (NaN never passes).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -221,17 +222,27 @@ pub const LIMITS: &[Limit] = &[
     real("objects.*.radius", MIN_LENGTH_M, MAX_COORDINATE_M, "m"),
     real("objects.*.size", MIN_LENGTH_M, MAX_COORDINATE_M, "m, each edge"),
     real("objects.*.color", 0.0, MAX_COLOUR, "linear RGB albedo"),
+    whole("gerstner.count", 0.0, MAX_GERSTNER_WAVES as f64, "waves the generator keeps at a time"),
+    real("gerstner.median_wavelength_m", 0.01, 1.0e4, "m"),
+    real("gerstner.median_amplitude_m", 0.0, 1.0e3, "m"),
+    real("gerstner.spread_deg", 0.0, 180.0, "degrees either side of the wind; the seed's 135"),
+    real("gerstner.choppiness", 0.0, 1.0, "each drawn steepness is about 0.95 times it"),
+    real("gerstner.min_lifetime_s", 0.01, 1.0e6, "s"),
+    real("gerstner.max_lifetime_s", 0.01, 1.0e6, "s, at least gerstner.min_lifetime_s"),
+    whole("gerstner.seed", 0.0, 4_294_967_295.0, "any u32; the generator's draws"),
+    real("gerstner.waves.*.amplitude_m", 0.0, 1.0e3, "m"),
+    real("gerstner.waves.*.wavelength_m", 0.01, 1.0e4, "m"),
+    real("gerstner.waves.*.direction_deg", -360.0, 360.0, "degrees from +x towards +z"),
+    real("gerstner.waves.*.steepness", 0.0, 1.0, "0 a sine wave, 1 a cusp at the crest"),
+    real("gerstner.waves.*.phase", -1.0e3, 1.0e3, "radians"),
 ];
 
-/// The limit of a key (`objects.3.radius` finds `objects.*.radius`).
+/// The limit of a key (`objects.3.radius` finds `objects.*.radius`: an index stands for every
+/// element of its array).
 pub fn limit(key: &str) -> Option<&'static Limit> {
-    let pattern = match key.strip_prefix("objects.") {
-        Some(rest) => match rest.split_once('.') {
-            Some((index, field)) if index.parse::<usize>().is_ok() => format!("objects.*.{field}"),
-            _ => key.to_owned(),
-        },
-        None => key.to_owned(),
-    };
+    let pattern: Vec<&str> =
+        key.split('.').map(|p| if p.parse::<usize>().is_ok() { "*" } else { p }).collect();
+    let pattern = pattern.join(".");
     LIMITS.iter().find(|l| l.key == pattern)
 }
 
@@ -334,6 +345,7 @@ impl Scene {
                 _ => {}
             }
         }
+        self.check_gerstner()?;
         let ch = &self.chiu;
         check("chiu.zeta_m", &[ch.zeta_m])?;
         check("chiu.shininess_per_m", &[ch.shininess_per_m])?;
@@ -390,6 +402,43 @@ impl Scene {
             };
             (key, e.to_string())
         })
+    }
+
+    fn check_gerstner(&self) -> Result<(), Refusal> {
+        let g = &self.gerstner;
+        check_u32("gerstner.count", g.count)?;
+        check("gerstner.median_wavelength_m", &[g.median_wavelength_m])?;
+        check("gerstner.median_amplitude_m", &[g.median_amplitude_m])?;
+        check("gerstner.spread_deg", &[g.spread_deg])?;
+        check("gerstner.choppiness", &[g.choppiness])?;
+        check("gerstner.min_lifetime_s", &[g.min_lifetime_s])?;
+        check("gerstner.max_lifetime_s", &[g.max_lifetime_s])?;
+        check_u32("gerstner.seed", g.seed)?;
+        if g.max_lifetime_s < g.min_lifetime_s {
+            return Err((
+                "gerstner.max_lifetime_s".into(),
+                format!(
+                    "must be at least gerstner.min_lifetime_s ({}), got {}",
+                    number(g.min_lifetime_s),
+                    number(g.max_lifetime_s)
+                ),
+            ));
+        }
+        if g.waves.len() > MAX_GERSTNER_WAVES {
+            return Err((
+                "gerstner.waves".into(),
+                format!("at most {MAX_GERSTNER_WAVES} waves, got {}", g.waves.len()),
+            ));
+        }
+        for (i, w) in g.waves.iter().enumerate() {
+            let key = |f: &str| format!("gerstner.waves.{i}.{f}");
+            check(&key("amplitude_m"), &[w.amplitude_m])?;
+            check(&key("wavelength_m"), &[w.wavelength_m])?;
+            check(&key("direction_deg"), &[w.direction_deg])?;
+            check(&key("steepness"), &[w.steepness])?;
+            check(&key("phase"), &[w.phase])?;
+        }
+        Ok(())
     }
 
     fn check_objects(&self) -> Result<(), Refusal> {

@@ -249,54 +249,12 @@ impl SurfaceQuery {
         } else {
             (0.0, 0.0)
         };
-        let (tx, tz) = (x - x_base, z - z_base);
         let tolerance = INVERSION_TOLERANCE_REL * l;
-        let residual =
-            |p: (f64, f64), s: &SurfaceSample| (p.0 + s.disp_x - tx, p.1 + s.disp_z - tz);
-        let mut p = (tx, tz);
-        let mut s = self.sample(p.0, p.1);
-        let mut r = residual(p, &s);
-        let mut r_len = r.0.hypot(r.1);
-        let mut iterations = 0;
-        while r_len > tolerance && iterations < MAX_INVERSION_ITERATIONS {
-            iterations += 1;
-            let a = 1.0 + s.disp_x_dx;
-            let d = 1.0 + s.disp_z_dz;
-            let b = s.disp_x_dz;
-            let det = a * d - b * b;
-            // Below this J the Newton step grows like 1/J and points anywhere; the
-            // fixed-point step is bounded by |r|.
-            let step = if det > 1e-3 {
-                (-(d * r.0 - b * r.1) / det, -(a * r.1 - b * r.0) / det)
-            } else {
-                (-r.0, -r.1)
-            };
-            let mut scale = 1.0;
-            let mut improved = false;
-            for _ in 0..=MAX_BACKTRACKS {
-                let q = (p.0 + scale * step.0, p.1 + scale * step.1);
-                let sq = self.sample(q.0, q.1);
-                let rq = residual(q, &sq);
-                let rq_len = rq.0.hypot(rq.1);
-                if rq_len < r_len {
-                    (p, s, r, r_len) = (q, sq, rq, rq_len);
-                    improved = true;
-                    break;
-                }
-                scale *= 0.5;
-            }
-            if !improved {
-                break;
-            }
-        }
-        Inversion {
-            x0: x_base + p.0,
-            z0: z_base + p.1,
-            residual_m: r_len,
-            iterations,
-            converged: r_len <= tolerance,
-            sample: s,
-        }
+        let mut inv =
+            invert_displacement(|x0, z0| self.sample(x0, z0), x - x_base, z - z_base, tolerance);
+        inv.x0 += x_base;
+        inv.z0 += z_base;
+        inv
     }
 
     /// The elevation of the displaced surface above the world point (x, z): h(x0) where
@@ -323,4 +281,60 @@ pub fn eval_direct(
     z: f64,
 ) -> Result<SurfaceSample> {
     Ok(SurfaceQuery::new(modes, t, choppiness)?.sample(x, z))
+}
+
+/// Newton's method of [`SurfaceQuery::invert`] on any displaced surface `sample` (the fields
+/// at a parameter point): the parameter point whose displaced position is (x, z), to
+/// `tolerance` metres, the best point seen when it does not converge.
+pub fn invert_displacement(
+    sample: impl Fn(f64, f64) -> SurfaceSample,
+    x: f64,
+    z: f64,
+    tolerance: f64,
+) -> Inversion {
+    let residual = |p: (f64, f64), s: &SurfaceSample| (p.0 + s.disp_x - x, p.1 + s.disp_z - z);
+    let mut p = (x, z);
+    let mut s = sample(p.0, p.1);
+    let mut r = residual(p, &s);
+    let mut r_len = r.0.hypot(r.1);
+    let mut iterations = 0;
+    while r_len > tolerance && iterations < MAX_INVERSION_ITERATIONS {
+        iterations += 1;
+        let a = 1.0 + s.disp_x_dx;
+        let d = 1.0 + s.disp_z_dz;
+        let b = s.disp_x_dz;
+        let det = a * d - b * b;
+        // Below this J the Newton step grows like 1/J and points anywhere; the fixed-point
+        // step is bounded by |r|.
+        let step = if det > 1e-3 {
+            (-(d * r.0 - b * r.1) / det, -(a * r.1 - b * r.0) / det)
+        } else {
+            (-r.0, -r.1)
+        };
+        let mut scale = 1.0;
+        let mut improved = false;
+        for _ in 0..=MAX_BACKTRACKS {
+            let q = (p.0 + scale * step.0, p.1 + scale * step.1);
+            let sq = sample(q.0, q.1);
+            let rq = residual(q, &sq);
+            let rq_len = rq.0.hypot(rq.1);
+            if rq_len < r_len {
+                (p, s, r, r_len) = (q, sq, rq, rq_len);
+                improved = true;
+                break;
+            }
+            scale *= 0.5;
+        }
+        if !improved {
+            break;
+        }
+    }
+    Inversion {
+        x0: p.0,
+        z0: p.1,
+        residual_m: r_len,
+        iterations,
+        converged: r_len <= tolerance,
+        sample: s,
+    }
 }
