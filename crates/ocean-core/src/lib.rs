@@ -24,6 +24,7 @@ pub mod frame;
 pub mod fresnel;
 pub mod fuzz;
 pub mod geometry;
+pub mod ggx;
 pub mod plan;
 pub mod registry;
 pub mod rng;
