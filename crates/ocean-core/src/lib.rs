@@ -14,6 +14,7 @@
 //! - h(x, t) = Σ_k h̃(k, t) exp(i k·x) — no 1/N² factor (it is folded into h̃), so an inverse
 //!   FFT without normalisation computes it.
 
+pub mod atmosphere;
 pub mod camera;
 pub mod camera_uniforms;
 pub mod clouds;

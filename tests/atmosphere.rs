@@ -1,0 +1,123 @@
+//! The single-scattering atmosphere of sky technique `atmosphere` (`ocean_core::atmosphere`):
+//! normalised phase functions, the vertical optical depth of an exponential atmosphere in
+//! closed form, the shader's step counts against a brute-force integration at several sun
+//! elevations, the colours Rayleigh scattering must give, and finite values at and below the
+//! horizon.
+
+use std::f64::consts::PI;
+
+use ocean_core::atmosphere::{
+    EARTH_RADIUS_M, MIE_BETA, MIE_EXTINCTION_RATIO, MIE_G, MIE_HEIGHT_M, RAYLEIGH_BETA,
+    RAYLEIGH_HEIGHT_M, SKY_STEPS, SUN_STEPS, TOP_RADIUS_M, mie_phase, rayleigh_phase, sky_radiance,
+    sun_transmittance,
+};
+
+const E_SUN: [f64; 3] = [1.0; 3];
+
+fn dir(elevation_deg: f64, azimuth_deg: f64) -> [f64; 3] {
+    let (e, a) = (elevation_deg.to_radians(), azimuth_deg.to_radians());
+    [e.cos() * a.cos(), e.sin(), e.cos() * a.sin()]
+}
+
+#[test]
+fn the_phase_functions_are_normalised() {
+    let n = 200_000;
+    let integral = |p: &dyn Fn(f64) -> f64| -> f64 {
+        (0..n)
+            .map(|i| 2.0 * PI * p(-1.0 + (i as f64 + 0.5) * 2.0 / n as f64) * 2.0 / n as f64)
+            .sum()
+    };
+    let r = integral(&rayleigh_phase);
+    let m = integral(&|mu| mie_phase(mu, MIE_G));
+    println!("∫ P dω: Rayleigh {r:.8}, Mie (g = {MIE_G}) {m:.8}");
+    assert!((r - 1.0).abs() < 1e-8 && (m - 1.0).abs() < 1e-6, "{r} {m}");
+    // Mie scatters forwards.
+    assert!(mie_phase(1.0, MIE_G) > 100.0 * mie_phase(-1.0, MIE_G));
+}
+
+#[test]
+fn the_vertical_optical_depth_is_the_exponential_atmospheres() {
+    // Straight up from sea level: τ = β H (1 − e^{−Z/H}) per constituent, Z the top's height.
+    let z = TOP_RADIUS_M - EARTH_RADIUS_M;
+    let t = sun_transmittance([0.0, EARTH_RADIUS_M, 0.0], [0.0, 1.0, 0.0], 20_000);
+    let mie = MIE_BETA * MIE_EXTINCTION_RATIO * MIE_HEIGHT_M * (1.0 - (-z / MIE_HEIGHT_M).exp());
+    for c in 0..3 {
+        let rayleigh =
+            RAYLEIGH_BETA[c] * RAYLEIGH_HEIGHT_M * (1.0 - (-z / RAYLEIGH_HEIGHT_M).exp());
+        let want = (-(rayleigh + mie)).exp();
+        println!("channel {c}: T = {:.9}, closed form {want:.9}", t[c]);
+        assert!((t[c] - want).abs() < 1e-7, "{} vs {want}", t[c]);
+    }
+    // The planet blocks the sun below the horizon.
+    assert_eq!(sun_transmittance([0.0, EARTH_RADIUS_M + 10.0, 0.0], dir(-5.0, 0.0), 64), [0.0; 3]);
+}
+
+#[test]
+fn the_shaders_step_counts_stay_near_a_brute_force_integration() {
+    let mut worst: f64 = 0.0;
+    let mut coarse_worst: f64 = 0.0;
+    for sun_elevation in [90.0, 45.0, 10.0, 2.0] {
+        let sun = dir(sun_elevation, 0.0);
+        for elevation in [90.0, 60.0, 30.0, 10.0, 3.0, 0.5] {
+            for azimuth in [0.0, 60.0, 120.0, 180.0] {
+                let v = dir(elevation, azimuth);
+                let truth = sky_radiance(0.0, v, sun, E_SUN, 4000, 400);
+                let fast = sky_radiance(0.0, v, sun, E_SUN, SKY_STEPS, SUN_STEPS);
+                let coarse = sky_radiance(0.0, v, sun, E_SUN, 4, 2);
+                for c in 0..3 {
+                    let rel = |x: f64| (x - truth[c]).abs() / truth[c];
+                    worst = worst.max(rel(fast[c]));
+                    coarse_worst = coarse_worst.max(rel(coarse[c]));
+                }
+            }
+        }
+    }
+    println!(
+        "{SKY_STEPS} × {SUN_STEPS} steps against 4000 × 400: worst relative error {worst:.4} \
+         (4 × 2 steps: {coarse_worst:.3})"
+    );
+    assert!(worst < 0.03, "{worst}");
+    assert!(coarse_worst > 3.0 * worst, "the negative control must be worse: {coarse_worst}");
+}
+
+#[test]
+fn rayleigh_makes_the_noon_sky_blue_and_the_sunset_red() {
+    let noon = sky_radiance(0.0, dir(90.0, 0.0), dir(80.0, 0.0), E_SUN, 400, 100);
+    println!("zenith at noon: {:.3e} {:.3e} {:.3e}", noon[0], noon[1], noon[2]);
+    assert!(noon[2] > noon[1] && noon[1] > noon[0], "{noon:?}");
+    // Towards a setting sun, near the horizon, red gains on blue.
+    let dusk = sky_radiance(0.0, dir(2.0, 0.0), dir(1.0, 0.0), E_SUN, 400, 100);
+    let day = sky_radiance(0.0, dir(2.0, 0.0), dir(60.0, 0.0), E_SUN, 400, 100);
+    println!(
+        "horizon towards the sun: r/b {:.3} at dusk, {:.3} by day",
+        dusk[0] / dusk[2],
+        day[0] / day[2]
+    );
+    assert!(dusk[0] / dusk[2] > 2.0 * day[0] / day[2]);
+}
+
+#[test]
+fn the_sky_is_finite_at_and_below_the_horizon_and_at_night() {
+    for altitude in [0.0, 2.0, 10_000.0, 100_000.0, -5.0] {
+        for sun_elevation in [90.0, 0.0, -0.5, -20.0] {
+            for elevation in [90.0, 0.0, -0.01, -30.0, -90.0] {
+                let l = sky_radiance(
+                    altitude,
+                    dir(elevation, 30.0),
+                    dir(sun_elevation, 0.0),
+                    E_SUN,
+                    SKY_STEPS,
+                    SUN_STEPS,
+                );
+                assert!(
+                    l.iter().all(|x| x.is_finite() && *x >= 0.0),
+                    "{altitude} {sun_elevation} {elevation}: {l:?}"
+                );
+            }
+        }
+    }
+    // No sun above the horizon anywhere on the planet's lit side: a dim, not a bright, sky.
+    let night = sky_radiance(0.0, dir(45.0, 0.0), dir(-20.0, 0.0), E_SUN, SKY_STEPS, SUN_STEPS);
+    let day = sky_radiance(0.0, dir(45.0, 0.0), dir(45.0, 0.0), E_SUN, SKY_STEPS, SUN_STEPS);
+    assert!(night[2] < 1e-3 * day[2], "{night:?} {day:?}");
+}
