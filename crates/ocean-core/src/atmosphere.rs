@@ -18,6 +18,8 @@
 
 use std::f64::consts::PI;
 
+use glam::DVec3;
+
 /// The planet's radius, m.
 pub const EARTH_RADIUS_M: f64 = 6_360_000.0;
 /// The top of the atmosphere, m from the planet's centre.
@@ -53,15 +55,11 @@ pub fn mie_phase(mu: f64, g: f64) -> f64 {
     k * (1.0 + mu * mu) / (1.0 + g2 - 2.0 * g * mu).max(1e-12).powf(1.5)
 }
 
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
 /// Distance along unit `d` from `p` to the sphere of radius `r` about the origin (the far
 /// intersection), or `None` if the ray misses it.
 fn sphere_exit(p: [f64; 3], d: [f64; 3], r: f64) -> Option<f64> {
-    let b = dot(p, d);
-    let c = dot(p, p) - r * r;
+    let b = DVec3::from(p).dot(DVec3::from(d));
+    let c = DVec3::from(p).length_squared() - r * r;
     let disc = b * b - c;
     if disc < 0.0 {
         return None;
@@ -72,8 +70,8 @@ fn sphere_exit(p: [f64; 3], d: [f64; 3], r: f64) -> Option<f64> {
 
 /// Distance along `d` from `p` to the planet, if the ray meets it ahead.
 fn planet_hit(p: [f64; 3], d: [f64; 3]) -> Option<f64> {
-    let b = dot(p, d);
-    let c = dot(p, p) - EARTH_RADIUS_M * EARTH_RADIUS_M;
+    let b = DVec3::from(p).dot(DVec3::from(d));
+    let c = DVec3::from(p).length_squared() - EARTH_RADIUS_M * EARTH_RADIUS_M;
     let disc = b * b - c;
     if disc < 0.0 {
         return None;
@@ -91,7 +89,7 @@ fn extinction(h: f64) -> [f64; 3] {
 
 /// Height above the sea, m (0 at and below it).
 fn height(p: [f64; 3]) -> f64 {
-    (dot(p, p).sqrt() - EARTH_RADIUS_M).max(0.0)
+    (DVec3::from(p).length_squared().sqrt() - EARTH_RADIUS_M).max(0.0)
 }
 
 /// `steps` midpoints (t, dt) over [0, len], gathered towards t = 0 as t = len·u² (dt = 2 len u
@@ -141,7 +139,7 @@ pub fn sky_radiance(
     }
     let x = [0.0, EARTH_RADIUS_M + altitude_m.max(0.0), 0.0];
     let end = planet_hit(x, view).or_else(|| sphere_exit(x, view, TOP_RADIUS_M)).unwrap_or(0.0);
-    let mu = dot(view, sun);
+    let mu = DVec3::from(view).dot(DVec3::from(sun));
     let (pr, pm) = (rayleigh_phase(mu), mie_phase(mu, MIE_G));
     let mut depth = [0.0; 3];
     let mut sum = [0.0; 3];

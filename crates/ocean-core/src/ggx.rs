@@ -20,6 +20,8 @@
 
 use std::f64::consts::PI;
 
+use glam::DVec3;
+
 use crate::fresnel::{fresnel_exact, fresnel_schlick};
 
 /// The least α: below it D is a spike no f64 quadrature or f32 shader resolves (a mirror).
@@ -88,10 +90,6 @@ pub enum GeometryTerm {
     SchlickGgx,
 }
 
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
 /// f(l, v) for unit vectors `n`, `v`, `l` (0 where either lies below the surface), with the
 /// water's index `eta`.
 pub fn cook_torrance(
@@ -103,17 +101,13 @@ pub fn cook_torrance(
     fresnel: FresnelTerm,
     geometry: GeometryTerm,
 ) -> f64 {
-    let (nv, nl) = (dot(n, v), dot(n, l));
+    let (n, v, l) = (DVec3::from(n), DVec3::from(v), DVec3::from(l));
+    let (nv, nl) = (n.dot(v), n.dot(l));
     if nv <= 0.0 || nl <= 0.0 {
         return 0.0;
     }
-    let s = [v[0] + l[0], v[1] + l[1], v[2] + l[2]];
-    let len = dot(s, s).sqrt();
-    if len == 0.0 {
-        return 0.0;
-    }
-    let h = [s[0] / len, s[1] / len, s[2] / len];
-    let hv = dot(h, v).clamp(0.0, 1.0);
+    let Some(h) = (v + l).try_normalize() else { return 0.0 };
+    let hv = h.dot(v).clamp(0.0, 1.0);
     let f = match fresnel {
         FresnelTerm::Exact => fresnel_exact(hv, eta),
         FresnelTerm::Schlick => fresnel_schlick(hv, eta),
@@ -123,5 +117,5 @@ pub fn cook_torrance(
         GeometryTerm::SmithCorrelated => smith_g2(nl, nv, alpha),
         GeometryTerm::SchlickGgx => schlick_ggx_g1(nl, alpha) * schlick_ggx_g1(nv, alpha),
     };
-    f * g * ggx_d(dot(n, h), alpha) / (4.0 * nl * nv)
+    f * g * ggx_d(n.dot(h), alpha) / (4.0 * nl * nv)
 }
