@@ -1,7 +1,9 @@
 // Stage `water`: the sea surface. The vertex shaders displace the surface's mesh by the
 // displacement map (vs_main: the near/far patch mesh of surface `hu_patches`, seed 000 §3,
 // §5.4, the weight w forcing the near patch's boundary and the far patch flat;
-// vs_projected_grid: surface `projected_grid`'s grid, seed 001 §3.1). The fragment shader
+// vs_projected_grid: surface `projected_grid`'s grid, seed 001 §3.1); under waves `gerstner`
+// by the sum of the waves instead (shared/gerstner.wgsl, seed 002), whose slopes the fragment
+// shader then takes unfiltered. The fragment shader
 // bumps the normal with the bump map (§5), filtered by the far-field technique, and shades
 // the water seen from above by the shading technique, imported as `technique/shading`
 // (shade_above: `hu` seed 000's eq. 3, `chiu` seed 001's eqs. 2–8); the environment is the
@@ -13,6 +15,7 @@
 // #import shared/frame.wgsl
 // #import shared/optics.wgsl
 // #import shared/floor.wgsl
+// #import shared/gerstner.wgsl
 // #import technique/sky
 // #import technique/shading
 
@@ -115,6 +118,10 @@ fn water_vertex(pos: vec2<f32>, weight: f32) -> VertexOut {
     var d = textureSampleLevel(displacement, wrap_linear, uv_d, 0.0) * (weight * frame.passes.waves);
     if (frame.scales.count > 0.0) {
         d = multi_scale_displacement(pos) * (weight * frame.passes.waves);
+    }
+    // Waves technique `gerstner`: the sum of the waves at the vertex, no maps.
+    if (frame.gerstner.count > 0.0) {
+        d = gerstner_displacement(pos) * weight;
     }
     // Camera-relative: c − eye (formed in f64 on the CPU) plus the vertex's offset from c.
     let plane = pos + frame.tiling.mesh_offset;
@@ -338,6 +345,10 @@ fn subtexel(lod: f32) -> f32 {
 // spans lengthwise) is replaced by that of the visible facets and the mean slope shifted by
 // theirs. The bump map's slopes only bend the normal: no facet of theirs hides another.
 fn filtered_slopes(in: VertexOut) -> vec3<f32> {
+    // Waves technique `gerstner`: the waves' own slopes, filtered analytically; no bump map.
+    if (frame.gerstner.count > 0.0) {
+        return gerstner_filtered_slopes(in.pos, in.rel, in.weight);
+    }
     let rel = in.rel;
     let fp = footprint(rel);
     let wd = in.weight * frame.passes.waves;
@@ -368,6 +379,40 @@ fn filtered_slopes(in: VertexOut) -> vec3<f32> {
         }
     }
     return vec3<f32>(s.x, s.y, variance);
+}
+
+// Waves `gerstner`'s slopes at the fragment's undisplaced point `pos`, filtered over the pixel's
+// footprint on the sea (far fields `mip` and `variance`; `none` takes them as they are): each
+// wave's slope A k D cos θ averaged over a Gaussian of standard deviations half the footprint's
+// short and long sides is damped by g = e^{−½((k·h) σ_long)² − ½((k·h⊥) σ_short)²} (h the
+// horizontal direction to the eye); under `variance` what the average removes,
+// ½(A k)²·[½(1 − g⁴) + cos²θ (g⁴ − g²)] per wave (the variance of A k cos(θ + k·δ) for a
+// Gaussian δ, averaged over the two axes), goes to the BRDF as the maps' unresolved variance
+// does. Returns (slope_x, slope_z, variance), times the mesh's weight.
+fn gerstner_filtered_slopes(pos: vec2<f32>, rel: vec3<f32>, weight: f32) -> vec3<f32> {
+    let fp = footprint(rel);
+    let short = fp.dist * frame.far.pixel_angle;
+    let sigma_long = 0.5 * short / max(fp.vy, 1e-4);
+    let sigma_short = 0.5 * short;
+    var s = vec2<f32>(0.0, 0.0);
+    var variance = 0.0;
+    for (var i = 0u; i < u32(frame.gerstner.count); i = i + 1u) {
+        let a = frame.gerstner.waves[2u * i];
+        let b = frame.gerstner.waves[2u * i + 1u];
+        let c = gerstner_cis(i, pos).x;
+        let kx = TAU * a.x;
+        let kz = TAU * a.y;
+        let k_long = (kx * fp.h.x + kz * fp.h.y) * sigma_long;
+        let k_short = (kz * fp.h.x - kx * fp.h.y) * sigma_short;
+        let g = exp_arith(-0.5 * (k_long * k_long + k_short * k_short));
+        s = s + vec2<f32>(b.z, b.w) * (c * g);
+        if (frame.far.mode == 2.0) {
+            let g2 = g * g;
+            let v = 0.5 * (1.0 - g2 * g2) + c * c * (g2 * g2 - g2);
+            variance = variance + 0.5 * (b.z * b.z + b.w * b.w) * v;
+        }
+    }
+    return vec3<f32>(s.x * weight, s.y * weight, variance * (weight * weight));
 }
 
 // Bumped normal (§5) of the filtered slopes.

@@ -216,6 +216,64 @@ fn heightfield_exr_contract() {
     assert_ne!(std::fs::read(&out).unwrap(), std::fs::read(&again).unwrap());
 }
 
+/// Under waves `gerstner` the heightfield is the waves' sum at the grid's points: one explicit
+/// wave at t = 0 against its closed form (θ = k D·(x, z) + φ; h = A sin θ, D = (s/k) D cos θ,
+/// slopes A k D cos θ, J = 1 − s sin θ for a single wave).
+fn heightfield_of_gerstner_waves_is_their_closed_form() {
+    let dir = tempfile::tempdir().expect("a temp dir");
+    let scene = dir.path().join("g.toml");
+    let (a, lambda, deg, s, phi) = (0.4f64, 12.0f64, 30.0f64, 0.7f64, 0.5f64);
+    std::fs::write(
+        &scene,
+        format!(
+            "[techniques]\nwaves = \"gerstner\"\nfar_field = \"mip\"\n[ocean]\nresolution = 32\npatch_size_m = 40.0\n\
+             [[gerstner.waves]]\namplitude_m = {a}\nwavelength_m = {lambda}\n\
+             direction_deg = {deg}\nsteepness = {s}\nphase = {phi}\n"
+        ),
+    )
+    .unwrap();
+    let out = dir.path().join("g.exr");
+    let o = ocean(&["heightfield", scene.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (w, h, channels) = read_exr(&out);
+    assert_eq!((w, h), (32, 32));
+    let field = |n: &str| &channels.iter().find(|c| c.0 == n).expect(n).1;
+    let k = std::f64::consts::TAU / lambda;
+    let (dx, dz) = (deg.to_radians().cos(), deg.to_radians().sin());
+    let mut worst = 0.0f64;
+    for j in 0..32 {
+        for i in 0..32 {
+            let (x, z) = (f64::from(i) * 40.0 / 32.0, f64::from(j) * 40.0 / 32.0);
+            let theta = k * (dx * x + dz * z) + phi;
+            let want = [
+                ("height", a * theta.sin()),
+                ("disp_x", s / k * dx * theta.cos()),
+                ("disp_z", s / k * dz * theta.cos()),
+                ("slope_x", a * k * dx * theta.cos()),
+                ("slope_z", a * k * dz * theta.cos()),
+                ("jacobian", 1.0 - s * theta.sin()),
+            ];
+            for (name, v) in want {
+                let got = f64::from(field(name)[(j * 32 + i) as usize]);
+                worst = worst.max((got - v).abs());
+            }
+        }
+    }
+    // f32 output of O(1) values: a few 1e-7; a wrong sign, axis or phase is O(0.1).
+    assert!(worst < 1e-6, "worst deviation from the closed form {worst}");
+    // Negative control: the FFT's heightfield of the same [ocean] is another surface.
+    std::fs::write(&scene, "[ocean]\nresolution = 32\npatch_size_m = 40.0\n").unwrap();
+    let fft = dir.path().join("f.exr");
+    assert!(
+        ocean(&["heightfield", scene.to_str().unwrap(), "-o", fft.to_str().unwrap()])
+            .status
+            .success()
+    );
+    let (_, _, f) = read_exr(&fft);
+    let fh = &f.iter().find(|c| c.0 == "height").unwrap().1;
+    assert!(fh.iter().zip(field("height")).any(|(p, q)| (p - q).abs() > 0.01));
+}
+
 fn render_writes_png_and_exr_and_rejects_bad_input() {
     let dir = tempfile::tempdir().expect("a temp dir");
     let png = dir.path().join("o.png");
@@ -338,6 +396,7 @@ fn main() -> std::process::ExitCode {
         cpu: fresnel_csv_contract, fresnel_rejects_bad_eta_without_panicking,
             fresnel_table_exr_contract, fresnel_table_mappings, fresnel_table_needs_an_exr_output,
             bad_scene_names_file_line_key_and_writes_nothing, heightfield_exr_contract,
+            heightfield_of_gerstner_waves_is_their_closed_form,
             render_writes_png_and_exr_and_rejects_bad_input,
             gpu_without_an_adapter_says_what_to_do_and_writes_nothing;
         gpu: render_on_the_gpu_writes_png_and_exr, compare_prints_metrics_writes_images_and_passes,

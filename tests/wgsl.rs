@@ -133,6 +133,9 @@ fn type_name(m: &naga::Module, ty: naga::Handle<naga::Type>) -> String {
         naga::TypeInner::Matrix { columns, rows, scalar: s } => {
             format!("mat{}x{}<{}>", *columns as u8, *rows as u8, scalar(*s))
         }
+        naga::TypeInner::Array { base, size: naga::ArraySize::Constant(n), .. } => {
+            format!("array<{}, {n}>", type_name(m, *base))
+        }
         other => format!("{other:?}"),
     }
 }

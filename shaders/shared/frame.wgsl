@@ -125,6 +125,17 @@ struct MultiScaleBlock {
     pad2: f32,
 }
 
+// Waves technique `gerstner` (ocean-core waves::gerstner): per wave i, waves[2i] = (fx, fz,
+// p0, A), (fx, fz) = k D/2π in turns per metre and p0 the phase at the mesh's reference point
+// in turns; waves[2i + 1] = (qx, qz, A·kx, A·kz), (qx, qz) = (s/k) D. count 0: technique fft.
+struct GerstnerBlock {
+    count: f32,
+    pad0: f32,
+    pad1: f32,
+    pad2: f32,
+    waves: array<vec4<f32>, 128>,
+}
+
 struct FrameUniforms {
     view: ViewBlock,
     sun: SunBlock,
@@ -138,6 +149,7 @@ struct FrameUniforms {
     chiu: ChiuShadingBlock,
     terrain: TerrainBlock,
     scales: MultiScaleBlock,
+    gerstner: GerstnerBlock,
 }
 
 // m · (p, 1), written out so that the order of operations is fixed (the CPU mirror,

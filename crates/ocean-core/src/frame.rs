@@ -371,6 +371,8 @@ pub struct FrameUniforms {
     pub terrain: TerrainBlock,
     /// Eq. 1's multi-scale sampling.
     pub scales: MultiScaleBlock,
+    /// Waves technique `gerstner`'s waves (count 0 under `fft`).
+    pub gerstner: crate::waves::gerstner::GerstnerBlock,
 }
 
 /// Surface `projected_grid` ([`crate::geometry::ProjectedGrid`]): the grid's corners and size.
@@ -750,28 +752,49 @@ impl FrameUniforms {
             } else {
                 MultiScaleBlock::zeroed()
             },
+            gerstner: match (plan.techniques.of(crate::plan::Stage::Waves).name, o.dispersion()) {
+                ("gerstner", Ok(d)) => crate::waves::gerstner::GerstnerBlock::new(
+                    &scene.gerstner.at(o.time_s, &d, o.wind_direction_deg),
+                    mesh_origin,
+                ),
+                _ => Zeroable::zeroed(),
+            },
         }
     }
 }
 
-/// The height query of a frame of `plan` at time `t` (s): the displacement map's field,
-/// summed over eq. 1's scales when the frame's shading is `chiu` (as the water's vertices
-/// sample it), so a floating object agrees with the picture.
+/// The height query of a frame of `plan` at time `t` (s): under waves `fft` the displacement
+/// map's field, summed over eq. 1's scales when the frame's shading is `chiu` (as the water's
+/// vertices sample it); under waves `gerstner` the frame's Gerstner waves. Either way a
+/// floating object agrees with the picture.
 ///
 /// # Errors
-/// The scene's spectrum or modes cannot be built, or a non-finite time.
+/// The scene's spectrum, modes or dispersion cannot be built, or a non-finite time.
 pub fn surface_query(
     scene: &Scene,
     plan: &FramePlan,
     t: f64,
-) -> crate::Result<crate::waves::SurfaceQuery> {
+) -> crate::Result<crate::waves::WaveSurface> {
     let o = &scene.ocean;
+    if plan.techniques.of(crate::plan::Stage::Waves).name == "gerstner" {
+        if !t.is_finite() {
+            return Err(crate::Error::InvalidParameter {
+                name: "time",
+                value: t,
+                reason: "the height query's time must be finite".into(),
+            });
+        }
+        let sea = scene.gerstner.at(t, &o.dispersion()?, o.wind_direction_deg);
+        return Ok(crate::waves::WaveSurface::Gerstner(sea));
+    }
     let q = crate::waves::SurfaceQuery::new(&o.displacement_modes()?, t, o.choppiness)?;
-    Ok(if plan.techniques.of(crate::plan::Stage::Shading).name == "chiu" {
-        q.with_scales(&scene.chiu.scales)
-    } else {
-        q
-    })
+    Ok(crate::waves::WaveSurface::Fft(
+        if plan.techniques.of(crate::plan::Stage::Shading).name == "chiu" {
+            q.with_scales(&scene.chiu.scales)
+        } else {
+            q
+        },
+    ))
 }
 
 /// The sky of a scene: its sun, or, without one, the default sun's sky at zero intensity (the

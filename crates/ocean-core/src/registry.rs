@@ -22,6 +22,7 @@ use crate::plan::Stage as TechniqueStage;
 use crate::sky::SkyUniforms;
 use crate::spray::{Emitter, Particle, SprayUniforms};
 use crate::tonemap::TonemapUniforms;
+use crate::waves::gerstner::GerstnerBlock;
 use crate::waves::uniforms::{FftPassUniforms, WaveModeData, WavesUniforms};
 
 /// A Rust type with a WGSL twin: its name in WGSL (`vec4<f32>`, a struct's name).
@@ -38,6 +39,7 @@ wgsl_types!(
     f32 => "f32", u32 => "u32", [f32; 2] => "vec2<f32>", [f32; 3] => "vec3<f32>",
     [f32; 4] => "vec4<f32>", [u32; 2] => "vec2<u32>", [u32; 4] => "vec4<u32>",
     [[f32; 4]; 4] => "mat4x4<f32>",
+    [[f32; 4]; 128] => "array<vec4<f32>, 128>",
 );
 
 /// One member of a shared struct, as Rust lays it out.
@@ -99,7 +101,8 @@ nested!(
     ProjectedGridBlock,
     ChiuShadingBlock,
     TerrainBlock,
-    MultiScaleBlock
+    MultiScaleBlock,
+    GerstnerBlock
 );
 
 /// The kind of an entry point.
@@ -479,6 +482,7 @@ pub const SHARED: &[SharedFile] = &[
                 pad1,
                 pad2
             }),
+            block!(GerstnerBlock { count, pad0, pad1, pad2, waves }),
             block!(FrameUniforms {
                 view,
                 sun,
@@ -491,7 +495,8 @@ pub const SHARED: &[SharedFile] = &[
                 grid,
                 chiu,
                 terrain,
-                scales
+                scales,
+                gerstner
             }),
         ],
         cpu_mirror: "crates/ocean-cpu/src/shaders/shared/frame.rs",
@@ -529,6 +534,18 @@ pub const SHARED: &[SharedFile] = &[
         source: include_str!("../../../shaders/shared/optics.wgsl"),
         blocks: &[],
         cpu_mirror: "crates/ocean-cpu/src/shaders/shared/optics.rs",
+    },
+    SharedFile {
+        file: "shared/trig.wgsl",
+        source: include_str!("../../../shaders/shared/trig.wgsl"),
+        blocks: &[],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/shared/trig.rs",
+    },
+    SharedFile {
+        file: "shared/gerstner.wgsl",
+        source: include_str!("../../../shaders/shared/gerstner.wgsl"),
+        blocks: &[],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/shared/gerstner.rs",
     },
     SharedFile {
         file: "shared/shadow.wgsl",

@@ -22,7 +22,7 @@ pub use cycle::{FrameCycle, MAX_FRAME_CYCLE_BYTES};
 pub use modes::{Band, MAX_RESOLUTION, Mode, ModeParams, WaveModes, signed_index};
 pub use query::{
     INVERSION_TOLERANCE_REL, Inversion, MAX_INVERSION_ITERATIONS, SurfaceQuery, SurfaceSample,
-    eval_direct, invert_displacement,
+    WaveSurface, eval_direct, invert_displacement,
 };
 pub use surface::{OceanParams, OceanSurface};
 pub use synthesis::{MapFloat, Synthesizer, WaveMaps};

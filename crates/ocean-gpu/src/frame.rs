@@ -773,7 +773,8 @@ impl Renderer {
         // The far field is a uniform of the water pipeline (every technique is in its WGSL),
         // not a composed file; the surface is its vertex entry point (`vs_main` draws the
         // mesh of `hu_patches`, `vs_projected_grid` the grid of `projected_grid`); the spray is
-        // a pass of its own stage, run or skipped by the plan; the sky's
+        // a pass of its own stage, run or skipped by the plan, and so are the waves of `fft`
+        // (waves `gerstner` are summed by the water pipeline itself); the sky's
         // and the shading's files are composed into the `sky` and `water` stages, assembled
         // again for the plan's choice. Any other stage's technique must be the one built.
         use ocean_core::plan::Stage;
@@ -782,6 +783,8 @@ impl Renderer {
                 || (s == Stage::Surface && matches!(name, "hu_patches" | "projected_grid"))
                 // Pass `spray` runs stage `spray`'s pipelines or is skipped.
                 || (s == Stage::Spray && matches!(name, "none" | "particles"))
+                // Waves `fft` run stage `waves`; `gerstner` is a uniform branch of `water`.
+                || (s == Stage::Waves && matches!(name, "fft" | "gerstner"))
         };
         if let Some((stage, t)) = plan.techniques.iter().find(|(s, t)| {
             !crate::common::COMPOSED.contains(s)

@@ -497,6 +497,15 @@ impl FramePlan {
             .and_then(|c| footprint_inside_near_patch(scene, c));
         let techniques = scene.techniques();
         let waves_kernel = WavesKernel::for_ocean(&scene.ocean);
+        // Waves `gerstner` are summed per vertex in the water pass: no maps to make.
+        let gerstner = techniques.of(Stage::Waves).name == "gerstner";
+        let gerstner_reason = || {
+            format!(
+                "waves = gerstner: {} wave(s) summed per vertex and per fragment in the water \
+                 pass, no maps",
+                scene.gerstner.wave_count()
+            )
+        };
         let mut plan = FramePlan {
             system: techniques.system,
             techniques,
@@ -509,7 +518,10 @@ impl FramePlan {
             reflection_map_size: [scene.camera.width, scene.camera.height].map(|side| {
                 ((f64::from(side) * scene.quality.reflection_map_scale).round() as u32).max(1)
             }),
-            wave_bound_m: if techniques.of(Stage::Surface).name == "projected_grid"
+            wave_bound_m: if gerstner {
+                let (v, h) = scene.gerstner.bounds();
+                [v, h]
+            } else if techniques.of(Stage::Surface).name == "projected_grid"
                 || techniques.of(Stage::Spray).name == "particles"
             {
                 // A validated scene's spectrum exists; without one the sea is flat.
@@ -529,6 +541,9 @@ impl FramePlan {
         let mut objects = PassObjects::default();
         for pass in Pass::ALL {
             let (run, reason) = match pass {
+                Pass::Cycle | Pass::Waves | Pass::WaveMips if gerstner => {
+                    (false, gerstner_reason())
+                }
                 Pass::Cycle => match (looping, waves_on, opt.frames) {
                     (false, _, _) => {
                         (false, "loop_period_s = 0: the sea does not loop, nothing to cycle".into())

@@ -98,7 +98,7 @@ const fn t(
 /// Every technique of every stage (DESIGN.md's table).
 pub const TECHNIQUES: &[TechniqueInfo] = &[
     t(Stage::Waves, "fft", "Tessendorf spectrum → displacement + bump maps (seed 000)", true),
-    t(Stage::Waves, "gerstner", "sum of Gerstner waves (seed 002)", false),
+    t(Stage::Waves, "gerstner", "sum of Gerstner waves, per vertex (seed 002)", true),
     t(Stage::Waves, "coastal", "radial waves running to a shore (seed 004)", false),
     t(Stage::Surface, "hu_patches", "near LOD tree + far conic patch (seed 000 §3)", true),
     t(Stage::Surface, "projected_grid", "projected grid (seed 001)", true),
@@ -287,7 +287,32 @@ pub enum TechniqueError {
         /// The technique.
         name: &'static str,
     },
+    /// Two chosen techniques that cannot work together.
+    #[error("{stage_a} technique `{a}` cannot work with {stage_b} technique `{b}`: {why}")]
+    Incompatible {
+        /// The first stage.
+        stage_a: Stage,
+        /// Its technique.
+        a: &'static str,
+        /// The second stage (the one to change).
+        stage_b: Stage,
+        /// Its technique.
+        b: &'static str,
+        /// Why, and what to choose instead.
+        why: &'static str,
+    },
 }
+
+/// Pairs of techniques that cannot work together: (stage, technique, stage, technique, why).
+const INCOMPATIBLE: &[(Stage, &str, Stage, &str, &str)] = &[(
+    Stage::Waves,
+    "gerstner",
+    Stage::FarField,
+    "variance",
+    "the Gerstner waves' slopes are filtered analytically, with no maps, and `variance` needs \
+     the maps' chains for its filtered Fresnel table; choose far_field = \"mip\" (the analytic \
+     filter) or \"none\"",
+)];
 
 /// "hu, chiu (not yet available), …".
 pub fn known_systems() -> String {
@@ -393,12 +418,21 @@ impl Techniques {
     }
 
     /// Checks that the choice can be rendered: every technique available, and no pair that
-    /// cannot work together (none yet: `hu`'s are the only ones built).
+    /// cannot work together.
     ///
     /// # Errors
-    /// [`TechniqueError::NotAvailable`] naming the first technique that is not built.
+    /// [`TechniqueError::NotAvailable`] naming the first technique that is not built, or
+    /// [`TechniqueError::Incompatible`] naming both techniques of a pair.
     pub fn check(&self) -> Result<(), TechniqueError> {
-        self.missing().map_or(Ok(()), Err)
+        if let Some(e) = self.missing() {
+            return Err(e);
+        }
+        for &(stage_a, a, stage_b, b, why) in INCOMPATIBLE {
+            if self.of(stage_a).name == a && self.of(stage_b).name == b {
+                return Err(TechniqueError::Incompatible { stage_a, a, stage_b, b, why });
+            }
+        }
+        Ok(())
     }
 }
 

@@ -398,6 +398,10 @@ impl Scene {
                 TechniqueError::NotAvailable { stage, .. } if techniques.is_overridden(*stage) => {
                     format!("techniques.{stage}")
                 }
+                TechniqueError::Incompatible { stage_a, stage_b, .. } => {
+                    let key = if techniques.is_overridden(*stage_b) { stage_b } else { stage_a };
+                    format!("techniques.{key}")
+                }
                 _ => "system".to_owned(),
             };
             (key, e.to_string())

@@ -156,6 +156,23 @@ impl Gerstner {
         if self.is_drawn() { self.count as usize } else { self.waves.len() }
     }
 
+    /// The most any point can be displaced at any time, (vertical, horizontal), m: Σ A and
+    /// Σ s/k over the explicit waves; for the generator, `count` waves of twice the median
+    /// amplitude, and the steepness of one wave of twice the median wavelength (the n waves
+    /// share a steepness of at most 1).
+    pub fn bounds(&self) -> (f64, f64) {
+        if self.is_drawn() {
+            let n = f64::from(self.count);
+            let horizontal =
+                if self.count > 0 { 2.0 * self.median_wavelength_m / TAU } else { 0.0 };
+            (n * 2.0 * self.median_amplitude_m, horizontal)
+        } else {
+            self.waves.iter().fold((0.0, 0.0), |(v, h), w| {
+                (v + w.amplitude_m, h + w.steepness * w.wavelength_m / TAU)
+            })
+        }
+    }
+
     /// Slot `slot`'s wave at time `t` with the wind at `wind_deg`: the generation alive then,
     /// and its fade weight.
     pub fn drawn(&self, slot: u32, t: f64, wind_deg: f64) -> DrawnWave {
@@ -274,5 +291,48 @@ impl GerstnerSea {
     /// Σ s/k (the projected grid's slab, the spray's band).
     pub fn bounds(&self) -> (f64, f64) {
         self.waves.iter().fold((0.0, 0.0), |(v, h), w| (v + w.amplitude_m, h + w.steepness / w.k))
+    }
+}
+
+/// The uniforms of waves technique `gerstner` (WGSL `GerstnerBlock`, shaders/shared/gerstner.wgsl):
+/// per wave i, `waves[2i]` = (fx, fz, p0, A) and `waves[2i + 1]` = (qx, qz, A·kx, A·kz), with
+/// (fx, fz) = k D/2π in turns per metre, p0 the phase θ at the mesh's reference point in turns
+/// reduced to [−½, ½) (formed in f64, so a far eye keeps its digits), (qx, qz) = (s/k) D.
+/// `count` 0: the waves are the maps' (technique `fft`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct GerstnerBlock {
+    /// Waves summed.
+    pub count: f32,
+    /// Padding.
+    pub pad0: f32,
+    /// Padding.
+    pub pad1: f32,
+    /// Padding.
+    pub pad2: f32,
+    /// Two vec4 per wave.
+    pub waves: [[f32; 4]; 2 * MAX_GERSTNER_WAVES],
+}
+
+impl GerstnerBlock {
+    /// The block of `sea` seen from a mesh whose reference point is world (x, z) `origin`.
+    pub fn new(sea: &GerstnerSea, origin: [f64; 2]) -> Self {
+        let mut b: Self = bytemuck::Zeroable::zeroed();
+        for (i, w) in sea.waves.iter().take(MAX_GERSTNER_WAVES).enumerate() {
+            let theta = w.kx * origin[0] + w.kz * origin[1] + w.theta0;
+            let turns = (theta / TAU).rem_euclid(1.0);
+            let p0 = if turns >= 0.5 { turns - 1.0 } else { turns };
+            let q = w.steepness / w.k;
+            b.waves[2 * i] =
+                [(w.kx / TAU) as f32, (w.kz / TAU) as f32, p0 as f32, w.amplitude_m as f32];
+            b.waves[2 * i + 1] = [
+                (q * w.kx / w.k) as f32,
+                (q * w.kz / w.k) as f32,
+                (w.amplitude_m * w.kx) as f32,
+                (w.amplitude_m * w.kz) as f32,
+            ];
+        }
+        b.count = sea.waves.len().min(MAX_GERSTNER_WAVES) as f32;
+        b
     }
 }

@@ -338,3 +338,42 @@ pub fn invert_displacement(
         sample: s,
     }
 }
+
+/// The height query of either wave model: what [`crate::frame::surface_query`] returns, so
+/// that a floating object, `ocean heightfield` and the tests ask the surface the picture draws
+/// without knowing which waves technique made it.
+#[derive(Clone, Debug)]
+pub enum WaveSurface {
+    /// Waves `fft`: the direct sum of eq. 1's modes.
+    Fft(SurfaceQuery),
+    /// Waves `gerstner`: the sum of the frame's Gerstner waves.
+    Gerstner(super::gerstner::GerstnerSea),
+}
+
+impl WaveSurface {
+    /// The fields at the undisplaced point (x0, z0).
+    pub fn sample(&self, x0: f64, z0: f64) -> SurfaceSample {
+        match self {
+            Self::Fft(q) => q.sample(x0, z0),
+            Self::Gerstner(g) => g.sample(x0, z0),
+        }
+    }
+
+    /// The parameter point whose displaced position is the world point (x, z).
+    pub fn invert(&self, x: f64, z: f64) -> Inversion {
+        match self {
+            Self::Fft(q) => q.invert(x, z),
+            Self::Gerstner(g) => g.invert(x, z),
+        }
+    }
+
+    /// The height of the displaced surface above the world point (x, z).
+    pub fn height_at(&self, x: f64, z: f64) -> f64 {
+        self.invert(x, z).sample.height
+    }
+
+    /// The unit normal of the displaced surface above the world point (x, z).
+    pub fn normal_at(&self, x: f64, z: f64) -> [f64; 3] {
+        self.invert(x, z).sample.normal()
+    }
+}

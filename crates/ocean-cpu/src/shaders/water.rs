@@ -4,6 +4,8 @@
 use ocean_core::frame::FrameUniforms;
 
 use super::shared::frame::{dot3, transform_point, unit};
+use super::shared::gerstner::{gerstner_cis, gerstner_displacement};
+use super::shared::trig::TAU;
 use super::wgsl::{
     Vec2, Vec3, Vec4, abs, clamp, frexp, ldexp, max, sqrt, texture_sample_level, vec2, vec3,
 };
@@ -138,6 +140,9 @@ pub fn water_vertex(pos: Vec2, weight: f32, b: &Bindings<'_>) -> VertexOut {
         * (weight * frame.passes.waves);
     if frame.scales.count > 0.0 {
         d = multi_scale_displacement(pos, b) * (weight * frame.passes.waves);
+    }
+    if frame.gerstner.count > 0.0 {
+        d = gerstner_displacement(pos, frame) * weight;
     }
     let plane = pos + Vec2::from(frame.tiling.mesh_offset);
     let rel = vec3(plane.x + d.x, d.y - frame.view.eye_height, plane.y + d.z);
@@ -374,9 +379,38 @@ pub fn subtexel(lod: f32) -> f32 {
     exp_arith(lod * (2.0 * std::f32::consts::LN_2))
 }
 
+/// `gerstner_filtered_slopes(pos, rel, weight)`.
+pub fn gerstner_filtered_slopes(pos: Vec2, rel: Vec3, weight: f32, frame: &FrameUniforms) -> Vec3 {
+    let fp = footprint(rel, frame);
+    let short = fp.dist * frame.far.pixel_angle;
+    let sigma_long = 0.5 * short / max(fp.vy, 1e-4);
+    let sigma_short = 0.5 * short;
+    let mut s = vec2(0.0, 0.0);
+    let mut variance = 0.0;
+    for i in 0..frame.gerstner.count as usize {
+        let (a, b) = (frame.gerstner.waves[2 * i], frame.gerstner.waves[2 * i + 1]);
+        let c = gerstner_cis(i, pos, frame)[0];
+        let kx = TAU * a[0];
+        let kz = TAU * a[1];
+        let k_long = (kx * fp.h.x + kz * fp.h.y) * sigma_long;
+        let k_short = (kz * fp.h.x - kx * fp.h.y) * sigma_short;
+        let g = exp_arith(-0.5 * (k_long * k_long + k_short * k_short));
+        s = s + vec2(b[2], b[3]) * (c * g);
+        if frame.far.mode == 2.0 {
+            let g2 = g * g;
+            let v = 0.5 * (1.0 - g2 * g2) + c * c * (g2 * g2 - g2);
+            variance += 0.5 * (b[2] * b[2] + b[3] * b[3]) * v;
+        }
+    }
+    vec3(s.x * weight, s.y * weight, variance * (weight * weight))
+}
+
 /// `filtered_slopes(in)`: (s_x, s_z, unresolved variance per axis).
 pub fn filtered_slopes(input: &VertexOut, b: &Bindings<'_>) -> Vec3 {
     let frame = b.frame;
+    if frame.gerstner.count > 0.0 {
+        return gerstner_filtered_slopes(input.pos, input.rel, input.weight, frame);
+    }
     let rel = input.rel;
     let fp = footprint(rel, frame);
     let wd = input.weight * frame.passes.waves;

@@ -5,6 +5,8 @@ pub mod floor;
 pub mod frame;
 pub mod fresnel;
 pub mod fullscreen;
+pub mod gerstner;
 pub mod optics;
 pub mod preetham;
 pub mod shadow;
+pub mod trig;

@@ -1,0 +1,35 @@
+//! Mirror of `shaders/shared/gerstner.wgsl`: waves technique `gerstner` at a point of the mesh.
+
+use ocean_core::frame::FrameUniforms;
+
+use super::trig::cis_turns;
+use crate::shaders::wgsl::{Vec2, Vec4, vec2, vec4};
+
+/// `gerstner_cis(i, pos)`: wave i's (cos θ, sin θ).
+pub fn gerstner_cis(i: usize, pos: Vec2, frame: &FrameUniforms) -> [f32; 2] {
+    let a = frame.gerstner.waves[2 * i];
+    let p = (a[0] * pos.x + a[2]) + a[1] * pos.y;
+    cis_turns(p - (p + 0.5).floor())
+}
+
+/// `gerstner_displacement(pos)`.
+pub fn gerstner_displacement(pos: Vec2, frame: &FrameUniforms) -> Vec4 {
+    let mut d = vec4(0.0, 0.0, 0.0, 0.0);
+    for i in 0..frame.gerstner.count as usize {
+        let cs = gerstner_cis(i, pos, frame);
+        let (a, b) = (frame.gerstner.waves[2 * i], frame.gerstner.waves[2 * i + 1]);
+        d = d + vec4(b[0] * cs[0], a[3] * cs[1], b[1] * cs[0], 0.0);
+    }
+    d
+}
+
+/// `gerstner_slopes(pos)`.
+pub fn gerstner_slopes(pos: Vec2, frame: &FrameUniforms) -> Vec2 {
+    let mut s = vec2(0.0, 0.0);
+    for i in 0..frame.gerstner.count as usize {
+        let cs = gerstner_cis(i, pos, frame);
+        let b = frame.gerstner.waves[2 * i + 1];
+        s = s + vec2(b[2] * cs[0], b[3] * cs[0]);
+    }
+    s
+}

@@ -1,0 +1,39 @@
+// Waves technique `gerstner` (seed 002; ocean-core waves::gerstner) evaluated at a point of
+// the mesh: the sum of the frame's Gerstner waves (`frame.gerstner`, FrameUniforms), with θ in
+// turns from the mesh's reference point so that both back ends form the same f32 phase, and
+// (cos θ, sin θ) by cis_turns. Reads the importing stage's `frame`.
+// CPU mirror: ocean-cpu/src/shaders/shared/gerstner.rs.
+
+// #import shared/trig.wgsl
+
+// The wave i's (cos θ, sin θ) at `pos` (m, relative to the mesh's reference point).
+fn gerstner_cis(i: u32, pos: vec2<f32>) -> vec2<f32> {
+    let a = frame.gerstner.waves[2u * i];
+    // In this order because lavapipe's compiler reassociates a.x·x + a.y·z + a.z so (measured:
+    // 1-ulp phases near the horizon otherwise); written so, both back ends round alike.
+    let p = (a.x * pos.x + a.z) + a.y * pos.y;
+    return cis_turns(p - floor(p + 0.5));
+}
+
+// (disp_x, height, disp_z, 0): Σ (s/k) D cos θ and Σ A sin θ.
+fn gerstner_displacement(pos: vec2<f32>) -> vec4<f32> {
+    var d = vec4<f32>(0.0, 0.0, 0.0, 0.0);
+    for (var i = 0u; i < u32(frame.gerstner.count); i = i + 1u) {
+        let cs = gerstner_cis(i, pos);
+        let a = frame.gerstner.waves[2u * i];
+        let b = frame.gerstner.waves[2u * i + 1u];
+        d = d + vec4<f32>(b.x * cs.x, a.w * cs.y, b.y * cs.x, 0.0);
+    }
+    return d;
+}
+
+// (∂h/∂x, ∂h/∂z) at the undisplaced point: Σ A k D cos θ.
+fn gerstner_slopes(pos: vec2<f32>) -> vec2<f32> {
+    var s = vec2<f32>(0.0, 0.0);
+    for (var i = 0u; i < u32(frame.gerstner.count); i = i + 1u) {
+        let cs = gerstner_cis(i, pos);
+        let b = frame.gerstner.waves[2u * i + 1u];
+        s = s + vec2<f32>(b.z * cs.x, b.w * cs.x);
+    }
+    return s;
+}
