@@ -11,6 +11,10 @@ fn render(extra: &str) -> (Vec<[f32; 4]>, Vec<u8>) {
     if text.contains("[sun]") {
         scene.sun = over.sun;
     }
+    if text.contains("[techniques]") {
+        scene.techniques = over.techniques;
+        scene.ggx = over.ggx;
+    }
     if text.contains("nosun") {
         scene.sun = None;
     }
@@ -30,23 +34,49 @@ fn check(name: &str, extra: &str) {
     assert_eq!(ldr.len(), 96 * 54 * 4);
 }
 
+/// The camera's extreme cases of [`camera_extremes_are_finite`].
+const CAMERAS: [(&str, &str); 8] = [
+    ("horizon", "position = [0.0, 2.0, 0.0]\nlook_at = [0.0, 2.0, -100.0]\n"),
+    ("straight down", "position = [0.0, 30.0, 0.0]\nlook_at = [0.0, 0.0, 0.0]\n"),
+    ("10 km up", "position = [0.0, 10000.0, 0.0]\nlook_at = [100.0, 0.0, -3000.0]\n"),
+    ("under water", "position = [0.0, -4.0, 0.0]\nlook_at = [0.0, 2.0, -30.0]\n"),
+    ("under water, down", "position = [0.0, -4.0, 0.0]\nlook_at = [0.0, -10.0, -5.0]\n"),
+    (
+        "far from the origin",
+        "position = [1.0e6, 6.0, -1.0e6]\nlook_at = [1.0e6, 1.0, -1.00006e6]\n",
+    ),
+    ("looking up", "position = [0.0, 5.0, 0.0]\nlook_at = [0.0, 50.0, -1.0]\n"),
+    ("at the surface", "position = [0.0, 0.0, 0.0]\nlook_at = [0.0, 0.0, -10.0]\n"),
+];
+
 #[test]
 fn camera_extremes_are_finite() {
-    let cases = [
-        ("horizon", "position = [0.0, 2.0, 0.0]\nlook_at = [0.0, 2.0, -100.0]\n"),
-        ("straight down", "position = [0.0, 30.0, 0.0]\nlook_at = [0.0, 0.0, 0.0]\n"),
-        ("10 km up", "position = [0.0, 10000.0, 0.0]\nlook_at = [100.0, 0.0, -3000.0]\n"),
-        ("under water", "position = [0.0, -4.0, 0.0]\nlook_at = [0.0, 2.0, -30.0]\n"),
-        ("under water, down", "position = [0.0, -4.0, 0.0]\nlook_at = [0.0, -10.0, -5.0]\n"),
-        (
-            "far from the origin",
-            "position = [1.0e6, 6.0, -1.0e6]\nlook_at = [1.0e6, 1.0, -1.00006e6]\n",
-        ),
-        ("looking up", "position = [0.0, 5.0, 0.0]\nlook_at = [0.0, 50.0, -1.0]\n"),
-        ("at the surface", "position = [0.0, 0.0, 0.0]\nlook_at = [0.0, 0.0, -10.0]\n"),
-    ];
-    for (name, camera) in cases {
+    for (name, camera) in CAMERAS {
         check(name, camera);
+    }
+}
+
+/// Seed 002's techniques at the same extremes, and with the sun at the horizon, below it and
+/// at the zenith: GGX's 1/(n·l)(n·v) at grazing, the smallest and largest roughness, Schlick's
+/// options, and the Gerstner waves summed per vertex.
+#[test]
+fn welch_techniques_at_the_extremes_are_finite() {
+    let techniques = [
+        "[techniques]\nshading = \"ggx\"\n",
+        "[techniques]\nshading = \"ggx\"\n[ggx]\nroughness = 0.01\n",
+        "[techniques]\nshading = \"ggx\"\n[ggx]\nroughness = 1.0\nfresnel = \"schlick\"\n\
+         geometry = \"schlick_ggx\"\n",
+        "[techniques]\nwaves = \"gerstner\"\nfar_field = \"mip\"\nshading = \"ggx\"\n",
+    ];
+    let suns = ["[0.0, 0.0, -1.0]", "[0.0, -0.3, -1.0]", "[0.0, 1.0, 0.0]", "[0.3, 0.05, -1.0]"];
+    for t in techniques {
+        for (name, camera) in CAMERAS {
+            check(&format!("{name} with {t}"), &format!("{camera}{t}"));
+        }
+        for sun in suns {
+            let cam = "position = [0.0, 6.0, 30.0]\nlook_at = [0.0, 1.0, -60.0]\n";
+            check(&format!("sun {sun} with {t}"), &format!("{cam}{t}[sun]\ndirection = {sun}\n"));
+        }
     }
 }
 

@@ -270,6 +270,7 @@ fn rust_consts() -> Vec<(&'static str, f64)> {
         ("EQ8_LN_G", f64::from(optics::EQ8_LN_G)),
         ("EQ8_LN_B", f64::from(optics::EQ8_LN_B)),
         ("CHIU_MAX_EXPONENT", f64::from(chiu::CHIU_MAX_EXPONENT)),
+        ("GGX_PI", f64::from(ocean_cpu::shaders::shading::ggx::GGX_PI)),
         ("CLOUD_PERIOD", f64::from(ocean_core::clouds::CLOUD_PERIOD)),
         ("CLOUD_OCTAVES", f64::from(ocean_core::clouds::CLOUD_OCTAVES)),
         ("CLOUD_HORIZON_GAIN", f64::from(ocean_core::clouds::CLOUD_HORIZON_GAIN)),

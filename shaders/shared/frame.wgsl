@@ -98,6 +98,13 @@ struct ChiuShadingBlock {
     pad1: f32,
 }
 
+struct GgxShadingBlock {
+    alpha: f32,
+    schlick_fresnel: f32,
+    schlick_geometry: f32,
+    f0: f32,
+}
+
 struct TerrainBlock {
     // (∂y/∂x, ∂y/∂z, y under the eye, 1 with a relief map): the floor's plane in
     // camera-relative (x, z).
@@ -150,6 +157,7 @@ struct FrameUniforms {
     terrain: TerrainBlock,
     scales: MultiScaleBlock,
     gerstner: GerstnerBlock,
+    ggx: GgxShadingBlock,
 }
 
 // m · (p, 1), written out so that the order of operations is fixed (the CPU mirror,

@@ -131,6 +131,20 @@ pub struct ChiuShadingBlock {
     pub pad1: f32,
 }
 
+/// Parameters of shading technique `ggx` (seed 002; the scene's `[ggx]`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GgxShadingBlock {
+    /// The GGX distribution's α = roughness².
+    pub alpha: f32,
+    /// 0: eq. 2's exact Fresnel, 1: Schlick's.
+    pub schlick_fresnel: f32,
+    /// 0: Smith's height-correlated G2, 1: the seed's Schlick-GGX.
+    pub schlick_geometry: f32,
+    /// Schlick's F0 = ((η − 1)/(η + 1))², formed in f64.
+    pub f0: f32,
+}
+
 /// The most scales of eq. 1 ([`MultiScaleBlock`]).
 pub const MAX_SCALES: usize = 4;
 
@@ -373,6 +387,8 @@ pub struct FrameUniforms {
     pub scales: MultiScaleBlock,
     /// Waves technique `gerstner`'s waves (count 0 under `fft`).
     pub gerstner: crate::waves::gerstner::GerstnerBlock,
+    /// Shading technique `ggx`.
+    pub ggx: GgxShadingBlock,
 }
 
 /// Surface `projected_grid` ([`crate::geometry::ProjectedGrid`]): the grid's corners and size.
@@ -758,6 +774,19 @@ impl FrameUniforms {
                     mesh_origin,
                 ),
                 _ => Zeroable::zeroed(),
+            },
+            ggx: GgxShadingBlock {
+                alpha: crate::ggx::alpha_from_roughness(scene.ggx.roughness) as f32,
+                schlick_fresnel: f32::from(u8::from(
+                    scene.ggx.fresnel == crate::scene::GgxFresnel::Schlick,
+                )),
+                schlick_geometry: f32::from(u8::from(
+                    scene.ggx.geometry == crate::scene::GgxGeometry::SchlickGgx,
+                )),
+                f0: {
+                    let eta = scene.water.ior;
+                    (((eta - 1.0) / (eta + 1.0)).powi(2)) as f32
+                },
             },
         }
     }

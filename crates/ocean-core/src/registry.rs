@@ -15,8 +15,8 @@ use std::path::Path;
 use crate::camera_uniforms::CameraUniforms;
 use crate::frame::{
     AmbientBlock, ChiuShadingBlock, FarFieldBlock, FrameUniforms, FresnelTableUniforms,
-    HuShadingBlock, MultiScaleBlock, PassFlags, ProjectedGridBlock, SunBlock, TerrainBlock,
-    ViewBlock, WaterBlock, WaveMipsUniforms, WaveTilingBlock,
+    GgxShadingBlock, HuShadingBlock, MultiScaleBlock, PassFlags, ProjectedGridBlock, SunBlock,
+    TerrainBlock, ViewBlock, WaterBlock, WaveMipsUniforms, WaveTilingBlock,
 };
 use crate::plan::Stage as TechniqueStage;
 use crate::sky::SkyUniforms;
@@ -102,7 +102,8 @@ nested!(
     ChiuShadingBlock,
     TerrainBlock,
     MultiScaleBlock,
-    GerstnerBlock
+    GerstnerBlock,
+    GgxShadingBlock
 );
 
 /// The kind of an entry point.
@@ -483,6 +484,7 @@ pub const SHARED: &[SharedFile] = &[
                 pad2
             }),
             block!(GerstnerBlock { count, pad0, pad1, pad2, waves }),
+            block!(GgxShadingBlock { alpha, schlick_fresnel, schlick_geometry, f0 }),
             block!(FrameUniforms {
                 view,
                 sun,
@@ -496,7 +498,8 @@ pub const SHARED: &[SharedFile] = &[
                 chiu,
                 terrain,
                 scales,
-                gerstner
+                gerstner,
+                ggx
             }),
         ],
         cpu_mirror: "crates/ocean-cpu/src/shaders/shared/frame.rs",
@@ -610,6 +613,15 @@ pub const TECHNIQUE_FILES: &[TechniqueFile] = &[
         interface: SHADING_INTERFACE,
         blocks: &[],
         cpu_mirror: "crates/ocean-cpu/src/shaders/shading/chiu.rs",
+    },
+    TechniqueFile {
+        stage: TechniqueStage::Shading,
+        technique: "ggx",
+        file: "shading/ggx.wgsl",
+        source: include_str!("../../../shaders/shading/ggx.wgsl"),
+        interface: SHADING_INTERFACE,
+        blocks: &[],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/shading/ggx.rs",
     },
 ];
 

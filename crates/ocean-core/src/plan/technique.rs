@@ -106,7 +106,7 @@ pub const TECHNIQUES: &[TechniqueInfo] = &[
     t(Stage::Surface, "shore_grid", "camera-aligned shore grid (seed 004)", false),
     t(Stage::Shading, "hu", "eq. 3: 2D Fresnel texture + Phong (seed 000)", true),
     t(Stage::Shading, "chiu", "local optics and water colour, eqs. 2–8 (seed 001)", true),
-    t(Stage::Shading, "ggx", "Cook–Torrance with GGX (seed 002)", false),
+    t(Stage::Shading, "ggx", "Cook–Torrance: GGX, Smith G, exact Fresnel (seed 002)", true),
     t(Stage::Shading, "coastal", "Blinn–Phong + dull colour (seed 004)", false),
     t(Stage::Sky, "preetham", "Preetham et al. 1999 daylight", true),
     t(Stage::Sky, "preetham_clouds", "Preetham + clouds (seed 001 eq. 4)", true),

@@ -16,9 +16,11 @@ use crate::geometry::PatchParams;
 use crate::spectrum::{SpectrumKind, SpectrumParams, WaveSpectrum};
 use crate::waves::{ModeParams, OceanParams, OceanSurface, WaveModes};
 
+mod ggx;
 mod locate;
 mod validate;
 
+pub use ggx::{Ggx, GgxFresnel, GgxGeometry};
 use locate::{key_at_offset, key_of_line, key_position, line_column};
 pub use validate::{
     LIMITS, Limit, MAX_COLOUR, MAX_COORDINATE_M, MAX_SUN_INTENSITY, MIN_LENGTH_M, limit,
@@ -101,6 +103,8 @@ pub struct Scene {
     pub terrain: Option<Terrain>,
     /// Parameters of seed 001's techniques (shading `chiu`).
     pub chiu: Chiu,
+    /// Parameters of shading technique `ggx` (seed 002).
+    pub ggx: Ggx,
     /// The cloud layer of sky technique `preetham_clouds`.
     pub clouds: Clouds,
     /// The particles of spray technique `particles`.

@@ -198,6 +198,7 @@ pub const LIMITS: &[Limit] = &[
         1.0e4,
         "m at heightmap samples 0 and 1, added to the plane",
     ),
+    real("ggx.roughness", 0.01, 1.0, "perceptual; α = roughness²"),
     real("chiu.zeta_m", 0.0, 100.0, "m; eq. 6's map shift at 1 m of view depth"),
     real("chiu.shininess_per_m", 1.0e-3, 1.0e3, "eq. 5's Phong exponent per metre of depth"),
     real("chiu.kd_per_m", 0.0, 10.0, "1/m; eq. 8's k_d"),
@@ -346,6 +347,7 @@ impl Scene {
             }
         }
         self.check_gerstner()?;
+        check("ggx.roughness", &[self.ggx.roughness])?;
         let ch = &self.chiu;
         check("chiu.zeta_m", &[ch.zeta_m])?;
         check("chiu.shininess_per_m", &[ch.shininess_per_m])?;

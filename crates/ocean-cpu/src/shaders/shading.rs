@@ -2,6 +2,7 @@
 //! from above, which `water.wgsl` imports as `technique/shading`.
 
 pub mod chiu;
+pub mod ggx;
 pub mod hu;
 
 use super::water::{Bindings, SurfacePoint, VertexOut};
@@ -15,6 +16,7 @@ pub fn shade_above(technique: &str) -> Option<ShadeAbove> {
     match technique {
         "hu" => Some(hu::shade_above),
         "chiu" => Some(chiu::shade_above),
+        "ggx" => Some(ggx::shade_above),
         _ => None,
     }
 }

@@ -1,0 +1,47 @@
+//! The `[ggx]` table of shading technique `ggx` (seed 002).
+
+use serde::{Deserialize, Serialize};
+
+/// The `[ggx]` table: shading technique `ggx` (seed 002's Cook–Torrance BRDF with the GGX
+/// distribution; the f64 model is [`crate::ggx`]).
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Ggx {
+    /// Perceptual roughness r; the distribution's α = r² (Burley 2012). 0.2 is a calm sea's
+    /// glossy sheen at the scale the waves do not resolve.
+    pub roughness: f64,
+    /// The Fresnel term: `exact` (eq. 2 of seed 000) or `schlick` (the seed's approximation,
+    /// only on request).
+    pub fresnel: GgxFresnel,
+    /// The geometry term: `smith` (Smith's height-correlated G, exact for GGX) or
+    /// `schlick_ggx` (the seed's Schlick-GGX, k = α/2).
+    pub geometry: GgxGeometry,
+}
+
+impl Default for Ggx {
+    fn default() -> Self {
+        Self { roughness: 0.2, fresnel: GgxFresnel::Exact, geometry: GgxGeometry::Smith }
+    }
+}
+
+/// The Fresnel term of shading `ggx`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum GgxFresnel {
+    /// Eq. 2 of seed 000.
+    #[default]
+    Exact,
+    /// Schlick's approximation, F0 = ((η − 1)/(η + 1))².
+    Schlick,
+}
+
+/// The geometry term of shading `ggx`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum GgxGeometry {
+    /// Smith's height-correlated G2 = 1/(1 + Λ(l) + Λ(v)).
+    #[default]
+    Smith,
+    /// Schlick-GGX G1(l)·G1(v) with k = α/2 (seed 002).
+    SchlickGgx,
+}
