@@ -5,10 +5,13 @@
 
 // #import shared/camera.wgsl
 // #import shared/fullscreen.wgsl
+// #import shared/sky_lut.wgsl
 // #import technique/sky
 
 @group(0) @binding(0) var<uniform> camera: CameraUniforms;
 @group(1) @binding(0) var<uniform> sky: SkyUniforms;
+// Sky `atmosphere`'s sky-view table (zeros under the other sky techniques, which ignore it).
+@group(1) @binding(1) var<uniform> sky_lut: SkyLut;
 
 struct VertexOut {
     @builtin(position) position: vec4<f32>,

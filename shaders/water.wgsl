@@ -16,6 +16,7 @@
 // #import shared/optics.wgsl
 // #import shared/floor.wgsl
 // #import shared/gerstner.wgsl
+// #import shared/sky_lut.wgsl
 // #import technique/sky
 // #import technique/shading
 
@@ -44,6 +45,8 @@
 // The environment the water reflects: the frame's sky technique (its interface: SkyUniforms,
 // sky_radiance), a resource of the plan that the water reads.
 @group(1) @binding(0) var<uniform> sky: SkyUniforms;
+// Sky `atmosphere`'s sky-view table (zeros under the other sky techniques, which ignore it).
+@group(1) @binding(1) var<uniform> sky_lut: SkyLut;
 
 struct WaterVertex {
     // Position on the sea plane relative to the mesh's reference point c, (x, z), m

@@ -21,7 +21,8 @@ fn render_sky(
     sky: &ocean_core::sky::SkyUniforms,
 ) {
     let t = ocean_cpu::shaders::sky::technique("preetham").expect("preetham");
-    ocean_cpu::shaders::sky::render_sky(target, camera, sky, &t);
+    let lut: ocean_core::atmosphere::SkyLut = bytemuck::Zeroable::zeroed();
+    ocean_cpu::shaders::sky::render_sky(target, camera, sky, &lut, &t);
 }
 
 const TURBIDITIES: [f64; 6] = [TURBIDITY_MIN, 2.0, 3.0, 6.0, 10.0, TURBIDITY_MAX];
@@ -244,7 +245,14 @@ fn finite_and_non_negative_everywhere() {
                 );
             }
             let t = ocean_cpu::shaders::sky::technique("preetham").expect("preetham");
-            let px = fs_main(&VertexOut { position: [0.5, 0.5, 0.0, 1.0].into() }, &camera, &u, &t);
+            let lut: ocean_core::atmosphere::SkyLut = bytemuck::Zeroable::zeroed();
+            let px = fs_main(
+                &VertexOut { position: [0.5, 0.5, 0.0, 1.0].into() },
+                &camera,
+                &u,
+                &lut,
+                &t,
+            );
             assert!(px.iter().all(|c| c.is_finite()));
         }
     }

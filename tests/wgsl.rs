@@ -271,6 +271,11 @@ fn rust_consts() -> Vec<(&'static str, f64)> {
         ("EQ8_LN_B", f64::from(optics::EQ8_LN_B)),
         ("CHIU_MAX_EXPONENT", f64::from(chiu::CHIU_MAX_EXPONENT)),
         ("GGX_PI", f64::from(ocean_cpu::shaders::shading::ggx::GGX_PI)),
+        ("SKY_LUT_WIDTH", ocean_core::atmosphere::LUT_WIDTH as f64),
+        ("SKY_LUT_HEIGHT", ocean_core::atmosphere::LUT_HEIGHT as f64),
+        ("RAYLEIGH_PHASE_K", f64::from(ocean_cpu::shaders::shared::sky_lut::RAYLEIGH_PHASE_K)),
+        ("MIE_G", f64::from(ocean_cpu::shaders::shared::sky_lut::MIE_G)),
+        ("MIE_PHASE_K", f64::from(ocean_cpu::shaders::shared::sky_lut::MIE_PHASE_K)),
         ("CLOUD_PERIOD", f64::from(ocean_core::clouds::CLOUD_PERIOD)),
         ("CLOUD_OCTAVES", f64::from(ocean_core::clouds::CLOUD_OCTAVES)),
         ("CLOUD_HORIZON_GAIN", f64::from(ocean_core::clouds::CLOUD_HORIZON_GAIN)),
@@ -417,9 +422,9 @@ fn the_registry_names_no_missing_piece_and_a_fake_entry_is_caught() {
     let mut stages = STAGES.to_vec();
     stages.push(fake);
     let fake_tech = registry::TechniqueFile {
-        technique: "atmosphere",
-        file: "sky/atmosphere.wgsl",
-        cpu_mirror: "crates/ocean-cpu/src/shaders/sky/atmosphere.rs",
+        technique: "no_such_sky",
+        file: "sky/no_such_sky.wgsl",
+        cpu_mirror: "crates/ocean-cpu/src/shaders/sky/no_such_sky.rs",
         ..TECHNIQUE_FILES[0]
     };
     let mut techs = TECHNIQUE_FILES.to_vec();
@@ -429,8 +434,8 @@ fn the_registry_names_no_missing_piece_and_a_fake_entry_is_caught() {
         "stage `foam`: its WGSL: shaders/foam.wgsl is missing",
         "stage `foam`: its CPU mirror: crates/ocean-cpu/src/shaders/foam.rs is missing",
         "stage `foam`: its GPU module: crates/ocean-gpu/src/foam.rs is missing",
-        "technique sky/atmosphere: its WGSL: shaders/sky/atmosphere.wgsl is missing",
-        "technique sky/atmosphere: its CPU mirror",
+        "technique sky/no_such_sky: its WGSL: shaders/sky/no_such_sky.wgsl is missing",
+        "technique sky/no_such_sky: its CPU mirror",
     ] {
         assert!(missing.contains(want), "wanted `{want}` in:\n{missing}");
     }

@@ -16,9 +16,34 @@
 //! along each ray to the sun, both gathered towards the ray's start (t = len·u²); tests
 //! compare it with a much finer integration.
 
+mod lut;
+
 use std::f64::consts::PI;
 
 use glam::DVec3;
+
+pub use lut::{LUT_HEIGHT, LUT_WIDTH, SkyLut, lut_coordinates, lut_direction};
+
+/// Midpoints of the sun's transmittance to the eye ([`sun_at_eye`]): one ray per frame, so
+/// finer than each scattering sample's [`SUN_STEPS`].
+pub const EYE_SUN_STEPS: u32 = 256;
+
+/// The sun's irradiance at the top of the atmosphere for a scene whose `[sun]` gives
+/// `sea_irradiance` (colour × intensity): the scene's value is what a sun at the zenith puts on
+/// the sea, so E_top = E_scene / T(sea, zenith) — the scene keeps its brightness at noon and the
+/// atmosphere reddens and dims the sun towards the horizon.
+pub fn top_irradiance(sea_irradiance: [f64; 3]) -> [f64; 3] {
+    let t = sun_transmittance([0.0, EARTH_RADIUS_M, 0.0], [0.0, 1.0, 0.0], EYE_SUN_STEPS);
+    std::array::from_fn(|c| sea_irradiance[c] / t[c])
+}
+
+/// The sun's irradiance reaching an eye `altitude_m` above the sea from unit direction `sun`,
+/// `top` at the top of the atmosphere (0 when the planet hides it).
+pub fn sun_at_eye(altitude_m: f64, sun: [f64; 3], top: [f64; 3]) -> [f64; 3] {
+    let p = [0.0, EARTH_RADIUS_M + altitude_m.max(0.0), 0.0];
+    let t = sun_transmittance(p, sun, EYE_SUN_STEPS);
+    std::array::from_fn(|c| top[c] * t[c])
+}
 
 /// The planet's radius, m.
 pub const EARTH_RADIUS_M: f64 = 6_360_000.0;
@@ -133,16 +158,40 @@ pub fn sky_radiance(
     steps: u32,
     sun_steps: u32,
 ) -> [f64; 3] {
+    let s = sky_scattering(altitude_m, view, sun, sun_irradiance, steps, sun_steps);
+    let mu = DVec3::from(view).dot(DVec3::from(sun));
+    let (pr, pm) = (rayleigh_phase(mu), mie_phase(mu, MIE_G));
+    std::array::from_fn(|c| s.rayleigh[c] * pr + s.mie[c] * pm)
+}
+
+/// The two scattering integrals of [`sky_radiance`] without their phase functions:
+/// L = rayleigh·P_R(v·s) + mie·P_M(v·s). The phase functions carry the sharp forward peak of the
+/// aerosols; the integrals are smooth over the sky, which is what the sky-view table stores.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Scattering {
+    /// ∫ T β_R(h) T_sun E dt per channel.
+    pub rayleigh: [f64; 3],
+    /// ∫ T β_M(h) T_sun E dt per channel.
+    pub mie: [f64; 3],
+}
+
+/// [`Scattering`] along `view` (arguments as [`sky_radiance`]).
+pub fn sky_scattering(
+    altitude_m: f64,
+    view: [f64; 3],
+    sun: [f64; 3],
+    sun_irradiance: [f64; 3],
+    steps: u32,
+    sun_steps: u32,
+) -> Scattering {
+    let mut out = Scattering { rayleigh: [0.0; 3], mie: [0.0; 3] };
     // An eye at or below the sea looking down sees no air.
     if altitude_m <= 0.0 && view[1] < 0.0 {
-        return [0.0; 3];
+        return out;
     }
     let x = [0.0, EARTH_RADIUS_M + altitude_m.max(0.0), 0.0];
     let end = planet_hit(x, view).or_else(|| sphere_exit(x, view, TOP_RADIUS_M)).unwrap_or(0.0);
-    let mu = DVec3::from(view).dot(DVec3::from(sun));
-    let (pr, pm) = (rayleigh_phase(mu), mie_phase(mu, MIE_G));
     let mut depth = [0.0; 3];
-    let mut sum = [0.0; 3];
     for (t, dt) in gathered(end, steps) {
         let p = [x[0] + view[0] * t, x[1] + view[1] * t, x[2] + view[2] * t];
         let h = height(p);
@@ -152,10 +201,11 @@ pub fn sky_radiance(
         let sun_t = sun_transmittance(p, sun, sun_steps);
         let (r, m) = ((-h / RAYLEIGH_HEIGHT_M).exp(), (-h / MIE_HEIGHT_M).exp() * MIE_BETA);
         for c in 0..3 {
-            let scatter = RAYLEIGH_BETA[c] * r * pr + m * pm;
-            sum[c] += to_sample[c] * scatter * sun_t[c] * sun_irradiance[c] * dt;
+            let lit = to_sample[c] * sun_t[c] * sun_irradiance[c] * dt;
+            out.rayleigh[c] += lit * RAYLEIGH_BETA[c] * r;
+            out.mie[c] += lit * m;
             depth[c] += e[c] * dt;
         }
     }
-    sum
+    out
 }

@@ -12,6 +12,7 @@
 use std::mem::{offset_of, size_of};
 use std::path::Path;
 
+use crate::atmosphere::SkyLut;
 use crate::camera_uniforms::CameraUniforms;
 use crate::frame::{
     AmbientBlock, ChiuShadingBlock, FarFieldBlock, FrameUniforms, FresnelTableUniforms,
@@ -40,6 +41,7 @@ wgsl_types!(
     [f32; 4] => "vec4<f32>", [u32; 2] => "vec2<u32>", [u32; 4] => "vec4<u32>",
     [[f32; 4]; 4] => "mat4x4<f32>",
     [[f32; 4]; 128] => "array<vec4<f32>, 128>",
+    [[f32; 4]; 2048] => "array<vec4<f32>, 2048>",
 );
 
 /// One member of a shared struct, as Rust lays it out.
@@ -271,7 +273,7 @@ pub const STAGES: &[StageEntry] = &[
         file: "sky.wgsl",
         source: include_str!("../../../shaders/sky.wgsl"),
         entry_points: VS_FS,
-        bindings: &[b(0, 0, "camera"), b(1, 0, "sky")],
+        bindings: &[b(0, 0, "camera"), b(1, 0, "sky"), b(1, 1, "sky_lut")],
         blocks: &[],
         cpu_mirror: "crates/ocean-cpu/src/shaders/sky.rs",
         gpu_module: "crates/ocean-gpu/src/sky.rs",
@@ -337,6 +339,7 @@ pub const STAGES: &[StageEntry] = &[
             b(0, 11, "fresnel_filter"),
             b(0, 12, "floor_map"),
             b(1, 0, "sky"),
+            b(1, 1, "sky_lut"),
         ],
         blocks: &[],
         cpu_mirror: "crates/ocean-cpu/src/shaders/water.rs",
@@ -505,6 +508,12 @@ pub const SHARED: &[SharedFile] = &[
         cpu_mirror: "crates/ocean-cpu/src/shaders/shared/frame.rs",
     },
     SharedFile {
+        file: "shared/sky_lut.wgsl",
+        source: include_str!("../../../shaders/shared/sky_lut.wgsl"),
+        blocks: &[block!(SkyLut { texels })],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/shared/sky_lut.rs",
+    },
+    SharedFile {
         file: "shared/preetham.wgsl",
         source: include_str!("../../../shaders/shared/preetham.wgsl"),
         blocks: &[block!(SkyUniforms {
@@ -595,6 +604,15 @@ pub const TECHNIQUE_FILES: &[TechniqueFile] = &[
         interface: SKY_INTERFACE,
         blocks: &[],
         cpu_mirror: "crates/ocean-cpu/src/shaders/sky/preetham_clouds.rs",
+    },
+    TechniqueFile {
+        stage: TechniqueStage::Sky,
+        technique: "atmosphere",
+        file: "sky/atmosphere.wgsl",
+        source: include_str!("../../../shaders/sky/atmosphere.wgsl"),
+        interface: SKY_INTERFACE,
+        blocks: &[],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/sky/atmosphere.rs",
     },
     TechniqueFile {
         stage: TechniqueStage::Shading,

@@ -472,7 +472,8 @@ impl<'e> CpuBackend<'e> {
                 reason: format!("shading technique `{shading}` has no CPU mirror"),
             })
         })?;
-        let planned_sky = move |d: [f32; 3]| radiance(&env, d);
+        let lut = &*frame.sky_lut;
+        let planned_sky = move |d: [f32; 3]| radiance(&env, lut, d);
         let sky_radiance: &(dyn Fn([f32; 3]) -> [f32; 3] + Sync) = match self.environment {
             Environment::Planned => &planned_sky,
             Environment::Given { radiance, .. } => radiance,
@@ -545,7 +546,8 @@ impl Backend for CpuBackend<'_> {
                         reason: format!("sky technique `{name}` has no CPU mirror"),
                     })
                 })?;
-                sky::render_sky(hdr, &frame.camera_uniforms, &frame.environment, &technique)
+                let (camera, sky) = (&frame.camera_uniforms, &frame.environment);
+                sky::render_sky(hdr, camera, sky, &frame.sky_lut, &technique);
             }
             Environment::Given { draw, .. } => draw(hdr),
         }

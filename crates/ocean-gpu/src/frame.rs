@@ -462,12 +462,14 @@ impl GpuBackend<'_> {
             usage: wgpu::BufferUsages::INDEX,
         });
         let sky_buffer = uniform_buffer(device, "ocean.water.sky", &frame.environment);
+        let sky_lut = uniform_buffer(device, "ocean.water.sky_lut", &*frame.sky_lut);
         let slot = self.timer.slot(Pass::Water);
         self.stages.water.encode(
             device,
             &mut self.encoder,
             &self.frame_buffer,
             &sky_buffer,
+            &sky_lut,
             &WaterTextures {
                 displacement: &displacement.view,
                 displacement_slopes: &slopes_view,
@@ -525,6 +527,7 @@ impl Backend for GpuBackend<'_> {
             &mut self.encoder,
             &frame.camera_uniforms,
             &frame.environment,
+            &frame.sky_lut,
             &hdr.view,
             &depth.view,
             self.timer.render_writes(slot),

@@ -4,9 +4,10 @@
 //! (`shaders/sky/preetham_clouds.wgsl`, seed 001 eq. 4), both over `shaders/shared/preetham.wgsl`,
 //! assembled by [`crate::common::shader_module_with`] for the renderer's techniques (the
 //! renderer assembles the stage again when a plan asks for the other). Bindings:
-//! group 0 = `CameraUniforms`, group 1 = `SkyUniforms`. CPU mirror: `ocean-cpu/src/shaders/sky.rs` (its `RASTER_STATE`: depth test
+//! group 0 = `CameraUniforms`, group 1 = `SkyUniforms` and sky `atmosphere`'s `SkyLut`. CPU mirror: `ocean-cpu/src/shaders/sky.rs` (its `RASTER_STATE`: depth test
 //! `Always`, no depth writes, no blending — the same here).
 
+use ocean_core::atmosphere::SkyLut;
 use ocean_core::camera_uniforms::CameraUniforms;
 use ocean_core::sky::SkyUniforms;
 
@@ -35,14 +36,16 @@ impl SkyStage {
     ) -> Result<Self, Error> {
         let name = label("sky");
         let module = shader_module_with(device, "sky", techniques)?;
-        let layout = |l: &str| {
+        let layout = |l: &str, entries: &[wgpu::BindGroupLayoutEntry]| {
             device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                 label: Some(l),
-                entries: &[uniform_entry(0, wgpu::ShaderStages::FRAGMENT)],
+                entries,
             })
         };
-        let camera_layout = layout("ocean.sky.camera");
-        let sky_layout = layout("ocean.sky.sky");
+        let fragment = wgpu::ShaderStages::FRAGMENT;
+        let camera_layout = layout("ocean.sky.camera", &[uniform_entry(0, fragment)]);
+        let sky_layout =
+            layout("ocean.sky.sky", &[uniform_entry(0, fragment), uniform_entry(1, fragment)]);
         let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some(&name),
             layout: Some(&pipeline_layout(device, &name, &[&camera_layout, &sky_layout])),
@@ -76,6 +79,7 @@ impl SkyStage {
         encoder: &mut wgpu::CommandEncoder,
         camera: &CameraUniforms,
         sky: &SkyUniforms,
+        sky_lut: &SkyLut,
         hdr: &wgpu::TextureView,
         depth: &wgpu::TextureView,
         timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
@@ -91,7 +95,10 @@ impl SkyStage {
             device,
             "ocean.sky.sky",
             &self.sky_layout,
-            &[uniform_buffer(device, "ocean.sky.sky", sky).as_entire_binding()],
+            &[
+                uniform_buffer(device, "ocean.sky.sky", sky).as_entire_binding(),
+                uniform_buffer(device, "ocean.sky.sky_lut", sky_lut).as_entire_binding(),
+            ],
         );
         let mut pass = begin_render_pass(
             encoder,

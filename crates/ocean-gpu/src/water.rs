@@ -109,7 +109,7 @@ impl WaterStage {
         });
         let sky_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("ocean.water.sky"),
-            entries: &[uniform_entry(0, fragment)],
+            entries: &[uniform_entry(0, fragment), uniform_entry(1, fragment)],
         });
         let pipeline_layout = pipeline_layout(device, &name, &[&layout, &sky_layout]);
         let make = |vs: &str, buffers: &[Option<wgpu::VertexBufferLayout<'_>>]| {
@@ -163,6 +163,7 @@ impl WaterStage {
         encoder: &mut wgpu::CommandEncoder,
         frame: &wgpu::Buffer,
         sky: &wgpu::Buffer,
+        sky_lut: &wgpu::Buffer,
         textures: &WaterTextures<'_>,
         draw: &WaterDraw<'_>,
         hdr: &wgpu::TextureView,
@@ -195,7 +196,7 @@ impl WaterStage {
             device,
             "ocean.water.sky",
             &self.sky_layout,
-            &[sky.as_entire_binding()],
+            &[sky.as_entire_binding(), sky_lut.as_entire_binding()],
         );
         let mut pass = begin_render_pass(
             encoder,

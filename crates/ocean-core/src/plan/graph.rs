@@ -52,6 +52,9 @@ pub struct FrameInputs<'a> {
     /// The environment the water reflects and the `sky` stage draws (the sky technique's
     /// uniforms).
     pub environment: SkyUniforms,
+    /// Sky `atmosphere`'s sky-view table of this frame (zeros under the other sky techniques,
+    /// which do not read it).
+    pub sky_lut: Box<crate::atmosphere::SkyLut>,
     /// The `sky` stage's camera block.
     pub camera_uniforms: CameraUniforms,
     /// The `tonemap` stage's block, when the plan tonemaps.
@@ -107,6 +110,11 @@ impl<'a> FrameInputs<'a> {
             let through = 1.0 - crate::clouds::cloud_alpha(origin, mean, s.direction);
             uniforms.sun.radiance = s.radiance.map(|r| r * through);
         }
+        let sky_lut = if plan.techniques.of(crate::plan::Stage::Sky).name == "atmosphere" {
+            atmosphere_environment(scene, &camera, &mut uniforms, &mut environment)
+        } else {
+            Box::new(bytemuck::Zeroable::zeroed())
+        };
         let camera_uniforms = CameraUniforms::new(
             camera.view_proj().to_cols_array_2d(),
             [0.0; 3],
@@ -125,11 +133,40 @@ impl<'a> FrameInputs<'a> {
             mesh_time,
             uniforms,
             environment,
+            sky_lut,
             camera_uniforms,
             tonemap,
             time_s,
         })
     }
+}
+
+/// Sky `atmosphere` (ocean_core::atmosphere): the sky-view table seen from the eye, the sun's
+/// light through the atmosphere on the water and in the disc, and the objects' ambient light
+/// from the table. The scene's `[sun]` colour × intensity is what a sun at the zenith puts on the
+/// sea ([`crate::atmosphere::top_irradiance`]); without a sun the sky is black.
+fn atmosphere_environment(
+    scene: &Scene,
+    camera: &Camera,
+    uniforms: &mut FrameUniforms,
+    environment: &mut SkyUniforms,
+) -> Box<crate::atmosphere::SkyLut> {
+    use crate::atmosphere::{SkyLut, sun_at_eye, top_irradiance};
+    let (dir, sea) = match &scene.sun {
+        Some(sun) => {
+            let d = glam::DVec3::from(sun.direction).normalize_or(glam::DVec3::Y);
+            (d.to_array(), std::array::from_fn(|c| sun.color[c] * sun.intensity))
+        }
+        None => ([0.0, 1.0, 0.0], [0.0; 3]),
+    };
+    let top = top_irradiance(sea);
+    let altitude = camera.eye.y.max(0.0);
+    let lut = SkyLut::new(altitude, dir, top);
+    let at_eye = sun_at_eye(altitude, dir, top);
+    uniforms.sun.radiance = at_eye.map(|e| e as f32);
+    environment.sun_radiance = [at_eye[0] as f32, at_eye[1] as f32, at_eye[2] as f32, 0.0];
+    uniforms.ambient.sky = lut.ambient(dir);
+    lut
 }
 
 /// The maps of one loop period of one ocean (pass `cycle`).

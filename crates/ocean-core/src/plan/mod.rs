@@ -851,9 +851,17 @@ impl FramePlan {
                 ResourceId::RefractionMap => (Format::Rgba32Float, viewport),
                 ResourceId::Hdr => (Format::Rgba32Float, viewport),
                 ResourceId::Ldr => (Format::Rgba8Unorm, viewport),
-                ResourceId::Environment => {
-                    (Format::Uniform, [std::mem::size_of::<crate::sky::SkyUniforms>() as u32, 1])
-                }
+                // The sky's uniforms and its sky-view table (`SkyLut`, bound by the `sky` and
+                // `water` stages under every sky technique, filled under `atmosphere`).
+                ResourceId::Environment => (
+                    Format::Uniform,
+                    [
+                        (std::mem::size_of::<crate::sky::SkyUniforms>()
+                            + std::mem::size_of::<crate::atmosphere::SkyLut>())
+                            as u32,
+                        1,
+                    ],
+                ),
             };
             // Only the `variance` technique reads the filtered Fresnel table.
             let is_written = written(id)

@@ -110,7 +110,7 @@ pub const TECHNIQUES: &[TechniqueInfo] = &[
     t(Stage::Shading, "coastal", "Blinn–Phong + dull colour (seed 004)", false),
     t(Stage::Sky, "preetham", "Preetham et al. 1999 daylight", true),
     t(Stage::Sky, "preetham_clouds", "Preetham + clouds (seed 001 eq. 4)", true),
-    t(Stage::Sky, "atmosphere", "Rayleigh/Mie scattering (seed 002)", false),
+    t(Stage::Sky, "atmosphere", "Rayleigh/Mie scattering (seed 002)", true),
     t(Stage::FarField, "none", "point-sampled wave maps", true),
     t(Stage::FarField, "mip", "mip-mapped slope maps, trilinear at the footprint", true),
     t(Stage::FarField, "variance", "unresolved slope variance in the BRDF (Bruneton 2010)", true),

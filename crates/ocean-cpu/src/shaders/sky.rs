@@ -1,8 +1,11 @@
 //! Mirror of `shaders/sky.wgsl`: the environment behind everything, one full-screen triangle
 //! at the far plane; its techniques are the submodules (`shaders/sky/<technique>.wgsl`).
 
+pub mod atmosphere;
 pub mod preetham;
 pub mod preetham_clouds;
+
+use ocean_core::atmosphere::SkyLut;
 
 use crate::raster::{
     BlendMode, CompareFunction, CullMode, FrontFace, RasterState, RenderTarget, Vertex, draw,
@@ -13,14 +16,14 @@ use crate::shaders::shared::preetham::SkyUniforms;
 use crate::shaders::wgsl::{Vec3, Vec4};
 
 /// A sky technique's `sky_radiance`: radiance of a world direction (arrays at this boundary
-/// to the frame and the water's bindings).
-pub type SkyRadiance = fn(&SkyUniforms, [f32; 3]) -> [f32; 3];
+/// to the frame and the water's bindings), given the stage's `sky` and `sky_lut`.
+pub type SkyRadiance = fn(&SkyUniforms, &SkyLut, [f32; 3]) -> [f32; 3];
 
 /// A sky technique's interface: `sky_radiance` and `sun_disc`.
 #[derive(Clone, Copy, Debug)]
 pub struct SkyTechnique {
-    /// `sky_radiance(sky, dir)`.
-    pub sky_radiance: fn(&SkyUniforms, Vec3) -> Vec3,
+    /// `sky_radiance(sky, dir)`, with the stage's `sky_lut` that the WGSL reads.
+    pub sky_radiance: fn(&SkyUniforms, &SkyLut, Vec3) -> Vec3,
     /// `sun_disc(sky, dir)`.
     pub sun_disc: fn(&SkyUniforms, Vec3) -> Vec3,
 }
@@ -30,12 +33,16 @@ pub struct SkyTechnique {
 pub fn technique(technique: &str) -> Option<SkyTechnique> {
     match technique {
         "preetham" => Some(SkyTechnique {
-            sky_radiance: preetham::sky_radiance,
+            sky_radiance: |sky, _, dir| preetham::sky_radiance(sky, dir),
             sun_disc: preetham::sun_disc,
         }),
         "preetham_clouds" => Some(SkyTechnique {
-            sky_radiance: preetham_clouds::sky_radiance,
+            sky_radiance: |sky, _, dir| preetham_clouds::sky_radiance(sky, dir),
             sun_disc: preetham_clouds::sun_disc,
+        }),
+        "atmosphere" => Some(SkyTechnique {
+            sky_radiance: atmosphere::sky_radiance,
+            sun_disc: atmosphere::sun_disc,
         }),
         _ => None,
     }
@@ -45,8 +52,11 @@ pub fn technique(technique: &str) -> Option<SkyTechnique> {
 /// `sky_radiance` of the WGSL's `// #import technique/sky` is.
 pub fn environment_radiance(name: &str) -> Option<SkyRadiance> {
     match name {
-        "preetham" => Some(|sky, dir| preetham::sky_radiance(sky, dir.into()).into()),
-        "preetham_clouds" => Some(|sky, dir| preetham_clouds::sky_radiance(sky, dir.into()).into()),
+        "preetham" => Some(|sky, _, dir| preetham::sky_radiance(sky, dir.into()).into()),
+        "preetham_clouds" => {
+            Some(|sky, _, dir| preetham_clouds::sky_radiance(sky, dir.into()).into())
+        }
+        "atmosphere" => Some(|sky, lut, dir| atmosphere::sky_radiance(sky, lut, dir.into()).into()),
         _ => None,
     }
 }
@@ -80,10 +90,11 @@ pub fn fs_main(
     input: &VertexOut,
     camera: &CameraUniforms,
     sky: &SkyUniforms,
+    lut: &SkyLut,
     t: &SkyTechnique,
 ) -> [f32; 4] {
     let dir = view_ray(camera, input.position.xy());
-    let radiance = (t.sky_radiance)(sky, dir) + (t.sun_disc)(sky, dir);
+    let radiance = (t.sky_radiance)(sky, lut, dir) + (t.sun_disc)(sky, dir);
     radiance.extend(1.0).into()
 }
 
@@ -96,6 +107,7 @@ pub fn render_sky(
     target: &mut RenderTarget,
     camera: &CameraUniforms,
     sky: &SkyUniforms,
+    lut: &SkyLut,
     t: &SkyTechnique,
 ) {
     debug_assert!(
@@ -107,6 +119,6 @@ pub fn render_sky(
     );
     let triangle: [Vertex<0>; 3] = [0, 1, 2].map(|i| Vertex::new(vs_main(i).position.into(), []));
     draw(target, &RASTER_STATE, &[triangle], |frag| {
-        Some(fs_main(&VertexOut { position: frag.frag_coord.into() }, camera, sky, t))
+        Some(fs_main(&VertexOut { position: frag.frag_coord.into() }, camera, sky, lut, t))
     });
 }

@@ -9,4 +9,5 @@ pub mod gerstner;
 pub mod optics;
 pub mod preetham;
 pub mod shadow;
+pub mod sky_lut;
 pub mod trig;
