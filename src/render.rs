@@ -114,7 +114,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         let hdr = ocean_core::supersample::box_filter(&hdr, w, h, k);
         let ldr = (output_kind == OutputKind::Ldr)
             .then(|| {
-                let t = ocean_core::tonemap::TonemapUniforms::new(scene.camera.exposure)?;
+                let t = ocean_core::tonemap::TonemapUniforms::for_image(
+                    scene.camera.exposure,
+                    &scene.post,
+                    w,
+                    h,
+                )?;
                 anyhow::Ok(ocean_cpu::shaders::tonemap::tonemap_to_rgba8(&hdr, w, h, &t))
             })
             .transpose()?;

@@ -96,6 +96,13 @@ fn reference_scenes() -> Vec<(String, Scene)> {
             .contains(&2)
     );
     scenes.push(("default_culled".into(), culled));
+    // The final pass with Hable's curve and a strong vignette (`[post]`): the tonemap's
+    // arithmetic on both back ends.
+    let mut post = Scene::builtin();
+    (post.camera.width, post.camera.height) = (WIDTH, HEIGHT);
+    post.post.curve = ocean_core::tonemap::Curve::Hable;
+    post.post.vignette = 0.8;
+    scenes.push(("default_hable_vignette".into(), post));
     scenes
 }
 

@@ -388,7 +388,15 @@ pub const STAGES: &[StageEntry] = &[
         source: include_str!("../../../shaders/tonemap.wgsl"),
         entry_points: VS_FS,
         bindings: &[b(0, 0, "tonemap"), b(0, 1, "hdr_frame")],
-        blocks: &[block!(TonemapUniforms { exposure, pad0, pad1, pad2 })],
+        blocks: &[block!(TonemapUniforms {
+            exposure,
+            curve,
+            vignette,
+            inv_corner2,
+            center,
+            pad0,
+            pad1
+        })],
         cpu_mirror: "crates/ocean-cpu/src/shaders/tonemap.rs",
         gpu_module: "crates/ocean-gpu/src/tonemap.rs",
     },

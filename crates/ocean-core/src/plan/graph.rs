@@ -115,7 +115,14 @@ impl<'a> FrameInputs<'a> {
         )?;
         let tonemap = plan
             .runs(Pass::Tonemap)
-            .then(|| TonemapUniforms::new(scene.camera.exposure))
+            .then(|| {
+                TonemapUniforms::for_image(
+                    scene.camera.exposure,
+                    &scene.post,
+                    scene.camera.width,
+                    scene.camera.height,
+                )
+            })
             .transpose()?;
         Ok(Self {
             scene,

@@ -218,6 +218,7 @@ pub const LIMITS: &[Limit] = &[
     real("spray.size_m", 1.0e-3, 10.0, "m, a sprite's side"),
     real("spray.intensity", 0.0, MAX_COLOUR, "radiance of a sprite's centre"),
     real("spray.color", 0.0, MAX_COLOUR, "linear RGB"),
+    real("post.vignette", 0.0, 1.0, "0 none; 1 black at the image's corners"),
     real("objects.*.center", -MAX_COORDINATE_M, MAX_COORDINATE_M, "m; as camera.position"),
     real("objects.*.radius", MIN_LENGTH_M, MAX_COORDINATE_M, "m"),
     real("objects.*.size", MIN_LENGTH_M, MAX_COORDINATE_M, "m, each edge"),
@@ -379,6 +380,7 @@ impl Scene {
         check("spray.size_m", &[sp.size_m])?;
         check("spray.intensity", &[sp.intensity])?;
         check("spray.color", &sp.color)?;
+        check("post.vignette", &[self.post.vignette])?;
         self.check_objects()?;
         self.check_derived()
     }

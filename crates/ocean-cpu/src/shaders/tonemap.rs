@@ -6,7 +6,9 @@ use rayon::prelude::*;
 pub use ocean_core::tonemap::TonemapUniforms;
 
 use crate::shaders::shared::fullscreen::fullscreen_position;
-use crate::shaders::wgsl::{Vec3, Vec4, clamp, max, min, pow, round, select, vec4};
+use crate::shaders::wgsl::{Vec2, Vec3, Vec4, clamp, max, min, pow, round, select, vec4};
+
+pub use ocean_core::tonemap::{HABLE_P, HABLE_Q, HABLE_R, HABLE_S, HABLE_T, HABLE_WHITE_SCALE};
 
 /// Largest finite f16 (`ocean_core::tonemap::HDR_MAX`).
 pub const HDR_MAX: f32 = 65504.0;
@@ -49,6 +51,25 @@ pub fn aces_narkowicz(x: Vec3) -> Vec3 {
     (x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14)
 }
 
+/// Hable's filmic curve (Uncharted 2), normalised so that the white point W maps to 1:
+/// x (P x + Q) / (x (R x + S) + T) · (1/g(W)) (`ocean_core::tonemap`).
+pub fn hable(x: Vec3) -> Vec3 {
+    (x * (HABLE_P * x + HABLE_Q)) / (x * (HABLE_R * x + HABLE_S) + HABLE_T) * HABLE_WHITE_SCALE
+}
+
+/// `tone_curve(x)`: the curve `tonemap.curve` selects (1 Hable, else ACES).
+pub fn tone_curve(x: Vec3, tonemap: &TonemapUniforms) -> Vec3 {
+    if tonemap.curve == 1 { hable(x) } else { aces_narkowicz(x) }
+}
+
+/// `vignette_factor(p)`: max(1 − s·r², 0) at the pixel centre `p`, r = 0 at the centre and 1
+/// at the corner.
+pub fn vignette_factor(p: Vec2, tonemap: &TonemapUniforms) -> f32 {
+    let d = p - Vec2::from(tonemap.center);
+    let r2 = (d.x * d.x + d.y * d.y) * tonemap.inv_corner2;
+    max(1.0 - tonemap.vignette * r2, 0.0)
+}
+
 /// sRGB OETF, IEC 61966-2-1: 12.92 c for c ≤ 0.0031308, else 1.055 c^(1/2.4) − 0.055.
 pub fn srgb_oetf(c: Vec3) -> Vec3 {
     let lo = 12.92 * c;
@@ -72,8 +93,9 @@ pub fn fs_main(input: &VertexOut, tonemap: &TonemapUniforms, hdr_frame: &HdrFram
     let texel = [input.position.x as i32, input.position.y as i32];
     let hdr = hdr_frame.texture_load(texel).xyz();
     let exposed = hdr * tonemap.exposure;
-    let x = min(max(exposed, Vec3::splat(0.0)), Vec3::splat(HDR_MAX));
-    let mapped = clamp(aces_narkowicz(x), Vec3::splat(0.0), Vec3::splat(1.0));
+    let x = min(max(exposed, Vec3::splat(0.0)), Vec3::splat(HDR_MAX))
+        * vignette_factor(input.position.xy(), tonemap);
+    let mapped = clamp(tone_curve(x, tonemap), Vec3::splat(0.0), Vec3::splat(1.0));
     let encoded = srgb_oetf(mapped);
     quantize_unorm8(encoded).extend(1.0).into()
 }
