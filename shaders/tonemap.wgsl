@@ -14,12 +14,15 @@ struct TonemapUniforms {
     inv_corner2: f32,
     // The image's centre, pixels.
     center: vec2<f32>,
-    pad0: f32,
+    // Post `bloom`: level 0 of the up chain is added x this (strength / levels), else 0.
+    bloom_scale: f32,
     pad1: f32,
 }
 
 @group(0) @binding(0) var<uniform> tonemap: TonemapUniforms;
 @group(0) @binding(1) var hdr_frame: texture_2d<f32>;
+// Post `bloom`: level 0 of the up chain, half the frame's size (a 1x1 zero texture without).
+@group(0) @binding(2) var bloom: texture_2d<f32>;
 
 // Largest finite f16 (ocean_core::tonemap::HDR_MAX).
 const HDR_MAX: f32 = 65504.0;
@@ -67,6 +70,20 @@ fn vignette_factor(p: vec2<f32>) -> f32 {
     return max(1.0 - tonemap.vignette * r2, 0.0);
 }
 
+// The bloom at pixel p: the up chain's level 0 upsampled 2x as the chain itself upsamples
+// (ocean_core::bloom step 3; shaders/bloom.wgsl's upsample_at).
+fn bloom_at(p: vec2<i32>) -> vec3<f32> {
+    let size = vec2<i32>(textureDimensions(bloom, 0));
+    let m = p >> vec2<u32>(1u);
+    let far = select(m - 1, m + 1, (p & vec2<i32>(1)) == vec2<i32>(1));
+    let hi = size - 1;
+    let n = clamp(m, vec2<i32>(0), hi);
+    let f = clamp(far, vec2<i32>(0), hi);
+    let a = 0.75 * textureLoad(bloom, n, 0).rgb + 0.25 * textureLoad(bloom, vec2<i32>(f.x, n.y), 0).rgb;
+    let b = 0.75 * textureLoad(bloom, vec2<i32>(n.x, f.y), 0).rgb + 0.25 * textureLoad(bloom, f, 0).rgb;
+    return 0.75 * a + 0.25 * b;
+}
+
 // sRGB OETF, IEC 61966-2-1: 12.92 c for c <= 0.0031308, else 1.055 c^(1/2.4) - 0.055.
 fn srgb_oetf(c: vec3<f32>) -> vec3<f32> {
     let lo = 12.92 * c;
@@ -92,7 +109,9 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let texel = vec2<i32>(in.position.xy);
     let hdr = textureLoad(hdr_frame, texel, 0).rgb;
     let exposed = hdr * tonemap.exposure;
-    let x = min(max(exposed, vec3<f32>(0.0)), vec3<f32>(HDR_MAX)) * vignette_factor(in.position.xy);
+    let sanitised = min(max(exposed, vec3<f32>(0.0)), vec3<f32>(HDR_MAX));
+    let bloomed = sanitised + tonemap.bloom_scale * bloom_at(texel);
+    let x = bloomed * vignette_factor(in.position.xy);
     let mapped = clamp(tone_curve(x), vec3<f32>(0.0), vec3<f32>(1.0));
     let encoded = srgb_oetf(mapped);
     return vec4<f32>(quantize_unorm8(encoded), 1.0);

@@ -119,7 +119,7 @@ fn the_rearranged_form_is_exact_at_zero() {
 }
 
 fn uniforms(curve: Curve, vignette: f64, w: u32, h: u32) -> TonemapUniforms {
-    TonemapUniforms::for_image(1.0, &Post { curve, vignette }, w, h).unwrap()
+    TonemapUniforms::for_image(1.0, &Post { curve, vignette, ..Post::default() }, w, h).unwrap()
 }
 
 #[test]

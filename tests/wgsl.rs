@@ -225,7 +225,7 @@ fn layout_checker_rejects_wrong_structs() {
             Member { name: "exposure", offset: 8, wgsl_type: "f32" },
             Member { name: "inv_corner2", offset: 12, wgsl_type: "f32" },
             Member { name: "center", offset: 16, wgsl_type: "vec2<f32>" },
-            Member { name: "pad0", offset: 24, wgsl_type: "f32" },
+            Member { name: "bloom_scale", offset: 24, wgsl_type: "f32" },
             Member { name: "pad1", offset: 28, wgsl_type: "f32" },
         ]
     };
@@ -238,7 +238,7 @@ fn layout_checker_rejects_wrong_structs() {
             Member { name: "vignette", offset: 8, wgsl_type: "f32" },
             Member { name: "inv_corner2", offset: 12, wgsl_type: "f32" },
             Member { name: "center", offset: 16, wgsl_type: "vec2<f32>" },
-            Member { name: "pad0", offset: 24, wgsl_type: "f32" },
+            Member { name: "bloom_scale", offset: 24, wgsl_type: "f32" },
             Member { name: "pad1", offset: 28, wgsl_type: "f32" },
         ]
     };
@@ -285,6 +285,7 @@ fn rust_consts() -> Vec<(&'static str, f64)> {
         ("EXP_MIN", f64::from(water::EXP_MIN)),
         ("HDR_MAX", f64::from(tonemap::HDR_MAX)),
         ("SRGB_INV_GAMMA", f64::from(tonemap::SRGB_INV_GAMMA)),
+        ("BLOOM_HDR_MAX", f64::from(ocean_cpu::shaders::bloom::BLOOM_HDR_MAX)),
         ("HABLE_P", f64::from(tonemap::HABLE_P)),
         ("HABLE_Q", f64::from(tonemap::HABLE_Q)),
         ("HABLE_R", f64::from(tonemap::HABLE_R)),

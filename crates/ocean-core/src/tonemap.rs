@@ -143,8 +143,9 @@ pub struct TonemapUniforms {
     pub inv_corner2: f32,
     /// (width/2, height/2): the image's centre, pixels.
     pub center: [f32; 2],
-    /// Padding to 32 bytes (unused, 0).
-    pub pad0: f32,
+    /// Post `bloom`: the bloom chain's level 0 is added × this (strength / levels;
+    /// `crate::bloom`), 0 without the pass.
+    pub bloom_scale: f32,
     /// Padding (unused, 0).
     pub pad1: f32,
 }
@@ -202,7 +203,7 @@ impl TonemapUniforms {
         vignette: 0.0,
         inv_corner2: 0.0,
         center: [0.0; 2],
-        pad0: 0.0,
+        bloom_scale: 0.0,
         pad1: 0.0,
     };
 }

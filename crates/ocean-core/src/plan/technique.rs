@@ -126,7 +126,12 @@ pub const TECHNIQUES: &[TechniqueInfo] = &[
         "exposure, [post] vignette, ACES or Hable filmic curve → 8-bit sRGB",
         true,
     ),
-    t(Stage::Post, "bloom", "bloom (seed 002)", false),
+    t(
+        Stage::Post,
+        "bloom",
+        "bright pass + blur pyramid added before the tonemap (seed 002, Jimenez 2014)",
+        true,
+    ),
     // DESIGN.md's third post technique, `vignette`, is the `[post] vignette` key of the final
     // pass instead: a per-pixel multiply needs no pass of its own, and as a key it combines
     // with either technique.

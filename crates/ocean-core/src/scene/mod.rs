@@ -456,11 +456,25 @@ pub struct Post {
     /// The vignette's strength s ∈ [0, 1]: each pixel × (1 − s·r²), r = 0 at the centre and
     /// 1 at the corner. 0 (the default): no vignette.
     pub vignette: f64,
+    /// Post `bloom`: the bright pass keeps what exceeds this, in exposed units (1 ≈ white).
+    pub bloom_threshold: f64,
+    /// Post `bloom`: the blurred bright pass is added to the frame × this (0: the pass is
+    /// left out).
+    pub bloom_strength: f64,
+    /// Post `bloom`: levels of the blur pyramid (each twice as wide as the one before), at
+    /// most as many as the frame's half size has.
+    pub bloom_levels: u32,
 }
 
 impl Default for Post {
     fn default() -> Self {
-        Self { curve: crate::tonemap::Curve::Aces, vignette: 0.0 }
+        Self {
+            curve: crate::tonemap::Curve::Aces,
+            vignette: 0.0,
+            bloom_threshold: 1.0,
+            bloom_strength: 0.1,
+            bloom_levels: 5,
+        }
     }
 }
 
