@@ -29,12 +29,10 @@ struct BloomUniforms {
 // Largest finite f16 (ocean_core::tonemap::HDR_MAX), the tonemap's clamp.
 const BLOOM_HDR_MAX: f32 = 65504.0;
 
-// Texel (x, y) of `src`, 0 outside it (the downsample's border).
+// Texel (x, y) of `src`, clamped to its edge (the downsample reaches one texel beyond it).
 fn tap(x: i32, y: i32) -> vec3<f32> {
-    if (x < 0 || y < 0 || x >= i32(params.src_width) || y >= i32(params.src_height)) {
-        return vec3<f32>(0.0);
-    }
-    return textureLoad(src, vec2<i32>(x, y), 0).rgb;
+    let hi = vec2<i32>(i32(params.src_width) - 1, i32(params.src_height) - 1);
+    return textureLoad(src, clamp(vec2<i32>(x, y), vec2<i32>(0), hi), 0).rgb;
 }
 
 // The bright pass: what exceeds the threshold of the sanitised exposed value (NaN -> 0, as

@@ -241,3 +241,215 @@ fn post_keys_are_parsed_validated_and_named_in_errors() {
     let bad = Post { vignette: 1.5, ..Post::default() };
     assert!(TonemapUniforms::for_image(1.0, &bad, 4, 4).is_err());
 }
+
+// ---------------------------------------------------------------------------------------
+// Post technique `bloom` (ocean_core::bloom): the pyramid's energy, its symmetry, what it
+// leaves alone, on the CPU mirror (the GPU's chains are held to it by the cross-check).
+
+use ocean_core::plan::{BloomInputs, FramePlan, OutputKind, Pass};
+use ocean_cpu::sampler::Texture2D;
+use ocean_cpu::shaders::bloom;
+
+/// A scene whose frame is `w` × `h` with the given bloom keys (exposure 1).
+fn bloom_scene(w: u32, h: u32, threshold: f64, levels: u32) -> Scene {
+    let mut s = Scene::default();
+    (s.camera.width, s.camera.height, s.camera.exposure) = (w, h, 1.0);
+    s.post.bloom_threshold = threshold;
+    s.post.bloom_levels = levels;
+    s
+}
+
+/// The bloom the tonemap adds at every pixel, before × strength: up(u_0) / L (f64 sums of
+/// the f32 values).
+fn full_bloom(hdr: &Texture2D, inputs: &BloomInputs) -> Vec<[f64; 3]> {
+    let (_, up) = bloom::dispatch(hdr, inputs);
+    let glow = bloom::level0(&up);
+    let l = inputs.levels.len() as f64;
+    (0..hdr.height as i32)
+        .flat_map(|y| (0..hdr.width as i32).map(move |x| (x, y)))
+        .map(|(x, y)| {
+            let v = bloom::upsample_at(&glow, [x, y]);
+            [f64::from(v.x) / l, f64::from(v.y) / l, f64::from(v.z) / l]
+        })
+        .collect()
+}
+
+fn frame(w: u32, h: u32, lit: &[(u32, u32, [f32; 3])]) -> Texture2D {
+    let mut t = vec![[0.0f32; 4]; (w * h) as usize];
+    for &(x, y, c) in lit {
+        t[(y * w + x) as usize] = [c[0], c[1], c[2], 1.0];
+    }
+    Texture2D::new(w, h, t)
+}
+
+/// Σ of a channel of the bright pass over the frame, f64.
+fn bright_sum(hdr: &Texture2D, inputs: &BloomInputs) -> [f64; 3] {
+    let mut s = [0.0; 3];
+    for t in &hdr.texels {
+        let b = bloom::bright([t[0], t[1], t[2]].into(), &inputs.down[0]);
+        for (c, v) in s.iter_mut().zip([b.x, b.y, b.z]) {
+            *c += f64::from(v);
+        }
+    }
+    s
+}
+
+fn relative_energy_error(bloom: &[[f64; 3]], want: [f64; 3]) -> f64 {
+    (0..3)
+        .map(|c| {
+            let got: f64 = bloom.iter().map(|p| p[c]).sum();
+            ((got - want[c]) / want[c]).abs()
+        })
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn the_pyramid_keeps_the_bright_pass_energy() {
+    // 128 × 64, five levels (64×32 down to 4×2: every side even), bright texels inside, on
+    // the border and in a corner; the threshold 1 cuts a part of each.
+    let scene = bloom_scene(128, 64, 1.0, 5);
+    let inputs = BloomInputs::new(&scene);
+    assert_eq!(inputs.levels, [[64, 32], [32, 16], [16, 8], [8, 4], [4, 2]]);
+    let hdr = frame(
+        128,
+        64,
+        &[
+            (40, 20, [50.0, 30.0, 10.0]),
+            (41, 20, [2.0, 1.5, 0.5]),
+            (90, 45, [500.0, 400.0, 300.0]),
+            (0, 31, [20.0, 20.0, 20.0]),
+            (127, 63, [8.0, 4.0, 2.0]),
+        ],
+    );
+    let want = bright_sum(&hdr, &inputs);
+    let b = full_bloom(&hdr, &inputs);
+    let err = relative_energy_error(&b, want);
+    println!("bloom energy: Σ bright pass {want:?}, relative error of Σ bloom {err:.2e}");
+    // f32 sums of up to 5 levels × 16 weighted taps: a few ULP of the texels' values.
+    assert!(err < 1e-6, "{err}");
+    // Negative controls: without the division by L the light is 5×; a pyramid that keeps
+    // 0.1 % too much is caught.
+    let unnormalised: Vec<[f64; 3]> = b.iter().map(|p| p.map(|v| v * 5.0)).collect();
+    assert!(relative_energy_error(&unnormalised, want) > 3.9);
+    let leaky: Vec<[f64; 3]> = b.iter().map(|p| p.map(|v| v * 1.001)).collect();
+    assert!(relative_energy_error(&leaky, want) > 9e-4);
+    // Below the threshold nothing blooms: the chains are zero.
+    let dim = frame(128, 64, &[(40, 20, [0.99, 0.5, 1.0])]);
+    assert!(full_bloom(&dim, &inputs).iter().all(|p| *p == [0.0; 3]));
+}
+
+#[test]
+fn a_centred_block_spreads_symmetrically_and_a_pixel_mirrors() {
+    let (w, h) = (64u32, 64u32);
+    let scene = bloom_scene(w, h, 0.0, 5);
+    let inputs = BloomInputs::new(&scene);
+    // A 2×2 block on the frame's centre: the pyramid's grid is symmetric about it.
+    let c = [10.0f32, 5.0, 1.0];
+    let block = frame(w, h, &[(31, 31, c), (32, 31, c), (31, 32, c), (32, 32, c)]);
+    let b = full_bloom(&block, &inputs);
+    let at = |x: u32, y: u32| b[(y * w + x) as usize][0];
+    let peak = at(32, 32);
+    let mut worst = 0.0f64;
+    for y in 0..h {
+        for x in 0..w {
+            for other in [at(w - 1 - x, y), at(x, h - 1 - y), at(y, x)] {
+                worst = worst.max((at(x, y) - other).abs() / peak);
+            }
+        }
+    }
+    println!("bloom of a centred block: peak {peak:.4}, worst asymmetry {worst:.1e} of it");
+    // Mirrored sums add the same terms in the other order: f32 rounding only.
+    assert!(worst < 1e-6, "{worst}");
+    // It spreads: falling away from the block along a row, and reaching 16 pixels out.
+    let row: Vec<f64> = (32..64).map(|x| at(x, 32)).collect();
+    assert!(row.windows(2).all(|p| p[1] <= p[0]), "{row:?}");
+    assert!(at(48, 32) > 1e-4 * peak);
+    // Negative control: the block moved by one pixel is not symmetric about the centre.
+    let moved = frame(w, h, &[(32, 31, c), (33, 31, c), (32, 32, c), (33, 32, c)]);
+    let m = full_bloom(&moved, &inputs);
+    let asym = (0..w)
+        .map(|x| (m[(32 * w + x) as usize][0] - m[(32 * w + w - 1 - x) as usize][0]).abs())
+        .fold(0.0, f64::max);
+    assert!(asym / peak > 1e-3, "{asym}");
+    // A single pixel anywhere: its bloom mirrored is the bloom of the mirrored pixel.
+    let one = full_bloom(&frame(w, h, &[(20, 9, c)]), &inputs);
+    let mirrored = full_bloom(&frame(w, h, &[(w - 1 - 20, 9, c)]), &inputs);
+    let p1 = one.iter().map(|p| p[0]).fold(0.0, f64::max);
+    let worst = (0..h)
+        .flat_map(|y| (0..w).map(move |x| (x, y)))
+        .map(|(x, y)| {
+            (one[(y * w + x) as usize][0] - mirrored[(y * w + w - 1 - x) as usize][0]).abs()
+        })
+        .fold(0.0, f64::max);
+    assert!(worst / p1 < 1e-6, "{worst}");
+}
+
+#[test]
+fn bloom_off_is_the_tonemap_frame_bit_for_bit() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/reference/scenes/bloom_glitter.toml"
+    ))
+    .unwrap();
+    let mut scene = Scene::from_toml(&text, SceneSource::Text).unwrap();
+    (scene.camera.width, scene.camera.height) = (96, 54);
+    let render = |s: &Scene, plan: FramePlan| {
+        ocean_cpu::render_scene_with_plan(s, plan, &mut |_| {}).unwrap().ldr.unwrap()
+    };
+    let mut plain = scene.clone();
+    plain.techniques.post = Some("tonemap".into());
+    let reference = render(&plain, FramePlan::new(&plain, OutputKind::Ldr));
+    // Strength 0: the plan leaves the pass out, with its reason …
+    let mut off = scene.clone();
+    off.post.bloom_strength = 0.0;
+    let plan = FramePlan::new(&off, OutputKind::Ldr);
+    let skipped = plan.skipped.iter().find(|p| p.name == Pass::Bloom).unwrap();
+    assert!(skipped.reason.contains("bloom_strength = 0"), "{}", skipped.reason);
+    assert_eq!(render(&off, plan), reference);
+    // … and the full plan runs it and adds 0 × the pyramid: the same bits.
+    let full = FramePlan::full(&off, OutputKind::Ldr);
+    assert!(full.runs(Pass::Bloom));
+    assert_eq!(render(&off, full), reference);
+    // EXR output keeps linear HDR: no bloom pass.
+    assert!(!FramePlan::new(&scene, OutputKind::Hdr).runs(Pass::Bloom));
+    // Negative control: the scene's own strength changes the picture, only brightening it.
+    let bloomed = render(&scene, FramePlan::new(&scene, OutputKind::Ldr));
+    let changed = bloomed.iter().zip(&reference).filter(|(a, b)| a != b).count();
+    println!("bloom_glitter 96×54: {changed} of {} bytes changed by the bloom", bloomed.len());
+    assert!(changed > 100);
+    assert!(bloomed.iter().zip(&reference).all(|(a, b)| a >= b));
+}
+
+#[test]
+fn bloom_of_extreme_frames_stays_finite_and_levels_follow_the_frame() {
+    let scene = bloom_scene(33, 17, 0.0, 8);
+    let inputs = BloomInputs::new(&scene);
+    // 16×8 at level 0: five levels (16, 8, 4, 2, 1 wide), not the eight asked for.
+    assert_eq!(inputs.levels.len(), 5);
+    assert_eq!(BloomInputs::new(&bloom_scene(1, 1, 1.0, 8)).levels, [[1, 1]]);
+    let specials = [f32::NAN, f32::INFINITY, f32::NEG_INFINITY, f32::MAX, 65504.0, -1.0, 0.0];
+    let texels: Vec<[f32; 4]> = (0..33 * 17)
+        .map(|i| {
+            let v = specials[i % specials.len()];
+            [v, specials[(i + 3) % specials.len()], v, 1.0]
+        })
+        .collect();
+    let hdr = Texture2D::new(33, 17, texels.clone());
+    let (down, up) = bloom::dispatch(&hdr, &inputs);
+    assert!(
+        down.atlas.texels.iter().chain(&up.atlas.texels).all(|t| t.iter().all(|v| v.is_finite()))
+    );
+    // Through the tonemap at the largest strength: every byte defined.
+    let mut u = TonemapUniforms::for_image(1.0, &Post::default(), 33, 17).unwrap();
+    u.bloom_scale = (10.0 / inputs.levels.len() as f64) as f32;
+    let bytes = ocean_cpu::shaders::tonemap::tonemap_to_rgba8_with_bloom(
+        &texels,
+        33,
+        17,
+        &u,
+        &bloom::level0(&up),
+    );
+    // NaN and −∞ texels next to 65504 ones are lit by their neighbours' bloom, never NaN.
+    assert!(bytes.chunks(4).all(|p| p[3] == 255));
+    assert_eq!(bytes[0], 255, "a 65504 neighbourhood is white");
+}

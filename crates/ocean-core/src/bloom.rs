@@ -16,8 +16,11 @@
 //!    L = min(`bloom_levels`, the base's full chain) levels. Texel (i, j) of the level below
 //!    is Σ w_a w_b s(2i − 1 + a, 2j − 1 + b), a, b ∈ 0..4, w = (1, 3, 3, 1)/8 — the tent
 //!    (bilinear) filter centred on the texel, separable, rows first, summed left to right;
-//!    taps outside the level read 0. Each source texel gives away exactly ¼ of itself in
-//!    total (½ per axis), so the sum × texel area is kept wherever the sides are even.
+//!    the taps reach one texel beyond the level, which repeats its edge texel (clamp to
+//!    edge: the edge texel then gives ⅛ + ⅜ like any other). Each source texel gives away
+//!    exactly ¼ of itself in total (½ per axis), so the sum × texel area is kept wherever
+//!    the sides are even; an odd side's last column or row gives only ⅛ per axis (it has no
+//!    texel of the coarser level centred beside it).
 //! 3. **Up**: chain `bloom_up` has the same levels; u_{L−1} = d_{L−1}, u_k = d_k +
 //!    up(u_{k+1}), where up is the 2× bilinear upsample: fine texel 2m takes ¾ of coarse m and
 //!    ¼ of m − 1, texel 2m + 1 ¾ of m and ¼ of m + 1 (rows first, then columns), coarse

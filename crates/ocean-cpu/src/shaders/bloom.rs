@@ -12,11 +12,10 @@ use crate::shaders::wgsl::{Vec3, max, min};
 /// Largest finite f16 (`ocean_core::tonemap::HDR_MAX`), the tonemap's clamp.
 pub const BLOOM_HDR_MAX: f32 = 65504.0;
 
-/// `tap(x, y)`: texel (x, y) of `src`, 0 outside it.
+/// `tap(x, y)`: texel (x, y) of `src`, clamped to its edge.
 fn tap(src: &Texture2D, params: &BloomUniforms, x: i32, y: i32) -> Vec3 {
-    if x < 0 || y < 0 || x >= params.src_width as i32 || y >= params.src_height as i32 {
-        return Vec3::splat(0.0);
-    }
+    let x = x.clamp(0, params.src_width as i32 - 1);
+    let y = y.clamp(0, params.src_height as i32 - 1);
     let t = src.texel(x as u32, y as u32);
     [t[0], t[1], t[2]].into()
 }
