@@ -128,9 +128,7 @@ impl<'a> FrameInputs<'a> {
                 .map(|mut t| {
                     // The bloom's share of each level: strength / L (crate::bloom, step 4);
                     // 0 where the pass does not run, so the frame is the plain tonemap's.
-                    t.bloom_scale = bloom.as_ref().map_or(0.0, |b| {
-                        (scene.post.bloom_strength / f64::from(b.levels.len() as u32)) as f32
-                    });
+                    t.bloom_scale = bloom.as_ref().map_or(0.0, |b| b.scale(scene));
                     t
                 })
             })
@@ -176,6 +174,12 @@ impl BloomInputs {
             })
             .collect();
         Self { down, levels }
+    }
+
+    /// What the tonemap multiplies the up chain's level 0 by: strength / L
+    /// (`crate::bloom`, step 4).
+    pub fn scale(&self, scene: &Scene) -> f32 {
+        (scene.post.bloom_strength / self.levels.len() as f64) as f32
     }
 
     /// The up chain's dispatch writing level `k` from level `k + 1`.

@@ -65,8 +65,8 @@ pub fn upsample_at(coarse: &Texture2D, p: [i32; 2]) -> Vec3 {
     0.75 * a + 0.25 * b
 }
 
-/// `upsample(id)`: texel `id` of up[k] = `detail` (down[k]) + the upsample of `coarse`
-/// (up[k + 1]).
+/// `upsample(id)`: texel `id` of `up[k]` = `detail` (`down[k]`) + the upsample of `coarse`
+/// (`up[k + 1]`).
 pub fn upsample(id: [u32; 2], detail: &Texture2D, coarse: &Texture2D) -> Vec3 {
     let d = detail.texel(id[0], id[1]);
     Vec3::from([d[0], d[1], d[2]]) + upsample_at(coarse, [id[0] as i32, id[1] as i32])
