@@ -114,8 +114,31 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         let hdr = ocean_core::supersample::box_filter(&hdr, w, h, k);
         let ldr = (output_kind == OutputKind::Ldr)
             .then(|| {
-                let t = ocean_core::tonemap::TonemapUniforms::new(scene.camera.exposure)?;
-                anyhow::Ok(ocean_cpu::shaders::tonemap::tonemap_to_rgba8(&hdr, w, h, &t))
+                let mut t = ocean_core::tonemap::TonemapUniforms::for_image(
+                    scene.camera.exposure,
+                    &scene.post,
+                    w,
+                    h,
+                )?;
+                // Post `bloom` of the filtered frame at the output's size (the pyramid and
+                // the vignette belong to the picture, not to the supersampled frame).
+                let mut out = scene.clone();
+                (out.camera.width, out.camera.height) = (w, h);
+                let glow = FramePlan::new(&out, OutputKind::Ldr).runs(Pass::Bloom).then(|| {
+                    let inputs = ocean_core::plan::BloomInputs::new(&out);
+                    t.bloom_scale = inputs.scale(&out);
+                    let frame = ocean_cpu::sampler::Texture2D::new(w, h, hdr.clone());
+                    ocean_cpu::shaders::bloom::level0(
+                        &ocean_cpu::shaders::bloom::dispatch(&frame, &inputs).1,
+                    )
+                });
+                let rgba = match &glow {
+                    Some(g) => {
+                        ocean_cpu::shaders::tonemap::tonemap_to_rgba8_with_bloom(&hdr, w, h, &t, g)
+                    }
+                    None => ocean_cpu::shaders::tonemap::tonemap_to_rgba8(&hdr, w, h, &t),
+                };
+                anyhow::Ok(rgba)
             })
             .transpose()?;
         (ldr, hdr)

@@ -217,26 +217,32 @@ fn layout_checker_rejects_wrong_structs() {
         &block(|| vec![Member { name: "exposure", offset: 0, wgsl_type: "f32" }], 4),
     )
     .unwrap_err();
-    assert!(err.contains("size: WGSL 16, Rust 4") && err.contains("4 WGSL members"), "{err}");
+    assert!(err.contains("size: WGSL 32, Rust 4") && err.contains("7 WGSL members"), "{err}");
     let swapped = || {
         vec![
-            Member { name: "pad0", offset: 0, wgsl_type: "f32" },
-            Member { name: "exposure", offset: 4, wgsl_type: "f32" },
-            Member { name: "pad1", offset: 8, wgsl_type: "f32" },
-            Member { name: "pad2", offset: 12, wgsl_type: "f32" },
+            Member { name: "vignette", offset: 0, wgsl_type: "f32" },
+            Member { name: "curve", offset: 4, wgsl_type: "u32" },
+            Member { name: "exposure", offset: 8, wgsl_type: "f32" },
+            Member { name: "inv_corner2", offset: 12, wgsl_type: "f32" },
+            Member { name: "center", offset: 16, wgsl_type: "vec2<f32>" },
+            Member { name: "bloom_scale", offset: 24, wgsl_type: "f32" },
+            Member { name: "pad1", offset: 28, wgsl_type: "f32" },
         ]
     };
-    let err = check_block(&tonemap, &block(swapped, 16)).unwrap_err();
-    assert!(err.contains("member 0: WGSL exposure: f32 at 0, Rust pad0: f32 at 0"), "{err}");
+    let err = check_block(&tonemap, &block(swapped, 32)).unwrap_err();
+    assert!(err.contains("member 0: WGSL exposure: f32 at 0, Rust vignette: f32 at 0"), "{err}");
     let wrong_type = || {
         vec![
             Member { name: "exposure", offset: 0, wgsl_type: "u32" },
-            Member { name: "pad0", offset: 4, wgsl_type: "f32" },
-            Member { name: "pad1", offset: 8, wgsl_type: "f32" },
-            Member { name: "pad2", offset: 12, wgsl_type: "f32" },
+            Member { name: "curve", offset: 4, wgsl_type: "u32" },
+            Member { name: "vignette", offset: 8, wgsl_type: "f32" },
+            Member { name: "inv_corner2", offset: 12, wgsl_type: "f32" },
+            Member { name: "center", offset: 16, wgsl_type: "vec2<f32>" },
+            Member { name: "bloom_scale", offset: 24, wgsl_type: "f32" },
+            Member { name: "pad1", offset: 28, wgsl_type: "f32" },
         ]
     };
-    let err = check_block(&tonemap, &block(wrong_type, 16)).unwrap_err();
+    let err = check_block(&tonemap, &block(wrong_type, 32)).unwrap_err();
     assert!(err.contains("WGSL exposure: f32 at 0, Rust exposure: u32 at 0"), "{err}");
     let err = check_block(&tonemap, &Block { name: "NoSuchStruct", size: 0, members: Vec::new })
         .unwrap_err();
@@ -285,6 +291,13 @@ fn rust_consts() -> Vec<(&'static str, f64)> {
         ("EXP_MIN", f64::from(water::EXP_MIN)),
         ("HDR_MAX", f64::from(tonemap::HDR_MAX)),
         ("SRGB_INV_GAMMA", f64::from(tonemap::SRGB_INV_GAMMA)),
+        ("BLOOM_HDR_MAX", f64::from(ocean_cpu::shaders::bloom::BLOOM_HDR_MAX)),
+        ("HABLE_P", f64::from(tonemap::HABLE_P)),
+        ("HABLE_Q", f64::from(tonemap::HABLE_Q)),
+        ("HABLE_R", f64::from(tonemap::HABLE_R)),
+        ("HABLE_S", f64::from(tonemap::HABLE_S)),
+        ("HABLE_T", f64::from(tonemap::HABLE_T)),
+        ("HABLE_WHITE_SCALE", f64::from(tonemap::HABLE_WHITE_SCALE)),
         ("TAU", f64::from(waves::TAU)),
         ("TURN_UNIT", f64::from(waves::TURN_UNIT)),
         ("MIN_CHROMATICITY_Y", f64::from(preetham::MIN_CHROMATICITY_Y)),

@@ -126,6 +126,11 @@ pub fn scene_text(values: &[(&str, String)], objects: &[&str]) -> String {
         }
     }
     let mut text = String::new();
+    // The bloom keys act only under post technique `bloom`: scenes that set one run it.
+    if tables.iter().any(|(t, lines)| *t == "post" && lines.iter().any(|l| l.starts_with("bloom_")))
+    {
+        text += "[techniques]\npost = \"bloom\"\n";
+    }
     for (table, mut lines) in tables {
         // A relief's range only acts on a heightmap floor: give it the reef's.
         if table == "terrain" && lines.iter().any(|l| l.starts_with("height_range_m")) {

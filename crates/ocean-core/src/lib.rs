@@ -15,6 +15,7 @@
 //!   FFT without normalisation computes it.
 
 pub mod atmosphere;
+pub mod bloom;
 pub mod camera;
 pub mod camera_uniforms;
 pub mod clouds;

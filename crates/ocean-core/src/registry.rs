@@ -13,6 +13,7 @@ use std::mem::{offset_of, size_of};
 use std::path::Path;
 
 use crate::atmosphere::SkyLut;
+use crate::bloom::BloomUniforms;
 use crate::camera_uniforms::CameraUniforms;
 use crate::frame::{
     AmbientBlock, ChiuShadingBlock, FarFieldBlock, FrameUniforms, FresnelTableUniforms,
@@ -387,12 +388,39 @@ pub const STAGES: &[StageEntry] = &[
         gpu_module: "crates/ocean-gpu/src/spray.rs",
     },
     StageEntry {
+        name: "bloom",
+        file: "bloom.wgsl",
+        source: include_str!("../../../shaders/bloom.wgsl"),
+        entry_points: &[("bright_down", Compute), ("downsample", Compute), ("upsample", Compute)],
+        bindings: &[b(0, 0, "params"), b(0, 1, "src"), b(0, 2, "dst"), b(0, 3, "detail")],
+        blocks: &[block!(BloomUniforms {
+            width,
+            height,
+            src_width,
+            src_height,
+            exposure,
+            threshold,
+            pad0,
+            pad1
+        })],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/bloom.rs",
+        gpu_module: "crates/ocean-gpu/src/bloom.rs",
+    },
+    StageEntry {
         name: "tonemap",
         file: "tonemap.wgsl",
         source: include_str!("../../../shaders/tonemap.wgsl"),
         entry_points: VS_FS,
-        bindings: &[b(0, 0, "tonemap"), b(0, 1, "hdr_frame")],
-        blocks: &[block!(TonemapUniforms { exposure, pad0, pad1, pad2 })],
+        bindings: &[b(0, 0, "tonemap"), b(0, 1, "hdr_frame"), b(0, 2, "bloom")],
+        blocks: &[block!(TonemapUniforms {
+            exposure,
+            curve,
+            vignette,
+            inv_corner2,
+            center,
+            bloom_scale,
+            pad1
+        })],
         cpu_mirror: "crates/ocean-cpu/src/shaders/tonemap.rs",
         gpu_module: "crates/ocean-gpu/src/tonemap.rs",
     },

@@ -23,7 +23,9 @@ use crate::raster::{self, BlendMode, CompareFunction, RasterState, RenderTarget,
 use crate::sampler::Texture2D;
 use crate::shaders::shared::floor::FloorMaps;
 use crate::shaders::waves::WavesMirror;
-use crate::shaders::{fresnel_table, objects, shadow, sky, spray, tonemap, water, wave_mips};
+use crate::shaders::{
+    bloom, fresnel_table, objects, shadow, sky, spray, tonemap, water, wave_mips,
+};
 
 /// Default side of the 2D Fresnel textures (the error table in the README: 256² is within 2e-3
 /// of eq. 2 up to 76° from the normal); a scene's `[quality] fresnel_table_size` and the plan
@@ -81,6 +83,10 @@ pub struct FrameBuffers {
     pub floor_map: Texture2D,
     /// The frame, linear HDR RGBA.
     pub hdr: RenderTarget,
+    /// Post `bloom`: the bright pass's down chain (else 1×1 zero).
+    pub bloom_down: MipChain,
+    /// Post `bloom`: the up chain, level 0 what the tonemap adds (else 1×1 zero).
+    pub bloom_up: MipChain,
     /// The 8-bit sRGB RGBA picture, when the plan tonemaps.
     pub ldr: Option<Vec<u8>>,
     /// The frame's uniforms.
@@ -143,6 +149,8 @@ impl FrameBuffers {
             ResourceId::ReflectionMap => &self.reflection_map,
             ResourceId::RefractionMap => &self.refraction_map,
             ResourceId::Hdr => return Some((self.hdr.width, self.hdr.height, &self.hdr.color)),
+            ResourceId::BloomDown => &self.bloom_down.atlas,
+            ResourceId::BloomUp => &self.bloom_up.atlas,
             ResourceId::Ldr | ResourceId::Environment => return None,
         };
         Some((t.width, t.height, &t.texels))
@@ -335,6 +343,8 @@ impl<'e> CpuBackend<'e> {
             refraction_map: self.take(ResourceId::RefractionMap),
             floor_map: floor_texture(frame.scene),
             hdr,
+            bloom_down: self.take_chain(ResourceId::BloomDown),
+            bloom_up: self.take_chain(ResourceId::BloomUp),
             ldr: self.ldr.take(),
             uniforms: frame.uniforms,
             timings,
@@ -582,11 +592,30 @@ impl Backend for CpuBackend<'_> {
         Ok(())
     }
 
+    fn bloom(&mut self, frame: &FrameInputs<'_>) -> Result<(), Error> {
+        if let Some(inputs) = &frame.bloom {
+            let hdr = self.hdr(frame.plan);
+            let texture = Texture2D::new(hdr.width, hdr.height, hdr.color.clone());
+            let (down, up) = bloom::dispatch(&texture, inputs);
+            for (id, chain) in [(ResourceId::BloomDown, down), (ResourceId::BloomUp, up)] {
+                self.chains.retain(|(m, _)| *m != id);
+                self.chains.push((id, chain));
+            }
+        }
+        Ok(())
+    }
+
     fn tonemap(&mut self, frame: &FrameInputs<'_>) -> Result<(), Error> {
         if let Some(t) = &frame.tonemap {
+            // The up chain's level 0 where pass `bloom` ran, else one zero texel.
+            let glow = self
+                .chains
+                .iter()
+                .find(|(m, _)| *m == ResourceId::BloomUp)
+                .map_or_else(|| EMPTY_MAP.clone(), |(_, c)| bloom::level0(c));
             let hdr = self.hdr(frame.plan);
             let (w, h) = (hdr.width, hdr.height);
-            self.ldr = Some(tonemap::tonemap_to_rgba8(&hdr.color, w, h, t));
+            self.ldr = Some(tonemap::tonemap_to_rgba8_with_bloom(&hdr.color, w, h, t, &glow));
         }
         Ok(())
     }

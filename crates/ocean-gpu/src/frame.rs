@@ -32,6 +32,7 @@ use ocean_core::terrain::{Relief, relief_texels};
 use ocean_core::waves::OceanSurface;
 use wgpu::util::DeviceExt;
 
+use crate::bloom::BloomStage;
 use crate::common::{Load, begin_render_pass, bind_group, uniform_buffer};
 use crate::device::{AdapterReport, Error, Gpu};
 use crate::fresnel_table::FresnelTableStage;
@@ -115,6 +116,7 @@ struct Stages {
     shadow: ShadowStage,
     water: WaterStage,
     spray: SprayStage,
+    bloom: BloomStage,
     tonemap: TonemapStage,
 }
 
@@ -595,16 +597,45 @@ impl Backend for GpuBackend<'_> {
         Ok(())
     }
 
+    fn bloom(&mut self, frame: &FrameInputs<'_>) -> Result<(), Error> {
+        let Some(inputs) = &frame.bloom else { return Ok(()) };
+        let (hdr, _) = self.hdr(frame.plan);
+        let device = &self.gpu.device;
+        let [w, h] = inputs.levels[0];
+        let count = inputs.levels.len() as u32;
+        let down = GpuMipChain::with_levels(device, "ocean.bloom_down", w, h, count);
+        let up = GpuMipChain::with_levels(device, "ocean.bloom_up", w, h, count);
+        let slots = [self.timer.slot(Pass::Bloom), self.timer.slot(Pass::Bloom)];
+        self.stages.bloom.encode(
+            device,
+            &mut self.encoder,
+            &hdr.view,
+            inputs,
+            (&down, &up),
+            slots.map(|s| self.timer.compute_writes(s)),
+        );
+        for (id, chain) in [(ResourceId::BloomDown, down), (ResourceId::BloomUp, up)] {
+            self.chains.retain(|(m, _)| *m != id);
+            self.chains.push((id, chain));
+        }
+        Ok(())
+    }
+
     fn tonemap(&mut self, frame: &FrameInputs<'_>) -> Result<(), Error> {
         if let Some(t) = &frame.tonemap {
             let (hdr, _) = self.hdr(frame.plan);
             let ldr = self.target(frame.plan, ResourceId::Ldr);
+            // The up chain's level 0 where pass `bloom` ran, else the 1×1 zero map.
+            let glow = match self.chains.iter().find(|(m, _)| *m == ResourceId::BloomUp) {
+                Some((_, c)) => c.levels[0].clone(),
+                None => self.map(ResourceId::BloomUp).view,
+            };
             let slot = self.timer.slot(Pass::Tonemap);
             self.stages.tonemap.encode(
                 &self.gpu.device,
                 &mut self.encoder,
                 t,
-                &hdr.view,
+                (&hdr.view, &glow),
                 &ldr.view,
                 self.timer.render_writes(slot),
             );
@@ -643,6 +674,7 @@ impl Renderer {
                 shadow: ShadowStage::new(d)?,
                 water: WaterStage::new(d, &built)?,
                 spray: SprayStage::new(d)?,
+                bloom: BloomStage::new(d)?,
                 tonemap: TonemapStage::new(d)?,
             })
         })??;
@@ -788,6 +820,9 @@ impl Renderer {
                 || (s == Stage::Spray && matches!(name, "none" | "particles"))
                 // Waves `fft` run stage `waves`; `gerstner` is a uniform branch of `water`.
                 || (s == Stage::Waves && matches!(name, "fft" | "gerstner"))
+                // Post `bloom` is a pass of its own stage, run or skipped by the plan; the
+                // tonemap pipeline binds its result or a zero texture.
+                || (s == Stage::Post && matches!(name, "tonemap" | "bloom"))
         };
         if let Some((stage, t)) = plan.techniques.iter().find(|(s, t)| {
             !crate::common::COMPOSED.contains(s)

@@ -21,6 +21,7 @@
 //! # Ok::<(), ocean_gpu::Error>(())
 //! ```
 
+pub mod bloom;
 pub mod common;
 pub mod device;
 pub mod frame;

@@ -1,6 +1,6 @@
 //! Stage `tonemap` (`shaders/tonemap.wgsl`): HDR frame → 8-bit sRGB, one full-screen triangle
-//! into an `Rgba8Unorm` target. Bindings: group 0 — 0 `TonemapUniforms`, 1 the HDR frame
-//! (`textureLoad` only). CPU mirror: `ocean-cpu/src/shaders/tonemap.rs`.
+//! into an `Rgba8Unorm` target. Bindings: group 0 — 0 `TonemapUniforms`, 1 the HDR frame,
+//! 2 post `bloom`'s up chain, level 0 (`textureLoad` only). CPU mirror: `ocean-cpu/src/shaders/tonemap.rs`.
 
 use ocean_core::tonemap::TonemapUniforms;
 
@@ -30,19 +30,21 @@ impl TonemapStage {
             entries: &[
                 uniform_entry(0, wgpu::ShaderStages::FRAGMENT),
                 texture_entry(1, wgpu::ShaderStages::FRAGMENT, false),
+                texture_entry(2, wgpu::ShaderStages::FRAGMENT, false),
             ],
         });
         let pipeline = fullscreen_pipeline(device, "tonemap", &module, &layout, LDR_FORMAT)?;
         Ok(Self { pipeline, layout })
     }
 
-    /// Records the pass from `hdr` into `ldr`.
+    /// Records the pass from `hdr` (and `bloom`, the up chain's level 0 or a 1×1 zero
+    /// texture) into `ldr`.
     pub fn encode(
         &self,
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
         uniforms: &TonemapUniforms,
-        hdr: &wgpu::TextureView,
+        (hdr, bloom): (&wgpu::TextureView, &wgpu::TextureView),
         ldr: &wgpu::TextureView,
         timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
     ) {
@@ -54,6 +56,7 @@ impl TonemapStage {
             &[
                 uniform_buffer(device, &name, uniforms).as_entire_binding(),
                 wgpu::BindingResource::TextureView(hdr),
+                wgpu::BindingResource::TextureView(bloom),
             ],
         );
         let mut pass =

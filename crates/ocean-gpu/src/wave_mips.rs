@@ -30,7 +30,18 @@ pub struct GpuMipChain {
 impl GpuMipChain {
     /// A chain of `width` × `height` at level 0.
     pub fn new(device: &wgpu::Device, label: &str, width: u32, height: u32) -> Self {
-        let count = mip_level_count(width, height);
+        Self::with_levels(device, label, width, height, mip_level_count(width, height))
+    }
+
+    /// A chain of `width` × `height` at level 0 with `count` levels (post `bloom`'s chains
+    /// stop where the plan says).
+    pub fn with_levels(
+        device: &wgpu::Device,
+        label: &str,
+        width: u32,
+        height: u32,
+        count: u32,
+    ) -> Self {
         let texture = device.create_texture(&wgpu::TextureDescriptor {
             label: Some(label),
             size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },

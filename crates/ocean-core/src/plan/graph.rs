@@ -59,6 +59,8 @@ pub struct FrameInputs<'a> {
     pub camera_uniforms: CameraUniforms,
     /// The `tonemap` stage's block, when the plan tonemaps.
     pub tonemap: Option<TonemapUniforms>,
+    /// The `bloom` pass's levels and bright pass, when the plan runs it.
+    pub bloom: Option<BloomInputs>,
     /// The sea's time this frame, s ([`FrameState::time_s`]).
     pub time_s: f64,
 }
@@ -121,9 +123,23 @@ impl<'a> FrameInputs<'a> {
             camera.width,
             camera.height,
         )?;
+        let bloom = plan.runs(Pass::Bloom).then(|| BloomInputs::new(scene));
         let tonemap = plan
             .runs(Pass::Tonemap)
-            .then(|| TonemapUniforms::new(scene.camera.exposure))
+            .then(|| {
+                TonemapUniforms::for_image(
+                    scene.camera.exposure,
+                    &scene.post,
+                    scene.camera.width,
+                    scene.camera.height,
+                )
+                .map(|mut t| {
+                    // The bloom's share of each level: strength / L (crate::bloom, step 4);
+                    // 0 where the pass does not run, so the frame is the plain tonemap's.
+                    t.bloom_scale = bloom.as_ref().map_or(0.0, |b| b.scale(scene));
+                    t
+                })
+            })
             .transpose()?;
         Ok(Self {
             scene,
@@ -136,6 +152,7 @@ impl<'a> FrameInputs<'a> {
             sky_lut,
             camera_uniforms,
             tonemap,
+            bloom,
             time_s,
         })
     }
@@ -167,6 +184,45 @@ fn atmosphere_environment(
     environment.sun_radiance = [at_eye[0] as f32, at_eye[1] as f32, at_eye[2] as f32, 0.0];
     uniforms.ambient.sky = lut.ambient(dir);
     lut
+}
+
+/// What pass `bloom` needs (`crate::bloom`): one uniform block per level of the down chain
+/// (level 0's reads the HDR frame through the bright pass) and the size of every level.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BloomInputs {
+    /// The down chain's dispatches, level 0 first.
+    pub down: Vec<crate::bloom::BloomUniforms>,
+    /// Size of each level, level 0 first.
+    pub levels: Vec<[u32; 2]>,
+}
+
+impl BloomInputs {
+    /// The dispatches of a validated scene's frame.
+    pub fn new(scene: &Scene) -> Self {
+        let (w, h) = (scene.camera.width, scene.camera.height);
+        let count = crate::bloom::level_count(w, h, scene.post.bloom_levels);
+        let levels: Vec<[u32; 2]> = (0..count).map(|k| crate::bloom::level_size(w, h, k)).collect();
+        let exposure = scene.camera.exposure as f32;
+        let threshold = scene.post.bloom_threshold as f32;
+        let down = (0..count as usize)
+            .map(|k| {
+                let src = if k == 0 { [w, h] } else { levels[k - 1] };
+                crate::bloom::BloomUniforms::new(levels[k], src, exposure, threshold)
+            })
+            .collect();
+        Self { down, levels }
+    }
+
+    /// What the tonemap multiplies the up chain's level 0 by: strength / L
+    /// (`crate::bloom`, step 4).
+    pub fn scale(&self, scene: &Scene) -> f32 {
+        (scene.post.bloom_strength / self.levels.len() as f64) as f32
+    }
+
+    /// The up chain's dispatch writing level `k` from level `k + 1`.
+    pub fn up(&self, k: usize) -> crate::bloom::BloomUniforms {
+        crate::bloom::BloomUniforms::new(self.levels[k], self.levels[k + 1], 0.0, 0.0)
+    }
 }
 
 /// The maps of one loop period of one ocean (pass `cycle`).
@@ -311,6 +367,12 @@ pub trait Backend {
         steps: u64,
     ) -> Result<(), Self::Error>;
 
+    /// `bloom`: the bright pass's down and up chains ([`FrameInputs::bloom`]).
+    ///
+    /// # Errors
+    /// A device error.
+    fn bloom(&mut self, frame: &FrameInputs<'_>) -> Result<(), Self::Error>;
+
     /// `tonemap`: HDR → 8-bit.
     ///
     /// # Errors
@@ -352,6 +414,7 @@ pub fn run_frame<B: Backend>(
                 backend.spray(frame, state, steps)?;
                 state.spray_steps += steps;
             }
+            Pass::Bloom => backend.bloom(frame)?,
             Pass::Tonemap => backend.tonemap(frame)?,
         }
         let mut elapsed = t0.elapsed();

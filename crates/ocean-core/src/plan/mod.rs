@@ -18,6 +18,8 @@
 //!   frame is cleared to it); the sky is still seen through the surface (Snell's window), which
 //!   the water pass evaluates analytically.
 //! - `tonemap`: an EXR output keeps linear HDR.
+//! - `bloom` (post technique `bloom`): composited by the tonemap, so it runs only where the
+//!   tonemap does; `bloom_strength = 0` adds 0 · (a finite pyramid) = 0 to every pixel.
 //! - `cycle`: the loop's maps precomputed once and played cyclically (seed 000 §2.1) pay off
 //!   only over several frames of a looping sea; a single frame is synthesised at its t.
 //! - `far_patch`: the far rings and the stitch lie outside the near patch's square on the sea
@@ -47,7 +49,7 @@ use crate::camera::{Camera, NEAR_PLANE_M};
 use crate::geometry::WaterMesh;
 use crate::scene::{Object, Scene, Shape};
 
-pub use graph::{Backend, DrawMesh, FrameInputs, FrameState, run_frame};
+pub use graph::{Backend, BloomInputs, DrawMesh, FrameInputs, FrameState, run_frame};
 
 pub use resource::{Format, Resource, ResourceId, SHADOW_MAP_SIZE};
 pub use technique::{
@@ -84,13 +86,15 @@ pub enum Pass {
     Water,
     /// Spray particles: one fixed step of the pool, then their sprites (stage `spray`).
     Spray,
+    /// The bright pass and its blur pyramid (post technique `bloom`, stage `bloom`).
+    Bloom,
     /// HDR → 8-bit sRGB (stage `tonemap`).
     Tonemap,
 }
 
 impl Pass {
     /// Every pass, in execution order.
-    pub const ALL: [Pass; 13] = [
+    pub const ALL: [Pass; 14] = [
         Pass::Cycle,
         Pass::Waves,
         Pass::WaveMips,
@@ -103,6 +107,7 @@ impl Pass {
         Pass::FarPatch,
         Pass::Water,
         Pass::Spray,
+        Pass::Bloom,
         Pass::Tonemap,
     ];
 
@@ -115,7 +120,7 @@ impl Pass {
             Pass::Sky => Some(Stage::Sky),
             Pass::WaveMips => Some(Stage::FarField),
             Pass::FarPatch => Some(Stage::Surface),
-            Pass::Tonemap => Some(Stage::Post),
+            Pass::Tonemap | Pass::Bloom => Some(Stage::Post),
             Pass::Spray => Some(Stage::Spray),
             Pass::ShadowMap | Pass::ReflectionMap | Pass::RefractionMap | Pass::Objects => None,
         }
@@ -134,6 +139,7 @@ impl Pass {
             Pass::Sky => Some("sky"),
             Pass::Water => Some("water"),
             Pass::Tonemap => Some("tonemap"),
+            Pass::Bloom => Some("bloom"),
             Pass::Spray => Some("spray"),
         }
     }
@@ -156,7 +162,8 @@ impl Pass {
                 R::RefractionMap,
                 R::Environment,
             ],
-            Pass::Tonemap => &[R::Hdr],
+            Pass::Tonemap => &[R::Hdr, R::BloomUp],
+            Pass::Bloom => &[R::Hdr],
             Pass::Spray => &[R::Displacement, R::Hdr],
             Pass::Sky => &[R::Environment],
             Pass::WaveMips => &[R::DisplacementSlopes, R::Bump],
@@ -176,6 +183,7 @@ impl Pass {
             Pass::ReflectionMap => &[R::ReflectionMap],
             Pass::RefractionMap => &[R::RefractionMap],
             Pass::Sky | Pass::Objects | Pass::Water | Pass::Spray => &[R::Hdr],
+            Pass::Bloom => &[R::BloomDown, R::BloomUp],
             Pass::Tonemap => &[R::Ldr],
         }
     }
@@ -195,6 +203,7 @@ impl Pass {
             Pass::FarPatch => "far_patch",
             Pass::Water => "water",
             Pass::Spray => "spray",
+            Pass::Bloom => "bloom",
             Pass::Tonemap => "tonemap",
         }
     }
@@ -786,6 +795,30 @@ impl FramePlan {
                         }
                     }
                 }
+                Pass::Bloom => {
+                    let post = &scene.post;
+                    let [w, h] = [scene.camera.width, scene.camera.height];
+                    let levels = crate::bloom::level_count(w, h, post.bloom_levels);
+                    let base = crate::bloom::base_size(w, h);
+                    match (techniques.of(Stage::Post).name, output) {
+                        ("bloom", OutputKind::Hdr) => (
+                            false,
+                            "EXR output keeps linear HDR (the tonemap composites the bloom)".into(),
+                        ),
+                        ("bloom", OutputKind::Ldr) if post.bloom_strength > 0.0 || !opt.prune => (
+                            true,
+                            format!(
+                                "post = bloom: light above {} (exposed) blurred over {levels} \
+                                 level(s) from {}×{}, added × {} before the tonemap",
+                                post.bloom_threshold, base[0], base[1], post.bloom_strength
+                            ),
+                        ),
+                        ("bloom", OutputKind::Ldr) => {
+                            (false, "bloom_strength = 0: the bloom adds nothing".into())
+                        }
+                        (t, _) => (false, format!("post = {t}")),
+                    }
+                }
                 Pass::Tonemap => match output {
                     OutputKind::Ldr => (true, "8-bit sRGB output".into()),
                     OutputKind::Hdr => (false, "EXR output keeps linear HDR".into()),
@@ -850,6 +883,9 @@ impl FramePlan {
                 ResourceId::ReflectionMap => (Format::Rgba32Float, self.reflection_map_size),
                 ResourceId::RefractionMap => (Format::Rgba32Float, viewport),
                 ResourceId::Hdr => (Format::Rgba32Float, viewport),
+                ResourceId::BloomDown | ResourceId::BloomUp => {
+                    (Format::Rgba32Float, crate::bloom::base_size(viewport[0], viewport[1]))
+                }
                 ResourceId::Ldr => (Format::Rgba8Unorm, viewport),
                 // The sky's uniforms and its sky-view table (`SkyLut`, bound by the `sky` and
                 // `water` stages under every sky technique, filled under `atmosphere`).
@@ -880,7 +916,16 @@ impl FramePlan {
             };
             let (format, size) =
                 if is_written { (format, size) } else { (Format::Rgba32Float, [1, 1]) };
-            out.push(Resource { id, format, size, written: is_written, clear });
+            let levels = match id {
+                ResourceId::DisplacementSlopeMips | ResourceId::BumpMips if is_written => {
+                    crate::far_field::mip_level_count(size[0], size[1])
+                }
+                ResourceId::BloomDown | ResourceId::BloomUp if is_written => {
+                    crate::bloom::level_count(viewport[0], viewport[1], scene.post.bloom_levels)
+                }
+                _ => 1,
+            };
+            out.push(Resource { id, format, size, written: is_written, clear, levels });
         }
         out
     }
@@ -1024,13 +1069,17 @@ mod tests {
         let s = Scene::builtin();
         let p = FramePlan::new(&s, OutputKind::Ldr);
         let skipped: Vec<_> = p.skipped.iter().map(|p| p.name).collect();
-        assert_eq!(skipped, [Pass::Cycle, Pass::Spray], "{p}");
+        assert_eq!(skipped, [Pass::Cycle, Pass::Spray, Pass::Bloom], "{p}");
         let names: Vec<_> = p.passes.iter().map(|p| p.name).collect();
-        let want: Vec<_> = Pass::ALL[1..].iter().copied().filter(|p| *p != Pass::Spray).collect();
+        let want: Vec<_> = Pass::ALL[1..]
+            .iter()
+            .copied()
+            .filter(|p| !matches!(p, Pass::Spray | Pass::Bloom))
+            .collect();
         assert_eq!(names, want);
         assert_eq!(p.objects().objects, [0, 1]);
         let p = FramePlan::new(&s, OutputKind::Hdr);
-        assert_eq!(p.skipped.len(), 3);
+        assert_eq!(p.skipped.len(), 4);
         assert!(!p.runs(Pass::Tonemap));
         // The full plan of a scene that needs everything is the pruned one.
         assert_eq!(FramePlan::full(&s, OutputKind::Ldr).passes.len(), 11);

@@ -41,6 +41,11 @@ pub enum ResourceId {
     /// The filtered Fresnel table F̄(r, σ) of far field `variance` (ocean-core's
     /// `far_field::FresnelFilterTable`, computed on the CPU, the same texels on both back ends).
     FresnelFilter,
+    /// Post `bloom`: the bright pass and its downsamples, a mip chain at half the frame's size.
+    BloomDown,
+    /// Post `bloom`: the levels summed back up, a mip chain like [`Self::BloomDown`]; level 0
+    /// is what the tonemap adds.
+    BloomUp,
     /// The environment the water reflects and the `sky` pass draws: the sky technique's
     /// uniform block, prepared with the frame's inputs (a `preetham` sky is a fit of the
     /// Perez coefficients, computed on the CPU for both back ends).
@@ -50,7 +55,7 @@ pub enum ResourceId {
 impl ResourceId {
     /// The float maps both back ends keep and the cross-check compares, in the order the
     /// frame makes them.
-    pub const MAPS: [ResourceId; 12] = [
+    pub const MAPS: [ResourceId; 14] = [
         ResourceId::Displacement,
         ResourceId::DisplacementSlopes,
         ResourceId::Bump,
@@ -63,6 +68,8 @@ impl ResourceId {
         ResourceId::ReflectionMap,
         ResourceId::RefractionMap,
         ResourceId::Hdr,
+        ResourceId::BloomDown,
+        ResourceId::BloomUp,
     ];
 
     /// The slope maps and the mip chains pass `wave_mips` makes of them (source, chain): the
@@ -73,7 +80,7 @@ impl ResourceId {
     ];
 
     /// Every resource.
-    pub const ALL: [ResourceId; 14] = [
+    pub const ALL: [ResourceId; 16] = [
         ResourceId::Displacement,
         ResourceId::DisplacementSlopes,
         ResourceId::Bump,
@@ -86,6 +93,8 @@ impl ResourceId {
         ResourceId::ReflectionMap,
         ResourceId::RefractionMap,
         ResourceId::Hdr,
+        ResourceId::BloomDown,
+        ResourceId::BloomUp,
         ResourceId::Ldr,
         ResourceId::Environment,
     ];
@@ -106,6 +115,8 @@ impl ResourceId {
             ResourceId::ReflectionMap => "reflection_map",
             ResourceId::RefractionMap => "refraction_map",
             ResourceId::Hdr => "hdr",
+            ResourceId::BloomDown => "bloom_down",
+            ResourceId::BloomUp => "bloom_up",
             ResourceId::Ldr => "ldr",
             ResourceId::Environment => "environment",
         }
@@ -126,6 +137,7 @@ impl ResourceId {
             ResourceId::ReflectionMap => Pass::ReflectionMap,
             ResourceId::RefractionMap => Pass::RefractionMap,
             ResourceId::Hdr => Pass::Water,
+            ResourceId::BloomDown | ResourceId::BloomUp => Pass::Bloom,
             ResourceId::Ldr => Pass::Tonemap,
             ResourceId::Environment => return None,
         })
@@ -160,19 +172,20 @@ pub struct Resource {
     pub written: bool,
     /// The colour it starts from before its first pass.
     pub clear: [f32; 4],
+    /// Its mip levels (1 for a plain texture; the chains of `wave_mips` and `bloom` more).
+    pub levels: u32,
 }
 
 impl Resource {
-    /// The size its read-back has: a mip chain (`displacement_slope_mips`, `bump_mips`) comes
-    /// back as its packed atlas ([`crate::far_field::mip_level_row`]), `size[0]` wide and the
+    /// The size its read-back has: a mip chain (`displacement_slope_mips`, `bump_mips`,
+    /// `bloom_down`, `bloom_up`) comes back as its packed atlas ([`crate::far_field::mip_level_row`]), `size[0]` wide and the
     /// sum of its levels' heights tall; any other resource at its size.
     pub fn readback_size(&self) -> [u32; 2] {
-        match self.id {
-            ResourceId::DisplacementSlopeMips | ResourceId::BumpMips if self.written => {
-                let [w, h] = self.size;
-                [w, crate::far_field::mip_level_row(h, crate::far_field::mip_level_count(w, h))]
-            }
-            _ => self.size,
+        let [w, h] = self.size;
+        if self.levels > 1 {
+            [w, crate::far_field::mip_level_row(h, self.levels)]
+        } else {
+            self.size
         }
     }
 

@@ -120,9 +120,21 @@ pub const TECHNIQUES: &[TechniqueInfo] = &[
     t(Stage::Foam, "accumulated", "grows where J < threshold, decays over time", false),
     t(Stage::Spray, "none", "no spray", true),
     t(Stage::Spray, "particles", "state-preserving GPU particles (seed 001)", true),
-    t(Stage::Post, "tonemap", "exposure + ACES filmic curve → 8-bit sRGB", true),
-    t(Stage::Post, "bloom", "bloom (seed 002)", false),
-    t(Stage::Post, "vignette", "vignette (seed 002)", false),
+    t(
+        Stage::Post,
+        "tonemap",
+        "exposure, [post] vignette, ACES or Hable filmic curve → 8-bit sRGB",
+        true,
+    ),
+    t(
+        Stage::Post,
+        "bloom",
+        "bright pass + blur pyramid added before the tonemap (seed 002, Jimenez 2014)",
+        true,
+    ),
+    // DESIGN.md's third post technique, `vignette`, is the `[post] vignette` key of the final
+    // pass instead: a per-pixel multiply needs no pass of its own, and as a key it combines
+    // with either technique.
 ];
 
 /// The technique `name` of `stage`, if the table has it.

@@ -109,6 +109,9 @@ pub struct Scene {
     pub clouds: Clouds,
     /// The particles of spray technique `particles`.
     pub spray: Spray,
+    /// The post-processing of the final pass (stage `post`): the tonemap's curve, the
+    /// vignette.
+    pub post: Post,
     /// Cost/accuracy knobs of the renderer (what `ocean report` measures).
     pub quality: Quality,
 }
@@ -443,6 +446,38 @@ impl Default for Chiu {
             kd_per_m: 0.3,
             open_sea_depth_m: 20.0,
             scales: vec![1.0, 2.618_034],
+        }
+    }
+}
+
+/// The `[post]` table: what the final pass does to the HDR frame besides the exposure
+/// (`ocean_core::tonemap` says how, in order).
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Post {
+    /// The tonemap's curve: `aces` (Narkowicz's fit, the default) or `hable` (Uncharted 2).
+    pub curve: crate::tonemap::Curve,
+    /// The vignette's strength s ∈ [0, 1]: each pixel × (1 − s·r²), r = 0 at the centre and
+    /// 1 at the corner. 0 (the default): no vignette.
+    pub vignette: f64,
+    /// Post `bloom`: the bright pass keeps what exceeds this, in exposed units (1 ≈ white).
+    pub bloom_threshold: f64,
+    /// Post `bloom`: the blurred bright pass is added to the frame × this (0: the pass is
+    /// left out).
+    pub bloom_strength: f64,
+    /// Post `bloom`: levels of the blur pyramid (each twice as wide as the one before), at
+    /// most as many as the frame's half size has.
+    pub bloom_levels: u32,
+}
+
+impl Default for Post {
+    fn default() -> Self {
+        Self {
+            curve: crate::tonemap::Curve::Aces,
+            vignette: 0.0,
+            bloom_threshold: 1.0,
+            bloom_strength: 0.1,
+            bloom_levels: 5,
         }
     }
 }

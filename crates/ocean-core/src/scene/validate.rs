@@ -219,6 +219,20 @@ pub const LIMITS: &[Limit] = &[
     real("spray.size_m", 1.0e-3, 10.0, "m, a sprite's side"),
     real("spray.intensity", 0.0, MAX_COLOUR, "radiance of a sprite's centre"),
     real("spray.color", 0.0, MAX_COLOUR, "linear RGB"),
+    real("post.vignette", 0.0, 1.0, "0 none; 1 black at the image's corners"),
+    real(
+        "post.bloom_threshold",
+        0.0,
+        crate::tonemap::HDR_MAX as f64,
+        "exposed units; what exceeds it blooms (the tonemap clamps at 65504)",
+    ),
+    real("post.bloom_strength", 0.0, 10.0, "the blurred light's share added to the frame"),
+    whole(
+        "post.bloom_levels",
+        1.0,
+        crate::bloom::MAX_BLOOM_LEVELS as f64,
+        "levels of the blur pyramid, each twice as wide",
+    ),
     real("objects.*.center", -MAX_COORDINATE_M, MAX_COORDINATE_M, "m; as camera.position"),
     real("objects.*.radius", MIN_LENGTH_M, MAX_COORDINATE_M, "m"),
     real("objects.*.size", MIN_LENGTH_M, MAX_COORDINATE_M, "m, each edge"),
@@ -381,6 +395,10 @@ impl Scene {
         check("spray.size_m", &[sp.size_m])?;
         check("spray.intensity", &[sp.intensity])?;
         check("spray.color", &sp.color)?;
+        check("post.vignette", &[self.post.vignette])?;
+        check("post.bloom_threshold", &[self.post.bloom_threshold])?;
+        check("post.bloom_strength", &[self.post.bloom_strength])?;
+        check_u32("post.bloom_levels", self.post.bloom_levels)?;
         self.check_objects()?;
         self.check_derived()
     }

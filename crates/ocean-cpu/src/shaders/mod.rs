@@ -10,6 +10,7 @@
 //! (each operator one plain f32 operation per component, in WGSL's order). No `mul_add` (the
 //! WGSL uses no `fma`), no fast-math.
 
+pub mod bloom;
 pub mod fresnel_table;
 pub mod objects;
 pub mod present;

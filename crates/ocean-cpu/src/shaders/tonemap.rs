@@ -5,8 +5,11 @@ use rayon::prelude::*;
 
 pub use ocean_core::tonemap::TonemapUniforms;
 
+use crate::sampler::Texture2D;
 use crate::shaders::shared::fullscreen::fullscreen_position;
-use crate::shaders::wgsl::{Vec3, Vec4, clamp, max, min, pow, round, select, vec4};
+use crate::shaders::wgsl::{Vec2, Vec3, Vec4, clamp, max, min, pow, round, select, vec4};
+
+pub use ocean_core::tonemap::{HABLE_P, HABLE_Q, HABLE_R, HABLE_S, HABLE_T, HABLE_WHITE_SCALE};
 
 /// Largest finite f16 (`ocean_core::tonemap::HDR_MAX`).
 pub const HDR_MAX: f32 = 65504.0;
@@ -49,6 +52,25 @@ pub fn aces_narkowicz(x: Vec3) -> Vec3 {
     (x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14)
 }
 
+/// Hable's filmic curve (Uncharted 2), normalised so that the white point W maps to 1:
+/// x (P x + Q) / (x (R x + S) + T) · (1/g(W)) (`ocean_core::tonemap`).
+pub fn hable(x: Vec3) -> Vec3 {
+    (x * (HABLE_P * x + HABLE_Q)) / (x * (HABLE_R * x + HABLE_S) + HABLE_T) * HABLE_WHITE_SCALE
+}
+
+/// `tone_curve(x)`: the curve `tonemap.curve` selects (1 Hable, else ACES).
+pub fn tone_curve(x: Vec3, tonemap: &TonemapUniforms) -> Vec3 {
+    if tonemap.curve == 1 { hable(x) } else { aces_narkowicz(x) }
+}
+
+/// `vignette_factor(p)`: max(1 − s·r², 0) at the pixel centre `p`, r = 0 at the centre and 1
+/// at the corner.
+pub fn vignette_factor(p: Vec2, tonemap: &TonemapUniforms) -> f32 {
+    let d = p - Vec2::from(tonemap.center);
+    let r2 = (d.x * d.x + d.y * d.y) * tonemap.inv_corner2;
+    max(1.0 - tonemap.vignette * r2, 0.0)
+}
+
 /// sRGB OETF, IEC 61966-2-1: 12.92 c for c ≤ 0.0031308, else 1.055 c^(1/2.4) − 0.055.
 pub fn srgb_oetf(c: Vec3) -> Vec3 {
     let lo = 12.92 * c;
@@ -67,13 +89,36 @@ pub fn vs_main(vertex_index: u32) -> VertexOut {
     VertexOut { position: fullscreen_position(vertex_index) }
 }
 
-/// `fs_main(in: VertexOut) -> @location(0) vec4<f32>`: the quantised sRGB value, alpha 1.
+/// What the `bloom` binding holds without post `bloom`: one zero texel (× `bloom_scale` = 0).
+static NO_BLOOM: std::sync::LazyLock<Texture2D> =
+    std::sync::LazyLock::new(|| Texture2D::new(1, 1, vec![[0.0; 4]]));
+
+/// `bloom_at(p)`: the bloom binding (the up chain's level 0) upsampled 2× at pixel `p`.
+pub fn bloom_at(p: [i32; 2], bloom: &Texture2D) -> Vec3 {
+    crate::shaders::bloom::upsample_at(bloom, p)
+}
+
+/// `fs_main(in: VertexOut) -> @location(0) vec4<f32>` without post `bloom` (its binding the
+/// 1×1 zero texture): [`fs_main_with_bloom`].
 pub fn fs_main(input: &VertexOut, tonemap: &TonemapUniforms, hdr_frame: &HdrFrame) -> [f32; 4] {
+    fs_main_with_bloom(input, tonemap, hdr_frame, &NO_BLOOM)
+}
+
+/// `fs_main(in: VertexOut) -> @location(0) vec4<f32>` with the `bloom` binding: the quantised
+/// sRGB value, alpha 1.
+pub fn fs_main_with_bloom(
+    input: &VertexOut,
+    tonemap: &TonemapUniforms,
+    hdr_frame: &HdrFrame,
+    bloom: &Texture2D,
+) -> [f32; 4] {
     let texel = [input.position.x as i32, input.position.y as i32];
     let hdr = hdr_frame.texture_load(texel).xyz();
     let exposed = hdr * tonemap.exposure;
-    let x = min(max(exposed, Vec3::splat(0.0)), Vec3::splat(HDR_MAX));
-    let mapped = clamp(aces_narkowicz(x), Vec3::splat(0.0), Vec3::splat(1.0));
+    let sanitised = min(max(exposed, Vec3::splat(0.0)), Vec3::splat(HDR_MAX));
+    let bloomed = sanitised + tonemap.bloom_scale * bloom_at(texel, bloom);
+    let x = bloomed * vignette_factor(input.position.xy(), tonemap);
+    let mapped = clamp(tone_curve(x, tonemap), Vec3::splat(0.0), Vec3::splat(1.0));
     let encoded = srgb_oetf(mapped);
     quantize_unorm8(encoded).extend(1.0).into()
 }
@@ -100,6 +145,20 @@ pub fn tonemap_to_rgba8(
     height: u32,
     tonemap: &TonemapUniforms,
 ) -> Vec<u8> {
+    tonemap_to_rgba8_with_bloom(hdr, width, height, tonemap, &NO_BLOOM)
+}
+
+/// [`tonemap_to_rgba8`] with the `bloom` binding (post `bloom`: the up chain's level 0).
+///
+/// # Panics
+/// If `hdr` does not hold `width · height` texels.
+pub fn tonemap_to_rgba8_with_bloom(
+    hdr: &[[f32; 4]],
+    width: u32,
+    height: u32,
+    tonemap: &TonemapUniforms,
+    bloom: &Texture2D,
+) -> Vec<u8> {
     assert_eq!(hdr.len(), width as usize * height as usize, "HDR frame is not {width}x{height}");
     let frame = HdrFrame { width, height, texels: hdr };
     let mut out = vec![0u8; hdr.len() * 4];
@@ -109,7 +168,7 @@ pub fn tonemap_to_rgba8(
     out.par_chunks_mut(width as usize * 4).enumerate().for_each(|(y, row)| {
         for (x, px) in row.chunks_exact_mut(4).enumerate() {
             let position = vec4(x as f32 + 0.5, y as f32 + 0.5, 0.0, 1.0);
-            let rgba = fs_main(&VertexOut { position }, tonemap, &frame);
+            let rgba = fs_main_with_bloom(&VertexOut { position }, tonemap, &frame, bloom);
             for (byte, v) in px.iter_mut().zip(rgba) {
                 *byte = store_unorm8(v);
             }
