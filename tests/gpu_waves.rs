@@ -405,20 +405,20 @@ fn gpu_matches_the_mirror_dispatch_by_dispatch() {
     }
 }
 
-/// The phase's (cos, sin) on the GPU against the mirror's `cis_turns`, over the turns the
+/// The phase's (cos, sin) on the GPU against the mirror's `cis_turns` (shared/trig.wgsl), over the turns the
 /// stage feeds it, p ∈ [−½, ½]; and, for the record, the driver's own cos and sin against
 /// Rust's (what the stage used before `cis_turns`).
 fn gpu_cos_sin_against_rust() {
     let gpu = gpu("gpu_cos_sin_against_rust").expect("the harness runs GPU tests with a GPU");
     const COUNT: u32 = 1 << 16;
-    // `cis_turns` and its constants exactly as waves.wgsl has them.
-    let waves = ocean_core::registry::stage("waves").unwrap().source;
-    let start = waves.find("const TAU").unwrap();
-    let tau_end = start + waves[start..].find('\n').unwrap();
-    let cis_start = waves.find("// Taylor coefficients").unwrap();
-    let cis_end = waves.find("// a·b of complex numbers").unwrap();
+    // `cis_turns` and its constants exactly as the stages import them (shared/trig.wgsl).
+    let trig = ocean_core::registry::SHARED
+        .iter()
+        .find(|f| f.file == "shared/trig.wgsl")
+        .expect("shared/trig.wgsl in the registry")
+        .source;
     let source = format!(
-        "{}\n{}\n
+        "{}\n
         @group(0) @binding(0) var<storage, read> theta: array<f32>;
         @group(0) @binding(1) var<storage, read_write> out: array<vec4<f32>>;
         @compute @workgroup_size(64)
@@ -426,8 +426,7 @@ fn gpu_cos_sin_against_rust() {
             let p = theta[id.x] / TAU;
             out[id.x] = vec4<f32>(cos(theta[id.x]), sin(theta[id.x]), cis_turns(p));
         }}",
-        &waves[start..tau_end],
-        &waves[cis_start..cis_end]
+        trig
     );
     let theta: Vec<f32> =
         (0..COUNT).map(|i| mirror::TAU * ((i as f32 + 0.5) / COUNT as f32 - 0.5)).collect();

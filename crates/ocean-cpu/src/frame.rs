@@ -179,6 +179,9 @@ pub struct CpuBackend<'e> {
     chains: Vec<(ResourceId, MipChain)>,
     hdr: Option<RenderTarget>,
     ldr: Option<Vec<u8>>,
+    /// The sea floor's relief (`floor_map`), made on first use: the object passes, the water
+    /// pass and the frame's buffers share one copy.
+    floor: Option<Texture2D>,
 }
 
 /// The displacement map packed as the water stage binds it: (disp_x, height, disp_z,
@@ -278,7 +281,26 @@ fn planned_target(plan: &FramePlan, id: ResourceId) -> RenderTarget {
 impl<'e> CpuBackend<'e> {
     /// A back end for one frame with the given environment.
     pub fn new(environment: Environment<'e>) -> Self {
-        Self { environment, maps: Vec::new(), chains: Vec::new(), hdr: None, ldr: None }
+        Self {
+            environment,
+            maps: Vec::new(),
+            chains: Vec::new(),
+            hdr: None,
+            ldr: None,
+            floor: None,
+        }
+    }
+
+    /// Makes the frame's `floor_map` if no pass has yet.
+    fn ensure_floor(&mut self, scene: &Scene) {
+        if self.floor.is_none() {
+            self.floor = Some(floor_texture(scene));
+        }
+    }
+
+    /// The frame's `floor_map` ([`Self::ensure_floor`] first).
+    fn floor_map(&self) -> &Texture2D {
+        self.floor.as_ref().unwrap_or(&EMPTY_MAP)
     }
 
     fn put(&mut self, id: ResourceId, t: Texture2D) {
@@ -341,7 +363,7 @@ impl<'e> CpuBackend<'e> {
             shadow_map: self.take(ResourceId::ShadowMap),
             reflection_map: self.take(ResourceId::ReflectionMap),
             refraction_map: self.take(ResourceId::RefractionMap),
-            floor_map: floor_texture(frame.scene),
+            floor_map: self.floor.take().unwrap_or_else(|| floor_texture(frame.scene)),
             hdr,
             bloom_down: self.take_chain(ResourceId::BloomDown),
             bloom_up: self.take_chain(ResourceId::BloomUp),
@@ -448,16 +470,16 @@ impl<'e> CpuBackend<'e> {
                     };
                 let mut target = planned_target(frame.plan, id);
                 target.clear_depth(0.0);
-                let floor_map = floor_texture(scene);
-                let maps = self.object_maps(&floor_map);
+                self.ensure_floor(scene);
+                let maps = self.object_maps(self.floor_map());
                 draw_objects(&mut target, &eye_state(), &tris, u, vs, &|o, u| fs(o, u, maps));
                 self.put(id, target_texture(target));
             }
             _ => {
-                let floor_map = floor_texture(scene);
+                self.ensure_floor(scene);
                 // Taken out while the maps are borrowed, put back after the draw.
                 let mut hdr = self.hdr.take().unwrap_or_else(|| new_hdr(frame.plan));
-                let maps = self.object_maps(&floor_map);
+                let maps = self.object_maps(self.floor_map());
                 draw_objects(&mut hdr, &eye_state(), &tris, u, objects::vs_main, &|o, u| {
                     Some(objects::fs_main(o, u, maps))
                 });
@@ -467,6 +489,7 @@ impl<'e> CpuBackend<'e> {
     }
 
     fn water_pass(&mut self, frame: &FrameInputs<'_>) -> Result<(), Error> {
+        self.ensure_floor(frame.scene);
         let env = frame.environment;
         let technique = frame.plan.techniques.of(Stage::Sky).name;
         let radiance = sky::environment_radiance(technique).ok_or_else(|| {
@@ -500,7 +523,6 @@ impl<'e> CpuBackend<'e> {
         };
         let slope_chain = chain(ResourceId::DisplacementSlopeMips, ResourceId::DisplacementSlopes);
         let bump_chain = chain(ResourceId::BumpMips, ResourceId::Bump);
-        let floor_map = floor_texture(frame.scene);
         let bindings = water::Bindings {
             frame: &frame.uniforms,
             displacement: map(ResourceId::Displacement),
@@ -512,7 +534,7 @@ impl<'e> CpuBackend<'e> {
             reflection_map: map(ResourceId::ReflectionMap),
             refraction_map: map(ResourceId::RefractionMap),
             shadow_map: map(ResourceId::ShadowMap),
-            floor_map: &floor_map,
+            floor_map: self.floor_map(),
             sky_radiance,
             shade_above,
         };
