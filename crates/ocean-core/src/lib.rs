@@ -33,6 +33,7 @@ pub mod rng;
 pub mod scene;
 pub mod shader_source;
 pub mod sky;
+pub mod solar;
 pub mod spectrum;
 pub mod spray;
 pub mod supersample;

@@ -374,6 +374,14 @@ pub struct Sun {
     pub intensity: f64,
     /// Atmospheric turbidity T of the Preetham sky (2 = very clear, 10 = hazy).
     pub turbidity: f64,
+    /// Local apparent solar time, h: when given, the sun stands where it does at that time
+    /// on `day_of_year` at `latitude_deg` ([`crate::solar`]) and `direction` is set from it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub time_of_day_h: Option<f64>,
+    /// Latitude for `time_of_day_h`, degrees north.
+    pub latitude_deg: f64,
+    /// Day of the year for `time_of_day_h` (1 = 1 January).
+    pub day_of_year: f64,
 }
 
 impl Default for Sun {
@@ -383,6 +391,9 @@ impl Default for Sun {
             color: [1.0, 0.9, 0.75],
             intensity: 5.0,
             turbidity: crate::sky::DEFAULT_TURBIDITY,
+            time_of_day_h: None,
+            latitude_deg: 45.0,
+            day_of_year: 172.0,
         }
     }
 }
@@ -735,7 +746,19 @@ impl Scene {
                 message,
             });
         }
+        scene.place_sun();
         Ok(scene)
+    }
+
+    /// Sets `[sun] direction` from `time_of_day_h`, `day_of_year` and `latitude_deg` when a
+    /// time is given ([`crate::solar::sun_direction`]); the scene loader calls it after
+    /// validation, a caller that changes those keys calls it again.
+    pub fn place_sun(&mut self) {
+        if let Some(s) = &mut self.sun
+            && let Some(t) = s.time_of_day_h
+        {
+            s.direction = crate::solar::sun_direction(s.latitude_deg, s.day_of_year, t);
+        }
     }
 
     /// Reads the files the scene names (a `heightmap` floor's relief), relative to the scene

@@ -159,6 +159,9 @@ pub const LIMITS: &[Limit] = &[
         "radiance of the disc; keeps radiance × exposure inside f32",
     ),
     real("sun.turbidity", crate::sky::TURBIDITY_MIN, crate::sky::TURBIDITY_MAX, "Preetham's fit"),
+    real("sun.time_of_day_h", 0.0, 24.0, "h, local apparent solar time; sets sun.direction"),
+    real("sun.latitude_deg", -90.0, 90.0, "degrees north, for sun.time_of_day_h"),
+    real("sun.day_of_year", 1.0, 366.0, "1 = 1 January, for sun.time_of_day_h"),
     real(
         "water.ior",
         1.0e-2,
@@ -324,6 +327,11 @@ impl Scene {
             check("sun.color", &s.color)?;
             check("sun.intensity", &[s.intensity])?;
             check("sun.turbidity", &[s.turbidity])?;
+            check("sun.latitude_deg", &[s.latitude_deg])?;
+            check("sun.day_of_year", &[s.day_of_year])?;
+            if let Some(t) = s.time_of_day_h {
+                check("sun.time_of_day_h", &[t])?;
+            }
         }
         let w = &self.water;
         check("water.ior", &[w.ior])?;
