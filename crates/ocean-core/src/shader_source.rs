@@ -211,13 +211,12 @@ mod tests {
         let err = resolve_text("// #import technique/clouds\n").unwrap_err().to_string();
         assert!(err.contains("no such technique stage"), "{err}");
         // A technique that is listed but has no WGSL (not built yet) is refused by name.
-        let t = Techniques::with_overrides(System::Hu, [(Stage::Sky, "atmosphere")]).unwrap();
+        let t = Techniques::with_overrides(System::Hu, [(Stage::Shading, "coastal")]).unwrap();
         let mut out = String::new();
+        let text = "// #import technique/shading\n";
         let err =
-            resolve("test", "// #import technique/sky\n", &t, &mut vec![], &mut vec![], &mut out)
-                .unwrap_err()
-                .to_string();
-        assert!(err.contains("sky/atmosphere has no WGSL"), "{err}");
+            resolve("test", text, &t, &mut vec![], &mut vec![], &mut out).unwrap_err().to_string();
+        assert!(err.contains("shading/coastal has no WGSL"), "{err}");
     }
 
     #[test]
