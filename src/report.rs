@@ -34,6 +34,7 @@ use ocean::output::write_atomic;
 
 mod far_field;
 mod surface;
+mod techniques;
 
 /// Arguments of `ocean report`.
 #[derive(clap::Args, Debug)]
@@ -209,6 +210,25 @@ const KNOBS: &[Knob] = &[
         steps: surface::clouds_steps,
         ordered: false,
         measure: surface::measure_clouds,
+    },
+    Knob {
+        name: "shading",
+        varies: "the water's shading ([techniques] shading: hu, chiu, ggx) on the default scene: \
+                 frame time on the CPU and the GPU, and how far each moves the picture (mean \
+                 |Δ log(1 + L)| against hu's frame; each is its own model, so this is a change, \
+                 not an error; GGX's energy balance is tests/ggx.rs' white furnace)",
+        steps: techniques::shading_steps,
+        ordered: false,
+        measure: techniques::measure_shading,
+    },
+    Knob {
+        name: "post",
+        varies: "post tonemap against bloom (seed 002) on the default scene's 8-bit output: what \
+                 the bloom costs per frame on the CPU and the GPU, and how far it moves the \
+                 picture (mean |Δ| of the 8-bit values over 255)",
+        steps: techniques::post_steps,
+        ordered: false,
+        measure: techniques::measure_post,
     },
     Knob {
         name: "lod",

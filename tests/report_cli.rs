@@ -46,6 +46,8 @@ fn csv_problems(text: &str) -> Vec<String> {
         "reflection_map_resolution",
         "backend",
         "far_field",
+        "shading",
+        "post",
         "lod",
     ] {
         if !knobs.contains(&want) {
