@@ -1,7 +1,8 @@
 //! Stage `sky` (`shaders/sky.wgsl`): the environment behind everything, one full-screen
 //! triangle into the HDR frame. The sky model is the technique `shaders/sky.wgsl` imports as
-//! `technique/sky`: `preetham` (`shaders/sky/preetham.wgsl`) or `preetham_clouds`
+//! `technique/sky`: `preetham` (`shaders/sky/preetham.wgsl`), `preetham_clouds`
 //! (`shaders/sky/preetham_clouds.wgsl`, seed 001 eq. 4), both over `shaders/shared/preetham.wgsl`,
+//! or `atmosphere` (`shaders/sky/atmosphere.wgsl`, seed 002, over `shaders/shared/sky_lut.wgsl`),
 //! assembled by [`crate::common::shader_module_with`] for the renderer's techniques (the
 //! renderer assembles the stage again when a plan asks for the other). Bindings:
 //! group 0 = `CameraUniforms`, group 1 = `SkyUniforms` and sky `atmosphere`'s `SkyLut`. CPU mirror: `ocean-cpu/src/shaders/sky.rs` (its `RASTER_STATE`: depth test

@@ -1,8 +1,10 @@
 //! Stage `water` (`shaders/water.wgsl`): the sea surface, shaded by the shading technique
-//! composed into its WGSL. Bindings (as the WGSL declares them): group 0 — 0 `FrameUniforms`,
+//! composed into its WGSL (`shaders/shading/hu.wgsl`, `shaders/shading/chiu.wgsl` or
+//! `shaders/shading/ggx.wgsl`). Bindings (as the WGSL declares them): group 0 — 0 `FrameUniforms`,
 //! 1 `displacement`, 2 `displacement_slopes`, 3 `bump`, 4 `fresnel_above`, 5 `fresnel_below`,
 //! 6 `reflection_map`, 7 `refraction_map`, 8 `shadow_map` (`textureLoad` only),
-//! 9 `wrap_linear`, 10 `clamp_linear`, 11 `fresnel_filter`, 12 `floor_map`; group 1 — 0 `SkyUniforms`. Vertices: ocean-core's
+//! 9 `wrap_linear`, 10 `clamp_linear`, 11 `fresnel_filter`, 12 `floor_map`; group 1 — 0 `SkyUniforms`, 1 `SkyLut` (sky `atmosphere`'s table,
+//! `shaders/shared/sky_lut.wgsl`). Vertices: ocean-core's
 //! `geometry::WaterVertex` (12 bytes), u32 indices. State: reversed-Z `Greater` with depth
 //! writes, no blending, no culling (the surface is seen from below under water).
 //! CPU mirror: `ocean-cpu/src/shaders/water.rs` (samplers `WRAP_LINEAR`, `CLAMP_LINEAR`).
