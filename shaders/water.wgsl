@@ -1,7 +1,9 @@
 // Stage `water`: the sea surface. The vertex shaders displace the surface's mesh by the
 // displacement map (vs_main: the near/far patch mesh of surface `hu_patches`, seed 000 §3,
 // §5.4, the weight w forcing the near patch's boundary and the far patch flat;
-// vs_projected_grid: surface `projected_grid`'s grid, seed 001 §3.1); under waves `gerstner`
+// vs_projected_grid: surface `projected_grid`'s grid, seed 001 §3.1; vs_clipmap: surface
+// `clipmap`'s nested levels, seed 002, the waves filtered to each vertex's spacing); under
+// waves `gerstner`
 // by the sum of the waves instead (shared/gerstner.wgsl, seed 002), whose slopes the fragment
 // shader then takes unfiltered. The fragment shader
 // bumps the normal with the bump map (§5), filtered by the far-field technique, and shades
@@ -112,13 +114,84 @@ fn vs_projected_grid(@builtin(vertex_index) k: u32) -> VertexOut {
     return water_vertex(vec2<f32>(h.x * inv_w, h.z * inv_w) - frame.tiling.mesh_offset, 1.0);
 }
 
+// Surface `clipmap` (ocean-core geometry::Clipmap): vertex k of level k / (6n²)'s n × n quads
+// (six vertices a quad as vs_projected_grid's), at the integer lattice point
+// g = C_l + (i − n/2)·2^l (units of level 0's quad s₀) morphed towards the even one below by
+// α·2^l, α the ramp of the band [morph_start, morph_start + band] in Chebyshev quads from the
+// eye. α reaches 1 exactly on the level's boundary, whose vertices are then the next level's
+// hole's, bit for bit. The quads of a level's hole collapse to their first corner (zero area).
+// The waves are filtered to the vertex spacing at the point (gerstner_displacement_filtered;
+// the map's displacement faded out between 8 and 4 vertices per peak wavelength).
+@vertex
+fn vs_clipmap(@builtin(vertex_index) k: u32) -> VertexOut {
+    let c = frame.clip;
+    let n = u32(c.cells);
+    let per_level = 6u * n * n;
+    let level = k / per_level;
+    let quad = (k % per_level) / 6u;
+    let corner = k % 6u;
+    var di = array<u32, 6>(0u, 1u, 1u, 0u, 1u, 0u);
+    var dj = array<u32, 6>(0u, 0u, 1u, 0u, 1u, 1u);
+    let lv = c.level[level];
+    let qi = i32(quad % n);
+    let qj = i32(quad / n);
+    let half = i32(n / 2u);
+    let in_hole = qi >= lv.z && qi < lv.z + half && qj >= lv.w && qj < lv.w + half;
+    var i = qi + i32(di[corner]);
+    var j = qj + i32(dj[corner]);
+    if (in_hole) {
+        i = qi;
+        j = qj;
+    }
+    let e = c.eye[level];
+    let step = i32(e.z);
+    let dist = max(abs(f32(i - half) - e.x), abs(f32(j - half) - e.y));
+    let alpha = clamp((dist - c.morph_start) * c.inv_band, 0.0, 1.0);
+    let gx = lv.x + (i - half) * step;
+    let gz = lv.y + (j - half) * step;
+    // g_even − g: 0 or −2^l, exact, so the product with α is too and a fused sum rounds alike.
+    let ox = -(i & 1) * step;
+    let oz = -(j & 1) * step;
+    var x = f32(gx) + f32(ox) * alpha;
+    var z = f32(gz) + f32(oz) * alpha;
+    if (alpha >= 1.0) {
+        x = f32(gx + ox);
+        z = f32(gz + oz);
+    }
+    let pos = vec2<f32>(x, z) * c.cell_m;
+    // The vertex spacing at the morphed point, m: s_l (1 + α) with α evaluated there, so that a
+    // vertex morphed onto another and the same point drawn by the next level (α = 1 and 0) are
+    // displaced alike; constant inside the band's start.
+    let mi = f32(i) + f32(-(i & 1)) * alpha;
+    let mj = f32(j) + f32(-(j & 1)) * alpha;
+    let mdist = max(abs(mi - f32(half) - e.x), abs(mj - f32(half) - e.y));
+    let malpha = clamp((mdist - c.morph_start) * c.inv_band, 0.0, 1.0);
+    let spacing = e.z * (1.0 + malpha) * c.cell_m;
+    let uv = map_uvs(pos);
+    var d = textureSampleLevel(displacement, wrap_linear, uv.xy, 0.0);
+    if (frame.scales.count > 0.0) {
+        d = multi_scale_displacement(pos);
+    }
+    d = d * (frame.passes.waves * clamp((c.fade_end - spacing) * c.fade_inv_span, 0.0, 1.0));
+    if (frame.gerstner.count > 0.0) {
+        d = gerstner_displacement_filtered(pos, spacing);
+    }
+    return displaced_vertex(pos, d, uv, 1.0);
+}
+
+// The displacement and bump maps' (u, v) at `pos` (m, relative to the mesh's reference point):
+// texel (i, j) of an N×N map holds the sample at (i, j)·L/N, so u = x/L + ½/N.
+fn map_uvs(pos: vec2<f32>) -> vec4<f32> {
+    let uv_d = (pos + frame.tiling.displacement_origin) * frame.tiling.inv_displacement_size + frame.tiling.displacement_half_texel;
+    let uv_b = (pos + frame.tiling.bump_origin) * frame.tiling.inv_bump_size + frame.tiling.bump_half_texel;
+    return vec4<f32>(uv_d, uv_b);
+}
+
 // A water vertex at `pos` (m, relative to the mesh's reference point c) displaced by the
 // displacement map times `weight`.
 fn water_vertex(pos: vec2<f32>, weight: f32) -> VertexOut {
-    // Texel (i, j) of an N×N map holds the sample at (i, j)·L/N: u = x/L + ½/N.
-    let uv_d = (pos + frame.tiling.displacement_origin) * frame.tiling.inv_displacement_size + frame.tiling.displacement_half_texel;
-    let uv_b = (pos + frame.tiling.bump_origin) * frame.tiling.inv_bump_size + frame.tiling.bump_half_texel;
-    var d = textureSampleLevel(displacement, wrap_linear, uv_d, 0.0) * (weight * frame.passes.waves);
+    let uv = map_uvs(pos);
+    var d = textureSampleLevel(displacement, wrap_linear, uv.xy, 0.0) * (weight * frame.passes.waves);
     if (frame.scales.count > 0.0) {
         d = multi_scale_displacement(pos) * (weight * frame.passes.waves);
     }
@@ -126,14 +199,20 @@ fn water_vertex(pos: vec2<f32>, weight: f32) -> VertexOut {
     if (frame.gerstner.count > 0.0) {
         d = gerstner_displacement(pos) * weight;
     }
+    return displaced_vertex(pos, d, uv, weight);
+}
+
+// The vertex at `pos` moved by `d`, with the maps' coordinates `uv` and the fragment's slope
+// weight `weight`.
+fn displaced_vertex(pos: vec2<f32>, d: vec4<f32>, uv: vec4<f32>, weight: f32) -> VertexOut {
     // Camera-relative: c − eye (formed in f64 on the CPU) plus the vertex's offset from c.
     let plane = pos + frame.tiling.mesh_offset;
     let rel = vec3<f32>(plane.x + d.x, d.y - frame.view.eye_height, plane.y + d.z);
     var out: VertexOut;
     out.clip = transform_point(frame.view.view_proj, rel);
     out.rel = rel;
-    out.uv_d = uv_d;
-    out.uv_b = uv_b;
+    out.uv_d = uv.xy;
+    out.uv_b = uv.zw;
     out.weight = weight;
     out.pos = pos;
     return out;

@@ -58,7 +58,7 @@ fn camera_extremes_are_finite() {
 
 /// Seed 002's techniques at the same extremes, and with the sun at the horizon, below it and
 /// at the zenith: GGX's 1/(n·l)(n·v) at grazing, the smallest and largest roughness, Schlick's
-/// options, and the Gerstner waves summed per vertex.
+/// options, the Gerstner waves summed per vertex, and the clipmap under either wave model.
 #[test]
 fn welch_techniques_at_the_extremes_are_finite() {
     let techniques = [
@@ -67,6 +67,8 @@ fn welch_techniques_at_the_extremes_are_finite() {
         "[techniques]\nshading = \"ggx\"\n[ggx]\nroughness = 1.0\nfresnel = \"schlick\"\n\
          geometry = \"schlick_ggx\"\n",
         "[techniques]\nwaves = \"gerstner\"\nfar_field = \"mip\"\nshading = \"ggx\"\n",
+        "[techniques]\nwaves = \"gerstner\"\nfar_field = \"mip\"\nsurface = \"clipmap\"\n",
+        "[techniques]\nsurface = \"clipmap\"\n",
     ];
     let suns = ["[0.0, 0.0, -1.0]", "[0.0, -0.3, -1.0]", "[0.0, 1.0, 0.0]", "[0.3, 0.05, -1.0]"];
     for t in techniques {

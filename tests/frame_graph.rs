@@ -98,7 +98,7 @@ fn systems_and_techniques_in_a_scene_are_checked_with_their_position() {
     assert_eq!(scene("system = \"hu\"\n").unwrap().system, System::Hu);
     let e = scene("\n\nsystem = \"welch\"\n").unwrap_err().to_string();
     assert!(e.contains(":3:1") && e.contains("system") && e.contains("not yet available"), "{e}");
-    assert!(e.contains("clipmap"), "names the technique that is missing: {e}");
+    assert!(e.contains("heuristic"), "names the technique that is missing: {e}");
     let e = scene("system = \"nope\"\n").unwrap_err().to_string();
     assert!(e.contains("nope") && e.contains("coastal"), "{e}");
     let e = scene("[techniques]\nfoam = \"jacobian\"\n").unwrap_err().to_string();
@@ -180,7 +180,7 @@ fn render_with_an_unknown_system_exits_1_lists_the_systems_and_writes_nothing() 
     let o = ocean(&["render", "--system", "welch", "--size", "16x9", "-o", out.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1));
     let e = String::from_utf8_lossy(&o.stderr);
-    assert!(e.contains("not yet available") && e.contains("surface technique `clipmap`"), "{e}");
+    assert!(e.contains("not yet available") && e.contains("foam technique `heuristic`"), "{e}");
     assert!(!out.exists());
     for cmd in ["plan", "compare", "view"] {
         let o = ocean(&[cmd, "--system", "no-such-system"]);

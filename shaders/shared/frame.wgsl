@@ -143,6 +143,23 @@ struct GerstnerBlock {
     waves: array<vec4<f32>, 128>,
 }
 
+// Surface `clipmap` (ocean-core geometry::Clipmap): levels 0 under the other surfaces. Per
+// level l, level[l] = (C_x, C_z, h_x, h_z): its centre in units of level 0's quad from the
+// mesh's reference point and the first quad of its hole; eye[l] = (e_x, e_z, 2^l, 0): the eye
+// relative to its centre in its quads.
+struct ClipmapBlock {
+    levels: f32,
+    cells: f32,
+    cell_m: f32,
+    morph_start: f32,
+    inv_band: f32,
+    fade_end: f32,
+    fade_inv_span: f32,
+    pad0: f32,
+    level: array<vec4<i32>, 24>,
+    eye: array<vec4<f32>, 24>,
+}
+
 struct FrameUniforms {
     view: ViewBlock,
     sun: SunBlock,
@@ -158,6 +175,7 @@ struct FrameUniforms {
     scales: MultiScaleBlock,
     gerstner: GerstnerBlock,
     ggx: GgxShadingBlock,
+    clip: ClipmapBlock,
 }
 
 // m · (p, 1), written out so that the order of operations is fixed (the CPU mirror,

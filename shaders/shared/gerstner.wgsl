@@ -27,6 +27,23 @@ fn gerstner_displacement(pos: vec2<f32>) -> vec4<f32> {
     return d;
 }
 
+// gerstner_displacement for a mesh whose vertices are `spacing` m apart (surface `clipmap`):
+// each wave times g = clamp(2 − 8·spacing/λ, 0, 1), whole down to 8 vertices per wavelength
+// and gone at 4, so that no wave the vertices cannot carry aliases into the geometry.
+fn gerstner_displacement_filtered(pos: vec2<f32>, spacing: f32) -> vec4<f32> {
+    var d = vec4<f32>(0.0, 0.0, 0.0, 0.0);
+    for (var i = 0u; i < u32(frame.gerstner.count); i = i + 1u) {
+        let a = frame.gerstner.waves[2u * i];
+        let g = clamp(2.0 - 8.0 * (spacing * sqrt(a.x * a.x + a.y * a.y)), 0.0, 1.0);
+        if (g > 0.0) {
+            let cs = gerstner_cis(i, pos) * g;
+            let b = frame.gerstner.waves[2u * i + 1u];
+            d = d + vec4<f32>(b.x * cs.x, a.w * cs.y, b.y * cs.x, 0.0);
+        }
+    }
+    return d;
+}
+
 // (∂h/∂x, ∂h/∂z) at the undisplaced point: Σ A k D cos θ.
 fn gerstner_slopes(pos: vec2<f32>) -> vec2<f32> {
     var s = vec2<f32>(0.0, 0.0);

@@ -1,5 +1,5 @@
-//! The report's `surface` knob (issue 13): surfaces `hu_patches` and `projected_grid` (at
-//! three grid densities) on the same FFT sea — the default scene without its objects — against
+//! The report's `surface` knob (issue 13): surfaces `hu_patches`, `projected_grid` (at three
+//! grid densities) and `clipmap` (issue 14, at two level sizes) on the same FFT sea — the default scene without its objects — against
 //! a dense reference mesh of the same sea (a projected grid of half-pixel cells): per band of the
 //! view, the mean error of the height and of the position of the surface point each pixel
 //! sees (from the depth buffer), the vertices the mesh submits and the share of them inside
@@ -17,12 +17,14 @@ use ocean_cpu::shaders::water;
 
 use super::{CPU, Ctx, Row};
 
-/// The settings: (name, surface, projected grid cell in pixels).
-const SETTINGS: [(&str, &str, f64); 4] = [
-    ("hu_patches", "hu_patches", 4.0),
-    ("projected_grid 8 px", "projected_grid", 8.0),
-    ("projected_grid 4 px", "projected_grid", 4.0),
-    ("projected_grid 2 px", "projected_grid", 2.0),
+/// The settings: (name, surface, projected grid cell in pixels, clipmap quads a level side).
+const SETTINGS: [(&str, &str, f64, u32); 6] = [
+    ("hu_patches", "hu_patches", 4.0, 64),
+    ("projected_grid 8 px", "projected_grid", 8.0, 64),
+    ("projected_grid 4 px", "projected_grid", 4.0, 64),
+    ("projected_grid 2 px", "projected_grid", 2.0, 64),
+    ("clipmap 32²", "clipmap", 4.0, 32),
+    ("clipmap 64²", "clipmap", 4.0, 64),
 ];
 
 /// The reference mesh's cell, pixels.
@@ -33,12 +35,13 @@ pub(super) fn steps(ctx: &Ctx) -> u64 {
     (2 * SETTINGS.len() as u64 + 1) * (ctx.runs as u64 + 1)
 }
 
-fn scene(ctx: &Ctx, surface: &str, cell: f64) -> Scene {
+fn scene(ctx: &Ctx, surface: &str, cell: f64, clipmap_cells: u32) -> Scene {
     let mut s = Scene::builtin();
     s.objects.clear();
     (s.camera.width, s.camera.height) = ctx.frame_size();
     s.techniques.surface = Some(surface.to_string());
     s.quality.projected_grid_cell_px = cell;
+    s.quality.clipmap_cells = clipmap_cells;
     s
 }
 
@@ -73,7 +76,12 @@ fn vertices_in_view(r: &ocean_cpu::Rendered, scene: &Scene) -> anyhow::Result<(u
         c.w > 0.0 && c.x.abs() <= c.w && c.y.abs() <= c.w
     };
     let grid = fb.uniforms.grid.vertex_count();
-    let (n, k) = if grid > 0 {
+    let clip = &fb.uniforms.clip;
+    let clipmap =
+        ocean_core::geometry::Clipmap::vertex_count(clip.levels as usize, clip.cells as u32) as u32;
+    let (n, k) = if clipmap > 0 {
+        (clipmap, (0..clipmap).filter(|&k| inside(water::vs_clipmap(k, &b))).count())
+    } else if grid > 0 {
         (grid, (0..grid).filter(|&k| inside(water::vs_projected_grid(k, &b))).count())
     } else {
         let mesh = r.plan.water_mesh(scene, &camera)?;
@@ -85,7 +93,7 @@ fn vertices_in_view(r: &ocean_cpu::Rendered, scene: &Scene) -> anyhow::Result<(u
 
 /// Measures the knob.
 pub(super) fn measure(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
-    let reference = scene(ctx, "projected_grid", REFERENCE_CELL_PX);
+    let reference = scene(ctx, "projected_grid", REFERENCE_CELL_PX, 64);
     let camera = Camera::from_scene(&reference.camera)?;
     let (w, h) = ctx.frame_size();
     let bands = sea_bands(&camera, h);
@@ -107,8 +115,8 @@ pub(super) fn measure(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
         ["position_m_horizon", "position_m_middle", "position_m_near"],
     ];
     let mut rows = Vec::new();
-    for (name, surface, cell) in SETTINGS {
-        let s = scene(ctx, surface, cell);
+    for (name, surface, cell, clipmap_cells) in SETTINGS {
+        let s = scene(ctx, surface, cell, clipmap_cells);
         let (ms, r) = ctx.time(|| {
             let plan = FramePlan::new(&s, OutputKind::Hdr);
             let r = ocean_cpu::render_scene_with_plan(&s, plan, &mut |_| {})?;

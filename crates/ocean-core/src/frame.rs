@@ -389,6 +389,8 @@ pub struct FrameUniforms {
     pub gerstner: crate::waves::gerstner::GerstnerBlock,
     /// Shading technique `ggx`.
     pub ggx: GgxShadingBlock,
+    /// Surface `clipmap` (`levels` 0 under the other surfaces).
+    pub clip: crate::geometry::ClipmapBlock,
 }
 
 /// Surface `projected_grid` ([`crate::geometry::ProjectedGrid`]): the grid's corners and size.
@@ -787,6 +789,15 @@ impl FrameUniforms {
                     let eta = scene.water.ior;
                     (((eta - 1.0) / (eta + 1.0)).powi(2)) as f32
                 },
+            },
+            clip: match crate::geometry::Clipmap::of_frame(scene, camera, plan) {
+                Some(Ok(c)) => c.block(
+                    o.wave_spectrum()
+                        .ok()
+                        .and_then(|s| s.peak_omega())
+                        .map(|w| std::f64::consts::TAU * crate::GRAVITY / (w * w)),
+                ),
+                _ => Zeroable::zeroed(),
             },
         }
     }

@@ -172,6 +172,7 @@ const KEYS: &[&str] = &[
     "fresnel_table_size",
     "lod_split_threshold",
     "projected_grid_cell_px",
+    "clipmap_cells",
     "zeta_m",
     "roughness",
     "kd_per_m",

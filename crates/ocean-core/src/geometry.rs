@@ -22,12 +22,14 @@
 //! the surface is seen from below. Viewpoint height H = max(|eye.y|, `min_height_m`): under
 //! water the mesh is the one of the mirrored eye above the surface.
 
+mod clipmap;
 mod far;
 mod mesh;
 mod near;
 mod params;
 mod projected;
 
+pub use clipmap::{CLIPMAP_CELLS_RANGE, Clipmap, ClipmapBlock, MAX_CLIPMAP_LEVELS};
 pub use far::{FarPatch, PlacedFarPatch, visible_half_angle};
 pub use mesh::{MeshSummary, WaterMesh};
 pub use near::NearPatch;
@@ -35,7 +37,7 @@ pub use params::{
     DEFAULT_NEAR_SIZE_M, MAX_HEIGHT_M, MAX_NEAR_LEVELS, PatchParams, STITCH_CLEARANCE,
     stitch_radius,
 };
-pub use projected::ProjectedGrid;
+pub use projected::{HORIZON_DISTANCE_H, ProjectedGrid};
 
 use crate::Result;
 use params::invalid;

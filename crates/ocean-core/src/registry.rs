@@ -20,6 +20,7 @@ use crate::frame::{
     GgxShadingBlock, HuShadingBlock, MultiScaleBlock, PassFlags, ProjectedGridBlock, SunBlock,
     TerrainBlock, ViewBlock, WaterBlock, WaveMipsUniforms, WaveTilingBlock,
 };
+use crate::geometry::ClipmapBlock;
 use crate::plan::Stage as TechniqueStage;
 use crate::sky::SkyUniforms;
 use crate::spray::{Emitter, Particle, SprayUniforms};
@@ -42,6 +43,8 @@ wgsl_types!(
     [f32; 4] => "vec4<f32>", [u32; 2] => "vec2<u32>", [u32; 4] => "vec4<u32>",
     [[f32; 4]; 4] => "mat4x4<f32>",
     [[f32; 4]; 128] => "array<vec4<f32>, 128>",
+    [[f32; 4]; 24] => "array<vec4<f32>, 24>",
+    [[i32; 4]; 24] => "array<vec4<i32>, 24>",
     [[f32; 4]; 2048] => "array<vec4<f32>, 2048>",
 );
 
@@ -106,7 +109,8 @@ nested!(
     TerrainBlock,
     MultiScaleBlock,
     GerstnerBlock,
-    GgxShadingBlock
+    GgxShadingBlock,
+    ClipmapBlock
 );
 
 /// The kind of an entry point.
@@ -324,6 +328,8 @@ pub const STAGES: &[StageEntry] = &[
             ("fs_main", Fragment),
             // Surface `projected_grid`: the grid from the vertex index.
             ("vs_projected_grid", Vertex),
+            // Surface `clipmap`: the levels from the vertex index.
+            ("vs_clipmap", Vertex),
         ],
         bindings: &[
             b(0, 0, "frame"),
@@ -516,6 +522,18 @@ pub const SHARED: &[SharedFile] = &[
             }),
             block!(GerstnerBlock { count, pad0, pad1, pad2, waves }),
             block!(GgxShadingBlock { alpha, schlick_fresnel, schlick_geometry, f0 }),
+            block!(ClipmapBlock {
+                levels,
+                cells,
+                cell_m,
+                morph_start,
+                inv_band,
+                fade_end,
+                fade_inv_span,
+                pad0,
+                level,
+                eye
+            }),
             block!(FrameUniforms {
                 view,
                 sun,
@@ -530,7 +548,8 @@ pub const SHARED: &[SharedFile] = &[
                 terrain,
                 scales,
                 gerstner,
-                ggx
+                ggx,
+                clip
             }),
         ],
         cpu_mirror: "crates/ocean-cpu/src/shaders/shared/frame.rs",

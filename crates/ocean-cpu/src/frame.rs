@@ -218,7 +218,8 @@ fn draw_objects(
 }
 
 /// The water pass's draw: `water::vs_main` on every vertex of `mesh` (surface
-/// `projected_grid`: `water::vs_projected_grid` on every vertex index), then `fragment` on
+/// `projected_grid`: `water::vs_projected_grid` on every vertex index, `clipmap`
+/// `water::vs_clipmap`), then `fragment` on
 /// every covered pixel, reversed-Z with `Greater`, no blending. The frame's water pass runs it
 /// with `water::fs_main`; a probe (`ocean report`'s Fresnel lookups) runs it with another
 /// fragment function of the same mirror.
@@ -230,7 +231,17 @@ pub fn draw_water(
 ) {
     let vertex = |o: water::VertexOut| Vertex::new(o.clip.into(), o.varyings());
     let grid = bindings.frame.grid.vertex_count();
-    let (verts, indices): (Vec<Vertex<{ water::VARYINGS }>>, Vec<[u32; 3]>) = if grid > 0 {
+    let clip = &bindings.frame.clip;
+    let clipmap =
+        ocean_core::geometry::Clipmap::vertex_count(clip.levels as usize, clip.cells as u32) as u32;
+    let (verts, indices): (Vec<Vertex<{ water::VARYINGS }>>, Vec<[u32; 3]>) = if clipmap > 0 {
+        // Surface `clipmap`: the vertex-index draw of its levels' triangle lists; every vertex
+        // is a pure function of its index, so they are shaded in parallel.
+        use rayon::prelude::*;
+        let verts =
+            (0..clipmap).into_par_iter().map(|k| vertex(water::vs_clipmap(k, bindings))).collect();
+        (verts, (0..clipmap / 3).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect())
+    } else if grid > 0 {
         // Surface `projected_grid`: the vertex-index draw of a triangle list.
         let verts = (0..grid).map(|k| vertex(water::vs_projected_grid(k, bindings))).collect();
         (verts, (0..grid / 3).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect())

@@ -484,13 +484,14 @@ impl GpuBackend<'_> {
                 fresnel_filter: &fresnel_filter.view,
                 floor_map: &self.floor_map.view,
             },
-            &match frame.uniforms.grid.vertex_count() {
-                0 => WaterDraw::Mesh(WaterMeshBuffers {
+            &match (frame.uniforms.grid.vertex_count(), clipmap_vertices(&frame.uniforms.clip)) {
+                (_, n) if n > 0 => WaterDraw::Clipmap(n),
+                (0, _) => WaterDraw::Mesh(WaterMeshBuffers {
                     vertices: &water_vertices,
                     indices: &water_indices,
                     index_count: 3 * mesh.indices.len() as u32,
                 }),
-                n => WaterDraw::Grid(n),
+                (n, _) => WaterDraw::Grid(n),
             },
             &hdr.view,
             &depth.view,
@@ -807,7 +808,8 @@ impl Renderer {
         let start = Instant::now();
         // The far field is a uniform of the water pipeline (every technique is in its WGSL),
         // not a composed file; the surface is its vertex entry point (`vs_main` draws the
-        // mesh of `hu_patches`, `vs_projected_grid` the grid of `projected_grid`); the spray is
+        // mesh of `hu_patches`, `vs_projected_grid` the grid of `projected_grid`, `vs_clipmap`
+        // the levels of `clipmap`); the spray is
         // a pass of its own stage, run or skipped by the plan, and so are the waves of `fft`
         // (waves `gerstner` are summed by the water pipeline itself); the sky's
         // and the shading's files are composed into the `sky` and `water` stages, assembled
@@ -815,7 +817,7 @@ impl Renderer {
         use ocean_core::plan::Stage;
         let in_water_pipeline = |s: Stage, name: &str| {
             s == Stage::FarField
-                || (s == Stage::Surface && matches!(name, "hu_patches" | "projected_grid"))
+                || (s == Stage::Surface && matches!(name, "hu_patches" | "projected_grid" | "clipmap"))
                 // Pass `spray` runs stage `spray`'s pipelines or is skipped.
                 || (s == Stage::Spray && matches!(name, "none" | "particles"))
                 // Waves `fft` run stage `waves`; `gerstner` is a uniform branch of `water`.
@@ -984,4 +986,9 @@ impl Renderer {
             wave_source,
         })
     }
+}
+
+/// Vertices of surface `clipmap`'s draw (0 under the other surfaces).
+fn clipmap_vertices(clip: &ocean_core::geometry::ClipmapBlock) -> u32 {
+    ocean_core::geometry::Clipmap::vertex_count(clip.levels as usize, clip.cells as u32) as u32
 }

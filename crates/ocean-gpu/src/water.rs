@@ -55,6 +55,8 @@ pub enum WaterDraw<'a> {
     Mesh(WaterMeshBuffers<'a>),
     /// Surface `projected_grid`: this many vertices of `vs_projected_grid`, no buffer.
     Grid(u32),
+    /// Surface `clipmap`: this many vertices of `vs_clipmap`, no buffer.
+    Clipmap(u32),
 }
 
 /// The water mesh on the GPU.
@@ -71,6 +73,7 @@ pub struct WaterMeshBuffers<'a> {
 pub struct WaterStage {
     pipeline: wgpu::RenderPipeline,
     grid_pipeline: wgpu::RenderPipeline,
+    clipmap_pipeline: wgpu::RenderPipeline,
     layout: wgpu::BindGroupLayout,
     sky_layout: wgpu::BindGroupLayout,
     wrap_linear: wgpu::Sampler,
@@ -139,9 +142,11 @@ impl WaterStage {
         };
         let pipeline = make("vs_main", &[Some(WATER_VERTEX_LAYOUT)])?;
         let grid_pipeline = make("vs_projected_grid", &[])?;
+        let clipmap_pipeline = make("vs_clipmap", &[])?;
         Ok(Self {
             pipeline,
             grid_pipeline,
+            clipmap_pipeline,
             layout,
             sky_layout,
             wrap_linear: linear_sampler(
@@ -219,8 +224,12 @@ impl WaterStage {
                     pass.draw_indexed(0..mesh.index_count, 0, 0..1);
                 }
             }
-            WaterDraw::Grid(vertices) => {
-                pass.set_pipeline(&self.grid_pipeline);
+            WaterDraw::Grid(vertices) | WaterDraw::Clipmap(vertices) => {
+                pass.set_pipeline(if matches!(draw, WaterDraw::Grid(_)) {
+                    &self.grid_pipeline
+                } else {
+                    &self.clipmap_pipeline
+                });
                 pass.set_bind_group(0, &group, &[]);
                 pass.set_bind_group(1, &sky_group, &[]);
                 pass.draw(0..*vertices, 0..1);

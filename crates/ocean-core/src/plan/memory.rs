@@ -13,6 +13,7 @@
 //! - water mesh: [`MESH_BYTES_PER_TRIANGLE`] per triangle of the near patch's bintree (nodes,
 //!   vertices, indices) and of the far patch;
 //! - surface `projected_grid`: [`GRID_BYTES_PER_TRIANGLE`] per triangle of its list (counted);
+//! - surface `clipmap`: as many per triangle of its levels' list, holes included (counted);
 //! - objects: [`OBJECT_BYTES_PER_TRIANGLE`] per triangle, once per pass that draws them;
 //! - each texture of the plan at its size and format, and a 4-byte depth buffer per render
 //!   target; the encoded output once more.
@@ -152,7 +153,20 @@ impl MemoryEstimate {
             );
         }
         if plan.runs(Pass::Water) {
-            if plan.techniques.of(crate::plan::Stage::Surface).name == "projected_grid" {
+            if plan.techniques.of(crate::plan::Stage::Surface).name == "clipmap" {
+                let q = &scene.quality;
+                let levels = crate::geometry::Clipmap::levels_for(
+                    scene.camera.position[1],
+                    q.clipmap_cell_m,
+                    q.clipmap_cells,
+                );
+                let vertices = crate::geometry::Clipmap::vertex_count(levels, q.clipmap_cells);
+                add(
+                    format!("clipmap ({levels} levels)"),
+                    vertices / 3 * GRID_BYTES_PER_TRIANGLE,
+                    "quality.clipmap_cells",
+                );
+            } else if plan.techniques.of(crate::plan::Stage::Surface).name == "projected_grid" {
                 let (cols, rows) = crate::frame::ProjectedGridBlock::quads(
                     scene.camera.width,
                     scene.camera.height,

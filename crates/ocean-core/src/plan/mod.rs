@@ -763,6 +763,25 @@ impl FramePlan {
                         ),
                     )
                 }
+                Pass::Water if techniques.of(Stage::Surface).name == "clipmap" => {
+                    let q = &scene.quality;
+                    let levels = crate::geometry::Clipmap::levels_for(
+                        scene.camera.position[1],
+                        q.clipmap_cell_m,
+                        q.clipmap_cells,
+                    );
+                    (
+                        true,
+                        format!(
+                            "the sea surface, shading {}, on a clipmap of {levels} levels of \
+                             {n}×{n} quads ({} m to {} m) from the vertex index",
+                            techniques.of(Stage::Shading).name,
+                            q.clipmap_cell_m,
+                            q.clipmap_cell_m * (1u64 << (levels - 1)) as f64,
+                            n = q.clipmap_cells,
+                        ),
+                    )
+                }
                 Pass::Water => (
                     true,
                     format!("the sea surface, shading {}", techniques.of(Stage::Shading).name),
@@ -978,24 +997,28 @@ impl FramePlan {
     /// patch alone where the plan leaves the far patch out.
     pub fn water_mesh(&self, scene: &Scene, camera: &Camera) -> crate::Result<WaterMesh> {
         let params = scene.patch_params();
+        // The surfaces drawn from the vertex index (frame::ClipmapBlock, ProjectedGridBlock):
+        // the mesh only fixes the reference point, for the clipmap the eye snapped to twice
+        // level 0's quad, for the grid the eye's (x, z) on the displacement grid.
+        let g = params.grid_spacing_m;
+        let index_drawn = |origin: [f64; 2]| WaterMesh {
+            origin,
+            origin_cell: origin.map(|x| (x / g).round() as i64),
+            vertices: Vec::new(),
+            indices: Vec::new(),
+            near_vertices: 0,
+            near_triangles: 0,
+            stitch_triangles: 0,
+            far_first_ring: 0,
+            far_inner_radius_m: 0.0,
+            far_outer_radius_m: 0.0,
+        };
+        if let Some(clipmap) = crate::geometry::Clipmap::of_frame(scene, camera, self) {
+            return Ok(index_drawn(clipmap?.origin));
+        }
         if self.techniques.of(Stage::Surface).name == "projected_grid" {
-            // The grid is drawn from the vertex index (frame::ProjectedGridBlock); the mesh
-            // only fixes the reference point, the eye's (x, z) on the displacement grid.
-            let g = params.grid_spacing_m;
-            let cell = |x: f64| (x / g).round() as i64;
-            let origin_cell = [cell(camera.eye.x), cell(camera.eye.z)];
-            return Ok(WaterMesh {
-                origin: origin_cell.map(|c| c as f64 * g),
-                origin_cell,
-                vertices: Vec::new(),
-                indices: Vec::new(),
-                near_vertices: 0,
-                near_triangles: 0,
-                stitch_triangles: 0,
-                far_first_ring: 0,
-                far_inner_radius_m: 0.0,
-                far_outer_radius_m: 0.0,
-            });
+            let cell = |x: f64| (x / g).round() * g;
+            return Ok(index_drawn([cell(camera.eye.x), cell(camera.eye.z)]));
         }
         if self.runs(Pass::FarPatch) {
             WaterMesh::for_view(

@@ -102,7 +102,7 @@ pub const TECHNIQUES: &[TechniqueInfo] = &[
     t(Stage::Waves, "coastal", "radial waves running to a shore (seed 004)", false),
     t(Stage::Surface, "hu_patches", "near LOD tree + far conic patch (seed 000 §3)", true),
     t(Stage::Surface, "projected_grid", "projected grid (seed 001)", true),
-    t(Stage::Surface, "clipmap", "GPU clipmaps (seed 002)", false),
+    t(Stage::Surface, "clipmap", "GPU clipmaps, morphed, to the horizon (seed 002)", true),
     t(Stage::Surface, "shore_grid", "camera-aligned shore grid (seed 004)", false),
     t(Stage::Shading, "hu", "eq. 3: 2D Fresnel texture + Phong (seed 000)", true),
     t(Stage::Shading, "chiu", "local optics and water colour, eqs. 2–8 (seed 001)", true),

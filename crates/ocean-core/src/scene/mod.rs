@@ -186,6 +186,10 @@ pub struct Quality {
     /// Surface `projected_grid`: pixels between two grid lines of the projector's image (the
     /// grid has ⌈width/cell⌉ × ⌈height/cell⌉ quads).
     pub projected_grid_cell_px: f64,
+    /// Surface `clipmap`: the side of level 0's quads, m (level l's are 2^l times that).
+    pub clipmap_cell_m: f64,
+    /// Surface `clipmap`: quads per level side, a multiple of 8 in [16, 256].
+    pub clipmap_cells: u32,
 }
 
 impl Default for Quality {
@@ -195,6 +199,8 @@ impl Default for Quality {
             reflection_map_scale: 1.0,
             lod_split_threshold: 0.05,
             projected_grid_cell_px: 4.0,
+            clipmap_cell_m: 0.5,
+            clipmap_cells: 64,
         }
     }
 }

@@ -189,6 +189,13 @@ pub const LIMITS: &[Limit] = &[
         64.0,
         "pixels between the projected grid's lines (surface `projected_grid`)",
     ),
+    real("quality.clipmap_cell_m", 1.0e-2, 1.0e2, "m, level 0's quad side (surface `clipmap`)"),
+    whole(
+        "quality.clipmap_cells",
+        16.0,
+        256.0,
+        "quads per level side, a multiple of 8 (surface `clipmap`)",
+    ),
     real("terrain.depth_m", -1.0e4, 1.0e4, "m below the sea plane at terrain.center"),
     real("terrain.center", -MAX_COORDINATE_M, MAX_COORDINATE_M, "m; as camera.position"),
     real("terrain.slope", 0.0, 10.0, "metres of rise per metre; 10 is 84°"),
@@ -342,6 +349,14 @@ impl Scene {
         check("quality.reflection_map_scale", &[q.reflection_map_scale])?;
         check("quality.lod_split_threshold", &[q.lod_split_threshold])?;
         check("quality.projected_grid_cell_px", &[q.projected_grid_cell_px])?;
+        check("quality.clipmap_cell_m", &[q.clipmap_cell_m])?;
+        check_u32("quality.clipmap_cells", q.clipmap_cells)?;
+        if !q.clipmap_cells.is_multiple_of(8) {
+            return Err((
+                "quality.clipmap_cells".into(),
+                format!("{} is not a multiple of 8 (16, 24, …, 256)", q.clipmap_cells),
+            ));
+        }
         if let Some(t) = &self.terrain {
             check("terrain.depth_m", &[t.depth_m])?;
             check("terrain.center", &t.center)?;

@@ -3,6 +3,9 @@
 
 use ocean_core::frame::FrameUniforms;
 
+mod clipmap;
+pub use clipmap::vs_clipmap;
+
 use super::shared::frame::{dot3, transform_point, unit};
 use super::shared::gerstner::{gerstner_cis, gerstner_displacement};
 use super::shared::trig::TAU;
@@ -128,15 +131,21 @@ pub fn vs_projected_grid(k: u32, b: &Bindings<'_>) -> VertexOut {
     water_vertex(vec2(h.x * inv_w, h.z * inv_w) - Vec2::from(b.frame.tiling.mesh_offset), 1.0, b)
 }
 
-/// `water_vertex(pos, weight)`.
-pub fn water_vertex(pos: Vec2, weight: f32, b: &Bindings<'_>) -> VertexOut {
-    let frame = b.frame;
+/// `map_uvs(pos)`: (uv_d, uv_b).
+pub fn map_uvs(pos: Vec2, frame: &FrameUniforms) -> (Vec2, Vec2) {
     let uv_d = (pos + Vec2::from(frame.tiling.displacement_origin))
         * frame.tiling.inv_displacement_size
         + frame.tiling.displacement_half_texel;
     let uv_b = (pos + Vec2::from(frame.tiling.bump_origin)) * frame.tiling.inv_bump_size
         + frame.tiling.bump_half_texel;
-    let mut d = texture_sample_level(b.displacement, &WRAP_LINEAR, uv_d, 0.0)
+    (uv_d, uv_b)
+}
+
+/// `water_vertex(pos, weight)`.
+pub fn water_vertex(pos: Vec2, weight: f32, b: &Bindings<'_>) -> VertexOut {
+    let frame = b.frame;
+    let uv = map_uvs(pos, frame);
+    let mut d = texture_sample_level(b.displacement, &WRAP_LINEAR, uv.0, 0.0)
         * (weight * frame.passes.waves);
     if frame.scales.count > 0.0 {
         d = multi_scale_displacement(pos, b) * (weight * frame.passes.waves);
@@ -144,6 +153,17 @@ pub fn water_vertex(pos: Vec2, weight: f32, b: &Bindings<'_>) -> VertexOut {
     if frame.gerstner.count > 0.0 {
         d = gerstner_displacement(pos, frame) * weight;
     }
+    displaced_vertex(pos, d, uv, weight, frame)
+}
+
+/// `displaced_vertex(pos, d, uv, weight)`.
+pub fn displaced_vertex(
+    pos: Vec2,
+    d: Vec4,
+    (uv_d, uv_b): (Vec2, Vec2),
+    weight: f32,
+    frame: &FrameUniforms,
+) -> VertexOut {
     let plane = pos + Vec2::from(frame.tiling.mesh_offset);
     let rel = vec3(plane.x + d.x, d.y - frame.view.eye_height, plane.y + d.z);
     VertexOut { clip: transform_point(&frame.view.view_proj, rel), rel, uv_d, uv_b, weight, pos }

@@ -3,7 +3,7 @@
 use ocean_core::frame::FrameUniforms;
 
 use super::trig::cis_turns;
-use crate::shaders::wgsl::{Vec2, Vec4, vec2, vec4};
+use crate::shaders::wgsl::{Vec2, Vec4, clamp, vec2, vec4};
 
 /// `gerstner_cis(i, pos)`: wave i's (cos θ, sin θ).
 pub fn gerstner_cis(i: usize, pos: Vec2, frame: &FrameUniforms) -> [f32; 2] {
@@ -19,6 +19,23 @@ pub fn gerstner_displacement(pos: Vec2, frame: &FrameUniforms) -> Vec4 {
         let cs = gerstner_cis(i, pos, frame);
         let (a, b) = (frame.gerstner.waves[2 * i], frame.gerstner.waves[2 * i + 1]);
         d = d + vec4(b[0] * cs[0], a[3] * cs[1], b[1] * cs[0], 0.0);
+    }
+    d
+}
+
+/// `gerstner_displacement_filtered(pos, spacing)`: each wave times
+/// g = clamp(2 − 8·spacing/λ, 0, 1).
+pub fn gerstner_displacement_filtered(pos: Vec2, spacing: f32, frame: &FrameUniforms) -> Vec4 {
+    let mut d = vec4(0.0, 0.0, 0.0, 0.0);
+    for i in 0..frame.gerstner.count as usize {
+        let a = frame.gerstner.waves[2 * i];
+        let g = clamp(2.0 - 8.0 * (spacing * (a[0] * a[0] + a[1] * a[1]).sqrt()), 0.0, 1.0);
+        if g > 0.0 {
+            let [c, s] = gerstner_cis(i, pos, frame);
+            let cs = [c * g, s * g];
+            let b = frame.gerstner.waves[2 * i + 1];
+            d = d + vec4(b[0] * cs[0], a[3] * cs[1], b[1] * cs[0], 0.0);
+        }
     }
     d
 }

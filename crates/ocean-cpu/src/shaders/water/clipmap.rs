@@ -1,0 +1,55 @@
+//! Mirror of `vs_clipmap` in `shaders/water.wgsl`: surface `clipmap`'s vertex k.
+
+use super::{
+    Bindings, VertexOut, WRAP_LINEAR, displaced_vertex, map_uvs, multi_scale_displacement,
+};
+use crate::shaders::shared::gerstner::gerstner_displacement_filtered;
+use crate::shaders::wgsl::{clamp, texture_sample_level, vec2};
+
+/// `vs_clipmap(k)`: vertex k of level k / (6n²), morphed towards the next level's lattice.
+pub fn vs_clipmap(k: u32, b: &Bindings<'_>) -> VertexOut {
+    let frame = b.frame;
+    let c = &frame.clip;
+    let n = c.cells as u32;
+    let per_level = 6 * n * n;
+    let level = (k / per_level) as usize;
+    let quad = (k % per_level) / 6;
+    let corner = (k % 6) as usize;
+    let di = [0i32, 1, 1, 0, 1, 0];
+    let dj = [0i32, 0, 1, 0, 1, 1];
+    let lv = c.level[level];
+    let qi = (quad % n) as i32;
+    let qj = (quad / n) as i32;
+    let half = (n / 2) as i32;
+    let in_hole = qi >= lv[2] && qi < lv[2] + half && qj >= lv[3] && qj < lv[3] + half;
+    let (i, j) = if in_hole { (qi, qj) } else { (qi + di[corner], qj + dj[corner]) };
+    let e = c.eye[level];
+    let step = e[2] as i32;
+    let dist = ((i - half) as f32 - e[0]).abs().max(((j - half) as f32 - e[1]).abs());
+    let alpha = clamp((dist - c.morph_start) * c.inv_band, 0.0, 1.0);
+    let gx = lv[0] + (i - half) * step;
+    let gz = lv[1] + (j - half) * step;
+    let ox = -(i & 1) * step;
+    let oz = -(j & 1) * step;
+    let (x, z) = if alpha >= 1.0 {
+        ((gx + ox) as f32, (gz + oz) as f32)
+    } else {
+        (gx as f32 + ox as f32 * alpha, gz as f32 + oz as f32 * alpha)
+    };
+    let pos = vec2(x, z) * c.cell_m;
+    let mi = i as f32 + (-(i & 1)) as f32 * alpha;
+    let mj = j as f32 + (-(j & 1)) as f32 * alpha;
+    let mdist = (mi - half as f32 - e[0]).abs().max((mj - half as f32 - e[1]).abs());
+    let malpha = clamp((mdist - c.morph_start) * c.inv_band, 0.0, 1.0);
+    let spacing = e[2] * (1.0 + malpha) * c.cell_m;
+    let uv = map_uvs(pos, frame);
+    let mut d = texture_sample_level(b.displacement, &WRAP_LINEAR, uv.0, 0.0);
+    if frame.scales.count > 0.0 {
+        d = multi_scale_displacement(pos, b);
+    }
+    d = d * (frame.passes.waves * clamp((c.fade_end - spacing) * c.fade_inv_span, 0.0, 1.0));
+    if frame.gerstner.count > 0.0 {
+        d = gerstner_displacement_filtered(pos, spacing, frame);
+    }
+    displaced_vertex(pos, d, uv, 1.0, frame)
+}
