@@ -18,6 +18,7 @@
 // #import shared/optics.wgsl
 // #import shared/floor.wgsl
 // #import shared/gerstner.wgsl
+// #import shared/detail.wgsl
 // #import shared/sky_lut.wgsl
 // #import technique/sky
 // #import technique/shading
@@ -427,6 +428,19 @@ fn subtexel(lod: f32) -> f32 {
 // spans lengthwise) is replaced by that of the visible facets and the mean slope shifted by
 // theirs. The bump map's slopes only bend the normal: no facet of theirs hides another.
 fn filtered_slopes(in: VertexOut) -> vec3<f32> {
+    let s = wave_slopes(in);
+    // Shading `ggx`'s detail normal map, filtered over the same footprint as the Gerstner
+    // waves' slopes (shared/detail.wgsl).
+    if (frame.detail.count > 0.0) {
+        let fp = footprint(in.rel);
+        let short = fp.dist * frame.far.pixel_angle;
+        return s + detail_slopes(in.pos, fp.h, 0.5 * short / max(fp.vy, 1e-4), 0.5 * short);
+    }
+    return s;
+}
+
+// The waves' own slopes (filtered_slopes without the detail map).
+fn wave_slopes(in: VertexOut) -> vec3<f32> {
     // Waves technique `gerstner`: the waves' own slopes, filtered analytically; no bump map.
     if (frame.gerstner.count > 0.0) {
         return gerstner_filtered_slopes(in.pos, in.rel, in.weight);

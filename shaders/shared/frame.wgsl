@@ -160,6 +160,17 @@ struct ClipmapBlock {
     eye: array<vec4<f32>, 24>,
 }
 
+// Shading `ggx`'s detail normal map (ocean-core detail): per sinusoid (fx, fz, p0, a), turns
+// per metre, its phase at the mesh's reference point in turns, and a = slope/|f|; count 0:
+// none.
+struct DetailBlock {
+    count: f32,
+    pad0: f32,
+    pad1: f32,
+    pad2: f32,
+    waves: array<vec4<f32>, 32>,
+}
+
 struct FrameUniforms {
     view: ViewBlock,
     sun: SunBlock,
@@ -176,6 +187,7 @@ struct FrameUniforms {
     gerstner: GerstnerBlock,
     ggx: GgxShadingBlock,
     clip: ClipmapBlock,
+    detail: DetailBlock,
 }
 
 // m · (p, 1), written out so that the order of operations is fixed (the CPU mirror,

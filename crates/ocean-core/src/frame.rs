@@ -391,6 +391,8 @@ pub struct FrameUniforms {
     pub ggx: GgxShadingBlock,
     /// Surface `clipmap` (`levels` 0 under the other surfaces).
     pub clip: crate::geometry::ClipmapBlock,
+    /// Shading `ggx`'s detail normal map (`count` 0 without it).
+    pub detail: crate::detail::DetailBlock,
 }
 
 /// Surface `projected_grid` ([`crate::geometry::ProjectedGrid`]): the grid's corners and size.
@@ -798,6 +800,20 @@ impl FrameUniforms {
                         .map(|w| std::f64::consts::TAU * crate::GRAVITY / (w * w)),
                 ),
                 _ => Zeroable::zeroed(),
+            },
+            detail: if shading == "ggx" && scene.ggx.detail_strength > 0.0 {
+                crate::detail::DetailBlock::new(
+                    &crate::detail::detail_waves(
+                        scene.ggx.detail_wavelength_m,
+                        scene.ggx.detail_strength,
+                    ),
+                    scene.ggx.detail_speed_m_s,
+                    o.wind_direction_deg,
+                    o.time_s,
+                    mesh_origin,
+                )
+            } else {
+                Zeroable::zeroed()
             },
         }
     }

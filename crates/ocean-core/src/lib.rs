@@ -19,6 +19,7 @@ pub mod bloom;
 pub mod camera;
 pub mod camera_uniforms;
 pub mod clouds;
+pub mod detail;
 pub mod dispersion;
 pub mod error;
 pub mod far_field;

@@ -15,6 +15,7 @@ use std::path::Path;
 use crate::atmosphere::SkyLut;
 use crate::bloom::BloomUniforms;
 use crate::camera_uniforms::CameraUniforms;
+use crate::detail::DetailBlock;
 use crate::frame::{
     AmbientBlock, ChiuShadingBlock, FarFieldBlock, FrameUniforms, FresnelTableUniforms,
     GgxShadingBlock, HuShadingBlock, MultiScaleBlock, PassFlags, ProjectedGridBlock, SunBlock,
@@ -44,6 +45,7 @@ wgsl_types!(
     [[f32; 4]; 4] => "mat4x4<f32>",
     [[f32; 4]; 128] => "array<vec4<f32>, 128>",
     [[f32; 4]; 24] => "array<vec4<f32>, 24>",
+    [[f32; 4]; 32] => "array<vec4<f32>, 32>",
     [[i32; 4]; 24] => "array<vec4<i32>, 24>",
     [[f32; 4]; 2048] => "array<vec4<f32>, 2048>",
 );
@@ -110,7 +112,8 @@ nested!(
     MultiScaleBlock,
     GerstnerBlock,
     GgxShadingBlock,
-    ClipmapBlock
+    ClipmapBlock,
+    DetailBlock
 );
 
 /// The kind of an entry point.
@@ -534,6 +537,7 @@ pub const SHARED: &[SharedFile] = &[
                 level,
                 eye
             }),
+            block!(DetailBlock { count, pad0, pad1, pad2, waves }),
             block!(FrameUniforms {
                 view,
                 sun,
@@ -549,7 +553,8 @@ pub const SHARED: &[SharedFile] = &[
                 scales,
                 gerstner,
                 ggx,
-                clip
+                clip,
+                detail
             }),
         ],
         cpu_mirror: "crates/ocean-cpu/src/shaders/shared/frame.rs",
@@ -605,6 +610,12 @@ pub const SHARED: &[SharedFile] = &[
         source: include_str!("../../../shaders/shared/gerstner.wgsl"),
         blocks: &[],
         cpu_mirror: "crates/ocean-cpu/src/shaders/shared/gerstner.rs",
+    },
+    SharedFile {
+        file: "shared/detail.wgsl",
+        source: include_str!("../../../shaders/shared/detail.wgsl"),
+        blocks: &[],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/shared/detail.rs",
     },
     SharedFile {
         file: "shared/shadow.wgsl",

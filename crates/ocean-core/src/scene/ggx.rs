@@ -16,11 +16,26 @@ pub struct Ggx {
     /// The geometry term: `smith` (Smith's height-correlated G, exact for GGX) or
     /// `schlick_ggx` (the seed's Schlick-GGX, k = α/2).
     pub geometry: GgxGeometry,
+    /// The seed's double-scrolled detail normal map ([`crate::detail`]): the RMS slope it adds
+    /// (both layers); 0 leaves it out.
+    pub detail_strength: f64,
+    /// The detail map's median wavelength, m.
+    pub detail_wavelength_m: f64,
+    /// How fast the detail map's first layer drifts with the wind, m/s (the second drifts
+    /// against it at 0.6 of that).
+    pub detail_speed_m_s: f64,
 }
 
 impl Default for Ggx {
     fn default() -> Self {
-        Self { roughness: 0.2, fresnel: GgxFresnel::Exact, geometry: GgxGeometry::Smith }
+        Self {
+            roughness: 0.2,
+            fresnel: GgxFresnel::Exact,
+            geometry: GgxGeometry::Smith,
+            detail_strength: 0.0,
+            detail_wavelength_m: 0.8,
+            detail_speed_m_s: 0.4,
+        }
     }
 }
 

@@ -209,6 +209,9 @@ pub const LIMITS: &[Limit] = &[
         "m at heightmap samples 0 and 1, added to the plane",
     ),
     real("ggx.roughness", 0.01, 1.0, "perceptual; α = roughness²"),
+    real("ggx.detail_strength", 0.0, 1.0, "RMS slope of the detail normal map; 0 leaves it out"),
+    real("ggx.detail_wavelength_m", 1.0e-3, 100.0, "m, the detail map's median wavelength"),
+    real("ggx.detail_speed_m_s", -100.0, 100.0, "m/s, the detail map's drift with the wind"),
     real("chiu.zeta_m", 0.0, 100.0, "m; eq. 6's map shift at 1 m of view depth"),
     real("chiu.shininess_per_m", 1.0e-3, 1.0e3, "eq. 5's Phong exponent per metre of depth"),
     real("chiu.kd_per_m", 0.0, 10.0, "1/m; eq. 8's k_d"),
@@ -385,6 +388,9 @@ impl Scene {
         }
         self.check_gerstner()?;
         check("ggx.roughness", &[self.ggx.roughness])?;
+        check("ggx.detail_strength", &[self.ggx.detail_strength])?;
+        check("ggx.detail_wavelength_m", &[self.ggx.detail_wavelength_m])?;
+        check("ggx.detail_speed_m_s", &[self.ggx.detail_speed_m_s])?;
         let ch = &self.chiu;
         check("chiu.zeta_m", &[ch.zeta_m])?;
         check("chiu.shininess_per_m", &[ch.shininess_per_m])?;

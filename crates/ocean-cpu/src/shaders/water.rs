@@ -427,6 +427,24 @@ pub fn gerstner_filtered_slopes(pos: Vec2, rel: Vec3, weight: f32, frame: &Frame
 
 /// `filtered_slopes(in)`: (s_x, s_z, unresolved variance per axis).
 pub fn filtered_slopes(input: &VertexOut, b: &Bindings<'_>) -> Vec3 {
+    let s = wave_slopes(input, b);
+    let frame = b.frame;
+    if frame.detail.count > 0.0 {
+        let fp = footprint(input.rel, frame);
+        let short = fp.dist * frame.far.pixel_angle;
+        return s + super::shared::detail::detail_slopes(
+            input.pos,
+            fp.h,
+            0.5 * short / max(fp.vy, 1e-4),
+            0.5 * short,
+            frame,
+        );
+    }
+    s
+}
+
+/// `wave_slopes(in)`.
+pub fn wave_slopes(input: &VertexOut, b: &Bindings<'_>) -> Vec3 {
     let frame = b.frame;
     if frame.gerstner.count > 0.0 {
         return gerstner_filtered_slopes(input.pos, input.rel, input.weight, frame);
