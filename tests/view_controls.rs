@@ -385,6 +385,12 @@ fn presets_order_the_seas_by_wave_height_and_keep_the_camera() {
     let s = p0.with_preset(Preset::OpenOcean).apply(&base).expect("applies");
     assert_eq!(s.ocean, base.ocean);
     assert_eq!(s.water, base.water);
+    // Welch's presets: the stormy sunset's Gerstner sea is higher and its sun low ahead.
+    let calm = p0.with_preset(Preset::WelchCalmDay).apply(&base).expect("applies");
+    let stormy = p0.with_preset(Preset::WelchStormySunset).apply(&base).expect("applies");
+    assert!(stormy.gerstner.bounds().0 > 3.0 * calm.gerstner.bounds().0);
+    let (e, a) = sun_angles(stormy.sun.as_ref().expect("sun").direction);
+    assert!((e - 3.0).abs() < 1e-9 && a.abs() < 1e-9, "sun {e}° {a}°");
     // Shallow reef is finite-depth water, and every preset validates on every scene.
     let reef = p0.with_preset(Preset::ShallowReef);
     assert!(!reef.deep && reef.depth_m < 10.0);

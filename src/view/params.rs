@@ -31,6 +31,10 @@ pub mod range {
     pub const EXTINCTION_PER_M: (f64, f64) = (0.01, 2.0);
     /// Simulated seconds per wall-clock second.
     pub const TIME_SCALE: (f64, f64) = (0.0, 10.0);
+    /// Waves `gerstner`: the drawn waves' median amplitude, m.
+    pub const GERSTNER_AMPLITUDE_M: (f64, f64) = (0.0, 3.0);
+    /// Waves `gerstner`: the drawn waves' median wavelength, m.
+    pub const GERSTNER_WAVELENGTH_M: (f64, f64) = (1.0, 200.0);
 }
 
 /// What the panel edits.
@@ -52,6 +56,10 @@ pub struct ViewParams {
     pub choppiness: f64,
     /// Side of the displacement patch, m.
     pub patch_size_m: f64,
+    /// Waves `gerstner`: the drawn waves' median amplitude, m.
+    pub gerstner_amplitude_m: f64,
+    /// Waves `gerstner`: the drawn waves' median wavelength, m.
+    pub gerstner_wavelength_m: f64,
     /// Whether the scene has a sun.
     pub sun: bool,
     /// Sun elevation above the horizon, degrees.
@@ -83,6 +91,8 @@ impl ViewParams {
             depth_m: if o.depth_m.is_finite() { o.depth_m } else { 20.0 },
             choppiness: o.choppiness,
             patch_size_m: o.patch_size_m,
+            gerstner_amplitude_m: scene.gerstner.median_amplitude_m,
+            gerstner_wavelength_m: scene.gerstner.median_wavelength_m,
             sun: scene.sun.is_some(),
             sun_elevation_deg: elevation,
             sun_azimuth_deg: azimuth,
@@ -107,6 +117,8 @@ impl ViewParams {
         o.depth_m = if self.deep { f64::INFINITY } else { self.depth_m };
         o.choppiness = self.choppiness;
         o.patch_size_m = self.patch_size_m;
+        scene.gerstner.median_amplitude_m = self.gerstner_amplitude_m;
+        scene.gerstner.median_wavelength_m = self.gerstner_wavelength_m;
         let unchanged = Self::from_scene(base);
         scene.sun = if self.sun {
             let mut sun = base.sun.clone().unwrap_or_default();
@@ -135,7 +147,20 @@ impl ViewParams {
             Preset::OpenOcean => (SpectrumKind::Jonswap, 9.0, 120.0, None, 1.0, 256.0),
             Preset::Storm => (SpectrumKind::Jonswap, 22.0, 500.0, None, 1.6, 512.0),
             Preset::ShallowReef => (SpectrumKind::Tma, 8.0, 20.0, Some(4.0), 0.8, 128.0),
+            Preset::WelchCalmDay => (SpectrumKind::Jonswap, 6.0, 60.0, None, 0.8, 256.0),
+            Preset::WelchStormySunset => (SpectrumKind::Jonswap, 17.0, 300.0, None, 1.4, 512.0),
         };
+        // Seed 002's two looks (reference/scenes/welch_*.toml): the Gerstner waves too, and a
+        // noon or a setting sun ahead; the other presets keep the Gerstner sea as it is.
+        match preset {
+            Preset::WelchCalmDay => {
+                (p.gerstner_amplitude_m, p.gerstner_wavelength_m) = (0.08, 12.0)
+            }
+            Preset::WelchStormySunset => {
+                (p.gerstner_amplitude_m, p.gerstner_wavelength_m) = (0.3, 28.0);
+            }
+            _ => {}
+        }
         p.spectrum = spectrum;
         p.wind_speed = wind;
         p.fetch_km = fetch;
@@ -157,11 +182,16 @@ impl ViewParams {
             }
             Preset::Storm => ([0.003, 0.010, 0.014], 0.2, 20.0),
             Preset::ShallowReef => ([0.010, 0.060, 0.060], 0.06, 40.0),
+            Preset::WelchCalmDay => ([0.004, 0.016, 0.030], 0.12, 55.0),
+            Preset::WelchStormySunset => ([0.003, 0.010, 0.014], 0.2, 3.0),
         };
         p.water_color = color;
         p.extinction_per_m = k;
         p.sun = true;
         p.sun_elevation_deg = elevation;
+        if preset == Preset::WelchStormySunset {
+            p.sun_azimuth_deg = 0.0;
+        }
         p
     }
 }
@@ -177,12 +207,22 @@ pub enum Preset {
     Storm,
     /// 8 m/s over 20 km in 4 m of clear water (TMA, finite-depth dispersion).
     ShallowReef,
+    /// Seed 002's calm day: low Gerstner swell (8 cm, 12 m) under a high sun.
+    WelchCalmDay,
+    /// Seed 002's stormy sunset: 30 cm, 28 m Gerstner waves, 17 m/s, the sun 3° up ahead.
+    WelchStormySunset,
 }
 
 impl Preset {
     /// Every preset, in the panel's order.
-    pub const ALL: [Preset; 4] =
-        [Preset::CalmLake, Preset::OpenOcean, Preset::Storm, Preset::ShallowReef];
+    pub const ALL: [Preset; 6] = [
+        Preset::CalmLake,
+        Preset::OpenOcean,
+        Preset::Storm,
+        Preset::ShallowReef,
+        Preset::WelchCalmDay,
+        Preset::WelchStormySunset,
+    ];
 
     /// The button's label.
     pub fn label(self) -> &'static str {
@@ -191,6 +231,8 @@ impl Preset {
             Preset::OpenOcean => "Open ocean",
             Preset::Storm => "Storm",
             Preset::ShallowReef => "Shallow reef",
+            Preset::WelchCalmDay => "Calm day (Welch)",
+            Preset::WelchStormySunset => "Stormy sunset (Welch)",
         }
     }
 }

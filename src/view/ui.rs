@@ -180,6 +180,20 @@ fn panel(ui: &mut egui::Ui, p: &mut ViewParams, overlay: &Overlay<'_>, actions: 
             slider(ui, &mut p.depth_m, range::DEPTH_M, "depth, m", true);
         });
         slider(ui, &mut p.choppiness, range::CHOPPINESS, "choppiness λ", false);
+        slider(
+            ui,
+            &mut p.gerstner_amplitude_m,
+            range::GERSTNER_AMPLITUDE_M,
+            "Gerstner A, m",
+            false,
+        );
+        slider(
+            ui,
+            &mut p.gerstner_wavelength_m,
+            range::GERSTNER_WAVELENGTH_M,
+            "Gerstner λ, m",
+            true,
+        );
         slider(ui, &mut p.patch_size_m, range::PATCH_SIZE_M, "patch size, m", true);
     });
     egui::CollapsingHeader::new("Sun").default_open(true).show(ui, |ui| {
