@@ -205,7 +205,10 @@ pub const SYSTEMS: &[SystemInfo] = &[
             "clipmap",
             "ggx",
             "atmosphere",
-            "none",
+            // The paper takes the waves' slopes as they are; its far sea then sparkles, and
+            // far field `mip` is the Gerstner waves' analytic footprint filter (the maps'
+            // `variance` needs chains the Gerstner waves do not have).
+            "mip",
             "heuristic",
             "none",
             "bloom",
