@@ -101,11 +101,15 @@ fn systems_and_techniques_in_a_scene_are_checked_with_their_position() {
     assert!(e.contains("clipmap"), "names the technique that is missing: {e}");
     let e = scene("system = \"nope\"\n").unwrap_err().to_string();
     assert!(e.contains("nope") && e.contains("coastal"), "{e}");
-    let e = scene("[techniques]\nfoam = \"jacobian\"\n").unwrap_err().to_string();
+    let e = scene("[techniques]\nsurface = \"shore_grid\"\n").unwrap_err().to_string();
     assert!(
-        e.contains("techniques.foam") && e.contains(":2:1") && e.contains("not yet available"),
+        e.contains("techniques.surface") && e.contains(":2:1") && e.contains("not yet available"),
         "{e}"
     );
+    // Every foam technique is built.
+    for foam in ["none", "heuristic", "jacobian", "accumulated"] {
+        assert!(scene(&format!("[techniques]\nfoam = \"{foam}\"\n")).is_ok(), "{foam}");
+    }
     // Every far field is built.
     for far in ["none", "mip", "variance"] {
         assert!(scene(&format!("[techniques]\nfar_field = \"{far}\"\n")).is_ok(), "{far}");

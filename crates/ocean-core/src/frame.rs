@@ -389,6 +389,8 @@ pub struct FrameUniforms {
     pub gerstner: crate::waves::gerstner::GerstnerBlock,
     /// Shading technique `ggx`.
     pub ggx: GgxShadingBlock,
+    /// Stage `foam` (the last block).
+    pub foam: crate::foam::FoamBlock,
 }
 
 /// Surface `projected_grid` ([`crate::geometry::ProjectedGrid`]): the grid's corners and size.
@@ -788,6 +790,12 @@ impl FrameUniforms {
                     (((eta - 1.0) / (eta + 1.0)).powi(2)) as f32
                 },
             },
+            foam: crate::foam::FoamBlock::new(
+                scene,
+                plan.techniques.of(crate::plan::Stage::Foam).name,
+                plan.techniques.of(crate::plan::Stage::Waves).name,
+                mesh_origin,
+            ),
         }
     }
 }

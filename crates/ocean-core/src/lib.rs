@@ -22,6 +22,7 @@ pub mod clouds;
 pub mod dispersion;
 pub mod error;
 pub mod far_field;
+pub mod foam;
 pub mod frame;
 pub mod fresnel;
 pub mod fuzz;

@@ -2,6 +2,7 @@
 
 pub mod camera;
 pub mod floor;
+pub mod foam;
 pub mod frame;
 pub mod fresnel;
 pub mod fullscreen;
