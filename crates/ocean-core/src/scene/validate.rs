@@ -233,7 +233,7 @@ pub const LIMITS: &[Limit] = &[
     real("foam.decay_s", 1.0e-3, 1.0e4, "s, e-folding time of accumulated foam"),
     real("foam.growth_per_s", 0.0, 1.0e3, "foam per second a full ramp below the threshold"),
     real("foam.step_s", 1.0e-4, 1.0, "s, one step per frame"),
-    whole("foam.warmup_steps", 0.0, 10_000.0, "steps before a state's first frame"),
+    whole("foam.warmup_steps", 0.0, 1000.0, "steps before a state's first frame"),
     whole("foam.grid", 2.0, 4096.0, "texels per side (power of two)"),
     real("foam.cell_m", 1.0e-2, 100.0, "m between the lattice's points"),
     real("post.vignette", 0.0, 1.0, "0 none; 1 black at the image's corners"),
