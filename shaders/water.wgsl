@@ -20,8 +20,10 @@
 // #import shared/gerstner.wgsl
 // #import shared/detail.wgsl
 // #import shared/sky_lut.wgsl
+// #import shared/foam.wgsl
 // #import technique/sky
 // #import technique/shading
+// #import technique/foam
 
 @group(0) @binding(0) var<uniform> frame: FrameUniforms;
 // (disp_x, height, disp_z, jacobian) of the displacement map.
@@ -45,6 +47,8 @@
 @group(0) @binding(11) var fresnel_filter: texture_2d<f32>;
 // The sea floor's relief (height in red, m), for eq. 8's depth (shared/floor.wgsl).
 @group(0) @binding(12) var floor_map: texture_2d<f32>;
+// Foam `accumulated`'s field (foam in x), written by stage `foam`; one zero texel otherwise.
+@group(0) @binding(13) var foam_field: texture_2d<f32>;
 // The environment the water reflects: the frame's sky technique (its interface: SkyUniforms,
 // sky_radiance), a resource of the plan that the water reads.
 @group(1) @binding(0) var<uniform> sky: SkyUniforms;
@@ -511,6 +515,18 @@ fn gerstner_filtered_slopes(pos: vec2<f32>, rel: vec3<f32>, weight: f32) -> vec3
     return vec3<f32>(s.x * weight, s.y * weight, variance * (weight * weight));
 }
 
+// The horizontal displacement's Jacobian J at the fragment (the foam techniques): waves
+// `gerstner`'s analytic one at the undisplaced point, else the displacement map's (texels
+// carry J in w; eq. 1's scales are not summed), both faded towards 1 with the mesh's weight
+// as the displacement is.
+fn surface_jacobian(in: VertexOut) -> f32 {
+    if (frame.gerstner.count > 0.0) {
+        return 1.0 + (gerstner_jacobian(in.pos) - 1.0) * in.weight;
+    }
+    let j = textureSampleLevel(displacement, wrap_linear, in.uv_d, 0.0).w;
+    return 1.0 + (j - 1.0) * (in.weight * frame.passes.waves);
+}
+
 // Bumped normal (§5) of the filtered slopes.
 fn bumped_normal(in: VertexOut) -> vec3<f32> {
     let s = filtered_slopes(in);
@@ -655,7 +671,9 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     // In the fragment stage `clip` is the fragment's position: (x + 0.5, y + 0.5, depth, 1/w).
     let screen = in.clip.xy * frame.view.inv_viewport_size;
     if (view.y >= 0.0) {
-        return vec4<f32>(shade_above(in, SurfacePoint(slopes, n, view, u_bumped, screen)), 1.0);
+        let p = SurfacePoint(slopes, n, view, u_bumped, screen);
+        let c = shade_above(in, p);
+        return vec4<f32>(foam_over(c, foam_coverage(in, p), n, in.rel), 1.0);
     }
     // From below: the normal facing the eye is (n.x, −n.y, n.z), its horizontal part again
     // (du, dv); F for η⁻¹ (1 beyond the critical angle: total internal reflection).

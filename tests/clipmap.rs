@@ -54,6 +54,8 @@ fn vertices(fb: &FrameBuffers, u: &ocean_core::frame::FrameUniforms) -> Vec<Vert
         fresnel_filter: &empty,
         sky_radiance: &sky,
         shade_above: ocean_cpu::shaders::shading::hu::shade_above,
+        foam_field: &empty,
+        foam_coverage: ocean_cpu::shaders::foam::none::foam_coverage,
     };
     let c = &u.clip;
     let n = ocean_core::geometry::Clipmap::vertex_count(c.levels as usize, c.cells as u32);

@@ -14,6 +14,7 @@ fn render(extra: &str) -> (Vec<[f32; 4]>, Vec<u8>) {
     if text.contains("[techniques]") {
         scene.techniques = over.techniques;
         scene.ggx = over.ggx;
+        scene.foam = over.foam;
     }
     if text.contains("nosun") {
         scene.sun = None;
@@ -72,6 +73,40 @@ fn welch_techniques_at_the_extremes_are_finite() {
     ];
     let suns = ["[0.0, 0.0, -1.0]", "[0.0, -0.3, -1.0]", "[0.0, 1.0, 0.0]", "[0.3, 0.05, -1.0]"];
     for t in techniques {
+        for (name, camera) in CAMERAS {
+            check(&format!("{name} with {t}"), &format!("{camera}{t}"));
+        }
+        for sun in suns {
+            let cam = "position = [0.0, 6.0, 30.0]\nlook_at = [0.0, 1.0, -60.0]\n";
+            check(&format!("sun {sun} with {t}"), &format!("{cam}{t}[sun]\ndirection = {sun}\n"));
+        }
+    }
+}
+
+/// The foam techniques at the same extremes and suns, with their keys at the limits: foam
+/// everywhere (threshold 10, softness 0.001, growth 1000, decay 0.001 s, full coverage of
+/// albedo 1), crests at the smallest scales, and the accumulated field on Gerstner waves'
+/// lattice around a camera 10⁶ m out.
+#[test]
+fn foam_techniques_at_the_extremes_are_finite() {
+    let keys = "[foam]\nthreshold = 10.0\nsoftness = 0.001\ngrowth_per_s = 1000.0\n\
+                decay_s = 0.001\ncoverage = 1.0\ncolor = [1.0, 1.0, 1.0]\n\
+                crest_height_m = 0.001\ncrest_slope = 0.001\nwarmup_steps = 3\n";
+    let techniques = [
+        "[techniques]\nfoam = \"heuristic\"\n".to_owned(),
+        "[techniques]\nfoam = \"jacobian\"\nshading = \"chiu\"\n".to_owned(),
+        "[techniques]\nfoam = \"accumulated\"\nshading = \"ggx\"\n".to_owned(),
+        format!("[techniques]\nfoam = \"heuristic\"\n{keys}"),
+        format!("[techniques]\nfoam = \"accumulated\"\n{keys}"),
+        "[techniques]\nwaves = \"gerstner\"\nfar_field = \"mip\"\nfoam = \"accumulated\"\n\
+         [foam]\ngrid = 64\ncell_m = 100.0\n"
+            .to_owned(),
+        format!(
+            "[techniques]\nwaves = \"gerstner\"\nfar_field = \"mip\"\nfoam = \"jacobian\"\n{keys}"
+        ),
+    ];
+    let suns = ["[0.0, 0.0, -1.0]", "[0.0, -0.3, -1.0]", "[0.0, 1.0, 0.0]"];
+    for t in &techniques {
         for (name, camera) in CAMERAS {
             check(&format!("{name} with {t}"), &format!("{camera}{t}"));
         }

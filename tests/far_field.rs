@@ -506,6 +506,8 @@ fn variance_without_unresolved_slopes_shades_as_mip() {
                 fresnel_filter: &filter,
                 sky_radiance: &sky,
                 shade_above: ocean_cpu::shaders::shading::hu::shade_above,
+                foam_field: &empty,
+                foam_coverage: ocean_cpu::shaders::foam::none::foam_coverage,
             };
             water::fs_main(&input, &b).map(f32::to_bits)
         };

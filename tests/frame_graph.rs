@@ -96,16 +96,21 @@ fn the_plan_names_the_system_and_a_technique_per_stage() {
 #[test]
 fn systems_and_techniques_in_a_scene_are_checked_with_their_position() {
     assert_eq!(scene("system = \"hu\"\n").unwrap().system, System::Hu);
-    let e = scene("\n\nsystem = \"welch\"\n").unwrap_err().to_string();
+    assert_eq!(scene("system = \"welch\"\n").unwrap().system, System::Welch);
+    let e = scene("\n\nsystem = \"coastal\"\n").unwrap_err().to_string();
     assert!(e.contains(":3:1") && e.contains("system") && e.contains("not yet available"), "{e}");
-    assert!(e.contains("heuristic"), "names the technique that is missing: {e}");
+    assert!(e.contains("coastal"), "names the technique that is missing: {e}");
     let e = scene("system = \"nope\"\n").unwrap_err().to_string();
     assert!(e.contains("nope") && e.contains("coastal"), "{e}");
-    let e = scene("[techniques]\nfoam = \"jacobian\"\n").unwrap_err().to_string();
+    let e = scene("[techniques]\nsurface = \"shore_grid\"\n").unwrap_err().to_string();
     assert!(
-        e.contains("techniques.foam") && e.contains(":2:1") && e.contains("not yet available"),
+        e.contains("techniques.surface") && e.contains(":2:1") && e.contains("not yet available"),
         "{e}"
     );
+    // Every foam technique is built.
+    for foam in ["none", "heuristic", "jacobian", "accumulated"] {
+        assert!(scene(&format!("[techniques]\nfoam = \"{foam}\"\n")).is_ok(), "{foam}");
+    }
     // Every far field is built.
     for far in ["none", "mip", "variance"] {
         assert!(scene(&format!("[techniques]\nfar_field = \"{far}\"\n")).is_ok(), "{far}");
@@ -177,10 +182,11 @@ fn render_with_an_unknown_system_exits_1_lists_the_systems_and_writes_nothing() 
     assert!(!out.exists());
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "no temporary file either");
     // A known system that is not built yet: the same, naming what is missing.
-    let o = ocean(&["render", "--system", "welch", "--size", "16x9", "-o", out.to_str().unwrap()]);
+    let o =
+        ocean(&["render", "--system", "coastal", "--size", "16x9", "-o", out.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1));
     let e = String::from_utf8_lossy(&o.stderr);
-    assert!(e.contains("not yet available") && e.contains("foam technique `heuristic`"), "{e}");
+    assert!(e.contains("not yet available") && e.contains("waves technique `coastal`"), "{e}");
     assert!(!out.exists());
     for cmd in ["plan", "compare", "view"] {
         let o = ocean(&[cmd, "--system", "no-such-system"]);

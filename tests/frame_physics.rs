@@ -223,6 +223,8 @@ fn bumped_fresnel_is_the_texture_lookup_of_the_bumped_view_vector() {
                 fresnel_filter: &empty,
                 sky_radiance: &sky,
                 shade_above: ocean_cpu::shaders::shading::hu::shade_above,
+                foam_field: &empty,
+                foam_coverage: ocean_cpu::shaders::foam::none::foam_coverage,
             };
             for i in 0..=40 {
                 let theta = (i as f64 / 40.0) * 80f64.to_radians();

@@ -46,6 +46,8 @@ fn vertex(fb: &FrameBuffers, eye: DVec3, x: f64, z: f64) -> DVec3 {
         fresnel_filter: &empty,
         sky_radiance: &sky,
         shade_above: ocean_cpu::shaders::shading::chiu::shade_above,
+        foam_field: &empty,
+        foam_coverage: ocean_cpu::shaders::foam::none::foam_coverage,
     };
     let off = fb.uniforms.tiling.mesh_offset;
     // pos is relative to the mesh's reference point c = eye + mesh_offset.

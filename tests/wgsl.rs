@@ -277,6 +277,9 @@ fn rust_consts() -> Vec<(&'static str, f64)> {
         ("EQ8_LN_B", f64::from(optics::EQ8_LN_B)),
         ("CHIU_MAX_EXPONENT", f64::from(chiu::CHIU_MAX_EXPONENT)),
         ("GGX_PI", f64::from(ocean_cpu::shaders::shading::ggx::GGX_PI)),
+        ("FOAM_NOISE_PERIOD", f64::from(ocean_core::foam::FOAM_NOISE_PERIOD)),
+        ("FOAM_INV_PI", f64::from(ocean_core::foam::FOAM_INV_PI)),
+        ("FOAM_MIN_JACOBIAN", f64::from(ocean_core::foam::FOAM_MIN_JACOBIAN)),
         ("SKY_LUT_WIDTH", ocean_core::atmosphere::LUT_WIDTH as f64),
         ("SKY_LUT_HEIGHT", ocean_core::atmosphere::LUT_HEIGHT as f64),
         ("RAYLEIGH_PHASE_K", f64::from(ocean_cpu::shaders::shared::sky_lut::RAYLEIGH_PHASE_K)),
@@ -423,14 +426,14 @@ fn the_registry_names_no_missing_piece_and_a_fake_entry_is_caught() {
     // Negative control: a stage added to the registry without its WGSL, CPU mirror or GPU
     // module; a technique file without its mirror.
     let fake = StageEntry {
-        name: "foam",
-        file: "foam.wgsl",
+        name: "no_such_stage",
+        file: "no_such_stage.wgsl",
         source: "",
         entry_points: &[],
         bindings: &[],
         blocks: &[],
-        cpu_mirror: "crates/ocean-cpu/src/shaders/foam.rs",
-        gpu_module: "crates/ocean-gpu/src/foam.rs",
+        cpu_mirror: "crates/ocean-cpu/src/shaders/no_such_stage.rs",
+        gpu_module: "crates/ocean-gpu/src/no_such_stage.rs",
     };
     let mut stages = STAGES.to_vec();
     stages.push(fake);
@@ -444,9 +447,10 @@ fn the_registry_names_no_missing_piece_and_a_fake_entry_is_caught() {
     techs.push(fake_tech);
     let missing = registry::missing_pieces(&root(), &stages, SHARED, &techs).join("\n");
     for want in [
-        "stage `foam`: its WGSL: shaders/foam.wgsl is missing",
-        "stage `foam`: its CPU mirror: crates/ocean-cpu/src/shaders/foam.rs is missing",
-        "stage `foam`: its GPU module: crates/ocean-gpu/src/foam.rs is missing",
+        "stage `no_such_stage`: its WGSL: shaders/no_such_stage.wgsl is missing",
+        "stage `no_such_stage`: its CPU mirror: crates/ocean-cpu/src/shaders/no_such_stage.rs is \
+         missing",
+        "stage `no_such_stage`: its GPU module: crates/ocean-gpu/src/no_such_stage.rs is missing",
         "technique sky/no_such_sky: its WGSL: shaders/sky/no_such_sky.wgsl is missing",
         "technique sky/no_such_sky: its CPU mirror",
     ] {

@@ -171,6 +171,27 @@ struct DetailBlock {
     waves: array<vec4<f32>, 32>,
 }
 
+// Stage `foam` (ocean-core foam::FoamBlock): mode 0 none, 1 heuristic, 2 jacobian,
+// 3 accumulated.
+struct FoamBlock {
+    mode: f32,
+    intensity: f32,
+    threshold: f32,
+    inv_softness: f32,
+    color: vec3<f32>,
+    inv_crest_height: f32,
+    noise_origin: vec2<f32>,
+    inv_noise_cell: f32,
+    inv_crest_slope: f32,
+    field_origin: vec2<f32>,
+    inv_field_size: f32,
+    field_half_texel: f32,
+    window_outer: f32,
+    inv_window_band: f32,
+    seed: u32,
+    pad0: f32,
+}
+
 struct FrameUniforms {
     view: ViewBlock,
     sun: SunBlock,
@@ -188,6 +209,7 @@ struct FrameUniforms {
     ggx: GgxShadingBlock,
     clip: ClipmapBlock,
     detail: DetailBlock,
+    foam: FoamBlock,
 }
 
 // m · (p, 1), written out so that the order of operations is fixed (the CPU mirror,

@@ -54,3 +54,23 @@ fn gerstner_slopes(pos: vec2<f32>) -> vec2<f32> {
     }
     return s;
 }
+
+// J = (1 + ∂Dx/∂x)(1 + ∂Dz/∂z) − (∂Dx/∂z)² at the undisplaced point, with
+// ∂Dx/∂x = −Σ s Dx² sin θ, ∂Dz/∂z = −Σ s Dz² sin θ, ∂Dx/∂z = ∂Dz/∂x = −Σ s Dx Dz sin θ
+// (s Dx² = qx·kx, kx = 2π fx; ocean-core waves::gerstner::GerstnerSea::sample in f64).
+fn gerstner_jacobian(pos: vec2<f32>) -> f32 {
+    var dxx = 0.0;
+    var dzz = 0.0;
+    var dxz = 0.0;
+    for (var i = 0u; i < u32(frame.gerstner.count); i = i + 1u) {
+        let sn = gerstner_cis(i, pos).y;
+        let a = frame.gerstner.waves[2u * i];
+        let b = frame.gerstner.waves[2u * i + 1u];
+        let kx = TAU * a.x;
+        let kz = TAU * a.y;
+        dxx = dxx - (b.x * kx) * sn;
+        dzz = dzz - (b.y * kz) * sn;
+        dxz = dxz - (b.x * kz) * sn;
+    }
+    return (1.0 + dxx) * (1.0 + dzz) - dxz * dxz;
+}

@@ -20,6 +20,7 @@ pub const VECTOR_KEYS: &[&str] = &[
     "water.color",
     "terrain.color",
     "spray.color",
+    "foam.color",
     "objects.*.center",
     "objects.*.size",
     "objects.*.color",
@@ -45,6 +46,8 @@ pub const COST_KEYS: &[&str] = &[
     "quality.lod_split_threshold",
     "spray.particles",
     "spray.warmup_steps",
+    "foam.warmup_steps",
+    "foam.grid",
 ];
 
 /// How to draw a value in a limit's range.
@@ -126,10 +129,23 @@ pub fn scene_text(values: &[(&str, String)], objects: &[&str]) -> String {
         }
     }
     let mut text = String::new();
+    let mut techniques = Vec::new();
     // The bloom keys act only under post technique `bloom`: scenes that set one run it.
     if tables.iter().any(|(t, lines)| *t == "post" && lines.iter().any(|l| l.starts_with("bloom_")))
     {
-        text += "[techniques]\npost = \"bloom\"\n";
+        techniques.push("post = \"bloom\"");
+    }
+    // The foam keys act under a foam technique: the crest keys under `heuristic`, the
+    // others under `accumulated` (which reads every key but the crests').
+    if let Some((_, lines)) = tables.iter().find(|(t, _)| *t == "foam") {
+        if lines.iter().all(|l| l.starts_with("crest_")) {
+            techniques.push("foam = \"heuristic\"");
+        } else {
+            techniques.push("foam = \"accumulated\"");
+        }
+    }
+    if !techniques.is_empty() {
+        text += &format!("[techniques]\n{}\n", techniques.join("\n"));
     }
     for (table, mut lines) in tables {
         // A relief's range only acts on a heightmap floor: give it the reef's.
@@ -244,6 +260,8 @@ pub fn random_extreme(rng: &mut Rng) -> String {
     values.push(("camera.width", small(rng, &[1, 16, 17])));
     values.push(("camera.height", small(rng, &[1, 9, 10])));
     values.push(("quality.fresnel_table_size", small(rng, &[2, 17, 64])));
+    values.push(("foam.warmup_steps", small(rng, &[0, 1, 7])));
+    values.push(("foam.grid", small(rng, &[2, 16, 64])));
     values.push((
         "quality.lod_split_threshold",
         ["0.05", "0.5", "10.0"][(rng.next_u64() % 3) as usize].into(),

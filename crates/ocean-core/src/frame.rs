@@ -393,6 +393,8 @@ pub struct FrameUniforms {
     pub clip: crate::geometry::ClipmapBlock,
     /// Shading `ggx`'s detail normal map (`count` 0 without it).
     pub detail: crate::detail::DetailBlock,
+    /// Stage `foam` (the last block).
+    pub foam: crate::foam::FoamBlock,
 }
 
 /// Surface `projected_grid` ([`crate::geometry::ProjectedGrid`]): the grid's corners and size.
@@ -815,6 +817,12 @@ impl FrameUniforms {
             } else {
                 Zeroable::zeroed()
             },
+            foam: crate::foam::FoamBlock::new(
+                scene,
+                plan.techniques.of(crate::plan::Stage::Foam).name,
+                plan.techniques.of(crate::plan::Stage::Waves).name,
+                mesh_origin,
+            ),
         }
     }
 }

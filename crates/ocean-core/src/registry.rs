@@ -16,6 +16,7 @@ use crate::atmosphere::SkyLut;
 use crate::bloom::BloomUniforms;
 use crate::camera_uniforms::CameraUniforms;
 use crate::detail::DetailBlock;
+use crate::foam::{FoamBlock, FoamStepUniforms};
 use crate::frame::{
     AmbientBlock, ChiuShadingBlock, FarFieldBlock, FrameUniforms, FresnelTableUniforms,
     GgxShadingBlock, HuShadingBlock, MultiScaleBlock, PassFlags, ProjectedGridBlock, SunBlock,
@@ -41,7 +42,7 @@ macro_rules! wgsl_types {
 
 wgsl_types!(
     f32 => "f32", u32 => "u32", [f32; 2] => "vec2<f32>", [f32; 3] => "vec3<f32>",
-    [f32; 4] => "vec4<f32>", [u32; 2] => "vec2<u32>", [u32; 4] => "vec4<u32>",
+    [f32; 4] => "vec4<f32>", [u32; 2] => "vec2<u32>", [i32; 2] => "vec2<i32>", [u32; 4] => "vec4<u32>",
     [[f32; 4]; 4] => "mat4x4<f32>",
     [[f32; 4]; 128] => "array<vec4<f32>, 128>",
     [[f32; 4]; 24] => "array<vec4<f32>, 24>",
@@ -113,7 +114,8 @@ nested!(
     GerstnerBlock,
     GgxShadingBlock,
     ClipmapBlock,
-    DetailBlock
+    DetailBlock,
+    FoamBlock
 );
 
 /// The kind of an entry point.
@@ -248,6 +250,35 @@ pub const STAGES: &[StageEntry] = &[
         gpu_module: "crates/ocean-gpu/src/waves.rs",
     },
     StageEntry {
+        name: "foam",
+        file: "foam.wgsl",
+        source: include_str!("../../../shaders/foam.wgsl"),
+        entry_points: &[("accumulate", Compute)],
+        bindings: &[
+            b(0, 0, "params"),
+            b(0, 1, "frame"),
+            b(0, 2, "displacement"),
+            b(0, 3, "src"),
+            b(0, 4, "dst"),
+        ],
+        blocks: &[block!(FoamStepUniforms {
+            size,
+            analytic,
+            start,
+            start_prev,
+            shift,
+            start_rel,
+            cell_m,
+            decay,
+            growth,
+            threshold,
+            inv_softness,
+            pad0
+        })],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/foam.rs",
+        gpu_module: "crates/ocean-gpu/src/foam.rs",
+    },
+    StageEntry {
         name: "fresnel_table",
         file: "fresnel_table.wgsl",
         source: include_str!("../../../shaders/fresnel_table.wgsl"),
@@ -348,6 +379,7 @@ pub const STAGES: &[StageEntry] = &[
             b(0, 10, "clamp_linear"),
             b(0, 11, "fresnel_filter"),
             b(0, 12, "floor_map"),
+            b(0, 13, "foam_field"),
             b(1, 0, "sky"),
             b(1, 1, "sky_lut"),
         ],
@@ -538,6 +570,24 @@ pub const SHARED: &[SharedFile] = &[
                 eye
             }),
             block!(DetailBlock { count, pad0, pad1, pad2, waves }),
+            block!(FoamBlock {
+                mode,
+                intensity,
+                threshold,
+                inv_softness,
+                color,
+                inv_crest_height,
+                noise_origin,
+                inv_noise_cell,
+                inv_crest_slope,
+                field_origin,
+                inv_field_size,
+                field_half_texel,
+                window_outer,
+                inv_window_band,
+                seed,
+                pad0
+            }),
             block!(FrameUniforms {
                 view,
                 sun,
@@ -554,7 +604,8 @@ pub const SHARED: &[SharedFile] = &[
                 gerstner,
                 ggx,
                 clip,
-                detail
+                detail,
+                foam
             }),
         ],
         cpu_mirror: "crates/ocean-cpu/src/shaders/shared/frame.rs",
@@ -618,6 +669,12 @@ pub const SHARED: &[SharedFile] = &[
         cpu_mirror: "crates/ocean-cpu/src/shaders/shared/detail.rs",
     },
     SharedFile {
+        file: "shared/foam.wgsl",
+        source: include_str!("../../../shaders/shared/foam.wgsl"),
+        blocks: &[],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/shared/foam.rs",
+    },
+    SharedFile {
         file: "shared/shadow.wgsl",
         source: include_str!("../../../shaders/shared/shadow.wgsl"),
         blocks: &[],
@@ -642,6 +699,9 @@ const SKY_INTERFACE: &[&str] = &["sky_radiance", "sun_disc"];
 
 /// The shading technique's interface: what `water.wgsl` calls.
 const SHADING_INTERFACE: &[&str] = &["shade_above"];
+
+/// The foam technique's interface: what `water.wgsl` calls.
+const FOAM_INTERFACE: &[&str] = &["foam_coverage"];
 
 /// Every technique file.
 pub const TECHNIQUE_FILES: &[TechniqueFile] = &[
@@ -699,6 +759,42 @@ pub const TECHNIQUE_FILES: &[TechniqueFile] = &[
         blocks: &[],
         cpu_mirror: "crates/ocean-cpu/src/shaders/shading/ggx.rs",
     },
+    TechniqueFile {
+        stage: TechniqueStage::Foam,
+        technique: "none",
+        file: "foam/none.wgsl",
+        source: include_str!("../../../shaders/foam/none.wgsl"),
+        interface: FOAM_INTERFACE,
+        blocks: &[],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/foam/none.rs",
+    },
+    TechniqueFile {
+        stage: TechniqueStage::Foam,
+        technique: "heuristic",
+        file: "foam/heuristic.wgsl",
+        source: include_str!("../../../shaders/foam/heuristic.wgsl"),
+        interface: FOAM_INTERFACE,
+        blocks: &[],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/foam/heuristic.rs",
+    },
+    TechniqueFile {
+        stage: TechniqueStage::Foam,
+        technique: "jacobian",
+        file: "foam/jacobian.wgsl",
+        source: include_str!("../../../shaders/foam/jacobian.wgsl"),
+        interface: FOAM_INTERFACE,
+        blocks: &[],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/foam/jacobian.rs",
+    },
+    TechniqueFile {
+        stage: TechniqueStage::Foam,
+        technique: "accumulated",
+        file: "foam/accumulated.wgsl",
+        source: include_str!("../../../shaders/foam/accumulated.wgsl"),
+        interface: FOAM_INTERFACE,
+        blocks: &[],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/foam/accumulated.rs",
+    },
 ];
 
 /// The storage table's element of stage `waves` (its size is the array stride).
@@ -747,7 +843,7 @@ pub fn missing_pieces(
     }
     // A stage whose technique is composed into WGSL needs a file for every technique that is
     // available.
-    for stage in [TechniqueStage::Sky, TechniqueStage::Shading] {
+    for stage in [TechniqueStage::Sky, TechniqueStage::Shading, TechniqueStage::Foam] {
         for t in stage.techniques().filter(|t| t.available) {
             if !techniques.iter().any(|f| f.stage == stage && f.technique == t.name) {
                 out.push(format!(

@@ -11,8 +11,8 @@ use ocean_core::frame::{
     displacement_texels, pass_triangles,
 };
 use ocean_core::plan::{
-    Backend, FrameInputs, FramePlan, FrameState, Pass, PlannedPass, ResourceId, Stage, WavesKernel,
-    run_frame,
+    Backend, FoamField, FoamWork, FrameInputs, FramePlan, FrameState, Pass, PlannedPass,
+    ResourceId, Stage, WavesKernel, run_frame,
 };
 use ocean_core::scene::Scene;
 use ocean_core::spray::{SprayFrame, SprayState};
@@ -81,6 +81,8 @@ pub struct FrameBuffers {
     pub refraction_map: Texture2D,
     /// The sea floor's relief as the stages bound it (one zero texel without one).
     pub floor_map: Texture2D,
+    /// Foam `accumulated`'s field after this frame's steps (else one zero texel).
+    pub foam_field: Texture2D,
     /// The frame, linear HDR RGBA.
     pub hdr: RenderTarget,
     /// Post `bloom`: the bright pass's down chain (else 1×1 zero).
@@ -129,8 +131,10 @@ impl FrameBuffers {
             refraction_map: &self.refraction_map,
             shadow_map: &self.shadow_map,
             floor_map: &self.floor_map,
+            foam_field: &self.foam_field,
             sky_radiance,
             shade_above,
+            foam_coverage: crate::shaders::foam::foam_coverage_of_mode(self.uniforms.foam.mode),
         }
     }
 
@@ -151,6 +155,7 @@ impl FrameBuffers {
             ResourceId::Hdr => return Some((self.hdr.width, self.hdr.height, &self.hdr.color)),
             ResourceId::BloomDown => &self.bloom_down.atlas,
             ResourceId::BloomUp => &self.bloom_up.atlas,
+            ResourceId::FoamField => &self.foam_field,
             ResourceId::Ldr | ResourceId::Environment => return None,
         };
         Some((t.width, t.height, &t.texels))
@@ -375,6 +380,7 @@ impl<'e> CpuBackend<'e> {
             reflection_map: self.take(ResourceId::ReflectionMap),
             refraction_map: self.take(ResourceId::RefractionMap),
             floor_map: self.floor.take().unwrap_or_else(|| floor_texture(frame.scene)),
+            foam_field: self.take(ResourceId::FoamField),
             hdr,
             bloom_down: self.take_chain(ResourceId::BloomDown),
             bloom_up: self.take_chain(ResourceId::BloomUp),
@@ -516,6 +522,13 @@ impl<'e> CpuBackend<'e> {
                 reason: format!("shading technique `{shading}` has no CPU mirror"),
             })
         })?;
+        let foam = frame.plan.techniques.of(Stage::Foam).name;
+        let foam_coverage = crate::shaders::foam::foam_coverage(foam).ok_or_else(|| {
+            Error::Core(ocean_core::Error::ShaderSource {
+                stage: "water".into(),
+                reason: format!("foam technique `{foam}` has no CPU mirror"),
+            })
+        })?;
         let lut = &*frame.sky_lut;
         let planned_sky = move |d: [f32; 3]| radiance(&env, lut, d);
         let sky_radiance: &(dyn Fn([f32; 3]) -> [f32; 3] + Sync) = match self.environment {
@@ -546,8 +559,10 @@ impl<'e> CpuBackend<'e> {
             refraction_map: map(ResourceId::RefractionMap),
             shadow_map: map(ResourceId::ShadowMap),
             floor_map: self.floor_map(),
+            foam_field: map(ResourceId::FoamField),
             sky_radiance,
             shade_above,
+            foam_coverage,
         };
         draw_water(&mut hdr, &frame.mesh, &bindings, &|input, b| Some(water::fs_main(input, b)));
         self.hdr = Some(hdr);
@@ -622,6 +637,34 @@ impl Backend for CpuBackend<'_> {
         pool.steps = state.spray_steps + steps;
         let hdr = self.hdr.get_or_insert_with(|| new_hdr(frame.plan));
         spray::draw_sprites(hdr, &pool.particles, &frame.uniforms, &work.draw);
+        Ok(())
+    }
+
+    fn foam(
+        &mut self,
+        frame: &FrameInputs<'_>,
+        state: &mut FrameState,
+        work: &FoamWork,
+    ) -> Result<(), Error> {
+        // Another scene's field, or a state the GPU advanced, starts again from empty.
+        let texels = (work.grid.size as usize).pow(2);
+        let field = match state.foam.take() {
+            Some(f) if work.continues(&f.grid, f.steps, state) => f,
+            _ => FoamField {
+                grid: work.grid,
+                steps: state.foam_steps,
+                texels: vec![[0.0; 4]; texels],
+            },
+        };
+        let field = state.foam.insert(field);
+        let displacement = self.map_or_empty(ResourceId::Displacement);
+        for u in &work.steps {
+            field.texels =
+                crate::shaders::foam::accumulate(u, &frame.uniforms, displacement, &field.texels);
+        }
+        field.steps += work.steps.len() as u64;
+        let n = work.grid.size;
+        self.put(ResourceId::FoamField, Texture2D::new(n, n, field.texels.clone()));
         Ok(())
     }
 

@@ -20,8 +20,8 @@ pub fn pipeline_techniques() -> ocean_core::plan::Techniques {
 
 /// The technique stages whose technique is composed into a stage's WGSL
 /// (`// #import technique/<stage>`).
-pub const COMPOSED: [ocean_core::plan::Stage; 2] =
-    [ocean_core::plan::Stage::Sky, ocean_core::plan::Stage::Shading];
+pub const COMPOSED: [ocean_core::plan::Stage; 3] =
+    [ocean_core::plan::Stage::Sky, ocean_core::plan::Stage::Shading, ocean_core::plan::Stage::Foam];
 
 /// The shader module of `stage` (one that imports no technique), from
 /// `ocean_core::shader_source::stage_source_with` (imports resolved), labelled

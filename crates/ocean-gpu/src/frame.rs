@@ -24,7 +24,7 @@ use ocean_core::frame::{
     displacement_texels, pass_triangles,
 };
 use ocean_core::plan::{
-    Backend, Format, FrameInputs, FramePlan, FrameState, Pass, PlannedPass, ResourceId,
+    Backend, FoamWork, Format, FrameInputs, FramePlan, FrameState, Pass, PlannedPass, ResourceId,
     WavesKernel, run_frame,
 };
 use ocean_core::scene::{Ocean, Scene};
@@ -35,6 +35,7 @@ use wgpu::util::DeviceExt;
 use crate::bloom::BloomStage;
 use crate::common::{Load, begin_render_pass, bind_group, uniform_buffer};
 use crate::device::{AdapterReport, Error, Gpu};
+use crate::foam::{FoamStage, GpuFoam};
 use crate::fresnel_table::FresnelTableStage;
 use crate::objects::{ObjectsEntry, ObjectsStage, VertexChunk, vertex_chunks};
 use crate::shadow::ShadowStage;
@@ -116,6 +117,7 @@ struct Stages {
     shadow: ShadowStage,
     water: WaterStage,
     spray: SprayStage,
+    foam: FoamStage,
     bloom: BloomStage,
     tonemap: TonemapStage,
 }
@@ -136,6 +138,8 @@ pub struct Renderer {
     built: ocean_core::plan::Techniques,
     /// The spray's particle pool, kept on the device across frames.
     spray: Option<GpuSpray>,
+    /// Foam `accumulated`'s field, kept on the device across frames.
+    foam: Option<GpuFoam>,
     /// The sea floor's relief as uploaded, and the relief it was made from (uploaded again
     /// only when the scene's relief changes).
     floor: Option<(Option<Arc<Relief>>, GpuTexture)>,
@@ -159,6 +163,7 @@ pub struct GpuBackend<'r> {
     stages: &'r Stages,
     waves: &'r mut WaveSlot,
     spray: &'r mut Option<GpuSpray>,
+    foam: &'r mut Option<GpuFoam>,
     floor_map: &'r GpuTexture,
     encoder: wgpu::CommandEncoder,
     timer: PassTimer,
@@ -443,6 +448,7 @@ impl GpuBackend<'_> {
         ]
         .map(|id| self.map(id));
         let fresnel_filter = self.map(ResourceId::FresnelFilter);
+        let foam_field = self.map(ResourceId::FoamField);
         // The chains when `wave_mips` made them, else the maps themselves (one level).
         let chain_view = |id: ResourceId| {
             self.chains.iter().find(|(m, _)| *m == id).map(|(_, c)| c.view.clone())
@@ -483,6 +489,7 @@ impl GpuBackend<'_> {
                 shadow_map: &shadow_map.view,
                 fresnel_filter: &fresnel_filter.view,
                 floor_map: &self.floor_map.view,
+                foam_field: &foam_field.view,
             },
             &match (frame.uniforms.grid.vertex_count(), clipmap_vertices(&frame.uniforms.clip)) {
                 (_, n) if n > 0 => WaterDraw::Clipmap(n),
@@ -598,6 +605,36 @@ impl Backend for GpuBackend<'_> {
         Ok(())
     }
 
+    fn foam(
+        &mut self,
+        _frame: &FrameInputs<'_>,
+        state: &mut FrameState,
+        work: &FoamWork,
+    ) -> Result<(), Error> {
+        // The field stays on the device while the grid and the animation's step count agree
+        // with it; otherwise (another scene, a fresh state) it starts again from empty, as
+        // the CPU's does.
+        if !self.foam.as_ref().is_some_and(|f| work.continues(&f.grid, f.steps, state)) {
+            *self.foam = Some(GpuFoam::new(self.gpu, work.grid, state.foam_steps));
+        }
+        let displacement = self.map(ResourceId::Displacement);
+        let Some(field) = self.foam.as_mut() else { return Ok(()) };
+        for u in &work.steps {
+            self.stages.foam.encode_step(
+                &self.gpu.device,
+                &mut self.encoder,
+                field,
+                u,
+                &self.frame_buffer,
+                &displacement.view,
+            );
+        }
+        field.steps += work.steps.len() as u64;
+        let current = field.current.clone();
+        self.put(ResourceId::FoamField, current);
+        Ok(())
+    }
+
     fn bloom(&mut self, frame: &FrameInputs<'_>) -> Result<(), Error> {
         let Some(inputs) = &frame.bloom else { return Ok(()) };
         let (hdr, _) = self.hdr(frame.plan);
@@ -675,6 +712,7 @@ impl Renderer {
                 shadow: ShadowStage::new(d)?,
                 water: WaterStage::new(d, &built)?,
                 spray: SprayStage::new(d)?,
+                foam: FoamStage::new(d)?,
                 bloom: BloomStage::new(d)?,
                 tonemap: TonemapStage::new(d)?,
             })
@@ -687,6 +725,7 @@ impl Renderer {
             max_vertex_buffer_bytes: u64::MAX,
             built,
             spray: None,
+            foam: None,
             floor: None,
         })
     }
@@ -822,6 +861,8 @@ impl Renderer {
                 || (s == Stage::Spray && matches!(name, "none" | "particles"))
                 // Waves `fft` run stage `waves`; `gerstner` is a uniform branch of `water`.
                 || (s == Stage::Waves && matches!(name, "fft" | "gerstner"))
+                // Foam `accumulated` adds pass `foam` of its own stage; every foam technique's
+                // file is composed into `water` (above).
                 // Post `bloom` is a pass of its own stage, run or skipped by the plan; the
                 // tonemap pipeline binds its result or a zero texture.
                 || (s == Stage::Post && matches!(name, "tonemap" | "bloom"))
@@ -887,6 +928,7 @@ impl Renderer {
         let stages = &self.stages;
         let waves = &mut self.waves;
         let spray = &mut self.spray;
+        let foam = &mut self.foam;
         let max_vertex_buffer_bytes = self.max_vertex_buffer_bytes;
         let frame = gpu.scoped("rendering the frame", || -> Result<_, Error> {
             let device = &gpu.device;
@@ -895,6 +937,7 @@ impl Renderer {
                 stages,
                 waves,
                 spray,
+                foam,
                 floor_map,
                 encoder: device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
                     label: Some("ocean.frame"),

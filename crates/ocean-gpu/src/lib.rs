@@ -5,7 +5,8 @@
 //! - [`device`]: headless adapter/device setup, the crate's [`Error`].
 //! - one module per stage, each creating its pipeline(s) labelled `"ocean.<stage>"` from
 //!   `ocean_core::shader_source::stage_source` and recording its pass: [`fresnel_table`],
-//!   [`sky`], [`objects`], [`shadow`], [`water`], [`tonemap`]; stage `waves` is
+//!   [`sky`], [`objects`], [`shadow`], [`water`], [`tonemap`], [`foam`] (foam `accumulated`'s
+//!   field); stage `waves` is
 //!   [`wave_maps`] (the CPU synthesis uploaded, or the GPU FFT of [`waves`]); [`present`]
 //!   copies the output into a window (the real-time viewer, `ocean view`).
 //! - [`frame`]: the [`Renderer`] and the [`GpuFrame`] it returns.
@@ -24,6 +25,7 @@
 pub mod bloom;
 pub mod common;
 pub mod device;
+pub mod foam;
 pub mod frame;
 pub mod fresnel_table;
 pub mod objects;

@@ -1,9 +1,12 @@
 //! Stage `water` (`shaders/water.wgsl`): the sea surface, shaded by the shading technique
 //! composed into its WGSL (`shaders/shading/hu.wgsl`, `shaders/shading/chiu.wgsl` or
-//! `shaders/shading/ggx.wgsl`). Bindings (as the WGSL declares them): group 0 — 0 `FrameUniforms`,
+//! `shaders/shading/ggx.wgsl`), with the foam technique's white water over it
+//! (`shaders/foam/none.wgsl`, `shaders/foam/heuristic.wgsl`, `shaders/foam/jacobian.wgsl` or
+//! `shaders/foam/accumulated.wgsl`, and `shaders/shared/foam.wgsl`). Bindings (as the WGSL declares them): group 0 — 0 `FrameUniforms`,
 //! 1 `displacement`, 2 `displacement_slopes`, 3 `bump`, 4 `fresnel_above`, 5 `fresnel_below`,
 //! 6 `reflection_map`, 7 `refraction_map`, 8 `shadow_map` (`textureLoad` only),
-//! 9 `wrap_linear`, 10 `clamp_linear`, 11 `fresnel_filter`, 12 `floor_map`; group 1 — 0 `SkyUniforms`, 1 `SkyLut` (sky `atmosphere`'s table,
+//! 9 `wrap_linear`, 10 `clamp_linear`, 11 `fresnel_filter`, 12 `floor_map`, 13 `foam_field`
+//! (foam `accumulated`'s field, stage `foam`); group 1 — 0 `SkyUniforms`, 1 `SkyLut` (sky `atmosphere`'s table,
 //! `shaders/shared/sky_lut.wgsl`). Vertices: ocean-core's
 //! `geometry::WaterVertex` (12 bytes), u32 indices. State: reversed-Z `Greater` with depth
 //! writes, no blending, no culling (the surface is seen from below under water).
@@ -25,7 +28,7 @@ pub const WATER_VERTEX_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexB
     attributes: &wgpu::vertex_attr_array![0 => Float32x2, 1 => Float32],
 };
 
-/// The textures of group 0, in binding order 1–8, 11, 12.
+/// The textures of group 0, in binding order 1–8, 11–13.
 pub struct WaterTextures<'a> {
     /// binding 1.
     pub displacement: &'a wgpu::TextureView,
@@ -47,6 +50,8 @@ pub struct WaterTextures<'a> {
     pub fresnel_filter: &'a wgpu::TextureView,
     /// binding 12: the sea floor's relief.
     pub floor_map: &'a wgpu::TextureView,
+    /// binding 13: foam `accumulated`'s field.
+    pub foam_field: &'a wgpu::TextureView,
 }
 
 /// What the water pass draws.
@@ -110,6 +115,7 @@ impl WaterStage {
                 sampler_entry(10, fragment),
                 texture_entry(11, fragment, true),
                 texture_entry(12, fragment, true),
+                texture_entry(13, fragment, true),
             ],
         });
         let sky_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -197,6 +203,7 @@ impl WaterStage {
                 wgpu::BindingResource::Sampler(&self.clamp_linear),
                 wgpu::BindingResource::TextureView(t.fresnel_filter),
                 wgpu::BindingResource::TextureView(t.floor_map),
+                wgpu::BindingResource::TextureView(t.foam_field),
             ],
         );
         let sky_group = crate::common::bind_group(

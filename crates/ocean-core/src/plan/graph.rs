@@ -93,6 +93,12 @@ impl<'a> FrameInputs<'a> {
         let mut uniforms = FrameUniforms::new(scene, &camera, plan, mesh.origin);
         uniforms.ambient.sky = sky_ambient(&sky);
         let time_s = state.time_s(scene);
+        // Waves `gerstner` at the frame's time (the block is made at the scene's).
+        if time_s != scene.ocean.time_s && uniforms.gerstner.count > 0.0 {
+            let mut at = scene.clone();
+            at.ocean.time_s = time_s;
+            uniforms.gerstner = FrameUniforms::new(&at, &camera, plan, mesh.origin).gerstner;
+        }
         let mut environment = sky.uniforms();
         if plan.techniques.of(crate::plan::Stage::Sky).name == "preetham_clouds" {
             // The layer (crate::clouds): its place over the eye, its colour under the objects'
@@ -246,12 +252,86 @@ pub struct FrameState {
     pub spray_steps: u64,
     /// The CPU back end's particle pool.
     pub spray: Option<crate::spray::SprayState>,
+    /// Steps of foam `accumulated`'s field run so far (pass `foam`).
+    pub foam_steps: u64,
+    /// The field's window (first lattice index per axis) at its last step.
+    pub foam_window: Option<[i64; 2]>,
+    /// The CPU back end's foam field.
+    pub foam: Option<FoamField>,
+}
+
+/// Foam `accumulated`'s field as the CPU back end carries it across frames.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FoamField {
+    /// Its grid.
+    pub grid: crate::foam::FieldGrid,
+    /// Steps it has run.
+    pub steps: u64,
+    /// Texels (foam in x), row-major, `grid.size`² of them.
+    pub texels: Vec<[f32; 4]>,
+}
+
+/// One frame's work of pass `foam`: the field's grid and the uniforms of each step.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FoamWork {
+    /// Where the field lives.
+    pub grid: crate::foam::FieldGrid,
+    /// The steps, in order.
+    pub steps: Vec<crate::foam::FoamStepUniforms>,
+    /// The window after them.
+    pub window: [i64; 2],
+}
+
+impl FoamWork {
+    /// The steps of frame `state.frame`: the scene's warm-up and one on a state's first, one
+    /// on every later frame; the window follows the eye (world x, z `eye`), the mesh's
+    /// reference point is `mesh_origin`.
+    pub fn new(
+        scene: &Scene,
+        plan: &FramePlan,
+        state: &FrameState,
+        eye: [f64; 2],
+        mesh_origin: [f64; 2],
+    ) -> Self {
+        let waves = plan.techniques.of(crate::plan::Stage::Waves).name;
+        let grid = crate::foam::FieldGrid::of(scene, waves);
+        let window = grid.window_start(eye);
+        let count = state.foam_steps_this_frame(scene);
+        let first_prev = state.foam_window.filter(|_| state.foam_steps > 0).unwrap_or(window);
+        let steps = (0..count)
+            .map(|k| {
+                let prev = if k == 0 { first_prev } else { window };
+                crate::foam::FoamStepUniforms::new(scene, &grid, window, prev, mesh_origin)
+            })
+            .collect();
+        Self { grid, steps, window }
+    }
+
+    /// Whether a field of `grid` that has run `steps` steps is the one this work continues.
+    pub fn continues(&self, grid: &crate::foam::FieldGrid, steps: u64, state: &FrameState) -> bool {
+        *grid == self.grid && steps == state.foam_steps
+    }
 }
 
 impl FrameState {
     /// Frames `step_s` apart, starting at frame 0.
     pub fn new(step_s: f64) -> Self {
-        Self { frame: 0, step_s, cycle: None, spray_steps: 0, spray: None }
+        Self {
+            frame: 0,
+            step_s,
+            cycle: None,
+            spray_steps: 0,
+            spray: None,
+            foam_steps: 0,
+            foam_window: None,
+            foam: None,
+        }
+    }
+
+    /// How many foam steps this frame runs: the scene's warm-up and one on the state's
+    /// first, one on every later frame.
+    pub fn foam_steps_this_frame(&self, scene: &Scene) -> u64 {
+        if self.foam_steps == 0 { u64::from(scene.foam.warmup_steps) + 1 } else { 1 }
     }
 
     /// How many spray steps this frame runs: the scene's warm-up and one on the state's
@@ -367,6 +447,18 @@ pub trait Backend {
         steps: u64,
     ) -> Result<(), Self::Error>;
 
+    /// `foam`: the steps of foam `accumulated`'s field in `work`, from step
+    /// `state.foam_steps` (the CPU keeps its field in `state.foam`, a GPU in its own texture).
+    ///
+    /// # Errors
+    /// A device error.
+    fn foam(
+        &mut self,
+        frame: &FrameInputs<'_>,
+        state: &mut FrameState,
+        work: &FoamWork,
+    ) -> Result<(), Self::Error>;
+
     /// `bloom`: the bright pass's down and up chains ([`FrameInputs::bloom`]).
     ///
     /// # Errors
@@ -413,6 +505,13 @@ pub fn run_frame<B: Backend>(
                 let steps = state.spray_steps_this_frame(frame.scene);
                 backend.spray(frame, state, steps)?;
                 state.spray_steps += steps;
+            }
+            Pass::Foam => {
+                let eye = [frame.camera.eye.x, frame.camera.eye.z];
+                let work = FoamWork::new(frame.scene, frame.plan, state, eye, frame.mesh.origin);
+                backend.foam(frame, state, &work)?;
+                state.foam_steps += work.steps.len() as u64;
+                state.foam_window = Some(work.window);
             }
             Pass::Bloom => backend.bloom(frame)?,
             Pass::Tonemap => backend.tonemap(frame)?,

@@ -123,6 +123,9 @@ impl MemoryEstimate {
             let copies = match backend {
                 // The GPU reads the output back into host memory.
                 MemoryBackend::Gpu if matches!(r.id, ResourceId::Hdr | ResourceId::Ldr) => 2,
+                // Foam `accumulated`'s field: the state, the frame's copy and the step's new
+                // field on the CPU; two textures and the read-back on the GPU.
+                _ if r.id == ResourceId::FoamField => 3,
                 _ => 1,
             };
             let key = match r.id {
@@ -131,6 +134,16 @@ impl MemoryEstimate {
                 ResourceId::FresnelAbove | ResourceId::FresnelBelow => "quality.fresnel_table_size",
                 ResourceId::ReflectionMap => "quality.reflection_map_scale",
                 ResourceId::ShadowMap => "sun",
+                ResourceId::FoamField
+                    if crate::foam::FieldGrid::of(
+                        scene,
+                        plan.techniques.of(crate::plan::Stage::Waves).name,
+                    )
+                    .windowed =>
+                {
+                    "foam.grid"
+                }
+                ResourceId::FoamField => "ocean.resolution",
                 _ => "camera.width",
             };
             let bytes = w * h * (texel * copies + if depth { 4 } else { 0 });

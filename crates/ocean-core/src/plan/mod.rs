@@ -49,7 +49,9 @@ use crate::camera::{Camera, NEAR_PLANE_M};
 use crate::geometry::WaterMesh;
 use crate::scene::{Object, Scene, Shape};
 
-pub use graph::{Backend, BloomInputs, DrawMesh, FrameInputs, FrameState, run_frame};
+pub use graph::{
+    Backend, BloomInputs, DrawMesh, FoamField, FoamWork, FrameInputs, FrameState, run_frame,
+};
 
 pub use resource::{Format, Resource, ResourceId, SHADOW_MAP_SIZE};
 pub use technique::{
@@ -68,6 +70,8 @@ pub enum Pass {
     Waves,
     /// The slope maps' mip chains (stage `wave_mips`, far fields `mip` and `variance`).
     WaveMips,
+    /// Foam `accumulated`: fixed steps of the foam field (stage `foam`).
+    Foam,
     /// The 2D Fresnel texture (stage `fresnel_table`).
     FresnelTable,
     /// Depth of the objects seen from the sun (stage `shadow`).
@@ -94,10 +98,11 @@ pub enum Pass {
 
 impl Pass {
     /// Every pass, in execution order.
-    pub const ALL: [Pass; 14] = [
+    pub const ALL: [Pass; 15] = [
         Pass::Cycle,
         Pass::Waves,
         Pass::WaveMips,
+        Pass::Foam,
         Pass::FresnelTable,
         Pass::ShadowMap,
         Pass::ReflectionMap,
@@ -122,6 +127,7 @@ impl Pass {
             Pass::FarPatch => Some(Stage::Surface),
             Pass::Tonemap | Pass::Bloom => Some(Stage::Post),
             Pass::Spray => Some(Stage::Spray),
+            Pass::Foam => Some(Stage::Foam),
             Pass::ShadowMap | Pass::ReflectionMap | Pass::RefractionMap | Pass::Objects => None,
         }
     }
@@ -141,6 +147,7 @@ impl Pass {
             Pass::Tonemap => Some("tonemap"),
             Pass::Bloom => Some("bloom"),
             Pass::Spray => Some("spray"),
+            Pass::Foam => Some("foam"),
         }
     }
 
@@ -160,8 +167,10 @@ impl Pass {
                 R::ShadowMap,
                 R::ReflectionMap,
                 R::RefractionMap,
+                R::FoamField,
                 R::Environment,
             ],
+            Pass::Foam => &[R::Displacement, R::FoamField],
             Pass::Tonemap => &[R::Hdr, R::BloomUp],
             Pass::Bloom => &[R::Hdr],
             Pass::Spray => &[R::Displacement, R::Hdr],
@@ -184,6 +193,7 @@ impl Pass {
             Pass::RefractionMap => &[R::RefractionMap],
             Pass::Sky | Pass::Objects | Pass::Water | Pass::Spray => &[R::Hdr],
             Pass::Bloom => &[R::BloomDown, R::BloomUp],
+            Pass::Foam => &[R::FoamField],
             Pass::Tonemap => &[R::Ldr],
         }
     }
@@ -203,6 +213,7 @@ impl Pass {
             Pass::FarPatch => "far_patch",
             Pass::Water => "water",
             Pass::Spray => "spray",
+            Pass::Foam => "foam",
             Pass::Bloom => "bloom",
             Pass::Tonemap => "tonemap",
         }
@@ -814,6 +825,33 @@ impl FramePlan {
                         }
                     }
                 }
+                Pass::Foam => {
+                    let t = techniques.of(Stage::Foam).name;
+                    if t != "accumulated" {
+                        (false, format!("foam = {t}: the water pass draws it, no state"))
+                    } else {
+                        let g = crate::foam::FieldGrid::of(scene, techniques.of(Stage::Waves).name);
+                        let on = if g.windowed {
+                            format!(
+                                "a {0}×{0} lattice of {1} m around the camera",
+                                g.size, g.cell_m
+                            )
+                        } else {
+                            format!("the displacement map's {0}×{0} grid", g.size)
+                        };
+                        (
+                            true,
+                            format!(
+                                "foam = accumulated: grows where J < {}, decays over {} s, on {on}; \
+                                 one {:.4} s step a frame ({} before the first)",
+                                scene.foam.threshold,
+                                scene.foam.decay_s,
+                                scene.foam.step_s,
+                                scene.foam.warmup_steps
+                            ),
+                        )
+                    }
+                }
                 Pass::Bloom => {
                     let post = &scene.post;
                     let [w, h] = [scene.camera.width, scene.camera.height];
@@ -905,6 +943,11 @@ impl FramePlan {
                 ResourceId::BloomDown | ResourceId::BloomUp => {
                     (Format::Rgba32Float, crate::bloom::base_size(viewport[0], viewport[1]))
                 }
+                ResourceId::FoamField => (Format::Rgba32Float, {
+                    let g =
+                        crate::foam::FieldGrid::of(scene, self.techniques.of(Stage::Waves).name);
+                    [g.size; 2]
+                }),
                 ResourceId::Ldr => (Format::Rgba8Unorm, viewport),
                 // The sky's uniforms and its sky-view table (`SkyLut`, bound by the `sky` and
                 // `water` stages under every sky technique, filled under `atmosphere`).
@@ -1092,17 +1135,17 @@ mod tests {
         let s = Scene::builtin();
         let p = FramePlan::new(&s, OutputKind::Ldr);
         let skipped: Vec<_> = p.skipped.iter().map(|p| p.name).collect();
-        assert_eq!(skipped, [Pass::Cycle, Pass::Spray, Pass::Bloom], "{p}");
+        assert_eq!(skipped, [Pass::Cycle, Pass::Foam, Pass::Spray, Pass::Bloom], "{p}");
         let names: Vec<_> = p.passes.iter().map(|p| p.name).collect();
         let want: Vec<_> = Pass::ALL[1..]
             .iter()
             .copied()
-            .filter(|p| !matches!(p, Pass::Spray | Pass::Bloom))
+            .filter(|p| !matches!(p, Pass::Foam | Pass::Spray | Pass::Bloom))
             .collect();
         assert_eq!(names, want);
         assert_eq!(p.objects().objects, [0, 1]);
         let p = FramePlan::new(&s, OutputKind::Hdr);
-        assert_eq!(p.skipped.len(), 4);
+        assert_eq!(p.skipped.len(), 5);
         assert!(!p.runs(Pass::Tonemap));
         // The full plan of a scene that needs everything is the pruned one.
         assert_eq!(FramePlan::full(&s, OutputKind::Ldr).passes.len(), 11);

@@ -46,6 +46,9 @@ pub enum ResourceId {
     /// Post `bloom`: the levels summed back up, a mip chain like [`Self::BloomDown`]; level 0
     /// is what the tonemap adds.
     BloomUp,
+    /// Foam `accumulated`'s field (foam in x; stage `foam`): on the displacement map's grid
+    /// under waves `fft`, on a lattice around the camera under `gerstner` (`crate::foam`).
+    FoamField,
     /// The environment the water reflects and the `sky` pass draws: the sky technique's
     /// uniform block, prepared with the frame's inputs (a `preetham` sky is a fit of the
     /// Perez coefficients, computed on the CPU for both back ends).
@@ -55,13 +58,14 @@ pub enum ResourceId {
 impl ResourceId {
     /// The float maps both back ends keep and the cross-check compares, in the order the
     /// frame makes them.
-    pub const MAPS: [ResourceId; 14] = [
+    pub const MAPS: [ResourceId; 15] = [
         ResourceId::Displacement,
         ResourceId::DisplacementSlopes,
         ResourceId::Bump,
         ResourceId::DisplacementSlopeMips,
         ResourceId::BumpMips,
         ResourceId::FresnelFilter,
+        ResourceId::FoamField,
         ResourceId::FresnelAbove,
         ResourceId::FresnelBelow,
         ResourceId::ShadowMap,
@@ -80,13 +84,14 @@ impl ResourceId {
     ];
 
     /// Every resource.
-    pub const ALL: [ResourceId; 16] = [
+    pub const ALL: [ResourceId; 17] = [
         ResourceId::Displacement,
         ResourceId::DisplacementSlopes,
         ResourceId::Bump,
         ResourceId::DisplacementSlopeMips,
         ResourceId::BumpMips,
         ResourceId::FresnelFilter,
+        ResourceId::FoamField,
         ResourceId::FresnelAbove,
         ResourceId::FresnelBelow,
         ResourceId::ShadowMap,
@@ -117,6 +122,7 @@ impl ResourceId {
             ResourceId::Hdr => "hdr",
             ResourceId::BloomDown => "bloom_down",
             ResourceId::BloomUp => "bloom_up",
+            ResourceId::FoamField => "foam_field",
             ResourceId::Ldr => "ldr",
             ResourceId::Environment => "environment",
         }
@@ -138,6 +144,7 @@ impl ResourceId {
             ResourceId::RefractionMap => Pass::RefractionMap,
             ResourceId::Hdr => Pass::Water,
             ResourceId::BloomDown | ResourceId::BloomUp => Pass::Bloom,
+            ResourceId::FoamField => Pass::Foam,
             ResourceId::Ldr => Pass::Tonemap,
             ResourceId::Environment => return None,
         })

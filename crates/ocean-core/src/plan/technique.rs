@@ -115,9 +115,9 @@ pub const TECHNIQUES: &[TechniqueInfo] = &[
     t(Stage::FarField, "mip", "mip-mapped slope maps, trilinear at the footprint", true),
     t(Stage::FarField, "variance", "unresolved slope variance in the BRDF (Bruneton 2010)", true),
     t(Stage::Foam, "none", "no foam", true),
-    t(Stage::Foam, "heuristic", "from normal and height (seed 002)", false),
-    t(Stage::Foam, "jacobian", "where the Jacobian folds", false),
-    t(Stage::Foam, "accumulated", "grows where J < threshold, decays over time", false),
+    t(Stage::Foam, "heuristic", "from normal and height (seed 002)", true),
+    t(Stage::Foam, "jacobian", "where the Jacobian folds", true),
+    t(Stage::Foam, "accumulated", "grows where J < threshold, decays over time", true),
     t(Stage::Spray, "none", "no spray", true),
     t(Stage::Spray, "particles", "state-preserving GPU particles (seed 001)", true),
     t(
@@ -506,8 +506,10 @@ mod tests {
         assert_eq!(t.of(Stage::Waves).name, "fft");
         assert!(t.check().is_ok());
         let t = Techniques::with_overrides(System::Hu, [(Stage::Foam, "jacobian")]).unwrap();
+        assert!(t.check().is_ok());
+        let t = Techniques::with_overrides(System::Hu, [(Stage::Surface, "shore_grid")]).unwrap();
         let e = t.check().unwrap_err().to_string();
-        assert!(e.contains("techniques.foam") && e.contains("`jacobian`"), "{e}");
+        assert!(e.contains("techniques.surface") && e.contains("`shore_grid`"), "{e}");
         let e = Techniques::with_overrides(System::Hu, [(Stage::Sky, "nope")]).unwrap_err();
         assert!(e.to_string().contains("preetham"), "{e}");
     }

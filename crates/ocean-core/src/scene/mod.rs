@@ -16,10 +16,12 @@ use crate::geometry::PatchParams;
 use crate::spectrum::{SpectrumKind, SpectrumParams, WaveSpectrum};
 use crate::waves::{ModeParams, OceanParams, OceanSurface, WaveModes};
 
+mod foam;
 mod ggx;
 mod locate;
 mod validate;
 
+pub use foam::Foam;
 pub use ggx::{Ggx, GgxFresnel, GgxGeometry};
 use locate::{key_at_offset, key_of_line, key_position, line_column};
 pub use validate::{
@@ -109,6 +111,8 @@ pub struct Scene {
     pub clouds: Clouds,
     /// The particles of spray technique `particles`.
     pub spray: Spray,
+    /// The white water of the foam techniques.
+    pub foam: Foam,
     /// The post-processing of the final pass (stage `post`): the tonemap's curve, the
     /// vignette.
     pub post: Post,

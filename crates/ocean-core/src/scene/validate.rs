@@ -232,6 +232,20 @@ pub const LIMITS: &[Limit] = &[
     real("spray.size_m", 1.0e-3, 10.0, "m, a sprite's side"),
     real("spray.intensity", 0.0, MAX_COLOUR, "radiance of a sprite's centre"),
     real("spray.color", 0.0, MAX_COLOUR, "linear RGB"),
+    real("foam.coverage", 0.0, 1.0, "the largest share of a pixel the foam covers"),
+    real("foam.color", 0.0, 1.0, "linear RGB albedo"),
+    real("foam.threshold", -10.0, 10.0, "J below which foam forms (1: flat, < 0: folded)"),
+    real("foam.softness", 1.0e-3, 10.0, "width in J of the ramp to full foam"),
+    real("foam.crest_height_m", 1.0e-3, 100.0, "m above the mean sea plane"),
+    real("foam.crest_slope", 1.0e-3, 100.0, "slope of the displaced surface"),
+    real("foam.texture_scale_m", 1.0e-2, 1.0e3, "m, one cell of the foam texture"),
+    whole("foam.seed", 0.0, 4_294_967_295.0, "any u32"),
+    real("foam.decay_s", 1.0e-3, 1.0e4, "s, e-folding time of accumulated foam"),
+    real("foam.growth_per_s", 0.0, 1.0e3, "foam per second a full ramp below the threshold"),
+    real("foam.step_s", 1.0e-4, 1.0, "s, one step per frame"),
+    whole("foam.warmup_steps", 0.0, 1000.0, "steps before a state's first frame"),
+    whole("foam.grid", 2.0, 4096.0, "texels per side (power of two)"),
+    real("foam.cell_m", 1.0e-2, 100.0, "m between the lattice's points"),
     real("post.vignette", 0.0, 1.0, "0 none; 1 black at the image's corners"),
     real(
         "post.bloom_threshold",
@@ -424,6 +438,27 @@ impl Scene {
         check("spray.size_m", &[sp.size_m])?;
         check("spray.intensity", &[sp.intensity])?;
         check("spray.color", &sp.color)?;
+        let fo = &self.foam;
+        check("foam.coverage", &[fo.coverage])?;
+        check("foam.color", &fo.color)?;
+        check("foam.threshold", &[fo.threshold])?;
+        check("foam.softness", &[fo.softness])?;
+        check("foam.crest_height_m", &[fo.crest_height_m])?;
+        check("foam.crest_slope", &[fo.crest_slope])?;
+        check("foam.texture_scale_m", &[fo.texture_scale_m])?;
+        check_u32("foam.seed", fo.seed)?;
+        check("foam.decay_s", &[fo.decay_s])?;
+        check("foam.growth_per_s", &[fo.growth_per_s])?;
+        check("foam.step_s", &[fo.step_s])?;
+        check_u32("foam.warmup_steps", fo.warmup_steps)?;
+        check_u32("foam.grid", fo.grid)?;
+        if !fo.grid.is_power_of_two() {
+            return Err((
+                "foam.grid".into(),
+                format!("the foam lattice's side must be a power of two, got {}", fo.grid),
+            ));
+        }
+        check("foam.cell_m", &[fo.cell_m])?;
         check("post.vignette", &[self.post.vignette])?;
         check("post.bloom_threshold", &[self.post.bloom_threshold])?;
         check("post.bloom_strength", &[self.post.bloom_strength])?;

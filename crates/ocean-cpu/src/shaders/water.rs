@@ -6,8 +6,9 @@ use ocean_core::frame::FrameUniforms;
 mod clipmap;
 pub use clipmap::vs_clipmap;
 
+use super::shared::foam::foam_over;
 use super::shared::frame::{dot3, transform_point, unit};
-use super::shared::gerstner::{gerstner_cis, gerstner_displacement};
+use super::shared::gerstner::{gerstner_cis, gerstner_displacement, gerstner_jacobian};
 use super::shared::trig::TAU;
 use super::wgsl::{
     Vec2, Vec3, Vec4, abs, clamp, frexp, ldexp, max, sqrt, texture_sample_level, vec2, vec3,
@@ -56,10 +57,14 @@ pub struct Bindings<'a> {
     pub fresnel_filter: &'a Texture2D,
     /// binding 12: the sea floor's relief (shared/floor.wgsl).
     pub floor_map: &'a Texture2D,
+    /// binding 13: foam `accumulated`'s field (one zero texel otherwise).
+    pub foam_field: &'a Texture2D,
     /// `sky_radiance(dir)`.
     pub sky_radiance: &'a (dyn Fn([f32; 3]) -> [f32; 3] + Sync),
     /// The shading technique's `shade_above` (`technique/shading`).
     pub shade_above: super::shading::ShadeAbove,
+    /// The foam technique's `foam_coverage` (`technique/foam`).
+    pub foam_coverage: super::foam::FoamCoverage,
 }
 
 /// `WaterVertex`: the vertex format is defined once, in ocean-core.
@@ -603,6 +608,16 @@ pub fn sky_filtered(view: Vec3, slopes: Vec3, variance: f32, b: &Bindings<'_>) -
     sum_fl / max(sum_f, 1e-30)
 }
 
+/// `surface_jacobian(in)`: J at the fragment, faded towards 1 with the mesh's weight.
+pub fn surface_jacobian(input: &VertexOut, b: &Bindings<'_>) -> f32 {
+    let frame = b.frame;
+    if frame.gerstner.count > 0.0 {
+        return 1.0 + (gerstner_jacobian(input.pos, frame) - 1.0) * input.weight;
+    }
+    let j = texture_sample_level(b.displacement, &WRAP_LINEAR, input.uv_d, 0.0).w;
+    1.0 + (j - 1.0) * (input.weight * frame.passes.waves)
+}
+
 /// `SurfacePoint`: what the shading technique's `shade_above` needs of the surface point.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SurfacePoint {
@@ -628,7 +643,9 @@ pub fn fs_main(input: &VertexOut, b: &Bindings<'_>) -> [f32; 4] {
     let screen = input.clip.xy() * Vec2::from(frame.view.inv_viewport_size);
     if view.y >= 0.0 {
         let p = SurfacePoint { slopes, n, view, u_bumped, screen };
-        return (b.shade_above)(input, &p, b).extend(1.0).into();
+        let c = (b.shade_above)(input, &p, b);
+        let cover = (b.foam_coverage)(input, &p, b);
+        return foam_over(c, cover, n, input.rel, frame, b.shadow_map).extend(1.0).into();
     }
     let st = fresnel_st(u_bumped, frame.hu.fresnel_scale);
     let f = texture_sample_level(b.fresnel_below, &CLAMP_LINEAR, st, 0.0).w;

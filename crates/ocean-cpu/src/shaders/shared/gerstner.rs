@@ -2,7 +2,7 @@
 
 use ocean_core::frame::FrameUniforms;
 
-use super::trig::cis_turns;
+use super::trig::{TAU, cis_turns};
 use crate::shaders::wgsl::{Vec2, Vec4, clamp, vec2, vec4};
 
 /// `gerstner_cis(i, pos)`: wave i's (cos θ, sin θ).
@@ -49,4 +49,21 @@ pub fn gerstner_slopes(pos: Vec2, frame: &FrameUniforms) -> Vec2 {
         s = s + vec2(b[2] * cs[0], b[3] * cs[0]);
     }
     s
+}
+
+/// `gerstner_jacobian(pos)`: J = (1 + ∂Dx/∂x)(1 + ∂Dz/∂z) − (∂Dx/∂z)².
+pub fn gerstner_jacobian(pos: Vec2, frame: &FrameUniforms) -> f32 {
+    let mut dxx = 0.0;
+    let mut dzz = 0.0;
+    let mut dxz = 0.0;
+    for i in 0..frame.gerstner.count as usize {
+        let sn = gerstner_cis(i, pos, frame)[1];
+        let (a, b) = (frame.gerstner.waves[2 * i], frame.gerstner.waves[2 * i + 1]);
+        let kx = TAU * a[0];
+        let kz = TAU * a[1];
+        dxx -= (b[0] * kx) * sn;
+        dzz -= (b[1] * kz) * sn;
+        dxz -= (b[0] * kz) * sn;
+    }
+    (1.0 + dxx) * (1.0 + dzz) - dxz * dxz
 }

@@ -3,6 +3,7 @@
 pub mod camera;
 pub mod detail;
 pub mod floor;
+pub mod foam;
 pub mod frame;
 pub mod fresnel;
 pub mod fullscreen;
