@@ -30,8 +30,11 @@ fn sky_lut_texel(i: f32, j: f32, pr: f32, pm: f32) -> vec3<f32> {
 fn sky_lut_radiance(dir: vec3<f32>, sun: vec3<f32>) -> vec3<f32> {
     let mu = dir.x * sun.x + dir.y * sun.y + dir.z * sun.z;
     let pr = RAYLEIGH_PHASE_K * (mu * mu + 1.0);
-    // (1 + g² − 2gμ)^1.5 as x·√x.
-    let w = max((MIE_G * MIE_G - (2.0 * MIE_G) * mu) + 1.0, 1e-12);
+    // (1 + g² − 2gμ)^1.5 as x·√x, with 1 + g² − 2gμ = (1 − g)² + g·|d − s|² (1 − μ = |d − s|²/2
+    // for unit vectors): formed from μ it cancelled next to the sun, where one ulp of μ moved the
+    // Mie glow by 8e-5 between the back ends.
+    let ds = vec3<f32>(dir.x - sun.x, dir.y - sun.y, dir.z - sun.z);
+    let w = max(0.04 + MIE_G * ((ds.x * ds.x + ds.y * ds.y) + ds.z * ds.z), 1e-12);
     let pm = MIE_PHASE_K * (mu * mu + 1.0) / (w * sqrt(w));
     let dh = sqrt(dir.x * dir.x + dir.z * dir.z);
     let sh = sqrt(sun.x * sun.x + sun.z * sun.z);

@@ -32,8 +32,8 @@ impl Default for Ggx {
             roughness: 0.2,
             fresnel: GgxFresnel::Exact,
             geometry: GgxGeometry::Smith,
-            detail_strength: 0.0,
-            detail_wavelength_m: 0.8,
+            detail_strength: 0.04,
+            detail_wavelength_m: 2.0,
             detail_speed_m_s: 0.4,
         }
     }

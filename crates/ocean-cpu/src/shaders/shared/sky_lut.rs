@@ -30,7 +30,8 @@ fn sky_lut_texel(lut: &SkyLut, i: f32, j: f32, pr: f32, pm: f32) -> Vec3 {
 pub fn sky_lut_radiance(lut: &SkyLut, dir: Vec3, sun: Vec3) -> Vec3 {
     let mu = dir.x * sun.x + dir.y * sun.y + dir.z * sun.z;
     let pr = RAYLEIGH_PHASE_K * (mu * mu + 1.0);
-    let w = max((MIE_G * MIE_G - (2.0 * MIE_G) * mu) + 1.0, 1e-12);
+    let ds = [dir.x - sun.x, dir.y - sun.y, dir.z - sun.z];
+    let w = max(0.04 + MIE_G * ((ds[0] * ds[0] + ds[1] * ds[1]) + ds[2] * ds[2]), 1e-12);
     let pm = MIE_PHASE_K * (mu * mu + 1.0) / (w * w.sqrt());
     let dh = (dir.x * dir.x + dir.z * dir.z).sqrt();
     let sh = (sun.x * sun.x + sun.z * sun.z).sqrt();
