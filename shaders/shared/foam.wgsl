@@ -9,7 +9,7 @@
 // #import shared/shadow.wgsl
 
 const FOAM_NOISE_PERIOD: u32 = 256u;
-const FOAM_INV_PI: f32 = 0.3183099;
+const FOAM_INV_PI: f32 = 0.318309886;
 const FOAM_MIN_JACOBIAN: f32 = 0.1;
 
 // A lattice value in [0, 1) for cell (i, j) of an octave: multiply–xorshift, top 24 bits.
