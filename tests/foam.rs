@@ -345,10 +345,55 @@ fn gpu_accumulated_field_equals_the_cpus_frame_by_frame() {
     }
 }
 
+/// The HDR frame of `scene` on the CPU.
+fn hdr(scene: &Scene) -> Vec<[f32; 4]> {
+    ocean_cpu::render_scene(scene, OutputKind::Hdr, &mut |_| {}).unwrap().buffers.hdr.color
+}
+
+fn foam_is_drawn_over_every_shading_and_zero_coverage_changes_nothing() {
+    for shading in ["hu", "chiu", "ggx"] {
+        let mut base = fft_accumulated();
+        (base.camera.width, base.camera.height) = (96, 54);
+        base.techniques.shading = Some(shading.into());
+        base.foam.warmup_steps = 60;
+        let with = |foam: &str, coverage: f64| {
+            let mut s = base.clone();
+            s.techniques.foam = Some(foam.into());
+            s.foam.coverage = coverage;
+            hdr(&s)
+        };
+        let none = with("none", 0.9);
+        for foam in ["heuristic", "jacobian", "accumulated"] {
+            let zero = with(foam, 0.0);
+            let drawn = with(foam, 0.9);
+            let same =
+                none.iter().zip(&zero).all(|(a, b)| a.map(f32::to_bits) == b.map(f32::to_bits));
+            let changed: Vec<(f32, f32)> = none
+                .iter()
+                .zip(&drawn)
+                .filter(|(a, b)| a != b)
+                .map(|(a, b)| (a[0] + a[1] + a[2], b[0] + b[1] + b[2]))
+                .collect();
+            let brighter = changed.iter().filter(|(a, b)| b > a).count();
+            println!(
+                "{shading} + {foam}: coverage 0 equals none bit for bit: {same}; coverage 0.9 \
+                 changes {} of {} pixels, {brighter} of them brighter",
+                changed.len(),
+                none.len()
+            );
+            assert!(same, "{shading} + {foam}: zero coverage changed the picture");
+            assert!(changed.len() > 20, "{shading} + {foam}: no foam drawn");
+            // White foam over dark water; over the sun's glitter it may be the darker.
+            assert!(brighter * 3 > changed.len() * 2, "{shading} + {foam}: foam is white");
+        }
+    }
+}
+
 fn main() -> std::process::ExitCode {
     run_tests!(gpu_harness::GPU_ADAPTER;
         cpu: turbulence_rises_with_wind_and_with_choppiness,
             gerstner_jacobian_matches_its_closed_form,
-            accumulated_field_after_n_frames_is_n_steps_from_empty;
+            accumulated_field_after_n_frames_is_n_steps_from_empty,
+            foam_is_drawn_over_every_shading_and_zero_coverage_changes_nothing;
         gpu: gpu_accumulated_field_equals_the_cpus_frame_by_frame)
 }

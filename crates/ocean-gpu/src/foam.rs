@@ -1,7 +1,7 @@
 //! Stage `foam` (`shaders/foam.wgsl`): the fixed steps of foam `accumulated`'s field, one
-//! compute dispatch (`accumulate`) per step, each reading the field from one texture and
-//! writing the other (ping-pong). The field stays on the device across frames
-//! ([`GpuFoam`], kept by the renderer as the spray's pool is). Bindings (group 0): 0
+//! compute dispatch (`accumulate`) per step in one timed compute pass, each reading the field
+//! from one texture and writing the other (ping-pong). The field stays on the device across
+//! frames ([`GpuFoam`], kept by the renderer as the spray's pool is). Bindings (group 0): 0
 //! `FoamStepUniforms`, 1 `FrameUniforms` (waves `gerstner`'s block), 2 `displacement`, 3
 //! `src`, 4 `dst` (storage). The water stage samples the result (binding 13 of
 //! `shaders/water.wgsl`, through `shaders/foam/accumulated.wgsl`).
@@ -77,40 +77,59 @@ impl FoamStage {
         Ok(Self { pipeline, layout })
     }
 
-    /// Records one step of `field` (then swaps its textures).
-    pub fn encode_step(
+    /// Records `steps` of `field` in one compute pass, one dispatch per step, each reading
+    /// the field's current texture and writing the other (the textures swap after each).
+    #[expect(clippy::too_many_arguments, reason = "one argument per binding and the timer")]
+    pub fn encode_steps(
         &self,
         device: &wgpu::Device,
         encoder: &mut wgpu::CommandEncoder,
         field: &mut GpuFoam,
-        params: &FoamStepUniforms,
+        steps: &[FoamStepUniforms],
         frame: &wgpu::Buffer,
         displacement: &wgpu::TextureView,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
         let name = label("foam");
-        let uniforms = uniform_buffer(device, &name, params);
-        let group = bind_group(
-            device,
-            &name,
-            &self.layout,
-            &[
-                uniforms.as_entire_binding(),
-                frame.as_entire_binding(),
-                wgpu::BindingResource::TextureView(displacement),
-                wgpu::BindingResource::TextureView(&field.current.view),
-                wgpu::BindingResource::TextureView(&field.spare.view),
-            ],
-        );
+        let groups: Vec<wgpu::BindGroup> = steps
+            .iter()
+            .enumerate()
+            .map(|(k, params)| {
+                let uniforms = uniform_buffer(device, &name, params);
+                // Step k reads what step k − 1 wrote.
+                let (src, dst) = if k % 2 == 0 {
+                    (&field.current, &field.spare)
+                } else {
+                    (&field.spare, &field.current)
+                };
+                bind_group(
+                    device,
+                    &name,
+                    &self.layout,
+                    &[
+                        uniforms.as_entire_binding(),
+                        frame.as_entire_binding(),
+                        wgpu::BindingResource::TextureView(displacement),
+                        wgpu::BindingResource::TextureView(&src.view),
+                        wgpu::BindingResource::TextureView(&dst.view),
+                    ],
+                )
+            })
+            .collect();
         {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some(&name),
-                timestamp_writes: None,
+                timestamp_writes: timestamps,
             });
             pass.set_pipeline(&self.pipeline);
-            pass.set_bind_group(0, &group, &[]);
-            let groups = params.size.div_ceil(WORKGROUP_SIZE);
-            pass.dispatch_workgroups(groups, groups, 1);
+            for (params, group) in steps.iter().zip(&groups) {
+                pass.set_bind_group(0, group, &[]);
+                let n = params.size.div_ceil(WORKGROUP_SIZE);
+                pass.dispatch_workgroups(n, n, 1);
+            }
         }
-        std::mem::swap(&mut field.current, &mut field.spare);
+        if steps.len() % 2 == 1 {
+            std::mem::swap(&mut field.current, &mut field.spare);
+        }
     }
 }

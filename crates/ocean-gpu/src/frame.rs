@@ -619,16 +619,16 @@ impl Backend for GpuBackend<'_> {
         }
         let displacement = self.map(ResourceId::Displacement);
         let Some(field) = self.foam.as_mut() else { return Ok(()) };
-        for u in &work.steps {
-            self.stages.foam.encode_step(
-                &self.gpu.device,
-                &mut self.encoder,
-                field,
-                u,
-                &self.frame_buffer,
-                &displacement.view,
-            );
-        }
+        let slot = self.timer.slot(Pass::Foam);
+        self.stages.foam.encode_steps(
+            &self.gpu.device,
+            &mut self.encoder,
+            field,
+            &work.steps,
+            &self.frame_buffer,
+            &displacement.view,
+            self.timer.compute_writes(slot),
+        );
         field.steps += work.steps.len() as u64;
         let current = field.current.clone();
         self.put(ResourceId::FoamField, current);
