@@ -31,7 +31,62 @@ pub(super) fn measure_shading(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
     let settings = ["hu", "chiu", "ggx"].map(|name| {
         (name, Box::new(move |s: &mut Scene| s.techniques.shading = Some(name.into())) as Edit)
     });
-    measure(ctx, "shading", OutputKind::Hdr, "log_l_change", &settings)
+    let mut rows = measure(ctx, "shading", OutputKind::Hdr, "log_l_change", &settings)?;
+    // GGX's energy balance: the white furnace (F = 1) at the built-in scene's roughness, with
+    // the CPU frame's time. `hu` and `chiu` reflect by a Fresnel-weighted mirror, which a
+    // white furnace returns whole by construction, so they have no row.
+    let ggx_ms = rows
+        .iter()
+        .find(|r| r.setting == "ggx" && r.backend == CPU)
+        .map_or(f64::NAN, |r| r.time_ms);
+    let alpha = ocean_core::ggx::alpha_from_roughness(Scene::builtin().ggx.roughness);
+    for (metric, theta) in [
+        ("white_furnace_loss_0deg", 0.0f64),
+        ("white_furnace_loss_45deg", 45.0),
+        ("white_furnace_loss_75deg", 75.0),
+    ] {
+        rows.push(Row {
+            knob: "shading",
+            setting: "ggx".into(),
+            error_metric: metric,
+            error: 1.0 - white_furnace(alpha, theta.to_radians()),
+            time_ms: ggx_ms,
+            backend: CPU,
+        });
+    }
+    Ok(rows)
+}
+
+/// ∫ f cos θ_l dω_l of GGX with F = 1 and Smith's height-correlated G for a view θ_v from the
+/// normal, as an integral over microfacet normals h (dω_l = 4 (h·v) dω_h, so the integrand is
+/// G·D·(h·v)/(n·v)) with θ_h = atan(α tan(πx/2)), which puts the midpoints where D is (512 × 512;
+/// tests/ggx.rs holds the same integral to its closed forms).
+fn white_furnace(alpha: f64, theta_v: f64) -> f64 {
+    use ocean_core::ggx::{ggx_d, smith_g2};
+    use std::f64::consts::{FRAC_PI_2, TAU};
+    let (nx, np) = (512, 512);
+    let v = glam::DVec3::new(theta_v.sin(), theta_v.cos(), 0.0);
+    let n = glam::DVec3::Y;
+    let mut e = 0.0;
+    for i in 0..nx {
+        let x = (i as f64 + 0.5) / nx as f64;
+        let q = (FRAC_PI_2 * x).tan();
+        let th = (alpha * q).atan();
+        let dth = alpha * FRAC_PI_2 * (1.0 + q * q) / (1.0 + alpha * alpha * q * q) / nx as f64;
+        for j in 0..np {
+            let p = (j as f64 + 0.5) * TAU / np as f64;
+            let h = glam::DVec3::new(th.sin() * p.cos(), th.cos(), th.sin() * p.sin());
+            let hv = h.dot(v);
+            let l = 2.0 * hv * h - v;
+            let (nl, nv) = (n.dot(l), n.dot(v));
+            if hv <= 0.0 || nl <= 0.0 {
+                continue;
+            }
+            let w = th.sin() * dth * TAU / np as f64;
+            e += smith_g2(nl, nv, alpha) * ggx_d(th.cos(), alpha) * hv / nv * w;
+        }
+    }
+    e
 }
 
 /// The `post` knob: post `tonemap` and `bloom` on the default scene (8-bit output, where the
@@ -116,4 +171,19 @@ fn measure(
         }
     }
     Ok(rows)
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn white_furnace_matches_its_closed_form_and_the_smooth_limit() {
+        // α = 1 at normal incidence: E = 1 − ln 2 (tests/ggx.rs derives it); a smooth
+        // surface returns nearly all.
+        let rough = super::white_furnace(1.0, 0.0);
+        assert!((rough - (1.0 - std::f64::consts::LN_2)).abs() < 2e-3, "{rough}");
+        let smooth = super::white_furnace(0.04, 0.0);
+        assert!(smooth > 0.99 && smooth <= 1.0 + 1e-6, "{smooth}");
+        let grazing = super::white_furnace(0.04, 75f64.to_radians());
+        assert!(grazing < smooth && grazing > 0.9, "{grazing}");
+    }
 }
