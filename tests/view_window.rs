@@ -401,9 +401,13 @@ fn keys_and_mouse_fly_the_camera_hiding_survives_and_r_returns_home() {
             shot,
         )
     };
-    // W held for half a second, a 50-pixel drag to the right with the right button, H; then
-    // the window is hidden (unmapped, as a minimised window is) and shown again.
-    let fly: [&[&str]; 10] = [
+    // Once the viewer draws (its first frames compile the pipelines; input sent before then
+    // was lost now and then — the camera stayed home, undragged, unlevelled), focus again;
+    // then W held for half a second, a 50-pixel drag to the right with the right button, H;
+    // then the window is hidden (unmapped, as a minimised window is) and shown again.
+    let fly: [&[&str]; 12] = [
+        &["sleep", "3"],
+        &["search", "--name", "^ocean view$", "windowfocus", "--sync"],
         &["keydown", "w"],
         &["sleep", "0.5"],
         &["keyup", "w"],
