@@ -488,13 +488,8 @@ mod tests {
             assert!(sys.available());
             Techniques::of_system(sys).check().unwrap();
         }
-        for sys in [System::Coastal] {
-            let e = Techniques::of_system(sys).check().unwrap_err().to_string();
-            assert!(
-                e.contains(&format!("system `{sys}`")) && e.contains("not yet available"),
-                "{e}"
-            );
-        }
+        let e = Techniques::of_system(System::Coastal).check().unwrap_err().to_string();
+        assert!(e.contains("system `coastal`") && e.contains("not yet available"), "{e}");
         let e = System::from_name("no-such-system").unwrap_err().to_string();
         assert!(e.contains("hu") && e.contains("welch") && e.contains("coastal"), "{e}");
     }
