@@ -58,9 +58,9 @@ fn vertices(fb: &FrameBuffers, u: &ocean_core::frame::FrameUniforms) -> Vec<Vert
         foam_coverage: ocean_cpu::shaders::foam::none::foam_coverage,
     };
     let c = &u.clip;
-    let n = ocean_core::geometry::Clipmap::vertex_count(c.levels as usize, c.cells as u32);
+    let n = c.vertex_count();
     assert!(n > 0, "the frame has no clipmap");
-    (0..n as u32).map(|k| water::vs_clipmap(k, &b)).collect()
+    (0..n).map(|k| water::vs_clipmap(k, &b)).collect()
 }
 
 /// What the triangles make: vertices welded where their displaced positions are the same

@@ -76,9 +76,7 @@ fn vertices_in_view(r: &ocean_cpu::Rendered, scene: &Scene) -> anyhow::Result<(u
         c.w > 0.0 && c.x.abs() <= c.w && c.y.abs() <= c.w
     };
     let grid = fb.uniforms.grid.vertex_count();
-    let clip = &fb.uniforms.clip;
-    let clipmap =
-        ocean_core::geometry::Clipmap::vertex_count(clip.levels as usize, clip.cells as u32) as u32;
+    let clipmap = fb.uniforms.clip.vertex_count();
     let (n, k) = if clipmap > 0 {
         (clipmap, (0..clipmap).filter(|&k| inside(water::vs_clipmap(k, &b))).count())
     } else if grid > 0 {

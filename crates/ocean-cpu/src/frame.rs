@@ -236,9 +236,7 @@ pub fn draw_water(
 ) {
     let vertex = |o: water::VertexOut| Vertex::new(o.clip.into(), o.varyings());
     let grid = bindings.frame.grid.vertex_count();
-    let clip = &bindings.frame.clip;
-    let clipmap =
-        ocean_core::geometry::Clipmap::vertex_count(clip.levels as usize, clip.cells as u32) as u32;
+    let clipmap = bindings.frame.clip.vertex_count();
     let (verts, indices): (Vec<Vertex<{ water::VARYINGS }>>, Vec<[u32; 3]>) = if clipmap > 0 {
         // Surface `clipmap`: the vertex-index draw of its levels' triangle lists; every vertex
         // is a pure function of its index, so they are shaded in parallel.

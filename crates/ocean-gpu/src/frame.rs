@@ -491,7 +491,7 @@ impl GpuBackend<'_> {
                 floor_map: &self.floor_map.view,
                 foam_field: &foam_field.view,
             },
-            &match (frame.uniforms.grid.vertex_count(), clipmap_vertices(&frame.uniforms.clip)) {
+            &match (frame.uniforms.grid.vertex_count(), frame.uniforms.clip.vertex_count()) {
                 (_, n) if n > 0 => WaterDraw::Clipmap(n),
                 (0, _) => WaterDraw::Mesh(WaterMeshBuffers {
                     vertices: &water_vertices,
@@ -1029,9 +1029,4 @@ impl Renderer {
             wave_source,
         })
     }
-}
-
-/// Vertices of surface `clipmap`'s draw (0 under the other surfaces).
-fn clipmap_vertices(clip: &ocean_core::geometry::ClipmapBlock) -> u32 {
-    ocean_core::geometry::Clipmap::vertex_count(clip.levels as usize, clip.cells as u32) as u32
 }

@@ -224,6 +224,14 @@ pub struct ClipmapBlock {
     pub eye: [[f32; 4]; MAX_CLIPMAP_LEVELS],
 }
 
+impl ClipmapBlock {
+    /// Vertices the water pass draws (0 under the other surfaces), as
+    /// [`Clipmap::vertex_count`] of the block's levels.
+    pub fn vertex_count(&self) -> u32 {
+        Clipmap::vertex_count(self.levels as usize, self.cells as u32) as u32
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
