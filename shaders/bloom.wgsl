@@ -15,13 +15,16 @@ struct BloomUniforms {
     // The frame's exposure and the bright pass's threshold (exposed units): `bright_down`.
     exposure: f32,
     threshold: f32,
-    pad0: f32,
+    // `upsample`: the largest value the chain's format holds (f16 65504, f32 its max).
+    store_max: f32,
     pad1: f32,
 }
 
 @group(0) @binding(0) var<uniform> params: BloomUniforms;
 // `bright_down`: the HDR frame; `downsample`: the level below; `upsample`: up[k + 1].
 @group(0) @binding(1) var src: texture_2d<f32>;
+// The chains' format: ocean-gpu makes an `rgba16float` variant of this line for frame format
+// `rgba16float` (ocean_core::frame_format), the only difference between the two modules.
 @group(0) @binding(2) var dst: texture_storage_2d<rgba32float, write>;
 // `upsample`: down[k], the detail the coarser sum is added to (unused by the others).
 @group(0) @binding(3) var detail: texture_2d<f32>;
@@ -104,5 +107,5 @@ fn upsample(@builtin(global_invocation_id) id: vec3<u32>) {
     let p = vec2<i32>(id.xy);
     let size = vec2<i32>(i32(params.src_width), i32(params.src_height));
     let sum = textureLoad(detail, p, 0).rgb + upsample_at(p, size);
-    textureStore(dst, p, vec4<f32>(sum, 1.0));
+    textureStore(dst, p, vec4<f32>(min(sum, vec3<f32>(params.store_max)), 1.0));
 }

@@ -487,6 +487,30 @@ fn float_comparator_fails_one_ulp_past_the_limit() {
     assert!(compare_float("same", true, ((1, 1), &a), ((1, 1), &a)).passed());
 }
 
+/// The allowance of an `rgba16float` buffer: one binary16 step at the CPU's value passes,
+/// the next f32 beyond it fails, where the step is more than the f32 tolerance (everywhere
+/// but near 0, where the absolute 1e-6 covers the subnormal steps); an f32 buffer does not
+/// take the step (negative control).
+fn half_comparator_allows_one_binary16_step_and_no_more() {
+    use ocean_core::frame_format::{FrameFormat, half_step};
+    use ocean_verify::compare::compare_float_in;
+    let f16 = FrameFormat::Rgba16Float;
+    for cpu in [1.0f32, 0.37, 3.25, 1234.5, 0.002, 65504.0 - 32.0] {
+        let step = half_step(cpu);
+        assert!(f64::from(step) > allowance(cpu), "cpu {cpu}: the step is the larger allowance");
+        let at = cpu + step;
+        let beyond = at.next_up();
+        let one = |v: f32| vec![[cpu, 0.5, 0.25, 1.0], [v, 0.5, 0.25, 1.0]];
+        let base = one(cpu);
+        let ok = compare_float_in("half", true, ((2, 1), &base), ((2, 1), &one(at)), f16);
+        assert!(ok.passed(), "cpu {cpu}: one step {step} passes: {}", ok.line());
+        let bad = compare_float_in("half", true, ((2, 1), &base), ((2, 1), &one(beyond)), f16);
+        assert!(!bad.passed(), "cpu {cpu}: past one step fails: {}", bad.line());
+        let f32_buffer = compare_float("f32", true, ((2, 1), &base), ((2, 1), &one(at)));
+        assert!(!f32_buffer.passed(), "cpu {cpu}: an f32 buffer allows no step");
+    }
+}
+
 /// A smooth test picture (FLIP of a picture with itself is 0).
 fn gradient(w: u32, h: u32) -> Vec<u8> {
     (0..w * h)
@@ -710,7 +734,8 @@ fn bloom_chains_are_compared_on_the_same_input_and_can_fail() {
 
 fn main() -> std::process::ExitCode {
     run_tests!(gpu_harness::GPU_ADAPTER;
-        cpu: float_comparator_fails_one_ulp_past_the_limit, image_comparator_fails_past_each_limit;
+        cpu: float_comparator_fails_one_ulp_past_the_limit, half_comparator_allows_one_binary16_step_and_no_more,
+            image_comparator_fails_past_each_limit;
         gpu: reference_scenes_match_the_cpu_oracle, rasterizer_matches_lavapipe_bit_for_bit,
             gpu_fft_frames_meet_the_image_tolerances,
             a_new_sea_on_a_running_renderer_equals_a_fresh_renderer,

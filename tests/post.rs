@@ -246,7 +246,7 @@ fn post_keys_are_parsed_validated_and_named_in_errors() {
 // Post technique `bloom` (ocean_core::bloom): the pyramid's energy, its symmetry, what it
 // leaves alone, on the CPU mirror (the GPU's chains are held to it by the cross-check).
 
-use ocean_core::plan::{BloomInputs, FramePlan, OutputKind, Pass};
+use ocean_core::plan::{BloomInputs, FramePlan, OutputKind, Pass, ResourceId};
 use ocean_cpu::sampler::Texture2D;
 use ocean_cpu::shaders::bloom;
 
@@ -452,4 +452,52 @@ fn bloom_of_extreme_frames_stays_finite_and_levels_follow_the_frame() {
     // NaN and −∞ texels next to 65504 ones are lit by their neighbours' bloom, never NaN.
     assert!(bytes.chunks(4).all(|p| p[3] == 255));
     assert_eq!(bytes[0], 255, "a 65504 neighbourhood is white");
+}
+
+// ---------------------------------------------------------------------------------------
+// The `rgba16float` frame buffers (ocean_core::frame_format; system `welch`'s default).
+
+/// Welch's stormy sunset draws its frame with the sky and then the water (no pass reads the
+/// frame before the bloom): so the CPU frame in `rgba16float` is exactly the `rgba32float` frame
+/// stored through the format, texel by texel, and the bloom chains are the f32 pyramid's
+/// arithmetic on it, each texel truncated. The picture moves by at most one 8-bit level.
+#[test]
+fn the_half_frame_is_the_f32_frame_stored_in_binary16() {
+    use ocean_core::frame_format::{FrameFormat, round_to_half};
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/reference/scenes/welch_stormy_sunset.toml"
+    ))
+    .unwrap();
+    let mut scene = Scene::from_toml(&text, SceneSource::Text).unwrap();
+    (scene.camera.width, scene.camera.height) = (96, 54);
+    assert_eq!(scene.frame_format(), FrameFormat::Rgba16Float, "welch's default");
+    let mut wide = scene.clone();
+    wide.post.frame_format = Some(FrameFormat::Rgba32Float);
+    let render = |s: &Scene| {
+        let plan = FramePlan::new(s, OutputKind::Ldr);
+        assert_eq!(plan.resource(ResourceId::Hdr).unwrap().format.storage(), s.frame_format());
+        ocean_cpu::render_scene_with_plan(s, plan, &mut |_| {}).unwrap()
+    };
+    let (half, full) = (render(&scene), render(&wide));
+    let stored: Vec<[f32; 4]> =
+        full.buffers.hdr.color.iter().map(|c| c.map(round_to_half)).collect();
+    assert_eq!(half.buffers.hdr.color, stored, "the f16 frame is the f32 frame, truncated");
+    // Negative control: rounding to nearest is a different frame (the truncation matters).
+    let nearest =
+        full.buffers.hdr.color.iter().flatten().zip(half.buffers.hdr.color.iter().flatten());
+    let differ = nearest.filter(|(f, h)| half::f16::from_f32(**f).to_f32() != **h).count();
+    assert!(differ > 1000, "round-to-nearest differs on {differ} values only");
+    // The bloom chains hold binary16 values, and the picture moves by at most one level.
+    let chain = |r: &ocean_cpu::Rendered| r.buffers.map(ResourceId::BloomUp).unwrap().2.to_vec();
+    assert!(chain(&half).iter().flatten().all(|v| round_to_half(*v) == *v));
+    assert!(chain(&full).iter().flatten().any(|v| round_to_half(*v) != *v));
+    let (a, b) = (half.ldr.unwrap(), full.ldr.unwrap());
+    let max = a.iter().zip(&b).map(|(x, y)| x.abs_diff(*y)).max().unwrap();
+    let moved = a.iter().zip(&b).filter(|(x, y)| x != y).count();
+    println!(
+        "welch_stormy_sunset 96×54: {differ} values round differently to nearest; LDR: {moved} of {} bytes moved, at most {max}",
+        a.len()
+    );
+    assert!(max <= 1, "f16 frame moved a byte by {max}");
 }

@@ -33,12 +33,13 @@
 //!    not make it (`tests/post.rs` measures it).
 //!
 //! Every step is + − × on f32 with fixed weights and a fixed order, so the GPU's chains are
-//! the CPU's within the float tolerance. The chains are `Rgba32Float` like every map of the
-//! frame (its HDR target is `Rgba32Float` too, not the seed's 16-bit frame buffers): an
-//! `Rgba16Float` pyramid would round every level to f16, which the CPU mirror could only
-//! follow by emulating the GPU's f32 → f16 conversion; 32 bits keep both back ends on plain
-//! f32 arithmetic. The values stay finite: b ≤ 65504 and each level is a weighted mean, so
-//! u_0 ≤ L · 65504.
+//! the CPU's within the float tolerance. The chains have the frame's format
+//! (`crate::frame_format`): `Rgba32Float`, or under `rgba16float` (system `welch`, seed 002's
+//! 16-bit frame buffers) every texel written is truncated to binary16 on both back ends, as
+//! lavapipe stores it (measured), and the up chain's sums are clamped to 65504 first
+//! ([`BloomUniforms::store_max`], so a GPU that rounds to nearest cannot make an infinity).
+//! The values stay finite: b ≤ 65504 and each level is a weighted mean, so u_0 ≤ L · 65504
+//! (≤ 65504 in binary16).
 
 use bytemuck::{Pod, Zeroable};
 
@@ -64,8 +65,10 @@ pub struct BloomUniforms {
     pub exposure: f32,
     /// The bright pass's threshold in exposed units (`bright_down` only).
     pub threshold: f32,
-    /// Padding (unused, 0).
-    pub pad0: f32,
+    /// `upsample` only: the most a written channel may be, the largest value the chain's
+    /// format holds (f16: 65504; f32: `f32::MAX`, no clamp for any finite sum). Only the up
+    /// chain's sums can pass 65504 (each down level is a weighted mean of values ≤ 65504).
+    pub store_max: f32,
     /// Padding (unused, 0).
     pub pad1: f32,
 }
@@ -80,7 +83,7 @@ impl BloomUniforms {
             src_height: src[1],
             exposure,
             threshold,
-            pad0: 0.0,
+            store_max: f32::MAX,
             pad1: 0.0,
         }
     }

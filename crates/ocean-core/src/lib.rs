@@ -25,6 +25,7 @@ pub mod error;
 pub mod far_field;
 pub mod foam;
 pub mod frame;
+pub mod frame_format;
 pub mod fresnel;
 pub mod fuzz;
 pub mod geometry;

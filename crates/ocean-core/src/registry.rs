@@ -441,7 +441,7 @@ pub const STAGES: &[StageEntry] = &[
             src_height,
             exposure,
             threshold,
-            pad0,
+            store_max,
             pad1
         })],
         cpu_mirror: "crates/ocean-cpu/src/shaders/bloom.rs",

@@ -11,7 +11,7 @@ use ocean_core::frame::{
     displacement_texels, pass_triangles,
 };
 use ocean_core::plan::{
-    Backend, FoamField, FoamWork, FrameInputs, FramePlan, FrameState, Pass, PlannedPass,
+    Backend, FoamField, FoamWork, Format, FrameInputs, FramePlan, FrameState, Pass, PlannedPass,
     ResourceId, Stage, WavesKernel, run_frame,
 };
 use ocean_core::scene::Scene;
@@ -286,8 +286,10 @@ fn new_hdr(plan: &FramePlan) -> RenderTarget {
 
 /// A render target of the plan's size for `id`, cleared to the plan's colour.
 fn planned_target(plan: &FramePlan, id: ResourceId) -> RenderTarget {
-    let (size, clear) = plan.resource(id).map_or(([1, 1], [0.0; 4]), |r| (r.size, r.clear));
-    let mut t = RenderTarget::new(size[0], size[1]);
+    let (size, clear, format) = plan
+        .resource(id)
+        .map_or(([1, 1], [0.0; 4], Format::Rgba32Float), |r| (r.size, r.clear, r.format));
+    let mut t = RenderTarget::with_format(size[0], size[1], format.storage());
     t.clear_color(clear);
     t
 }

@@ -5,6 +5,7 @@
 //! chain's coarsest level is a copy of the down chain's. CPU mirror:
 //! `ocean-cpu/src/shaders/bloom.rs`; what each step does and why: `ocean_core::bloom`.
 
+use ocean_core::frame_format::FrameFormat;
 use ocean_core::plan::BloomInputs;
 
 use crate::common::{bind_group, entry, label, pipeline_layout, shader_module, uniform_buffer};
@@ -25,19 +26,38 @@ pub struct BloomStage {
 }
 
 impl BloomStage {
-    /// Creates the pipelines `"ocean.bloom"`.
+    /// Creates the pipelines `"ocean.bloom"`, writing chains of `format` (the frame's).
     ///
     /// # Errors
     /// [`Error::Core`] if the WGSL cannot be assembled or an entry point is not registered.
-    pub fn new(device: &wgpu::Device) -> Result<Self, Error> {
+    pub fn new(device: &wgpu::Device, format: FrameFormat) -> Result<Self, Error> {
         let name = label("bloom");
-        let module = shader_module(device, "bloom")?;
+        // WGSL has no preprocessor: the `rgba16float` module is the stage's source with its
+        // one storage declaration's format replaced (the line says so in bloom.wgsl).
+        let module = match format {
+            FrameFormat::Rgba32Float => shader_module(device, "bloom")?,
+            FrameFormat::Rgba16Float => {
+                let source = ocean_core::shader_source::stage_source("bloom")?;
+                let declared = "texture_storage_2d<rgba32float, write>";
+                if source.matches(declared).count() != 1 {
+                    return Err(Error::Unavailable(format!(
+                        "bloom.wgsl must declare exactly one `{declared}` to make its \
+                         rgba16float variant"
+                    )));
+                }
+                let source = source.replace(declared, "texture_storage_2d<rgba16float, write>");
+                device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: Some(&name),
+                    source: wgpu::ShaderSource::Wgsl(source.into()),
+                })
+            }
+        };
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some(&name),
             entries: &[
                 crate::common::uniform_entry(0, wgpu::ShaderStages::COMPUTE),
                 crate::common::texture_entry(1, wgpu::ShaderStages::COMPUTE, false),
-                crate::common::storage_map_entry(2),
+                crate::common::storage_entry_of(2, crate::texture::frame_format(format)),
                 crate::common::texture_entry(3, wgpu::ShaderStages::COMPUTE, false),
             ],
         });

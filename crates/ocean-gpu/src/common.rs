@@ -135,12 +135,17 @@ pub fn texture_entry(
 
 /// A write-only `texture_storage_2d<rgba32float, write>` entry of a compute stage.
 pub fn storage_map_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    storage_entry_of(binding, crate::texture::MAP_FORMAT)
+}
+
+/// A write-only 2D storage texture entry of `format` of a compute stage.
+pub fn storage_entry_of(binding: u32, format: wgpu::TextureFormat) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
         visibility: wgpu::ShaderStages::COMPUTE,
         ty: wgpu::BindingType::StorageTexture {
             access: wgpu::StorageTextureAccess::WriteOnly,
-            format: crate::texture::MAP_FORMAT,
+            format,
             view_dimension: wgpu::TextureViewDimension::D2,
         },
         count: None,

@@ -8,11 +8,15 @@
 //! | waves (or the cycle's maps, uploaded) | the plan's sizes, `Rgba32Float` ([`crate::wave_maps`]) | — |
 //! | fresnel_table | 2 × the plan's N² `Rgba32Float` (η, 1/η), compute | — |
 //! | shadow_map | the plan's `R32Float` (1, 0, 0, 0) | 1, `Less` |
-//! | reflection_map, refraction_map | the plan's sizes, `Rgba32Float` (0) | 0, `Greater` |
-//! | sky (or, camera under water, a clear to the plan's colour) | HDR viewport `Rgba32Float` | 0, `Always` without writes |
+//! | reflection_map, refraction_map | the plan's sizes, the frame format (0) | 0, `Greater` |
+//! | sky (or, camera under water, a clear to the plan's colour) | HDR viewport, the frame format | 0, `Always` without writes |
 //! | objects | HDR (kept) | kept, `Greater` |
 //! | water | HDR (kept) | kept, `Greater` |
 //! | tonemap | viewport `Rgba8Unorm` | — |
+//!
+//! The frame format is the plan's `frame_format` (`ocean_core::frame_format`): `Rgba32Float`,
+//! or `Rgba16Float` (system `welch`), also for the bloom chains; the stages that draw or blur
+//! into those buffers are made again when a plan asks for the other format.
 //!
 //! A skipped pass leaves the plan's 1×1 zero texture where its map would be, as on the CPU.
 
@@ -136,6 +140,9 @@ pub struct Renderer {
     max_vertex_buffer_bytes: u64,
     /// The techniques the composing stages (`sky`, `water`) were assembled for.
     built: ocean_core::plan::Techniques,
+    /// The frame format the stages that draw or blur into the frame's colour buffers (`sky`,
+    /// `objects`, `water`, `spray`, `bloom`) were made for.
+    built_format: ocean_core::frame_format::FrameFormat,
     /// The spray's particle pool, kept on the device across frames.
     spray: Option<GpuSpray>,
     /// Foam `accumulated`'s field, kept on the device across frames.
@@ -148,6 +155,7 @@ pub struct Renderer {
 fn wgpu_format(f: Format) -> wgpu::TextureFormat {
     match f {
         Format::Rgba32Float => MAP_FORMAT,
+        Format::Rgba16Float => crate::texture::HALF_FORMAT,
         Format::R32Float => SHADOW_FORMAT,
         Format::Rgba8Unorm => LDR_FORMAT,
         // No pass renders into or reads back the environment (a uniform buffer); a texture
@@ -561,7 +569,8 @@ impl Backend for GpuBackend<'_> {
             return Err(Error::Unavailable(
                 "spray technique `particles` adds its sprites into the Rgba32Float frame, which \
                  needs the adapter feature FLOAT32_BLENDABLE; this adapter lacks it (use \
-                 --backend cpu, or [techniques] spray = \"none\")"
+                 [post] frame_format = \"rgba16float\", --backend cpu, or [techniques] spray = \
+                 \"none\")"
                     .into(),
             ));
         }
@@ -641,8 +650,9 @@ impl Backend for GpuBackend<'_> {
         let device = &self.gpu.device;
         let [w, h] = inputs.levels[0];
         let count = inputs.levels.len() as u32;
-        let down = GpuMipChain::with_levels(device, "ocean.bloom_down", w, h, count);
-        let up = GpuMipChain::with_levels(device, "ocean.bloom_up", w, h, count);
+        let format = crate::texture::frame_format(inputs.format);
+        let down = GpuMipChain::with_format(device, "ocean.bloom_down", w, h, count, format);
+        let up = GpuMipChain::with_format(device, "ocean.bloom_up", w, h, count, format);
         let slots = [self.timer.slot(Pass::Bloom), self.timer.slot(Pass::Bloom)];
         self.stages.bloom.encode(
             device,
@@ -703,17 +713,19 @@ impl Renderer {
     pub fn with_gpu(gpu: Gpu, wave_synthesis: WaveSynthesis) -> Result<Self, Error> {
         let d = &gpu.device;
         let built = crate::common::pipeline_techniques();
+        let built_format = ocean_core::frame_format::FrameFormat::default();
+        let target = crate::texture::frame_format(built_format);
         let stages = gpu.scoped("creating the pipelines", || -> Result<_, Error> {
             Ok(Stages {
                 wave_mips: WaveMipsStage::new(d)?,
                 fresnel_table: FresnelTableStage::new(d)?,
-                sky: SkyStage::new(d, &built)?,
-                objects: ObjectsStage::new(d)?,
+                sky: SkyStage::new(d, &built, target)?,
+                objects: ObjectsStage::new(d, target)?,
                 shadow: ShadowStage::new(d)?,
-                water: WaterStage::new(d, &built)?,
-                spray: SprayStage::new(d)?,
+                water: WaterStage::new(d, &built, target)?,
+                spray: SprayStage::new(d, target)?,
                 foam: FoamStage::new(d)?,
-                bloom: BloomStage::new(d)?,
+                bloom: BloomStage::new(d, built_format)?,
                 tonemap: TonemapStage::new(d)?,
             })
         })??;
@@ -724,6 +736,7 @@ impl Renderer {
             waves: None,
             max_vertex_buffer_bytes: u64::MAX,
             built,
+            built_format,
             spray: None,
             foam: None,
             floor: None,
@@ -878,15 +891,35 @@ impl Renderer {
                 t.name
             )));
         }
-        if crate::common::COMPOSED.iter().any(|s| plan.techniques.of(*s) != self.built.of(*s)) {
+        let format = plan.frame_format;
+        if format != self.built_format
+            || crate::common::COMPOSED.iter().any(|s| plan.techniques.of(*s) != self.built.of(*s))
+        {
             let t = plan.techniques;
             let d = &self.gpu.device;
+            let target = crate::texture::frame_format(format);
             let (sky, water) = self.gpu.scoped("assembling the pipelines", || {
-                Ok::<_, Error>((SkyStage::new(d, &t)?, WaterStage::new(d, &t)?))
+                Ok::<_, Error>((SkyStage::new(d, &t, target)?, WaterStage::new(d, &t, target)?))
             })??;
             self.stages.sky = sky;
             self.stages.water = water;
             self.built = t;
+        }
+        if format != self.built_format {
+            let d = &self.gpu.device;
+            let target = crate::texture::frame_format(format);
+            let (objects, spray, bloom) =
+                self.gpu.scoped("making the pipelines for the frame format", || {
+                    Ok::<_, Error>((
+                        ObjectsStage::new(d, target)?,
+                        SprayStage::new(d, target)?,
+                        BloomStage::new(d, format)?,
+                    ))
+                })??;
+            self.stages.objects = objects;
+            self.stages.spray = spray;
+            self.stages.bloom = bloom;
+            self.built_format = format;
         }
         let inputs = FrameInputs::new(scene, plan, state)?;
         let (w, h) = (inputs.camera.width, inputs.camera.height);

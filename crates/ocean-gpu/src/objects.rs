@@ -15,7 +15,6 @@ use crate::common::{
     replace_target, sampler_entry, shader_module, texture_entry, uniform_entry,
 };
 use crate::device::Error;
-use crate::texture::MAP_FORMAT;
 
 /// Which pair of entry points.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -58,11 +57,12 @@ pub struct ObjectsStage {
 }
 
 impl ObjectsStage {
-    /// Creates the pipelines `"ocean.objects"` (one per entry pair).
+    /// Creates the pipelines `"ocean.objects"` (one per entry pair), drawing into colour
+    /// buffers of `target` format (the frame's: its HDR frame, reflection and refraction maps).
     ///
     /// # Errors
     /// [`Error::Core`] if the WGSL cannot be assembled.
-    pub fn new(device: &wgpu::Device) -> Result<Self, Error> {
+    pub fn new(device: &wgpu::Device, target: wgpu::TextureFormat) -> Result<Self, Error> {
         let name = label("objects");
         let module = shader_module(device, "objects")?;
         let frame_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -101,7 +101,7 @@ impl ObjectsStage {
                     module: &module,
                     entry_point: Some(fs),
                     compilation_options: Default::default(),
-                    targets: &replace_target(MAP_FORMAT),
+                    targets: &replace_target(target),
                 }),
                 multiview_mask: None,
                 cache: None,

@@ -17,7 +17,6 @@ use crate::common::{
     replace_target, shader_module_with, uniform_buffer, uniform_entry,
 };
 use crate::device::Error;
-use crate::texture::MAP_FORMAT;
 
 /// The stage's pipeline.
 pub struct SkyStage {
@@ -27,13 +26,15 @@ pub struct SkyStage {
 }
 
 impl SkyStage {
-    /// Creates the pipeline `"ocean.sky"` for the sky technique of `techniques`.
+    /// Creates the pipeline `"ocean.sky"` for the sky technique of `techniques`, drawing into
+    /// a frame of `target` format.
     ///
     /// # Errors
     /// [`Error::Core`] if the WGSL cannot be assembled.
     pub fn new(
         device: &wgpu::Device,
         techniques: &ocean_core::plan::Techniques,
+        target: wgpu::TextureFormat,
     ) -> Result<Self, Error> {
         let name = label("sky");
         let module = shader_module_with(device, "sky", techniques)?;
@@ -63,7 +64,7 @@ impl SkyStage {
                 module: &module,
                 entry_point: Some(entry("sky", "fs_main")?),
                 compilation_options: Default::default(),
-                targets: &replace_target(MAP_FORMAT),
+                targets: &replace_target(target),
             }),
             multiview_mask: None,
             cache: None,

@@ -40,7 +40,7 @@ fn storage_entry(
 /// The stage's pipelines.
 pub struct SprayStage {
     step: wgpu::ComputePipeline,
-    /// `None` without `FLOAT32_BLENDABLE` (the frame is Rgba32Float).
+    /// `None` without `FLOAT32_BLENDABLE` when the frame is `Rgba32Float`.
     draw: Option<wgpu::RenderPipeline>,
     step_layout: wgpu::BindGroupLayout,
     draw_layout: wgpu::BindGroupLayout,
@@ -82,11 +82,12 @@ impl GpuSpray {
 }
 
 impl SprayStage {
-    /// Creates the pipelines `"ocean.spray"`.
+    /// Creates the pipelines `"ocean.spray"`, the sprites blending into a frame of `target`
+    /// format.
     ///
     /// # Errors
     /// [`Error::Core`] if the WGSL cannot be assembled or an entry point is not registered.
-    pub fn new(device: &wgpu::Device) -> Result<Self, Error> {
+    pub fn new(device: &wgpu::Device, target: wgpu::TextureFormat) -> Result<Self, Error> {
         let name = label("spray");
         let module = shader_module(device, "spray")?;
         let compute = wgpu::ShaderStages::COMPUTE;
@@ -117,7 +118,9 @@ impl SprayStage {
             compilation_options: Default::default(),
             cache: None,
         });
-        let blendable = device.features().contains(wgpu::Features::FLOAT32_BLENDABLE);
+        // An f16 target is always blendable; an f32 one only with the feature.
+        let blendable =
+            target != MAP_FORMAT || device.features().contains(wgpu::Features::FLOAT32_BLENDABLE);
         let (vs, fs) = (entry("spray", "vs_main")?, entry("spray", "fs_main")?);
         let draw = blendable.then(|| {
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
@@ -137,7 +140,7 @@ impl SprayStage {
                     entry_point: Some(fs),
                     compilation_options: Default::default(),
                     targets: &[Some(wgpu::ColorTargetState {
-                        format: MAP_FORMAT,
+                        format: target,
                         blend: Some(wgpu::BlendState {
                             color: wgpu::BlendComponent {
                                 src_factor: wgpu::BlendFactor::One,
@@ -199,7 +202,7 @@ impl SprayStage {
         pass.dispatch_workgroups(pool.count.div_ceil(WORKGROUP_SIZE), 1, 1);
     }
 
-    /// Whether the device can draw the sprites (`FLOAT32_BLENDABLE`).
+    /// Whether the device can draw the sprites (an `Rgba16Float` frame, or `FLOAT32_BLENDABLE`).
     pub fn can_draw(&self) -> bool {
         self.draw.is_some()
     }

@@ -1,7 +1,9 @@
 //! Textures of the frame and their readback.
 //!
 //! Formats (DESIGN.md, "Determinism contract"): every intermediate map is `Rgba32Float`, which
-//! lavapipe filters with full-float weights, as the CPU's sampler does; the shadow map is
+//! lavapipe filters with full-float weights, as the CPU's sampler does, but for the frame's
+//! colour buffers under frame format `rgba16float` ([`HALF_FORMAT`], read back exactly as
+//! f32; `ocean_core::frame_format` says how a value is stored); the shadow map is
 //! `R32Float` (the shadow stage writes depth to red; read back as (r, 0, 0, 0), the CPU's
 //! layout); the 8-bit output is `Rgba8Unorm`; depth is `Depth32Float`.
 //!
@@ -14,8 +16,20 @@ use std::sync::{Arc, Mutex};
 
 use crate::device::{Error, Gpu};
 
-/// Format of the wave maps, Fresnel tables, reflection/refraction maps and the HDR frame.
+/// Format of the wave maps, Fresnel tables, foam field, and of the frame's colour buffers
+/// (reflection/refraction maps, HDR frame, bloom chains) under frame format `rgba32float`.
 pub const MAP_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+/// Format of the frame's colour buffers under frame format `rgba16float` (seed 002;
+/// `ocean_core::frame_format`); read back as the f32 values it holds.
+pub const HALF_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+
+/// The wgpu format of the frame's colour buffers.
+pub fn frame_format(f: ocean_core::frame_format::FrameFormat) -> wgpu::TextureFormat {
+    match f {
+        ocean_core::frame_format::FrameFormat::Rgba32Float => MAP_FORMAT,
+        ocean_core::frame_format::FrameFormat::Rgba16Float => HALF_FORMAT,
+    }
+}
 /// Format of the shadow map (depth in red).
 pub const SHADOW_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
 /// Format of the tonemapped output.
@@ -190,8 +204,8 @@ impl<K> Default for Readbacks<K> {
 }
 
 impl<K: Copy> Readbacks<K> {
-    /// Records a copy of `texture` (of `format`: [`MAP_FORMAT`], [`SHADOW_FORMAT`] or
-    /// [`LDR_FORMAT`]) into `encoder`, to be read back under `key`.
+    /// Records a copy of `texture` (of `format`: [`MAP_FORMAT`], [`HALF_FORMAT`],
+    /// [`SHADOW_FORMAT`] or [`LDR_FORMAT`]) into `encoder`, to be read back under `key`.
     ///
     /// # Panics
     /// On another format (a bug in the caller).
@@ -223,6 +237,7 @@ impl<K: Copy> Readbacks<K> {
     ) {
         let bytes_per_texel = match format {
             MAP_FORMAT => 16,
+            HALF_FORMAT => 8,
             SHADOW_FORMAT | LDR_FORMAT | wgpu::TextureFormat::Bgra8Unorm => 4,
             other => panic!("no readback for {other:?}"),
         };
@@ -299,6 +314,18 @@ impl<K: Copy> Readbacks<K> {
                         let texels = rows
                             .flat_map(|r| r.chunks_exact(4))
                             .map(|c| [f32::from_le_bytes([c[0], c[1], c[2], c[3]]), 0.0, 0.0, 0.0])
+                            .collect();
+                        TexelData::Float(FloatMap { width: p.width, height: p.height, texels })
+                    }
+                    HALF_FORMAT => {
+                        // binary16 → f32 is exact: the values the texture holds.
+                        let texels = rows
+                            .flat_map(|r| r.chunks_exact(8))
+                            .map(|c| {
+                                std::array::from_fn(|k| {
+                                    half::f16::from_le_bytes([c[2 * k], c[2 * k + 1]]).to_f32()
+                                })
+                            })
                             .collect();
                         TexelData::Float(FloatMap { width: p.width, height: p.height, texels })
                     }

@@ -19,7 +19,6 @@ use crate::common::{
     replace_target, sampler_entry, shader_module_with, texture_entry, uniform_entry,
 };
 use crate::device::Error;
-use crate::texture::MAP_FORMAT;
 
 /// The vertex buffer layout of `WaterVertex`: pos (Float32x2), weight (Float32).
 pub const WATER_VERTEX_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
@@ -87,13 +86,14 @@ pub struct WaterStage {
 
 impl WaterStage {
     /// Creates the pipeline `"ocean.water"` for the sky and shading techniques of
-    /// `techniques`, and its samplers.
+    /// `techniques`, drawing into a frame of `target` format, and its samplers.
     ///
     /// # Errors
     /// [`Error::Core`] if the WGSL cannot be assembled.
     pub fn new(
         device: &wgpu::Device,
         techniques: &ocean_core::plan::Techniques,
+        target: wgpu::TextureFormat,
     ) -> Result<Self, Error> {
         let name = label("water");
         let module = shader_module_with(device, "water", techniques)?;
@@ -140,7 +140,7 @@ impl WaterStage {
                     module: &module,
                     entry_point: Some(entry("water", "fs_main")?),
                     compilation_options: Default::default(),
-                    targets: &replace_target(MAP_FORMAT),
+                    targets: &replace_target(target),
                 }),
                 multiview_mask: None,
                 cache: None,

@@ -13,7 +13,8 @@ use crate::texture::{GpuTexture, MAP_FORMAT, map_usage};
 /// `@workgroup_size(8, 8, 1)` of the WGSL.
 pub const WORKGROUP_SIZE: u32 = 8;
 
-/// An `Rgba32Float` texture with a full mip chain and a view of each level.
+/// An `Rgba32Float` texture (post `bloom`'s: the frame's format) with a mip chain and a view
+/// of each level.
 pub struct GpuMipChain {
     /// The texture.
     pub texture: wgpu::Texture,
@@ -25,6 +26,8 @@ pub struct GpuMipChain {
     pub width: u32,
     /// Height of level 0.
     pub height: u32,
+    /// Its texel format.
+    pub format: wgpu::TextureFormat,
 }
 
 impl GpuMipChain {
@@ -42,13 +45,25 @@ impl GpuMipChain {
         height: u32,
         count: u32,
     ) -> Self {
+        Self::with_format(device, label, width, height, count, MAP_FORMAT)
+    }
+
+    /// [`Self::with_levels`] in `format` (post `bloom`'s chains are in the frame's format).
+    pub fn with_format(
+        device: &wgpu::Device,
+        label: &str,
+        width: u32,
+        height: u32,
+        count: u32,
+        format: wgpu::TextureFormat,
+    ) -> Self {
         let texture = device.create_texture(&wgpu::TextureDescriptor {
             label: Some(label),
             size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
             mip_level_count: count,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
-            format: MAP_FORMAT,
+            format,
             usage: map_usage(),
             view_formats: &[],
         });
@@ -62,7 +77,7 @@ impl GpuMipChain {
                 })
             })
             .collect();
-        Self { texture, view, levels, width, height }
+        Self { texture, view, levels, width, height, format }
     }
 
     /// Records copies of every level into one atlas texture laid out as
@@ -71,7 +86,7 @@ impl GpuMipChain {
         let count = self.levels.len() as u32;
         let rows = mip_level_row(self.height, count);
         let atlas =
-            GpuTexture::new(device, "ocean.mip_atlas", self.width, rows, MAP_FORMAT, map_usage());
+            GpuTexture::new(device, "ocean.mip_atlas", self.width, rows, self.format, map_usage());
         for k in 0..count {
             let [w, h] = mip_level_size(self.width, self.height, k);
             encoder.copy_texture_to_texture(

@@ -1,11 +1,15 @@
 //! The comparators of DESIGN.md's tolerance table, each with a negative control in the tests:
 //! - [`compare_float`] for float buffers (wave maps, Fresnel tables, shadow, reflection and
 //!   refraction maps, the HDR frame): a value passes when |gpu − cpu| ≤ max([`FLOAT_ABS`],
-//!   [`FLOAT_REL`]·|cpu|), computed in f64; reports max abs/rel error and where.
+//!   [`FLOAT_REL`]·|cpu|), computed in f64; reports max abs/rel error and where. A buffer in
+//!   `rgba16float` ([`compare_float_in`]) also allows one binary16 step at the CPU's value
+//!   (`ocean_core::frame_format`: two f32 values within the tolerance can store a step
+//!   apart).
 //! - [`compare_image`] for the 8-bit output: the share of pixels whose R, G and B each lie
 //!   within 1/255, a per-channel difference histogram, and FLIP mean and P99 (NVIDIA's ꟻLIP,
 //!   `nv-flip`, CPU image as the reference, 67 pixels per degree), against [`ImageLimits`].
 
+use ocean_core::frame_format::FrameFormat;
 use ocean_gpu::AdapterReport;
 use serde_json::{Value, json};
 
@@ -103,6 +107,8 @@ pub struct FloatStats {
     pub worst: Option<Texel>,
     /// Values compared.
     pub values: usize,
+    /// The buffers' format: `rgba16float` allows one binary16 step besides the tolerance.
+    pub format: FrameFormat,
 }
 
 impl FloatStats {
@@ -130,12 +136,16 @@ impl FloatStats {
             );
         }
         format!(
-            "{:<20} {} {}x{}{} max abs {:.3e}{}; max rel {:.3e}{}; beyond limit {} of {}",
+            "{:<20} {} {}x{}{}{} max abs {:.3e}{}; max rel {:.3e}{}; beyond limit {} of {}",
             self.name,
             if self.passed() { "ok  " } else { "FAIL" },
             self.cpu_size.0,
             self.cpu_size.1,
             if self.ran { "" } else { " (skipped)" },
+            match self.format {
+                FrameFormat::Rgba32Float => "",
+                FrameFormat::Rgba16Float => " f16 (+1 step)",
+            },
             self.max_abs,
             at(&self.max_abs_at),
             self.max_rel,
@@ -156,8 +166,11 @@ impl FloatStats {
             "max_rel": self.max_rel, "max_rel_at": self.max_rel_at.map(Texel::to_json),
             "beyond_limit": self.beyond, "worst": self.worst.map(Texel::to_json),
             "values": self.values,
+            "format": self.format.name(),
             "limit": {"rel": FLOAT_REL, "abs": FLOAT_ABS,
-                      "origin": "DESIGN.md tolerance table, CPU vs GPU float buffers"},
+                      "half_steps": if self.format == FrameFormat::Rgba16Float { 1 } else { 0 },
+                      "origin": "DESIGN.md tolerance table, CPU vs GPU float buffers; one \
+                                 binary16 step on rgba16float buffers (ocean_core::frame_format)"},
         })
     }
 }
@@ -167,12 +180,29 @@ pub fn allowance(cpu: f32) -> f64 {
     FLOAT_ABS.max(FLOAT_REL * f64::from(cpu).abs())
 }
 
+/// The allowance of a CPU value stored in `format`: [`allowance`], or one binary16 step at
+/// the value where that is more (`rgba16float`).
+pub fn allowance_in(cpu: f32, format: FrameFormat) -> f64 {
+    allowance(cpu).max(f64::from(format.step(cpu)))
+}
+
 /// Compares two RGBA f32 buffers of `size` texels each (row-major).
 pub fn compare_float(
     name: &str,
     ran: bool,
     cpu: ((u32, u32), &[[f32; 4]]),
     gpu: ((u32, u32), &[[f32; 4]]),
+) -> FloatStats {
+    compare_float_in(name, ran, cpu, gpu, FrameFormat::Rgba32Float)
+}
+
+/// [`compare_float`] of two buffers of `format` ([`allowance_in`]).
+pub fn compare_float_in(
+    name: &str,
+    ran: bool,
+    cpu: ((u32, u32), &[[f32; 4]]),
+    gpu: ((u32, u32), &[[f32; 4]]),
+    format: FrameFormat,
 ) -> FloatStats {
     let mut s = FloatStats {
         name: name.to_owned(),
@@ -187,6 +217,7 @@ pub fn compare_float(
         beyond: 0,
         worst: None,
         values: 0,
+        format,
     };
     if cpu.0 != gpu.0 || cpu.1.len() != gpu.1.len() {
         s.beyond = 1;
@@ -223,7 +254,7 @@ pub fn compare_float(
                     s.max_rel_at = Some(texel);
                 }
             }
-            let ratio = err / allowance(a);
+            let ratio = err / allowance_in(a, format);
             if ratio > 1.0 {
                 s.beyond += 1;
                 if ratio > worst_ratio {

@@ -12,7 +12,8 @@ use ocean_gpu::{AdapterReport, FloatMap, FrameMap, GpuFrame, Renderer};
 use serde_json::{Value, json};
 
 use crate::compare::{
-    FloatStats, ImageLimits, ImageStats, allowance, compare_float, compare_image,
+    FloatStats, ImageLimits, ImageStats, allowance_in, compare_float, compare_float_in,
+    compare_image,
 };
 
 /// A CPU map by its resource id: (size, texels); `ldr` (not a float map) is empty.
@@ -163,8 +164,9 @@ pub fn check_plan(
             }
             _ => cpu_map(&cpu.buffers, which),
         };
+        let format = plan.resource(which).map_or(Default::default(), |r| r.format.storage());
         let mut stats = match gpu.map(which) {
-            Some(g) => compare_float(which.name(), ran, cpu_side, gpu_map(g)),
+            Some(g) => compare_float_in(which.name(), ran, cpu_side, gpu_map(g), format),
             None => compare_float(which.name(), ran, cpu_map(&cpu.buffers, which), ((0, 0), &[])),
         };
         stats.plan_size = plan.resource(which).map(|r| {
@@ -210,12 +212,16 @@ fn float_png(m: ((u32, u32), &[[f32; 4]])) -> Vec<u8> {
 
 /// A difference heat map of two same-size float maps: red = max channel |Δ| / allowance,
 /// 0 at the limit's 1/16, 255 at 16× the limit (log scale); green marks values beyond it.
-fn float_diff_png(cpu: &[[f32; 4]], gpu: &[[f32; 4]]) -> Vec<u8> {
+fn float_diff_png(
+    cpu: &[[f32; 4]],
+    gpu: &[[f32; 4]],
+    format: ocean_core::frame_format::FrameFormat,
+) -> Vec<u8> {
     cpu.iter()
         .zip(gpu)
         .flat_map(|(c, g)| {
             let ratio = (0..4)
-                .map(|k| (f64::from(g[k]) - f64::from(c[k])).abs() / allowance(c[k]))
+                .map(|k| (f64::from(g[k]) - f64::from(c[k])).abs() / allowance_in(c[k], format))
                 .fold(0.0f64, |a, b| if b.is_nan() { f64::INFINITY } else { a.max(b) });
             let red = ((ratio.max(1.0 / 16.0).log2() + 4.0) / 8.0 * 255.0).clamp(0.0, 255.0) as u8;
             [red, if ratio > 1.0 { 255 } else { 0 }, 0, 255]
@@ -271,7 +277,7 @@ pub fn write_artefacts(dir: &Path, check: &SceneCheck, renders: &Renders) -> std
             &dir.join(format!("{name}.{}.diff.png", m.name)),
             mw,
             mh,
-            float_diff_png(c.1, &g.texels),
+            float_diff_png(c.1, &g.texels, m.format),
         )?;
     }
     let text = serde_json::to_string_pretty(&check.to_json()).map_err(std::io::Error::other)?;

@@ -200,6 +200,8 @@ pub struct BloomInputs {
     pub down: Vec<crate::bloom::BloomUniforms>,
     /// Size of each level, level 0 first.
     pub levels: Vec<[u32; 2]>,
+    /// The chains' format: every texel written is stored through it.
+    pub format: crate::frame_format::FrameFormat,
 }
 
 impl BloomInputs {
@@ -216,7 +218,7 @@ impl BloomInputs {
                 crate::bloom::BloomUniforms::new(levels[k], src, exposure, threshold)
             })
             .collect();
-        Self { down, levels }
+        Self { down, levels, format: scene.frame_format() }
     }
 
     /// What the tonemap multiplies the up chain's level 0 by: strength / L
@@ -227,7 +229,11 @@ impl BloomInputs {
 
     /// The up chain's dispatch writing level `k` from level `k + 1`.
     pub fn up(&self, k: usize) -> crate::bloom::BloomUniforms {
-        crate::bloom::BloomUniforms::new(self.levels[k], self.levels[k + 1], 0.0, 0.0)
+        let mut u = crate::bloom::BloomUniforms::new(self.levels[k], self.levels[k + 1], 0.0, 0.0);
+        if self.format == crate::frame_format::FrameFormat::Rgba16Float {
+            u.store_max = crate::frame_format::HALF_MAX;
+        }
+        u
     }
 }
 

@@ -110,6 +110,7 @@ impl MemoryEstimate {
             let [w, h] = r.size.map(u64::from);
             let texel = match r.format {
                 Format::Rgba32Float => 16,
+                Format::Rgba16Float => 8,
                 Format::R32Float | Format::Rgba8Unorm => 4,
                 Format::Uniform => 1,
             };

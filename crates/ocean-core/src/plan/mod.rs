@@ -333,6 +333,9 @@ pub struct FramePlan {
     pub resources: Vec<Resource>,
     /// How the `waves` pass computes its maps.
     pub waves_kernel: WavesKernel,
+    /// The format of the frame's colour buffers (HDR frame, reflection and refraction maps,
+    /// bloom chains): the scene's `[post] frame_format` or the system's.
+    pub frame_format: crate::frame_format::FrameFormat,
     /// Side N of the N × N Fresnel textures (`[quality] fresnel_table_size`).
     pub fresnel_table_size: u32,
     /// Which view vectors the Fresnel textures' texels stand for: the grazing mapping, whose
@@ -533,6 +536,7 @@ impl FramePlan {
             resources: Vec::new(),
             passes: Vec::new(),
             skipped: Vec::new(),
+            frame_format: scene.frame_format(),
             fresnel_table_size: scene.quality.fresnel_table_size,
             fresnel_mapping: TextureMapping::Grazing,
             reflection_map_size: [scene.camera.width, scene.camera.height].map(|side| {
@@ -920,6 +924,8 @@ impl FramePlan {
         let viewport = [scene.camera.width, scene.camera.height];
         let o = &scene.ocean;
         let written = |id: ResourceId| id.writer().is_none_or(|p| self.runs(p));
+        // The frame's colour buffers (`crate::frame_format`); the other maps stay f32.
+        let frame = Format::of_frame(self.frame_format);
         let mut out = Vec::new();
         for id in ResourceId::ALL {
             let (format, size) = match id {
@@ -937,11 +943,11 @@ impl FramePlan {
                     (Format::Rgba32Float, [self.fresnel_table_size; 2])
                 }
                 ResourceId::ShadowMap => (Format::R32Float, [SHADOW_MAP_SIZE; 2]),
-                ResourceId::ReflectionMap => (Format::Rgba32Float, self.reflection_map_size),
-                ResourceId::RefractionMap => (Format::Rgba32Float, viewport),
-                ResourceId::Hdr => (Format::Rgba32Float, viewport),
+                ResourceId::ReflectionMap => (frame, self.reflection_map_size),
+                ResourceId::RefractionMap => (frame, viewport),
+                ResourceId::Hdr => (frame, viewport),
                 ResourceId::BloomDown | ResourceId::BloomUp => {
-                    (Format::Rgba32Float, crate::bloom::base_size(viewport[0], viewport[1]))
+                    (frame, crate::bloom::base_size(viewport[0], viewport[1]))
                 }
                 ResourceId::FoamField => (Format::Rgba32Float, {
                     let g =
@@ -1089,6 +1095,12 @@ impl fmt::Display for FramePlan {
             let by = if self.techniques.is_overridden(stage) { "  [techniques]" } else { "" };
             writeln!(f, "  stage {:<10} {:<16} {}{by}", stage.name(), t.name, t.source)?;
         }
+        writeln!(
+            f,
+            "  frame {:<10} {:<16} HDR frame, reflection/refraction maps, bloom chains",
+            "format",
+            self.frame_format.name()
+        )?;
         for p in &self.passes {
             writeln!(f, "  run   {:<15} {}", p.name.name(), p.reason)?;
         }

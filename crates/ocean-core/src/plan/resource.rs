@@ -157,12 +157,33 @@ impl ResourceId {
 pub enum Format {
     /// Four f32 channels.
     Rgba32Float,
+    /// Four binary16 channels (`crate::frame_format`).
+    Rgba16Float,
     /// One f32 channel.
     R32Float,
     /// 8-bit sRGB-encoded RGBA, stored as unorm.
     Rgba8Unorm,
     /// A uniform buffer (its size is [bytes, 1]).
     Uniform,
+}
+
+impl Format {
+    /// The format a frame colour buffer of `f` has.
+    pub fn of_frame(f: crate::frame_format::FrameFormat) -> Self {
+        match f {
+            crate::frame_format::FrameFormat::Rgba32Float => Format::Rgba32Float,
+            crate::frame_format::FrameFormat::Rgba16Float => Format::Rgba16Float,
+        }
+    }
+
+    /// What a store to a buffer of this format does to a value, as a frame format (f32 for
+    /// every format but `rgba16float`: the others hold f32 or are not float buffers).
+    pub fn storage(self) -> crate::frame_format::FrameFormat {
+        match self {
+            Format::Rgba16Float => crate::frame_format::FrameFormat::Rgba16Float,
+            _ => crate::frame_format::FrameFormat::Rgba32Float,
+        }
+    }
 }
 
 /// A resource as the plan sizes it.

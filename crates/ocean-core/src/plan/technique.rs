@@ -9,6 +9,7 @@
 
 use std::fmt;
 
+use crate::frame_format::FrameFormat;
 use serde::{Deserialize, Serialize};
 
 /// A stage of the technique table, in DESIGN.md's order.
@@ -168,6 +169,8 @@ pub struct SystemInfo {
     pub paper: &'static str,
     /// Its technique per stage, in [`Stage::ALL`] order.
     pub techniques: [&'static str; 8],
+    /// The format of its frame's colour buffers where the scene does not choose one.
+    pub frame_format: crate::frame_format::FrameFormat,
 }
 
 /// The systems, one per seed paper (DESIGN.md). A stage a paper does not name keeps the
@@ -178,6 +181,7 @@ pub const SYSTEMS: &[SystemInfo] = &[
         name: "hu",
         paper: "Hu, Velho, Tong, Guo & Shum 2004 (seed 000)",
         techniques: ["fft", "hu_patches", "hu", "preetham", "variance", "none", "none", "tonemap"],
+        frame_format: FrameFormat::Rgba32Float,
     },
     SystemInfo {
         system: System::Chiu,
@@ -195,6 +199,7 @@ pub const SYSTEMS: &[SystemInfo] = &[
             "particles",
             "tonemap",
         ],
+        frame_format: FrameFormat::Rgba32Float,
     },
     SystemInfo {
         system: System::Welch,
@@ -213,6 +218,8 @@ pub const SYSTEMS: &[SystemInfo] = &[
             "none",
             "bloom",
         ],
+        // "works with 16-bit precision floats in all the frame buffers" (seed 002 §post).
+        frame_format: FrameFormat::Rgba16Float,
     },
     SystemInfo {
         system: System::Coastal,
@@ -228,6 +235,7 @@ pub const SYSTEMS: &[SystemInfo] = &[
             "none",
             "tonemap",
         ],
+        frame_format: FrameFormat::Rgba32Float,
     },
 ];
 

@@ -489,6 +489,10 @@ pub struct Post {
     /// Post `bloom`: levels of the blur pyramid (each twice as wide as the one before), at
     /// most as many as the frame's half size has.
     pub bloom_levels: u32,
+    /// The format of the frame's colour buffers (`rgba32float` or `rgba16float`,
+    /// `crate::frame_format`); left out, the system's (`welch`: `rgba16float`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub frame_format: Option<crate::frame_format::FrameFormat>,
 }
 
 impl Default for Post {
@@ -499,6 +503,7 @@ impl Default for Post {
             bloom_threshold: 1.0,
             bloom_strength: 0.1,
             bloom_levels: 5,
+            frame_format: None,
         }
     }
 }
@@ -793,6 +798,11 @@ impl Scene {
     pub fn techniques(&self) -> crate::plan::Techniques {
         crate::plan::Techniques::with_overrides(self.system, self.techniques.iter())
             .unwrap_or_else(|_| crate::plan::Techniques::of_system(self.system))
+    }
+
+    /// The format of the frame's colour buffers: `[post] frame_format`, else the system's.
+    pub fn frame_format(&self) -> crate::frame_format::FrameFormat {
+        self.post.frame_format.unwrap_or(self.system.info().frame_format)
     }
 
     /// The scene rendered with another system: `system` replaced, `[techniques]` kept.

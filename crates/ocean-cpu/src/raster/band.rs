@@ -4,6 +4,8 @@
 //! every pixel sees exactly the sequence of fragments the serial algorithm would give it,
 //! whatever thread runs the band.
 
+use ocean_core::frame_format::FrameFormat;
+
 use super::FragmentInput;
 use super::setup::TriangleSetup;
 use super::state::RasterState;
@@ -21,6 +23,8 @@ pub struct Band {
     pub rows: u32,
     /// Target width.
     pub width: u32,
+    /// The target's colour format: what a blended colour is stored as.
+    pub format: FrameFormat,
 }
 
 /// Rasterizes the triangles `bin` (indices into `tris`, increasing) into one band's colour and
@@ -50,7 +54,12 @@ pub fn raster_band<const V: usize, F>(
             }
             for x in span.0..=span.1 {
                 let i = row + x as usize;
-                shade_pixel(x, yi, tri, &mut color[i], &mut depth[i], state, shader);
+                if let Some(c) = shade_pixel(x, yi, tri, color[i], &mut depth[i], state, shader) {
+                    // Blending read the stored value and worked in f32; the result is stored
+                    // in the target's format (truncated to binary16 for `rgba16float`), as
+                    // the GPU's blend unit writes it.
+                    color[i] = band.format.store4(c);
+                }
             }
         }
     }
@@ -67,17 +76,18 @@ pub fn raster_band<const V: usize, F>(
 ///
 /// with x, y the integer pixel coordinates. The depth test runs before the shader (the shader
 /// cannot write depth and its result does not depend on whether it ran, so this equals the
-/// late test); a discarded fragment writes nothing.
+/// late test); a discarded fragment writes nothing (`None`); otherwise the blended colour.
 #[inline]
 fn shade_pixel<const V: usize, F>(
     x: i64,
     y: i64,
     tri: &TriangleSetup<V>,
-    color: &mut [f32; 4],
+    color: [f32; 4],
     depth: &mut f32,
     state: &RasterState,
     shader: &F,
-) where
+) -> Option<[f32; 4]>
+where
     F: Fn(&FragmentInput<V>) -> Option<[f32; 4]>,
 {
     debug_assert!(
@@ -88,7 +98,7 @@ fn shade_pixel<const V: usize, F>(
     let z = tri.z.at(xf, yf);
     let frag_depth = z.clamp(0.0, 1.0);
     if !state.depth_compare.passes(frag_depth, *depth) {
-        return;
+        return None;
     }
 
     let s = tri.inv_w.at(xf, yf);
@@ -98,11 +108,9 @@ fn shade_pixel<const V: usize, F>(
         varyings: std::array::from_fn(|k| tri.varyings[k].at(xf, yf) * inv_s),
         front_facing: tri.front_facing,
     };
-    let Some(src) = shader(&input) else {
-        return;
-    };
+    let src = shader(&input)?;
     if state.depth_write {
         *depth = frag_depth;
     }
-    *color = state.blend.apply(src, *color);
+    Some(state.blend.apply(src, color))
 }

@@ -18,7 +18,7 @@
 //!    pixel (0, 0) (`setup.rs`), depth linear in screen space, varyings perspective-correct
 //!    (the formulas are on `shade_pixel` in `band.rs`); bit for bit what lavapipe computes.
 //! 7. **Depth test** on the f32 depth buffer, **shading** by a closure (which may discard),
-//!    **blending** into the f32 RGBA target.
+//!    **blending** into the RGBA target, stored in its format (f32, or rounded to binary16).
 //!
 //! Parallelism: the target is split into bands of [`BAND_ROWS`] rows; each band draws the
 //! triangles that overlap it, in submission order, on whatever rayon thread runs it. Bands are
@@ -152,6 +152,7 @@ fn draw_with<const V: usize, F>(
     }
 
     let band_len = (BAND_ROWS * width) as usize;
+    let format = target.format;
     target
         .color
         .par_chunks_mut(band_len)
@@ -160,7 +161,7 @@ fn draw_with<const V: usize, F>(
         .enumerate()
         .for_each(|(k, ((color, depth), bin))| {
             let y0 = k as u32 * BAND_ROWS;
-            let band = Band { y0, rows: BAND_ROWS.min(height - y0), width };
+            let band = Band { y0, rows: BAND_ROWS.min(height - y0), width, format };
             raster_band(band, color, depth, &tris, bin, state, &shader);
         });
 }

@@ -1,4 +1,7 @@
-//! The render target: an f32 RGBA colour buffer and an f32 depth buffer.
+//! The render target: an RGBA colour buffer (f32, or f32 values rounded to binary16 for an
+//! `rgba16float` target) and an f32 depth buffer.
+
+use ocean_core::frame_format::FrameFormat;
 
 /// An f32 RGBA colour buffer with an f32 depth buffer, both row-major with row 0 at the top
 /// (framebuffer y down, as in wgpu): pixel (x, y) is at index `y · width + x`.
@@ -12,6 +15,9 @@ pub struct RenderTarget {
     pub color: Vec<[f32; 4]>,
     /// Depth, `width · height` values.
     pub depth: Vec<f32>,
+    /// The colour buffer's format: every colour written (blended fragments, clears) goes
+    /// through [`FrameFormat::store`], so an `rgba16float` target holds binary16 values.
+    pub format: FrameFormat,
 }
 
 impl RenderTarget {
@@ -31,12 +37,26 @@ impl RenderTarget {
             Self::MAX_SIZE
         );
         let n = width as usize * height as usize;
-        Self { width, height, color: vec![[0.0; 4]; n], depth: vec![1.0; n] }
+        Self {
+            width,
+            height,
+            color: vec![[0.0; 4]; n],
+            depth: vec![1.0; n],
+            format: FrameFormat::Rgba32Float,
+        }
     }
 
-    /// Sets every colour texel to `color`.
+    /// [`Self::new`] with a colour buffer of `format`.
+    ///
+    /// # Panics
+    /// As [`Self::new`].
+    pub fn with_format(width: u32, height: u32, format: FrameFormat) -> Self {
+        Self { format, ..Self::new(width, height) }
+    }
+
+    /// Sets every colour texel to `color` (as the format stores it, as a GPU's clear does).
     pub fn clear_color(&mut self, color: [f32; 4]) {
-        self.color.fill(color);
+        self.color.fill(self.format.store4(color));
     }
 
     /// Sets every depth value to `depth`.

@@ -2,6 +2,7 @@
 //! level by level as the compute stage writes it. The steps and why: `ocean_core::bloom`.
 
 use ocean_core::bloom::BloomUniforms;
+use ocean_core::frame_format::FrameFormat;
 use ocean_core::plan::BloomInputs;
 use rayon::prelude::*;
 
@@ -66,19 +67,31 @@ pub fn upsample_at(coarse: &Texture2D, p: [i32; 2]) -> Vec3 {
 }
 
 /// `upsample(id)`: texel `id` of `up[k]` = `detail` (`down[k]`) + the upsample of `coarse`
-/// (`up[k + 1]`).
-pub fn upsample(id: [u32; 2], detail: &Texture2D, coarse: &Texture2D) -> Vec3 {
+/// (`up[k + 1]`), at most `params.store_max`.
+pub fn upsample(
+    id: [u32; 2],
+    params: &BloomUniforms,
+    detail: &Texture2D,
+    coarse: &Texture2D,
+) -> Vec3 {
     let d = detail.texel(id[0], id[1]);
-    Vec3::from([d[0], d[1], d[2]]) + upsample_at(coarse, [id[0] as i32, id[1] as i32])
+    let sum = Vec3::from([d[0], d[1], d[2]]) + upsample_at(coarse, [id[0] as i32, id[1] as i32]);
+    min(sum, Vec3::splat(params.store_max))
 }
 
-/// One dispatch over a `w` × `h` level: `f` at every texel, rows in parallel, alpha 1.
-fn dispatch_level(w: u32, h: u32, f: impl Fn([u32; 2]) -> Vec3 + Sync) -> Texture2D {
+/// One dispatch over a `w` × `h` level: `f` at every texel, rows in parallel, alpha 1, each
+/// texel stored in the chain's `format` (a storage-texture write).
+fn dispatch_level(
+    w: u32,
+    h: u32,
+    format: FrameFormat,
+    f: impl Fn([u32; 2]) -> Vec3 + Sync,
+) -> Texture2D {
     let mut texels = vec![[0.0f32; 4]; w as usize * h as usize];
     texels.par_chunks_mut(w as usize).enumerate().for_each(|(j, row)| {
         for (i, t) in row.iter_mut().enumerate() {
             let v = f([i as u32, j as u32]);
-            *t = [v.x, v.y, v.z, 1.0];
+            *t = format.store4([v.x, v.y, v.z, 1.0]);
         }
     });
     Texture2D::new(w, h, texels)
@@ -92,7 +105,9 @@ pub fn dispatch(hdr: &Texture2D, inputs: &BloomInputs) -> (MipChain, MipChain) {
     let mut down_levels: Vec<Texture2D> = Vec::with_capacity(inputs.down.len());
     for (k, params) in inputs.down.iter().enumerate() {
         let src = if k == 0 { hdr } else { &down_levels[k - 1] };
-        let t = dispatch_level(params.width, params.height, |id| down(id, params, src, k == 0));
+        let t = dispatch_level(params.width, params.height, inputs.format, |id| {
+            down(id, params, src, k == 0)
+        });
         down_levels.push(t);
     }
     let count = down_levels.len();
@@ -101,7 +116,9 @@ pub fn dispatch(hdr: &Texture2D, inputs: &BloomInputs) -> (MipChain, MipChain) {
         let params = inputs.up(k);
         let coarse = &up_levels[0];
         let detail = &down_levels[k];
-        let t = dispatch_level(params.width, params.height, |id| upsample(id, detail, coarse));
+        let t = dispatch_level(params.width, params.height, inputs.format, |id| {
+            upsample(id, &params, detail, coarse)
+        });
         up_levels.insert(0, t);
     }
     (MipChain::from_levels(&down_levels), MipChain::from_levels(&up_levels))
