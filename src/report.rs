@@ -231,6 +231,15 @@ const KNOBS: &[Knob] = &[
         measure: techniques::measure_post,
     },
     Knob {
+        name: "frame_format",
+        varies: "the frame's colour buffers ([post] frame_format: rgba32float, rgba16float as \
+                 seed 002) on the default scene: frame time on the CPU and the GPU, and the mean \
+                 |Δ log(1 + L)| of the f16 HDR frame against the f32 one",
+        steps: techniques::frame_format_steps,
+        ordered: false,
+        measure: techniques::measure_frame_format,
+    },
+    Knob {
         name: "lod",
         varies: "near-patch refinement threshold ([quality] lod_split_threshold, radians): \
                  image error against the finest, CPU frame time",

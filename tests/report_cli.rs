@@ -48,6 +48,7 @@ fn csv_problems(text: &str) -> Vec<String> {
         "far_field",
         "shading",
         "post",
+        "frame_format",
         "lod",
     ] {
         if !knobs.contains(&want) {

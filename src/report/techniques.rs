@@ -25,6 +25,22 @@ pub(super) fn post_steps(ctx: &Ctx) -> u64 {
     steps(ctx, 2)
 }
 
+/// Steps of the `frame_format` knob.
+pub(super) fn frame_format_steps(ctx: &Ctx) -> u64 {
+    steps(ctx, 2)
+}
+
+/// The `frame_format` knob: the frame's colour buffers in `rgba32float` and `rgba16float`
+/// (seed 002) on the default scene (HDR): frame time on both back ends, and the mean
+/// |Δ log(1 + L)| of the f16 frame against the f32 one (what the truncation to binary16 and
+/// its f16 reflection and refraction maps cost the picture).
+pub(super) fn measure_frame_format(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
+    use ocean_core::frame_format::FrameFormat;
+    let settings = FrameFormat::ALL
+        .map(|f| (f.name(), Box::new(move |s: &mut Scene| s.post.frame_format = Some(f)) as Edit));
+    measure(ctx, "frame_format", OutputKind::Hdr, "log_l_change", &settings)
+}
+
 /// The `shading` knob: `hu`, `chiu` and `ggx` on the default scene (HDR): frame time on both
 /// back ends, and mean |Δ log(1 + L)| over the frame against `hu`'s.
 pub(super) fn measure_shading(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
