@@ -27,8 +27,9 @@
 //! - the engine's thrust, on the engine point, along the boat's forward axis turned by the
 //!   steering angle about its up axis, and only while the engine point is under water (a
 //!   propeller in the air pushes nothing). Thrust low in the stern, below the centre of mass,
-//!   lifts the bow when the boat speeds up and dips it when it slows ("This makes the front of
-//!   the boot going up if you accelerate and going down if you decelerate").
+//!   lifts the bow when it drives the boat ahead and dips it when it brakes (throttle astern):
+//!   "This makes the front of the boot going up if you accelerate and going down if you
+//!   decelerate".
 //!
 //! Nine pairwise distances of the five points are held at their rest lengths ("to hold the
 //! ship together … replace each vertex according to the coordinates of the other vertices in
@@ -440,7 +441,9 @@ impl Boat {
         for _ in 0..substeps {
             self.substep(water, h);
         }
-        self.time_s += dt_s;
+        // The clock stops at the largest f64 rather than becoming infinite (only absurd steps
+        // get there), so the time a surface is asked for stays finite.
+        self.time_s = (self.time_s + dt_s).min(f64::MAX);
         substeps as f64 * h
     }
 

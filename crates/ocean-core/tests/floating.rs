@@ -313,6 +313,9 @@ fn hostile_inputs_stay_finite() {
     eprintln!("a 1e9 s step simulated {simulated} s");
     assert!(simulated > 0.0 && simulated < 1e9 && simulated.is_finite(), "{simulated}");
     assert_eq!(huge.time_s(), 1e9);
+    huge.step(&flat, f64::MAX);
+    assert_eq!(huge.time_s(), f64::MAX, "the clock saturates instead of overflowing");
+    assert_finite(&huge);
     assert_finite(&huge);
     // A step that fits the sub-step budget is simulated in full.
     let mut fits = start.clone();
