@@ -23,6 +23,7 @@ pub mod detail;
 pub mod dispersion;
 pub mod error;
 pub mod far_field;
+pub mod floating;
 pub mod foam;
 pub mod frame;
 pub mod frame_format;
