@@ -312,3 +312,132 @@ fn the_relief_shadows_itself_as_an_independent_march_finds() {
     // The picture uses it: the plan draws the floor and the frame marks the relief.
     assert!(r.plan.runs(Pass::RefractionMap) && u.terrain.floor[3] == 1.0);
 }
+
+// ---------------------------------------------------------------------------------------
+// `kind = "island"` (issue 15): the profile, the relief made from it, and its validation.
+
+/// The test island, with `extra` (`key = value` lines) replacing or adding keys.
+fn island_scene(extra: &str) -> Result<Scene, SceneError> {
+    let mut lines: Vec<String> = [
+        "kind = \"island\"",
+        "depth_m = 10.0",
+        "center = [30.0, -20.0]",
+        "extent_m = 420.0",
+        "island_radius_m = 60.0",
+        "island_height_m = 12.0",
+        "shore_slope = 0.08",
+    ]
+    .map(String::from)
+    .to_vec();
+    for line in extra.lines() {
+        let key = line.split('=').next().unwrap_or("").trim();
+        lines.retain(|l| l.split('=').next().unwrap_or("").trim() != key);
+        lines.push(line.to_owned());
+    }
+    Scene::from_toml(&format!("[terrain]\n{}\n", lines.join("\n")), SceneSource::Text)
+}
+
+/// The profile written here from its documented formula in f64, independently of the crate.
+fn profile(r: f64) -> f64 {
+    let (h, big_r, s, d) = (12.0, 60.0, 0.08, 10.0);
+    if r <= big_r {
+        let u: f64 = r / big_r;
+        s * (big_r - r) + (h - s * big_r) * (1.0 - u * u).powi(2)
+    } else {
+        -(s * (r - big_r)).min(d)
+    }
+}
+
+#[test]
+fn the_island_has_its_top_waterline_shore_slope_and_floor() {
+    use ocean_core::terrain::{island_height, island_reach};
+    let scene = island_scene("").unwrap();
+    let t = scene.terrain.as_ref().unwrap();
+    // The top, the waterline and the floor beyond the shore's foot (R + d/s = 185 m).
+    assert_eq!(island_height(t, 0.0), 12.0);
+    assert_eq!(island_height(t, 60.0), 0.0);
+    assert_eq!(island_reach(t), 185.0);
+    assert_eq!(island_height(t, 185.0), -10.0);
+    assert_eq!(island_height(t, 300.0), -10.0);
+    // The slope is s on both sides of the waterline: central differences of step e = 1e-4 m
+    // centred e from it see the slope there, which the hill's curvature y'' = 8(H − sR)/R²
+    // = 0.016 /m moves by 1.6e-6 (0 on the straight shore); round-off adds ~1e-12/e.
+    let e = 1e-4;
+    for r in [60.0 - e, 60.0 + e] {
+        let slope = (island_height(t, r + e) - island_height(t, r - e)) / (2.0 * e);
+        assert!((slope + 0.08).abs() < 2e-6, "slope {slope} at {r}");
+    }
+    // Monotone from the top down to the floor (H ≥ s·R), and equal to the formula here.
+    let mut last = f64::INFINITY;
+    for i in 0..=4000 {
+        let r = f64::from(i) * 0.05;
+        let y = island_height(t, r);
+        assert!(y <= last, "rises at {r}");
+        assert!((y - profile(r)).abs() < 1e-12, "{r}: {y} against {}", profile(r));
+        last = y;
+    }
+}
+
+#[test]
+fn the_drawn_relief_is_the_profile_within_the_bilinear_bound() {
+    use ocean_core::terrain::{ISLAND_TEXEL_M, island_height};
+    let scene = island_scene("").unwrap();
+    let t = scene.terrain.as_ref().unwrap();
+    let relief = t.relief().expect("made at load");
+    let step = 420.0 / f64::from(relief.width - 1);
+    assert!(step <= ISLAND_TEXEL_M + 1e-12 || relief.width == 1025, "{step}");
+    // Bilinear interpolation of a C¹ function errs by at most step²/8 · (|y_xx| + |y_zz|);
+    // the profile's second derivative is at most 4(H − sR)/R² · 3 on the hill (|d²/dr² of
+    // (1 − u²)²| ≤ 12/R² at u = 1, 4/R² at the top) and 0 on the shore, except at the shore's
+    // foot, where the slope breaks from s to 0 within one texel, and at the top's cone (slope
+    // s on every side): there the bound is s·step/2 per axis.
+    // Plus the relief's f32 heights (ulp of 22 m, 2e-6 m).
+    let curvature = 12.0 * (12.0 - 0.08 * 60.0) / (60.0f64 * 60.0);
+    let smooth = step * step / 8.0 * 2.0 * curvature + 4e-6;
+    let kink = 0.08 * step / 2.0 * 2.0f64.sqrt() + 4e-6;
+    let (mut worst_smooth, mut worst_kink) = (0.0f64, 0.0f64);
+    let mut k = 0u64;
+    for i in 0..20_000u64 {
+        // A fixed quasi-random walk over the drawn square (Weyl sequence).
+        k = k.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let (a, b) = ((i as f64 * 0.618_034) % 1.0, (k >> 11) as f64 / (1u64 << 53) as f64);
+        let (x, z) = (30.0 + (a - 0.5) * 400.0, -20.0 + (b - 0.5) * 400.0);
+        let r = (x - 30.0f64).hypot(z + 20.0);
+        let err = (t.height(x, z) - island_height(t, r)).abs();
+        if (r - 185.0).abs() < 2.0 * step || r < 2.0 * step {
+            worst_kink = worst_kink.max(err);
+        } else {
+            worst_smooth = worst_smooth.max(err);
+        }
+    }
+    println!(
+        "island relief {}²: worst {worst_smooth:.2e} m (bound {smooth:.2e}), at the shore's foot {worst_kink:.2e} (bound {kink:.2e})",
+        relief.width
+    );
+    assert!(worst_smooth <= smooth, "{worst_smooth} > {smooth}");
+    assert!(worst_kink <= kink, "{worst_kink} > {kink}");
+    // Negative control: a wider island is another floor.
+    let wide = island_scene("island_radius_m = 70.0").unwrap();
+    let w = wide.terrain.as_ref().unwrap();
+    assert!((w.height(30.0 + 65.0, -20.0) - t.height(30.0 + 65.0, -20.0)).abs() > 0.3);
+}
+
+#[test]
+fn islands_are_validated_with_the_key_and_the_reason() {
+    let err = |extra: &str| island_scene(extra).unwrap_err().to_string();
+    let e = err("extent_m = 300.0");
+    assert!(e.contains("terrain.extent_m") && e.contains("370"), "{e}");
+    let e = err("depth_m = -1.0");
+    assert!(e.contains("terrain.depth_m"), "{e}");
+    let e = err("shore_slope = 0.0");
+    assert!(e.contains("terrain.shore_slope"), "{e}");
+    let e = err("heightmap = \"x.png\"");
+    assert!(e.contains("terrain.heightmap"), "{e}");
+    let e = err("island_radius_m = nan");
+    assert!(e.contains("terrain.island_radius_m"), "{e}");
+    // The plan names the island.
+    let scene = island_scene("").unwrap();
+    let plan = ocean_core::plan::FramePlan::new(&scene, OutputKind::Ldr);
+    let refraction = plan.passes.iter().find(|p| p.name == Pass::RefractionMap).unwrap();
+    assert!(refraction.reason.contains("island 120 m across"), "{}", refraction.reason);
+}

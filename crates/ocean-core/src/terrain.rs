@@ -190,8 +190,17 @@ impl Terrain {
     /// [`crate::scene::Scene::load`] read the file).
     pub fn relief(&self) -> Option<&Relief> {
         match self.kind {
-            TerrainKind::Heightmap => self.relief.as_deref(),
+            TerrainKind::Heightmap | TerrainKind::Island => self.relief.as_deref(),
             TerrainKind::Plane => None,
+        }
+    }
+
+    /// Makes what the floor's kind computes rather than reads: an island's relief, from its
+    /// profile ([`island_relief`]), again when its keys changed. Loading a scene calls it; a
+    /// caller that builds or edits a floor calls it before drawing.
+    pub fn prepare(&mut self) {
+        if self.kind == TerrainKind::Island {
+            self.relief = Some(Arc::new(island_relief(self)));
         }
     }
 
@@ -249,6 +258,59 @@ impl Terrain {
         let (qx, qz) = self.mesh_quads();
         2 * u64::from(qx) * u64::from(qz)
     }
+}
+
+/// Finest texel of an island's relief, m: fine enough for the waterline's wet band.
+pub const ISLAND_TEXEL_M: f64 = 0.25;
+/// Most texels per side of an island's relief (1025² f32 RGBA: 16.8 MB per back end).
+pub const MAX_ISLAND_SIDE: u32 = 1025;
+
+/// How far from its centre an island's shore meets the floor, m: R + d/s (with d ≤ 0, R).
+pub fn island_reach(t: &Terrain) -> f64 {
+    t.island_radius_m + t.depth_m.max(0.0) / t.shore_slope
+}
+
+/// The island's profile: the height (y, m) of the floor at distance `r` from its centre, on
+/// a flat floor `d` = `depth_m` deep, with H = `island_height_m`, R = `island_radius_m`,
+/// s = `shore_slope`:
+///
+/// ```text
+/// r ≤ R:  y = s·(R − r) + (H − s·R)·(1 − u²)²,  u = r/R   (the top H at r = 0, 0 at R)
+/// r > R:  y = −min(s · (r − R), d)                        (a straight shore to the floor)
+/// ```
+///
+/// The hill's term has zero slope at the waterline, so the slope there is s on both sides:
+/// the beach is one slope through the water's edge, which is where waves run up. With
+/// H ≥ s·R the land rises monotonically to a top whose cone has slope s (4.6° at s = 0.08);
+/// a lower H makes a dip behind the beach (a lagoon when it falls below 0). H = 0 and R = 0:
+/// no land, the shore starts at the centre.
+pub fn island_height(t: &Terrain, r: f64) -> f64 {
+    let (h, big_r, s, d) = (t.island_height_m, t.island_radius_m, t.shore_slope, t.depth_m);
+    if r <= big_r && big_r > 0.0 {
+        let u = r / big_r;
+        let hill = (1.0 - u * u) * (1.0 - u * u);
+        s * (big_r - r) + (h - s * big_r) * hill
+    } else {
+        -(s * (r - big_r).max(0.0)).min(d)
+    }
+}
+
+/// The relief of `kind = "island"`: [`island_height`] + `depth_m` (the relief is added to
+/// the plane, which lies `depth_m` down) at texel centres over the drawn square, at most
+/// [`ISLAND_TEXEL_M`] apart and [`MAX_ISLAND_SIDE`] per side.
+pub fn island_relief(t: &Terrain) -> Relief {
+    let n = ((t.extent_m / ISLAND_TEXEL_M).ceil() as u32 + 1).clamp(2, MAX_ISLAND_SIDE);
+    let step = t.extent_m / f64::from(n - 1);
+    let (x0, z0) = (-0.5 * t.extent_m, -0.5 * t.extent_m);
+    let heights: Vec<f32> = (0..n * n)
+        .map(|i| {
+            let (x, z) = (x0 + f64::from(i % n) * step, z0 + f64::from(i / n) * step);
+            (island_height(t, x.hypot(z)) + t.depth_m) as f32
+        })
+        .collect();
+    let lo = heights.iter().copied().fold(f32::INFINITY, f32::min);
+    let hi = heights.iter().copied().fold(f32::NEG_INFINITY, f32::max);
+    Relief { width: n, height: n, heights, range: (lo, hi) }
 }
 
 /// Triangles of the sea floor's drawn square, camera-relative, counter-clockwise seen from

@@ -1115,6 +1115,15 @@ impl fmt::Display for FramePlan {
 fn floor_reason(scene: &Scene) -> String {
     match scene.terrain.as_ref() {
         Some(t) => match t.relief() {
+            Some(r) if t.kind == crate::scene::TerrainKind::Island => format!(
+                "the sea floor ([terrain], an island {:.0} m across, {:.0} m high, its relief \
+                 {}×{}, {} triangles)",
+                2.0 * t.island_radius_m,
+                t.island_height_m,
+                r.width,
+                r.height,
+                t.mesh_triangles()
+            ),
             Some(r) => format!(
                 "the sea floor ([terrain], a {}×{} heightmap, {} triangles)",
                 r.width,

@@ -582,7 +582,8 @@ impl Default for Spray {
     }
 }
 
-/// What a sea floor is (`kind = "plane"` or `"heightmap"`).
+/// What a sea floor is (`kind = "plane"`, `"island"` or `"heightmap"`). A sloping beach is a
+/// `plane` with a `slope`: the waterline runs where it reaches the sea plane.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum TerrainKind {
@@ -593,6 +594,11 @@ pub enum TerrainKind {
     /// The plane plus a relief read from `heightmap` (a 16-bit grayscale PNG or an EXR) over
     /// the square of side `extent_m`, its samples mapped onto `height_range_m`.
     Heightmap,
+    /// A round island about `center` rising from the plane (`crate::terrain::island_height`
+    /// has the profile): `island_height_m` above the sea at its top, the waterline at
+    /// `island_radius_m` (on a flat floor), sloping into the water by `shore_slope` down to
+    /// the floor `depth_m` deep. Drawn through a relief made from the profile at load.
+    Island,
 }
 
 /// The `[terrain]` table: the sea floor (DESIGN.md; [`crate::terrain`] has its geometry).
@@ -622,7 +628,15 @@ pub struct Terrain {
     pub heightmap: Option<PathBuf>,
     /// The relief's height at sample 0 and at sample 1 (65535 in a PNG), m, added to the plane.
     pub height_range_m: [f64; 2],
-    /// The relief read from `heightmap` when the scene was loaded.
+    /// `kind = "island"`: the waterline's radius on a flat floor, m.
+    pub island_radius_m: f64,
+    /// `kind = "island"`: the island's top above the sea plane, m.
+    pub island_height_m: f64,
+    /// `kind = "island"`: the fall of the shore per metre at the waterline and below it,
+    /// down to the floor.
+    pub shore_slope: f64,
+    /// The relief read from `heightmap`, or made from the island's profile, when the scene
+    /// was loaded (or by [`Terrain::prepare`]).
     #[serde(skip)]
     pub relief: Option<std::sync::Arc<crate::terrain::Relief>>,
 }
@@ -639,6 +653,9 @@ impl Default for Terrain {
             color: [0.76, 0.70, 0.50],
             heightmap: None,
             height_range_m: [0.0, 1.0],
+            island_radius_m: 60.0,
+            island_height_m: 12.0,
+            shore_slope: 0.08,
             relief: None,
         }
     }
@@ -783,12 +800,13 @@ impl Scene {
             SceneSource::File(p) => p.parent().map(Path::to_owned).unwrap_or_default(),
             SceneSource::BuiltIn | SceneSource::Text => PathBuf::new(),
         };
-        if let Some(t) = &mut self.terrain
-            && let (TerrainKind::Heightmap, Some(path)) = (t.kind, &t.heightmap)
-        {
-            let relief = crate::terrain::load_relief(path, &base, t.height_range_m)
-                .map_err(|e| ("terrain.heightmap".to_owned(), e))?;
-            t.relief = Some(relief);
+        if let Some(t) = &mut self.terrain {
+            if let (TerrainKind::Heightmap, Some(path)) = (t.kind, &t.heightmap) {
+                let relief = crate::terrain::load_relief(path, &base, t.height_range_m)
+                    .map_err(|e| ("terrain.heightmap".to_owned(), e))?;
+                t.relief = Some(relief);
+            }
+            t.prepare();
         }
         Ok(())
     }

@@ -208,6 +208,9 @@ pub const LIMITS: &[Limit] = &[
         1.0e4,
         "m at heightmap samples 0 and 1, added to the plane",
     ),
+    real("terrain.island_radius_m", 0.0, 1.0e4, "m, the island's waterline on a flat floor"),
+    real("terrain.island_height_m", 0.0, 1.0e4, "m, the island's top above the sea plane"),
+    real("terrain.shore_slope", 1.0e-3, 10.0, "fall per metre of the island's shore"),
     real("ggx.roughness", 0.01, 1.0, "perceptual; α = roughness²"),
     real("ggx.detail_strength", 0.0, 1.0, "RMS slope of the detail normal map; 0 leaves it out"),
     real("ggx.detail_wavelength_m", 1.0e-3, 100.0, "m, the detail map's median wavelength"),
@@ -382,6 +385,34 @@ impl Scene {
             check("terrain.extent_m", &[t.extent_m])?;
             check("terrain.color", &t.color)?;
             check("terrain.height_range_m", &t.height_range_m)?;
+            check("terrain.island_radius_m", &[t.island_radius_m])?;
+            check("terrain.island_height_m", &[t.island_height_m])?;
+            check("terrain.shore_slope", &[t.shore_slope])?;
+            if t.kind == crate::scene::TerrainKind::Island {
+                let reach = crate::terrain::island_reach(t);
+                if t.extent_m < 2.0 * reach {
+                    return Err((
+                        "terrain.extent_m".into(),
+                        format!(
+                            "the island's shore meets the floor {reach:.1} m from its centre \
+                             (island_radius_m + depth_m / shore_slope); extent_m = {} cuts it \
+                             off: it must be at least {:.1}",
+                            t.extent_m,
+                            2.0 * reach
+                        ),
+                    ));
+                }
+                if t.depth_m <= 0.0 {
+                    return Err((
+                        "terrain.depth_m".into(),
+                        format!(
+                            "an island rises from a floor below the sea: depth_m must be \
+                             positive, got {}",
+                            t.depth_m
+                        ),
+                    ));
+                }
+            }
             match (t.kind, &t.heightmap) {
                 (crate::scene::TerrainKind::Heightmap, None) => {
                     return Err((
@@ -391,10 +422,15 @@ impl Scene {
                             .into(),
                     ));
                 }
-                (crate::scene::TerrainKind::Plane, Some(_)) => {
+                (
+                    kind @ (crate::scene::TerrainKind::Plane | crate::scene::TerrainKind::Island),
+                    Some(_),
+                ) => {
+                    let name =
+                        if kind == crate::scene::TerrainKind::Plane { "plane" } else { "island" };
                     return Err((
                         "terrain.heightmap".into(),
-                        "a `plane` floor has no heightmap (set `kind = \"heightmap\"`)".into(),
+                        format!("a `{name}` floor has no heightmap (set `kind = \"heightmap\"`)"),
                     ));
                 }
                 _ => {}
