@@ -173,14 +173,15 @@ fn vs_clipmap(@builtin(vertex_index) k: u32) -> VertexOut {
     let malpha = clamp((mdist - c.morph_start) * c.inv_band, 0.0, 1.0);
     let spacing = e.z * (1.0 + malpha) * c.cell_m;
     let uv = map_uvs(pos);
+    // Waves `gerstner` sum their own displacement: no map to fetch.
+    if (frame.gerstner.count > 0.0) {
+        return displaced_vertex(pos, gerstner_displacement_filtered(pos, spacing), uv, 1.0);
+    }
     var d = textureSampleLevel(displacement, wrap_linear, uv.xy, 0.0);
     if (frame.scales.count > 0.0) {
         d = multi_scale_displacement(pos);
     }
     d = d * (frame.passes.waves * clamp((c.fade_end - spacing) * c.fade_inv_span, 0.0, 1.0));
-    if (frame.gerstner.count > 0.0) {
-        d = gerstner_displacement_filtered(pos, spacing);
-    }
     return displaced_vertex(pos, d, uv, 1.0);
 }
 
@@ -196,13 +197,13 @@ fn map_uvs(pos: vec2<f32>) -> vec4<f32> {
 // displacement map times `weight`.
 fn water_vertex(pos: vec2<f32>, weight: f32) -> VertexOut {
     let uv = map_uvs(pos);
+    // Waves technique `gerstner`: the sum of the waves at the vertex, no maps to fetch.
+    if (frame.gerstner.count > 0.0) {
+        return displaced_vertex(pos, gerstner_displacement(pos) * weight, uv, weight);
+    }
     var d = textureSampleLevel(displacement, wrap_linear, uv.xy, 0.0) * (weight * frame.passes.waves);
     if (frame.scales.count > 0.0) {
         d = multi_scale_displacement(pos) * (weight * frame.passes.waves);
-    }
-    // Waves technique `gerstner`: the sum of the waves at the vertex, no maps.
-    if (frame.gerstner.count > 0.0) {
-        d = gerstner_displacement(pos) * weight;
     }
     return displaced_vertex(pos, d, uv, weight);
 }
@@ -432,25 +433,26 @@ fn subtexel(lod: f32) -> f32 {
 // spans lengthwise) is replaced by that of the visible facets and the mean slope shifted by
 // theirs. The bump map's slopes only bend the normal: no facet of theirs hides another.
 fn filtered_slopes(in: VertexOut) -> vec3<f32> {
-    let s = wave_slopes(in);
+    // One footprint per fragment, for the waves and the detail map alike.
+    let fp = footprint(in.rel);
+    let s = wave_slopes(in, fp);
     // Shading `ggx`'s detail normal map, filtered over the same footprint as the Gerstner
     // waves' slopes (shared/detail.wgsl).
     if (frame.detail.count > 0.0) {
-        let fp = footprint(in.rel);
         let short = fp.dist * frame.far.pixel_angle;
         return s + detail_slopes(in.pos, fp.h, 0.5 * short / max(fp.vy, 1e-4), 0.5 * short);
     }
     return s;
 }
 
-// The waves' own slopes (filtered_slopes without the detail map).
-fn wave_slopes(in: VertexOut) -> vec3<f32> {
+// The waves' own slopes (filtered_slopes without the detail map), over the footprint `fp` of
+// the fragment's `in.rel`.
+fn wave_slopes(in: VertexOut, fp: Footprint) -> vec3<f32> {
     // Waves technique `gerstner`: the waves' own slopes, filtered analytically; no bump map.
     if (frame.gerstner.count > 0.0) {
-        return gerstner_filtered_slopes(in.pos, in.rel, in.weight);
+        return gerstner_filtered_slopes(in.pos, fp, in.weight);
     }
     let rel = in.rel;
-    let fp = footprint(rel);
     let wd = in.weight * frame.passes.waves;
     let wb = frame.passes.waves;
     let h = fp.h;
@@ -488,9 +490,9 @@ fn wave_slopes(in: VertexOut) -> vec3<f32> {
 // horizontal direction to the eye); under `variance` what the average removes,
 // ½(A k)²·[½(1 − g⁴) + cos²θ (g⁴ − g²)] per wave (the variance of A k cos(θ + k·δ) for a
 // Gaussian δ, averaged over the two axes), goes to the BRDF as the maps' unresolved variance
-// does. Returns (slope_x, slope_z, variance), times the mesh's weight.
-fn gerstner_filtered_slopes(pos: vec2<f32>, rel: vec3<f32>, weight: f32) -> vec3<f32> {
-    let fp = footprint(rel);
+// does. Returns (slope_x, slope_z, variance), times the mesh's weight; `fp` is the fragment's
+// footprint.
+fn gerstner_filtered_slopes(pos: vec2<f32>, fp: Footprint, weight: f32) -> vec3<f32> {
     let short = fp.dist * frame.far.pixel_angle;
     let sigma_long = 0.5 * short / max(fp.vy, 1e-4);
     let sigma_short = 0.5 * short;

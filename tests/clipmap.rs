@@ -9,7 +9,6 @@ use std::collections::{HashMap, HashSet};
 use ocean_core::plan::{FramePlan, OutputKind};
 use ocean_core::scene::{Scene, SceneSource};
 use ocean_cpu::frame::FrameBuffers;
-use ocean_cpu::sampler::Texture2D;
 use ocean_cpu::shaders::water::{self, VertexOut};
 
 fn scene(waves: &str, eye: [f64; 3], extra: &str) -> Scene {
@@ -37,26 +36,8 @@ fn render(scene: &Scene) -> FrameBuffers {
 
 /// Every vertex `vs_clipmap` makes for the frame's uniforms `u` (three per triangle).
 fn vertices(fb: &FrameBuffers, u: &ocean_core::frame::FrameUniforms) -> Vec<VertexOut> {
-    let empty = Texture2D::new(1, 1, vec![[0.0; 4]]);
-    let chain = ocean_cpu::mip::MipChain::single(empty.clone());
-    let sky = |_: [f32; 3]| [0.0f32; 3];
-    let b = water::Bindings {
-        frame: u,
-        displacement: &fb.displacement,
-        displacement_slopes: &chain,
-        bump: &chain,
-        fresnel_above: &empty,
-        fresnel_below: &empty,
-        reflection_map: &empty,
-        refraction_map: &empty,
-        shadow_map: &empty,
-        floor_map: &empty,
-        fresnel_filter: &empty,
-        sky_radiance: &sky,
-        shade_above: ocean_cpu::shaders::shading::hu::shade_above,
-        foam_field: &empty,
-        foam_coverage: ocean_cpu::shaders::foam::none::foam_coverage,
-    };
+    let unbound = water::Unbound::default();
+    let b = water::Bindings::vertex_stage(u, &fb.displacement, &unbound);
     let c = &u.clip;
     let n = c.vertex_count();
     assert!(n > 0, "the frame has no clipmap");
@@ -163,6 +144,11 @@ impl Sheet {
         if self.boundary_edges != 2 * c.cells as usize {
             return Err(format!("outer boundary of {} edges, not 2n", self.boundary_edges));
         }
+        // The triangles' areas are summed in f64 from f32 positions: each is exact to its
+        // vertices' rounding (rel 6e-8 of the coordinates, which reach the outer half side),
+        // summed over ~10⁵ triangles; 1e-6 of the square is ten times that, and a missing quad
+        // of level 0 (rel ≥ 1/(n²·4^(L−1))) or a T-junction's sliver would show far above it
+        // only at the finest levels — the V − E + F and boundary counts above catch those.
         if (self.area - side * side).abs() > 1e-6 * side * side {
             return Err(format!("area {} ≠ the outer square's {}", self.area, side * side));
         }
@@ -231,7 +217,10 @@ fn level0_heights(fb: &FrameBuffers, eye: [f64; 3]) -> HashMap<[i64; 2], f32> {
         let d = ((w[0] - eye[0]).abs()).max((w[1] - eye[2]).abs()) / s0;
         if d < f64::from(c.morph_start) - 1.0 {
             let g = w.map(|x| (x / s0).round());
-            // Not swimming: an unmorphed vertex sits on the world lattice.
+            // Not swimming: an unmorphed vertex sits on the world lattice. Its position is
+            // the f32 offset from the mesh's reference point plus that point in f64: within
+            // level 0's few metres the offset's ulp is ~5e-7 m, so 1e-6 m is the f32 rounding;
+            // a swimming vertex is off by a fraction of the cell (≥ 1e-2 m here).
             assert!(
                 (g[0] * s0 - w[0]).abs() < 1e-6 && (g[1] * s0 - w[1]).abs() < 1e-6,
                 "{w:?} is off the lattice"
@@ -253,6 +242,11 @@ fn a_world_point_keeps_its_height_while_the_eye_moves_within_a_level() {
         let common: Vec<_> = h0.keys().filter(|k| h1.contains_key(*k)).collect();
         assert!(common.len() > 100, "shift {shift}: {} common points", common.len());
         let worst = common.iter().map(|k| (h0[*k] - h1[*k]).abs()).fold(0.0f32, f32::max);
+        // 1e-5 m is the height-query bound. The height is an f32 sum of the waves at
+        // a phase whose argument is formed from the same world point (exact lattice
+        // coordinates): the rounding of the f32 phase (ulp ~5e-7 rad at a few radians) times
+        // A·k per wave is ~1e-7 m, summed over the waves ~1e-6 m; a point that swam by a tenth
+        // of a quad moves by ~1e-2 m (the negative control below).
         assert!(worst <= 1e-5, "shift {shift}: a point's height moved by {worst} m");
     }
     // Negative control: the same points a hundredth of a second later do move.

@@ -185,6 +185,7 @@ fn bumped_fresnel_is_the_texture_lookup_of_the_bumped_view_vector() {
     let (above, below) = (table(eta), table(1.0 / eta));
     let reference = FresnelTexture::new(256, 1.333, TextureMapping::Grazing).expect("table");
     let empty = Texture2D::new(1, 1, vec![[0.0; 4]]);
+    let unbound = water::Unbound::default();
     let w = 0.01f32;
     let mut u: FrameUniforms = bytemuck::Zeroable::zeroed();
     u.view.eye_height = 10.0;
@@ -208,23 +209,12 @@ fn bumped_fresnel_is_the_texture_lookup_of_the_bumped_view_vector() {
                 1,
                 vec![[slope * phi_s.cos(), slope * phi_s.sin(), 0.0, 0.0]],
             ));
-            let no_bump = ocean_cpu::mip::MipChain::single(empty.clone());
             let b = water::Bindings {
-                frame: &u,
-                displacement: &empty,
                 displacement_slopes: &slopes,
-                bump: &no_bump,
                 fresnel_above: &above,
                 fresnel_below: &below,
-                reflection_map: &empty,
-                refraction_map: &empty,
-                shadow_map: &empty,
-                floor_map: &empty,
-                fresnel_filter: &empty,
                 sky_radiance: &sky,
-                shade_above: ocean_cpu::shaders::shading::hu::shade_above,
-                foam_field: &empty,
-                foam_coverage: ocean_cpu::shaders::foam::none::foam_coverage,
+                ..water::Bindings::vertex_stage(&u, &empty, &unbound)
             };
             for i in 0..=40 {
                 let theta = (i as f64 / 40.0) * 80f64.to_radians();

@@ -29,26 +29,9 @@ fn render(scene: &Scene) -> FrameBuffers {
 
 /// The water stage's vertex (CPU mirror) at world (x, z): the displaced point, world.
 fn vertex(fb: &FrameBuffers, eye: DVec3, x: f64, z: f64) -> DVec3 {
-    let empty = Texture2D::new(1, 1, vec![[0.0; 4]]);
-    let chain = ocean_cpu::mip::MipChain::single(empty.clone());
-    let sky = |_: [f32; 3]| [0.0f32; 3];
-    let b = water::Bindings {
-        frame: &fb.uniforms,
-        displacement: &fb.displacement,
-        displacement_slopes: &chain,
-        bump: &chain,
-        fresnel_above: &empty,
-        fresnel_below: &empty,
-        reflection_map: &empty,
-        refraction_map: &empty,
-        shadow_map: &empty,
-        floor_map: &empty,
-        fresnel_filter: &empty,
-        sky_radiance: &sky,
-        shade_above: ocean_cpu::shaders::shading::chiu::shade_above,
-        foam_field: &empty,
-        foam_coverage: ocean_cpu::shaders::foam::none::foam_coverage,
-    };
+    let unbound = water::Unbound::default();
+    // The vertex stage reads no shading: `vertex_stage`'s `hu` stands for `chiu` here.
+    let b = water::Bindings::vertex_stage(&fb.uniforms, &fb.displacement, &unbound);
     let off = fb.uniforms.tiling.mesh_offset;
     // pos is relative to the mesh's reference point c = eye + mesh_offset.
     let pos = [(x - eye.x - f64::from(off[0])) as f32, (z - eye.z - f64::from(off[1])) as f32];

@@ -67,6 +67,56 @@ pub struct Bindings<'a> {
     pub foam_coverage: super::foam::FoamCoverage,
 }
 
+/// What a caller that runs the stage's vertex entry points alone (a test, a tool) binds in
+/// place of the textures it does not have: one zero texel, as a texture and as a chain.
+#[derive(Clone, Debug)]
+pub struct Unbound {
+    texture: Texture2D,
+    chain: MipChain,
+}
+
+impl Default for Unbound {
+    fn default() -> Self {
+        let texture = Texture2D::new(1, 1, vec![[0.0; 4]]);
+        Self { chain: MipChain::single(texture.clone()), texture }
+    }
+}
+
+/// A sky that sends no light (the vertex stage does not look at the sky).
+fn black_sky(_: [f32; 3]) -> [f32; 3] {
+    [0.0; 3]
+}
+
+impl<'a> Bindings<'a> {
+    /// Bindings for the vertex entry points: `frame` and the `displacement` map, every other
+    /// texture `unbound`'s zero texel, a black sky, shading `hu` and foam `none`. A caller that
+    /// shades fragments overrides what it needs (`Bindings { bump: …, ..vertex_stage(…) }`).
+    pub fn vertex_stage(
+        frame: &'a FrameUniforms,
+        displacement: &'a Texture2D,
+        unbound: &'a Unbound,
+    ) -> Self {
+        let (t, c) = (&unbound.texture, &unbound.chain);
+        Self {
+            frame,
+            displacement,
+            displacement_slopes: c,
+            bump: c,
+            fresnel_above: t,
+            fresnel_below: t,
+            reflection_map: t,
+            refraction_map: t,
+            shadow_map: t,
+            fresnel_filter: t,
+            floor_map: t,
+            foam_field: t,
+            sky_radiance: &black_sky,
+            shade_above: super::shading::hu::shade_above,
+            foam_coverage: super::foam::none::foam_coverage,
+        }
+    }
+}
+
 /// `WaterVertex`: the vertex format is defined once, in ocean-core.
 pub use ocean_core::geometry::WaterVertex;
 
@@ -150,13 +200,19 @@ pub fn map_uvs(pos: Vec2, frame: &FrameUniforms) -> (Vec2, Vec2) {
 pub fn water_vertex(pos: Vec2, weight: f32, b: &Bindings<'_>) -> VertexOut {
     let frame = b.frame;
     let uv = map_uvs(pos, frame);
+    if frame.gerstner.count > 0.0 {
+        return displaced_vertex(
+            pos,
+            gerstner_displacement(pos, frame) * weight,
+            uv,
+            weight,
+            frame,
+        );
+    }
     let mut d = texture_sample_level(b.displacement, &WRAP_LINEAR, uv.0, 0.0)
         * (weight * frame.passes.waves);
     if frame.scales.count > 0.0 {
         d = multi_scale_displacement(pos, b) * (weight * frame.passes.waves);
-    }
-    if frame.gerstner.count > 0.0 {
-        d = gerstner_displacement(pos, frame) * weight;
     }
     displaced_vertex(pos, d, uv, weight, frame)
 }
@@ -404,9 +460,13 @@ pub fn subtexel(lod: f32) -> f32 {
     exp_arith(lod * (2.0 * std::f32::consts::LN_2))
 }
 
-/// `gerstner_filtered_slopes(pos, rel, weight)`.
-pub fn gerstner_filtered_slopes(pos: Vec2, rel: Vec3, weight: f32, frame: &FrameUniforms) -> Vec3 {
-    let fp = footprint(rel, frame);
+/// `gerstner_filtered_slopes(pos, fp, weight)`.
+pub fn gerstner_filtered_slopes(
+    pos: Vec2,
+    fp: &Footprint,
+    weight: f32,
+    frame: &FrameUniforms,
+) -> Vec3 {
     let short = fp.dist * frame.far.pixel_angle;
     let sigma_long = 0.5 * short / max(fp.vy, 1e-4);
     let sigma_short = 0.5 * short;
@@ -432,10 +492,10 @@ pub fn gerstner_filtered_slopes(pos: Vec2, rel: Vec3, weight: f32, frame: &Frame
 
 /// `filtered_slopes(in)`: (s_x, s_z, unresolved variance per axis).
 pub fn filtered_slopes(input: &VertexOut, b: &Bindings<'_>) -> Vec3 {
-    let s = wave_slopes(input, b);
     let frame = b.frame;
+    let fp = footprint(input.rel, frame);
+    let s = wave_slopes(input, &fp, b);
     if frame.detail.count > 0.0 {
-        let fp = footprint(input.rel, frame);
         let short = fp.dist * frame.far.pixel_angle;
         return s + super::shared::detail::detail_slopes(
             input.pos,
@@ -448,14 +508,13 @@ pub fn filtered_slopes(input: &VertexOut, b: &Bindings<'_>) -> Vec3 {
     s
 }
 
-/// `wave_slopes(in)`.
-pub fn wave_slopes(input: &VertexOut, b: &Bindings<'_>) -> Vec3 {
+/// `wave_slopes(in, fp)`.
+pub fn wave_slopes(input: &VertexOut, fp: &Footprint, b: &Bindings<'_>) -> Vec3 {
     let frame = b.frame;
     if frame.gerstner.count > 0.0 {
-        return gerstner_filtered_slopes(input.pos, input.rel, input.weight, frame);
+        return gerstner_filtered_slopes(input.pos, fp, input.weight, frame);
     }
     let rel = input.rel;
-    let fp = footprint(rel, frame);
     let wd = input.weight * frame.passes.waves;
     let wb = frame.passes.waves;
     let h = fp.h;
@@ -468,7 +527,7 @@ pub fn wave_slopes(input: &VertexOut, b: &Bindings<'_>) -> Vec3 {
         h,
     );
     if frame.scales.count > 0.0 {
-        dt = multi_scale_taps(input.pos, &fp, h, b);
+        dt = multi_scale_taps(input.pos, fp, h, b);
     }
     let bt = sample_footprint(
         b.bump,
@@ -492,7 +551,7 @@ pub fn wave_slopes(input: &VertexOut, b: &Bindings<'_>) -> Vec3 {
             let mu_raw = d.x * h.x + d.y * h.y;
             let mu = mu_raw * wd;
             let var_geo =
-                max(dt.along_sq - mu_raw * mu_raw, 0.0) * (wd * wd) * mesh_share(&fp, frame);
+                max(dt.along_sq - mu_raw * mu_raw, 0.0) * (wd * wd) * mesh_share(fp, frame);
             let vis = visible_slopes(mu, var_geo, fp.vy, fp.vh);
             s = s + h * (vis.x - mu);
             variance = max(variance + 0.5 * (vis.y - var_geo), 0.0);

@@ -43,13 +43,19 @@ pub fn vs_clipmap(k: u32, b: &Bindings<'_>) -> VertexOut {
     let malpha = clamp((mdist - c.morph_start) * c.inv_band, 0.0, 1.0);
     let spacing = e[2] * (1.0 + malpha) * c.cell_m;
     let uv = map_uvs(pos, frame);
+    if frame.gerstner.count > 0.0 {
+        return displaced_vertex(
+            pos,
+            gerstner_displacement_filtered(pos, spacing, frame),
+            uv,
+            1.0,
+            frame,
+        );
+    }
     let mut d = texture_sample_level(b.displacement, &WRAP_LINEAR, uv.0, 0.0);
     if frame.scales.count > 0.0 {
         d = multi_scale_displacement(pos, b);
     }
     d = d * (frame.passes.waves * clamp((c.fade_end - spacing) * c.fade_inv_span, 0.0, 1.0));
-    if frame.gerstner.count > 0.0 {
-        d = gerstner_displacement_filtered(pos, spacing, frame);
-    }
     displaced_vertex(pos, d, uv, 1.0, frame)
 }
