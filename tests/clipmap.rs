@@ -144,11 +144,11 @@ impl Sheet {
         if self.boundary_edges != 2 * c.cells as usize {
             return Err(format!("outer boundary of {} edges, not 2n", self.boundary_edges));
         }
-        // The triangles' areas are summed in f64 from f32 positions: each is exact to its
-        // vertices' rounding (rel 6e-8 of the coordinates, which reach the outer half side),
-        // summed over ~10⁵ triangles; 1e-6 of the square is ten times that, and a missing quad
-        // of level 0 (rel ≥ 1/(n²·4^(L−1))) or a T-junction's sliver would show far above it
-        // only at the finest levels — the V − E + F and boundary counts above catch those.
+        // The triangles' areas are summed in f64 from f32 positions, each exact to its
+        // vertices' rounding (rel 6e-8 of coordinates up to the outer half side); 1e-6 of the
+        // square is well above that and far below a missing or doubled quad of the outer
+        // levels. A hole near the eye is too small for any area check (a level-0 quad is
+        // 1/(n·2^(L−1))² of the square): V − E + F and the boundary counts above catch it.
         if (self.area - side * side).abs() > 1e-6 * side * side {
             return Err(format!("area {} ≠ the outer square's {}", self.area, side * side));
         }
