@@ -79,10 +79,12 @@ fn preetham_radiance(sky: SkyUniforms, dir: vec3<f32>) -> vec3<f32> {
 
 // The sun disc in unit direction dir: sun_radiance times a weight that is 1 inside the disc,
 // falls linearly in sin(gamma) across the rim, and is 0 outside and below the horizon.
+// sin(gamma) = |(d − s) × s| (= |d × s|): next to the sun the components of d × s cancel,
+// d − s is formed exactly there (Sterbenz), and the rim then agrees between the back ends.
 fn preetham_sun_disc(sky: SkyUniforms, dir: vec3<f32>) -> vec3<f32> {
     let sun = sky.sun_direction.xyz;
     let cos_gamma = dot(dir, sun);
-    let sin_gamma = length(cross(dir, sun));
+    let sin_gamma = length(cross(dir - sun, sun));
     let ramp = clamp((sky.sun_sin_outer - sin_gamma) / (sky.sun_sin_outer - sky.sun_sin_inner), 0.0, 1.0);
     let weight = select(0.0, ramp, cos_gamma > 0.0 && dir.y >= 0.0);
     return sky.sun_radiance.xyz * weight;

@@ -14,14 +14,8 @@ fn sky_radiance(sky: SkyUniforms, dir: vec3<f32>) -> vec3<f32> {
     return sky_lut_radiance(dir, sky.sun_direction.xyz);
 }
 
-// The sun disc in unit direction dir: Preetham's disc shape (preetham_sun_disc), with
-// sin γ = |(d − s) × s| instead of |d × s|, whose components cancel next to the sun (the disc's
-// rim differed by 8e-5 between the back ends with the sun in view).
+// The sun disc in unit direction dir: Preetham's disc (preetham_sun_disc) with the sun's
+// radiance through the atmosphere, which the frame puts in `sky.sun_radiance`.
 fn sun_disc(sky: SkyUniforms, dir: vec3<f32>) -> vec3<f32> {
-    let sun = sky.sun_direction.xyz;
-    let cos_gamma = dot(dir, sun);
-    let sin_gamma = length(cross(dir - sun, sun));
-    let ramp = clamp((sky.sun_sin_outer - sin_gamma) / (sky.sun_sin_outer - sky.sun_sin_inner), 0.0, 1.0);
-    let weight = select(0.0, ramp, cos_gamma > 0.0 && dir.y >= 0.0);
-    return sky.sun_radiance.xyz * weight;
+    return preetham_sun_disc(sky, dir);
 }

@@ -47,11 +47,12 @@ pub fn preetham_radiance(sky: &SkyUniforms, dir: Vec3) -> Vec3 {
 }
 
 /// `preetham_sun_disc(sky, dir)`: the sun disc in unit direction `dir`, `sun_radiance` times
-/// its weight (1 inside, a linear rim in sin γ, 0 outside and below the horizon).
+/// its weight (1 inside, a linear rim in sin γ, 0 outside and below the horizon), with
+/// sin γ = |(d − s) × s|.
 pub fn preetham_sun_disc(sky: &SkyUniforms, dir: Vec3) -> Vec3 {
     let sun = Vec4::from(sky.sun_direction).xyz();
     let cos_gamma = dot(dir, sun);
-    let sin_gamma = length(cross(dir, sun));
+    let sin_gamma = length(cross(dir - sun, sun));
     let ramp =
         clamp((sky.sun_sin_outer - sin_gamma) / (sky.sun_sin_outer - sky.sun_sin_inner), 0.0, 1.0);
     let weight = select(0.0, ramp, cos_gamma > 0.0 && dir.y >= 0.0);
