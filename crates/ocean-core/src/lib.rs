@@ -36,6 +36,7 @@ pub mod registry;
 pub mod rng;
 pub mod scene;
 pub mod shader_source;
+pub mod shoaling;
 pub mod sky;
 pub mod solar;
 pub mod spectrum;
