@@ -196,7 +196,12 @@ mod tests {
         // α = 1 at normal incidence: E = 1 − ln 2 (tests/ggx.rs derives it); a smooth
         // surface returns nearly all.
         let rough = super::white_furnace(1.0, 0.0);
-        assert!((rough - (1.0 - std::f64::consts::LN_2)).abs() < 2e-3, "{rough}");
+        // The bound is the 512 × 512 midpoint rule's error, O(1/n²): measured 2.4e-6 here
+        // (the integrand is smooth in x after the change of variable); 1e-5 leaves room for
+        // the constant and would catch a quadrature 4× coarser or a wrong Jacobian.
+        let err = (rough - (1.0 - std::f64::consts::LN_2)).abs();
+        println!("white furnace α = 1, θ_v = 0: {rough}, error {err:.2e} against 1 − ln 2");
+        assert!(err < 1e-5, "{rough}");
         let smooth = super::white_furnace(0.04, 0.0);
         assert!(smooth > 0.99 && smooth <= 1.0 + 1e-6, "{smooth}");
         let grazing = super::white_furnace(0.04, 75f64.to_radians());
