@@ -6,7 +6,7 @@
 //! renders or blurs into: the HDR frame, the reflection and refraction maps, and post
 //! `bloom`'s two chains. The wave maps, the Fresnel tables, the shadow map and the foam field
 //! stay `Rgba32Float`: they hold positions, slopes and depths, which f16's 11 bits would
-//! quantise visibly (a height of 4 m to 2 mm steps, a distance of 500 m to 0.25 m).
+//! quantise visibly (a height of 3 m to 2 mm steps, a distance of 500 m to 0.25 m).
 //!
 //! ## What a store does
 //!
@@ -24,8 +24,8 @@
 //! measured for fragment outputs and storage writes alike (`tests/gpu_precision.rs`: of
 //! 16384 values spread over the binary16 range, round-to-nearest-even disagreed with it on
 //! 8198, truncation on none), and the oracle mirrors the driver it checks (DESIGN.md,
-//! "where lavapipe approximates, mirror the approximation"). Hardware GPUs commonly round to
-//! nearest even, at most one step from this.
+//! "where lavapipe approximates, mirror the approximation"). A GPU that rounds to nearest
+//! (Vulkan allows it; no hardware GPU was measured here) stores at most one step from this.
 //!
 //! ## What the cross-check allows
 //!

@@ -35,10 +35,12 @@ pub fn wavenumber(omega: f64, g: f64, depth_m: f64) -> f64 {
     // Fenton & McKee: k ≈ k₀ / tanh((k₀ h)^{3/4})^{2/3}, within 1.5 % everywhere.
     let x = k0 * depth_m;
     let mut k = k0 / x.powf(0.75).tanh().powf(2.0 / 3.0);
+    // Newton on ω(k)² − ω² with the scene's own relation: its derivative is 2 ω(k) c_g(k).
+    let d = relation(g, depth_m);
     for _ in 0..8 {
-        let t = (k * depth_m).tanh();
-        let f = g * k * t - omega * omega;
-        let df = g * (t + k * depth_m * (1.0 - t * t));
+        let w = d.omega_continuous(k);
+        let f = w * w - omega * omega;
+        let df = 2.0 * w * d.group_velocity(k);
         let next = k - f / df;
         if next.is_nan() || next <= 0.0 || next.is_infinite() {
             break;
@@ -51,17 +53,21 @@ pub fn wavenumber(omega: f64, g: f64, depth_m: f64) -> f64 {
     k
 }
 
-/// The group velocity c_g = dω/dk (m/s) at depth `depth_m`: ½ (ω/k)(1 + 2kh/sinh 2kh). Deep
-/// water: g/(2ω); h ≤ 0 or ω ≤ 0: 0.
+/// The dispersion relation ω² = g k tanh(k h) of `crate::dispersion`, unquantised, for a
+/// depth and gravity already checked positive.
+fn relation(g: f64, depth_m: f64) -> crate::dispersion::Dispersion {
+    crate::dispersion::Dispersion { gravity: g, depth_m, loop_period_s: 0.0 }
+}
+
+/// The group velocity c_g = dω/dk (m/s) of a wave of angular frequency `omega` at depth
+/// `depth_m` (`Dispersion::group_velocity` at its [`wavenumber`]). Deep water: g/(2ω);
+/// h ≤ 0 or ω ≤ 0: 0.
 pub fn group_velocity(omega: f64, g: f64, depth_m: f64) -> f64 {
     let k = wavenumber(omega, g, depth_m);
     if k <= 0.0 {
         return 0.0;
     }
-    let kh = k * depth_m;
-    // 2kh/sinh(2kh) → 0 in deep water (and would be ∞/∞ at h = ∞).
-    let n = if kh > 20.0 { 0.5 } else { 0.5 * (1.0 + 2.0 * kh / (2.0 * kh).sinh()) };
-    n * omega / k
+    relation(g, depth_m).group_velocity(k)
 }
 
 /// The shoaling coefficient K_s = √(c_g,deep / c_g(h)) of a wave of angular frequency `omega`

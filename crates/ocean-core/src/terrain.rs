@@ -78,9 +78,15 @@ impl Relief {
         }
         let heights: Vec<f32> =
             v.iter().map(|s| (range[0] + s * (range[1] - range[0])) as f32).collect();
+        Ok(Self::from_heights(width, height, heights))
+    }
+
+    /// A relief of `width × height` heights in metres (row-major, checked by the caller),
+    /// its range found here.
+    fn from_heights(width: u32, height: u32, heights: Vec<f32>) -> Self {
         let lo = heights.iter().copied().fold(f32::INFINITY, f32::min);
         let hi = heights.iter().copied().fold(f32::NEG_INFINITY, f32::max);
-        Ok(Self { width, height, heights, range: (lo, hi) })
+        Self { width, height, heights, range: (lo, hi) }
     }
 
     /// Reads a 16-bit grayscale PNG (v = value/65535) or an EXR (v = the first layer's `Y`,
@@ -296,8 +302,8 @@ pub fn island_height(t: &Terrain, r: f64) -> f64 {
 }
 
 /// The relief of `kind = "island"`: [`island_height`] + `depth_m` (the relief is added to
-/// the plane, which lies `depth_m` down) at texel centres over the drawn square, at most
-/// [`ISLAND_TEXEL_M`] apart and [`MAX_ISLAND_SIDE`] per side.
+/// the plane, which lies `depth_m` down) at texel centres over the drawn square,
+/// [`ISLAND_TEXEL_M`] apart, or further where that would pass [`MAX_ISLAND_SIDE`] per side.
 pub fn island_relief(t: &Terrain) -> Relief {
     let n = ((t.extent_m / ISLAND_TEXEL_M).ceil() as u32 + 1).clamp(2, MAX_ISLAND_SIDE);
     let step = t.extent_m / f64::from(n - 1);
@@ -308,9 +314,7 @@ pub fn island_relief(t: &Terrain) -> Relief {
             (island_height(t, x.hypot(z)) + t.depth_m) as f32
         })
         .collect();
-    let lo = heights.iter().copied().fold(f32::INFINITY, f32::min);
-    let hi = heights.iter().copied().fold(f32::NEG_INFINITY, f32::max);
-    Relief { width: n, height: n, heights, range: (lo, hi) }
+    Relief::from_heights(n, n, heights)
 }
 
 /// Triangles of the sea floor's drawn square, camera-relative, counter-clockwise seen from
