@@ -156,9 +156,15 @@ pub fn spray_origin(scene: &Scene) -> [f64; 2] {
     [(sx / n / l).round() * l, (sz / n / l).round() * l]
 }
 
-/// Points of an object's surface with their outward normals (sphere: its tessellation's
-/// vertices; box: a grid on its four sides).
-fn surface_points(o: &Object) -> Vec<(DVec3, DVec3)> {
+/// Most grid points along one side of a box face: a huge box's grid is coarser, so that the
+/// points made before the emitters are thinned stay few (a 10⁷ m box at the spacing would be
+/// 10¹⁵ of them).
+const MAX_BOX_POINTS_PER_SIDE: i64 = 1024;
+
+/// Points of an object's surface with their outward normals within `bound` of the sea plane
+/// (sphere: its tessellation's vertices; box: a grid on its four sides, over the band of
+/// heights |y| ≤ bound only).
+fn surface_points(o: &Object, bound: f64) -> Vec<(DVec3, DVec3)> {
     let c = DVec3::from_array(o.center);
     match o.shape() {
         Some(Shape::Sphere { radius }) => {
@@ -185,12 +191,19 @@ fn surface_points(o: &Object) -> Vec<(DVec3, DVec3)> {
                 (DVec3::NEG_Z, DVec3::X, h.x),
             ] {
                 let face = c + n * DVec3::new(h.x, 0.0, h.z).dot(n.abs());
-                let nu = ((2.0 * extent / BOX_EMITTER_SPACING_M).ceil() as i64).max(1);
-                let nv = ((2.0 * h.y / BOX_EMITTER_SPACING_M).ceil() as i64).max(1);
+                // The face's heights within the band, relative to its centre.
+                let (t0, t1) = ((-bound - c.y).max(-h.y), (bound - c.y).min(h.y));
+                if t0 > t1 {
+                    continue;
+                }
+                let cells = |len: f64| {
+                    ((len / BOX_EMITTER_SPACING_M).ceil() as i64).clamp(1, MAX_BOX_POINTS_PER_SIDE)
+                };
+                let (nu, nv) = (cells(2.0 * extent), cells(t1 - t0));
                 for a in 0..=nu {
                     for b in 0..=nv {
                         let s = -extent + 2.0 * extent * a as f64 / nu as f64;
-                        let t = -h.y + 2.0 * h.y * b as f64 / nv as f64;
+                        let t = t0 + (t1 - t0) * b as f64 / nv as f64;
                         out.push((face + u * s + DVec3::Y * t, n));
                     }
                 }
@@ -209,7 +222,7 @@ pub fn emitters(scene: &Scene, bound: f64) -> Vec<Emitter> {
     let mut all: Vec<Emitter> = scene
         .objects
         .iter()
-        .flat_map(surface_points)
+        .flat_map(|o| surface_points(o, bound))
         .filter(|(p, _)| p.y.abs() <= bound)
         .map(|(p, n)| {
             let d = (DVec3::new(n.x, 0.0, n.z) * 0.5 + DVec3::Y).normalize();
