@@ -18,6 +18,7 @@
 // #import shared/optics.wgsl
 // #import shared/floor.wgsl
 // #import shared/gerstner.wgsl
+// #import shared/coastal.wgsl
 // #import shared/detail.wgsl
 // #import shared/sky_lut.wgsl
 // #import shared/foam.wgsl
@@ -112,6 +113,18 @@ fn vs_projected_grid(@builtin(vertex_index) k: u32) -> VertexOut {
     let corner = k % 6u;
     var di = array<u32, 6>(0u, 1u, 1u, 0u, 1u, 0u);
     var dj = array<u32, 6>(0u, 0u, 1u, 0u, 1u, 1u);
+    // Surface `shore_grid` (seed 004): row i at d = D/(n − 1)·(1/(1 − i/n) − 1) − back ahead
+    // of the eye along its horizontal forward f, spanning ±w(d) along its right r
+    // (ocean-core geometry::shore_grid).
+    if (g.shore > 0.0) {
+        let a = g.corners[0];
+        let s = g.corners[1];
+        let w = g.corners[2];
+        let d = s.x * (1.0 / (1.0 - f32(quad / cols + dj[corner]) / s.y) - 1.0) - s.z;
+        let x = (f32(quad % cols + di[corner]) / g.cols * 2.0 - 1.0) * (w.x + w.y * (d + s.z));
+        let rel = vec2<f32>(a.x * d + a.z * x, a.y * d + a.w * x);
+        return water_vertex(rel - frame.tiling.mesh_offset, 1.0);
+    }
     let u = f32(quad % cols + di[corner]) / g.cols;
     let v = f32(quad / cols + dj[corner]) / g.rows;
     let h = (g.corners[0] * (1.0 - u) + g.corners[1] * u) * (1.0 - v) + (g.corners[2] * (1.0 - u) + g.corners[3] * u) * v;
@@ -173,6 +186,12 @@ fn vs_clipmap(@builtin(vertex_index) k: u32) -> VertexOut {
     let malpha = clamp((mdist - c.morph_start) * c.inv_band, 0.0, 1.0);
     let spacing = e.z * (1.0 + malpha) * c.cell_m;
     let uv = map_uvs(pos);
+    // Waves `coastal` raise the point by their own height: no map to fetch. (Unfiltered: the
+    // radial waves are long and the correction waves few.)
+    if (frame.coastal.shape.x > 0.0) {
+        let ch = coastal_wave(pos, vec2<f32>(0.0, 0.0), vec2<f32>(0.0, 0.0)).x;
+        return displaced_vertex(pos, vec4<f32>(0.0, ch, 0.0, 0.0), uv, 1.0);
+    }
     // Waves `gerstner` sum their own displacement: no map to fetch.
     if (frame.gerstner.count > 0.0) {
         return displaced_vertex(pos, gerstner_displacement_filtered(pos, spacing), uv, 1.0);
@@ -197,6 +216,11 @@ fn map_uvs(pos: vec2<f32>) -> vec4<f32> {
 // displacement map times `weight`.
 fn water_vertex(pos: vec2<f32>, weight: f32) -> VertexOut {
     let uv = map_uvs(pos);
+    // Waves technique `coastal`: the waves' height at the vertex, no maps to fetch.
+    if (frame.coastal.shape.x > 0.0) {
+        let h = coastal_wave(pos, vec2<f32>(0.0, 0.0), vec2<f32>(0.0, 0.0)).x * weight;
+        return displaced_vertex(pos, vec4<f32>(0.0, h, 0.0, 0.0), uv, weight);
+    }
     // Waves technique `gerstner`: the sum of the waves at the vertex, no maps to fetch.
     if (frame.gerstner.count > 0.0) {
         return displaced_vertex(pos, gerstner_displacement(pos) * weight, uv, weight);
@@ -448,6 +472,14 @@ fn filtered_slopes(in: VertexOut) -> vec3<f32> {
 // The waves' own slopes (filtered_slopes without the detail map), over the footprint `fp` of
 // the fragment's `in.rel`.
 fn wave_slopes(in: VertexOut, fp: Footprint) -> vec3<f32> {
+    // Waves technique `coastal`: the waves' own slopes, filtered over the footprint as the
+    // Gerstner waves' are (the far field `variance` gets no variance from them).
+    if (frame.coastal.shape.x > 0.0) {
+        let short = fp.dist * frame.far.pixel_angle;
+        let sigma = vec2<f32>(0.5 * short / max(fp.vy, 1e-4), 0.5 * short);
+        let w = coastal_wave(in.pos, fp.h, sigma);
+        return vec3<f32>(w.y * in.weight, w.z * in.weight, 0.0);
+    }
     // Waves technique `gerstner`: the waves' own slopes, filtered analytically; no bump map.
     if (frame.gerstner.count > 0.0) {
         return gerstner_filtered_slopes(in.pos, fp, in.weight);
@@ -522,6 +554,10 @@ fn gerstner_filtered_slopes(pos: vec2<f32>, fp: Footprint, weight: f32) -> vec3<
 // carry J in w; eq. 1's scales are not summed), both faded towards 1 with the mesh's weight
 // as the displacement is.
 fn surface_jacobian(in: VertexOut) -> f32 {
+    // Waves `coastal` move the surface vertically only.
+    if (frame.coastal.shape.x > 0.0) {
+        return 1.0;
+    }
     if (frame.gerstner.count > 0.0) {
         return 1.0 + (gerstner_jacobian(in.pos) - 1.0) * in.weight;
     }

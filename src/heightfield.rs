@@ -42,7 +42,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     ocean::scene_arg::revalidate(&scene, "--time/--seed")?;
     let ocean = &scene.ocean;
     let plan = FramePlan::new(&scene, OutputKind::Hdr);
-    let (n, channels) = if plan.techniques.of(Stage::Waves).name == "gerstner" {
+    // Waves summed per vertex (`gerstner`, `coastal`): the height query on the map's grid.
+    let (n, channels) = if matches!(plan.techniques.of(Stage::Waves).name, "gerstner" | "coastal") {
         let n = ocean.resolution as usize;
         let sea = surface_query(&scene, &plan, ocean.time_s)?;
         let step = ocean.patch_size_m / n as f64;

@@ -21,12 +21,16 @@ pub struct SystemArg {
 /// A scene that does not load or validate; an unknown system (the message lists the known
 /// ones) or one whose techniques are not yet available.
 pub fn load_scene(path: Option<&PathBuf>, system: &SystemArg) -> anyhow::Result<Scene> {
+    let chosen = match &system.system {
+        Some(name) => Some(System::from_name(name).map_err(|e| anyhow::anyhow!("--system: {e}"))?),
+        None => None,
+    };
+    // Without a scene file, a system with a scene of its own (`coastal`'s island) starts there.
     let mut scene = match path {
         Some(p) => Scene::load(p)?,
-        None => Scene::builtin(),
+        None => chosen.map_or_else(Scene::builtin, Scene::builtin_for),
     };
-    if let Some(name) = &system.system {
-        let system = System::from_name(name).map_err(|e| anyhow::anyhow!("--system: {e}"))?;
+    if let (Some(name), Some(system)) = (&system.system, chosen) {
         Techniques::with_overrides(system, scene.techniques.iter())
             .and_then(|t| t.check())
             .map_err(|e| anyhow::anyhow!("--system {name}: {e}"))?;

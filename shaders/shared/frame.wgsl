@@ -82,12 +82,14 @@ struct FarFieldBlock {
     pad1: f32,
 }
 
+// shore 1: surface `shore_grid` (ocean-core geometry::shore_grid), whose parameters the
+// corners then hold.
 struct ProjectedGridBlock {
     // Columns: the corners (u, v) = (0, 0), (1, 0), (0, 1), (1, 1).
     corners: mat4x4<f32>,
     cols: f32,
     rows: f32,
-    pad0: f32,
+    shore: f32,
     pad1: f32,
 }
 
@@ -141,6 +143,32 @@ struct GerstnerBlock {
     pad1: f32,
     pad2: f32,
     waves: array<vec4<f32>, 128>,
+}
+
+// Waves technique `coastal` (ocean-core waves::coastal): center = (c_x, c_z relative to the
+// mesh's reference point, 1/Δ, Δ), shape = (1 on / 0 off, A, p, back factor), time = (ω t in
+// turns, γ, correction waves, 0); per correction wave waves[j] = (fx, fz, p0, a) as
+// gerstner's and damping[j] = 2/λ_j; per radial segment i, table[2i] = (Φ₀ mod 1, Φ₁, Φ₂, 0)
+// and table[2i + 1] = (K_s·A's three coefficients, 0).
+struct CoastalBlock {
+    center: vec4<f32>,
+    shape: vec4<f32>,
+    time: vec4<f32>,
+    // Column j is wave j (Rust's [[f32; 4]; 4] is WGSL's mat4x4 in the shared layout).
+    waves: mat4x4<f32>,
+    damping: vec4<f32>,
+    table: array<vec4<f32>, 128>,
+}
+
+// Shading technique `coastal` (ocean-core waves::coastal::CoastalShadingBlock): schlick 1 for
+// Schlick's Fresnel with f0, 0 for the exact one from the Fresnel texture.
+struct CoastalShadingBlock {
+    dull_color: vec3<f32>,
+    dull_factor: f32,
+    shininess: f32,
+    distortion: f32,
+    schlick: f32,
+    f0: f32,
 }
 
 // Surface `clipmap` (ocean-core geometry::Clipmap): levels 0 under the other surfaces. Per
@@ -210,6 +238,8 @@ struct FrameUniforms {
     clip: ClipmapBlock,
     detail: DetailBlock,
     foam: FoamBlock,
+    coastal: CoastalBlock,
+    coastal_shading: CoastalShadingBlock,
 }
 
 // m · (p, 1), written out so that the order of operations is fixed (the CPU mirror,

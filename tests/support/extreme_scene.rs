@@ -19,6 +19,7 @@ pub const VECTOR_KEYS: &[&str] = &[
     "sun.color",
     "water.color",
     "terrain.color",
+    "coastal.dull_color",
     "spray.color",
     "foam.color",
     "objects.*.center",
@@ -33,7 +34,8 @@ pub const REEF: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/reference/terrain/r
 pub const LIST_KEYS: &[&str] = &["chiu.scales"];
 
 /// Keys whose value is a 2-vector, (x, z).
-pub const VECTOR2_KEYS: &[&str] = &["terrain.center", "terrain.height_range_m", "clouds.wind"];
+pub const VECTOR2_KEYS: &[&str] =
+    &["terrain.center", "terrain.height_range_m", "clouds.wind", "coastal.center"];
 
 /// Keys that set the cost of a frame (grid sizes, table size, image size, mesh density): the
 /// random scenes keep them small, and [`cost_extremes`] takes each to its limit once.
@@ -112,7 +114,12 @@ pub fn scene_text(values: &[(&str, String)], objects: &[&str]) -> String {
     let mut tables: Vec<(&str, Vec<String>)> = Vec::new();
     let mut object_lines = Vec::new();
     let mut wave_lines = Vec::new();
+    let mut correction_lines = Vec::new();
     for (key, value) in values {
+        if let Some(field) = key.strip_prefix("coastal.corrections.*.") {
+            correction_lines.push(format!("{field} = {value}"));
+            continue;
+        }
         if let Some(field) = key.strip_prefix("objects.*.") {
             object_lines.push((field, value.clone()));
             continue;
@@ -144,6 +151,10 @@ pub fn scene_text(values: &[(&str, String)], objects: &[&str]) -> String {
             techniques.push("foam = \"accumulated\"");
         }
     }
+    // The coastal keys act under waves `coastal` (and shading `coastal` for its own).
+    if !correction_lines.is_empty() || tables.iter().any(|(t, _)| *t == "coastal") {
+        techniques.push("waves = \"coastal\"\nshading = \"coastal\"");
+    }
     if !techniques.is_empty() {
         text += &format!("[techniques]\n{}\n", techniques.join("\n"));
     }
@@ -163,6 +174,17 @@ pub fn scene_text(values: &[(&str, String)], objects: &[&str]) -> String {
             }
         }
         text += &format!("[[gerstner.waves]]\n{}\n", wave_lines.join("\n"));
+    }
+    if !correction_lines.is_empty() {
+        // One correction wave with the drawn fields; the others it needs default here.
+        for (field, default) in
+            [("direction_deg", "30.0"), ("wavelength_m", "5.0"), ("amplitude_m", "0.05")]
+        {
+            if !correction_lines.iter().any(|l| l.starts_with(field)) {
+                correction_lines.push(format!("{field} = {default}"));
+            }
+        }
+        text += &format!("[[coastal.corrections]]\n{}\n", correction_lines.join("\n"));
     }
     for kind in objects {
         text += &format!("[[objects]]\nkind = \"{kind}\"\n");

@@ -112,7 +112,7 @@ pub struct FieldGrid {
 impl FieldGrid {
     /// The field of a scene whose waves technique is `waves`.
     pub fn of(scene: &Scene, waves: &str) -> Self {
-        if waves == "gerstner" {
+        if matches!(waves, "gerstner" | "coastal") {
             Self { size: scene.foam.grid, cell_m: scene.foam.cell_m, windowed: true }
         } else {
             let n = scene.ocean.resolution;

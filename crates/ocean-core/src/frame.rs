@@ -393,8 +393,12 @@ pub struct FrameUniforms {
     pub clip: crate::geometry::ClipmapBlock,
     /// Shading `ggx`'s detail normal map (`count` 0 without it).
     pub detail: crate::detail::DetailBlock,
-    /// Stage `foam` (the last block).
+    /// Stage `foam`.
     pub foam: crate::foam::FoamBlock,
+    /// Waves technique `coastal` (`shape[0]` 0 under the other waves techniques).
+    pub coastal: crate::waves::coastal::CoastalBlock,
+    /// Shading technique `coastal`.
+    pub coastal_shading: crate::waves::coastal::CoastalShadingBlock,
 }
 
 /// Surface `projected_grid` ([`crate::geometry::ProjectedGrid`]): the grid's corners and size.
@@ -408,8 +412,9 @@ pub struct ProjectedGridBlock {
     pub cols: f32,
     /// Quads along v.
     pub rows: f32,
-    /// Padding.
-    pub pad0: f32,
+    /// 1: surface `shore_grid`, whose parameters the corners hold
+    /// ([`crate::geometry::shore_grid::block`]); 0: the projected grid.
+    pub shore: f32,
     /// Padding.
     pub pad1: f32,
 }
@@ -434,7 +439,7 @@ impl ProjectedGridBlock {
             corners: grid.corners.map(|c| c.as_vec4().to_array()),
             cols: cols as f32,
             rows: rows as f32,
-            pad0: 0.0,
+            shore: 0.0,
             pad1: 0.0,
         }
     }
@@ -753,6 +758,8 @@ impl FrameUniforms {
                     plan.wave_bound_m,
                     scene.quality.projected_grid_cell_px,
                 )
+            } else if plan.techniques.of(crate::plan::Stage::Surface).name == "shore_grid" {
+                crate::geometry::shore_grid::block(camera, scene.quality.projected_grid_cell_px)
             } else {
                 ProjectedGridBlock::zeroed()
             },
@@ -823,8 +830,39 @@ impl FrameUniforms {
                 plan.techniques.of(crate::plan::Stage::Waves).name,
                 mesh_origin,
             ),
+            coastal: match plan.techniques.of(crate::plan::Stage::Waves).name {
+                "coastal" => coastal_sea(scene, o.time_s)
+                    .map_or_else(|_| Zeroable::zeroed(), |sea| sea.block(mesh_origin)),
+                _ => Zeroable::zeroed(),
+            },
+            coastal_shading: crate::waves::coastal::CoastalShadingBlock::new(
+                &scene.coastal,
+                scene.water.ior,
+            ),
         }
     }
+}
+
+/// Waves technique `coastal`'s sea of `scene` at time `t` (s): its `[coastal]` waves over its
+/// `[terrain]` (or the open sea's depth of `[chiu]` without one, as the shaders' floor).
+///
+/// # Errors
+/// The scene's dispersion cannot be built, or a non-finite time.
+pub fn coastal_sea(scene: &Scene, t: f64) -> crate::Result<crate::waves::coastal::CoastalSea> {
+    if !t.is_finite() {
+        return Err(crate::Error::InvalidParameter {
+            name: "time",
+            value: t,
+            reason: "the coastal waves' time must be finite".into(),
+        });
+    }
+    Ok(crate::waves::coastal::CoastalSea::new(
+        &scene.coastal,
+        scene.terrain.as_ref(),
+        scene.chiu.open_sea_depth_m,
+        &scene.ocean.dispersion()?,
+        t,
+    ))
 }
 
 /// The height query of a frame of `plan` at time `t` (s): under waves `fft` the displacement
@@ -850,6 +888,9 @@ pub fn surface_query(
         }
         let sea = scene.gerstner.at(t, &o.dispersion()?, o.wind_direction_deg);
         return Ok(crate::waves::WaveSurface::Gerstner(sea));
+    }
+    if plan.techniques.of(crate::plan::Stage::Waves).name == "coastal" {
+        return Ok(crate::waves::WaveSurface::Coastal(Box::new(coastal_sea(scene, t)?)));
     }
     let q = crate::waves::SurfaceQuery::new(&o.displacement_modes()?, t, o.choppiness)?;
     Ok(crate::waves::WaveSurface::Fft(

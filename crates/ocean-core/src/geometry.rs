@@ -28,6 +28,7 @@ mod mesh;
 mod near;
 mod params;
 mod projected;
+pub mod shore_grid;
 
 pub use clipmap::{CLIPMAP_CELLS_RANGE, Clipmap, ClipmapBlock, MAX_CLIPMAP_LEVELS};
 pub use far::{FarPatch, PlacedFarPatch, visible_half_angle};

@@ -27,6 +27,7 @@ use crate::plan::Stage as TechniqueStage;
 use crate::sky::SkyUniforms;
 use crate::spray::{Emitter, Particle, SprayUniforms};
 use crate::tonemap::TonemapUniforms;
+use crate::waves::coastal::{CoastalBlock, CoastalShadingBlock};
 use crate::waves::gerstner::GerstnerBlock;
 use crate::waves::uniforms::{FftPassUniforms, WaveModeData, WavesUniforms};
 
@@ -115,7 +116,9 @@ nested!(
     GgxShadingBlock,
     ClipmapBlock,
     DetailBlock,
-    FoamBlock
+    FoamBlock,
+    CoastalBlock,
+    CoastalShadingBlock
 );
 
 /// The kind of an entry point.
@@ -541,7 +544,7 @@ pub const SHARED: &[SharedFile] = &[
                 pad0,
                 pad1
             }),
-            block!(ProjectedGridBlock { corners, cols, rows, pad0, pad1 }),
+            block!(ProjectedGridBlock { corners, cols, rows, shore, pad1 }),
             block!(ChiuShadingBlock { zeta_m, shininess_per_m, clip_waves, pad1 }),
             block!(TerrainBlock { floor, relief, sun_under, top }),
             block!(MultiScaleBlock {
@@ -556,6 +559,15 @@ pub const SHARED: &[SharedFile] = &[
                 pad2
             }),
             block!(GerstnerBlock { count, pad0, pad1, pad2, waves }),
+            block!(CoastalBlock { center, shape, time, waves, damping, table }),
+            block!(CoastalShadingBlock {
+                dull_color,
+                dull_factor,
+                shininess,
+                distortion,
+                schlick,
+                f0
+            }),
             block!(GgxShadingBlock { alpha, schlick_fresnel, schlick_geometry, f0 }),
             block!(ClipmapBlock {
                 levels,
@@ -605,7 +617,9 @@ pub const SHARED: &[SharedFile] = &[
                 ggx,
                 clip,
                 detail,
-                foam
+                foam,
+                coastal,
+                coastal_shading
             }),
         ],
         cpu_mirror: "crates/ocean-cpu/src/shaders/shared/frame.rs",
@@ -661,6 +675,12 @@ pub const SHARED: &[SharedFile] = &[
         source: include_str!("../../../shaders/shared/gerstner.wgsl"),
         blocks: &[],
         cpu_mirror: "crates/ocean-cpu/src/shaders/shared/gerstner.rs",
+    },
+    SharedFile {
+        file: "shared/coastal.wgsl",
+        source: include_str!("../../../shaders/shared/coastal.wgsl"),
+        blocks: &[],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/shared/coastal.rs",
     },
     SharedFile {
         file: "shared/detail.wgsl",
@@ -758,6 +778,15 @@ pub const TECHNIQUE_FILES: &[TechniqueFile] = &[
         interface: SHADING_INTERFACE,
         blocks: &[],
         cpu_mirror: "crates/ocean-cpu/src/shaders/shading/ggx.rs",
+    },
+    TechniqueFile {
+        stage: TechniqueStage::Shading,
+        technique: "coastal",
+        file: "shading/coastal.wgsl",
+        source: include_str!("../../../shaders/shading/coastal.wgsl"),
+        interface: SHADING_INTERFACE,
+        blocks: &[],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/shading/coastal.rs",
     },
     TechniqueFile {
         stage: TechniqueStage::Foam,

@@ -10,6 +10,7 @@
 //! - The multipliers of the derived fields and the choppy displacement's sign: [`synthesis`].
 //! - Everything up to the FFT is f64; maps are f32 or f64 ([`MapFloat`]).
 
+pub mod coastal;
 pub mod cycle;
 pub mod gerstner;
 pub mod modes;

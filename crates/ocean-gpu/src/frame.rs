@@ -869,11 +869,11 @@ impl Renderer {
         use ocean_core::plan::Stage;
         let in_water_pipeline = |s: Stage, name: &str| {
             s == Stage::FarField
-                || (s == Stage::Surface && matches!(name, "hu_patches" | "projected_grid" | "clipmap"))
+                || (s == Stage::Surface && matches!(name, "hu_patches" | "projected_grid" | "shore_grid" | "clipmap"))
                 // Pass `spray` runs stage `spray`'s pipelines or is skipped.
                 || (s == Stage::Spray && matches!(name, "none" | "particles"))
                 // Waves `fft` run stage `waves`; `gerstner` is a uniform branch of `water`.
-                || (s == Stage::Waves && matches!(name, "fft" | "gerstner"))
+                || (s == Stage::Waves && matches!(name, "fft" | "gerstner" | "coastal"))
                 // Foam `accumulated` adds pass `foam` of its own stage; every foam technique's
                 // file is composed into `water` (above).
                 // Post `bloom` is a pass of its own stage, run or skipped by the plan; the

@@ -112,9 +112,10 @@ impl WaterStage {
                 texture_entry(7, fragment, true),
                 texture_entry(8, fragment, false),
                 sampler_entry(9, vf),
-                sampler_entry(10, fragment),
+                // The floor's depth fades waves `coastal` at the vertices.
+                sampler_entry(10, vf),
                 texture_entry(11, fragment, true),
-                texture_entry(12, fragment, true),
+                texture_entry(12, vf, true),
                 texture_entry(13, fragment, true),
             ],
         });

@@ -99,6 +99,13 @@ impl<'a> FrameInputs<'a> {
             at.ocean.time_s = time_s;
             uniforms.gerstner = FrameUniforms::new(&at, &camera, plan, mesh.origin).gerstner;
         }
+        // Waves `coastal` likewise (a finite time always makes a sea).
+        if time_s != scene.ocean.time_s
+            && uniforms.coastal.shape[0] > 0.0
+            && let Ok(sea) = crate::frame::coastal_sea(scene, time_s)
+        {
+            uniforms.coastal = sea.block(mesh.origin);
+        }
         let mut environment = sky.uniforms();
         if plan.techniques.of(crate::plan::Stage::Sky).name == "preetham_clouds" {
             // The layer (crate::clouds): its place over the eye, its colour under the objects'

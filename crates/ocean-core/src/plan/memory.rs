@@ -180,14 +180,16 @@ impl MemoryEstimate {
                     vertices / 3 * GRID_BYTES_PER_TRIANGLE,
                     "quality.clipmap_cells",
                 );
-            } else if plan.techniques.of(crate::plan::Stage::Surface).name == "projected_grid" {
+            } else if let name @ ("projected_grid" | "shore_grid") =
+                plan.techniques.of(crate::plan::Stage::Surface).name
+            {
                 let (cols, rows) = crate::frame::ProjectedGridBlock::quads(
                     scene.camera.width,
                     scene.camera.height,
                     scene.quality.projected_grid_cell_px,
                 );
                 add(
-                    "projected grid".into(),
+                    name.replace('_', " "),
                     2 * u64::from(cols) * u64::from(rows) * GRID_BYTES_PER_TRIANGLE,
                     "quality.projected_grid_cell_px",
                 );

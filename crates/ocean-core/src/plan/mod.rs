@@ -520,9 +520,17 @@ impl FramePlan {
             .and_then(|c| footprint_inside_near_patch(scene, c));
         let techniques = scene.techniques();
         let waves_kernel = WavesKernel::for_ocean(&scene.ocean);
-        // Waves `gerstner` are summed per vertex in the water pass: no maps to make.
-        let gerstner = techniques.of(Stage::Waves).name == "gerstner";
+        // Waves `gerstner` and `coastal` are summed per vertex in the water pass: no maps.
+        let waves_name = techniques.of(Stage::Waves).name;
+        let gerstner = matches!(waves_name, "gerstner" | "coastal");
         let gerstner_reason = || {
+            if waves_name == "coastal" {
+                return format!(
+                    "waves = coastal: radial waves + {} correction wave(s) summed per vertex and \
+                     per fragment in the water pass, no maps",
+                    scene.coastal.corrections.len()
+                );
+            }
             format!(
                 "waves = gerstner: {} wave(s) summed per vertex and per fragment in the water \
                  pass, no maps",
@@ -542,7 +550,12 @@ impl FramePlan {
             reflection_map_size: [scene.camera.width, scene.camera.height].map(|side| {
                 ((f64::from(side) * scene.quality.reflection_map_scale).round() as u32).max(1)
             }),
-            wave_bound_m: if gerstner {
+            wave_bound_m: if waves_name == "coastal" {
+                // Vertical only; a scene whose dispersion fails validation has no sea.
+                let v = crate::frame::coastal_sea(scene, scene.ocean.time_s)
+                    .map_or(0.0, |s| s.bound_m());
+                [v, 0.0]
+            } else if gerstner {
                 let (v, h) = scene.gerstner.bounds();
                 [v, h]
             } else if techniques.of(Stage::Surface).name == "projected_grid"
@@ -774,6 +787,21 @@ impl FramePlan {
                         format!(
                             "the sea surface, shading {}, on a projected grid of {cols}×{rows} \
                              quads from the vertex index",
+                            techniques.of(Stage::Shading).name
+                        ),
+                    )
+                }
+                Pass::Water if techniques.of(Stage::Surface).name == "shore_grid" => {
+                    let (cols, rows) = crate::frame::ProjectedGridBlock::quads(
+                        scene.camera.width,
+                        scene.camera.height,
+                        scene.quality.projected_grid_cell_px,
+                    );
+                    (
+                        true,
+                        format!(
+                            "the sea surface, shading {}, on the shore grid of {cols}×{rows} \
+                             quads ahead of the eye (rows of equal screen height, seed 004)",
                             techniques.of(Stage::Shading).name
                         ),
                     )
@@ -1065,7 +1093,7 @@ impl FramePlan {
         if let Some(clipmap) = crate::geometry::Clipmap::of_frame(scene, camera, self) {
             return Ok(index_drawn(clipmap?.origin));
         }
-        if self.techniques.of(Stage::Surface).name == "projected_grid" {
+        if matches!(self.techniques.of(Stage::Surface).name, "projected_grid" | "shore_grid") {
             let cell = |x: f64| (x / g).round() * g;
             return Ok(index_drawn([cell(camera.eye.x), cell(camera.eye.z)]));
         }

@@ -31,6 +31,11 @@ pub use validate::{
 /// The built-in default scene (open sea at late afternoon with a buoy and a rock).
 pub const DEFAULT_SCENE_TOML: &str = include_str!("../../../../reference/scenes/default.toml");
 
+/// The coastal system's own built-in scene, an island (`reference/scenes/coastal_island.toml`):
+/// its waves need a shore, which the default scene's open sea does not have.
+pub const COASTAL_SCENE_TOML: &str =
+    include_str!("../../../../reference/scenes/coastal_island.toml");
+
 /// Where a scene came from, for error messages.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum SceneSource {
@@ -101,6 +106,8 @@ pub struct Scene {
     pub objects: Vec<Object>,
     /// Waves technique `gerstner`'s waves (seed 002).
     pub gerstner: crate::waves::gerstner::Gerstner,
+    /// Waves technique `coastal`'s radial and correction waves (seed 004).
+    pub coastal: crate::waves::coastal::Coastal,
     /// The sea floor; absent means a bottomless sea.
     pub terrain: Option<Terrain>,
     /// Parameters of seed 001's techniques (shading `chiu`).
@@ -743,6 +750,18 @@ impl Scene {
         match Self::from_toml(DEFAULT_SCENE_TOML, SceneSource::BuiltIn) {
             Ok(s) => s,
             Err(e) => panic!("the built-in scene is invalid: {e}"),
+        }
+    }
+
+    /// The built-in scene of `system`: the default scene, or for `coastal` its island
+    /// ([`COASTAL_SCENE_TOML`]).
+    pub fn builtin_for(system: crate::plan::System) -> Self {
+        if system != crate::plan::System::Coastal {
+            return Self::builtin();
+        }
+        match Self::from_toml(COASTAL_SCENE_TOML, SceneSource::BuiltIn) {
+            Ok(s) => s,
+            Err(e) => panic!("the built-in coastal scene is invalid: {e}"),
         }
     }
 

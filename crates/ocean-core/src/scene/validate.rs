@@ -13,6 +13,7 @@
 
 use super::{ObjectKind, Scene, Shape};
 use crate::error::number;
+use crate::waves::coastal::MAX_CORRECTION_WAVES;
 use crate::waves::gerstner::MAX_GERSTNER_WAVES;
 
 /// The accepted range of one numeric scene key, inclusive at both ends (NaN never passes).
@@ -280,6 +281,18 @@ pub const LIMITS: &[Limit] = &[
     real("gerstner.waves.*.direction_deg", -360.0, 360.0, "degrees from +x towards +z"),
     real("gerstner.waves.*.steepness", 0.0, 1.0, "0 a sine wave, 1 a cusp at the crest"),
     real("gerstner.waves.*.phase", -1.0e3, 1.0e3, "radians"),
+    real("coastal.center", -MAX_COORDINATE_M, MAX_COORDINATE_M, "m; the point the waves run to"),
+    real("coastal.amplitude_m", 0.0, 100.0, "m, crest above trough in deep water"),
+    real("coastal.wavelength_m", 0.1, 1.0e4, "m, the radial waves' deep-water wavelength"),
+    whole("coastal.power", 1.0, 15.0, "odd powers keep the seed's shape; the seed's 7"),
+    real("coastal.back_factor", 1.0, 8.0, "the seed's temp2 (2): the front's steepening"),
+    real("coastal.corrections.*.direction_deg", -360.0, 360.0, "degrees from +x towards +z"),
+    real("coastal.corrections.*.wavelength_m", 0.1, 1.0e4, "m"),
+    real("coastal.corrections.*.amplitude_m", 0.0, 100.0, "m, the seed's Amplitudes/2"),
+    whole("coastal.shininess", 1.0, 10000.0, "the highlight's Blinn–Phong exponent; the seed's 30"),
+    real("coastal.dull_factor", 0.0, 1.0, "the dull colour's share at the crests"),
+    real("coastal.dull_color", 0.0, MAX_COLOUR, "linear RGB albedo"),
+    real("coastal.distortion", 0.0, 1.0, "screen units per unit of normal tilt"),
 ];
 
 /// The limit of a key (`objects.3.radius` finds `objects.*.radius`: an index stands for every
@@ -437,6 +450,7 @@ impl Scene {
             }
         }
         self.check_gerstner()?;
+        self.check_coastal()?;
         check("ggx.roughness", &[self.ggx.roughness])?;
         check("ggx.detail_strength", &[self.ggx.detail_strength])?;
         check("ggx.detail_wavelength_m", &[self.ggx.detail_wavelength_m])?;
@@ -561,6 +575,37 @@ impl Scene {
             check(&key("direction_deg"), &[w.direction_deg])?;
             check(&key("steepness"), &[w.steepness])?;
             check(&key("phase"), &[w.phase])?;
+        }
+        Ok(())
+    }
+
+    fn check_coastal(&self) -> Result<(), Refusal> {
+        let c = &self.coastal;
+        if let Some(center) = &c.center {
+            check("coastal.center", center)?;
+        }
+        check("coastal.amplitude_m", &[c.amplitude_m])?;
+        check("coastal.wavelength_m", &[c.wavelength_m])?;
+        check_u32("coastal.power", c.power)?;
+        check("coastal.back_factor", &[c.back_factor])?;
+        check_u32("coastal.shininess", c.shininess)?;
+        check("coastal.dull_factor", &[c.dull_factor])?;
+        check("coastal.dull_color", &c.dull_color)?;
+        check("coastal.distortion", &[c.distortion])?;
+        if c.corrections.len() > MAX_CORRECTION_WAVES {
+            return Err((
+                "coastal.corrections".into(),
+                format!(
+                    "at most {MAX_CORRECTION_WAVES} correction waves (the seed's float4), got {}",
+                    c.corrections.len()
+                ),
+            ));
+        }
+        for (i, w) in c.corrections.iter().enumerate() {
+            let key = |f: &str| format!("coastal.corrections.{i}.{f}");
+            check(&key("direction_deg"), &[w.direction_deg])?;
+            check(&key("wavelength_m"), &[w.wavelength_m])?;
+            check(&key("amplitude_m"), &[w.amplitude_m])?;
         }
         Ok(())
     }

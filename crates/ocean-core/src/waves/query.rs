@@ -348,6 +348,8 @@ pub enum WaveSurface {
     Fft(SurfaceQuery),
     /// Waves `gerstner`: the sum of the frame's Gerstner waves.
     Gerstner(super::gerstner::GerstnerSea),
+    /// Waves `coastal`: the radial and correction waves over the floor (vertical only).
+    Coastal(Box<super::coastal::CoastalSea>),
 }
 
 impl WaveSurface {
@@ -356,6 +358,7 @@ impl WaveSurface {
         match self {
             Self::Fft(q) => q.sample(x0, z0),
             Self::Gerstner(g) => g.sample(x0, z0),
+            Self::Coastal(c) => c.surface_sample(x0, z0),
         }
     }
 
@@ -364,6 +367,15 @@ impl WaveSurface {
         match self {
             Self::Fft(q) => q.invert(x, z),
             Self::Gerstner(g) => g.invert(x, z),
+            // The coastal waves move the surface vertically only: the point is its own.
+            Self::Coastal(c) => Inversion {
+                x0: x,
+                z0: z,
+                residual_m: 0.0,
+                iterations: 0,
+                converged: true,
+                sample: c.surface_sample(x, z),
+            },
         }
     }
 

@@ -2,6 +2,7 @@
 //! from above, which `water.wgsl` imports as `technique/shading`.
 
 pub mod chiu;
+pub mod coastal;
 pub mod ggx;
 pub mod hu;
 
@@ -17,6 +18,7 @@ pub fn shade_above(technique: &str) -> Option<ShadeAbove> {
         "hu" => Some(hu::shade_above),
         "chiu" => Some(chiu::shade_above),
         "ggx" => Some(ggx::shade_above),
+        "coastal" => Some(coastal::shade_above),
         _ => None,
     }
 }

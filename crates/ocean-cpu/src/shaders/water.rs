@@ -6,12 +6,13 @@ use ocean_core::frame::FrameUniforms;
 mod clipmap;
 pub use clipmap::vs_clipmap;
 
+use super::shared::coastal::coastal_wave;
 use super::shared::foam::foam_over;
 use super::shared::frame::{dot3, transform_point, unit};
 use super::shared::gerstner::{gerstner_cis, gerstner_displacement, gerstner_jacobian};
 use super::shared::trig::TAU;
 use super::wgsl::{
-    Vec2, Vec3, Vec4, abs, clamp, frexp, ldexp, max, sqrt, texture_sample_level, vec2, vec3,
+    Vec2, Vec3, Vec4, abs, clamp, frexp, ldexp, max, sqrt, texture_sample_level, vec2, vec3, vec4,
 };
 use crate::mip::{MipChain, texture_sample_level_mip};
 use crate::sampler::{AddressMode, FilterMode, Sampler, Texture2D};
@@ -170,7 +171,8 @@ pub fn vs_main(v: &WaterVertex, b: &Bindings<'_>) -> VertexOut {
     water_vertex(Vec2::from(v.pos), v.weight, b)
 }
 
-/// `vs_projected_grid(k)`: vertex k of surface `projected_grid`'s triangle list.
+/// `vs_projected_grid(k)`: vertex k of surface `projected_grid`'s (or `shore_grid`'s) triangle
+/// list.
 pub fn vs_projected_grid(k: u32, b: &Bindings<'_>) -> VertexOut {
     let g = &b.frame.grid;
     let cols = g.cols as u32;
@@ -178,6 +180,14 @@ pub fn vs_projected_grid(k: u32, b: &Bindings<'_>) -> VertexOut {
     let corner = (k % 6) as usize;
     let di = [0u32, 1, 1, 0, 1, 0];
     let dj = [0u32, 0, 1, 0, 1, 1];
+    if g.shore > 0.0 {
+        let [a, s, w, _] = g.corners;
+        let d = s[0] * (1.0 / (1.0 - (quad / cols + dj[corner]) as f32 / s[1]) - 1.0) - s[2];
+        let x =
+            ((quad % cols + di[corner]) as f32 / g.cols * 2.0 - 1.0) * (w[0] + w[1] * (d + s[2]));
+        let rel = vec2(a[0] * d + a[2] * x, a[1] * d + a[3] * x);
+        return water_vertex(rel - Vec2::from(b.frame.tiling.mesh_offset), 1.0, b);
+    }
     let u = (quad % cols + di[corner]) as f32 / g.cols;
     let v = (quad / cols + dj[corner]) as f32 / g.rows;
     let c = g.corners.map(Vec4::from);
@@ -200,6 +210,10 @@ pub fn map_uvs(pos: Vec2, frame: &FrameUniforms) -> (Vec2, Vec2) {
 pub fn water_vertex(pos: Vec2, weight: f32, b: &Bindings<'_>) -> VertexOut {
     let frame = b.frame;
     let uv = map_uvs(pos, frame);
+    if frame.coastal.shape[0] > 0.0 {
+        let h = coastal_wave(pos, vec2(0.0, 0.0), vec2(0.0, 0.0), frame, b.floor_map).x * weight;
+        return displaced_vertex(pos, vec4(0.0, h, 0.0, 0.0), uv, weight, frame);
+    }
     if frame.gerstner.count > 0.0 {
         return displaced_vertex(
             pos,
@@ -511,6 +525,12 @@ pub fn filtered_slopes(input: &VertexOut, b: &Bindings<'_>) -> Vec3 {
 /// `wave_slopes(in, fp)`.
 pub fn wave_slopes(input: &VertexOut, fp: &Footprint, b: &Bindings<'_>) -> Vec3 {
     let frame = b.frame;
+    if frame.coastal.shape[0] > 0.0 {
+        let short = fp.dist * frame.far.pixel_angle;
+        let sigma = vec2(0.5 * short / max(fp.vy, 1e-4), 0.5 * short);
+        let w = coastal_wave(input.pos, fp.h, sigma, frame, b.floor_map);
+        return vec3(w.y * input.weight, w.z * input.weight, 0.0);
+    }
     if frame.gerstner.count > 0.0 {
         return gerstner_filtered_slopes(input.pos, fp, input.weight, frame);
     }
@@ -670,6 +690,9 @@ pub fn sky_filtered(view: Vec3, slopes: Vec3, variance: f32, b: &Bindings<'_>) -
 /// `surface_jacobian(in)`: J at the fragment, faded towards 1 with the mesh's weight.
 pub fn surface_jacobian(input: &VertexOut, b: &Bindings<'_>) -> f32 {
     let frame = b.frame;
+    if frame.coastal.shape[0] > 0.0 {
+        return 1.0;
+    }
     if frame.gerstner.count > 0.0 {
         return 1.0 + (gerstner_jacobian(input.pos, frame) - 1.0) * input.weight;
     }

@@ -1,6 +1,7 @@
 //! Mirrors of `shaders/shared/*.wgsl`: functions several stages import.
 
 pub mod camera;
+pub mod coastal;
 pub mod detail;
 pub mod floor;
 pub mod foam;

@@ -3,8 +3,9 @@
 use super::{
     Bindings, VertexOut, WRAP_LINEAR, displaced_vertex, map_uvs, multi_scale_displacement,
 };
+use crate::shaders::shared::coastal::coastal_wave;
 use crate::shaders::shared::gerstner::gerstner_displacement_filtered;
-use crate::shaders::wgsl::{clamp, texture_sample_level, vec2};
+use crate::shaders::wgsl::{clamp, texture_sample_level, vec2, vec4};
 
 /// `vs_clipmap(k)`: vertex k of level k / (6n²), morphed towards the next level's lattice.
 pub fn vs_clipmap(k: u32, b: &Bindings<'_>) -> VertexOut {
@@ -43,6 +44,10 @@ pub fn vs_clipmap(k: u32, b: &Bindings<'_>) -> VertexOut {
     let malpha = clamp((mdist - c.morph_start) * c.inv_band, 0.0, 1.0);
     let spacing = e[2] * (1.0 + malpha) * c.cell_m;
     let uv = map_uvs(pos, frame);
+    if frame.coastal.shape[0] > 0.0 {
+        let ch = coastal_wave(pos, vec2(0.0, 0.0), vec2(0.0, 0.0), frame, b.floor_map).x;
+        return displaced_vertex(pos, vec4(0.0, ch, 0.0, 0.0), uv, 1.0, frame);
+    }
     if frame.gerstner.count > 0.0 {
         return displaced_vertex(
             pos,

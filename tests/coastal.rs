@@ -1,0 +1,260 @@
+//! Waves technique `coastal` (issue 15, seed 004): the per-vertex waves (the CPU mirror of
+//! `shared/coastal.wgsl`, whose arithmetic the GPU's matches: the cross-check scene
+//! `reference/scenes/coastal_waves.toml`) against the seed's closed form over a flat floor;
+//! crests running to the shore at the phase speed of the depth under them; no water above
+//! dry sand; the f64 height query agreeing with what the vertices draw.
+
+use std::f64::consts::TAU;
+
+use ocean_core::camera::Camera;
+use ocean_core::frame::{FrameUniforms, coastal_sea};
+use ocean_core::plan::{FramePlan, OutputKind};
+use ocean_core::scene::{Scene, SceneSource};
+use ocean_cpu::sampler::Texture2D;
+use ocean_cpu::shaders::shared::coastal::coastal_wave;
+use ocean_cpu::shaders::shared::floor::floor_height;
+use ocean_cpu::shaders::wgsl::vec2;
+
+const G: f64 = 9.81;
+
+/// An island scene (reference/scenes/island.toml's floor) with waves `coastal`, `extra`
+/// appended to `[coastal]`.
+fn scene(coastal: &str, terrain: bool, time_s: f64) -> Scene {
+    let floor = if terrain {
+        "[terrain]\nkind = \"island\"\ndepth_m = 10.0\ncenter = [0.0, 0.0]\nextent_m = 420.0\n\
+         island_radius_m = 60.0\nisland_height_m = 12.0\nshore_slope = 0.08\n"
+    } else {
+        ""
+    };
+    let text = format!(
+        "system = \"chiu\"\n[techniques]\nwaves = \"coastal\"\nsky = \"preetham\"\n\
+         [ocean]\ntime_s = {time_s}\n\
+         [camera]\nposition = [20.0, 5.0, 110.0]\nlook_at = [0.0, 2.0, 0.0]\nwidth = 64\nheight = 36\n\
+         {floor}[coastal]\n{coastal}\n"
+    );
+    Scene::from_toml(&text, SceneSource::Text).expect("scene")
+}
+
+/// The frame's uniforms for a mesh whose reference point is world `origin`, and its floor map.
+fn frame(scene: &Scene, origin: [f64; 2]) -> (FrameUniforms, Texture2D) {
+    let plan = FramePlan::new(scene, OutputKind::Hdr);
+    let camera = Camera::from_scene(&scene.camera).expect("camera");
+    let u = FrameUniforms::new(scene, &camera, &plan, origin);
+    let (w, h, texels) = ocean_core::terrain::relief_texels(scene.terrain.as_ref());
+    (u, Texture2D::new(w, h, texels))
+}
+
+/// The mirror's (height, slope x, slope z, phase) at world (x, z).
+fn wave(u: &FrameUniforms, floor: &Texture2D, origin: [f64; 2], x: f64, z: f64) -> [f64; 4] {
+    let pos = vec2((x - origin[0]) as f32, (z - origin[1]) as f32);
+    let w = coastal_wave(pos, vec2(0.0, 0.0), vec2(0.0, 0.0), u, floor);
+    [w.x, w.y, w.z, w.w].map(f64::from)
+}
+
+/// The floor's height under world (x, z) as the shaders see it (floor_height takes
+/// camera-relative coordinates).
+fn ground(s: &Scene, u: &FrameUniforms, floor: &Texture2D, x: f64, z: f64) -> f64 {
+    let eye = s.camera.position;
+    f64::from(floor_height((x - eye[0]) as f32, (z - eye[2]) as f32, u, floor))
+}
+
+/// k solving ω² = g k tanh(k h), by bisection (independent of ocean-core's Newton).
+fn wavenumber(omega: f64, h: f64) -> f64 {
+    let (mut lo, mut hi) = (1e-9, 1e3);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if G * mid * (mid * h).tanh() < omega * omega { lo = mid } else { hi = mid }
+    }
+    0.5 * (lo + hi)
+}
+
+/// A deterministic stream of uniforms in [0, 1).
+fn uniforms(seed: u64) -> impl FnMut() -> f64 {
+    let mut s = seed;
+    move || {
+        s = s.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+        (s >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// The seed's profile: clamp(s^p·A·m − A(m − 1), 0, A), m = 2 where s·cos φ < 0.
+fn seed_height(phase_turns: f64, a: f64) -> f64 {
+    let (s, c) = (TAU * phase_turns).sin_cos();
+    let m = if s * c < 0.0 { 2.0 } else { 1.0 };
+    (s.powi(7) * a * m - a * (m - 1.0)).clamp(0.0, a)
+}
+
+/// The largest difference between the mirror's radial wave over the open sea's flat floor
+/// (chiu's 20 m) and the seed's closed form with φ = −k r − ω t + `phase_shift` and the
+/// amplitude shoaled to 20 m (K_s = 0.9991 for λ₀ = 28 m), at 4000 random points within 600 m
+/// of the centre.
+fn closed_form_error(phase_shift: f64) -> f64 {
+    let (a, lambda, t) = (1.2, 28.0, 7.3);
+    let s = scene(
+        &format!(
+            "center = [37.0, -12.0]\namplitude_m = {a}\nwavelength_m = {lambda}\ncorrections = []"
+        ),
+        false,
+        t,
+    );
+    let origin = [-150.0, 80.0];
+    let (u, floor) = frame(&s, origin);
+    let omega = (G * TAU / lambda).sqrt();
+    let k = wavenumber(omega, 20.0);
+    // Linear theory's shoaling over 20 m: K_s = √(c_g,deep / c_g), c_g = ½ (ω/k)(1 + 2kh/sinh 2kh).
+    let cg = 0.5 * omega / k * (1.0 + 2.0 * k * 20.0 / (2.0 * k * 20.0).sinh());
+    let a = a * (0.5 * G / omega / cg).sqrt();
+    let mut r = uniforms(7);
+    let mut worst: f64 = 0.0;
+    for _ in 0..4000 {
+        let (rad, ang) = (600.0 * r(), TAU * r());
+        let (x, z) = (37.0 + rad * ang.cos(), -12.0 + rad * ang.sin());
+        let dist = (x - 37.0).hypot(z + 12.0);
+        let phase = (-(k * dist) - omega * t) / TAU + phase_shift;
+        let expected = seed_height(phase, a);
+        worst = worst.max((wave(&u, &floor, origin, x, z)[0] - expected).abs());
+    }
+    worst
+}
+
+#[test]
+fn the_radial_wave_is_the_seeds_closed_form_over_a_flat_floor() {
+    // The mirror forms the phase in f32 (Φ up to 21 turns at 600 m: ulp 2e-6 turns) and the
+    // profile's steepest part changes by 2·7·2π·A ≈ 106 m per turn at A = 1.2 m, so f32
+    // round-off alone allows about 2e-4 m; the segments' quadratic is exact for Φ = k r.
+    let err = closed_form_error(0.0);
+    assert!(err < 1e-3, "mirror vs closed form: {err} m");
+    // Negative control: the same waves 1/50 of a period later are told apart.
+    let shifted = closed_form_error(0.02);
+    assert!(shifted > 0.1, "a 0.02-turn phase error must show: {shifted} m");
+}
+
+/// The crest nearest `r0` along +x from the island's centre, at time `t`: the radius of the
+/// highest sample within ±λ/2, sampled every 1 mm.
+fn crest(u: &FrameUniforms, floor: &Texture2D, r0: f64, half_width: f64) -> f64 {
+    let n = (2.0 * half_width / 0.001) as usize;
+    (0..=n)
+        .map(|i| r0 - half_width + i as f64 * 0.001)
+        .map(|r| (r, wave(u, floor, [0.0, 0.0], r, 0.0)[0]))
+        .fold((r0, f64::MIN), |best, (r, h)| if h > best.1 { (r, h) } else { best })
+        .0
+}
+
+#[test]
+fn crests_run_to_the_shore_at_the_phase_speed_of_the_depth_under_them() {
+    let lambda = 28.0;
+    let omega = (G * TAU / lambda).sqrt();
+    let dt = 0.1;
+    let deep_speed = omega / (TAU / lambda);
+    // Crests near the open floor (10 m), about 5 m and about 2 m of water.
+    for r0 in [230.0, 125.0, 87.0] {
+        let s0 = scene("corrections = []", true, 20.0);
+        let (u0, floor) = frame(&s0, [0.0, 0.0]);
+        let k = wavenumber(omega, -ground(&s0, &u0, &floor, r0, 0.0));
+        // The crest nearest r0 at t, and the same crest dt later (it moved about c·dt in).
+        let c0 = crest(&u0, &floor, r0, 0.5 * TAU / k);
+        let (u1, _) = frame(&scene("corrections = []", true, 20.0 + dt), [0.0, 0.0]);
+        let c1 = crest(&u1, &floor, c0 - omega / k * dt, 1.0);
+        // The phase speed ω/k of the depth under the crest, halfway.
+        let depth = -ground(&s0, &u0, &floor, 0.5 * (c0 + c1), 0.0);
+        let speed = omega / wavenumber(omega, depth);
+        let measured = (c0 - c1) / dt;
+        assert!(
+            (measured / speed - 1.0).abs() < 0.02,
+            "crest at {c0:.2} m, depth {depth:.2} m: speed {measured:.3} m/s, phase speed {speed:.3}"
+        );
+        // Negative control: in shallow water the deep-water speed is told apart.
+        if depth < 6.0 {
+            assert!(
+                (measured / deep_speed - 1.0).abs() > 0.1,
+                "depth {depth:.2} m: {measured:.3} m/s is not slower than deep water's {deep_speed:.3}"
+            );
+        }
+    }
+}
+
+#[test]
+fn no_water_stands_above_dry_sand_and_waves_break_by_the_depth() {
+    // Steep, high waves with the corrections on, over many times.
+    let mut checked_dry = 0;
+    let mut highest_ratio: f64 = 0.0;
+    for t in [0.0, 1.7, 3.1, 9.9, 41.0] {
+        let s = scene("amplitude_m = 2.5", true, t);
+        let (u, floor) = frame(&s, [0.0, 0.0]);
+        for i in 0..=240 {
+            for j in 0..=8 {
+                let r = i as f64 * 0.5 + 20.0;
+                let ang = TAU * j as f64 / 9.0 + 0.3;
+                let (x, z) = (r * ang.cos(), r * ang.sin());
+                let ground = ground(&s, &u, &floor, x, z);
+                let h = wave(&u, &floor, [0.0, 0.0], x, z)[0];
+                assert!(h.is_finite());
+                if ground >= 0.0 {
+                    checked_dry += 1;
+                    assert!(h <= 0.0, "water {h} m high over dry sand at ({x}, {z}), {ground} m");
+                } else {
+                    // Radial wave ≤ γ h, corrections ≤ their amplitudes (0.13 m together).
+                    assert!(h <= 0.78 * -ground + 0.13 + 1e-5, "{h} m over {} m of water", -ground);
+                    if -ground < 2.0 {
+                        highest_ratio = highest_ratio.max(h / -ground);
+                    }
+                }
+            }
+        }
+    }
+    assert!(checked_dry > 1000, "the sweep must cross the beach: {checked_dry} dry points");
+    // Negative control: the waves do reach the breaker limit in the shallows (a cap that
+    // flattened everything would pass the bound above trivially).
+    assert!(highest_ratio > 0.6, "highest wave over depth in the shallows: {highest_ratio}");
+}
+
+#[test]
+fn the_height_query_agrees_with_the_drawn_surface() {
+    let s = scene("", true, 12.5);
+    let origin = [30.0, -40.0];
+    let (u, floor) = frame(&s, origin);
+    let sea = coastal_sea(&s, 12.5).expect("sea");
+    let mut r = uniforms(3);
+    // (worst over water deeper than 1 m, worst in the shallows)
+    let mut worst = [0.0_f64; 2];
+    for _ in 0..3000 {
+        let (x, z) = (400.0 * r() - 200.0, 400.0 * r() - 200.0);
+        let drawn = wave(&u, &floor, origin, x, z)[0];
+        let e = (sea.height_at(x, z) - drawn).abs();
+        let shallow = usize::from(sea.depth(x, z) < 1.0);
+        worst[shallow] = worst[shallow].max(e);
+    }
+    // The query's f64 nodes (every 15 cm) vs the vertices' f32 quadratic segments (4.7 m):
+    // within 1 cm of a 0.8 m sea where the water is deeper than 1 m; in the shallows Φ
+    // bends as 1/√h towards the waterline, which a segment's quadratic follows to about
+    // 0.01 turn, under a wave capped at γ·h < 0.78 m (measured 3.2 cm).
+    assert!(worst[0] < 0.01, "height query vs drawn surface, deeper than 1 m: {} m", worst[0]);
+    assert!(worst[1] < 0.05, "height query vs drawn surface, shallower: {} m", worst[1]);
+    // The surface's slopes are its height's: a central difference of the query, over the
+    // flat floor beyond the shore (where K_s and the depth weights are constant: their own
+    // gradients are left out of the slopes).
+    for (x, z) in [(-150.0, 150.0), (180.0, -120.0), (0.0, 205.0)] {
+        let [_, sx, sz] = sea.sample(x, z);
+        let e = 1e-4;
+        let dx = (sea.height_at(x + e, z) - sea.height_at(x - e, z)) / (2.0 * e);
+        let dz = (sea.height_at(x, z + e) - sea.height_at(x, z - e)) / (2.0 * e);
+        assert!(
+            (sx - dx).abs() < 1e-3 && (sz - dz).abs() < 1e-3,
+            "({x}, {z}): {sx} {sz} vs {dx} {dz}"
+        );
+    }
+}
+
+#[test]
+fn extreme_times_and_amplitudes_stay_finite() {
+    for (t, extra) in [(1.0e9, ""), (0.0, "amplitude_m = 0.0"), (3.0, "amplitude_m = 100.0")] {
+        let s = scene(extra, true, t);
+        let (u, floor) = frame(&s, [0.0, 0.0]);
+        let sea = coastal_sea(&s, t).expect("sea");
+        for (x, z) in [(0.0, 0.0), (61.0, 0.0), (150.0, -3.0), (5000.0, 9000.0)] {
+            let w = wave(&u, &floor, [0.0, 0.0], x, z);
+            assert!(w.iter().all(|v| v.is_finite()), "t {t} {extra}: {w:?} at ({x}, {z})");
+            assert!(sea.sample(x, z).iter().all(|v| v.is_finite()));
+        }
+    }
+}
