@@ -218,8 +218,8 @@ pub fn parse(text: &str) -> Option<Scene> {
 
 /// One scene per (key, bound) of every non-cost key: that key at its min or max, everything
 /// else at its default, with a sun and a sphere and a box, at 16×9; a boat too where the key
-/// is an object's or the sea's (what a boat's settle run reads; a boat on the default 256²
-/// sea costs ~1 s, too much for every scene). Some are refused by a cross-key check (the
+/// is an object's or the FFT sea's, the default (what a boat's settle run reads; a boat on
+/// the default 256² sea costs ~1 s, too much for every scene). Some are refused by a cross-key check (the
 /// camera's target at its own position, say); those come back `None`.
 pub fn per_key_extremes() -> Vec<(String, String)> {
     let mut rng = Rng(7);
@@ -232,12 +232,12 @@ pub fn per_key_extremes() -> Vec<(String, String)> {
             if !values.iter().any(|(k, _)| k.starts_with("sun.")) {
                 values.push(("sun.intensity", "5.0".to_owned()));
             }
-            let kinds: &[&str] =
-                if ["objects.", "ocean.", "gerstner."].iter().any(|p| limit.key.starts_with(p)) {
-                    &["sphere", "box", "boat"]
-                } else {
-                    &["sphere", "box"]
-                };
+            let kinds: &[&str] = if ["objects.", "ocean."].iter().any(|p| limit.key.starts_with(p))
+            {
+                &["sphere", "box", "boat"]
+            } else {
+                &["sphere", "box"]
+            };
             out.push((format!("{} = {how:?}", limit.key), scene_text(&values, kinds)));
         }
     }

@@ -34,13 +34,14 @@ use crate::plan::FramePlan;
 use crate::scene::{Object, Scene, Shape};
 
 /// Sub-steps of a boat's settle run: W = SETTLE_STEPS · 0.2/ω ≈ 4.1 heave periods 2π/ω
-/// (3.5 s for the default 6 m launch). Measured against a run 6 times longer (768 steps) on
-/// `welch_calm_day` and `island`: the boat's up axis differs by 5e-4 and 2e-5 (32 steps:
-/// 1.5e-2 and 1.2e-2, 64: 2.9e-3 and 1.8e-3), and more steps do not bring it closer: what is
-/// left is the drift, the boat's horizontal place and heading, which no force restores and
-/// which so depend on the whole run (1 to 4 cm and 2e-4 rad). At 128² under shading `chiu`
-/// (`island`) the run costs ~0.45 s a frame on two cores (5 height queries a sub-step at
-/// ~1 ms each; `README.md`, "A boat").
+/// (3.5 s for the default 6 m launch). Measured against a run 6 times longer (768 steps), the
+/// 6 m launch on `welch_calm_day` and `coastal_boat`: the boat's up axis differs by 5e-4 and
+/// 1.6e-4 (32 steps: 1.5e-2 and 1.5e-2, 64: 2.9e-3 and 1.5e-3), and more steps do not bring
+/// it much closer (256: 1.3e-4 on `coastal_boat`): what is left is mostly the drift, the
+/// boat's horizontal place and heading, which no force restores and which so depend on the
+/// whole run (7 mm to 4 cm, up to 1e-3 rad). At 128² under shading
+/// `chiu` (`coastal_boat`) the run costs 0.54 s a frame on one core, 0.38 s on two (5 height
+/// queries a sub-step at ~1 ms each; `README.md`, "A boat in a scene").
 pub const SETTLE_STEPS: usize = 128;
 
 /// The bow's share of the hull's length: the last 30 % narrows from the full beam to a
