@@ -13,14 +13,16 @@
 //! centre (m).
 //!
 //! Gerstner scenes run in a fraction of a second; under waves `fft` every height query sums
-//! all of the scene's modes, so a 256² scene takes tens of milliseconds a frame.
+//! all of the scene's modes, so a 256² scene takes several milliseconds a frame. A scene's
+//! own boats (`[[objects]] kind = "boat"`) are drawn at poses settled the same way
+//! (`ocean_core::frame::ObjectPoses`).
 
 use std::path::PathBuf;
 
 use anyhow::Context;
 use glam::DVec3;
 use ocean_core::floating::{Boat, BoatControls, BoatParams, BoatPose, WaterHeight};
-use ocean_core::frame::surface_query;
+use ocean_core::frame::SurfaceSource;
 use ocean_core::plan::{FramePlan, OutputKind};
 use ocean_core::scene::Scene;
 
@@ -44,19 +46,21 @@ fn main() -> anyhow::Result<()> {
     // Heading along the wind (the scene's degrees, measured like the waves' directions from
     // +x towards +z, i.e. clockwise seen from above, which is minus the boat's yaw).
     let yaw = -scene.ocean.wind_direction_deg.to_radians();
-    let eta0 = surface_query(&scene, &plan, t0)?.water_height(0.0, 0.0);
+    // The sea's modes made once; each frame's surface from them.
+    let sea = SurfaceSource::new(&scene, &plan)?;
+    let eta0 = sea.at(t0)?.water_height(0.0, 0.0);
     let keel = DVec3::new(0.0, eta0 - params.still_water_draft_m(), 0.0);
     let mut boat = Boat::new(params, &BoatPose::from_angles(keel, yaw, 0.0, 0.0), t0)?;
 
     println!("t_s,x_m,y_m,z_m,pitch_rad,roll_rad,yaw_rad,water_m");
     // The surface at the frame's start time drives the frame; the one at its end is reported
     // with the frame and drives the next, so each time's surface is built once.
-    let mut water = surface_query(&scene, &plan, boat.time_s())?;
+    let mut water = sea.at(boat.time_s())?;
     for frame in 0..frames {
         let steer_rad = if frame < frames / 2 { 0.0 } else { 0.3 };
         boat.controls = BoatControls { throttle: 1.0, steer_rad };
         boat.step(&water, FRAME_S);
-        water = surface_query(&scene, &plan, boat.time_s())?;
+        water = sea.at(boat.time_s())?;
         let pose = boat.pose();
         let p = pose.position;
         let here = water.water_height(p.x, p.z);

@@ -39,7 +39,8 @@ fn scene(coastal: &str, terrain: bool, time_s: f64) -> Scene {
 fn frame(scene: &Scene, origin: [f64; 2]) -> (FrameUniforms, Texture2D) {
     let plan = FramePlan::new(scene, OutputKind::Hdr);
     let camera = Camera::from_scene(&scene.camera).expect("camera");
-    let u = FrameUniforms::new(scene, &camera, &plan, origin);
+    let poses = ocean_core::frame::ObjectPoses::resting(scene);
+    let u = FrameUniforms::new(scene, &camera, &plan, origin, &poses);
     let (w, h, texels) = ocean_core::terrain::relief_texels(scene.terrain.as_ref());
     (u, Texture2D::new(w, h, texels))
 }
@@ -257,4 +258,17 @@ fn extreme_times_and_amplitudes_stay_finite() {
             assert!(sea.sample(x, z).iter().all(|v| v.is_finite()));
         }
     }
+}
+
+#[test]
+fn a_sea_moved_to_another_time_is_the_sea_made_at_that_time() {
+    // What a floating object's settle run uses (the profile built once, the phases moved).
+    let s = scene("", true, 3.0);
+    let moved = coastal_sea(&s, 3.0).expect("sea").at_time(17.25);
+    let made = coastal_sea(&s, 17.25).expect("sea");
+    for (x, z) in [(100.0, 20.0), (-70.0, 40.0), (0.0, -150.0)] {
+        assert_eq!(moved.sample(x, z), made.sample(x, z), "({x}, {z})");
+    }
+    // Negative control: the time does move the sea.
+    assert_ne!(moved.sample(100.0, 20.0), coastal_sea(&s, 3.0).expect("sea").sample(100.0, 20.0));
 }

@@ -29,6 +29,8 @@ fn sphere(center: [f64; 3]) -> Object {
         center,
         radius: Some(1.0),
         size: None,
+        heading_deg: None,
+        mass_kg: None,
         color: [0.6, 0.5, 0.4],
     }
 }

@@ -8,7 +8,7 @@ use ocean::view::controller::{
 use ocean::view::params::{Preset, ViewParams, range, sun_angles, sun_direction};
 use ocean::view::{fixed_step_time, swept_wind};
 use ocean_core::camera::Camera;
-use ocean_core::frame::FrameUniforms;
+use ocean_core::frame::{FrameUniforms, ObjectPoses};
 use ocean_core::plan::{FramePlan, OutputKind, Pass};
 use ocean_core::scene::Scene;
 
@@ -270,9 +270,15 @@ fn water_colour_and_extinction_reach_the_shaders() {
     let s = p.apply(&base).expect("applies");
     let cam = Camera::from_scene(&s.camera).expect("camera");
     let plan = FramePlan::new(&s, OutputKind::Ldr);
-    let u = FrameUniforms::new(&s, &cam, &plan, [0.0, 0.0]);
+    let u = FrameUniforms::new(&s, &cam, &plan, [0.0, 0.0], &ObjectPoses::resting(&s));
     assert_eq!((u.water.color, u.water.extinction_per_m), ([0.01, 0.05, 0.04], 0.4));
-    let u0 = FrameUniforms::new(&base, &cam, &FramePlan::new(&base, OutputKind::Ldr), [0.0; 2]);
+    let u0 = FrameUniforms::new(
+        &base,
+        &cam,
+        &FramePlan::new(&base, OutputKind::Ldr),
+        [0.0; 2],
+        &ObjectPoses::resting(&base),
+    );
     assert_eq!(
         (u0.water.color, u0.water.extinction_per_m),
         ([0.004, 0.016, 0.028], 0.12),

@@ -190,9 +190,15 @@ pub fn scene_text(values: &[(&str, String)], objects: &[&str]) -> String {
         text += &format!("[[objects]]\nkind = \"{kind}\"\n");
         let mut has_center = false;
         for (field, value) in &object_lines {
-            let skip =
-                (*kind == "sphere" && *field == "size") || (*kind == "box" && *field == "radius");
-            if !skip {
+            // Each kind gets the keys it takes: a sphere its radius, a box its size, a boat its
+            // size, heading and mass.
+            let takes = match *field {
+                "radius" => *kind == "sphere",
+                "size" => *kind != "sphere",
+                "heading_deg" | "mass_kg" => *kind == "boat",
+                _ => true,
+            };
+            if takes {
                 text += &format!("{field} = {value}\n");
                 has_center |= *field == "center";
             }
@@ -233,8 +239,10 @@ pub fn parse(text: &str) -> Option<Scene> {
 }
 
 /// One scene per (key, bound) of every non-cost key: that key at its min or max, everything
-/// else at its default, with a sun and one object of each kind, at 16×9. Some are refused by
-/// a cross-key check (the camera's target at its own position, say); those come back `None`.
+/// else at its default, with a sun and a sphere and a box, at 16×9; a boat too where the key
+/// is an object's or the FFT sea's, the default (what a boat's settle run reads; a boat on
+/// the default 256² sea costs ~1 s, too much for every scene). Some are refused by a cross-key check (the
+/// camera's target at its own position, say); those come back `None`.
 pub fn per_key_extremes() -> Vec<(String, String)> {
     let mut rng = Rng(7);
     let mut out = Vec::new();
@@ -246,7 +254,13 @@ pub fn per_key_extremes() -> Vec<(String, String)> {
             if !values.iter().any(|(k, _)| k.starts_with("sun.")) {
                 values.push(("sun.intensity", "5.0".to_owned()));
             }
-            out.push((format!("{} = {how:?}", limit.key), scene_text(&values, &["sphere", "box"])));
+            let kinds: &[&str] = if ["objects.", "ocean."].iter().any(|p| limit.key.starts_with(p))
+            {
+                &["sphere", "box", "boat"]
+            } else {
+                &["sphere", "box"]
+            };
+            out.push((format!("{} = {how:?}", limit.key), scene_text(&values, kinds)));
         }
     }
     out
@@ -288,8 +302,9 @@ pub fn random_extreme(rng: &mut Rng) -> String {
         "quality.lod_split_threshold",
         ["0.05", "0.5", "10.0"][(rng.next_u64() % 3) as usize].into(),
     ));
-    let kinds: &[&str] = [&[][..], &["sphere"], &["box"], &["sphere", "box", "sphere"]]
-        [(rng.next_u64() % 4) as usize];
+    let kinds: &[&str] =
+        [&[][..], &["sphere"], &["box"], &["sphere", "box", "sphere"], &["boat", "sphere"]]
+            [(rng.next_u64() % 5) as usize];
     scene_text(&values, kinds)
 }
 

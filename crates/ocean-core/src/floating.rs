@@ -109,6 +109,13 @@ pub trait WaterHeight {
     /// The surface height η above (x, z), m. A non-finite value means "no water here": the
     /// point gets no buoyancy, damping or thrust (it falls).
     fn water_height(&self, x: f64, z: f64) -> f64;
+
+    /// [`Self::water_height`] of each of the five points' (x, z), in order: what one sub-step
+    /// asks. A surface whose query is costly may answer the points in parallel; each answer
+    /// must still be exactly its `water_height`, so the boat does not depend on how.
+    fn water_heights(&self, points: &[(f64, f64); 5]) -> [f64; 5] {
+        points.map(|(x, z)| self.water_height(x, z))
+    }
 }
 
 impl<F: Fn(f64, f64) -> f64 + ?Sized> WaterHeight for F {
@@ -120,6 +127,23 @@ impl<F: Fn(f64, f64) -> f64 + ?Sized> WaterHeight for F {
 impl WaterHeight for crate::waves::WaveSurface {
     fn water_height(&self, x: f64, z: f64) -> f64 {
         self.height_at(x, z)
+    }
+
+    /// Waves `fft`: the points in parallel. A point's query sums every mode several times (the
+    /// displacement's inversion, ~1 ms at 128², `frame::ObjectPoses`), and each is the same
+    /// sequential sum on whichever thread, so the heights are bit-identical to one by one.
+    fn water_heights(&self, points: &[(f64, f64); 5]) -> [f64; 5] {
+        use rayon::prelude::*;
+        match self {
+            Self::Fft(_) => {
+                let mut out = [0.0; 5];
+                out.par_iter_mut()
+                    .zip(points.par_iter())
+                    .for_each(|(h, &(x, z))| *h = self.height_at(x, z));
+                out
+            }
+            Self::Gerstner(_) | Self::Coastal(_) => points.map(|(x, z)| self.height_at(x, z)),
+        }
     }
 }
 
@@ -178,7 +202,43 @@ impl Default for BoatParams {
     }
 }
 
+/// The default launch's loading, M/(ρ L B H): the share of its hull under water on still
+/// water (d/H = 3000/(1025·6·2.5·1) ≈ 0.195); [`BoatParams::launch`]'s mass when none is
+/// given.
+pub const LAUNCH_LOADING: f64 = 3000.0 / (SEA_WATER_DENSITY_KG_M3 * 6.0 * 2.5 * 1.0);
+
 impl BoatParams {
+    /// The default launch made to another hull: length `length_m`, hull depth `hull_depth_m`,
+    /// beam `beam_m` and mass `mass_kg` (`None`: [`LAUNCH_LOADING`] of the hull's full
+    /// displacement). Every other field is the default's scaled so that the boat behaves like
+    /// it in its own time: the engine keeps its share of the mass (5 %) and its depth below
+    /// the keel (0.6 H); the damping rates keep their ratio to the buoyancy frequency ω
+    /// (so the damping ratios, and the number of heave periods a disturbance takes to die
+    /// away, are the default's); thrust keeps its ratio to the weight. This is what a scene's
+    /// `kind = "boat"` object floats as (`crate::frame::ObjectPoses`).
+    ///
+    /// The result is not validated: [`Self::validate`] and [`Self::floats`] say whether it is a
+    /// boat (a mass above ρ L B H sinks).
+    pub fn launch(length_m: f64, hull_depth_m: f64, beam_m: f64, mass_kg: Option<f64>) -> Self {
+        let default = Self::default();
+        let water = default.water_density_kg_m3;
+        let mass_kg = mass_kg.unwrap_or(LAUNCH_LOADING * water * length_m * beam_m * hull_depth_m);
+        let mut p = Self {
+            length_m,
+            beam_m,
+            hull_depth_m,
+            mass_kg,
+            engine_mass_kg: mass_kg * (default.engine_mass_kg / default.mass_kg),
+            engine_depth_m: hull_depth_m * (default.engine_depth_m / default.hull_depth_m),
+            max_thrust_n: mass_kg * (default.max_thrust_n / default.mass_kg),
+            ..default
+        };
+        let scale = p.buoyancy_omega() / default.buoyancy_omega();
+        p.heave_damping_per_s = default.heave_damping_per_s * scale;
+        p.drag_per_s = default.drag_per_s * scale;
+        p
+    }
+
     /// Checks that every field is finite and in its range.
     ///
     /// # Errors
@@ -249,8 +309,13 @@ impl BoatParams {
     /// The longest sub-step, s: [`MAX_PHASE_PER_SUBSTEP`]/ω, with ω = √(ρ g A_c / m_c) a
     /// corner's buoyancy frequency.
     pub fn max_substep_s(&self) -> f64 {
-        let omega = (self.corner_stiffness_n_per_m() / self.corner_mass_kg()).sqrt();
-        MAX_PHASE_PER_SUBSTEP / omega
+        MAX_PHASE_PER_SUBSTEP / self.buoyancy_omega()
+    }
+
+    /// ω = √(ρ g A_c / m_c), rad/s: the buoyancy frequency of one corner, the fastest motion
+    /// the sub-step must resolve (2π/ω is about the heave period).
+    pub fn buoyancy_omega(&self) -> f64 {
+        (self.corner_stiffness_n_per_m() / self.corner_mass_kg()).sqrt()
     }
 
     /// The points in the body frame (corners on the keel plane y = 0, engine below the stern).
@@ -494,9 +559,12 @@ impl Boat {
         // starboard for positive angles, which pushes the stern to starboard and turns the bow
         // to port.
         let thrust_dir = pose.forward * steer_rad.cos() + pose.starboard * steer_rad.sin();
-        for i in 0..POINTS {
+        // The positions do not change before the loop's end: all heights first (one call,
+        // which the surface may answer in parallel).
+        let points = self.position.map(|x| (x.x, x.z));
+        let heights = water.water_heights(&points);
+        for (i, &eta) in heights.iter().enumerate() {
             let x = self.position[i];
-            let eta = water.water_height(x.x, x.z);
             // Non-finite height: no water at this point (the trait's contract).
             let depth = if eta.is_finite() { eta - x.y } else { f64::NEG_INFINITY };
             let mut force = DVec3::new(0.0, -GRAVITY / self.inv_mass[i], 0.0);

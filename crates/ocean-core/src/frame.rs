@@ -10,11 +10,19 @@ use bytemuck::{Pod, Zeroable};
 use glam::{DMat4, DVec3, DVec4};
 
 use crate::camera::{Camera, to_cols_f32};
+use crate::floating::BoatPose;
 use crate::plan::{FramePlan, Pass};
 use crate::scene::{Object, Scene, Shape, Sun};
 use crate::sky::{PreethamSky, SkyParams};
 pub use crate::terrain::{TerrainBlock, terrain_triangles};
 use crate::waves::WaveMaps;
+
+mod boat;
+
+pub use boat::{
+    BOW_SHARE, HULL_TRIANGLES, ObjectPoses, SETTLE_STEPS, hull_bounds, hull_faces, hull_triangles,
+    resting_pose, settle, settle_periods, settle_window_s, settled_pose,
+};
 
 /// Phong exponent s of the sun's specular term, a whole number (the water stage raises to it
 /// by repeated multiplication, `pow_int`) (seed 000 §5.3: "s is specified before
@@ -538,98 +546,133 @@ pub const SPHERE_BANDS: u32 = 24;
 pub const SPHERE_SEGMENTS: u32 = 48;
 
 /// Triangles (three vertices each) of every object, camera-relative, counter-clockwise seen
-/// from outside.
-pub fn object_triangles(objects: &[Object], eye: DVec3) -> Vec<[ObjectVertex; 3]> {
+/// from outside; boats at their entries in `poses` (indexed as `objects`), else at rest.
+pub fn object_triangles(
+    objects: &[Object],
+    poses: &ObjectPoses,
+    eye: DVec3,
+) -> Vec<[ObjectVertex; 3]> {
     let mut tris = Vec::new();
-    for o in objects {
-        let c = DVec3::from_array(o.center);
-        let color = o.color.map(|v| v as f32);
-        let vertex = |p: DVec3, n: DVec3| ObjectVertex {
-            position: (p - eye).as_vec3().to_array(),
-            normal: n.as_vec3().to_array(),
-            color,
-        };
-        match o.shape() {
-            Some(Shape::Sphere { radius }) => {
-                let point = |b: u32, s: u32| {
-                    let theta = std::f64::consts::PI * b as f64 / SPHERE_BANDS as f64;
-                    let phi = std::f64::consts::TAU * s as f64 / SPHERE_SEGMENTS as f64;
-                    DVec3::new(theta.sin() * phi.cos(), theta.cos(), -theta.sin() * phi.sin())
-                };
-                for b in 0..SPHERE_BANDS {
-                    for s in 0..SPHERE_SEGMENTS {
-                        let (n00, n01) = (point(b, s), point(b, s + 1));
-                        let (n10, n11) = (point(b + 1, s), point(b + 1, s + 1));
-                        let v = |n: DVec3| vertex(c + n * radius, n);
-                        if b > 0 {
-                            tris.push([v(n00), v(n10), v(n01)]);
-                        }
-                        if b + 1 < SPHERE_BANDS {
-                            tris.push([v(n01), v(n10), v(n11)]);
-                        }
-                    }
-                }
-            }
-            Some(Shape::Box { size }) => {
-                let h = DVec3::from_array(size) * 0.5;
-                // Each face: normal axis and the two in-face axes in counter-clockwise order.
-                for (n, u, w) in [
-                    (DVec3::X, DVec3::NEG_Z, DVec3::Y),
-                    (DVec3::NEG_X, DVec3::Z, DVec3::Y),
-                    (DVec3::Y, DVec3::X, DVec3::NEG_Z),
-                    (DVec3::NEG_Y, DVec3::X, DVec3::Z),
-                    (DVec3::Z, DVec3::X, DVec3::Y),
-                    (DVec3::NEG_Z, DVec3::NEG_X, DVec3::Y),
-                ] {
-                    let corner = |a: f64, b: f64| c + (n + u * a + w * b) * h;
-                    let q = [
-                        corner(-1.0, -1.0),
-                        corner(1.0, -1.0),
-                        corner(1.0, 1.0),
-                        corner(-1.0, 1.0),
-                    ];
-                    tris.push([vertex(q[0], n), vertex(q[1], n), vertex(q[2], n)]);
-                    tris.push([vertex(q[0], n), vertex(q[2], n), vertex(q[3], n)]);
-                }
-            }
-            None => {}
-        }
+    for (i, o) in objects.iter().enumerate() {
+        push_object_triangles(&mut tris, o, poses.of(i, o), eye);
     }
     tris
 }
 
-/// The triangles an object pass of the plan draws: its objects', then the sea floor's when
-/// the pass draws it.
+/// Appends the triangles of one object (a boat at `pose`).
+fn push_object_triangles(
+    tris: &mut Vec<[ObjectVertex; 3]>,
+    o: &Object,
+    pose: Option<BoatPose>,
+    eye: DVec3,
+) {
+    let c = DVec3::from_array(o.center);
+    let color = o.color.map(|v| v as f32);
+    let vertex = |p: DVec3, n: DVec3| ObjectVertex {
+        position: (p - eye).as_vec3().to_array(),
+        normal: n.as_vec3().to_array(),
+        color,
+    };
+    match (o.shape(), pose) {
+        (Some(Shape::Sphere { radius }), _) => {
+            let point = |b: u32, s: u32| {
+                let theta = std::f64::consts::PI * b as f64 / SPHERE_BANDS as f64;
+                let phi = std::f64::consts::TAU * s as f64 / SPHERE_SEGMENTS as f64;
+                DVec3::new(theta.sin() * phi.cos(), theta.cos(), -theta.sin() * phi.sin())
+            };
+            for b in 0..SPHERE_BANDS {
+                for s in 0..SPHERE_SEGMENTS {
+                    let (n00, n01) = (point(b, s), point(b, s + 1));
+                    let (n10, n11) = (point(b + 1, s), point(b + 1, s + 1));
+                    let v = |n: DVec3| vertex(c + n * radius, n);
+                    if b > 0 {
+                        tris.push([v(n00), v(n10), v(n01)]);
+                    }
+                    if b + 1 < SPHERE_BANDS {
+                        tris.push([v(n01), v(n10), v(n11)]);
+                    }
+                }
+            }
+        }
+        (Some(Shape::Box { size }), _) => {
+            let h = DVec3::from_array(size) * 0.5;
+            // Each face: normal axis and the two in-face axes in counter-clockwise order.
+            for (n, u, w) in [
+                (DVec3::X, DVec3::NEG_Z, DVec3::Y),
+                (DVec3::NEG_X, DVec3::Z, DVec3::Y),
+                (DVec3::Y, DVec3::X, DVec3::NEG_Z),
+                (DVec3::NEG_Y, DVec3::X, DVec3::Z),
+                (DVec3::Z, DVec3::X, DVec3::Y),
+                (DVec3::NEG_Z, DVec3::NEG_X, DVec3::Y),
+            ] {
+                let corner = |a: f64, b: f64| c + (n + u * a + w * b) * h;
+                let q =
+                    [corner(-1.0, -1.0), corner(1.0, -1.0), corner(1.0, 1.0), corner(-1.0, 1.0)];
+                tris.push([vertex(q[0], n), vertex(q[1], n), vertex(q[2], n)]);
+                tris.push([vertex(q[0], n), vertex(q[2], n), vertex(q[3], n)]);
+            }
+        }
+        (Some(Shape::Boat { size, .. }), Some(pose)) => {
+            for (p, n) in hull_triangles(size, &pose) {
+                tris.push(p.map(|p| vertex(p, n)));
+            }
+        }
+        (Some(Shape::Boat { .. }), None) | (None, _) => {}
+    }
+}
+
+/// The triangles an object pass of the plan draws: its objects' (boats at `poses`), then the
+/// sea floor's when the pass draws it.
 pub fn pass_triangles(
     scene: &Scene,
+    poses: &ObjectPoses,
     pass: &crate::plan::PlannedPass,
     eye: DVec3,
 ) -> Vec<[ObjectVertex; 3]> {
-    let objects: Vec<Object> = pass.objects.iter().map(|&i| scene.objects[i].clone()).collect();
-    let mut tris = object_triangles(&objects, eye);
+    let mut tris = Vec::new();
+    for &i in &pass.objects {
+        let o = &scene.objects[i];
+        push_object_triangles(&mut tris, o, poses.of(i, o), eye);
+    }
     if let (true, Some(t)) = (pass.terrain, &scene.terrain) {
         tris.extend(terrain_triangles(t, eye));
     }
     tris
 }
 
+/// The world box of an object, m (a boat's at `pose`, or at rest without one); `None` for an
+/// object without its shape's key.
+pub fn object_bounds(o: &Object, pose: Option<&BoatPose>) -> Option<(DVec3, DVec3)> {
+    let c = DVec3::from_array(o.center);
+    let half = match o.shape()? {
+        Shape::Sphere { radius } => DVec3::splat(radius),
+        Shape::Box { size } => DVec3::from_array(size) * 0.5,
+        Shape::Boat { size, .. } => {
+            let pose = pose.copied().or_else(|| resting_pose(o))?;
+            return Some(hull_bounds(size, &pose));
+        }
+    };
+    Some((c - half, c + half))
+}
+
 /// The sun's orthographic shadow camera: looks along −sun_dir at the bounding sphere of the
-/// objects above the water (camera-relative), depth 0 at the sphere's sun-side and 1 behind.
-/// `None` without such objects.
-pub fn sun_view_proj(objects: &[Object], eye: DVec3, sun_dir: DVec3) -> Option<DMat4> {
+/// objects above the water (camera-relative; boats at `poses`), depth 0 at the sphere's
+/// sun-side and 1 behind. `None` without such objects.
+pub fn sun_view_proj(
+    objects: &[Object],
+    poses: &ObjectPoses,
+    eye: DVec3,
+    sun_dir: DVec3,
+) -> Option<DMat4> {
     let mut lo = DVec3::splat(f64::INFINITY);
     let mut hi = DVec3::splat(f64::NEG_INFINITY);
-    for o in objects {
-        let half = match o.shape()? {
-            Shape::Sphere { radius } => DVec3::splat(radius),
-            Shape::Box { size } => DVec3::from_array(size) * 0.5,
-        };
-        let c = DVec3::from_array(o.center);
-        if c.y + half.y <= 0.0 {
+    for (i, o) in objects.iter().enumerate() {
+        let (a, b) = object_bounds(o, poses.get(i))?;
+        if b.y <= 0.0 {
             continue;
         }
-        lo = lo.min(c - half);
-        hi = hi.max(c + half);
+        lo = lo.min(a);
+        hi = hi.max(b);
     }
     if !lo.is_finite() {
         return None;
@@ -663,9 +706,15 @@ pub fn sun_view_proj(objects: &[Object], eye: DVec3, sun_dir: DVec3) -> Option<D
 }
 
 impl FrameUniforms {
-    /// The uniforms of a scene's frame for a camera, a plan and the water mesh's reference
-    /// point `mesh_origin` (world x, z).
-    pub fn new(scene: &Scene, camera: &Camera, plan: &FramePlan, mesh_origin: [f64; 2]) -> Self {
+    /// The uniforms of a scene's frame for a camera, a plan, the water mesh's reference
+    /// point `mesh_origin` (world x, z) and the frame's boats (`poses`: the shadow map's box).
+    pub fn new(
+        scene: &Scene,
+        camera: &Camera,
+        plan: &FramePlan,
+        mesh_origin: [f64; 2],
+        poses: &ObjectPoses,
+    ) -> Self {
         let o = &scene.ocean;
         let eye = camera.eye;
         let l_d = o.patch_size_m;
@@ -679,7 +728,7 @@ impl FrameUniforms {
             }
             None => (DVec3::Y, DVec3::ZERO, false),
         };
-        let shadow = sun_view_proj(&scene.objects, eye, sun_dir).unwrap_or(DMat4::IDENTITY);
+        let shadow = sun_view_proj(&scene.objects, poses, eye, sun_dir).unwrap_or(DMat4::IDENTITY);
         let flag = |p: Pass| if plan.runs(p) { 1.0 } else { 0.0 };
         let eta = scene.water.ior as f32;
         let shading = plan.techniques.of(crate::plan::Stage::Shading).name;
@@ -868,7 +917,7 @@ pub fn coastal_sea(scene: &Scene, t: f64) -> crate::Result<crate::waves::coastal
 /// The height query of a frame of `plan` at time `t` (s): under waves `fft` the displacement
 /// map's field, summed over eq. 1's scales when the frame's shading is `chiu` (as the water's
 /// vertices sample it); under waves `gerstner` the frame's Gerstner waves. Either way a
-/// floating object agrees with the picture.
+/// floating object agrees with the picture. [`SurfaceSource`] makes it at many times.
 ///
 /// # Errors
 /// The scene's spectrum, modes or dispersion cannot be built, or a non-finite time.
@@ -877,29 +926,81 @@ pub fn surface_query(
     plan: &FramePlan,
     t: f64,
 ) -> crate::Result<crate::waves::WaveSurface> {
-    let o = &scene.ocean;
-    if plan.techniques.of(crate::plan::Stage::Waves).name == "gerstner" {
-        if !t.is_finite() {
-            return Err(crate::Error::InvalidParameter {
-                name: "time",
-                value: t,
-                reason: "the height query's time must be finite".into(),
-            });
-        }
-        let sea = scene.gerstner.at(t, &o.dispersion()?, o.wind_direction_deg);
-        return Ok(crate::waves::WaveSurface::Gerstner(sea));
-    }
-    if plan.techniques.of(crate::plan::Stage::Waves).name == "coastal" {
-        return Ok(crate::waves::WaveSurface::Coastal(Box::new(coastal_sea(scene, t)?)));
-    }
-    let q = crate::waves::SurfaceQuery::new(&o.displacement_modes()?, t, o.choppiness)?;
-    Ok(crate::waves::WaveSurface::Fft(
-        if plan.techniques.of(crate::plan::Stage::Shading).name == "chiu" {
-            q.with_scales(&scene.chiu.scales)
+    SurfaceSource::new(scene, plan)?.at(t)
+}
+
+/// The height query of a frame's sea at any time ([`surface_query`]), with what does not
+/// depend on time (the FFT's modes, the dispersion) made once: a boat's settle run asks for
+/// the surface at every sub-step.
+pub struct SurfaceSource<'a> {
+    scene: &'a Scene,
+    sea: Sea,
+}
+
+enum Sea {
+    Gerstner(crate::dispersion::Dispersion),
+    Fft { modes: crate::waves::WaveModes, chiu: bool },
+    Coastal(Box<crate::waves::coastal::CoastalSea>),
+}
+
+impl<'a> SurfaceSource<'a> {
+    /// The sea of `scene` as `plan` draws it.
+    ///
+    /// # Errors
+    /// The scene's spectrum, modes or dispersion cannot be built.
+    pub fn new(scene: &'a Scene, plan: &FramePlan) -> crate::Result<Self> {
+        let o = &scene.ocean;
+        let sea = if plan.techniques.of(crate::plan::Stage::Waves).name == "gerstner" {
+            Sea::Gerstner(o.dispersion()?)
+        } else if plan.techniques.of(crate::plan::Stage::Waves).name == "coastal" {
+            Sea::Coastal(Box::new(coastal_sea(scene, o.time_s)?))
         } else {
-            q
-        },
-    ))
+            Sea::Fft {
+                modes: o.displacement_modes()?,
+                chiu: plan.techniques.of(crate::plan::Stage::Shading).name == "chiu",
+            }
+        };
+        Ok(Self { scene, sea })
+    }
+
+    /// The height query at time `t`, s.
+    ///
+    /// # Errors
+    /// A non-finite time.
+    pub fn at(&self, t: f64) -> crate::Result<crate::waves::WaveSurface> {
+        let o = &self.scene.ocean;
+        match &self.sea {
+            Sea::Gerstner(dispersion) => {
+                if !t.is_finite() {
+                    return Err(crate::Error::InvalidParameter {
+                        name: "time",
+                        value: t,
+                        reason: "the height query's time must be finite".into(),
+                    });
+                }
+                let sea = self.scene.gerstner.at(t, dispersion, o.wind_direction_deg);
+                Ok(crate::waves::WaveSurface::Gerstner(sea))
+            }
+            Sea::Coastal(sea) => {
+                if !t.is_finite() {
+                    return Err(crate::Error::InvalidParameter {
+                        name: "time",
+                        value: t,
+                        reason: "the height query's time must be finite".into(),
+                    });
+                }
+                Ok(crate::waves::WaveSurface::Coastal(Box::new(sea.at_time(t))))
+            }
+            Sea::Fft { modes, chiu } => {
+                let q = crate::waves::SurfaceQuery::new(modes, t, o.choppiness)?;
+                Ok(crate::waves::WaveSurface::Fft(if *chiu {
+                    q.with_scales(&self.scene.chiu.scales)
+                } else {
+                    q
+                }))
+            }
+        }
+    }
 }
 
 /// The sky of a scene: its sun, or, without one, the default sun's sky at zero intensity (the
@@ -956,35 +1057,86 @@ mod tests {
     use super::*;
     use crate::scene::ObjectKind;
 
+    fn object(kind: ObjectKind, center: [f64; 3]) -> Object {
+        Object {
+            kind,
+            center,
+            radius: None,
+            size: None,
+            heading_deg: None,
+            mass_kg: None,
+            color: [1.0; 3],
+        }
+    }
+
+    /// Σ (p0 · (p1 × p2))/6 over triangles: the enclosed volume by the divergence theorem,
+    /// positive when every face winds counter-clockwise seen from outside.
+    fn signed_volume(tris: &[[ObjectVertex; 3]]) -> f64 {
+        tris.iter()
+            .map(|t| {
+                let p = t.map(|v| DVec3::from(v.position.map(f64::from)));
+                p[0].dot(p[1].cross(p[2])) / 6.0
+            })
+            .sum()
+    }
+
     #[test]
     fn meshes_are_closed_and_outward() {
         let objects = [
-            Object {
-                kind: ObjectKind::Sphere,
-                center: [1.0, 2.0, 3.0],
-                radius: Some(2.0),
-                size: None,
-                color: [1.0; 3],
-            },
-            Object {
-                kind: ObjectKind::Box,
-                center: [-10.0, 0.0, 0.0],
-                radius: None,
-                size: Some([1.0, 2.0, 3.0]),
-                color: [1.0; 3],
-            },
+            Object { radius: Some(2.0), ..object(ObjectKind::Sphere, [1.0, 2.0, 3.0]) },
+            Object { size: Some([1.0, 2.0, 3.0]), ..object(ObjectKind::Box, [-10.0, 0.0, 0.0]) },
         ];
-        let tris = object_triangles(&objects, DVec3::ZERO);
-        // Divergence theorem: Σ (centroid · area-normal)/3 = volume, positive when every face
-        // winds counter-clockwise seen from outside.
-        let mut volume = [0.0f64; 2];
+        let poses = ObjectPoses::default();
+        let sphere = signed_volume(&object_triangles(&objects[..1], &poses, DVec3::ZERO));
+        let cube = signed_volume(&object_triangles(&objects[1..], &poses, DVec3::ZERO));
+        let exact = 4.0 / 3.0 * std::f64::consts::PI * 8.0;
+        assert!((sphere / exact - 1.0).abs() < 0.02, "{sphere}");
+        assert!((cube - 6.0).abs() < 1e-5, "{cube}");
+    }
+
+    #[test]
+    fn the_hull_is_closed_outward_and_posed_by_the_model_matrix() {
+        let (l, h, b) = (6.0, 1.0, 2.5);
+        let boat = Object {
+            size: Some([l, h, b]),
+            heading_deg: Some(30.0),
+            ..object(ObjectKind::Boat, [4.0, 0.0, -7.0])
+        };
+        let pose = BoatPose::from_angles(DVec3::new(4.0, -0.3, -7.0), 0.4, 0.1, -0.2);
+        let mut poses =
+            ObjectPoses::resting(&Scene { objects: vec![boat.clone()], ..Scene::builtin() });
+        let resting = poses.get(0).copied().expect("a boat has a resting pose");
+        poses = ObjectPoses::from_poses(vec![Some(pose)]);
+        let tris = object_triangles(std::slice::from_ref(&boat), &poses, DVec3::new(1.0, 2.0, 3.0));
+        assert_eq!(tris.len(), HULL_TRIANGLES as usize);
+        // Closed and wound outward: the volume is the prism's, B·H·(L − BOW_SHARE·L/2) = 12.75
+        // m³, at any pose and from any eye (f32 positions: ~1e-6 relative).
+        let prism = b * h * (l - BOW_SHARE * l / 2.0);
+        let v = signed_volume(&tris);
+        assert!((v / prism - 1.0).abs() < 1e-5, "{v} vs {prism}");
+        // Every face's normal is its triangles' winding normal, and the keel's is −up.
         for t in &tris {
             let p = t.map(|v| DVec3::from(v.position.map(f64::from)));
-            let which = usize::from(p[0].x < -5.0);
-            volume[which] += p[0].dot(p[1].cross(p[2])) / 6.0;
+            let n = DVec3::from(t[0].normal.map(f64::from));
+            let winding = (p[1] - p[0]).cross(p[2] - p[0]).normalize();
+            assert!(winding.dot(n) > 1.0 - 1e-5, "{winding} vs {n}");
         }
-        let sphere = 4.0 / 3.0 * std::f64::consts::PI * 8.0;
-        assert!((volume[0] / sphere - 1.0).abs() < 0.02, "{volume:?}");
-        assert!((volume[1] - 6.0).abs() < 1e-5, "{volume:?}");
+        // The keel: the lowest corners lie on the body's y = 0 plane through the pose.
+        let keel: Vec<DVec3> = tris
+            .iter()
+            .filter(|t| DVec3::from(t[0].normal.map(f64::from)).dot(-pose.up) > 0.999)
+            .flat_map(|t| {
+                t.map(|v| DVec3::from(v.position.map(f64::from)) + DVec3::new(1.0, 2.0, 3.0))
+            })
+            .collect();
+        assert_eq!(keel.len(), 9, "the keel pentagon's three triangles");
+        for p in keel {
+            assert!((p - pose.position).dot(pose.up).abs() < 1e-5, "{p}");
+        }
+        // At rest: level at its draft, the bow along heading_deg (from +x towards +z).
+        let d = boat.boat_params().expect("a boat").still_water_draft_m();
+        assert!((resting.position - DVec3::new(4.0, -d, -7.0)).length() < 1e-12);
+        let heading = 30f64.to_radians();
+        assert!((resting.forward - DVec3::new(heading.cos(), 0.0, heading.sin())).length() < 1e-12);
     }
 }

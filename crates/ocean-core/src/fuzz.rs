@@ -169,6 +169,8 @@ const KEYS: &[&str] = &[
     "radius",
     "size",
     "center",
+    "heading_deg",
+    "mass_kg",
     "fresnel_table_size",
     "lod_split_threshold",
     "projected_grid_cell_px",
@@ -250,7 +252,7 @@ pub fn mutate(text: &str, rng: &mut Rng) -> String {
         }
         6 => lines.insert(at, rng.pick(TABLES).to_owned()),
         7 => {
-            let kind = rng.pick(&["\"sphere\"", "\"box\"", "\"cone\"", "1"]);
+            let kind = rng.pick(&["\"sphere\"", "\"box\"", "\"boat\"", "\"cone\"", "1"]);
             lines.push(format!(
                 "[[objects]]\nkind = {kind}\ncenter = [{}, {}, {}]\nradius = {}\nsize = [1, 1, 1]",
                 rng.pick(INTERESTING),

@@ -162,8 +162,8 @@ pub fn spray_origin(scene: &Scene) -> [f64; 2] {
 const MAX_BOX_POINTS_PER_SIDE: i64 = 1024;
 
 /// Points of an object's surface with their outward normals within `bound` of the sea plane
-/// (sphere: its tessellation's vertices; box: a grid on its four sides, over the band of
-/// heights |y| ≤ bound only).
+/// (sphere: its tessellation's vertices; box and boat: a grid on its sides, a box's over the
+/// band of heights |y| ≤ bound only).
 fn surface_points(o: &Object, bound: f64) -> Vec<(DVec3, DVec3)> {
     let c = DVec3::from_array(o.center);
     match o.shape() {
@@ -205,6 +205,32 @@ fn surface_points(o: &Object, bound: f64) -> Vec<(DVec3, DVec3)> {
                         let s = -extent + 2.0 * extent * a as f64 / nu as f64;
                         let t = t0 + (t1 - t0) * b as f64 / nv as f64;
                         out.push((face + u * s + DVec3::Y * t, n));
+                    }
+                }
+            }
+            out
+        }
+        Some(Shape::Boat { size, .. }) => {
+            // The hull's sides at its resting pose: the plan, and so its emitters, knows no
+            // time, and a boat's start point and draft are where it rides on average.
+            let Some(pose) = crate::frame::resting_pose(o) else { return Vec::new() };
+            let m = pose.model_matrix();
+            let mut out = Vec::new();
+            for (n, q) in crate::frame::hull_faces(size) {
+                if n.y != 0.0 {
+                    continue;
+                }
+                // A side is a rectangle, spanned by its first corner's two edges.
+                let (u, v) = (q[1] - q[0], q[3] - q[0]);
+                let cells = |len: f64| {
+                    ((len / BOX_EMITTER_SPACING_M).ceil() as i64).clamp(1, MAX_BOX_POINTS_PER_SIDE)
+                };
+                let (nu, nv) = (cells(u.length()), cells(v.length()));
+                let n = m.transform_vector3(n);
+                for a in 0..=nu {
+                    for b in 0..=nv {
+                        let p = q[0] + u * (a as f64 / nu as f64) + v * (b as f64 / nv as f64);
+                        out.push((m.transform_point3(p), n));
                     }
                 }
             }

@@ -436,3 +436,42 @@ fn floats_on_the_scene_height_query() {
         assert!(boat.pose().position.length() > 0.5, "{name}: the engine did not move the boat");
     }
 }
+
+/// `BoatParams::launch` (a scene's boats): the default hull gives the default launch, and a
+/// hull ten times larger is the same boat in its own time — the same draft share, damping per
+/// ω and engine proportions, ω smaller by √10 (Froude scaling) — so it settles alike.
+#[test]
+fn a_launch_is_the_default_boat_made_to_its_hull() {
+    let d = BoatParams::default();
+    let same = BoatParams::launch(d.length_m, d.hull_depth_m, d.beam_m, None);
+    // 1e-12: the loading 3000/(ρ·15) multiplied back by ρ·15.
+    for (a, b) in [
+        (same.mass_kg, d.mass_kg),
+        (same.engine_mass_kg, d.engine_mass_kg),
+        (same.engine_depth_m, d.engine_depth_m),
+        (same.heave_damping_per_s, d.heave_damping_per_s),
+        (same.drag_per_s, d.drag_per_s),
+        (same.max_thrust_n, d.max_thrust_n),
+    ] {
+        assert!((a / b - 1.0).abs() < 1e-12, "{a} against {b}");
+    }
+    let big = BoatParams::launch(60.0, 10.0, 25.0, None);
+    big.validate().expect("a valid boat");
+    let ratio = |p: &BoatParams| {
+        [
+            p.still_water_draft_m() / p.hull_depth_m,
+            p.heave_damping_per_s / p.buoyancy_omega(),
+            p.drag_per_s / p.buoyancy_omega(),
+            p.engine_mass_kg / p.mass_kg,
+            p.engine_depth_m / p.hull_depth_m,
+        ]
+    };
+    for (a, b) in ratio(&big).iter().zip(ratio(&d)) {
+        assert!((a / b - 1.0).abs() < 1e-12, "{a} against {b}");
+    }
+    let froude = d.buoyancy_omega() / big.buoyancy_omega();
+    assert!((froude - 10f64.sqrt()).abs() < 1e-12, "{froude}");
+    // A given mass is kept, and one above ρ L B H does not float.
+    assert_eq!(BoatParams::launch(6.0, 1.0, 2.5, Some(4000.0)).mass_kg, 4000.0);
+    assert!(!BoatParams::launch(6.0, 1.0, 2.5, Some(16_000.0)).floats());
+}

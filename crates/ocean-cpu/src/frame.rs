@@ -460,7 +460,7 @@ impl<'e> CpuBackend<'e> {
 
     fn object_pass(&mut self, pass: &PlannedPass, frame: &FrameInputs<'_>) {
         let scene = frame.scene;
-        let tris = pass_triangles(scene, pass, frame.camera.eye);
+        let tris = pass_triangles(scene, &frame.poses, pass, frame.camera.eye);
         let u = &frame.uniforms;
         match pass.name {
             Pass::ShadowMap => {

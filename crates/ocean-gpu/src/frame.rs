@@ -351,7 +351,7 @@ impl GpuBackend<'_> {
     /// The triangles of a pass's objects, camera-relative, in ocean-core's order; one zero
     /// vertex keeps a buffer non-empty.
     fn object_vertices(&self, pass: &PlannedPass, frame: &FrameInputs<'_>) -> Vec<VertexChunk> {
-        let tris = pass_triangles(frame.scene, pass, frame.camera.eye);
+        let tris = pass_triangles(frame.scene, &frame.poses, pass, frame.camera.eye);
         let vertices: &[ObjectVertex] = bytemuck::cast_slice(&tris);
         let max = self.gpu.device.limits().max_buffer_size.min(self.max_vertex_buffer_bytes);
         vertex_chunks(&self.gpu.device, vertices, max)

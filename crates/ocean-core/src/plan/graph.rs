@@ -8,7 +8,7 @@ use std::time::{Duration, Instant};
 
 use crate::camera::Camera;
 use crate::camera_uniforms::CameraUniforms;
-use crate::frame::{FrameUniforms, scene_sky, sky_ambient};
+use crate::frame::{FrameUniforms, ObjectPoses, scene_sky, sky_ambient};
 use crate::geometry::WaterVertex;
 use crate::scene::{Ocean, Scene};
 use crate::sky::SkyUniforms;
@@ -63,13 +63,16 @@ pub struct FrameInputs<'a> {
     pub bloom: Option<BloomInputs>,
     /// The sea's time this frame, s ([`FrameState::time_s`]).
     pub time_s: f64,
+    /// Where the boats float at [`Self::time_s`] (`crate::frame::ObjectPoses`), settled once
+    /// here for every object pass and the shadow map's box.
+    pub poses: ObjectPoses,
 }
 
 impl<'a> FrameInputs<'a> {
     /// The inputs of frame `state.frame` of a validated scene under `plan`.
     ///
     /// # Errors
-    /// An invalid camera, mesh, sky or exposure.
+    /// An invalid camera, mesh, sky or exposure, or a boat that cannot be settled.
     pub fn new(scene: &'a Scene, plan: &'a FramePlan, state: &FrameState) -> crate::Result<Self> {
         let camera = Camera::from_scene(&scene.camera)?;
         let start = Instant::now();
@@ -90,14 +93,16 @@ impl<'a> FrameInputs<'a> {
         mesh_time: Duration,
     ) -> crate::Result<Self> {
         let sky = scene_sky(scene)?;
-        let mut uniforms = FrameUniforms::new(scene, &camera, plan, mesh.origin);
-        uniforms.ambient.sky = sky_ambient(&sky);
         let time_s = state.time_s(scene);
+        let poses = ObjectPoses::at(scene, plan, time_s)?;
+        let mut uniforms = FrameUniforms::new(scene, &camera, plan, mesh.origin, &poses);
+        uniforms.ambient.sky = sky_ambient(&sky);
         // Waves `gerstner` at the frame's time (the block is made at the scene's).
         if time_s != scene.ocean.time_s && uniforms.gerstner.count > 0.0 {
             let mut at = scene.clone();
             at.ocean.time_s = time_s;
-            uniforms.gerstner = FrameUniforms::new(&at, &camera, plan, mesh.origin).gerstner;
+            uniforms.gerstner =
+                FrameUniforms::new(&at, &camera, plan, mesh.origin, &poses).gerstner;
         }
         // Waves `coastal` likewise (a finite time always makes a sea).
         if time_s != scene.ocean.time_s
@@ -167,6 +172,7 @@ impl<'a> FrameInputs<'a> {
             tonemap,
             bloom,
             time_s,
+            poses,
         })
     }
 }

@@ -273,6 +273,7 @@ fn object_triangles(scene: &Scene, index: usize) -> u64 {
             u64::from(2 * SPHERE_BANDS * SPHERE_SEGMENTS - 2 * SPHERE_SEGMENTS)
         }
         Some(Shape::Box { .. }) => 12,
+        Some(Shape::Boat { .. }) => u64::from(crate::frame::HULL_TRIANGLES),
         None => 0,
     }
 }

@@ -356,21 +356,27 @@ pub struct FramePlan {
     pub spray_emitters: std::sync::Arc<Vec<crate::spray::Emitter>>,
 }
 
-/// The vertical extent of an object, m.
+/// The vertical extent of an object, m: a boat's is unbounded (it floats, so it is always at
+/// the water, above and below it).
 fn y_range(o: &Object) -> (f64, f64) {
-    let (lo, hi) = bounds(o);
-    (lo.y, hi.y)
+    match bounds(o) {
+        Some((lo, hi)) => (lo.y, hi.y),
+        None => (f64::NEG_INFINITY, f64::INFINITY),
+    }
 }
 
-/// The axis-aligned box of an object (world, m).
-fn bounds(o: &Object) -> (DVec3, DVec3) {
+/// The axis-aligned box of an object (world, m); `None` for a boat, whose place is a frame's
+/// (`crate::frame::ObjectPoses`), not the plan's: the plan, made once for every time, draws it
+/// in every pass it can show in and never culls it.
+fn bounds(o: &Object) -> Option<(DVec3, DVec3)> {
     let half = match o.shape() {
         Some(Shape::Sphere { radius }) => DVec3::splat(radius),
         Some(Shape::Box { size }) => DVec3::from_array(size) * 0.5,
+        Some(Shape::Boat { .. }) => return None,
         None => DVec3::ZERO,
     };
     let c = DVec3::from_array(o.center);
-    (c - half, c + half)
+    Some((c - half, c + half))
 }
 
 /// Margin of the culling tests, pixels: a box must be this far outside the frustum's side
@@ -408,6 +414,7 @@ fn object_name(i: usize, o: &Object) -> String {
     let kind = match o.kind {
         crate::scene::ObjectKind::Sphere => "sphere",
         crate::scene::ObjectKind::Box => "box",
+        crate::scene::ObjectKind::Boat => "boat",
     };
     format!("#{i} {kind}")
 }
@@ -488,12 +495,14 @@ impl FramePlan {
             let mut kept = Vec::new();
             let mut culled = Vec::new();
             for &i in list {
-                let (lo, hi) = bounds(&objs[i]);
-                let (lo, hi) = image(lo, hi);
+                let outside = |c: &Camera| {
+                    bounds(&objs[i]).is_some_and(|(lo, hi)| {
+                        let (lo, hi) = image(lo, hi);
+                        outside_view(c, lo, hi)
+                    })
+                };
                 match &camera {
-                    Some(c) if opt.prune && outside_view(c, lo, hi) => {
-                        culled.push(object_name(i, &objs[i]))
-                    }
+                    Some(c) if opt.prune && outside(c) => culled.push(object_name(i, &objs[i])),
                     _ => kept.push(i),
                 }
             }
@@ -1175,6 +1184,8 @@ mod tests {
             center: [0.0, y, -10.0],
             radius: Some(1.0),
             size: None,
+            heading_deg: None,
+            mass_kg: None,
             color: [0.5; 3],
         }
     }

@@ -668,7 +668,7 @@ impl Default for Terrain {
     }
 }
 
-/// What an object is (`kind = "sphere"` or `"box"`; meshes may come).
+/// What an object is (`kind = "sphere"`, `"box"` or `"boat"`; meshes may come).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum ObjectKind {
@@ -676,6 +676,9 @@ pub enum ObjectKind {
     Sphere,
     /// An axis-aligned box: needs `size`.
     Box,
+    /// A boat floating on the waves (`crate::floating`): needs `size` (length, hull depth,
+    /// beam), takes `heading_deg` and `mass_kg`.
+    Boat,
 }
 
 /// An `[[objects]]` entry. A flat table rather than a serde-tagged enum: serde buffers a
@@ -687,14 +690,23 @@ pub enum ObjectKind {
 pub struct Object {
     /// What the object is.
     pub kind: ObjectKind,
-    /// Centre, m.
+    /// Centre, m. A boat's is where it starts, (x, z); its y is not used: a boat floats at its
+    /// draft below the water there (`crate::frame::ObjectPoses`).
     pub center: [f64; 3],
     /// Radius, m (spheres).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub radius: Option<f64>,
-    /// Edge lengths, m (boxes).
+    /// Edge lengths, m (boxes: along x, y, z; boats: length, hull depth keel to deck, beam).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub size: Option<[f64; 3]>,
+    /// A boat's heading when it starts, degrees from +x towards +z (as the waves' directions):
+    /// its bow's direction. Default 0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub heading_deg: Option<f64>,
+    /// A boat's mass, kg; below its hull's full displacement ρ·L·B·H or it sinks (a refused
+    /// scene). Default: the launch's loading, [`crate::floating::LAUNCH_LOADING`] of it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mass_kg: Option<f64>,
     /// Linear RGB albedo.
     #[serde(default = "default_object_color")]
     pub color: [f64; 3],
@@ -713,6 +725,15 @@ pub enum Shape {
         /// Edge lengths, m.
         size: [f64; 3],
     },
+    /// A boat: its hull and its start.
+    Boat {
+        /// Length, hull depth (keel to deck) and beam, m.
+        size: [f64; 3],
+        /// The bow's direction at the start, degrees from +x towards +z.
+        heading_deg: f64,
+        /// Mass, kg (`None`: the launch's loading).
+        mass_kg: Option<f64>,
+    },
 }
 
 impl Object {
@@ -722,6 +743,22 @@ impl Object {
         match self.kind {
             ObjectKind::Sphere => self.radius.map(|radius| Shape::Sphere { radius }),
             ObjectKind::Box => self.size.map(|size| Shape::Box { size }),
+            ObjectKind::Boat => self.size.map(|size| Shape::Boat {
+                size,
+                heading_deg: self.heading_deg.unwrap_or(0.0),
+                mass_kg: self.mass_kg,
+            }),
+        }
+    }
+
+    /// A boat's build ([`crate::floating::BoatParams::launch`] of its size and mass), `None`
+    /// for the other kinds.
+    pub fn boat_params(&self) -> Option<crate::floating::BoatParams> {
+        match self.shape()? {
+            Shape::Boat { size: [length, depth, beam], mass_kg, .. } => {
+                Some(crate::floating::BoatParams::launch(length, depth, beam, mass_kg))
+            }
+            _ => None,
         }
     }
 }

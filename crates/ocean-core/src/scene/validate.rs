@@ -266,7 +266,19 @@ pub const LIMITS: &[Limit] = &[
     ),
     real("objects.*.center", -MAX_COORDINATE_M, MAX_COORDINATE_M, "m; as camera.position"),
     real("objects.*.radius", MIN_LENGTH_M, MAX_COORDINATE_M, "m"),
-    real("objects.*.size", MIN_LENGTH_M, MAX_COORDINATE_M, "m, each edge"),
+    real(
+        "objects.*.size",
+        MIN_LENGTH_M,
+        MAX_COORDINATE_M,
+        "m, each edge; a boat's are length, hull depth, beam",
+    ),
+    real("objects.*.heading_deg", -360.0, 360.0, "degrees from +x towards +z; a boat's bow"),
+    real(
+        "objects.*.mass_kg",
+        1.0e-6,
+        1.0e24,
+        "kg, a boat's; below its hull's ρ·L·B·H (else it sinks: refused)",
+    ),
     real("objects.*.color", 0.0, MAX_COLOUR, "linear RGB albedo"),
     whole("gerstner.count", 0.0, MAX_GERSTNER_WAVES as f64, "waves the generator keeps at a time"),
     real("gerstner.median_wavelength_m", 0.01, 1.0e4, "m"),
@@ -615,11 +627,17 @@ impl Scene {
             let key = |f: &str| format!("objects.{i}.{f}");
             check(&key("center"), &obj.center)?;
             check(&key("color"), &obj.color)?;
-            let (needs, forbids) = match obj.kind {
-                ObjectKind::Sphere => ("radius", obj.size.is_some().then_some("size")),
-                ObjectKind::Box => ("size", obj.radius.is_some().then_some("radius")),
-            };
-            if let Some(f) = forbids {
+            let boat = obj.kind == ObjectKind::Boat;
+            let needs = if obj.kind == ObjectKind::Sphere { "radius" } else { "size" };
+            let given = [
+                ("radius", obj.radius.is_some()),
+                ("size", obj.size.is_some()),
+                ("heading_deg", obj.heading_deg.is_some()),
+                ("mass_kg", obj.mass_kg.is_some()),
+            ];
+            // A key only a boat takes, or the other shape's key.
+            let forbidden = |f: &str| f != needs && (f == "radius" || !boat);
+            if let Some((f, _)) = given.iter().find(|&&(f, set)| set && forbidden(f)) {
                 return Err((
                     key(f),
                     format!("a {:?} has no `{f}` (it takes `{needs}`)", obj.kind),
@@ -628,8 +646,38 @@ impl Scene {
             match obj.shape() {
                 Some(Shape::Sphere { radius }) => check(&key("radius"), &[radius])?,
                 Some(Shape::Box { size }) => check(&key("size"), &size)?,
+                Some(Shape::Boat { size, heading_deg, mass_kg }) => {
+                    check(&key("size"), &size)?;
+                    check(&key("heading_deg"), &[heading_deg])?;
+                    if let Some(m) = mass_kg {
+                        check(&key("mass_kg"), &[m])?;
+                    }
+                    self.check_boat(i, obj)?;
+                }
                 None => return Err((key(needs), format!("a {:?} needs `{needs}`", obj.kind))),
             }
+        }
+        Ok(())
+    }
+
+    /// A boat's build, made as the frame makes it: it must float (its mass below its hull's
+    /// full displacement), or there is no pose to draw.
+    fn check_boat(&self, i: usize, obj: &super::Object) -> Result<(), Refusal> {
+        let Some(p) = obj.boat_params() else { return Ok(()) };
+        let key = |f: &str| format!("objects.{i}.{f}");
+        p.validate().map_err(|e| (key("size"), format!("boat #{i}: {e}")))?;
+        if !p.floats() {
+            let displacement = p.water_density_kg_m3 * p.length_m * p.beam_m * p.hull_depth_m;
+            return Err((
+                key("mass_kg"),
+                format!(
+                    "boat #{i} cannot float: its mass, {} kg, is not below what its whole hull \
+                     displaces, ρ·L·B·H = {} kg (size = [length, hull depth, beam]); make it \
+                     lighter or its hull bigger",
+                    number(p.mass_kg),
+                    number(displacement)
+                ),
+            ));
         }
         Ok(())
     }

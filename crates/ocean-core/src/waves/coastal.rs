@@ -149,6 +149,10 @@ pub struct ActiveCorrection {
     pub amplitude_m: f64,
     /// 2/λ, 1/m: the depth weight clamp(2h/λ, 0, 1)'s factor.
     pub depth_factor: f64,
+    /// ω, rad/s.
+    pub omega: f64,
+    /// The phase at the world origin at t = 0, turns.
+    pub phase0: f64,
 }
 
 /// The coastal sea at one time: the f64 reference of the per-vertex waves, and the height
@@ -259,14 +263,16 @@ impl CoastalSea {
             .iter()
             .take(MAX_CORRECTION_WAVES)
             .map(|w| {
-                let k = TAU / w.wavelength_m;
+                let omega = dispersion.omega_continuous(TAU / w.wavelength_m);
                 let (s, c) = w.direction_deg.to_radians().sin_cos();
                 ActiveCorrection {
                     fx: c / w.wavelength_m,
                     fz: s / w.wavelength_m,
-                    p0: (-turns(dispersion.omega_continuous(k))).rem_euclid(1.0),
+                    p0: (-turns(omega)).rem_euclid(1.0),
                     amplitude_m: w.amplitude_m,
                     depth_factor: 2.0 / w.wavelength_m,
+                    omega,
+                    phase0: 0.0,
                 }
             })
             .collect();
@@ -283,6 +289,18 @@ impl CoastalSea {
             far_turns_per_m: k_prev / TAU,
             floor,
         }
+    }
+
+    /// The same sea at time `t` (the profile, which does not depend on time, is kept: a
+    /// floating object's settle run asks for many times).
+    pub fn at_time(&self, t: f64) -> Self {
+        let turns = |w: f64| (w * t / TAU).rem_euclid(1.0);
+        let mut sea = self.clone();
+        sea.time_turns = turns(self.omega);
+        for w in &mut sea.corrections {
+            w.p0 = (w.phase0 - turns(w.omega)).rem_euclid(1.0);
+        }
+        sea
     }
 
     /// The profile at distance r from the centre: (Φ turns, dΦ/dr turns per m, h̄, K_s).
