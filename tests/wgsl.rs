@@ -272,6 +272,8 @@ fn rust_consts() -> Vec<(&'static str, f64)> {
     vec![
         ("SHADOW_BIAS", f64::from(shadow::SHADOW_BIAS)),
         ("RELIEF_SHADOW_BIAS", f64::from(floor::RELIEF_SHADOW_BIAS)),
+        ("COASTAL_SEGMENTS", f64::from(ocean_cpu::shaders::shared::coastal::COASTAL_SEGMENTS)),
+        ("COASTAL_INV_PI", f64::from(ocean_cpu::shaders::shading::coastal::COASTAL_INV_PI)),
         ("EQ8_LN_R", f64::from(optics::EQ8_LN_R)),
         ("EQ8_LN_G", f64::from(optics::EQ8_LN_G)),
         ("EQ8_LN_B", f64::from(optics::EQ8_LN_B)),
