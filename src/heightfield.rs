@@ -43,7 +43,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let ocean = &scene.ocean;
     let plan = FramePlan::new(&scene, OutputKind::Hdr);
     // Waves summed per vertex (`gerstner`, `coastal`): the height query on the map's grid.
-    let (n, channels) = if matches!(plan.techniques.of(Stage::Waves).name, "gerstner" | "coastal") {
+    let (n, channels) = if ocean_core::plan::waves_per_vertex(plan.techniques.of(Stage::Waves).name)
+    {
         let n = ocean.resolution as usize;
         let sea = surface_query(&scene, &plan, ocean.time_s)?;
         let step = ocean.patch_size_m / n as f64;

@@ -112,7 +112,7 @@ pub struct FieldGrid {
 impl FieldGrid {
     /// The field of a scene whose waves technique is `waves`.
     pub fn of(scene: &Scene, waves: &str) -> Self {
-        if matches!(waves, "gerstner" | "coastal") {
+        if crate::plan::waves_per_vertex(waves) {
             Self { size: scene.foam.grid, cell_m: scene.foam.cell_m, windowed: true }
         } else {
             let n = scene.ocean.resolution;

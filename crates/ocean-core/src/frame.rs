@@ -898,13 +898,7 @@ impl FrameUniforms {
 /// # Errors
 /// The scene's dispersion cannot be built, or a non-finite time.
 pub fn coastal_sea(scene: &Scene, t: f64) -> crate::Result<crate::waves::coastal::CoastalSea> {
-    if !t.is_finite() {
-        return Err(crate::Error::InvalidParameter {
-            name: "time",
-            value: t,
-            reason: "the coastal waves' time must be finite".into(),
-        });
-    }
+    finite_time(t)?;
     Ok(crate::waves::coastal::CoastalSea::new(
         &scene.coastal,
         scene.terrain.as_ref(),
@@ -912,6 +906,19 @@ pub fn coastal_sea(scene: &Scene, t: f64) -> crate::Result<crate::waves::coastal
         &scene.ocean.dispersion()?,
         t,
     ))
+}
+
+/// `t` if finite: the waves summed per vertex take any finite time (their phases are reduced
+/// in f64), and nothing else.
+fn finite_time(t: f64) -> crate::Result<f64> {
+    if t.is_finite() {
+        return Ok(t);
+    }
+    Err(crate::Error::InvalidParameter {
+        name: "time",
+        value: t,
+        reason: "the waves' time must be finite".into(),
+    })
 }
 
 /// The height query of a frame of `plan` at time `t` (s): under waves `fft` the displacement
@@ -971,24 +978,12 @@ impl<'a> SurfaceSource<'a> {
         let o = &self.scene.ocean;
         match &self.sea {
             Sea::Gerstner(dispersion) => {
-                if !t.is_finite() {
-                    return Err(crate::Error::InvalidParameter {
-                        name: "time",
-                        value: t,
-                        reason: "the height query's time must be finite".into(),
-                    });
-                }
+                finite_time(t)?;
                 let sea = self.scene.gerstner.at(t, dispersion, o.wind_direction_deg);
                 Ok(crate::waves::WaveSurface::Gerstner(sea))
             }
             Sea::Coastal(sea) => {
-                if !t.is_finite() {
-                    return Err(crate::Error::InvalidParameter {
-                        name: "time",
-                        value: t,
-                        reason: "the height query's time must be finite".into(),
-                    });
-                }
+                finite_time(t)?;
                 Ok(crate::waves::WaveSurface::Coastal(Box::new(sea.at_time(t))))
             }
             Sea::Fft { modes, chiu } => {

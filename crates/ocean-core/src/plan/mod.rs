@@ -56,7 +56,7 @@ pub use graph::{
 pub use resource::{Format, Resource, ResourceId, SHADOW_MAP_SIZE};
 pub use technique::{
     SYSTEMS, Stage, System, SystemInfo, TECHNIQUES, TechniqueError, TechniqueInfo, Techniques,
-    known_systems, technique,
+    known_systems, technique, waves_per_vertex,
 };
 
 /// A pass of the frame, named as in DESIGN.md (the name of its stage, or of the map an
@@ -531,7 +531,7 @@ impl FramePlan {
         let waves_kernel = WavesKernel::for_ocean(&scene.ocean);
         // Waves `gerstner` and `coastal` are summed per vertex in the water pass: no maps.
         let waves_name = techniques.of(Stage::Waves).name;
-        let gerstner = matches!(waves_name, "gerstner" | "coastal");
+        let gerstner = technique::waves_per_vertex(waves_name);
         let gerstner_reason = || {
             if waves_name == "coastal" {
                 return format!(
@@ -785,35 +785,28 @@ impl FramePlan {
                     None if opt.prune => (true, "the view reaches beyond the near patch".into()),
                     None => (true, full.into()),
                 },
-                Pass::Water if techniques.of(Stage::Surface).name == "projected_grid" => {
+                Pass::Water
+                    if matches!(
+                        techniques.of(Stage::Surface).name,
+                        "projected_grid" | "shore_grid"
+                    ) =>
+                {
+                    // Both screen-space grids: ⌈w/cell⌉ × ⌈h/cell⌉ quads, one vertex-index draw.
                     let (cols, rows) = crate::frame::ProjectedGridBlock::quads(
                         scene.camera.width,
                         scene.camera.height,
                         scene.quality.projected_grid_cell_px,
                     );
-                    (
-                        true,
+                    let grid = if techniques.of(Stage::Surface).name == "shore_grid" {
                         format!(
-                            "the sea surface, shading {}, on a projected grid of {cols}×{rows} \
-                             quads from the vertex index",
-                            techniques.of(Stage::Shading).name
-                        ),
-                    )
-                }
-                Pass::Water if techniques.of(Stage::Surface).name == "shore_grid" => {
-                    let (cols, rows) = crate::frame::ProjectedGridBlock::quads(
-                        scene.camera.width,
-                        scene.camera.height,
-                        scene.quality.projected_grid_cell_px,
-                    );
-                    (
-                        true,
-                        format!(
-                            "the sea surface, shading {}, on the shore grid of {cols}×{rows} \
-                             quads ahead of the eye (rows of equal screen height, seed 004)",
-                            techniques.of(Stage::Shading).name
-                        ),
-                    )
+                            "the shore grid of {cols}×{rows} quads ahead of the eye (rows of \
+                             equal screen height, seed 004)"
+                        )
+                    } else {
+                        format!("a projected grid of {cols}×{rows} quads from the vertex index")
+                    };
+                    let shading = techniques.of(Stage::Shading).name;
+                    (true, format!("the sea surface, shading {shading}, on {grid}"))
                 }
                 Pass::Water if techniques.of(Stage::Surface).name == "clipmap" => {
                     let q = &scene.quality;

@@ -148,6 +148,12 @@ pub const TECHNIQUES: &[TechniqueInfo] = &[
     // with either technique.
 ];
 
+/// Whether waves technique `name` is summed per vertex and per fragment in the water pass
+/// (`gerstner`, `coastal`): no wave maps, no waves pass, the height query from the sum.
+pub fn waves_per_vertex(name: &str) -> bool {
+    matches!(name, "gerstner" | "coastal")
+}
+
 /// The technique `name` of `stage`, if the table has it.
 pub fn technique(stage: Stage, name: &str) -> Option<&'static TechniqueInfo> {
     stage.techniques().find(|t| t.name == name)
