@@ -211,12 +211,15 @@ mod tests {
         let err = resolve_text("// #import technique/clouds\n").unwrap_err().to_string();
         assert!(err.contains("no such technique stage"), "{err}");
         // A technique that is listed but has no WGSL (not built yet) is refused by name.
-        let t = Techniques::with_overrides(System::Hu, [(Stage::Shading, "coastal")]).unwrap();
+        let t = Techniques::of_system(System::Hu).with_unbuilt(Stage::Shading, true);
         let mut out = String::new();
         let text = "// #import technique/shading\n";
         let err =
             resolve("test", text, &t, &mut vec![], &mut vec![], &mut out).unwrap_err().to_string();
-        assert!(err.contains("shading/coastal has no WGSL"), "{err}");
+        assert!(err.contains("shading/unbuilt has no WGSL"), "{err}");
+        // Control: the built technique of the same stage resolves.
+        let t = Techniques::with_overrides(System::Hu, [(Stage::Shading, "coastal")]).unwrap();
+        resolve("test", text, &t, &mut vec![], &mut vec![], &mut String::new()).unwrap();
     }
 
     #[test]
