@@ -691,13 +691,15 @@ fn sky_filtered(view: vec3<f32>, slopes: vec3<f32>, variance: f32) -> vec3<f32> 
 // What the shading technique's shade_above needs of the surface point: the filtered slopes
 // (s_x, s_z, unresolved variance per axis), the bumped unit normal, the unit vector to the
 // eye, the bumped view vector's horizontal part (the Fresnel texture's axes) and the
-// fragment's normalised screen position.
+// fragment's normalised screen position; and under waves `coastal` their phase in turns and
+// the shore foam's turbulence (coastal_shore; zero under the other waves techniques).
 struct SurfacePoint {
     slopes: vec3<f32>,
     n: vec3<f32>,
     view: vec3<f32>,
     u_bumped: vec2<f32>,
     screen: vec2<f32>,
+    coastal: vec2<f32>,
 }
 
 @fragment
@@ -709,9 +711,19 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     // In the fragment stage `clip` is the fragment's position: (x + 0.5, y + 0.5, depth, 1/w).
     let screen = in.clip.xy * frame.view.inv_viewport_size;
     if (view.y >= 0.0) {
-        let p = SurfacePoint(slopes, n, view, u_bumped, screen);
+        var coastal = vec2<f32>(0.0, 0.0);
+        if (frame.coastal.shape.x > 0.0) {
+            coastal = coastal_shore(in.pos);
+        }
+        let p = SurfacePoint(slopes, n, view, u_bumped, screen, coastal);
         let c = shade_above(in, p);
-        return vec4<f32>(foam_over(c, foam_coverage(in, p), n, in.rel), 1.0);
+        var cover = foam_coverage(in, p);
+        // The shore's foam (waves `coastal`) through the foam stage's texture, wherever a
+        // foam technique is chosen.
+        if (frame.coastal.shape.x > 0.0 && frame.foam.mode > 0.0) {
+            cover = max(cover, foam_mix(coastal.y, foam_texture_at(in.pos)));
+        }
+        return vec4<f32>(foam_over(c, cover, n, in.rel), 1.0);
     }
     // From below: the normal facing the eye is (n.x, −n.y, n.z), its horizontal part again
     // (du, dv); F for η⁻¹ (1 beyond the critical angle: total internal reflection).

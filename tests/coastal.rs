@@ -1,8 +1,10 @@
 //! Waves technique `coastal` (issue 15, seed 004): the per-vertex waves (the CPU mirror of
 //! `shared/coastal.wgsl`, whose arithmetic the GPU's matches: the cross-check scene
 //! `reference/scenes/coastal_waves.toml`) against the seed's closed form over a flat floor;
-//! crests running to the shore at the phase speed of the depth under them; no water above
-//! dry sand; the f64 height query agreeing with what the vertices draw.
+//! crests running to the shore at the phase speed of the depth under them; water over the
+//! sand only as the run-out's film, up to Hunt's run-up; a continuous waterline; shore foam
+//! where the rules say, growing with steepness; wet sand; the f64 height query agreeing with
+//! what the vertices draw.
 
 use std::f64::consts::TAU;
 
@@ -11,7 +13,7 @@ use ocean_core::frame::{FrameUniforms, coastal_sea};
 use ocean_core::plan::{FramePlan, OutputKind};
 use ocean_core::scene::{Scene, SceneSource};
 use ocean_cpu::sampler::Texture2D;
-use ocean_cpu::shaders::shared::coastal::coastal_wave;
+use ocean_cpu::shaders::shared::coastal::{COASTAL_FILM_M, coastal_shore, coastal_wave};
 use ocean_cpu::shaders::shared::floor::floor_height;
 use ocean_cpu::shaders::wgsl::vec2;
 
@@ -175,13 +177,17 @@ fn crests_run_to_the_shore_at_the_phase_speed_of_the_depth_under_them() {
 }
 
 #[test]
-fn no_water_stands_above_dry_sand_and_waves_break_by_the_depth() {
+fn water_stands_over_sand_only_as_the_run_outs_film_and_waves_break_by_the_depth() {
     // Steep, high waves with the corrections on, over many times.
-    let mut checked_dry = 0;
+    let film = f64::from(COASTAL_FILM_M);
+    let (mut checked_dry, mut filmed) = (0, 0);
     let mut highest_ratio: f64 = 0.0;
-    for t in [0.0, 1.7, 3.1, 9.9, 41.0] {
+    let mut highest_film: f64 = 0.0;
+    let mut run_up = 0.0;
+    for t in [0.0, 1.7, 3.1, 9.9, 41.0, 44.2, 47.0] {
         let s = scene("amplitude_m = 2.5", true, t);
         let (u, floor) = frame(&s, [0.0, 0.0]);
+        run_up = coastal_sea(&s, t).expect("sea").run_up_m;
         for i in 0..=240 {
             for j in 0..=8 {
                 let r = i as f64 * 0.5 + 20.0;
@@ -190,13 +196,23 @@ fn no_water_stands_above_dry_sand_and_waves_break_by_the_depth() {
                 let ground = ground(&s, &u, &floor, x, z);
                 let h = wave(&u, &floor, [0.0, 0.0], x, z)[0];
                 assert!(h.is_finite());
-                if ground >= 0.0 {
+                if ground >= run_up {
                     checked_dry += 1;
-                    assert!(h <= 0.0, "water {h} m high over dry sand at ({x}, {z}), {ground} m");
+                    assert!(h < ground, "water {h} m high over dry sand at ({x}, {z}), {ground} m");
+                } else if ground >= 0.0 {
+                    // The run-out zone: at most the film over the sand.
+                    assert!(h <= ground + film + 1e-5, "{h} m over sand at {ground} m");
+                    if h > ground {
+                        filmed += 1;
+                        highest_film = highest_film.max(ground);
+                    }
                 } else {
-                    // Radial wave ≤ γ h, corrections ≤ their amplitudes (0.13 m together).
-                    assert!(h <= 0.78 * -ground + 0.13 + 1e-5, "{h} m over {} m of water", -ground);
-                    if -ground < 2.0 {
+                    // Radial wave ≤ γ h, corrections ≤ their amplitudes (0.13 m together),
+                    // or the film.
+                    let bound = (0.78 * -ground + 0.13).max(ground + film) + 1e-5;
+                    assert!(h <= bound, "{h} m over {} m of water", -ground);
+                    // (Deeper than the film can reach.)
+                    if -ground > 0.05 && -ground < 2.0 {
                         highest_ratio = highest_ratio.max(h / -ground);
                     }
                 }
@@ -204,9 +220,164 @@ fn no_water_stands_above_dry_sand_and_waves_break_by_the_depth() {
         }
     }
     assert!(checked_dry > 1000, "the sweep must cross the beach: {checked_dry} dry points");
-    // Negative control: the waves do reach the breaker limit in the shallows (a cap that
-    // flattened everything would pass the bound above trivially).
+    // Hunt's run-up for the island's 1:12.5 beach: R = ξ A, ξ = 0.08/√(A/L₀).
+    let hunt = 0.08 / (2.5_f64 / 28.0).sqrt() * 2.5;
+    // (The relief's 0.41 m bilinear texels, averaged round 64 azimuths, give the foreshore a
+    // slope of 0.0803 where the profile's is 0.08: 0.3 %.)
+    assert!((run_up - hunt).abs() < 5e-3 * hunt, "run-up {run_up} m, Hunt {hunt} m");
+    // Negative controls: the waves do reach the breaker limit in the shallows (a cap that
+    // flattened everything would pass the bound above trivially), and the swash does run
+    // up the sand, most of the way to R at some time.
     assert!(highest_ratio > 0.6, "highest wave over depth in the shallows: {highest_ratio}");
+    assert!(filmed > 20, "the swash must cover some sand: {filmed} points");
+    assert!(highest_film > 0.6 * run_up, "the swash reached {highest_film} m of {run_up} m");
+}
+
+/// The largest step between neighbouring samples of `h` along a line, m.
+fn largest_step(h: &[f64]) -> f64 {
+    h.windows(2).map(|w| (w[1] - w[0]).abs()).fold(0.0, f64::max)
+}
+
+#[test]
+fn the_waterline_is_continuous_and_the_sea_meets_the_sand() {
+    let film = f64::from(COASTAL_FILM_M);
+    for t in [0.0, 2.3, 5.9, 13.4] {
+        let s = scene("", true, t);
+        let (u, floor) = frame(&s, [0.0, 0.0]);
+        for j in 0..7 {
+            let ang = TAU * j as f64 / 7.0 + 0.1;
+            // 1 cm steps over 8 m across the waterline (r = 60 m).
+            let line: Vec<(f64, f64)> = (0..=800)
+                .map(|i| {
+                    let r = 56.0 + i as f64 * 0.01;
+                    (r * ang.cos(), r * ang.sin())
+                })
+                .collect();
+            let h: Vec<f64> =
+                line.iter().map(|&(x, z)| wave(&u, &floor, [0.0; 2], x, z)[0]).collect();
+            let g: Vec<f64> = line.iter().map(|&(x, z)| ground(&s, &u, &floor, x, z)).collect();
+            // The surface's steepest slope here is the breaking front's, under 1 (45°):
+            // no step of a 1 cm sample apart above 1 cm.
+            let step = largest_step(&h);
+            assert!(step < 0.01, "t {t} angle {ang}: a {step} m step in the surface");
+            // Where the sand comes out of the water the sea lies on it, within the film.
+            let k = g.windows(2).position(|w| w[0] >= 0.0 && w[1] < 0.0).expect("a waterline");
+            assert!(
+                h[k] >= g[k] - 1e-6 && h[k] <= g[k] + film + 1e-5,
+                "t {t}: the sea at {} m over sand at {} m",
+                h[k],
+                g[k]
+            );
+        }
+    }
+    // Negative control: the step finder sees a 2 cm crack.
+    let mut cracked: Vec<f64> = (0..100).map(|i| i as f64 * 1e-3).collect();
+    cracked[50] += 0.02;
+    assert!(largest_step(&cracked) > 0.01);
+}
+
+/// Mean shore foam turbulence (the f64 reference) over the ring 40–170 m from the island's
+/// centre, at waves of amplitude `a`, over several times.
+fn mean_shore_foam(a: f64) -> f64 {
+    let s = scene(&format!("amplitude_m = {a}"), true, 0.0);
+    let sea = coastal_sea(&s, 0.0).expect("sea");
+    let mut sum = 0.0;
+    let mut n = 0;
+    for t in [0.0, 1.1, 2.6, 3.3] {
+        let sea = sea.at_time(t);
+        for i in 0..260 {
+            for j in 0..24 {
+                let (r, ang) = (40.0 + i as f64 * 0.5, TAU * j as f64 / 24.0);
+                sum += sea.shore_foam(r * ang.cos(), r * ang.sin());
+                n += 1;
+            }
+        }
+    }
+    sum / f64::from(n)
+}
+
+#[test]
+fn shore_foam_lies_where_the_rules_say_and_grows_with_steepness() {
+    let s = scene("amplitude_m = 1.2", true, 6.1);
+    let origin = [12.0, -7.0];
+    let (u, floor) = frame(&s, origin);
+    let sea = coastal_sea(&s, 6.1).expect("sea");
+    let level_max = sea.run_up_m;
+    let mut r = uniforms(11);
+    let (mut offshore, mut surf, mut high, mut diff, mut n) = (0, 0, 0, 0.0, 0);
+    for _ in 0..6000 {
+        let (rad, ang) = (30.0 + 150.0 * r(), TAU * r());
+        let (x, z) = (rad * ang.cos(), rad * ang.sin());
+        let pos = vec2((x - origin[0]) as f32, (z - origin[1]) as f32);
+        let mirror = f64::from(coastal_shore(pos, &u, &floor).y);
+        let reference = sea.shore_foam(x, z);
+        assert!((0.0..=1.0).contains(&mirror) && (0.0..=1.0).contains(&reference));
+        diff += (mirror - reference).abs();
+        n += 1;
+        let depth = sea.depth(x, z);
+        let shoaled = sea.profile(rad)[3] * 1.2;
+        if depth > 0.05 && shoaled <= 0.78 * depth {
+            // Seaward of the breaking line: no shore foam.
+            offshore += 1;
+            assert_eq!(mirror, 0.0, "foam {mirror} offshore at ({x}, {z}), {depth} m deep");
+            assert_eq!(reference, 0.0);
+        } else if depth < -level_max {
+            // Above the highest run-up: dry sand, no foam.
+            high += 1;
+            assert_eq!(mirror, 0.0, "foam {mirror} on dry sand at ({x}, {z})");
+        } else if depth > 0.05 {
+            surf += 1;
+            assert!(reference > 0.0, "no foam in the surf zone at ({x}, {z}), {depth} m");
+        }
+    }
+    assert!(offshore > 1000 && surf > 50 && high > 500, "{offshore} {surf} {high}");
+    // The f32 mirror and the f64 reference agree on average (they part only where the
+    // phase's segments and nodes differ, in the last centimetres of the shallows).
+    let mean = diff / f64::from(n);
+    assert!(mean < 0.01, "mirror vs reference: mean |Δ| {mean}");
+    // Steeper waves (higher, same wavelength) break further out and harder.
+    let coverage: Vec<f64> = [0.3, 0.6, 1.2, 2.4].iter().map(|&a| mean_shore_foam(a)).collect();
+    assert!(coverage.windows(2).all(|w| w[1] > 1.2 * w[0]), "coverage by amplitude: {coverage:?}");
+    assert!(coverage[0] > 0.0, "even low waves foam at the waterline: {coverage:?}");
+}
+
+#[test]
+fn sand_below_the_run_up_is_wet() {
+    use ocean_core::terrain::wet_sand_color;
+    let sand = [0.76, 0.70, 0.50];
+    let k = ocean_core::waves::coastal::WET_SAND_DARKENING;
+    assert_eq!(wet_sand_color(sand, -3.0, 0.5), sand.map(|c| c * k));
+    assert_eq!(wet_sand_color(sand, 0.3, 0.5), sand.map(|c| c * k));
+    assert_eq!(wet_sand_color(sand, 0.5, 0.5), sand);
+    assert_eq!(wet_sand_color(sand, 2.0, 0.5), sand);
+    let mid = wet_sand_color(sand, 0.4375, 0.5);
+    assert!((mid[0] - 0.76 * (1.0 + k) / 2.0).abs() < 1e-12, "{mid:?}");
+    // No band without a run-up (other waves, or no beach).
+    assert_eq!(wet_sand_color(sand, -3.0, 0.0), sand);
+    // The drawn island: its vertices below R are darker than those above.
+    let s = scene("", true, 0.0);
+    let r = ocean_core::frame::wet_top_m(&s);
+    assert!(r > 0.1, "run-up {r} m");
+    let t = s.terrain.as_ref().expect("terrain");
+    let tris = ocean_core::terrain::terrain_triangles(t, glam::DVec3::ZERO, r);
+    let (mut wet, mut dry) = (0, 0);
+    for v in tris.iter().flatten() {
+        let y = f64::from(v.position[1]);
+        let c = f64::from(v.color[0]);
+        if y < 0.7 * r {
+            wet += 1;
+            assert!((c - 0.76 * k).abs() < 1e-6, "{c} at {y} m");
+        } else if y > 1.01 * r {
+            dry += 1;
+            assert!((c - 0.76).abs() < 1e-6, "{c} at {y} m");
+        }
+    }
+    assert!(wet > 100 && dry > 100, "{wet} {dry}");
+    // Negative control: another waves technique leaves the sand dry.
+    let hu =
+        Scene::from_toml("[terrain]\nkind = \"island\"\nextent_m = 420.0\n", SceneSource::Text)
+            .expect("scene");
+    assert_eq!(ocean_core::frame::wet_top_m(&hu), 0.0);
 }
 
 #[test]

@@ -273,6 +273,8 @@ fn rust_consts() -> Vec<(&'static str, f64)> {
         ("SHADOW_BIAS", f64::from(shadow::SHADOW_BIAS)),
         ("RELIEF_SHADOW_BIAS", f64::from(floor::RELIEF_SHADOW_BIAS)),
         ("COASTAL_SEGMENTS", f64::from(ocean_cpu::shaders::shared::coastal::COASTAL_SEGMENTS)),
+        ("COASTAL_FILM_M", f64::from(ocean_cpu::shaders::shared::coastal::COASTAL_FILM_M)),
+        ("COASTAL_EDGE_M", f64::from(ocean_cpu::shaders::shared::coastal::COASTAL_EDGE_M)),
         ("COASTAL_INV_PI", f64::from(ocean_cpu::shaders::shading::coastal::COASTAL_INV_PI)),
         ("EQ8_LN_R", f64::from(optics::EQ8_LN_R)),
         ("EQ8_LN_G", f64::from(optics::EQ8_LN_G)),

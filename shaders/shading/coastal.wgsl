@@ -38,10 +38,7 @@ fn shade_above(in: VertexOut, p: SurfacePoint) -> vec3<f32> {
     let l = frame.sun.direction;
     let shadow = sun_visibility(in.rel) * frame.sun.lit;
     let lobe = pow_int(max(dot3(n, unit(l + view)), 0.0), u32(s.shininess));
-    var q = 0.0;
-    if (frame.coastal.shape.x > 0.0) {
-        q = 2.0 * coastal_wave(in.pos, vec2<f32>(0.0, 0.0), vec2<f32>(0.0, 0.0)).w;
-    }
+    let q = 2.0 * p.coastal.x;
     let q2 = q * q;
     let d = clamp(s.dull_factor * (1.0 + q2 * q2), 0.0, 1.0);
     let light = frame.ambient.sky + frame.sun.radiance * (max(dot3(n, l), 0.0) * shadow * COASTAL_INV_PI);

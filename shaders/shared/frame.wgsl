@@ -157,6 +157,8 @@ struct CoastalBlock {
     // Column j is wave j (Rust's [[f32; 4]; 4] is WGSL's mat4x4 in the shared layout).
     waves: mat4x4<f32>,
     damping: vec4<f32>,
+    // (the swash's level L, the run-up R, 0, 0), m.
+    swash: vec4<f32>,
     table: array<vec4<f32>, 128>,
 }
 

@@ -635,9 +635,19 @@ pub fn pass_triangles(
         push_object_triangles(&mut tris, o, poses.of(i, o), eye);
     }
     if let (true, Some(t)) = (pass.terrain, &scene.terrain) {
-        tris.extend(terrain_triangles(t, eye));
+        tris.extend(terrain_triangles(t, eye, wet_top_m(scene)));
     }
     tris
+}
+
+/// How high the sand is wet, m above the sea plane: the coastal waves' run-up (ocean-core
+/// waves::coastal, "The shore zones"); 0 (no wet band) under the other waves techniques.
+pub fn wet_top_m(scene: &Scene) -> f64 {
+    if scene.techniques().of(crate::plan::Stage::Waves).name != "coastal" {
+        return 0.0;
+    }
+    // The run-up does not depend on the time: any finite one.
+    coastal_sea(scene, 0.0).map_or(0.0, |s| s.run_up_m)
 }
 
 /// The world box of an object, m (a boat's at `pose`, or at rest without one); `None` for an

@@ -559,7 +559,7 @@ pub const SHARED: &[SharedFile] = &[
                 pad2
             }),
             block!(GerstnerBlock { count, pad0, pad1, pad2, waves }),
-            block!(CoastalBlock { center, shape, time, waves, damping, table }),
+            block!(CoastalBlock { center, shape, time, waves, damping, swash, table }),
             block!(CoastalShadingBlock {
                 dull_color,
                 dull_factor,

@@ -318,9 +318,9 @@ pub fn island_relief(t: &Terrain) -> Relief {
 }
 
 /// Triangles of the sea floor's drawn square, camera-relative, counter-clockwise seen from
-/// above; normals from the floor's central differences (the plane's own for a plane).
-pub fn terrain_triangles(t: &Terrain, eye: DVec3) -> Vec<[ObjectVertex; 3]> {
-    let color = t.color.map(|v| v as f32);
+/// above; normals from the floor's central differences (the plane's own for a plane). Sand
+/// below `wet_top_m` (> 0) is wet: [`wet_sand_color`].
+pub fn terrain_triangles(t: &Terrain, eye: DVec3, wet_top_m: f64) -> Vec<[ObjectVertex; 3]> {
     let (qx, qz) = t.mesh_quads();
     let (x0, z0) = t.corner();
     let (sx, sz) = (t.extent_m / f64::from(qx), t.extent_m / f64::from(qz));
@@ -332,7 +332,9 @@ pub fn terrain_triangles(t: &Terrain, eye: DVec3) -> Vec<[ObjectVertex; 3]> {
         let dx = (t.height(x + hx, z) - t.height(x - hx, z)) / (2.0 * hx);
         let dz = (t.height(x, z + hz) - t.height(x, z - hz)) / (2.0 * hz);
         let normal = DVec3::new(-dx, 1.0, -dz).normalize().as_vec3().to_array();
-        let p = DVec3::new(x, t.height(x, z), z) - eye;
+        let y = t.height(x, z);
+        let p = DVec3::new(x, y, z) - eye;
+        let color = wet_sand_color(t.color, y, wet_top_m).map(|v| v as f32);
         ObjectVertex { position: p.as_vec3().to_array(), normal, color }
     };
     let row = |j: u32| (0..=qx).map(|i| vertex(i, j)).collect::<Vec<_>>();
@@ -347,6 +349,18 @@ pub fn terrain_triangles(t: &Terrain, eye: DVec3) -> Vec<[ObjectVertex; 3]> {
         below = above;
     }
     tris
+}
+
+/// The albedo of sand `color` at height `y` (m above the sea plane) under a wet band up to
+/// `wet_top_m`: × [`crate::waves::coastal::WET_SAND_DARKENING`] up to ¾ of the band, rising
+/// linearly to dry at its top; `color` itself without a band (`wet_top_m` ≤ 0).
+pub fn wet_sand_color(color: [f64; 3], y: f64, wet_top_m: f64) -> [f64; 3] {
+    if wet_top_m.is_nan() || wet_top_m <= 0.0 {
+        return color;
+    }
+    let wet = ((wet_top_m - y) / (0.25 * wet_top_m)).clamp(0.0, 1.0);
+    let k = 1.0 - wet * (1.0 - crate::waves::coastal::WET_SAND_DARKENING);
+    color.map(|c| c * k)
 }
 
 /// The sea floor under the water (`[terrain]`), for eq. 8's depth and the floor's shadows: its

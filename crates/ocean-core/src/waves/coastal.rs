@@ -29,8 +29,8 @@
 //! depth they are over, slower and closer together in shallow water. The height grows by the
 //! shoaling coefficient K_s(h̄) (energy flux conserved) and is capped by the breaker index:
 //! A_local = min(K_s(h̄(r))·A, γ·h(x, z)) with γ = 0.78 and h the depth under the point itself,
-//! so the wave dies where the floor reaches the sea plane and there is never water above dry
-//! sand. Each correction wave is faded by w_j = clamp(2h/λ_j, 0, 1), Crest's rule: a wave
+//! so the wave dies where the floor reaches the sea plane (water runs up the sand only as the
+//! swash's film: "The shore zones" below). Each correction wave is faded by w_j = clamp(2h/λ_j, 0, 1), Crest's rule: a wave
 //! feels the floor below half its wavelength. The gradients of K_s·A and of the two caps
 //! (γ h and w_j) are left out of the slopes: they change over the shore's metres, the waves over their
 //! wavelength, and leaving them out keeps the slope a pure function of the tables.
@@ -44,6 +44,34 @@
 //! used), so the f32 numbers stay small. [`CoastalSea`] is the f64 reference: Φ, h̄ and K_s
 //! on [`NODES_PER_SEGMENT`] nodes per segment, linear between them; the height query of a
 //! floating object asks it.
+//!
+//! # The shore zones (seed 004, "Combining layers")
+//!
+//! - **Run-out.** After a wave breaks, its water slides up the sand and back. The run-up
+//!   height is Hunt's (1959) R = ξ·A, with Iribarren's number ξ = tan β / √(A/L₀), A the deep-water wave
+//!   height (`amplitude_m`), L₀ its wavelength and tan β the beach's slope where the mean
+//!   depth h̄ crosses the sea plane (exact for the round island; no crossing: no run-up).
+//!   ξ is capped at [`MAX_IRIBARREN`], beyond which waves surge rather than break and
+//!   Hunt's relation stops growing (Battjes 1974). The swash level is L = R·((1 + sin φ_w)/2)²
+//!   with φ_w the radial wave's phase where h̄ crosses 0 (the waterline's, exact for the
+//!   round island): the whole run-out rises and falls together, and L is one number per
+//!   frame, formed in f64 (`CoastalBlock::swash`), so the drawn film and the height query
+//!   agree exactly. The
+//!   surface is max(h, min(L, y_floor + [`SWASH_FILM_M`])): where the level is above the
+//!   sand, a film of water lies [`SWASH_FILM_M`] over it; where it is below, the surface
+//!   is under the sand and the sand hides it. So water stands over dry land only up to R,
+//!   and then only as the film. The film's slope is left out, as the caps' are: its normal is the waves'.
+//! - **Wet sand.** Sand below R is wet: its albedo is × [`WET_SAND_DARKENING`] (Lekner &
+//!   Dorf 1988 measure wet sand at about half its dry reflectance), graded over the band's
+//!   top quarter (ocean-core terrain's mesh colours, so both back ends draw the same).
+//! - **Shore foam.** A turbulence (the foam stage's texture and colour turn it into
+//!   coverage, as for the foam techniques): in the surf zone, where the shoaled height K_s·A
+//!   is above the breaker cap γh, β = 1 − γh/(K_s·A), times 0.2 + 0.8·h/a (h/a the radial
+//!   wave's normalised height), so foam starts at the breaking line, rides the crests, leaves
+//!   a thinner residue between them and thickens towards the waterline; and along the swash's front, 1 − (L − y_floor)/
+//!   [`SWASH_EDGE_M`] where the level is above the sand by less than that. Higher waves
+//!   break further out and more strongly, so the foam's coverage grows with the waves'
+//!   steepness.
 //!
 //! The coastal sea does not loop (`loop_period_s` does not quantise its ω): its phases are
 //! ω·t reduced modulo one turn in f64, so a huge t is as exact as a small one.
@@ -62,6 +90,14 @@ pub const MAX_CORRECTION_WAVES: usize = 4;
 pub const NODES_PER_SEGMENT: usize = 32;
 /// Directions over which the floor's depth is averaged at each radius.
 const AZIMUTHS: usize = 64;
+/// The water film's thickness over the sand in the run-out zone, m.
+pub const SWASH_FILM_M: f64 = 0.03;
+/// The height band (m) behind the swash's front that carries its foam line.
+pub const SWASH_EDGE_M: f64 = 0.08;
+/// The largest Iribarren number Hunt's run-up R = ξ·A is taken at.
+pub const MAX_IRIBARREN: f64 = 2.5;
+/// Wet sand's albedo over dry sand's.
+pub const WET_SAND_DARKENING: f64 = 0.55;
 
 /// A `[[coastal.corrections]]` entry: one of the seed's four correction waves.
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
@@ -175,6 +211,10 @@ pub struct CoastalSea {
     pub segment_m: f64,
     /// The correction waves.
     pub corrections: Vec<ActiveCorrection>,
+    /// R, Hunt's run-up height above the sea plane, m (0 without a beach).
+    pub run_up_m: f64,
+    /// Φ where the mean depth crosses 0 (the swash's phase), turns.
+    swash_phi: f64,
     /// Φ (turns), h̄ (m), K_s at r = j·Δ/[`NODES_PER_SEGMENT`].
     nodes: Vec<[f64; 3]>,
     /// The outermost node's wavenumber over 2π, turns per m.
@@ -276,6 +316,7 @@ impl CoastalSea {
                 }
             })
             .collect();
+        let (run_up_m, swash_phi) = run_up(&nodes, step, coastal.amplitude_m, coastal.wavelength_m);
         Self {
             center,
             amplitude_m: coastal.amplitude_m,
@@ -285,6 +326,8 @@ impl CoastalSea {
             time_turns: turns(omega),
             segment_m,
             corrections,
+            run_up_m,
+            swash_phi,
             nodes,
             far_turns_per_m: k_prev / TAU,
             floor,
@@ -332,6 +375,11 @@ impl CoastalSea {
         let [phi, dphi, _, ks] = self.profile(r);
         let cap = BREAKER_INDEX * self.depth(x, z).max(0.0);
         let amp = (ks * self.amplitude_m).min(cap);
+        self.shape(phi, dphi, amp)
+    }
+
+    /// The radial wave of amplitude `amp` at profile (Φ, dΦ/dr): (height, ∂h/∂r, φ turns).
+    fn shape(&self, phi: f64, dphi: f64, amp: f64) -> [f64; 3] {
         let turns = -(phi + self.time_turns);
         let (s, c) = (TAU * turns).sin_cos();
         let m = if s * c < 0.0 { self.back_factor } else { 1.0 };
@@ -361,7 +409,35 @@ impl CoastalSea {
             sx += a * TAU * w.fx * theta.cos();
             sz += a * TAU * w.fz * theta.cos();
         }
-        [height, sx, sz]
+        let film = self.swash_level().min(SWASH_FILM_M - self.depth(x, z));
+        [height.max(film), sx, sz]
+    }
+
+    /// The swash's level L = R·((1 + sin φ_w)/2)², m above the sea plane (module docs).
+    pub fn swash_level(&self) -> f64 {
+        let u = 0.5 * (1.0 + (-TAU * (self.swash_phi + self.time_turns)).sin());
+        self.run_up_m * (u * u)
+    }
+
+    /// The shore foam's turbulence at world (x, z), in [0, 1] (module docs): the surf zone's
+    /// breaking, and the swash's front.
+    pub fn shore_foam(&self, x: f64, z: f64) -> f64 {
+        let r = (x - self.center[0]).hypot(z - self.center[1]);
+        let [phi, dphi, _, ks] = self.profile(r);
+        let depth = self.depth(x, z);
+        let cap = BREAKER_INDEX * depth.max(0.0);
+        let shoaled = ks * self.amplitude_m;
+        let amp = shoaled.min(cap);
+        let [height, _, _] = self.shape(phi, dphi, amp);
+        let breaking = if shoaled > 0.0 { (1.0 - cap / shoaled).clamp(0.0, 1.0) } else { 0.0 };
+        let crest = if amp > 0.0 { height / amp } else { 0.0 };
+        let above = self.swash_level() + depth;
+        let edge = if depth < SWASH_FILM_M && above > 0.0 {
+            (1.0 - above / SWASH_EDGE_M).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        (breaking * (0.2 + 0.8 * crest)).max(edge)
     }
 
     /// [`Self::sample`] as the height query's sample: no horizontal displacement, J = 1.
@@ -404,6 +480,7 @@ impl CoastalSea {
         ];
         b.shape = [1.0, self.amplitude_m as f32, self.power as f32, self.back_factor as f32];
         b.time = [self.time_turns as f32, BREAKER_INDEX as f32, self.corrections.len() as f32, 0.0];
+        b.swash = [self.swash_level() as f32, self.run_up_m as f32, 0.0, 0.0];
         let half = NODES_PER_SEGMENT / 2;
         let a = self.amplitude_m;
         for i in 0..COASTAL_SEGMENTS {
@@ -434,13 +511,34 @@ impl CoastalSea {
 
     /// The most the surface rises above the sea plane anywhere, m: the largest K_s·A of the
     /// profile, capped by γ times the deepest floor (the local cap), plus every correction
-    /// wave's amplitude.
+    /// wave's amplitude; or the run-up R where that is higher.
     pub fn bound_m(&self) -> f64 {
         let ks = self.nodes.iter().map(|n| n[2]).fold(1.0, f64::max);
         let cap = BREAKER_INDEX * self.floor.deepest().max(0.0);
-        (ks * self.amplitude_m).min(cap)
-            + self.corrections.iter().map(|w| w.amplitude_m).sum::<f64>()
+        let waves = (ks * self.amplitude_m).min(cap)
+            + self.corrections.iter().map(|w| w.amplitude_m).sum::<f64>();
+        waves.max(self.run_up_m)
     }
+}
+
+/// (R, Φ there): Hunt's run-up R = min(ξ, [`MAX_IRIBARREN`])·A over the beach where the
+/// mean depth of `nodes` (every `step` m) first rises through 0 going out from the centre,
+/// ξ = tan β / √(A/L₀) with tan β the mean depth's slope just seaward of there. R = 0 without such a
+/// crossing or without waves.
+fn run_up(nodes: &[[f64; 3]], step: f64, amplitude_m: f64, wavelength_m: f64) -> (f64, f64) {
+    if !(amplitude_m > 0.0 && wavelength_m > 0.0) {
+        return (0.0, 0.0);
+    }
+    let Some(j) = nodes.windows(2).position(|w| w[0][1] <= 0.0 && w[1][1] > 0.0) else {
+        return (0.0, 0.0);
+    };
+    // The foreshore's slope: the first step wholly under water (the land's side may curve
+    // away, as the island's hill does).
+    let k = (j + 1).min(nodes.len() - 2);
+    let slope = (nodes[k + 1][1] - nodes[k][1]) / step;
+    let xi = slope / (amplitude_m / wavelength_m).sqrt();
+    let r = xi.min(MAX_IRIBARREN) * amplitude_m;
+    (if r.is_finite() { r.max(0.0) } else { 0.0 }, nodes[j][0])
 }
 
 /// Shading technique `coastal`'s uniform block (`frame.coastal_shading`).
@@ -490,6 +588,8 @@ pub struct CoastalBlock {
     pub waves: [[f32; 4]; MAX_CORRECTION_WAVES],
     /// Per correction wave: 2/λ.
     pub damping: [f32; 4],
+    /// (the swash's level L at the frame's time, the run-up R, 0, 0), m.
+    pub swash: [f32; 4],
     /// Per segment: (Φ₀ mod 1, Φ₁, Φ₂, 0) and (K_s·A's three coefficients, 0).
     pub table: [[f32; 4]; 2 * COASTAL_SEGMENTS],
 }

@@ -6,8 +6,8 @@ use ocean_core::frame::FrameUniforms;
 mod clipmap;
 pub use clipmap::vs_clipmap;
 
-use super::shared::coastal::coastal_wave;
-use super::shared::foam::foam_over;
+use super::shared::coastal::{coastal_shore, coastal_wave};
+use super::shared::foam::{foam_mix, foam_over, foam_texture_at};
 use super::shared::frame::{dot3, transform_point, unit};
 use super::shared::gerstner::{gerstner_cis, gerstner_displacement, gerstner_jacobian};
 use super::shared::trig::TAU;
@@ -713,6 +713,8 @@ pub struct SurfacePoint {
     pub u_bumped: Vec2,
     /// The fragment's normalised screen position.
     pub screen: Vec2,
+    /// Waves `coastal`: (φ in turns, the shore foam's turbulence); zero otherwise.
+    pub coastal: Vec2,
 }
 
 /// `fs_main(in)`; `input.clip` is the fragment's position.
@@ -724,9 +726,17 @@ pub fn fs_main(input: &VertexOut, b: &Bindings<'_>) -> [f32; 4] {
     let u_bumped = bumped_view(view, n);
     let screen = input.clip.xy() * Vec2::from(frame.view.inv_viewport_size);
     if view.y >= 0.0 {
-        let p = SurfacePoint { slopes, n, view, u_bumped, screen };
+        let coastal = if frame.coastal.shape[0] > 0.0 {
+            coastal_shore(input.pos, frame, b.floor_map)
+        } else {
+            vec2(0.0, 0.0)
+        };
+        let p = SurfacePoint { slopes, n, view, u_bumped, screen, coastal };
         let c = (b.shade_above)(input, &p, b);
-        let cover = (b.foam_coverage)(input, &p, b);
+        let mut cover = (b.foam_coverage)(input, &p, b);
+        if frame.coastal.shape[0] > 0.0 && frame.foam.mode > 0.0 {
+            cover = max(cover, foam_mix(coastal.y, foam_texture_at(input.pos, frame), frame));
+        }
         return foam_over(c, cover, n, input.rel, frame, b.shadow_map).extend(1.0).into();
     }
     let st = fresnel_st(u_bumped, frame.hu.fresnel_scale);

@@ -1,7 +1,6 @@
 //! CPU mirror of `shaders/shading/coastal.wgsl`: seed 004's Blinn–Phong, Fresnel and dull
 //! colour seen from above.
 
-use crate::shaders::shared::coastal::coastal_wave;
 use crate::shaders::shared::frame::{dot3, unit};
 use crate::shaders::water::{
     Bindings, CLAMP_LINEAR, SurfacePoint, VertexOut, fresnel_st, pow_int, sky_radiance,
@@ -40,11 +39,7 @@ pub fn shade_above(input: &VertexOut, p: &SurfacePoint, b: &Bindings<'_>) -> Vec
     let l = Vec3::from(frame.sun.direction);
     let shadow = sun_visibility(input.rel, b) * frame.sun.lit;
     let lobe = pow_int(max(dot3(n, unit(l + view)), 0.0), s.shininess as u32);
-    let q = if frame.coastal.shape[0] > 0.0 {
-        2.0 * coastal_wave(input.pos, vec2(0.0, 0.0), vec2(0.0, 0.0), frame, b.floor_map).w
-    } else {
-        0.0
-    };
+    let q = 2.0 * p.coastal.x;
     let q2 = q * q;
     let d = clamp(s.dull_factor * (1.0 + q2 * q2), 0.0, 1.0);
     let radiance = Vec3::from(frame.sun.radiance);
