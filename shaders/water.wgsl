@@ -186,10 +186,10 @@ fn vs_clipmap(@builtin(vertex_index) k: u32) -> VertexOut {
     let malpha = clamp((mdist - c.morph_start) * c.inv_band, 0.0, 1.0);
     let spacing = e.z * (1.0 + malpha) * c.cell_m;
     let uv = map_uvs(pos);
-    // Waves `coastal` raise the point by their own height: no map to fetch. (Unfiltered: the
-    // radial waves are long and the correction waves few.)
+    // Waves `coastal` raise the point by their own height, faded to the vertex spacing as the
+    // Gerstner waves' below: no map to fetch.
     if (frame.coastal.shape.x > 0.0) {
-        let ch = coastal_wave(pos, vec2<f32>(0.0, 0.0), vec2<f32>(0.0, 0.0)).x;
+        let ch = coastal_wave(pos, vec2<f32>(1.0, 0.0), vec2<f32>(0.0, 0.0), vec2<f32>(spacing, spacing)).x;
         return displaced_vertex(pos, vec4<f32>(0.0, ch, 0.0, 0.0), uv, 1.0);
     }
     // Waves `gerstner` sum their own displacement: no map to fetch.
@@ -212,13 +212,31 @@ fn map_uvs(pos: vec2<f32>) -> vec4<f32> {
     return vec4<f32>(uv_d, uv_b);
 }
 
+// The screen grids' vertex spacing at `pos` (m, relative to the mesh's reference point):
+// (h, along, across), h the unit horizontal direction to the eye, across the grid's cell angle
+// times the distance, along that over the cosine of the view's angle from the vertical (as the
+// fragments' footprint, with the grid's cell for the pixel). Zero spacing under the other
+// surfaces (cell_angle 0).
+fn grid_spacing(pos: vec2<f32>) -> vec4<f32> {
+    let plane = pos + frame.tiling.mesh_offset;
+    let horizontal = sqrt(plane.x * plane.x + plane.y * plane.y);
+    let e = frame.view.eye_height;
+    let dist = sqrt(horizontal * horizontal + e * e);
+    let across = frame.grid.cell_angle * dist;
+    let along = across / max(abs(e) / max(dist, 1e-30), 1e-4);
+    let h = plane * (-1.0 / max(horizontal, 1e-30));
+    return vec4<f32>(h.x, h.y, along, across);
+}
+
 // A water vertex at `pos` (m, relative to the mesh's reference point c) displaced by the
 // displacement map times `weight`.
 fn water_vertex(pos: vec2<f32>, weight: f32) -> VertexOut {
     let uv = map_uvs(pos);
-    // Waves technique `coastal`: the waves' height at the vertex, no maps to fetch.
+    // Waves technique `coastal`: the waves' height at the vertex, faded to the screen grids'
+    // vertex spacing; no maps to fetch.
     if (frame.coastal.shape.x > 0.0) {
-        let h = coastal_wave(pos, vec2<f32>(0.0, 0.0), vec2<f32>(0.0, 0.0)).x * weight;
+        let sp = grid_spacing(pos);
+        let h = coastal_wave(pos, sp.xy, vec2<f32>(0.0, 0.0), sp.zw).x * weight;
         return displaced_vertex(pos, vec4<f32>(0.0, h, 0.0, 0.0), uv, weight);
     }
     // Waves technique `gerstner`: the sum of the waves at the vertex, no maps to fetch.
@@ -477,7 +495,7 @@ fn wave_slopes(in: VertexOut, fp: Footprint) -> vec3<f32> {
     if (frame.coastal.shape.x > 0.0) {
         let short = fp.dist * frame.far.pixel_angle;
         let sigma = vec2<f32>(0.5 * short / max(fp.vy, 1e-4), 0.5 * short);
-        let w = coastal_wave(in.pos, fp.h, sigma);
+        let w = coastal_wave(in.pos, fp.h, sigma, vec2<f32>(0.0, 0.0));
         return vec3<f32>(w.y * in.weight, w.z * in.weight, 0.0);
     }
     // Waves technique `gerstner`: the waves' own slopes, filtered analytically; no bump map.
@@ -691,15 +709,16 @@ fn sky_filtered(view: vec3<f32>, slopes: vec3<f32>, variance: f32) -> vec3<f32> 
 // What the shading technique's shade_above needs of the surface point: the filtered slopes
 // (s_x, s_z, unresolved variance per axis), the bumped unit normal, the unit vector to the
 // eye, the bumped view vector's horizontal part (the Fresnel texture's axes) and the
-// fragment's normalised screen position; and under waves `coastal` their phase in turns and
-// the shore foam's turbulence (coastal_shore; zero under the other waves techniques).
+// fragment's normalised screen position; and under waves `coastal` their phase in turns, the
+// shore foam's turbulence and the share of the phase the pixel resolves (coastal_shore;
+// (0, 0, 1) under the other waves techniques).
 struct SurfacePoint {
     slopes: vec3<f32>,
     n: vec3<f32>,
     view: vec3<f32>,
     u_bumped: vec2<f32>,
     screen: vec2<f32>,
-    coastal: vec2<f32>,
+    coastal: vec3<f32>,
 }
 
 @fragment
@@ -711,9 +730,12 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     // In the fragment stage `clip` is the fragment's position: (x + 0.5, y + 0.5, depth, 1/w).
     let screen = in.clip.xy * frame.view.inv_viewport_size;
     if (view.y >= 0.0) {
-        var coastal = vec2<f32>(0.0, 0.0);
+        var coastal = vec3<f32>(0.0, 0.0, 1.0);
         if (frame.coastal.shape.x > 0.0) {
-            coastal = coastal_shore(in.pos);
+            // The pixel's footprint on the sea (zero under far field `none`).
+            let fp = footprint(in.rel);
+            let short = fp.dist * frame.far.pixel_angle;
+            coastal = coastal_shore(in.pos, fp.h, vec2<f32>(short / max(fp.vy, 1e-4), short));
         }
         let p = SurfacePoint(slopes, n, view, u_bumped, screen, coastal);
         let c = shade_above(in, p);

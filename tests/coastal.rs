@@ -50,7 +50,7 @@ fn frame(scene: &Scene, origin: [f64; 2]) -> (FrameUniforms, Texture2D) {
 /// The mirror's (height, slope x, slope z, phase) at world (x, z).
 fn wave(u: &FrameUniforms, floor: &Texture2D, origin: [f64; 2], x: f64, z: f64) -> [f64; 4] {
     let pos = vec2((x - origin[0]) as f32, (z - origin[1]) as f32);
-    let w = coastal_wave(pos, vec2(0.0, 0.0), vec2(0.0, 0.0), u, floor);
+    let w = coastal_wave(pos, vec2(0.0, 0.0), vec2(0.0, 0.0), vec2(0.0, 0.0), u, floor);
     [w.x, w.y, w.z, w.w].map(f64::from)
 }
 
@@ -309,7 +309,7 @@ fn shore_foam_lies_where_the_rules_say_and_grows_with_steepness() {
         let (rad, ang) = (30.0 + 150.0 * r(), TAU * r());
         let (x, z) = (rad * ang.cos(), rad * ang.sin());
         let pos = vec2((x - origin[0]) as f32, (z - origin[1]) as f32);
-        let mirror = f64::from(coastal_shore(pos, &u, &floor).y);
+        let mirror = f64::from(coastal_shore(pos, vec2(0.0, 0.0), vec2(0.0, 0.0), &u, &floor).y);
         let reference = sea.shore_foam(x, z);
         assert!((0.0..=1.0).contains(&mirror) && (0.0..=1.0).contains(&reference));
         diff += (mirror - reference).abs();
@@ -442,4 +442,79 @@ fn a_sea_moved_to_another_time_is_the_sea_made_at_that_time() {
     }
     // Negative control: the time does move the sea.
     assert_ne!(moved.sample(100.0, 20.0), coastal_sea(&s, 3.0).expect("sea").sample(100.0, 20.0));
+}
+
+#[test]
+fn the_profile_moments_match_closed_forms_and_an_independent_integral() {
+    use ocean_core::waves::coastal::profile_moments;
+    // p = 1 without steepening: f = max(sin φ, 0), mean 1/π, var ¼ − 1/π², mean f′² = ¼.
+    let (mean, rms) = profile_moments(1, 1.0);
+    let pi = std::f64::consts::PI;
+    assert!((mean - 1.0 / pi).abs() < 1e-6, "{mean}");
+    let expected = (0.25 / (0.25 - 1.0 / (pi * pi))).sqrt();
+    assert!((rms - expected).abs() < 1e-3, "{rms} vs {expected}");
+    // The seed's profile (p = 7, front ×2), by the midpoint rule on another grid.
+    let n = 100_003;
+    let f = |x: f64| {
+        let (s, c) = x.sin_cos();
+        let m = if s * c < 0.0 { 2.0 } else { 1.0 };
+        (s.powi(7) * m - (m - 1.0)).clamp(0.0, 1.0)
+    };
+    let h = TAU / n as f64;
+    let xs: Vec<f64> = (0..n).map(|i| (i as f64 + 0.5) * h).collect();
+    let m1 = xs.iter().map(|&x| f(x)).sum::<f64>() / n as f64;
+    let var = xs.iter().map(|&x| (f(x) - m1).powi(2)).sum::<f64>() / n as f64;
+    let d2 =
+        xs.iter().map(|&x| ((f(x + 1e-6) - f(x - 1e-6)) / 2e-6).powi(2)).sum::<f64>() / n as f64;
+    let (mean, rms) = profile_moments(7, 2.0);
+    assert!((mean - m1).abs() < 1e-5, "{mean} vs {m1}");
+    assert!((rms - (d2 / var).sqrt()).abs() < 1e-2 * rms, "{rms} vs {}", (d2 / var).sqrt());
+    // The narrow crest's harmonics: its RMS wavenumber is several times the fundamental's.
+    assert!(rms > 2.5, "{rms}");
+}
+
+#[test]
+fn vertices_too_far_apart_for_a_wave_fade_it_to_its_mean() {
+    let s = scene("corrections = []", false, 5.0);
+    let origin = [0.0, 0.0];
+    let (u, floor) = frame(&s, origin);
+    let mean = f64::from(u.coastal.swash[2]);
+    let rms = f64::from(u.coastal.swash[3]);
+    let amp = f64::from(u.coastal.shape[1]) * 0.9991; // K_s over chiu's 20 m
+    let lambda = 28.0 * 0.999; // about λ₀ over 20 m of water
+    let at = |x: f64, spacing: f64| {
+        let pos = vec2(x as f32, 0.0);
+        let w = coastal_wave(
+            pos,
+            vec2(1.0, 0.0),
+            vec2(0.0, 0.0),
+            vec2(spacing as f32, 0.0),
+            &u,
+            &floor,
+        );
+        f64::from(w.x)
+    };
+    let (mut spread_near, mut spread_far) = (0.0_f64, 0.0_f64);
+    for i in 0..400 {
+        let x = 300.0 + i as f64 * 0.07;
+        // Unfaded: spacing 0 is bit for bit the unfiltered wave.
+        let w0 = coastal_wave(
+            vec2(x as f32, 0.0),
+            vec2(0.0, 0.0),
+            vec2(0.0, 0.0),
+            vec2(0.0, 0.0),
+            &u,
+            &floor,
+        );
+        assert_eq!(at(x, 0.0), f64::from(w0.x));
+        // Held (16 vertices per crest wavelength λ/rms): unchanged.
+        assert_eq!(at(x, lambda / rms / 16.0), at(x, 0.0));
+        spread_near = spread_near.max((at(x, 0.0) - mean * amp).abs());
+        // Four vertices per λ/rms or fewer: the mean, exactly as the formula gives it.
+        let far = at(x, lambda / rms / 3.5);
+        spread_far = spread_far.max((far - mean * amp).abs());
+    }
+    assert!(spread_far < 1e-5, "a wave the vertices cannot hold must be flat: {spread_far}");
+    // Negative control: the unfaded wave does swing about its mean.
+    assert!(spread_near > 0.5 * amp, "{spread_near}");
 }

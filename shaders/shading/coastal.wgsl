@@ -40,7 +40,12 @@ fn shade_above(in: VertexOut, p: SurfacePoint) -> vec3<f32> {
     let lobe = pow_int(max(dot3(n, unit(l + view)), 0.0), u32(s.shininess));
     let q = 2.0 * p.coastal.x;
     let q2 = q * q;
-    let d = clamp(s.dull_factor * (1.0 + q2 * q2), 0.0, 1.0);
+    // Where the pixel spans the waves, q⁴ fades to its mean over a period, 1/5.
+    var q4 = q2 * q2;
+    if (p.coastal.z < 1.0) {
+        q4 = 0.2 + (q4 - 0.2) * p.coastal.z;
+    }
+    let d = clamp(s.dull_factor * (1.0 + q4), 0.0, 1.0);
     let light = frame.ambient.sky + frame.sun.radiance * (max(dot3(n, l), 0.0) * shadow * COASTAL_INV_PI);
     let c = (c_reflect * f + c_refract * (1.0 - f)) * (1.0 - d) + s.dull_color * light * d;
     return c + frame.sun.radiance * (lobe * shadow);

@@ -88,12 +88,21 @@ fn coastal_shape(w: CoastalRadial) -> vec3<f32> {
     return vec3<f32>(sp * w.amp * m - w.amp * (m - 1.0), sp1, m);
 }
 
+// The share of a wave of (fx, fz) cycles per m that vertices `spacing` m apart (along and
+// across the horizontal direction h to the eye) hold: 1 down to 8 vertices per wavelength, 0
+// at 4 (waves `gerstner`'s clipmap rule). 1 for spacing 0.
+fn coastal_fade(fx: f32, fz: f32, h: vec2<f32>, spacing: vec2<f32>) -> f32 {
+    let along = abs(fx * h.x + fz * h.y) * spacing.x;
+    let across = abs(fz * h.x - fx * h.y) * spacing.y;
+    return clamp(2.0 - 8.0 * (along + across), 0.0, 1.0);
+}
+
 // (height, ∂h/∂x, ∂h/∂z, φ in turns ∈ [−½, ½]) of the coastal waves at `pos` (m, relative to
 // the mesh's reference point), the slopes averaged over the footprint (h, sigma) of
-// coastal_filter (sigma 0: the point's own). The amplitude's and the caps' own gradients
-// are left out of the slopes (ocean-core waves::coastal says why), and so is the swash
-// film's.
-fn coastal_wave(pos: vec2<f32>, h_dir: vec2<f32>, sigma: vec2<f32>) -> vec4<f32> {
+// coastal_filter (sigma 0: the point's own), the height faded for vertices `spacing` m apart
+// (coastal_fade; 0: unfaded). The amplitude's and the caps' own gradients are left out of the
+// slopes (ocean-core waves::coastal says why), and so is the swash film's.
+fn coastal_wave(pos: vec2<f32>, h_dir: vec2<f32>, sigma: vec2<f32>, spacing: vec2<f32>) -> vec4<f32> {
     let w = coastal_radial(pos);
     let depth = max(-w.floor_y, 0.0);
     let shape = coastal_shape(w);
@@ -105,14 +114,20 @@ fn coastal_wave(pos: vec2<f32>, h_dir: vec2<f32>, sigma: vec2<f32>) -> vec4<f32>
     }
     var g = vec2<f32>(0.0, 0.0);
     if (w.r > 0.0) {
-        let kr = TAU * w.dphi / w.r;
+        let kr = TAU * frame.coastal.swash.w * w.dphi / w.r;
         g = w.d * (dh / w.r * coastal_filter(kr * w.d.x, kr * w.d.y, h_dir, sigma));
+        let f = frame.coastal.swash.w * w.dphi / w.r;
+        let fade = coastal_fade(f * w.d.x, f * w.d.y, h_dir, spacing);
+        if (fade < 1.0) {
+            let mean = frame.coastal.swash.z * w.amp;
+            h = mean + (h - mean) * fade;
+        }
     }
     for (var j = 0u; j < u32(frame.coastal.time.z); j = j + 1u) {
         let c = frame.coastal.waves[j];
         let pj = (c.x * pos.x + c.z) + c.y * pos.y;
         let cj = cis_turns(pj - floor(pj + 0.5));
-        let a = c.w * clamp(depth * frame.coastal.damping[j], 0.0, 1.0);
+        let a = c.w * clamp(depth * frame.coastal.damping[j], 0.0, 1.0) * coastal_fade(c.x, c.y, h_dir, spacing);
         h = h + a * cj.y;
         let f = coastal_filter(TAU * c.x, TAU * c.y, h_dir, sigma);
         g = g + vec2<f32>(c.x, c.y) * ((a * TAU) * cj.x * f);
@@ -121,10 +136,17 @@ fn coastal_wave(pos: vec2<f32>, h_dir: vec2<f32>, sigma: vec2<f32>) -> vec4<f32>
     return vec4<f32>(max(h, film), g.x, g.y, w.turns);
 }
 
-// (φ in turns, the shore foam's turbulence ∈ [0, 1]) at `pos`: the surf zone's breaking,
-// 1 − γh/(K_s·A), times 0.2 + 0.8·h/a (the crests carry it), and the swash's front.
-fn coastal_shore(pos: vec2<f32>) -> vec2<f32> {
+// (φ in turns, the shore foam's turbulence ∈ [0, 1], the share of the phase a footprint of
+// `spacing` (along and across h) resolves) at `pos`: the surf zone's breaking,
+// 1 − γh/(K_s·A), times 0.2 + 0.8·h/a (the crests carry it), and the swash's front; the
+// share is coastal_fade of the radial wave's own wavenumber.
+fn coastal_shore(pos: vec2<f32>, h: vec2<f32>, spacing: vec2<f32>) -> vec3<f32> {
     let w = coastal_radial(pos);
+    var resolved = 1.0;
+    if (w.r > 0.0) {
+        let f = w.dphi / w.r;
+        resolved = coastal_fade(f * w.d.x, f * w.d.y, h, spacing);
+    }
     var breaking = 0.0;
     if (w.shoaled > 0.0) {
         breaking = clamp(1.0 - frame.coastal.time.y * max(-w.floor_y, 0.0) / w.shoaled, 0.0, 1.0);
@@ -138,5 +160,5 @@ fn coastal_shore(pos: vec2<f32>) -> vec2<f32> {
     if (w.floor_y > -COASTAL_FILM_M && above > 0.0) {
         edge = clamp(1.0 - above / COASTAL_EDGE_M, 0.0, 1.0);
     }
-    return vec2<f32>(w.turns, max(breaking * (0.2 + 0.8 * crest), edge));
+    return vec3<f32>(w.turns, max(breaking * (0.2 + 0.8 * crest), edge), resolved);
 }

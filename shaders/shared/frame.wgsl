@@ -90,7 +90,8 @@ struct ProjectedGridBlock {
     cols: f32,
     rows: f32,
     shore: f32,
-    pad1: f32,
+    // The angle between grid lines, rad.
+    cell_angle: f32,
 }
 
 struct ChiuShadingBlock {
@@ -157,7 +158,8 @@ struct CoastalBlock {
     // Column j is wave j (Rust's [[f32; 4]; 4] is WGSL's mat4x4 in the shared layout).
     waves: mat4x4<f32>,
     damping: vec4<f32>,
-    // (the swash's level L, the run-up R, 0, 0), m.
+    // (the swash's level L, the run-up R (m), the radial profile's mean over its amplitude,
+    // its RMS wavenumber over k).
     swash: vec4<f32>,
     table: array<vec4<f32>, 128>,
 }

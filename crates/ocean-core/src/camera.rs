@@ -83,6 +83,11 @@ impl Camera {
         Ok(Self { eye, forward, right, up, fov_y, width, height })
     }
 
+    /// The angle a pixel spans at the image's centre, rad: 2 tan(fov_y/2) / height.
+    pub fn pixel_angle(&self) -> f64 {
+        2.0 * (0.5 * self.fov_y).tan() / f64::from(self.height.max(1))
+    }
+
     /// Width / height.
     pub fn aspect(&self) -> f64 {
         self.width as f64 / self.height as f64

@@ -423,8 +423,9 @@ pub struct ProjectedGridBlock {
     /// 1: surface `shore_grid`, whose parameters the corners hold
     /// ([`crate::geometry::shore_grid::block`]); 0: the projected grid.
     pub shore: f32,
-    /// Padding.
-    pub pad1: f32,
+    /// The angle between grid lines, rad (`cell_px` pixels): a vertex's spacing across the
+    /// view is this times its distance (waves `coastal` fade what it cannot hold).
+    pub cell_angle: f32,
 }
 
 impl ProjectedGridBlock {
@@ -448,7 +449,7 @@ impl ProjectedGridBlock {
             cols: cols as f32,
             rows: rows as f32,
             shore: 0.0,
-            pad1: 0.0,
+            cell_angle: (cell_px * camera.pixel_angle()) as f32,
         }
     }
 

@@ -544,7 +544,7 @@ pub const SHARED: &[SharedFile] = &[
                 pad0,
                 pad1
             }),
-            block!(ProjectedGridBlock { corners, cols, rows, shore, pad1 }),
+            block!(ProjectedGridBlock { corners, cols, rows, shore, cell_angle }),
             block!(ChiuShadingBlock { zeta_m, shininess_per_m, clip_waves, pad1 }),
             block!(TerrainBlock { floor, relief, sun_under, top }),
             block!(MultiScaleBlock {

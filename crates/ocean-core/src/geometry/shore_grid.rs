@@ -55,7 +55,7 @@ pub fn block(camera: &Camera, cell_px: f64) -> ProjectedGridBlock {
         cols: cols as f32,
         rows: rows as f32,
         shore: 1.0,
-        pad1: 0.0,
+        cell_angle: (cell_px * pixel) as f32,
     };
     b.corners[0] = [fx as f32, fz as f32, rx as f32, rz as f32];
     // The seed's D spans back + far, so that the last row is `far` ahead of the eye.

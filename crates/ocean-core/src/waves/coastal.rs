@@ -41,7 +41,14 @@
 //! segment i covers [iΔ, (i+1)Δ) with Φ and K_s·A quadratics in u = r − iΔ through their
 //! values at both ends and the middle; the last segment continues Φ linearly with the
 //! outermost wavenumber, and K_s·A as a constant, to any distance. Φ's constant term is stored modulo 1 turn (only sin φ is
-//! used), so the f32 numbers stay small. [`CoastalSea`] is the f64 reference: Φ, h̄ and K_s
+//! used), so the f32 numbers stay small. A vertex of the screen grids (or the clipmap) that
+//! is spaced too widely for a wave fades it as the Gerstner clipmap does, by
+//! clamp(2 − 8·s·|f|, 0, 1) with s·|f| the vertex spacing along and across the view times
+//! the wave's cycles per metre (1 down to 8 vertices per wavelength, 0 at 4): a correction
+//! wave's amplitude, and the radial wave towards its mean ([`profile_moments`]) at its RMS
+//! wavenumber, because the power-7 crest is much narrower than its wavelength. Without
+//! this, crests far away and seen at grazing angles fall between rows and zigzag. The
+//! height query and the fragments' slopes take the waves unfaded. [`CoastalSea`] is the f64 reference: Φ, h̄ and K_s
 //! on [`NODES_PER_SEGMENT`] nodes per segment, linear between them; the height query of a
 //! floating object asks it.
 //!
@@ -480,7 +487,8 @@ impl CoastalSea {
         ];
         b.shape = [1.0, self.amplitude_m as f32, self.power as f32, self.back_factor as f32];
         b.time = [self.time_turns as f32, BREAKER_INDEX as f32, self.corrections.len() as f32, 0.0];
-        b.swash = [self.swash_level() as f32, self.run_up_m as f32, 0.0, 0.0];
+        let (mean, rms_k) = profile_moments(self.power, self.back_factor);
+        b.swash = [self.swash_level() as f32, self.run_up_m as f32, mean as f32, rms_k as f32];
         let half = NODES_PER_SEGMENT / 2;
         let a = self.amplitude_m;
         for i in 0..COASTAL_SEGMENTS {
@@ -519,6 +527,28 @@ impl CoastalSea {
             + self.corrections.iter().map(|w| w.amplitude_m).sum::<f64>();
         waves.max(self.run_up_m)
     }
+}
+
+/// The radial profile f(φ) = clamp(sᵖ·m − (m − 1), 0, 1) of unit amplitude (m = `back` where
+/// s·cos φ < 0): (its mean, √(mean f′² / var f)), f′ = df/dφ, φ in radians. The second is the
+/// profile's RMS wavenumber over k (Σ n²|c_n|² / Σ|c_n|² over its harmonics): a vertex that
+/// cannot hold the wave fades it towards its mean as if it were one sine of that
+/// wavenumber, which damps the filtered profile's variance at the right rate for small
+/// spacings (module docs, "The per-vertex form").
+pub fn profile_moments(power: u32, back: f64) -> (f64, f64) {
+    const N: usize = 8192;
+    let f = |i: usize| {
+        let (s, c) = (TAU * i as f64 / N as f64).sin_cos();
+        let m = if s * c < 0.0 { back } else { 1.0 };
+        (s.powi(power as i32) * m - (m - 1.0)).clamp(0.0, 1.0)
+    };
+    let v: Vec<f64> = (0..N).map(f).collect();
+    let mean = v.iter().sum::<f64>() / N as f64;
+    let var = v.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / N as f64;
+    let dphi = TAU / N as f64;
+    let slope2 = (0..N).map(|i| ((v[(i + 1) % N] - v[i]) / dphi).powi(2)).sum::<f64>() / N as f64;
+    let rms = if var > 0.0 { (slope2 / var).sqrt() } else { 1.0 };
+    (mean, rms)
 }
 
 /// (R, Φ there): Hunt's run-up R = min(ξ, [`MAX_IRIBARREN`])·A over the beach where the

@@ -206,12 +206,33 @@ pub fn map_uvs(pos: Vec2, frame: &FrameUniforms) -> (Vec2, Vec2) {
     (uv_d, uv_b)
 }
 
+/// `grid_spacing(pos)`: (h, along, across) of the screen grids' vertices.
+pub fn grid_spacing(pos: Vec2, frame: &FrameUniforms) -> Vec4 {
+    let plane = pos + vec2(frame.tiling.mesh_offset[0], frame.tiling.mesh_offset[1]);
+    let horizontal = (plane.x * plane.x + plane.y * plane.y).sqrt();
+    let e = frame.view.eye_height;
+    let dist = (horizontal * horizontal + e * e).sqrt();
+    let across = frame.grid.cell_angle * dist;
+    let along = across / max(e.abs() / max(dist, 1e-30), 1e-4);
+    let h = plane * (-1.0 / max(horizontal, 1e-30));
+    vec4(h.x, h.y, along, across)
+}
+
 /// `water_vertex(pos, weight)`.
 pub fn water_vertex(pos: Vec2, weight: f32, b: &Bindings<'_>) -> VertexOut {
     let frame = b.frame;
     let uv = map_uvs(pos, frame);
     if frame.coastal.shape[0] > 0.0 {
-        let h = coastal_wave(pos, vec2(0.0, 0.0), vec2(0.0, 0.0), frame, b.floor_map).x * weight;
+        let sp = grid_spacing(pos, frame);
+        let h = coastal_wave(
+            pos,
+            vec2(sp.x, sp.y),
+            vec2(0.0, 0.0),
+            vec2(sp.z, sp.w),
+            frame,
+            b.floor_map,
+        )
+        .x * weight;
         return displaced_vertex(pos, vec4(0.0, h, 0.0, 0.0), uv, weight, frame);
     }
     if frame.gerstner.count > 0.0 {
@@ -528,7 +549,7 @@ pub fn wave_slopes(input: &VertexOut, fp: &Footprint, b: &Bindings<'_>) -> Vec3 
     if frame.coastal.shape[0] > 0.0 {
         let short = fp.dist * frame.far.pixel_angle;
         let sigma = vec2(0.5 * short / max(fp.vy, 1e-4), 0.5 * short);
-        let w = coastal_wave(input.pos, fp.h, sigma, frame, b.floor_map);
+        let w = coastal_wave(input.pos, fp.h, sigma, vec2(0.0, 0.0), frame, b.floor_map);
         return vec3(w.y * input.weight, w.z * input.weight, 0.0);
     }
     if frame.gerstner.count > 0.0 {
@@ -713,8 +734,9 @@ pub struct SurfacePoint {
     pub u_bumped: Vec2,
     /// The fragment's normalised screen position.
     pub screen: Vec2,
-    /// Waves `coastal`: (φ in turns, the shore foam's turbulence); zero otherwise.
-    pub coastal: Vec2,
+    /// Waves `coastal`: (φ in turns, the shore foam's turbulence, the share of the phase the
+    /// pixel resolves); (0, 0, 1) otherwise.
+    pub coastal: Vec3,
 }
 
 /// `fs_main(in)`; `input.clip` is the fragment's position.
@@ -727,9 +749,17 @@ pub fn fs_main(input: &VertexOut, b: &Bindings<'_>) -> [f32; 4] {
     let screen = input.clip.xy() * Vec2::from(frame.view.inv_viewport_size);
     if view.y >= 0.0 {
         let coastal = if frame.coastal.shape[0] > 0.0 {
-            coastal_shore(input.pos, frame, b.floor_map)
+            let fp = footprint(input.rel, frame);
+            let short = fp.dist * frame.far.pixel_angle;
+            coastal_shore(
+                input.pos,
+                fp.h,
+                vec2(short / max(fp.vy, 1e-4), short),
+                frame,
+                b.floor_map,
+            )
         } else {
-            vec2(0.0, 0.0)
+            vec3(0.0, 0.0, 1.0)
         };
         let p = SurfacePoint { slopes, n, view, u_bumped, screen, coastal };
         let c = (b.shade_above)(input, &p, b);

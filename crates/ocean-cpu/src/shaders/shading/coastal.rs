@@ -41,7 +41,11 @@ pub fn shade_above(input: &VertexOut, p: &SurfacePoint, b: &Bindings<'_>) -> Vec
     let lobe = pow_int(max(dot3(n, unit(l + view)), 0.0), s.shininess as u32);
     let q = 2.0 * p.coastal.x;
     let q2 = q * q;
-    let d = clamp(s.dull_factor * (1.0 + q2 * q2), 0.0, 1.0);
+    let mut q4 = q2 * q2;
+    if p.coastal.z < 1.0 {
+        q4 = 0.2 + (q4 - 0.2) * p.coastal.z;
+    }
+    let d = clamp(s.dull_factor * (1.0 + q4), 0.0, 1.0);
     let radiance = Vec3::from(frame.sun.radiance);
     let light =
         Vec3::from(frame.ambient.sky) + radiance * (max(dot3(n, l), 0.0) * shadow * COASTAL_INV_PI);

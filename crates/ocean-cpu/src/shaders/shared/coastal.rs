@@ -6,7 +6,7 @@ use super::floor::floor_height;
 use super::optics::exp_arith;
 use super::trig::{TAU, cis_turns};
 use crate::sampler::Texture2D;
-use crate::shaders::wgsl::{Vec2, Vec4, clamp, vec2, vec4};
+use crate::shaders::wgsl::{Vec2, Vec3, Vec4, clamp, vec2, vec3, vec4};
 
 /// `COASTAL_SEGMENTS`.
 pub const COASTAL_SEGMENTS: u32 = 64;
@@ -79,12 +79,21 @@ pub fn coastal_shape(w: &CoastalRadial, frame: &FrameUniforms) -> [f32; 3] {
     [sp * w.amp * m - w.amp * (m - 1.0), sp1, m]
 }
 
-/// `coastal_wave(pos, h_dir, sigma)`: (height, ∂h/∂x, ∂h/∂z, φ in turns), the slopes filtered
-/// over the footprint (`sigma` 0: unfiltered).
+/// `coastal_fade(fx, fz, h, spacing)`: the share of a wave vertices `spacing` apart hold.
+pub fn coastal_fade(fx: f32, fz: f32, h: Vec2, spacing: Vec2) -> f32 {
+    let along = (fx * h.x + fz * h.y).abs() * spacing.x;
+    let across = (fz * h.x - fx * h.y).abs() * spacing.y;
+    clamp(2.0 - 8.0 * (along + across), 0.0, 1.0)
+}
+
+/// `coastal_wave(pos, h_dir, sigma, spacing)`: (height, ∂h/∂x, ∂h/∂z, φ in turns), the slopes
+/// filtered over the footprint (`sigma` 0: unfiltered), the height faded for vertices
+/// `spacing` apart (0: unfaded).
 pub fn coastal_wave(
     pos: Vec2,
     h_dir: Vec2,
     sigma: Vec2,
+    spacing: Vec2,
     frame: &FrameUniforms,
     floor_map: &Texture2D,
 ) -> Vec4 {
@@ -100,14 +109,22 @@ pub fn coastal_wave(
     };
     let mut g = vec2(0.0, 0.0);
     if w.r > 0.0 {
-        let kr = TAU * w.dphi / w.r;
+        let kr = TAU * c.swash[3] * w.dphi / w.r;
         g = w.d * (dh / w.r * coastal_filter(kr * w.d.x, kr * w.d.y, h_dir, sigma));
+        let f = c.swash[3] * w.dphi / w.r;
+        let fade = coastal_fade(f * w.d.x, f * w.d.y, h_dir, spacing);
+        if fade < 1.0 {
+            let mean = c.swash[2] * w.amp;
+            h = mean + (h - mean) * fade;
+        }
     }
     for j in 0..c.time[2] as usize {
         let cw = c.waves[j];
         let pj = (cw[0] * pos.x + cw[2]) + cw[1] * pos.y;
         let [cj, sj] = cis_turns(pj - (pj + 0.5).floor());
-        let a = cw[3] * clamp(depth * c.damping[j], 0.0, 1.0);
+        let a = cw[3]
+            * clamp(depth * c.damping[j], 0.0, 1.0)
+            * coastal_fade(cw[0], cw[1], h_dir, spacing);
         h += a * sj;
         let f = coastal_filter(TAU * cw[0], TAU * cw[1], h_dir, sigma);
         g = g + vec2(cw[0], cw[1]) * ((a * TAU) * cj * f);
@@ -116,9 +133,22 @@ pub fn coastal_wave(
     vec4(h.max(film), g.x, g.y, w.turns)
 }
 
-/// `coastal_shore(pos)`: (φ in turns, the shore foam's turbulence).
-pub fn coastal_shore(pos: Vec2, frame: &FrameUniforms, floor_map: &Texture2D) -> Vec2 {
+/// `coastal_shore(pos, h, spacing)`: (φ in turns, the shore foam's turbulence, the share of
+/// the phase the footprint resolves).
+pub fn coastal_shore(
+    pos: Vec2,
+    h: Vec2,
+    spacing: Vec2,
+    frame: &FrameUniforms,
+    floor_map: &Texture2D,
+) -> Vec3 {
     let w = coastal_radial(pos, frame, floor_map);
+    let resolved = if w.r > 0.0 {
+        let f = w.dphi / w.r;
+        coastal_fade(f * w.d.x, f * w.d.y, h, spacing)
+    } else {
+        1.0
+    };
     let breaking = if w.shoaled > 0.0 {
         clamp(1.0 - frame.coastal.time[1] * (-w.floor_y).max(0.0) / w.shoaled, 0.0, 1.0)
     } else {
@@ -132,5 +162,5 @@ pub fn coastal_shore(pos: Vec2, frame: &FrameUniforms, floor_map: &Texture2D) ->
     } else {
         0.0
     };
-    vec2(w.turns, (breaking * (0.2 + 0.8 * crest)).max(edge))
+    vec3(w.turns, (breaking * (0.2 + 0.8 * crest)).max(edge), resolved)
 }

@@ -45,7 +45,15 @@ pub fn vs_clipmap(k: u32, b: &Bindings<'_>) -> VertexOut {
     let spacing = e[2] * (1.0 + malpha) * c.cell_m;
     let uv = map_uvs(pos, frame);
     if frame.coastal.shape[0] > 0.0 {
-        let ch = coastal_wave(pos, vec2(0.0, 0.0), vec2(0.0, 0.0), frame, b.floor_map).x;
+        let ch = coastal_wave(
+            pos,
+            vec2(1.0, 0.0),
+            vec2(0.0, 0.0),
+            vec2(spacing, spacing),
+            frame,
+            b.floor_map,
+        )
+        .x;
         return displaced_vertex(pos, vec4(0.0, ch, 0.0, 0.0), uv, 1.0, frame);
     }
     if frame.gerstner.count > 0.0 {
