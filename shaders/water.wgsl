@@ -192,16 +192,19 @@ fn vs_clipmap(@builtin(vertex_index) k: u32) -> VertexOut {
         let ch = coastal_wave(pos, vec2<f32>(1.0, 0.0), vec2<f32>(0.0, 0.0), vec2<f32>(spacing, spacing)).x;
         return displaced_vertex(pos, vec4<f32>(0.0, ch, 0.0, 0.0), uv, 1.0);
     }
+    // `[terrain] wave_damping`: the waves kept over the floor's depth here.
+    let plane = pos + frame.tiling.mesh_offset;
+    let sw = shore_weight(plane.x, plane.y, frame.terrain.top.z);
     // Waves `gerstner` sum their own displacement: no map to fetch.
     if (frame.gerstner.count > 0.0) {
-        return displaced_vertex(pos, gerstner_displacement_filtered(pos, spacing), uv, 1.0);
+        return displaced_vertex(pos, gerstner_displacement_filtered(pos, spacing) * sw, uv, sw);
     }
     var d = textureSampleLevel(displacement, wrap_linear, uv.xy, 0.0);
     if (frame.scales.count > 0.0) {
         d = multi_scale_displacement(pos);
     }
     d = d * (frame.passes.waves * clamp((c.fade_end - spacing) * c.fade_inv_span, 0.0, 1.0));
-    return displaced_vertex(pos, d, uv, 1.0);
+    return displaced_vertex(pos, d * sw, uv, sw);
 }
 
 // The displacement and bump maps' (u, v) at `pos` (m, relative to the mesh's reference point):
@@ -230,8 +233,13 @@ fn grid_spacing(pos: vec2<f32>) -> vec4<f32> {
 
 // A water vertex at `pos` (m, relative to the mesh's reference point c) displaced by the
 // displacement map times `weight`.
-fn water_vertex(pos: vec2<f32>, weight: f32) -> VertexOut {
+fn water_vertex(pos: vec2<f32>, mesh_weight: f32) -> VertexOut {
     let uv = map_uvs(pos);
+    // `[terrain] wave_damping` (waves `fft` and `gerstner`): the mesh's weight times the waves
+    // kept over the floor's depth here, for the displacement and, through `weight`, the
+    // fragments' slopes of it.
+    let plane = pos + frame.tiling.mesh_offset;
+    let weight = mesh_weight * shore_weight(plane.x, plane.y, frame.terrain.top.z);
     // Waves technique `coastal`: the waves' height at the vertex, faded to the screen grids'
     // vertex spacing; no maps to fetch.
     if (frame.coastal.shape.x > 0.0) {
@@ -504,7 +512,9 @@ fn wave_slopes(in: VertexOut, fp: Footprint) -> vec3<f32> {
     }
     let rel = in.rel;
     let wd = in.weight * frame.passes.waves;
-    let wb = frame.passes.waves;
+    // `[terrain] wave_damping`: the bump map's waves kept over the floor here.
+    let plane = in.pos + frame.tiling.mesh_offset;
+    let wb = frame.passes.waves * shore_weight(plane.x, plane.y, frame.terrain.top.w);
     let h = fp.h;
     var dt = sample_footprint(displacement_slopes, in.uv_d, fp.step * frame.tiling.inv_displacement_size, fp.lods.x, fp.taps_log2, h);
     if (frame.scales.count > 0.0) {

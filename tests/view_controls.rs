@@ -418,3 +418,36 @@ fn fixed_step_times_are_what_the_screenshot_test_renders() {
     let t = fixed_step_time(12.0, 59);
     assert_eq!(t.to_string().parse::<f64>().expect("parses"), t);
 }
+
+#[test]
+fn the_coast_sliders_land_in_their_keys_and_the_water_level_lowers_the_floor() {
+    let base = Scene::builtin_for(ocean_core::plan::System::Coastal);
+    let p0 = ViewParams::from_scene(&base);
+    let mut p = p0.clone();
+    (p.coastal_amplitude_m, p.coastal_wavelength_m) = (1.7, 44.0);
+    let s = p.apply(&base).expect("applies");
+    assert_eq!((s.coastal.amplitude_m, s.coastal.wavelength_m), (1.7, 44.0));
+    let t0 = base.terrain.as_ref().expect("the coastal scene has an island");
+    for level in [-1.5, 0.5, 2.0] {
+        let p = ViewParams { water_level_m: level, ..p0.clone() };
+        let s = p.apply(&base).expect("every level of the slider applies");
+        let t = s.terrain.as_ref().expect("terrain");
+        // Every point of the floor (the island's relief too) moves down by the level.
+        for (x, z) in [(0.0, 0.0), (61.0, 3.0), (-120.0, 80.0), (150.0, -150.0)] {
+            let moved = t0.height(x, z) - t.height(x, z);
+            assert!((moved - level).abs() < 1e-9, "level {level}: ({x}, {z}) moved {moved}");
+        }
+        // And the waves see it: the run-up's beach is where the floor now crosses the sea.
+        assert!(ocean_core::frame::wet_top_m(&s) > 0.0);
+    }
+    // Negative control: level 0 is the scene itself.
+    assert_eq!(p0.apply(&base).expect("applies"), base);
+    // The two coastal presets give their scenes' waves and keep the camera.
+    let noon = p0.with_preset(Preset::CoastalNoon).apply(&base).expect("noon");
+    let sunset = p0.with_preset(Preset::CoastalSunset).apply(&base).expect("sunset");
+    assert_eq!((noon.coastal.amplitude_m, noon.coastal.wavelength_m), (0.9, 30.0));
+    assert_eq!((sunset.coastal.amplitude_m, sunset.coastal.wavelength_m), (1.1, 36.0));
+    let (e, _) = sun_angles(sunset.sun.as_ref().expect("sun").direction);
+    assert!((e - 5.0).abs() < 1e-9, "{e}");
+    assert_eq!(sunset.camera, base.camera);
+}

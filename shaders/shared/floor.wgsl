@@ -20,6 +20,16 @@ fn floor_height(x: f32, z: f32) -> f32 {
     return f.z + f.x * x + f.y * z + relief;
 }
 
+// The share of waves `fft` and `gerstner` kept over the floor under camera-relative (x, z):
+// clamp(h·inv, 0, 1) with h the depth and inv = 1/(r·λ) of `[terrain] wave_damping` r (the
+// block's top.z or top.w); 1 for inv = 0 (undamped).
+fn shore_weight(x: f32, z: f32, inv: f32) -> f32 {
+    if (inv == 0.0) {
+        return 1.0;
+    }
+    return clamp(max(-floor_height(x, z), 0.0) * inv, 0.0, 1.0);
+}
+
 // The sea floor's depth below the sea plane under the camera-relative point `rel` (m, ≥ 0):
 // `[terrain]`'s, or the open sea's depth of `[chiu]` without a floor.
 fn floor_depth(rel: vec3<f32>) -> f32 {

@@ -35,6 +35,12 @@ pub mod range {
     pub const GERSTNER_AMPLITUDE_M: (f64, f64) = (0.0, 3.0);
     /// Waves `gerstner`: the drawn waves' median wavelength, m.
     pub const GERSTNER_WAVELENGTH_M: (f64, f64) = (1.0, 200.0);
+    /// Waves `coastal`: the radial waves' deep-water height A, m.
+    pub const COASTAL_AMPLITUDE_M: (f64, f64) = (0.0, 3.0);
+    /// Waves `coastal`: the radial waves' deep-water wavelength, m.
+    pub const COASTAL_WAVELENGTH_M: (f64, f64) = (5.0, 120.0);
+    /// The sea's level over the scene's floor (`[terrain]`), m: the floor moves down by it.
+    pub const WATER_LEVEL_M: (f64, f64) = (-2.0, 2.0);
 }
 
 /// What the panel edits.
@@ -60,6 +66,13 @@ pub struct ViewParams {
     pub gerstner_amplitude_m: f64,
     /// Waves `gerstner`: the drawn waves' median wavelength, m.
     pub gerstner_wavelength_m: f64,
+    /// Waves `coastal`: A, m (`coastal.amplitude_m`).
+    pub coastal_amplitude_m: f64,
+    /// Waves `coastal`: the deep-water wavelength, m (`coastal.wavelength_m`).
+    pub coastal_wavelength_m: f64,
+    /// The sea's level above the scene file's, m: `terrain.depth_m` grows by it, so the whole
+    /// floor (the island's relief too) moves down (seed 004's water-level slider).
+    pub water_level_m: f64,
     /// Whether the scene has a sun.
     pub sun: bool,
     /// Sun elevation above the horizon, degrees.
@@ -93,6 +106,9 @@ impl ViewParams {
             patch_size_m: o.patch_size_m,
             gerstner_amplitude_m: scene.gerstner.median_amplitude_m,
             gerstner_wavelength_m: scene.gerstner.median_wavelength_m,
+            coastal_amplitude_m: scene.coastal.amplitude_m,
+            coastal_wavelength_m: scene.coastal.wavelength_m,
+            water_level_m: 0.0,
             sun: scene.sun.is_some(),
             sun_elevation_deg: elevation,
             sun_azimuth_deg: azimuth,
@@ -119,6 +135,15 @@ impl ViewParams {
         o.patch_size_m = self.patch_size_m;
         scene.gerstner.median_amplitude_m = self.gerstner_amplitude_m;
         scene.gerstner.median_wavelength_m = self.gerstner_wavelength_m;
+        scene.coastal.amplitude_m = self.coastal_amplitude_m;
+        scene.coastal.wavelength_m = self.coastal_wavelength_m;
+        // The relief (an island's profile made at load) rides on the plane `depth_m` down, so
+        // a deeper plane lowers every point of the floor alike.
+        if let (Some(t), Some(b)) = (scene.terrain.as_mut(), base.terrain.as_ref())
+            && self.water_level_m != 0.0
+        {
+            t.depth_m = b.depth_m + self.water_level_m;
+        }
         let unchanged = Self::from_scene(base);
         scene.sun = if self.sun {
             let mut sun = base.sun.clone().unwrap_or_default();
@@ -149,6 +174,10 @@ impl ViewParams {
             Preset::ShallowReef => (SpectrumKind::Tma, 8.0, 20.0, Some(4.0), 0.8, 128.0),
             Preset::WelchCalmDay => (SpectrumKind::Jonswap, 6.0, 60.0, None, 0.8, 256.0),
             Preset::WelchStormySunset => (SpectrumKind::Jonswap, 17.0, 300.0, None, 1.4, 512.0),
+            // The coastal presets' sea is the radial waves; the spectrum stays a light breeze's
+            // for any system drawn with them.
+            Preset::CoastalNoon => (SpectrumKind::Jonswap, 6.0, 60.0, None, 0.8, 256.0),
+            Preset::CoastalSunset => (SpectrumKind::Jonswap, 8.0, 100.0, None, 1.0, 256.0),
         };
         // Seed 002's two looks (reference/scenes/welch_*.toml): the Gerstner waves too, and a
         // noon or a setting sun ahead; the other presets keep the Gerstner sea as it is.
@@ -158,6 +187,16 @@ impl ViewParams {
             }
             Preset::WelchStormySunset => {
                 (p.gerstner_amplitude_m, p.gerstner_wavelength_m) = (0.3, 28.0);
+            }
+            // Seed 004's two screenshots (reference/scenes/coastal_island.toml and
+            // coastal_sunset.toml): the radial waves, and the level back at the scene's.
+            Preset::CoastalNoon => {
+                (p.coastal_amplitude_m, p.coastal_wavelength_m) = (0.9, 30.0);
+                p.water_level_m = 0.0;
+            }
+            Preset::CoastalSunset => {
+                (p.coastal_amplitude_m, p.coastal_wavelength_m) = (1.1, 36.0);
+                p.water_level_m = 0.0;
             }
             _ => {}
         }
@@ -184,12 +223,21 @@ impl ViewParams {
             Preset::ShallowReef => ([0.010, 0.060, 0.060], 0.06, 40.0),
             Preset::WelchCalmDay => ([0.004, 0.016, 0.030], 0.12, 55.0),
             Preset::WelchStormySunset => ([0.003, 0.010, 0.014], 0.2, 3.0),
+            Preset::CoastalNoon => {
+                let c = ocean_core::frame::DEEP_WATER_COLOR;
+                (
+                    [c[0] as f32, c[1] as f32, c[2] as f32],
+                    ocean_core::frame::WATER_EXTINCTION_PER_M,
+                    55.0,
+                )
+            }
+            Preset::CoastalSunset => ([0.004, 0.014, 0.020], 0.15, 5.0),
         };
         p.water_color = color;
         p.extinction_per_m = k;
         p.sun = true;
         p.sun_elevation_deg = elevation;
-        if preset == Preset::WelchStormySunset {
+        if matches!(preset, Preset::WelchStormySunset | Preset::CoastalSunset) {
             p.sun_azimuth_deg = 0.0;
         }
         p
@@ -211,17 +259,23 @@ pub enum Preset {
     WelchCalmDay,
     /// Seed 002's stormy sunset: 30 cm, 28 m Gerstner waves, 17 m/s, the sun 3° up ahead.
     WelchStormySunset,
+    /// Seed 004's island at noon: 0.9 m, 30 m radial waves (waves `coastal`), a high sun.
+    CoastalNoon,
+    /// Seed 004's beach at sunset: 1.1 m, 36 m radial waves, the sun 5° up ahead.
+    CoastalSunset,
 }
 
 impl Preset {
     /// Every preset, in the panel's order.
-    pub const ALL: [Preset; 6] = [
+    pub const ALL: [Preset; 8] = [
         Preset::CalmLake,
         Preset::OpenOcean,
         Preset::Storm,
         Preset::ShallowReef,
         Preset::WelchCalmDay,
         Preset::WelchStormySunset,
+        Preset::CoastalNoon,
+        Preset::CoastalSunset,
     ];
 
     /// The button's label.
@@ -233,6 +287,8 @@ impl Preset {
             Preset::ShallowReef => "Shallow reef",
             Preset::WelchCalmDay => "Calm day (Welch)",
             Preset::WelchStormySunset => "Stormy sunset (Welch)",
+            Preset::CoastalNoon => "Island at noon (coastal)",
+            Preset::CoastalSunset => "Beach at sunset (coastal)",
         }
     }
 }

@@ -196,6 +196,14 @@ fn panel(ui: &mut egui::Ui, p: &mut ViewParams, overlay: &Overlay<'_>, actions: 
         );
         slider(ui, &mut p.patch_size_m, range::PATCH_SIZE_M, "patch size, m", true);
     });
+    // Seed 004's demo: wave height and length, the water's level, and (the time scale) the
+    // waves' speed.
+    egui::CollapsingHeader::new("Coast").default_open(false).show(ui, |ui| {
+        slider(ui, &mut p.coastal_amplitude_m, range::COASTAL_AMPLITUDE_M, "coastal A, m", false);
+        slider(ui, &mut p.coastal_wavelength_m, range::COASTAL_WAVELENGTH_M, "coastal λ, m", true);
+        slider(ui, &mut p.water_level_m, range::WATER_LEVEL_M, "water level, m", false);
+        slider(ui, &mut p.time_scale, range::TIME_SCALE, "wave speed (time scale)", false);
+    });
     egui::CollapsingHeader::new("Sun").default_open(true).show(ui, |ui| {
         ui.checkbox(&mut p.sun, "sun");
         ui.add_enabled_ui(p.sun, |ui| {

@@ -135,7 +135,7 @@ impl WaterHeight for crate::waves::WaveSurface {
     fn water_heights(&self, points: &[(f64, f64); 5]) -> [f64; 5] {
         use rayon::prelude::*;
         match self {
-            Self::Fft(_) => {
+            Self::Fft(_) | Self::Damped { .. } => {
                 let mut out = [0.0; 5];
                 out.par_iter_mut()
                     .zip(points.par_iter())

@@ -641,6 +641,28 @@ pub fn pass_triangles(
     tris
 }
 
+/// The representative wavelengths (m) of the displacement's and the bump map's waves that
+/// `[terrain] wave_damping` scales: waves `gerstner`, their median wavelength for both; waves
+/// `fft`, the spectral peak's deep-water wavelength 2πg/ω_p² (at most the patch) and the bump
+/// patch's side (its longest wave). `None` under waves `coastal` (its own shoaling).
+pub fn damped_wavelengths(scene: &Scene, plan: &FramePlan) -> Option<[f64; 2]> {
+    let o = &scene.ocean;
+    match plan.techniques.of(crate::plan::Stage::Waves).name {
+        "coastal" => None,
+        "gerstner" => Some([scene.gerstner.median_wavelength_m; 2]),
+        _ => {
+            let g = o.dispersion().map_or(9.81, |d| d.gravity);
+            let peak = o
+                .wave_spectrum()
+                .ok()
+                .and_then(|s| s.peak_omega())
+                .map_or(o.patch_size_m, |w| std::f64::consts::TAU * g / (w * w));
+            let bump = o.patch_size_m / f64::from(o.bump_patch_divisor.max(1));
+            Some([peak.min(o.patch_size_m), bump])
+        }
+    }
+}
+
 /// How high the sand is wet, m above the sea plane: the coastal waves' run-up (ocean-core
 /// waves::coastal, "The shore zones"); 0 (no wet band) under the other waves techniques.
 pub fn wet_top_m(scene: &Scene) -> f64 {
@@ -835,6 +857,7 @@ impl FrameUniforms {
                 eye,
                 sun_on.then_some(sun_dir),
                 scene.water.ior,
+                damped_wavelengths(scene, plan),
             ),
             scales: if shading == "chiu" {
                 MultiScaleBlock::new(&scene.chiu.scales, l_d, mesh_origin)
@@ -953,6 +976,9 @@ pub fn surface_query(
 pub struct SurfaceSource<'a> {
     scene: &'a Scene,
     sea: Sea,
+    /// The displacement's representative wavelength that `[terrain] wave_damping` scales
+    /// ([`damped_wavelengths`]); `None` under waves `coastal`.
+    damped_m: Option<f64>,
 }
 
 enum Sea {
@@ -978,7 +1004,7 @@ impl<'a> SurfaceSource<'a> {
                 chiu: plan.techniques.of(crate::plan::Stage::Shading).name == "chiu",
             }
         };
-        Ok(Self { scene, sea })
+        Ok(Self { scene, sea, damped_m: damped_wavelengths(scene, plan).map(|l| l[0]) })
     }
 
     /// The height query at time `t`, s.
@@ -986,6 +1012,23 @@ impl<'a> SurfaceSource<'a> {
     /// # Errors
     /// A non-finite time.
     pub fn at(&self, t: f64) -> crate::Result<crate::waves::WaveSurface> {
+        let surface = self.undamped_at(t)?;
+        // `[terrain] wave_damping`: the waves kept over the floor, as the vertices keep them.
+        let inv = match (self.damped_m, &self.scene.terrain) {
+            (Some(l), Some(t)) => {
+                let v = 1.0 / (t.wave_damping * l);
+                if v.is_finite() && v > 0.0 { v } else { 0.0 }
+            }
+            _ => 0.0,
+        };
+        if inv == 0.0 {
+            return Ok(surface);
+        }
+        let terrain = Box::new(self.scene.terrain.clone().expect("matched above"));
+        Ok(crate::waves::WaveSurface::Damped { inner: Box::new(surface), terrain, inv })
+    }
+
+    fn undamped_at(&self, t: f64) -> crate::Result<crate::waves::WaveSurface> {
         let o = &self.scene.ocean;
         match &self.sea {
             Sea::Gerstner(dispersion) => {

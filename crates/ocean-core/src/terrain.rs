@@ -378,20 +378,24 @@ pub struct TerrainBlock {
     /// The unit vector towards the sun under the water (refracted at a flat surface), and the
     /// horizontal length of a step of the relief's self-shadow march, m (0: no march).
     pub sun_under: [f32; 4],
-    /// (highest floor height over the drawn square (world y, m), steps of the march, 0, 0).
+    /// (highest floor height over the drawn square (world y, m), steps of the march,
+    /// 1/(r·λ) of the displacement's waves, 1/(r·λ) of the bump map's; 0: undamped), r
+    /// `wave_damping` (waves `fft` and `gerstner` near the shore, shared/floor.wgsl).
     pub top: [f32; 4],
 }
 
 impl TerrainBlock {
     /// The block of `terrain` (or of the open sea at `open_sea_depth_m` without a floor) seen
-    /// from `eye`, with the sun at `sun_dir` (unit, towards the sun; `None`: no sun) and the
-    /// water's index `eta`.
+    /// from `eye`, with the sun at `sun_dir` (unit, towards the sun; `None`: no sun), the
+    /// water's index `eta`, and the representative wavelengths (m) of the displacement's and
+    /// the bump map's waves that `wave_damping` scales (`None`: waves `coastal`, undamped).
     pub fn new(
         terrain: Option<&Terrain>,
         open_sea_depth_m: f64,
         eye: DVec3,
         sun_dir: Option<DVec3>,
         eta: f64,
+        damped_wavelengths_m: Option<[f64; 2]>,
     ) -> Self {
         // Snell at a flat surface, towards the sun: the horizontal part shrinks by 1/η.
         let sun_under = match sun_dir {
@@ -413,12 +417,20 @@ impl TerrainBlock {
         };
         let (gx, gz) = t.gradient();
         let plane = [gx as f32, gz as f32, t.plane_height(eye.x, eye.z) as f32];
+        let inv = |l: f64| {
+            let v = 1.0 / (t.wave_damping * l);
+            if v.is_finite() && v > 0.0 { v as f32 } else { 0.0 }
+        };
+        let damping = match damped_wavelengths_m {
+            Some([d, b]) if t.wave_damping > 0.0 => [inv(d), inv(b)],
+            _ => [0.0, 0.0],
+        };
         let Some(r) = t.relief() else {
             return Self {
                 floor: [plane[0], plane[1], plane[2], 0.0],
                 relief: flat_map,
                 sun_under,
-                top: [0.0; 4],
+                top: [0.0, 0.0, damping[0], damping[1]],
             };
         };
         let (a_u, a_v) = t.relief_scale(r);
@@ -430,7 +442,7 @@ impl TerrainBlock {
             floor: [plane[0], plane[1], plane[2], 1.0],
             relief: [a_u as f32, a_v as f32, u as f32, v as f32],
             sun_under: [sun_under[0], sun_under[1], sun_under[2], step as f32],
-            top: [t.y_range().1 as f32, RELIEF_SHADOW_STEPS as f32, 0.0, 0.0],
+            top: [t.y_range().1 as f32, RELIEF_SHADOW_STEPS as f32, damping[0], damping[1]],
         }
     }
 }

@@ -642,6 +642,12 @@ pub struct Terrain {
     /// `kind = "island"`: the fall of the shore per metre at the waterline and below it,
     /// down to the floor.
     pub shore_slope: f64,
+    /// Waves `fft` and `gerstner` near the shore: r in w = clamp(h/(r·λ), 0, 1), the share of
+    /// the waves kept over h m of water, λ the sea's representative wavelength (the spectral
+    /// peak's or the Gerstner median's for the displacement, the bump patch for the bump map).
+    /// 0.5 is Crest's "a wave feels the floor below half its wavelength"; 0 (the default)
+    /// leaves them undamped. Waves `coastal` shoal and break by their own rules.
+    pub wave_damping: f64,
     /// The relief read from `heightmap`, or made from the island's profile, when the scene
     /// was loaded (or by [`Terrain::prepare`]).
     #[serde(skip)]
@@ -663,6 +669,7 @@ impl Default for Terrain {
             island_radius_m: 60.0,
             island_height_m: 12.0,
             shore_slope: 0.08,
+            wave_damping: 0.0,
             relief: None,
         }
     }

@@ -212,6 +212,12 @@ pub const LIMITS: &[Limit] = &[
     real("terrain.island_radius_m", 0.0, 1.0e4, "m, the island's waterline on a flat floor"),
     real("terrain.island_height_m", 0.0, 1.0e4, "m, the island's top above the sea plane"),
     real("terrain.shore_slope", 1.0e-3, 10.0, "fall per metre of the island's shore"),
+    real(
+        "terrain.wave_damping",
+        0.0,
+        4.0,
+        "waves fft/gerstner kept over h: clamp(h/(r·λ)); 0.5 Crest's",
+    ),
     real("ggx.roughness", 0.01, 1.0, "perceptual; α = roughness²"),
     real("ggx.detail_strength", 0.0, 1.0, "RMS slope of the detail normal map; 0 leaves it out"),
     real("ggx.detail_wavelength_m", 1.0e-3, 100.0, "m, the detail map's median wavelength"),
@@ -413,6 +419,7 @@ impl Scene {
             check("terrain.island_radius_m", &[t.island_radius_m])?;
             check("terrain.island_height_m", &[t.island_height_m])?;
             check("terrain.shore_slope", &[t.shore_slope])?;
+            check("terrain.wave_damping", &[t.wave_damping])?;
             if t.kind == crate::scene::TerrainKind::Island {
                 let reach = crate::terrain::island_reach(t);
                 if t.extent_m < 2.0 * reach {

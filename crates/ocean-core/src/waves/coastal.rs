@@ -84,6 +84,7 @@
 //! ω·t reduced modulo one turn in f64, so a huge t is as exact as a small one.
 
 use std::f64::consts::TAU;
+use std::sync::{Arc, Mutex};
 
 use serde::{Deserialize, Serialize};
 
@@ -223,7 +224,7 @@ pub struct CoastalSea {
     /// Φ where the mean depth crosses 0 (the swash's phase), turns.
     swash_phi: f64,
     /// Φ (turns), h̄ (m), K_s at r = j·Δ/[`NODES_PER_SEGMENT`].
-    nodes: Vec<[f64; 3]>,
+    nodes: Arc<Vec<[f64; 3]>>,
     /// The outermost node's wavenumber over 2π, turns per m.
     far_turns_per_m: f64,
     floor: Floor,
@@ -271,7 +272,7 @@ impl CoastalSea {
         };
         let k0 = TAU / coastal.wavelength_m;
         let omega = dispersion.omega_continuous(k0);
-        let turns = |w: f64| (w * t / TAU).rem_euclid(1.0);
+        let turns = |w: f64| phase_turns(w, t);
         // The table reaches the terrain's farthest corner; beyond it the floor is its edge's.
         let reach = terrain.map_or(coastal.wavelength_m, |t| {
             let dx = (t.center[0] - center[0]).abs() + 0.5 * t.extent_m;
@@ -280,31 +281,17 @@ impl CoastalSea {
         });
         let segment_m = reach / (COASTAL_SEGMENTS - 1) as f64;
         let step = segment_m / NODES_PER_SEGMENT as f64;
-        let count = (COASTAL_SEGMENTS - 1) * NODES_PER_SEGMENT + 1;
-        let mean_depth = |r: f64| {
-            if r == 0.0 {
-                return floor.depth(center[0], center[1]);
-            }
-            (0..AZIMUTHS)
-                .map(|a| {
-                    let angle = TAU * a as f64 / AZIMUTHS as f64;
-                    floor.depth(center[0] + r * angle.cos(), center[1] + r * angle.sin())
-                })
-                .sum::<f64>()
-                / AZIMUTHS as f64
+        let key = ProfileKey {
+            omega,
+            gravity: g,
+            center,
+            reach,
+            open_depth_m,
+            terrain: terrain
+                .map(|t| (crate::scene::Terrain { relief: None, ..t.clone() }, t.relief.clone())),
         };
-        let mut nodes = Vec::with_capacity(count);
-        let mut phi = 0.0;
-        let mut k_prev = 0.0;
-        for j in 0..count {
-            let h = mean_depth(j as f64 * step);
-            let k = wavenumber(omega, g, h);
-            if j > 0 {
-                phi += 0.5 * (k_prev + k) * step / TAU;
-            }
-            k_prev = k;
-            nodes.push([phi, h, shoaling_coefficient(omega, g, h)]);
-        }
+        let nodes = cached_profile(key, || profile_nodes(&floor, center, step, omega, g));
+        let k_prev = nodes.last().map_or(0.0, |n| wavenumber(omega, g, n[1]));
         let corrections = coastal
             .corrections
             .iter()
@@ -344,7 +331,7 @@ impl CoastalSea {
     /// The same sea at time `t` (the profile, which does not depend on time, is kept: a
     /// floating object's settle run asks for many times).
     pub fn at_time(&self, t: f64) -> Self {
-        let turns = |w: f64| (w * t / TAU).rem_euclid(1.0);
+        let turns = |w: f64| phase_turns(w, t);
         let mut sea = self.clone();
         sea.time_turns = turns(self.omega);
         for w in &mut sea.corrections {
@@ -529,6 +516,14 @@ impl CoastalSea {
     }
 }
 
+/// ω t reduced modulo one turn, in [0, 1). Where ω t/2π overflows (|t| near f64's largest),
+/// it is 0: every f64 of magnitude 2⁵³ or more is a whole number, so the phase of any time
+/// that large is a whole number of turns (NaN before: `inf.rem_euclid(1)`).
+fn phase_turns(omega: f64, t: f64) -> f64 {
+    let x = omega * t / TAU;
+    if x.is_finite() { x.rem_euclid(1.0) } else { 0.0 }
+}
+
 /// The radial profile f(φ) = clamp(sᵖ·m − (m − 1), 0, 1) of unit amplitude (m = `back` where
 /// s·cos φ < 0): (its mean, √(mean f′² / var f)), f′ = df/dφ, φ in radians. The second is the
 /// profile's RMS wavenumber over k (Σ n²|c_n|² / Σ|c_n|² over its harmonics): a vertex that
@@ -549,6 +544,94 @@ pub fn profile_moments(power: u32, back: f64) -> (f64, f64) {
     let slope2 = (0..N).map(|i| ((v[(i + 1) % N] - v[i]) / dphi).powi(2)).sum::<f64>() / N as f64;
     let rms = if var > 0.0 { (slope2 / var).sqrt() } else { 1.0 };
     (mean, rms)
+}
+
+/// A profile's nodes: Φ (turns), h̄ (m), K_s.
+type Profile = Arc<Vec<[f64; 3]>>;
+
+/// What a profile depends on: the radial waves' ω and g, the centre, the table's reach and
+/// the floor (a terrain by value without its relief, and the relief by identity: a loaded
+/// relief is never changed in place, and the key holds it, so its address is not reused).
+#[derive(Clone)]
+struct ProfileKey {
+    omega: f64,
+    gravity: f64,
+    center: [f64; 2],
+    reach: f64,
+    open_depth_m: f64,
+    terrain: Option<(crate::scene::Terrain, Option<Arc<crate::terrain::Relief>>)>,
+}
+
+impl PartialEq for ProfileKey {
+    fn eq(&self, o: &Self) -> bool {
+        let same_floor = match (&self.terrain, &o.terrain) {
+            (None, None) => true,
+            (Some((a, ra)), Some((b, rb))) => {
+                a == b
+                    && match (ra, rb) {
+                        (None, None) => true,
+                        (Some(x), Some(y)) => Arc::ptr_eq(x, y),
+                        _ => false,
+                    }
+            }
+            _ => false,
+        };
+        same_floor
+            && (self.omega, self.gravity, self.center, self.reach, self.open_depth_m)
+                == (o.omega, o.gravity, o.center, o.reach, o.open_depth_m)
+    }
+}
+
+/// The profiles made last: a frame asks for its sea several times (the plan's bound, the
+/// uniforms, the graph, the terrain's wet band), the viewer every frame, a boat's settle run
+/// many times, and a profile is ~130 000 floor samples. A pure function of its key, so a hit
+/// is the same numbers as a miss.
+fn cached_profile(key: ProfileKey, make: impl FnOnce() -> Vec<[f64; 3]>) -> Profile {
+    static CACHE: Mutex<Vec<(ProfileKey, Profile)>> = Mutex::new(Vec::new());
+    const KEEP: usize = 4;
+    if let Some((_, nodes)) =
+        CACHE.lock().ok().and_then(|c| c.iter().find(|(k, _)| *k == key).cloned())
+    {
+        return nodes;
+    }
+    let nodes = Arc::new(make());
+    if let Ok(mut c) = CACHE.lock() {
+        if c.len() == KEEP {
+            c.remove(0);
+        }
+        c.push((key, Arc::clone(&nodes)));
+    }
+    nodes
+}
+
+/// Φ (turns), h̄ and K_s every `step` m from the centre (module docs, "Depth").
+fn profile_nodes(floor: &Floor, center: [f64; 2], step: f64, omega: f64, g: f64) -> Vec<[f64; 3]> {
+    let count = (COASTAL_SEGMENTS - 1) * NODES_PER_SEGMENT + 1;
+    let mean_depth = |r: f64| {
+        if r == 0.0 {
+            return floor.depth(center[0], center[1]);
+        }
+        (0..AZIMUTHS)
+            .map(|a| {
+                let angle = TAU * a as f64 / AZIMUTHS as f64;
+                floor.depth(center[0] + r * angle.cos(), center[1] + r * angle.sin())
+            })
+            .sum::<f64>()
+            / AZIMUTHS as f64
+    };
+    let mut nodes = Vec::with_capacity(count);
+    let mut phi = 0.0;
+    let mut k_prev = 0.0;
+    for j in 0..count {
+        let h = mean_depth(j as f64 * step);
+        let k = wavenumber(omega, g, h);
+        if j > 0 {
+            phi += 0.5 * (k_prev + k) * step / TAU;
+        }
+        k_prev = k;
+        nodes.push([phi, h, shoaling_coefficient(omega, g, h)]);
+    }
+    nodes
 }
 
 /// (R, Φ there): Hunt's run-up R = min(ξ, [`MAX_IRIBARREN`])·A over the beach where the

@@ -7,6 +7,7 @@ mod clipmap;
 pub use clipmap::vs_clipmap;
 
 use super::shared::coastal::{coastal_shore, coastal_wave};
+use super::shared::floor::shore_weight;
 use super::shared::foam::{foam_mix, foam_over, foam_texture_at};
 use super::shared::frame::{dot3, transform_point, unit};
 use super::shared::gerstner::{gerstner_cis, gerstner_displacement, gerstner_jacobian};
@@ -219,9 +220,12 @@ pub fn grid_spacing(pos: Vec2, frame: &FrameUniforms) -> Vec4 {
 }
 
 /// `water_vertex(pos, weight)`.
-pub fn water_vertex(pos: Vec2, weight: f32, b: &Bindings<'_>) -> VertexOut {
+pub fn water_vertex(pos: Vec2, mesh_weight: f32, b: &Bindings<'_>) -> VertexOut {
     let frame = b.frame;
     let uv = map_uvs(pos, frame);
+    let plane = pos + vec2(frame.tiling.mesh_offset[0], frame.tiling.mesh_offset[1]);
+    let weight =
+        mesh_weight * shore_weight(plane.x, plane.y, frame.terrain.top[2], frame, b.floor_map);
     if frame.coastal.shape[0] > 0.0 {
         let sp = grid_spacing(pos, frame);
         let h = coastal_wave(
@@ -557,7 +561,9 @@ pub fn wave_slopes(input: &VertexOut, fp: &Footprint, b: &Bindings<'_>) -> Vec3 
     }
     let rel = input.rel;
     let wd = input.weight * frame.passes.waves;
-    let wb = frame.passes.waves;
+    let plane = input.pos + vec2(frame.tiling.mesh_offset[0], frame.tiling.mesh_offset[1]);
+    let wb = frame.passes.waves
+        * shore_weight(plane.x, plane.y, frame.terrain.top[3], frame, b.floor_map);
     let h = fp.h;
     let mut dt = sample_footprint(
         b.displacement_slopes,

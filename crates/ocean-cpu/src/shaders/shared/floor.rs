@@ -6,7 +6,7 @@ use ocean_core::frame::FrameUniforms;
 use super::shadow::sun_visibility;
 use crate::sampler::Texture2D;
 use crate::shaders::water::CLAMP_LINEAR;
-use crate::shaders::wgsl::{Vec3, max, sqrt, texture_sample_level, vec2, vec3};
+use crate::shaders::wgsl::{Vec3, clamp, max, sqrt, texture_sample_level, vec2, vec3};
 
 /// `RELIEF_SHADOW_BIAS`, m.
 pub const RELIEF_SHADOW_BIAS: f32 = 0.05;
@@ -28,6 +28,14 @@ pub fn floor_height(x: f32, z: f32, frame: &FrameUniforms, floor_map: &Texture2D
     let uv = vec2(x * r[0] + r[2], z * r[1] + r[3]);
     let relief = texture_sample_level(floor_map, &CLAMP_LINEAR, uv, 0.0).x;
     f[2] + f[0] * x + f[1] * z + relief
+}
+
+/// `shore_weight(x, z, inv)`: the share of waves `fft`/`gerstner` kept over the floor.
+pub fn shore_weight(x: f32, z: f32, inv: f32, frame: &FrameUniforms, floor_map: &Texture2D) -> f32 {
+    if inv == 0.0 {
+        return 1.0;
+    }
+    clamp(max(-floor_height(x, z, frame, floor_map), 0.0) * inv, 0.0, 1.0)
 }
 
 /// `floor_depth(rel)`.

@@ -4,6 +4,7 @@ use super::{
     Bindings, VertexOut, WRAP_LINEAR, displaced_vertex, map_uvs, multi_scale_displacement,
 };
 use crate::shaders::shared::coastal::coastal_wave;
+use crate::shaders::shared::floor::shore_weight;
 use crate::shaders::shared::gerstner::gerstner_displacement_filtered;
 use crate::shaders::wgsl::{clamp, texture_sample_level, vec2, vec4};
 
@@ -56,12 +57,14 @@ pub fn vs_clipmap(k: u32, b: &Bindings<'_>) -> VertexOut {
         .x;
         return displaced_vertex(pos, vec4(0.0, ch, 0.0, 0.0), uv, 1.0, frame);
     }
+    let plane = pos + vec2(frame.tiling.mesh_offset[0], frame.tiling.mesh_offset[1]);
+    let sw = shore_weight(plane.x, plane.y, frame.terrain.top[2], frame, b.floor_map);
     if frame.gerstner.count > 0.0 {
         return displaced_vertex(
             pos,
-            gerstner_displacement_filtered(pos, spacing, frame),
+            gerstner_displacement_filtered(pos, spacing, frame) * sw,
             uv,
-            1.0,
+            sw,
             frame,
         );
     }
@@ -70,5 +73,5 @@ pub fn vs_clipmap(k: u32, b: &Bindings<'_>) -> VertexOut {
         d = multi_scale_displacement(pos, b);
     }
     d = d * (frame.passes.waves * clamp((c.fade_end - spacing) * c.fade_inv_span, 0.0, 1.0));
-    displaced_vertex(pos, d, uv, 1.0, frame)
+    displaced_vertex(pos, d * sw, uv, sw, frame)
 }
