@@ -2,6 +2,7 @@
 //! `anyhow::Result` whose message a user can act on, printed without a backtrace.
 
 mod compare;
+mod frames;
 mod fresnel;
 mod heightfield;
 mod plan;

@@ -50,6 +50,13 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             ocean_core::plan::memory::MemoryBackend::Cpu,
         );
         v["memory_estimate_bytes"] = serde_json::to_value(e.total())?;
+        // The passes an animation runs on a frame it steps but does not draw (empty: none).
+        let steps: Vec<&str> = if plan.carries_state() {
+            plan.advance_only().passes.iter().map(|p| p.name.name()).collect()
+        } else {
+            Vec::new()
+        };
+        v["state_passes"] = serde_json::to_value(steps)?;
         println!("{}", serde_json::to_string_pretty(&v)?);
     } else {
         print!("{plan}");
@@ -78,6 +85,17 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             })
             .collect();
         println!("  resources: {}", sizes.join(", "));
+        if plan.carries_state() {
+            let kept: Vec<&str> =
+                plan.advance_only().passes.iter().map(|p| p.name.name()).collect();
+            println!(
+                "  state: frames carry state to the next one; an animation steps the frames it \
+                 does not draw with {}",
+                kept.join(", ")
+            );
+        } else {
+            println!("  state: none carried between frames (an animation jumps to its frames)");
+        }
         use ocean_core::plan::memory::{MemoryBackend, MemoryEstimate, bytes};
         let e = MemoryEstimate::of(&scene, &plan, MemoryBackend::Cpu);
         let largest = e.largest().map_or(String::new(), |i| {

@@ -38,11 +38,27 @@ pub struct Args {
     spp: u32,
     #[command(flatten)]
     memory: ocean::memory_arg::MemoryArg,
+    /// Render an animation: frames A..B (B excluded) or A..=B (B included), frame n at the
+    /// scene's time plus n/FPS, one file per frame named by the output's pattern (e.g.
+    /// 'out/frame_{:05}.png'). Frame n is the same whatever the range, shard or resumption.
+    #[arg(long, value_name = "A..B", value_parser = parse_frames)]
+    frames: Option<ocean::animation::FrameRange>,
+    /// Frames per second of --frames.
+    #[arg(long, default_value_t = 30.0, value_name = "F")]
+    fps: f64,
+    /// With --frames: render only every n-th frame, those with (frame − A) mod n = i
+    /// (i counted from 0), so n machines can share a sequence with nothing to coordinate.
+    #[arg(long, value_name = "i/n", value_parser = parse_shard)]
+    shard: Option<ocean::animation::Shard>,
+    /// With --frames: render frames whose file exists too (by default they are kept, so a
+    /// killed run resumes where it stopped).
+    #[arg(long)]
+    overwrite: bool,
 }
 
 /// Render back ends.
 #[derive(clap::ValueEnum, Clone, Copy, Debug)]
-enum Backend {
+pub(crate) enum Backend {
     /// The deterministic software renderer (the correctness oracle).
     Cpu,
     /// The wgpu real-time path.
@@ -51,11 +67,31 @@ enum Backend {
 
 /// Runs `ocean render`.
 pub fn run(args: Args) -> anyhow::Result<()> {
+    if args.frames.is_none() && (args.shard.is_some() || args.overwrite) {
+        bail!("--shard and --overwrite belong to an animation: add --frames A..B");
+    }
     let kind = match args.output.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase) {
         Some(e) if e == "png" => OutputKind::Ldr,
         Some(e) if e == "exr" => OutputKind::Hdr,
         _ => bail!("output {} must end in .png or .exr", args.output.display()),
     };
+    if let Some(range) = args.frames {
+        return crate::frames::run(crate::frames::Sequence {
+            scene: args.scene.as_ref(),
+            system: &args.system,
+            time: args.time,
+            size: args.size.as_deref(),
+            spp: args.spp,
+            memory: &args.memory,
+            backend: args.backend,
+            kind,
+            pattern: &args.output,
+            range,
+            fps: args.fps,
+            shard: args.shard.unwrap_or_default(),
+            overwrite: args.overwrite,
+        });
+    }
     // Before any work: a render of minutes must not end in "cannot write".
     let out = ocean::output::OutputFile::reserve(&args.output)?;
     let mut scene = ocean::scene_arg::load_scene(args.scene.as_ref(), &args.system)?;
@@ -145,7 +181,28 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     } else {
         (ldr, hdr)
     };
-    let bytes = match output_kind {
+    let bytes = encode(output_kind, ldr, &hdr, w, h)?;
+    out.commit(&bytes)?;
+    let passes: Vec<String> = passes;
+    let spp = if k > 1 { format!(", {} spp", args.spp) } else { String::new() };
+    eprintln!(
+        "wrote {} ({w}×{h}{spp}, {backend}, {:.2} s: {})",
+        args.output.display(),
+        start.elapsed().as_secs_f64(),
+        passes.join(", ")
+    );
+    Ok(())
+}
+
+/// A frame's file: the 8-bit picture as PNG, or the linear HDR frame as an RGBA EXR.
+pub(crate) fn encode(
+    kind: OutputKind,
+    ldr: Option<Vec<u8>>,
+    hdr: &[[f32; 4]],
+    w: u32,
+    h: u32,
+) -> anyhow::Result<Vec<u8>> {
+    Ok(match kind {
         OutputKind::Ldr => {
             let rgba = ldr.context("the plan has no tonemap pass")?;
             encode_png(rgba, w, h)?
@@ -159,17 +216,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 .collect();
             encode_exr(w as usize, h as usize, channels)?
         }
-    };
-    out.commit(&bytes)?;
-    let passes: Vec<String> = passes;
-    let spp = if k > 1 { format!(", {} spp", args.spp) } else { String::new() };
-    eprintln!(
-        "wrote {} ({w}×{h}{spp}, {backend}, {:.2} s: {})",
-        args.output.display(),
-        start.elapsed().as_secs_f64(),
-        passes.join(", ")
-    );
-    Ok(())
+    })
 }
 
 /// The CPU render with a progress bar for renders that take over a second.
@@ -199,6 +246,16 @@ fn render_cpu(
         b.finish_and_clear();
     }
     Ok(rendered)
+}
+
+/// `--frames`.
+fn parse_frames(s: &str) -> Result<ocean::animation::FrameRange, String> {
+    ocean::animation::FrameRange::parse(s).map_err(|e| e.to_string())
+}
+
+/// `--shard`.
+fn parse_shard(s: &str) -> Result<ocean::animation::Shard, String> {
+    ocean::animation::Shard::parse(s).map_err(|e| e.to_string())
 }
 
 /// `--spp`: a count, with a range error (not clap's "unexpected argument") for a negative one.

@@ -1072,6 +1072,24 @@ impl FramePlan {
         self.passes.iter().any(|p| p.name == pass)
     }
 
+    /// Whether a frame leaves state the next one continues ([`FrameState`]'s foam field of
+    /// foam `accumulated`, or the spray's particle pool), so that frame n of an animation
+    /// depends on the frames before it.
+    pub fn carries_state(&self) -> bool {
+        self.runs(Pass::Foam) || self.runs(Pass::Spray)
+    }
+
+    /// The plan of a frame an animation steps but does not draw (a frame of another shard, or
+    /// one already on disk): only the passes whose work outlives the frame — `cycle`, `waves`
+    /// (the displacement the foam and the spray step on), `foam`, `spray` — in their order.
+    /// Running it in place of a frame leaves [`FrameState`] as the whole frame would.
+    pub fn advance_only(&self) -> FramePlan {
+        let mut plan = self.clone();
+        plan.passes
+            .retain(|p| matches!(p.name, Pass::Cycle | Pass::Waves | Pass::Foam | Pass::Spray));
+        plan
+    }
+
     /// The water mesh of this plan's frame (seed 000 §3): near and far patch, or the near
     /// patch alone where the plan leaves the far patch out.
     pub fn water_mesh(&self, scene: &Scene, camera: &Camera) -> crate::Result<WaterMesh> {
