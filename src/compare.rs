@@ -22,10 +22,19 @@ pub struct Args {
     size: Option<String>,
     #[command(flatten)]
     memory: ocean::memory_arg::MemoryArg,
+    /// Compare a folder in the layout of `ocean render --dump-passes` (from another engine,
+    /// or another run) with the CPU oracle's frame of the scene, resource by resource, with
+    /// DESIGN.md's float tolerance; no GPU is used. The scene is SCENE, else the one in
+    /// DIR/manifest.json, else the default.
+    #[arg(long, value_name = "DIR")]
+    against: Option<PathBuf>,
 }
 
 /// Runs `ocean compare`.
 pub fn run(args: Args) -> anyhow::Result<()> {
+    if let Some(dir) = &args.against {
+        return against(&args, dir);
+    }
     let mut scene = ocean::scene_arg::load_scene(args.scene.as_ref(), &args.system)?;
     if let Some(s) = &args.size {
         (scene.camera.width, scene.camera.height) = ocean::output::parse_size(s)?;
@@ -72,6 +81,106 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let failures = check.failures();
     if !failures.is_empty() {
         bail!("CPU and GPU differ beyond tolerance:\n{}", failures.join("\n"));
+    }
+    Ok(())
+}
+
+/// `ocean compare --against DIR`: the oracle's frame against a dump folder.
+fn against(args: &Args, dir: &std::path::Path) -> anyhow::Result<()> {
+    use ocean_core::plan::OutputKind;
+    use ocean_verify::compare::compare_float_in;
+    use ocean_verify::cross_check::{float_diff_png, save_rgba};
+
+    let manifest: Option<serde_json::Value> = std::fs::read_to_string(dir.join("manifest.json"))
+        .ok()
+        .map(|t| serde_json::from_str(&t))
+        .transpose()
+        .with_context(|| format!("{}/manifest.json is not JSON", dir.display()))?;
+    let from_manifest = args.scene.is_none()
+        && manifest
+            .as_ref()
+            .and_then(|m| m["scene"]["toml"].as_str())
+            .is_some_and(|t| !t.is_empty());
+    let mut scene = match (&args.scene, manifest.as_ref().and_then(|m| m["scene"]["toml"].as_str()))
+    {
+        (None, Some(text)) if !text.is_empty() => {
+            // The system the dump was made with, unless --system says otherwise.
+            let dumped = manifest.as_ref().and_then(|m| m["frame"]["system"].as_str());
+            let system = ocean::scene_arg::SystemArg {
+                system: args.system.system.clone().or(dumped.map(str::to_owned)),
+            };
+            ocean::scene_arg::scene_from_text(
+                text,
+                &format!("{}/manifest.json", dir.display()),
+                &system,
+            )?
+        }
+        _ => ocean::scene_arg::load_scene(args.scene.as_ref(), &args.system)?,
+    };
+    // The manifest's frame (a dump made with --size or --time) unless --size says otherwise.
+    if let (true, Some(frame)) = (from_manifest, manifest.as_ref().map(|m| &m["frame"])) {
+        if let (Some(w), Some(h)) = (frame["width"].as_u64(), frame["height"].as_u64()) {
+            (scene.camera.width, scene.camera.height) = (w as u32, h as u32);
+        }
+        if let Some(t) = frame["time_s"].as_f64() {
+            scene.ocean.time_s = t;
+        }
+    }
+    if let Some(s) = &args.size {
+        (scene.camera.width, scene.camera.height) = ocean::output::parse_size(s)?;
+    }
+    ocean::scene_arg::revalidate(&scene, "--size, or the manifest's frame")?;
+    let plan = ocean_core::plan::FramePlan::new(&scene, OutputKind::Ldr);
+    args.memory.check(&scene, &plan, &[ocean_core::plan::memory::MemoryBackend::Cpu])?;
+    let r = ocean_cpu::render_scene(&scene, OutputKind::Ldr, &mut |_| {})?;
+    std::fs::create_dir_all(&args.out_dir)
+        .with_context(|| format!("cannot make {}", args.out_dir.display()))?;
+    println!(
+        "{} against the CPU oracle ({}x{}, limits: rel {:e} / abs {:e}, one binary16 step on \
+         rgba16float resources)",
+        dir.display(),
+        scene.camera.width,
+        scene.camera.height,
+        ocean_verify::compare::FLOAT_REL,
+        ocean_verify::compare::FLOAT_ABS
+    );
+    let mut failures = Vec::new();
+    let mut summary = Vec::new();
+    for id in ocean::dump::dumped(&plan) {
+        let Some((w, h, ours)) = r.buffers.map(id) else { continue };
+        let pass = id.writer().map_or("", |p| p.name());
+        let theirs = match ocean::dump::read(dir, id) {
+            Ok(t) => t,
+            Err(e) => {
+                println!("  [{pass:<14}] {:<20} MISSING {e:#}", id.name());
+                failures.push(format!("{}: {e:#}", id.name()));
+                summary.push(serde_json::json!({"name": id.name(), "passed": false, "error": format!("{e:#}")}));
+                continue;
+            }
+        };
+        let format = plan.resource(id).map_or(Default::default(), |r| r.format.storage());
+        let stats =
+            compare_float_in(id.name(), true, ((w, h), ours), (theirs.0, &theirs.1), format);
+        println!("  [{pass:<14}] {}", stats.line());
+        if theirs.0 == (w, h) {
+            let png = float_diff_png(ours, &theirs.1, format);
+            save_rgba(&args.out_dir.join(format!("{}.diff.png", id.name())), w, h, png)?;
+        }
+        if !stats.passed() {
+            failures.push(stats.line());
+        }
+        summary.push(stats.to_json());
+    }
+    let json = serde_json::json!({"against": dir.display().to_string(), "resources": summary});
+    std::fs::write(args.out_dir.join("against.json"), serde_json::to_string_pretty(&json)?)
+        .with_context(|| format!("cannot write to {}", args.out_dir.display()))?;
+    println!("wrote {}/<resource>.diff.png and against.json", args.out_dir.display());
+    if !failures.is_empty() {
+        bail!(
+            "{} differs from the oracle beyond tolerance:\n{}",
+            dir.display(),
+            failures.join("\n")
+        );
     }
     Ok(())
 }

@@ -2,12 +2,14 @@
 //! integration tests share.
 //!
 //! - [`animation`]: the frames, shards and file names of `ocean render --frames`.
+//! - [`dump`]: per-pass dumps (`ocean render --dump-passes`, `ocean compare --against`).
 //! - [`output`]: atomic output files, PNG/EXR encoding.
 //! - [`scene_arg`]: the scene a command renders, and `--system`.
 //! - [`view`]: `ocean view`, the real-time viewer (winit window, egui panel), with its
 //!   window-free parts (camera controller, parameter mapping) testable on their own.
 
 pub mod animation;
+pub mod dump;
 pub mod memory_arg;
 pub mod output;
 pub mod scene_arg;

@@ -50,6 +50,12 @@ pub struct Args {
     /// (i counted from 0), so n machines can share a sequence with nothing to coordinate.
     #[arg(long, value_name = "i/n", value_parser = parse_shard)]
     shard: Option<ocean::animation::Shard>,
+    /// Also write every float resource of the frame (wave maps, Fresnel tables, shadow,
+    /// reflection and refraction maps, mip chains, foam field, HDR frame, bloom chains) as EXR
+    /// with named channels, the picture, and manifest.json (what each is: pass, technique,
+    /// format, size, channels, units, conventions; the scene and the plan) into DIR.
+    #[arg(long, value_name = "DIR")]
+    dump_passes: Option<PathBuf>,
     /// With --frames: render frames whose file exists too (by default they are kept, so a
     /// killed run resumes where it stopped).
     #[arg(long)]
@@ -69,6 +75,9 @@ pub(crate) enum Backend {
 pub fn run(args: Args) -> anyhow::Result<()> {
     if args.frames.is_none() && (args.shard.is_some() || args.overwrite) {
         bail!("--shard and --overwrite belong to an animation: add --frames A..B");
+    }
+    if args.dump_passes.is_some() && (args.frames.is_some() || args.spp != 1) {
+        bail!("--dump-passes dumps one frame at 1 sample per pixel: leave out --frames and --spp");
     }
     let kind = match args.output.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase) {
         Some(e) if e == "png" => OutputKind::Ldr,
@@ -131,12 +140,25 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 .iter()
                 .map(|(p, d)| format!("{} {:.0} ms", p.name(), d.as_secs_f64() * 1e3))
                 .collect();
+            if let Some(dir) = &args.dump_passes {
+                let map = |id| r.buffers.map(id).map(|(w, h, t)| ((w, h), t));
+                dump(dir, &scene, args.scene.as_deref(), &r.plan, "cpu", &map, r.ldr.as_deref())?;
+            }
             (r.ldr, r.buffers.hdr.color, passes, "CPU".to_owned())
         }
         Backend::Gpu => {
             let mut renderer = ocean_gpu::Renderer::new()?;
             let plan = FramePlan::new(&scene, kind);
-            let f = renderer.run_with(&scene, &plan, ocean_gpu::Readback::Output)?;
+            let readback = if args.dump_passes.is_some() {
+                ocean_gpu::Readback::All
+            } else {
+                ocean_gpu::Readback::Output
+            };
+            let f = renderer.run_with(&scene, &plan, readback)?;
+            if let Some(dir) = &args.dump_passes {
+                let map = |id| f.map(id).map(|m| ((m.width, m.height), &m.texels[..]));
+                dump(dir, &scene, args.scene.as_deref(), &plan, "gpu", &map, f.ldr.as_deref())?;
+            }
             let hdr = f.map(FrameMap::Hdr).map(|m| m.texels.clone()).unwrap_or_default();
             let passes = f
                 .gpu_timings
@@ -191,6 +213,28 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         start.elapsed().as_secs_f64(),
         passes.join(", ")
     );
+    Ok(())
+}
+
+/// `--dump-passes`: the frame's resources and manifest into `dir` (`ocean::dump`).
+fn dump(
+    dir: &std::path::Path,
+    scene: &ocean_core::scene::Scene,
+    path: Option<&std::path::Path>,
+    plan: &FramePlan,
+    backend: &str,
+    map: &ocean::dump::MapOf<'_>,
+    ldr: Option<&[u8]>,
+) -> anyhow::Result<()> {
+    let (shown, text) = match path {
+        Some(p) => (
+            p.display().to_string(),
+            std::fs::read_to_string(p).with_context(|| format!("cannot read {}", p.display()))?,
+        ),
+        None => ("(the built-in default scene)".to_owned(), String::new()),
+    };
+    let files = ocean::dump::write(dir, scene, (&shown, &text), plan, backend, map, ldr)?;
+    eprintln!("dumped {} file(s) to {}: {}", files.len(), dir.display(), files.join(", "));
     Ok(())
 }
 

@@ -39,6 +39,24 @@ pub fn load_scene(path: Option<&PathBuf>, system: &SystemArg) -> anyhow::Result<
     Ok(scene)
 }
 
+/// A scene from its TOML text (a dump's manifest), with `--system` applied as
+/// [`load_scene`] does.
+///
+/// # Errors
+/// Text that is not a valid scene, or a `--system` its techniques do not fit.
+pub fn scene_from_text(text: &str, what: &str, system: &SystemArg) -> anyhow::Result<Scene> {
+    let mut scene = Scene::from_toml(text, ocean_core::scene::SceneSource::Text)
+        .map_err(|e| anyhow::anyhow!("the scene in {what}: {e}"))?;
+    if let Some(name) = &system.system {
+        let chosen = System::from_name(name).map_err(|e| anyhow::anyhow!("--system: {e}"))?;
+        Techniques::with_overrides(chosen, scene.techniques.iter())
+            .and_then(|t| t.check())
+            .map_err(|e| anyhow::anyhow!("--system {name}: {e}"))?;
+        scene.system = chosen;
+    }
+    Ok(scene)
+}
+
 /// Checks a scene again after command-line flags changed it (`--time`, `--size`, `--seed`),
 /// so that a flag is held to the same limits as the key it overrides; the error names both.
 ///

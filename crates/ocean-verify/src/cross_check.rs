@@ -198,7 +198,11 @@ pub fn map_pass(name: &str) -> Option<Pass> {
     ResourceId::MAPS.iter().find(|m| m.name() == name).and_then(|m| m.writer())
 }
 
-fn save_rgba(path: &Path, w: u32, h: u32, rgba: Vec<u8>) -> std::io::Result<()> {
+/// Writes an RGBA8 picture as PNG.
+///
+/// # Errors
+/// A file that cannot be written.
+pub fn save_rgba(path: &Path, w: u32, h: u32, rgba: Vec<u8>) -> std::io::Result<()> {
     let img = image::RgbaImage::from_raw(w, h, rgba)
         .ok_or_else(|| std::io::Error::other("image size does not match its pixels"))?;
     img.save(path).map_err(std::io::Error::other)
@@ -212,7 +216,7 @@ fn float_png(m: ((u32, u32), &[[f32; 4]])) -> Vec<u8> {
 
 /// A difference heat map of two same-size float maps: red = max channel |Δ| / allowance,
 /// 0 at the limit's 1/16, 255 at 16× the limit (log scale); green marks values beyond it.
-fn float_diff_png(
+pub fn float_diff_png(
     cpu: &[[f32; 4]],
     gpu: &[[f32; 4]],
     format: ocean_core::frame_format::FrameFormat,

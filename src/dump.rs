@@ -1,0 +1,248 @@
+//! Per-pass dumps: `ocean render --dump-passes DIR` writes every float resource of a frame as
+//! an EXR with named channels and a `manifest.json` that says what each one is;
+//! `ocean compare --against DIR` holds a folder in that layout (the oracle's, or one written
+//! by another engine) against the oracle, resource by resource, with DESIGN.md's tolerances.
+//!
+//! The layout (`manifest.json`, `"layout": "ocean-dump/1"`):
+//!
+//! - `<resource>.exr`: one single-layer EXR per resource a pass wrote, 32-bit float, four
+//!   channels named as the manifest's `channels` (EXR files list channels alphabetically;
+//!   the manifest gives the texture's own order r, g, b, a). Row 0 of the image is the
+//!   texture's row 0.
+//! - `ldr.png`: the 8-bit sRGB picture, when the plan tonemaps.
+//! - `manifest.json`: the scene (its text and path), the plan (as `ocean plan --json`), the
+//!   frame's time and size, the conventions, and per resource: the pass and technique that
+//!   wrote it, its format, size, mip levels and layout, and each channel's meaning and unit.
+
+use std::path::Path;
+
+use anyhow::{Context, bail};
+use ocean_core::plan::{FramePlan, ResourceId};
+use ocean_core::scene::Scene;
+use serde_json::{Value, json};
+
+use crate::output::{Channel, encode_exr};
+
+/// The layout's name and version, in `manifest.json`.
+pub const LAYOUT: &str = "ocean-dump/1";
+
+/// (name, meaning, unit) of a resource's four channels, in texture order (r, g, b, a).
+pub fn channels(id: ResourceId) -> [(&'static str, &'static str, &'static str); 4] {
+    use ResourceId as R;
+    match id {
+        R::Displacement => [
+            ("disp_x", "horizontal displacement along +x (the choppy waves)", "m"),
+            ("height", "height of the displaced point above the sea plane", "m"),
+            ("disp_z", "horizontal displacement along +z", "m"),
+            ("jacobian", "Jacobian of the horizontal displacement (< 1: compressed)", "1"),
+        ],
+        R::DisplacementSlopes => [
+            ("slope_x", "∂height/∂x of the displacement map's patch", "1"),
+            ("slope_z", "∂height/∂z", "1"),
+            ("zero_b", "unused, 0", "1"),
+            ("zero_a", "unused, 0", "1"),
+        ],
+        R::Bump => [
+            ("slope_x", "∂height/∂x of the bump map's patch", "1"),
+            ("slope_z", "∂height/∂z", "1"),
+            ("height", "height", "m"),
+            ("jacobian", "Jacobian of the horizontal displacement", "1"),
+        ],
+        R::DisplacementSlopeMips | R::BumpMips => [
+            ("mean_slope_x", "mean of ∂height/∂x over the level's texel", "1"),
+            ("mean_slope_z", "mean of ∂height/∂z", "1"),
+            ("mean_slope_x2", "mean of (∂height/∂x)²", "1"),
+            ("mean_slope_z2", "mean of (∂height/∂z)²", "1"),
+        ],
+        R::FresnelFilter => [
+            ("fresnel_filtered", "F̄(r, σ): eq. 2 averaged over a slope spread σ", "1"),
+            ("zero_g", "unused, 0", "1"),
+            ("zero_b", "unused, 0", "1"),
+            ("zero_a", "unused, 0", "1"),
+        ],
+        R::FresnelAbove | R::FresnelBelow => [
+            ("view_x", "x of the local view vector the texel stands for", "1"),
+            ("view_y", "y (up) of the local view vector", "1"),
+            ("view_z", "z of the local view vector", "1"),
+            ("fresnel", "F of eq. 2 (η from above, 1/η from below)", "1"),
+        ],
+        R::ShadowMap => [
+            ("depth", "depth of the nearest object from the sun, 0 at the sun's side", "1"),
+            ("zero_g", "unused, 0", "1"),
+            ("zero_b", "unused, 0", "1"),
+            ("zero_a", "unused, 0", "1"),
+        ],
+        R::ReflectionMap | R::RefractionMap => [
+            (
+                "radiance_r",
+                "radiance of the mirrored (reflection) or fogged (refraction) objects",
+                "scene radiance",
+            ),
+            ("radiance_g", "green", "scene radiance"),
+            ("radiance_b", "blue", "scene radiance"),
+            ("coverage", "share of the pixel the objects cover", "1"),
+        ],
+        R::Hdr => [
+            (
+                "radiance_r",
+                "linear radiance reaching the camera, before exposure",
+                "scene radiance",
+            ),
+            ("radiance_g", "green", "scene radiance"),
+            ("radiance_b", "blue", "scene radiance"),
+            ("alpha", "1", "1"),
+        ],
+        R::BloomDown | R::BloomUp => [
+            ("radiance_r", "bright pass (down) or the levels summed back (up)", "scene radiance"),
+            ("radiance_g", "green", "scene radiance"),
+            ("radiance_b", "blue", "scene radiance"),
+            ("alpha", "unused", "1"),
+        ],
+        R::FoamField => [
+            ("foam", "foam `accumulated`'s coverage on its lattice", "1"),
+            ("zero_g", "unused, 0", "1"),
+            ("zero_b", "unused, 0", "1"),
+            ("zero_a", "unused, 0", "1"),
+        ],
+        R::Ldr | R::Environment => [("", "", ""); 4],
+    }
+}
+
+/// The float resources a dump holds for `plan`: those a pass writes this frame.
+pub fn dumped(plan: &FramePlan) -> Vec<ResourceId> {
+    ResourceId::MAPS
+        .into_iter()
+        .filter(|id| id.writer().is_some_and(|p| plan.runs(p)))
+        .filter(|id| plan.resource(*id).is_some_and(|r| r.written))
+        .collect()
+}
+
+/// The file a resource goes to.
+pub fn file_name(id: ResourceId) -> String {
+    format!("{}.exr", id.name())
+}
+
+/// The conventions every resource follows.
+fn conventions() -> Value {
+    json!({
+        "texel_origin": "texel (i, j) is column i of row j; row 0 is the image's first (top) row; \
+            its centre is at uv ((i + 0.5)/W, (j + 0.5)/H)",
+        "world_axes": "right-handed, metres, y up; the sea plane is y = 0",
+        "wave_maps": "displacement, displacement_slopes and bump tile their patch: texel (i, j) \
+            is the point x = i·L/N, z = j·L/N (L the patch side, N the map side)",
+        "screen_maps": "reflection_map, refraction_map and hdr are views of the scene's camera \
+            (the reflection map mirrored in the sea plane), x to the right, row 0 at the top",
+        "mip_chains": "a chain of n levels is one atlas W wide: level 0 in rows 0..H, level k in \
+            the next H >> k rows from column 0 (at least 1), the rest of each row 0",
+        "radiance": "linear, scene units (the sun's radiance is [sun] intensity × color); \
+            the picture applies the camera's exposure and the tonemap",
+        "fresnel_tables": "the plan's fresnel_mapping (see `ocean fresnel --table`)",
+    })
+}
+
+/// A frame's maps, from either back end: (width, height) and the texels, row-major.
+pub type MapOf<'a> = dyn Fn(ResourceId) -> Option<((u32, u32), &'a [[f32; 4]])> + 'a;
+
+/// Writes the dump of a frame to `dir` (created if missing): every resource of [`dumped`],
+/// `ldr.png` when there is a picture, and the manifest. Returns the files written.
+///
+/// # Errors
+/// A folder or file that cannot be written, or a map the back end did not keep.
+pub fn write(
+    dir: &Path,
+    scene: &Scene,
+    scene_source: (&str, &str),
+    plan: &FramePlan,
+    backend: &str,
+    map: &MapOf<'_>,
+    ldr: Option<&[u8]>,
+) -> anyhow::Result<Vec<String>> {
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot make {}", dir.display()))?;
+    let mut files = Vec::new();
+    let mut resources = Vec::new();
+    for id in dumped(plan) {
+        let Some(((w, h), texels)) = map(id) else {
+            bail!("the {backend} back end kept no `{}` for the dump", id.name())
+        };
+        let names = channels(id);
+        let data: Vec<Channel<'_>> = (0..4)
+            .map(|c| Channel { name: names[c].0, data: texels.iter().map(|t| t[c]).collect() })
+            .collect();
+        let name = file_name(id);
+        let bytes = encode_exr(w as usize, h as usize, data)?;
+        std::fs::write(dir.join(&name), bytes)
+            .with_context(|| format!("cannot write {}", dir.join(&name).display()))?;
+        let r = plan.resource(id);
+        let writer = id.writer();
+        resources.push(json!({
+            "name": id.name(),
+            "file": name,
+            "pass": writer.map(|p| p.name()),
+            "technique": writer.and_then(|p| p.stage()).map(|s| plan.techniques.of(s).name),
+            "format": r.map(|r| format!("{:?}", r.format.storage())),
+            "size": [w, h],
+            "plan_size": r.map(|r| r.size),
+            "mip_levels": r.map_or(1, |r| r.levels),
+            "channels": names.iter().map(|(n, m, u)| json!({"name": n, "meaning": m, "unit": u})).collect::<Vec<_>>(),
+        }));
+        files.push(name);
+    }
+    if let Some(rgba) = ldr {
+        let png =
+            crate::output::encode_png(rgba.to_vec(), scene.camera.width, scene.camera.height)?;
+        std::fs::write(dir.join("ldr.png"), png)
+            .with_context(|| format!("cannot write {}", dir.join("ldr.png").display()))?;
+        files.push("ldr.png".to_owned());
+    }
+    let manifest = json!({
+        "layout": LAYOUT,
+        "backend": backend,
+        "scene": {"path": scene_source.0, "toml": scene_source.1},
+        "frame": {
+            "system": plan.system.name(),
+            "time_s": scene.ocean.time_s,
+            "width": scene.camera.width,
+            "height": scene.camera.height,
+        },
+        "conventions": conventions(),
+        "plan": serde_json::to_value(plan)?,
+        "resources": resources,
+    });
+    std::fs::write(dir.join("manifest.json"), serde_json::to_string_pretty(&manifest)?)
+        .with_context(|| format!("cannot write {}", dir.join("manifest.json").display()))?;
+    files.push("manifest.json".to_owned());
+    Ok(files)
+}
+
+/// A resource read from a dump: (width, height) and its texels, row-major.
+pub type ReadMap = ((u32, u32), Vec<[f32; 4]>);
+
+/// Reads a dumped resource: (width, height) and its texels, channels in texture order (by
+/// the names [`channels`] gives; an EXR from elsewhere with R, G, B, A is read as those).
+///
+/// # Errors
+/// A missing or unreadable file, or one without the four channels.
+pub fn read(dir: &Path, id: ResourceId) -> anyhow::Result<ReadMap> {
+    use exr::prelude::*;
+    let path = dir.join(file_name(id));
+    let image = read_all_flat_layers_from_file(&path)
+        .with_context(|| format!("cannot read {}", path.display()))?;
+    let Some(layer) = image.layer_data.first() else { bail!("{} holds no layer", path.display()) };
+    let (w, h) = (layer.size.width(), layer.size.height());
+    let names = channels(id);
+    let rgba = ["R", "G", "B", "A"];
+    let mut texels = vec![[0.0f32; 4]; w * h];
+    for c in 0..4 {
+        let found = layer.channel_data.list.iter().find(|ch| {
+            let n = ch.name.to_string();
+            n == names[c].0 || n == rgba[c]
+        });
+        let Some(ch) = found else {
+            bail!("{} has no channel `{}` (or `{}`)", path.display(), names[c].0, rgba[c])
+        };
+        for (t, v) in texels.iter_mut().zip(ch.sample_data.values_as_f32()) {
+            t[c] = v;
+        }
+    }
+    Ok(((w as u32, h as u32), texels))
+}

@@ -1,0 +1,180 @@
+//! `ocean render --dump-passes DIR` and `ocean compare --against DIR`: the dump holds every
+//! resource the frame's passes wrote, each as the manifest describes it; the oracle's own dump
+//! compares clean; a texel past the tolerance, a missing resource or a wrong size fails, naming
+//! the resource; a file with plain R, G, B, A channels is read too.
+
+#![allow(clippy::unwrap_used, reason = "a panic in a test is its failure report")]
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use ocean_core::plan::ResourceId;
+
+fn ocean(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_ocean"))
+        .args(args)
+        .env("RUST_BACKTRACE", "0")
+        .output()
+        .expect("the ocean binary runs")
+}
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// A fresh folder under the target directory.
+fn folder(name: &str) -> PathBuf {
+    let d = root().join("target").join("test-dump").join(name);
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Dumps `scene` (a reference scene's name) at 64×36 into a fresh folder.
+fn dump(scene: &str, name: &str) -> PathBuf {
+    let dir = folder(name);
+    let path = root().join("reference/scenes").join(format!("{scene}.toml"));
+    let out = dir.join("picture.png");
+    let o = ocean(&[
+        "render",
+        &path.to_string_lossy(),
+        "--size",
+        "64x36",
+        "--time",
+        "3.5",
+        "--dump-passes",
+        &dir.join("dump").to_string_lossy(),
+        "-o",
+        &out.to_string_lossy(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    dir.join("dump")
+}
+
+fn against(dir: &Path, out: &Path) -> Output {
+    ocean(&["compare", "--against", &dir.to_string_lossy(), "--out-dir", &out.to_string_lossy()])
+}
+
+fn manifest(dir: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(dir.join("manifest.json")).unwrap()).unwrap()
+}
+
+#[test]
+fn the_manifest_describes_every_file_of_the_dump() {
+    // The default scene (waves, mips, Fresnel, shadow, reflection, refraction) and the storm's
+    // foam `accumulated` (its field).
+    for (scene, extra) in [("default", "shadow_map"), ("foam_storm", "foam_field")] {
+        let dir = dump(scene, &format!("manifest-{scene}"));
+        let m = manifest(&dir);
+        assert_eq!(m["layout"], "ocean-dump/1");
+        assert_eq!(m["frame"]["width"], 64);
+        assert_eq!(m["frame"]["time_s"], 3.5);
+        assert!(m["scene"]["toml"].as_str().unwrap().contains("[camera]"), "the scene's text");
+        assert!(m["plan"]["passes"].as_array().is_some_and(|p| !p.is_empty()), "the plan");
+        let resources = m["resources"].as_array().unwrap();
+        let names: Vec<&str> = resources.iter().map(|r| r["name"].as_str().unwrap()).collect();
+        for must in ["displacement", "bump", "fresnel_above", "hdr", extra] {
+            assert!(names.contains(&must), "{scene}: {must} not in {names:?}");
+        }
+        for r in resources {
+            let id = ResourceId::MAPS.into_iter().find(|id| id.name() == r["name"]).unwrap();
+            let file = r["file"].as_str().unwrap();
+            assert!(dir.join(file).exists(), "{file} listed but not written");
+            let ((w, h), texels) = ocean::dump::read(&dir, id).unwrap();
+            assert_eq!(
+                [w, h],
+                [r["size"][0].as_u64().unwrap() as u32, r["size"][1].as_u64().unwrap() as u32]
+            );
+            assert_eq!(texels.len(), (w * h) as usize);
+            let channels = r["channels"].as_array().unwrap();
+            assert_eq!(channels.len(), 4);
+            for c in channels {
+                assert!(
+                    !c["meaning"].as_str().unwrap().is_empty()
+                        && !c["unit"].as_str().unwrap().is_empty()
+                );
+            }
+            assert!(r["pass"].is_string(), "{file}: the pass that wrote it");
+        }
+        // Every file but the picture and the manifest is a listed resource.
+        let listed = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|f| f.ends_with(".exr"))
+            .count();
+        assert_eq!(listed, resources.len());
+        assert!(dir.join("ldr.png").exists());
+        // The dumped HDR frame is the frame the picture was made from: its displacement's
+        // height channel is the map's (a spot check of one named channel's content).
+        let (_, d) = ocean::dump::read(&dir, ResourceId::Displacement).unwrap();
+        assert!(d.iter().any(|t| t[1] != 0.0), "{scene}: the height channel holds the waves");
+    }
+}
+
+#[test]
+fn compare_against_passes_on_the_oracles_dump_and_fails_on_a_changed_one() {
+    let dir = dump("default", "against");
+    let out = dir.parent().unwrap().join("cmp");
+    let o = against(&dir, &out);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{text}\n{}", String::from_utf8_lossy(&o.stderr));
+    assert!(text.contains("hdr") && text.contains("shadow_map"), "{text}");
+    assert!(out.join("hdr.diff.png").exists() && out.join("against.json").exists());
+
+    // One texel of the HDR frame 1e-4 off (ten times the relative limit) fails, naming it.
+    let write = |id: ResourceId, names: [&str; 4], texels: &[[f32; 4]], w: u32, h: u32| {
+        let channels = (0..4)
+            .map(|c| ocean::output::Channel {
+                name: names[c],
+                data: texels.iter().map(|t| t[c]).collect(),
+            })
+            .collect();
+        let bytes = ocean::output::encode_exr(w as usize, h as usize, channels).unwrap();
+        std::fs::write(dir.join(ocean::dump::file_name(id)), bytes).unwrap();
+    };
+    let names = |id: ResourceId| ocean::dump::channels(id).map(|c| c.0);
+    let ((w, h), hdr) = ocean::dump::read(&dir, ResourceId::Hdr).unwrap();
+    let mut changed = hdr.clone();
+    changed[w as usize * 20 + 30][1] *= 1.0 + 1e-4;
+    write(ResourceId::Hdr, names(ResourceId::Hdr), &changed, w, h);
+    let o = against(&dir, &out);
+    let text = String::from_utf8_lossy(&o.stdout);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "a changed texel passed:\n{text}");
+    assert!(err.contains("hdr") && err.contains("beyond limit 1"), "{err}");
+    // One ULP-sized change is within the limit.
+    let mut close = hdr.clone();
+    close[w as usize * 20 + 30][1] = f32::from_bits(close[w as usize * 20 + 30][1].to_bits() + 1);
+    write(ResourceId::Hdr, names(ResourceId::Hdr), &close, w, h);
+    assert!(against(&dir, &out).status.success(), "one ULP failed");
+
+    // Plain R, G, B, A channel names are read as the texture's order.
+    write(ResourceId::Hdr, ["R", "G", "B", "A"], &hdr, w, h);
+    assert!(against(&dir, &out).status.success(), "an RGBA file was not read");
+
+    // A wrong size and a missing resource fail, naming them.
+    write(ResourceId::Hdr, names(ResourceId::Hdr), &hdr[..(w * (h - 1)) as usize], w, h - 1);
+    std::fs::remove_file(dir.join("shadow_map.exr")).unwrap();
+    let o = against(&dir, &out);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success());
+    assert!(err.contains("shadow_map") && err.contains("hdr"), "{err}");
+}
+
+#[test]
+fn a_dump_is_refused_with_frames_or_supersampling() {
+    let dir = folder("refused");
+    let d = dir.join("dump");
+    let d = d.to_string_lossy();
+    for extra in [["--spp", "4"], ["--frames", "0..2"]] {
+        let out = dir.join("f_{}.png");
+        let mut args = vec!["render", "--size", "16x9", "--dump-passes", &d];
+        args.extend_from_slice(&extra);
+        let out = out.to_string_lossy();
+        args.extend(["-o", &out]);
+        let o = ocean(&args);
+        assert!(!o.status.success(), "{args:?} was accepted");
+        assert!(String::from_utf8_lossy(&o.stderr).contains("--dump-passes"));
+    }
+    assert!(!dir.join("dump").exists(), "a refused run dumps nothing");
+}
