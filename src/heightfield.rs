@@ -6,10 +6,6 @@
 
 use std::path::PathBuf;
 
-use ocean_core::frame::surface_query;
-use ocean_core::plan::{FramePlan, OutputKind, Stage};
-use ocean_core::waves::{SurfaceSample, Synthesizer, WaveMaps};
-
 use ocean::output::{Channel, encode_exr, require_extension};
 
 /// Arguments of `ocean heightfield`.
@@ -41,39 +37,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     ocean::scene_arg::revalidate(&scene, "--time/--seed")?;
     let ocean = &scene.ocean;
-    let plan = FramePlan::new(&scene, OutputKind::Hdr);
-    // Waves summed per vertex (`gerstner`, `coastal`): the height query on the map's grid.
-    let (n, channels) = if ocean_core::plan::waves_per_vertex(plan.techniques.of(Stage::Waves).name)
-    {
-        let n = ocean.resolution as usize;
-        let sea = surface_query(&scene, &plan, ocean.time_s)?;
-        let step = ocean.patch_size_m / n as f64;
-        let samples: Vec<SurfaceSample> =
-            (0..n * n).map(|p| sea.sample((p % n) as f64 * step, (p / n) as f64 * step)).collect();
-        let field = |f: fn(&SurfaceSample) -> f64| samples.iter().map(|s| f(s) as f32).collect();
-        let names = WaveMaps::<f32>::FIELD_NAMES;
-        let data: [Vec<f32>; 6] = [
-            field(|s| s.height),
-            field(|s| s.disp_x),
-            field(|s| s.disp_z),
-            field(|s| s.slope_x),
-            field(|s| s.slope_z),
-            field(|s| s.jacobian),
-        ];
-        (n, names.iter().zip(data).map(|(name, data)| Channel { name, data }).collect())
-    } else {
-        let modes = ocean.displacement_modes()?;
-        let n = modes.resolution();
-        let maps =
-            Synthesizer::<f32>::new(n)?.synthesize(&modes, ocean.time_s, ocean.choppiness)?;
-        (
-            n,
-            maps.fields()
-                .iter()
-                .map(|(name, data)| Channel { name, data: data.to_vec() })
-                .collect(),
-        )
-    };
+    let (n, fields) = ocean_core::heightfield::channels(&scene)?;
+    let channels = fields.into_iter().map(|(name, data)| Channel { name, data }).collect();
     out.commit(&encode_exr(n, n, channels)?)?;
     eprintln!(
         "wrote {} ({n}×{n}, L = {} m, t = {} s, seed {})",

@@ -31,6 +31,7 @@ pub mod fresnel;
 pub mod fuzz;
 pub mod geometry;
 pub mod ggx;
+pub mod heightfield;
 pub mod plan;
 pub mod registry;
 pub mod rng;
