@@ -96,14 +96,14 @@ fn against(args: &Args, dir: &std::path::Path) -> anyhow::Result<()> {
         .map(|t| serde_json::from_str(&t))
         .transpose()
         .with_context(|| format!("{}/manifest.json is not JSON", dir.display()))?;
-    let from_manifest = args.scene.is_none()
-        && manifest
-            .as_ref()
-            .and_then(|m| m["scene"]["toml"].as_str())
-            .is_some_and(|t| !t.is_empty());
-    let mut scene = match (&args.scene, manifest.as_ref().and_then(|m| m["scene"]["toml"].as_str()))
-    {
-        (None, Some(text)) if !text.is_empty() => {
+    // The manifest's scene, where no SCENE is given and the dump holds one.
+    let dumped_text = manifest
+        .as_ref()
+        .and_then(|m| m["scene"]["toml"].as_str())
+        .filter(|t| args.scene.is_none() && !t.is_empty());
+    let from_manifest = dumped_text.is_some();
+    let mut scene = match dumped_text {
+        Some(text) => {
             // The system the dump was made with, unless --system says otherwise.
             let dumped = manifest.as_ref().and_then(|m| m["frame"]["system"].as_str());
             let system = ocean::scene_arg::SystemArg {
@@ -115,7 +115,7 @@ fn against(args: &Args, dir: &std::path::Path) -> anyhow::Result<()> {
                 &system,
             )?
         }
-        _ => ocean::scene_arg::load_scene(args.scene.as_ref(), &args.system)?,
+        None => ocean::scene_arg::load_scene(args.scene.as_ref(), &args.system)?,
     };
     // The manifest's frame (a dump made with --size or --time) unless --size says otherwise.
     if let (true, Some(frame)) = (from_manifest, manifest.as_ref().map(|m| &m["frame"])) {

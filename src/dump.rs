@@ -170,8 +170,7 @@ pub fn write(
             .collect();
         let name = file_name(id);
         let bytes = encode_exr(w as usize, h as usize, data)?;
-        std::fs::write(dir.join(&name), bytes)
-            .with_context(|| format!("cannot write {}", dir.join(&name).display()))?;
+        crate::output::write_atomic(&dir.join(&name), &bytes)?;
         let r = plan.resource(id);
         let writer = id.writer();
         resources.push(json!({
@@ -190,8 +189,7 @@ pub fn write(
     if let Some(rgba) = ldr {
         let png =
             crate::output::encode_png(rgba.to_vec(), scene.camera.width, scene.camera.height)?;
-        std::fs::write(dir.join("ldr.png"), png)
-            .with_context(|| format!("cannot write {}", dir.join("ldr.png").display()))?;
+        crate::output::write_atomic(&dir.join("ldr.png"), &png)?;
         files.push("ldr.png".to_owned());
     }
     let manifest = json!({
@@ -208,8 +206,10 @@ pub fn write(
         "plan": serde_json::to_value(plan)?,
         "resources": resources,
     });
-    std::fs::write(dir.join("manifest.json"), serde_json::to_string_pretty(&manifest)?)
-        .with_context(|| format!("cannot write {}", dir.join("manifest.json").display()))?;
+    crate::output::write_atomic(
+        &dir.join("manifest.json"),
+        serde_json::to_string_pretty(&manifest)?.as_bytes(),
+    )?;
     files.push("manifest.json".to_owned());
     Ok(files)
 }

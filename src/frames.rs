@@ -118,11 +118,7 @@ pub(crate) fn run(seq: Sequence<'_>) -> anyhow::Result<()> {
     // count of two or more frames plans alike), so frame n does not depend on the range.
     let plan = FramePlan::for_frames(&scene, seq.kind, seq.range.end.max(2));
     let advance = plan.carries_state().then(|| plan.advance_only());
-    let memory_backend = match seq.backend {
-        Backend::Cpu => ocean_core::plan::memory::MemoryBackend::Cpu,
-        Backend::Gpu => ocean_core::plan::memory::MemoryBackend::Gpu,
-    };
-    seq.memory.check(&scene, &plan, &[memory_backend])?;
+    seq.memory.check(&scene, &plan, &[seq.backend.memory()])?;
 
     let mine: Vec<u64> = seq.shard.frames(seq.range).collect();
     let todo: Vec<u64> =

@@ -51,11 +51,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         );
         v["memory_estimate_bytes"] = serde_json::to_value(e.total())?;
         // The passes an animation runs on a frame it steps but does not draw (empty: none).
-        let steps: Vec<&str> = if plan.carries_state() {
-            plan.advance_only().passes.iter().map(|p| p.name.name()).collect()
-        } else {
-            Vec::new()
-        };
+        let steps: Vec<&str> = plan.state_passes().iter().map(|p| p.name()).collect();
         v["state_passes"] = serde_json::to_value(steps)?;
         println!("{}", serde_json::to_string_pretty(&v)?);
     } else {
@@ -85,9 +81,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             })
             .collect();
         println!("  resources: {}", sizes.join(", "));
-        if plan.carries_state() {
-            let kept: Vec<&str> =
-                plan.advance_only().passes.iter().map(|p| p.name.name()).collect();
+        let kept: Vec<&str> = plan.state_passes().iter().map(|p| p.name()).collect();
+        if !kept.is_empty() {
             println!(
                 "  state: frames carry state to the next one; an animation steps the frames it \
                  does not draw with {}",

@@ -71,6 +71,16 @@ pub(crate) enum Backend {
     Gpu,
 }
 
+impl Backend {
+    /// The memory estimate's side of this back end.
+    pub(crate) fn memory(self) -> ocean_core::plan::memory::MemoryBackend {
+        match self {
+            Self::Cpu => ocean_core::plan::memory::MemoryBackend::Cpu,
+            Self::Gpu => ocean_core::plan::memory::MemoryBackend::Gpu,
+        }
+    }
+}
+
 /// Runs `ocean render`.
 pub fn run(args: Args) -> anyhow::Result<()> {
     if args.frames.is_none() && (args.shard.is_some() || args.overwrite) {
@@ -125,11 +135,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     } else {
         (scene, kind, kind)
     };
-    let memory_backend = match args.backend {
-        Backend::Cpu => ocean_core::plan::memory::MemoryBackend::Cpu,
-        Backend::Gpu => ocean_core::plan::memory::MemoryBackend::Gpu,
-    };
-    args.memory.check(&scene, &FramePlan::new(&scene, kind), &[memory_backend])?;
+    args.memory.check(&scene, &FramePlan::new(&scene, kind), &[args.backend.memory()])?;
     let start = Instant::now();
     let (ldr, hdr, passes, backend) = match args.backend {
         Backend::Cpu => {

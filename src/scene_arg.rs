@@ -30,13 +30,23 @@ pub fn load_scene(path: Option<&PathBuf>, system: &SystemArg) -> anyhow::Result<
         Some(p) => Scene::load(p)?,
         None => chosen.map_or_else(Scene::builtin, Scene::builtin_for),
     };
-    if let (Some(name), Some(system)) = (&system.system, chosen) {
-        Techniques::with_overrides(system, scene.techniques.iter())
+    apply_system(&mut scene, system, chosen)?;
+    Ok(scene)
+}
+
+/// `--system` on a loaded scene: its techniques checked against the chosen system.
+fn apply_system(
+    scene: &mut Scene,
+    system: &SystemArg,
+    chosen: Option<System>,
+) -> anyhow::Result<()> {
+    if let (Some(name), Some(chosen)) = (&system.system, chosen) {
+        Techniques::with_overrides(chosen, scene.techniques.iter())
             .and_then(|t| t.check())
             .map_err(|e| anyhow::anyhow!("--system {name}: {e}"))?;
-        scene.system = system;
+        scene.system = chosen;
     }
-    Ok(scene)
+    Ok(())
 }
 
 /// A scene from its TOML text (a dump's manifest), with `--system` applied as
@@ -45,15 +55,13 @@ pub fn load_scene(path: Option<&PathBuf>, system: &SystemArg) -> anyhow::Result<
 /// # Errors
 /// Text that is not a valid scene, or a `--system` its techniques do not fit.
 pub fn scene_from_text(text: &str, what: &str, system: &SystemArg) -> anyhow::Result<Scene> {
+    let chosen = match &system.system {
+        Some(name) => Some(System::from_name(name).map_err(|e| anyhow::anyhow!("--system: {e}"))?),
+        None => None,
+    };
     let mut scene = Scene::from_toml(text, ocean_core::scene::SceneSource::Text)
         .map_err(|e| anyhow::anyhow!("the scene in {what}: {e}"))?;
-    if let Some(name) = &system.system {
-        let chosen = System::from_name(name).map_err(|e| anyhow::anyhow!("--system: {e}"))?;
-        Techniques::with_overrides(chosen, scene.techniques.iter())
-            .and_then(|t| t.check())
-            .map_err(|e| anyhow::anyhow!("--system {name}: {e}"))?;
-        scene.system = chosen;
-    }
+    apply_system(&mut scene, system, chosen)?;
     Ok(scene)
 }
 

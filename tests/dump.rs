@@ -104,8 +104,8 @@ fn the_manifest_describes_every_file_of_the_dump() {
             .count();
         assert_eq!(listed, resources.len());
         assert!(dir.join("ldr.png").exists());
-        // The dumped HDR frame is the frame the picture was made from: its displacement's
-        // height channel is the map's (a spot check of one named channel's content).
+        // A spot check of one named channel's content: the displacement's height channel
+        // holds the waves, not zeros.
         let (_, d) = ocean::dump::read(&dir, ResourceId::Displacement).unwrap();
         assert!(d.iter().any(|t| t[1] != 0.0), "{scene}: the height channel holds the waves");
     }

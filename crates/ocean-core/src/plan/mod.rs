@@ -1090,6 +1090,16 @@ impl FramePlan {
         plan
     }
 
+    /// The passes an animation runs on a frame it steps but does not draw: those of
+    /// [`Self::advance_only`] where the plan [`Self::carries_state`], none otherwise.
+    pub fn state_passes(&self) -> Vec<Pass> {
+        if self.carries_state() {
+            self.advance_only().passes.iter().map(|p| p.name).collect()
+        } else {
+            Vec::new()
+        }
+    }
+
     /// The water mesh of this plan's frame (seed 000 §3): near and far patch, or the near
     /// patch alone where the plan leaves the far patch out.
     pub fn water_mesh(&self, scene: &Scene, camera: &Camera) -> crate::Result<WaterMesh> {
