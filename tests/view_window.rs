@@ -452,6 +452,37 @@ fn keys_and_mouse_fly_the_camera_hiding_survives_and_r_returns_home() {
     assert!(failures.is_empty(), "after R: {failures:?}");
 }
 
+/// `examples/embed.rs` (issue 16): a program with its own window, device, depth buffer and
+/// objects, with the sea drawn into them, runs for a few frames on the display and exits
+/// cleanly. Cargo builds the examples with the tests (`target/<profile>/examples/`).
+fn the_embedding_example_runs_in_a_window() {
+    let exe = std::env::current_exe().expect("the test's path");
+    let profile = exe.parent().and_then(Path::parent).expect("target/<profile>/deps/");
+    let example = profile.join("examples").join("embed");
+    assert!(
+        example.exists(),
+        "{} is missing: `cargo test` builds the examples with the tests",
+        example.display()
+    );
+    let x = Xvfb::start();
+    let start = Instant::now();
+    let out = Command::new("timeout")
+        .arg("300")
+        .arg(&example)
+        .args(["--frames", "5"])
+        .env("DISPLAY", &x.display)
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .expect("the example runs");
+    eprintln!("examples/embed ({:.1} s):\n{}", start.elapsed().as_secs_f64(), text(&out));
+    assert!(out.status.success(), "the embedding example failed:\n{}", text(&out));
+    assert!(
+        String::from_utf8_lossy(&out.stdout).contains("embed: 5 frames"),
+        "the example did not draw its frames:\n{}",
+        text(&out)
+    );
+}
+
 fn main() -> std::process::ExitCode {
     run_tests!(WINDOW;
         cpu: bad_arguments_and_no_display_are_clear_errors;
@@ -459,6 +490,7 @@ fn main() -> std::process::ExitCode {
             resize_lost_surface_and_lost_device_are_survived,
             wind_slider_from_calm_to_storm_reaches_the_picture,
             the_panel_and_overlay_are_drawn_over_the_frame,
-            keys_and_mouse_fly_the_camera_hiding_survives_and_r_returns_home;
+            keys_and_mouse_fly_the_camera_hiding_survives_and_r_returns_home,
+            the_embedding_example_runs_in_a_window;
     )
 }

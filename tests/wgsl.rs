@@ -16,8 +16,17 @@ use ocean_core::registry::{
 use ocean_core::shader_source::{embedded_files, stage_source, stage_source_with};
 
 /// The stages written so far; a missing one is a failure, not a pass over fewer stages.
-const EXPECTED_STAGES: &[&str] =
-    &["waves", "fresnel_table", "sky", "objects", "shadow", "water", "tonemap", "present"];
+const EXPECTED_STAGES: &[&str] = &[
+    "waves",
+    "fresnel_table",
+    "sky",
+    "objects",
+    "shadow",
+    "water",
+    "tonemap",
+    "present",
+    "composite",
+];
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))

@@ -41,6 +41,7 @@ pub struct Test {
 
 impl Test {
     /// A test that needs only the CPU.
+    #[allow(dead_code, reason = "only some test binaries have tests without a GPU")]
     pub fn cpu(name: &'static str, run: fn()) -> Self {
         Self { name, run, needs: Needs::Cpu }
     }

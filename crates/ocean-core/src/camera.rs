@@ -83,6 +83,100 @@ impl Camera {
         Ok(Self { eye, forward, right, up, fov_y, width, height })
     }
 
+    /// The camera of someone else's renderer, from its world → view matrix (a rigid motion:
+    /// right-handed, −z forward, y up) and its perspective projection (any near and far
+    /// plane, either depth convention; symmetric: no off-axis or oblique terms), for an image
+    /// of `width × height` pixels. The sea is then drawn with this crate's own reversed-Z
+    /// infinite projection of the same eye, directions and field of view (the caller's near
+    /// and far planes only decide the depth it writes into the caller's buffer,
+    /// [`crate::composite`]); a camera that rolls keeps its roll.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParameter`] for non-finite matrices, a view that is not a rotation
+    /// and a translation (scale, shear, mirror: tolerance 1e-4), a projection that is not
+    /// a symmetric perspective (`w = −z_view`), or an aspect ratio other than the image's
+    /// (relative tolerance 1e-3: the sea's pixels must be square where the caller's are).
+    pub fn from_view_projection(
+        view: DMat4,
+        projection: DMat4,
+        width: u32,
+        height: u32,
+    ) -> Result<Self> {
+        let invalid = |name: &'static str, value: f64, reason: &str| Error::InvalidParameter {
+            name,
+            value,
+            reason: reason.into(),
+        };
+        if !view.is_finite() || !projection.is_finite() {
+            return Err(invalid("camera.view", f64::NAN, "the matrices must be finite"));
+        }
+        let r = glam::DMat3::from_mat4(view);
+        let off = (r.transpose() * r - glam::DMat3::IDENTITY).to_cols_array();
+        let worst = off.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        if worst > 1e-4 || r.determinant() <= 0.0 || view.row(3) != DVec4::W {
+            return Err(invalid(
+                "camera.view",
+                worst,
+                "the view matrix must be a rotation and a translation (no scale, shear, mirror or projective row)",
+            ));
+        }
+        let p = projection;
+        let symmetric = p.x_axis.y == 0.0
+            && p.x_axis.z == 0.0
+            && p.x_axis.w == 0.0
+            && p.y_axis.x == 0.0
+            && p.y_axis.z == 0.0
+            && p.y_axis.w == 0.0
+            && p.z_axis.x == 0.0
+            && p.z_axis.y == 0.0
+            && p.z_axis.w == -1.0
+            && p.w_axis.x == 0.0
+            && p.w_axis.y == 0.0
+            && p.w_axis.w == 0.0;
+        if !(symmetric && p.x_axis.x > 0.0 && p.y_axis.y > 0.0) {
+            return Err(invalid(
+                "camera.projection",
+                p.z_axis.w,
+                "the projection must be a symmetric perspective with w = −z_view (as glam's \
+                 camera::rh::proj::directx::perspective and perspective_infinite_reverse)",
+            ));
+        }
+        if width == 0 || height == 0 {
+            return Err(invalid("camera.width", 0.0, "the image must not be empty"));
+        }
+        let aspect = p.y_axis.y / p.x_axis.x;
+        let image = f64::from(width) / f64::from(height);
+        if ((aspect - image) / image).abs() > 1e-3 {
+            return Err(invalid(
+                "camera.projection",
+                aspect,
+                &format!("the projection's aspect ratio differs from the image's {image}"),
+            ));
+        }
+        let fov_y = 2.0 * (1.0 / p.y_axis.y).atan();
+        // Rows of the rotation: the camera's axes in the world.
+        let right = r.row(0).normalize();
+        let up = r.row(1).normalize();
+        let forward = -r.row(2).normalize();
+        let eye = -(r.transpose() * view.w_axis.truncate());
+        Ok(Self { eye, forward, right, up, fov_y, width, height })
+    }
+
+    /// `base` (exposure and the rest) with this camera's eye, a point 1 m ahead, field of
+    /// view and image size: the scene camera a plan is made for. Its roll, if any, is not in
+    /// a scene camera; frames drawn with this camera itself keep it
+    /// ([`crate::plan::FrameInputs::with_camera`]).
+    pub fn to_scene(&self, base: &scene::Camera) -> scene::Camera {
+        scene::Camera {
+            position: self.eye.to_array(),
+            look_at: (self.eye + self.forward).to_array(),
+            fov_y_deg: self.fov_y.to_degrees(),
+            width: self.width,
+            height: self.height,
+            ..base.clone()
+        }
+    }
+
     /// The angle a pixel spans at the image's centre, rad: 2 tan(fov_y/2) / height.
     pub fn pixel_angle(&self) -> f64 {
         2.0 * (0.5 * self.fov_y).tan() / f64::from(self.height.max(1))
@@ -175,6 +269,54 @@ mod tests {
             let p = vp * (d * 100.0).extend(1.0);
             assert!((p.x / p.w - x).abs() < 1e-12 && (p.y / p.w - y).abs() < 1e-12, "{x},{y}");
         }
+    }
+
+    #[test]
+    fn a_callers_matrices_give_back_the_camera() {
+        use glam::dcamera::rh::{proj::directx, view::look_at_mat4};
+        for (eye, target) in [
+            ([0.0, 8.0, 0.0], [0.0, 2.0, -100.0]),
+            ([3.0, 7.0, 2.0], [10.0, 0.0, -40.0]),
+            ([1e5, 2.0, -3e4], [1e5 + 5.0, 1.0, -3e4 + 1.0]),
+        ] {
+            let want = cam(eye, target);
+            let view = look_at_mat4(DVec3::from(eye), DVec3::from(target), DVec3::Y);
+            let aspect = 320.0 / 180.0;
+            for projection in [
+                directx::perspective(want.fov_y, aspect, 0.1, 1000.0),
+                directx::perspective_infinite_reverse(want.fov_y, aspect, 0.3),
+            ] {
+                let got = Camera::from_view_projection(view, projection, 320, 180).unwrap();
+                let scale = 1.0 + want.eye.length();
+                assert!((got.eye - want.eye).length() < 1e-12 * scale, "{got:?}");
+                for (a, b) in
+                    [(got.forward, want.forward), (got.right, want.right), (got.up, want.up)]
+                {
+                    assert!((a - b).length() < 1e-12, "{a} vs {b}");
+                }
+                assert!((got.fov_y - want.fov_y).abs() < 1e-12);
+                // Its scene camera is the same camera again.
+                let base = scene::Camera::default();
+                let again = Camera::from_scene(&got.to_scene(&base)).unwrap();
+                assert!((again.forward - want.forward).length() < 1e-12);
+                assert_eq!((again.width, again.height), (320, 180));
+            }
+        }
+        // A rolled camera keeps its roll: up is not in the vertical plane of forward.
+        let roll = DMat4::from_rotation_z(0.3)
+            * look_at_mat4(DVec3::new(0.0, 5.0, 0.0), DVec3::new(0.0, 5.0, -1.0), DVec3::Y);
+        let p = glam::dcamera::rh::proj::directx::perspective(1.0, 2.0, 0.1, 10.0);
+        let c = Camera::from_view_projection(roll, p, 200, 100).unwrap();
+        assert!((c.up.x.abs() - 0.3f64.sin()).abs() < 1e-12, "{:?}", c.up);
+        // Refusals: an aspect ratio other than the image's, a scale, an off-axis projection.
+        assert!(Camera::from_view_projection(roll, p, 100, 100).is_err());
+        assert!(
+            Camera::from_view_projection(roll * DMat4::from_scale(DVec3::splat(2.0)), p, 200, 100)
+                .is_err()
+        );
+        let mut off_axis = p;
+        off_axis.z_axis.x = 0.1;
+        assert!(Camera::from_view_projection(roll, off_axis, 200, 100).is_err());
     }
 
     #[test]

@@ -19,6 +19,7 @@ pub mod bloom;
 pub mod camera;
 pub mod camera_uniforms;
 pub mod clouds;
+pub mod composite;
 pub mod detail;
 pub mod dispersion;
 pub mod error;

@@ -15,6 +15,7 @@ use std::path::Path;
 use crate::atmosphere::SkyLut;
 use crate::bloom::BloomUniforms;
 use crate::camera_uniforms::CameraUniforms;
+use crate::composite::CompositeUniforms;
 use crate::detail::DetailBlock;
 use crate::foam::{FoamBlock, FoamStepUniforms};
 use crate::frame::{
@@ -214,7 +215,8 @@ use EntryKind::{Compute, Fragment, Vertex};
 const VS_FS: &[(&str, EntryKind)] = &[("vs_main", Vertex), ("fs_main", Fragment)];
 
 /// Every stage with WGSL, in the order of DESIGN.md's stage table, then `present` (the
-/// real-time viewer's copy of the output into its window; not a pass of the frame plan).
+/// real-time viewer's copy of the output into its window) and `composite` (the output into an
+/// embedding program's targets, `ocean_gpu::embed`); neither is a pass of the frame plan.
 pub const STAGES: &[StageEntry] = &[
     StageEntry {
         name: "waves",
@@ -477,6 +479,16 @@ pub const STAGES: &[StageEntry] = &[
         blocks: &[],
         cpu_mirror: "crates/ocean-cpu/src/shaders/present.rs",
         gpu_module: "crates/ocean-gpu/src/present.rs",
+    },
+    StageEntry {
+        name: "composite",
+        file: "composite.wgsl",
+        source: include_str!("../../../shaders/composite.wgsl"),
+        entry_points: VS_FS,
+        bindings: &[b(0, 0, "composite"), b(0, 1, "frame_output"), b(0, 2, "frame_depth")],
+        blocks: &[block!(CompositeUniforms { depth, params })],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/composite.rs",
+        gpu_module: "crates/ocean-gpu/src/composite.rs",
     },
 ];
 

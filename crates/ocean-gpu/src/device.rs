@@ -148,6 +148,38 @@ impl Gpu {
         pollster::block_on(Self::open())
     }
 
+    /// The renderer's view of a device someone else opened (an embedding program's,
+    /// [`crate::embed`]): `adapter` is the one `device` was requested from. The device must
+    /// have been requested with [`required_features`] of that adapter (and limits at least
+    /// wgpu's defaults).
+    ///
+    /// # Errors
+    /// [`Error::MissingFeature`] when the device lacks `FLOAT32_FILTERABLE`.
+    pub fn from_device(
+        adapter: &wgpu::Adapter,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+    ) -> Result<Self, Error> {
+        let info = adapter.get_info();
+        let report = AdapterReport::new(&info);
+        if !device.features().contains(wgpu::Features::FLOAT32_FILTERABLE) {
+            return Err(Error::MissingFeature {
+                adapter: report.to_string(),
+                feature: "FLOAT32_FILTERABLE",
+                why: "the water stage filters its Rgba32Float wave, Fresnel and view maps; \
+                      request the device with ocean_gpu::device::required_features(&adapter)",
+            });
+        }
+        Ok(Self {
+            adapter: adapter.clone(),
+            device: device.clone(),
+            queue: queue.clone(),
+            info,
+            report,
+            timestamps: device.features().contains(wgpu::Features::TIMESTAMP_QUERY),
+        })
+    }
+
     async fn open() -> Result<Self, Error> {
         let instance =
             wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
@@ -178,24 +210,10 @@ impl Gpu {
         })?;
         let info = adapter.get_info();
         let report = AdapterReport::new(&info);
-        let available = adapter.features();
-        if !available.contains(wgpu::Features::FLOAT32_FILTERABLE) {
-            return Err(Error::MissingFeature {
-                adapter: report.to_string(),
-                feature: "FLOAT32_FILTERABLE",
-                why: "the water stage filters its Rgba32Float wave, Fresnel and view maps",
-            });
-        }
-        let timestamps = available.contains(wgpu::Features::TIMESTAMP_QUERY);
-        let mut required_features = wgpu::Features::FLOAT32_FILTERABLE;
-        // The spray's sprites add into the Rgba32Float frame; without it, pass `spray` is
-        // refused (the rest of the frame does not need it).
-        if available.contains(wgpu::Features::FLOAT32_BLENDABLE) {
-            required_features |= wgpu::Features::FLOAT32_BLENDABLE;
-        }
-        if timestamps {
-            required_features |= wgpu::Features::TIMESTAMP_QUERY;
-        }
+        // The spray's sprites add into the Rgba32Float frame; without FLOAT32_BLENDABLE,
+        // pass `spray` is refused (the rest of the frame does not need it).
+        let required_features = required_features(&adapter)?;
+        let timestamps = required_features.contains(wgpu::Features::TIMESTAMP_QUERY);
         // The adapter's own limits: a 1080p frame and the 1024² shadow map fit the defaults,
         // but larger images may use whatever the adapter allows.
         let required_limits = adapter.limits();
@@ -215,14 +233,7 @@ impl Gpu {
     /// into [`Error::Wgpu`] (wgpu would otherwise hand it to the uncaptured-error handler,
     /// which panics).
     pub fn scoped<T>(&self, what: &str, f: impl FnOnce() -> T) -> Result<T, Error> {
-        let oom = self.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
-        let validation = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let value = f();
-        let errors = [validation.pop(), oom.pop()].map(pollster::block_on);
-        match errors.into_iter().flatten().next() {
-            None => Ok(value),
-            Some(e) => Err(Error::Wgpu { what: what.to_owned(), message: e.to_string() }),
-        }
+        scoped(&self.device, what, f)
     }
 
     /// Blocks until the queue has finished every submission.
@@ -235,4 +246,40 @@ impl Gpu {
             .map(|_| ())
             .map_err(|e| Error::Wgpu { what: "waiting for the GPU".into(), message: e.to_string() })
     }
+}
+
+/// [`Gpu::scoped`] on any device (a clone of the renderer's, so that `f` may borrow the
+/// renderer mutably).
+///
+/// # Errors
+/// [`Error::Wgpu`] with what the scopes caught.
+pub fn scoped<T>(device: &wgpu::Device, what: &str, f: impl FnOnce() -> T) -> Result<T, Error> {
+    let oom = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+    let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let value = f();
+    let errors = [validation.pop(), oom.pop()].map(pollster::block_on);
+    match errors.into_iter().flatten().next() {
+        None => Ok(value),
+        Some(e) => Err(Error::Wgpu { what: what.to_owned(), message: e.to_string() }),
+    }
+}
+
+/// The features a device must be requested with for the renderer on `adapter`
+/// (`FLOAT32_FILTERABLE`), and those it uses where the adapter has them (`FLOAT32_BLENDABLE`
+/// for the spray's sprites, `TIMESTAMP_QUERY` for GPU time per pass). An embedding program
+/// adds them to its own.
+///
+/// # Errors
+/// [`Error::MissingFeature`] when the adapter lacks `FLOAT32_FILTERABLE`.
+pub fn required_features(adapter: &wgpu::Adapter) -> Result<wgpu::Features, Error> {
+    let available = adapter.features();
+    if !available.contains(wgpu::Features::FLOAT32_FILTERABLE) {
+        return Err(Error::MissingFeature {
+            adapter: AdapterReport::new(&adapter.get_info()).to_string(),
+            feature: "FLOAT32_FILTERABLE",
+            why: "the water stage filters its Rgba32Float wave, Fresnel and view maps",
+        });
+    }
+    let optional = wgpu::Features::FLOAT32_BLENDABLE | wgpu::Features::TIMESTAMP_QUERY;
+    Ok(wgpu::Features::FLOAT32_FILTERABLE | (available & optional))
 }

@@ -173,7 +173,7 @@ pub struct GpuBackend<'r> {
     spray: &'r mut Option<GpuSpray>,
     foam: &'r mut Option<GpuFoam>,
     floor_map: &'r GpuTexture,
-    encoder: wgpu::CommandEncoder,
+    encoder: &'r mut wgpu::CommandEncoder,
     timer: PassTimer,
     maps: Vec<(ResourceId, GpuTexture)>,
     chains: Vec<(ResourceId, GpuMipChain)>,
@@ -236,7 +236,7 @@ impl GpuBackend<'_> {
         if !self.hdr_started {
             let c = plan.resource(ResourceId::Hdr).map_or([0.0; 4], |r| r.clear);
             drop(begin_render_pass(
-                &mut self.encoder,
+                self.encoder,
                 "ocean.background",
                 &hdr.view,
                 Load::Clear(c),
@@ -295,7 +295,7 @@ impl GpuBackend<'_> {
         let slot = if source.records_gpu_passes() { self.timer.slot(Pass::Waves) } else { None };
         let maps = source.encode(
             self.gpu,
-            &mut self.encoder,
+            self.encoder,
             frame.time_s,
             ocean.choppiness,
             self.timer.compute_writes(slot),
@@ -316,7 +316,7 @@ impl GpuBackend<'_> {
             let slopes = self.map(src);
             let label = format!("ocean.{}", dst.name());
             let chain = GpuMipChain::new(&self.gpu.device, &label, slopes.width, slopes.height);
-            self.stages.wave_mips.encode(&self.gpu.device, &mut self.encoder, &slopes, &chain);
+            self.stages.wave_mips.encode(&self.gpu.device, self.encoder, &slopes, &chain);
             self.chains.retain(|(m, _)| *m != dst);
             self.chains.push((dst, chain));
         }
@@ -339,7 +339,7 @@ impl GpuBackend<'_> {
             let slot = self.timer.slot(Pass::FresnelTable);
             self.stages.fresnel_table.encode(
                 &self.gpu.device,
-                &mut self.encoder,
+                self.encoder,
                 &params,
                 &target,
                 self.timer.compute_writes(slot),
@@ -384,7 +384,7 @@ impl GpuBackend<'_> {
                 let group = self.frame_group(&self.stages.shadow.frame_layout, "ocean.shadow");
                 let slot = self.timer.slot(Pass::ShadowMap);
                 self.stages.shadow.encode(
-                    &mut self.encoder,
+                    self.encoder,
                     &group,
                     &vertices,
                     &target.view,
@@ -405,7 +405,7 @@ impl GpuBackend<'_> {
                 let group = self.objects_group();
                 let slot = self.timer.slot(pass.name);
                 self.stages.objects.encode(
-                    &mut self.encoder,
+                    self.encoder,
                     entry,
                     &group,
                     &vertices,
@@ -421,7 +421,7 @@ impl GpuBackend<'_> {
                 let group = self.objects_group();
                 let slot = self.timer.slot(Pass::Objects);
                 self.stages.objects.encode(
-                    &mut self.encoder,
+                    self.encoder,
                     ObjectsEntry::Main,
                     &group,
                     &vertices,
@@ -482,7 +482,7 @@ impl GpuBackend<'_> {
         let slot = self.timer.slot(Pass::Water);
         self.stages.water.encode(
             device,
-            &mut self.encoder,
+            self.encoder,
             &self.frame_buffer,
             &sky_buffer,
             &sky_lut,
@@ -542,7 +542,7 @@ impl Backend for GpuBackend<'_> {
         let slot = self.timer.slot(Pass::Sky);
         self.stages.sky.encode(
             &self.gpu.device,
-            &mut self.encoder,
+            self.encoder,
             &frame.camera_uniforms,
             &frame.environment,
             &frame.sky_lut,
@@ -594,7 +594,7 @@ impl Backend for GpuBackend<'_> {
         let displacement = self.map(ResourceId::Displacement);
         let Some(pool) = self.spray.as_mut() else { return Ok(()) };
         for u in &work.steps {
-            self.stages.spray.encode_step(device, &mut self.encoder, pool, u, &displacement.view);
+            self.stages.spray.encode_step(device, self.encoder, pool, u, &displacement.view);
         }
         pool.steps += steps;
         let u = work.draw;
@@ -603,7 +603,7 @@ impl Backend for GpuBackend<'_> {
         let Some(pool) = self.spray.as_ref() else { return Ok(()) };
         self.stages.spray.encode_draw(
             &self.gpu.device,
-            &mut self.encoder,
+            self.encoder,
             &self.frame_buffer,
             pool,
             &u,
@@ -631,7 +631,7 @@ impl Backend for GpuBackend<'_> {
         let slot = self.timer.slot(Pass::Foam);
         self.stages.foam.encode_steps(
             &self.gpu.device,
-            &mut self.encoder,
+            self.encoder,
             field,
             &work.steps,
             &self.frame_buffer,
@@ -656,7 +656,7 @@ impl Backend for GpuBackend<'_> {
         let slots = [self.timer.slot(Pass::Bloom), self.timer.slot(Pass::Bloom)];
         self.stages.bloom.encode(
             device,
-            &mut self.encoder,
+            self.encoder,
             &hdr.view,
             inputs,
             (&down, &up),
@@ -681,7 +681,7 @@ impl Backend for GpuBackend<'_> {
             let slot = self.timer.slot(Pass::Tonemap);
             self.stages.tonemap.encode(
                 &self.gpu.device,
-                &mut self.encoder,
+                self.encoder,
                 t,
                 (&hdr.view, &glow),
                 &ldr.view,
@@ -857,7 +857,122 @@ impl Renderer {
         state: &mut FrameState,
         readback: Readback,
     ) -> Result<GpuFrame, Error> {
+        self.run_frame_with_camera(scene, plan, state, readback, None)
+    }
+
+    /// [`Self::run_frame`] seen by `camera` instead of the scene's (when given): an
+    /// embedding program's camera, which may roll (`ocean_core::camera::Camera::
+    /// from_view_projection`), at the plan's image size.
+    ///
+    /// # Errors
+    /// As [`Self::run`].
+    pub fn run_frame_with_camera(
+        &mut self,
+        scene: &Scene,
+        plan: &FramePlan,
+        state: &mut FrameState,
+        readback: Readback,
+        camera: Option<ocean_core::camera::Camera>,
+    ) -> Result<GpuFrame, Error> {
         let start = Instant::now();
+        let inputs = self.prepare(scene, plan, state, camera)?;
+        let u: FrameUniforms = inputs.uniforms;
+        let device = self.gpu.device.clone();
+        let frame =
+            crate::device::scoped(&device, "rendering the frame", || -> Result<_, Error> {
+                let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("ocean.frame"),
+                });
+                let timer = PassTimer::new(&self.gpu);
+                let Recorded { maps, chains, timer, waves_cpu, wave_source, .. } =
+                    self.record(&inputs, state, &mut encoder, timer)?;
+                timer.resolve(&mut encoder);
+                let gpu = &self.gpu;
+                let device = &gpu.device;
+
+                // readback
+                let mut readbacks: Readbacks<ResourceId> = Readbacks::default();
+                let all = readback == Readback::All;
+                let output_back = readback != Readback::None;
+                let find = |id: ResourceId| maps.iter().find(|(m, _)| *m == id).map(|(_, t)| t);
+                let ldr = find(ResourceId::Ldr).cloned();
+                let empty = GpuTexture::empty_map(gpu, "ocean.empty");
+                for id in ResourceId::MAPS {
+                    let wanted = all || (id == ResourceId::Hdr && output_back && ldr.is_none());
+                    if !wanted {
+                        continue;
+                    }
+                    let format = plan.resource(id).map_or(MAP_FORMAT, |r| wgpu_format(r.format));
+                    // A chain comes back packed, as ocean-cpu's MipChain holds it.
+                    if let Some((_, chain)) = chains.iter().find(|(m, _)| *m == id) {
+                        let atlas = chain.pack(device, &mut encoder);
+                        readbacks.copy(device, &mut encoder, id, id.name(), &atlas, format);
+                        continue;
+                    }
+                    let texture = find(id).unwrap_or(&empty);
+                    readbacks.copy(device, &mut encoder, id, id.name(), texture, format);
+                }
+                if let Some(ldr) = ldr.as_ref().filter(|_| output_back) {
+                    readbacks.copy(device, &mut encoder, ResourceId::Ldr, "ldr", ldr, LDR_FORMAT);
+                }
+                gpu.queue.submit([encoder.finish()]);
+                let data = readbacks.finish(gpu)?;
+                // Reading nothing back, the frame does not wait for the GPU: its timestamps come
+                // later (`GpuFrame::pending_timings`).
+                let (timings, pending) = if output_back {
+                    (timer.finish(gpu)?, None)
+                } else {
+                    (Vec::new(), timer.finish_later())
+                };
+                let output = match ldr {
+                    Some(l) => l,
+                    None => find(ResourceId::Hdr).cloned().unwrap_or(empty),
+                };
+                Ok((data, timings, pending, output, waves_cpu, wave_source))
+            })??;
+        drop(inputs);
+        state.advance();
+
+        let (data, gpu_timings, pending_timings, output, waves_cpu, wave_source) = frame;
+        let mut maps = Vec::new();
+        let mut ldr = None;
+        for (key, texels) in data {
+            match (key, texels) {
+                (ResourceId::Ldr, TexelData::Rgba8(bytes)) => ldr = Some(bytes),
+                (m, TexelData::Float(t)) if m != ResourceId::Ldr => maps.push((m, t)),
+                (key, _) => {
+                    return Err(Error::Readback {
+                        what: key.name().into(),
+                        message: "unexpected texel format".into(),
+                    });
+                }
+            }
+        }
+        Ok(GpuFrame {
+            plan: plan.clone(),
+            maps,
+            ldr,
+            output,
+            pending_timings,
+            uniforms: u,
+            gpu_timings,
+            waves_cpu,
+            wall: start.elapsed(),
+            adapter: self.gpu.report.clone(),
+            wave_source,
+        })
+    }
+
+    /// Everything a frame needs before its passes are recorded: the pipelines for the plan's
+    /// techniques and frame format, the frame's inputs (with `camera` in place of the
+    /// scene's, when given), the wave-map source for the scene's ocean and the floor's relief.
+    pub(crate) fn prepare<'a>(
+        &mut self,
+        scene: &'a Scene,
+        plan: &'a FramePlan,
+        state: &FrameState,
+        camera: Option<ocean_core::camera::Camera>,
+    ) -> Result<FrameInputs<'a>, Error> {
         // The far field is a uniform of the water pipeline (every technique is in its WGSL),
         // not a composed file; the surface is its vertex entry point (`vs_main` draws the
         // mesh of `hu_patches`, `vs_projected_grid` the grid of `projected_grid`, `vs_clipmap`
@@ -921,13 +1036,15 @@ impl Renderer {
             self.stages.bloom = bloom;
             self.built_format = format;
         }
-        let inputs = FrameInputs::new(scene, plan, state)?;
+        let inputs = match camera {
+            Some(c) => FrameInputs::with_camera(scene, plan, state, c)?,
+            None => FrameInputs::new(scene, plan, state)?,
+        };
         let (w, h) = (inputs.camera.width, inputs.camera.height);
         let max = self.gpu.device.limits().max_texture_dimension_2d;
         if w > max || h > max {
             return Err(Error::TooLarge { width: w, height: h, max });
         }
-        // The wave-map source for this ocean (kept across frames while the ocean is the same).
         // The wave-map source for this ocean (kept across frames while the ocean is the same;
         // `make_source_from` follows the plan's `WavesKernel` rule).
         let kind = self.source_kind(plan.waves_kernel);
@@ -940,7 +1057,6 @@ impl Renderer {
         {
             self.set_waves(&scene.ocean, scene.ocean.surface()?)?;
         }
-        let u: FrameUniforms = inputs.uniforms;
         let relief = scene.terrain.as_ref().and_then(|t| t.relief.clone());
         let same = |kept: &Option<Arc<Relief>>| match (kept, &relief) {
             (Some(a), Some(b)) => Arc::ptr_eq(a, b),
@@ -948,118 +1064,75 @@ impl Renderer {
             _ => false,
         };
         if !self.floor.as_ref().is_some_and(|(kept, _)| same(kept)) {
-            self.floor = None;
+            let (w, h, texels) = relief_texels(scene.terrain.as_ref());
+            let map = GpuTexture::upload_map(&self.gpu, "ocean.floor_map", w, h, &texels);
+            self.floor = Some((relief, map));
         }
-        let floor_map = &self
-            .floor
-            .get_or_insert_with(|| {
-                let (w, h, texels) = relief_texels(scene.terrain.as_ref());
-                (relief, GpuTexture::upload_map(&self.gpu, "ocean.floor_map", w, h, &texels))
-            })
-            .1;
-        let gpu = &self.gpu;
-        let stages = &self.stages;
-        let waves = &mut self.waves;
-        let spray = &mut self.spray;
-        let foam = &mut self.foam;
-        let max_vertex_buffer_bytes = self.max_vertex_buffer_bytes;
-        let frame = gpu.scoped("rendering the frame", || -> Result<_, Error> {
-            let device = &gpu.device;
-            let mut backend = GpuBackend {
-                gpu,
-                stages,
-                waves,
-                spray,
-                foam,
-                floor_map,
-                encoder: device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                    label: Some("ocean.frame"),
-                }),
-                timer: PassTimer::new(gpu),
-                maps: Vec::new(),
-                chains: Vec::new(),
-                depth: None,
-                hdr_started: false,
-                frame_buffer: uniform_buffer(device, "ocean.frame.uniforms", &u),
-                waves_cpu: None,
-                max_vertex_buffer_bytes,
-                wave_source: None,
-            };
-            run_frame(&mut backend, &inputs, state, &mut |_| {})?;
-            let GpuBackend { mut encoder, timer, waves_cpu, wave_source, maps, chains, .. } =
-                backend;
-            timer.resolve(&mut encoder);
+        Ok(inputs)
+    }
 
-            // readback
-            let mut readbacks: Readbacks<ResourceId> = Readbacks::default();
-            let all = readback == Readback::All;
-            let output_back = readback != Readback::None;
-            let find = |id: ResourceId| maps.iter().find(|(m, _)| *m == id).map(|(_, t)| t);
-            let ldr = find(ResourceId::Ldr).cloned();
-            let empty = GpuTexture::empty_map(gpu, "ocean.empty");
-            for id in ResourceId::MAPS {
-                let wanted = all || (id == ResourceId::Hdr && output_back && ldr.is_none());
-                if !wanted {
-                    continue;
-                }
-                let format = plan.resource(id).map_or(MAP_FORMAT, |r| wgpu_format(r.format));
-                // A chain comes back packed, as ocean-cpu's MipChain holds it.
-                if let Some((_, chain)) = chains.iter().find(|(m, _)| *m == id) {
-                    let atlas = chain.pack(device, &mut encoder);
-                    readbacks.copy(device, &mut encoder, id, id.name(), &atlas, format);
-                    continue;
-                }
-                let texture = find(id).unwrap_or(&empty);
-                readbacks.copy(device, &mut encoder, id, id.name(), texture, format);
+    /// Records the plan's passes into `encoder` (nothing is submitted) and hands back the
+    /// frame's textures.
+    pub(crate) fn record(
+        &mut self,
+        inputs: &FrameInputs<'_>,
+        state: &mut FrameState,
+        encoder: &mut wgpu::CommandEncoder,
+        timer: PassTimer,
+    ) -> Result<Recorded, Error> {
+        let empty_floor;
+        let floor_map = match &self.floor {
+            Some((_, map)) => map,
+            None => {
+                empty_floor = GpuTexture::empty_map(&self.gpu, "ocean.floor_map");
+                &empty_floor
             }
-            if let Some(ldr) = ldr.as_ref().filter(|_| output_back) {
-                readbacks.copy(device, &mut encoder, ResourceId::Ldr, "ldr", ldr, LDR_FORMAT);
-            }
-            gpu.queue.submit([encoder.finish()]);
-            let data = readbacks.finish(gpu)?;
-            // Reading nothing back, the frame does not wait for the GPU: its timestamps come
-            // later (`GpuFrame::pending_timings`).
-            let (timings, pending) = if output_back {
-                (timer.finish(gpu)?, None)
-            } else {
-                (Vec::new(), timer.finish_later())
-            };
-            let output = match ldr {
-                Some(l) => l,
-                None => find(ResourceId::Hdr).cloned().unwrap_or(empty),
-            };
-            Ok((data, timings, pending, output, waves_cpu, wave_source))
-        })??;
-        drop(inputs);
-        state.advance();
+        };
+        let device = &self.gpu.device;
+        let mut backend = GpuBackend {
+            gpu: &self.gpu,
+            stages: &self.stages,
+            waves: &mut self.waves,
+            spray: &mut self.spray,
+            foam: &mut self.foam,
+            floor_map,
+            encoder,
+            timer,
+            maps: Vec::new(),
+            chains: Vec::new(),
+            depth: None,
+            hdr_started: false,
+            frame_buffer: uniform_buffer(device, "ocean.frame.uniforms", &inputs.uniforms),
+            waves_cpu: None,
+            max_vertex_buffer_bytes: self.max_vertex_buffer_bytes,
+            wave_source: None,
+        };
+        run_frame(&mut backend, inputs, state, &mut |_| {})?;
+        let GpuBackend { timer, waves_cpu, wave_source, maps, chains, depth, .. } = backend;
+        Ok(Recorded { maps, chains, depth, timer, waves_cpu, wave_source })
+    }
+}
 
-        let (data, gpu_timings, pending_timings, output, waves_cpu, wave_source) = frame;
-        let mut maps = Vec::new();
-        let mut ldr = None;
-        for (key, texels) in data {
-            match (key, texels) {
-                (ResourceId::Ldr, TexelData::Rgba8(bytes)) => ldr = Some(bytes),
-                (m, TexelData::Float(t)) if m != ResourceId::Ldr => maps.push((m, t)),
-                (key, _) => {
-                    return Err(Error::Readback {
-                        what: key.name().into(),
-                        message: "unexpected texel format".into(),
-                    });
-                }
-            }
-        }
-        Ok(GpuFrame {
-            plan: plan.clone(),
-            maps,
-            ldr,
-            output,
-            pending_timings,
-            uniforms: u,
-            gpu_timings,
-            waves_cpu,
-            wall: start.elapsed(),
-            adapter: self.gpu.report.clone(),
-            wave_source,
-        })
+/// The textures of a recorded frame.
+pub(crate) struct Recorded {
+    /// Every map a pass wrote.
+    pub maps: Vec<(ResourceId, GpuTexture)>,
+    /// The mip chains (`wave_mips`, `bloom`).
+    pub chains: Vec<(ResourceId, GpuMipChain)>,
+    /// The HDR frame's depth (reversed-Z), made by its first writer.
+    pub depth: Option<GpuTexture>,
+    /// The frame's timestamp queries.
+    pub timer: PassTimer,
+    /// As [`GpuFrame::waves_cpu`].
+    pub waves_cpu: Option<Duration>,
+    /// As [`GpuFrame::wave_source`].
+    pub wave_source: Option<&'static str>,
+}
+
+impl Recorded {
+    /// The frame's output: the 8-bit picture when the plan tonemaps, else the HDR frame.
+    pub fn output(&self) -> Option<&GpuTexture> {
+        let find = |id: ResourceId| self.maps.iter().find(|(m, _)| *m == id).map(|(_, t)| t);
+        find(ResourceId::Ldr).or_else(|| find(ResourceId::Hdr))
     }
 }

@@ -1,6 +1,6 @@
-//! The wgpu real-time path of `ocean`: every stage of the frame of Hu et al. 2004 from the
-//! WGSL in `shaders/`, run by the same [`ocean_core::plan::FramePlan`] as the CPU oracle
-//! (`ocean-cpu`), with every intermediate map readable for the cross-check.
+//! The wgpu real-time path of `ocean`: every stage of each system's frame (Hu, Chiu, Welch,
+//! coastal) from the WGSL in `shaders/`, run by the same [`ocean_core::plan::FramePlan`] as
+//! the CPU oracle (`ocean-cpu`), with every intermediate map readable for the cross-check.
 //!
 //! - [`device`]: headless adapter/device setup, the crate's [`Error`].
 //! - one module per stage, each creating its pipeline(s) labelled `"ocean.<stage>"` from
@@ -10,7 +10,14 @@
 //!   [`wave_maps`] (the CPU synthesis uploaded, or the GPU FFT of [`waves`]); [`present`]
 //!   copies the output into a window (the real-time viewer, `ocean view`).
 //! - [`frame`]: the [`Renderer`] and the [`GpuFrame`] it returns.
+//! - [`embed`]: the sea inside someone else's wgpu program: [`EmbeddedOcean`] records a
+//!   frame into the caller's encoder and composites it ([`composite`]) into the caller's
+//!   colour target and depth buffer, seen through the caller's camera matrices at the
+//!   caller's clock (`examples/embed.rs`: a winit window with its own objects;
+//!   `examples/buoy.rs`: an object floating on the drawn sea by the height query).
 //! - [`texture`]: formats, render targets, readback; [`timing`]: GPU time per pass.
+//!
+//! Headless, on a device of its own (the `ocean render --backend gpu` path):
 //!
 //! ```no_run
 //! use ocean_core::plan::{FramePlan, OutputKind};
@@ -24,7 +31,9 @@
 
 pub mod bloom;
 pub mod common;
+pub mod composite;
 pub mod device;
+pub mod embed;
 pub mod foam;
 pub mod frame;
 pub mod fresnel_table;
@@ -42,6 +51,9 @@ pub mod wave_mips;
 pub mod waves;
 
 pub use device::{AdapterReport, Error, Gpu};
+pub use embed::EmbeddedOcean;
 pub use frame::{FrameMap, GpuFrame, Readback, Renderer};
+/// The glam the embedding API's [`embed::CameraView`] takes its matrices in.
+pub use glam;
 pub use texture::FloatMap;
 pub use wave_maps::{WaveMapSource, WaveSynthesis};

@@ -96,7 +96,10 @@ impl GpuTexture {
             width,
             height,
             DEPTH_FORMAT,
-            wgpu::TextureUsages::RENDER_ATTACHMENT,
+            // Sampled and copied by the embedding composite and its test (`crate::embed`).
+            wgpu::TextureUsages::RENDER_ATTACHMENT
+                | wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::COPY_SRC,
         )
     }
 

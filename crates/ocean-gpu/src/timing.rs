@@ -56,6 +56,12 @@ impl PassTimer {
         Self { queries, slots: Vec::new() }
     }
 
+    /// A timer that times nothing: for frames recorded into a caller's encoder
+    /// ([`crate::embed`]), whose submission this crate does not see.
+    pub fn off() -> Self {
+        Self { queries: None, slots: Vec::new() }
+    }
+
     /// Reserves the begin/end queries of one GPU pass of `pass`; `None` without timestamps
     /// (or beyond the query set's size).
     pub fn slot(&mut self, pass: Pass) -> Option<u32> {

@@ -32,9 +32,9 @@ pub fn far_distance(height: f64, pixel_angle: f64) -> f64 {
 
 /// The block of surface `shore_grid` for `camera`, `cell_px` pixels between grid lines.
 ///
-/// Corners: [0] = (f_x, f_z, r_x, r_z), the camera's horizontal forward and right;
-/// [1] = (D/(n − 1), n, back, 0) with D = back + the far distance; [2] = (w₀, t, 0, 0);
-/// [3] = 0.
+/// Corners: `[0]` = (f_x, f_z, r_x, r_z), the camera's horizontal forward and right;
+/// `[1]` = (D/(n − 1), n, back, 0) with D = back + the far distance; `[2]` = (w₀, t, 0, 0);
+/// `[3]` = 0.
 pub fn block(camera: &Camera, cell_px: f64) -> ProjectedGridBlock {
     let (cols, rows) = ProjectedGridBlock::quads(camera.width, camera.height, cell_px);
     let f = camera.forward;

@@ -80,6 +80,23 @@ impl<'a> FrameInputs<'a> {
         Self::with_mesh(scene, plan, state, camera, mesh, start.elapsed())
     }
 
+    /// [`Self::new`] with a given camera (an embedding program's, whose roll a scene camera
+    /// cannot hold: `Camera::from_view_projection`); the plan must be made for the same
+    /// image size.
+    ///
+    /// # Errors
+    /// As [`Self::new`].
+    pub fn with_camera(
+        scene: &'a Scene,
+        plan: &'a FramePlan,
+        state: &FrameState,
+        camera: Camera,
+    ) -> crate::Result<Self> {
+        let start = Instant::now();
+        let mesh = plan.water_mesh(scene, &camera)?.into();
+        Self::with_mesh(scene, plan, state, camera, mesh, start.elapsed())
+    }
+
     /// [`Self::new`] with a given water mesh (tests draw a plain grid).
     ///
     /// # Errors

@@ -11,6 +11,7 @@
 //! WGSL uses no `fma`), no fast-math.
 
 pub mod bloom;
+pub mod composite;
 pub mod foam;
 pub mod fresnel_table;
 pub mod objects;
