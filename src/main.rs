@@ -1,6 +1,7 @@
 //! `ocean`: the command-line program. One module per subcommand; each returns an
 //! `anyhow::Result` whose message a user can act on, printed without a backtrace.
 
+mod bench;
 mod compare;
 mod frames;
 mod fresnel;
@@ -39,6 +40,9 @@ enum Command {
     Compare(compare::Args),
     /// Fly over the ocean in a window (GPU path), changing the sea while it runs.
     View(ocean::view::Args),
+    /// Time every system's frame at 720p/1080p/2160p and the wave synthesis at N = 128…1024
+    /// on both back ends (`--quick`: a small set for CI), as a table or JSON.
+    Bench(bench::Args),
 }
 
 /// Loads a scene file, or the built-in default scene when none is given (commands without
@@ -60,6 +64,7 @@ fn main() -> ExitCode {
         Command::Report(a) => report::run(a),
         Command::Compare(a) => compare::run(a),
         Command::View(a) => ocean::view::run(a),
+        Command::Bench(a) => bench::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

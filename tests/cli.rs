@@ -391,6 +391,79 @@ fn compare_system_chiu_passes() {
     assert!(text.contains("within 1/255"), "{text}");
 }
 
+/// Checks `ocean bench --json`'s cases: each timed, positive and finite; a frame's passes
+/// fit in its total; the GPU's frames have an encode time. Returns the cases.
+fn bench_cases(json: &serde_json::Value) -> Vec<serde_json::Value> {
+    let cases = json["cases"].as_array().expect("cases").clone();
+    for c in &cases {
+        let total = c["frame_ms"].as_f64().expect("frame_ms");
+        assert!(total.is_finite() && total > 0.0, "{c}");
+        let passes: f64 = c["passes"]
+            .as_array()
+            .expect("passes")
+            .iter()
+            .map(|p| p[1].as_f64().expect("a pass's ms"))
+            .sum();
+        // The passes are parts of the frame (the GPU's ran inside its wall time, the CPU's
+        // one after another in it); 1 % and 0.1 ms for clock granularity.
+        assert!(passes <= 1.01 * total + 0.1, "passes {passes} ms > frame {total} ms: {c}");
+        if c["kind"] == "frame" {
+            assert!(!c["passes"].as_array().expect("passes").is_empty(), "{c}");
+            assert_eq!(c["backend"] == "gpu", c["encode_ms"].as_f64().is_some(), "{c}");
+        }
+        if let Some(m) = c["peak_rss_mib"].as_f64() {
+            assert!(m > 1.0, "{c}");
+        }
+    }
+    cases
+}
+
+fn bench_quick_times_every_system_on_both_back_ends() {
+    let start = std::time::Instant::now();
+    let o = ocean(&["bench", "--quick", "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    eprintln!("ocean bench --quick --json: {:.1} s", start.elapsed().as_secs_f64());
+    let json: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
+    let cases = bench_cases(&json);
+    for system in ["hu", "chiu", "welch", "coastal"] {
+        for backend in ["cpu", "gpu"] {
+            let n = cases
+                .iter()
+                .filter(|c| c["kind"] == "frame" && c["name"] == system && c["backend"] == backend)
+                .count();
+            assert_eq!(n, 1, "{system} on {backend}");
+        }
+    }
+    let waves: Vec<_> = cases.iter().filter(|c| c["kind"] == "waves").collect();
+    assert_eq!(waves.len(), 4, "N = 64 and 128 on both back ends");
+    assert!(json["adapter"].is_string());
+}
+
+fn bench_cpu_alone_needs_no_gpu_and_prints_a_table() {
+    let o = ocean_env(
+        &["bench", "--quick", "--backend", "cpu", "--runs", "1"],
+        &[("WGPU_BACKEND", "gl")],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let table = String::from_utf8_lossy(&o.stdout);
+    eprintln!("{table}");
+    assert!(table.contains("GPU: not used"), "{table}");
+    for system in ["hu", "chiu", "welch", "coastal"] {
+        assert!(table.lines().any(|l| l.contains(system) && l.contains(" cpu ")), "{system}");
+    }
+    assert!(!table.lines().any(|l| l.contains(" gpu ")), "{table}");
+    // The checker's negative control: passes longer than their frame fail it.
+    let inconsistent = serde_json::json!({"cases": [{"kind": "waves", "backend": "cpu",
+        "frame_ms": 1.0, "encode_ms": null, "passes": [["waves", 2.0]]}]});
+    let quiet = std::panic::take_hook();
+    std::panic::set_hook(Box::new(|_| {}));
+    let caught = std::panic::catch_unwind(|| bench_cases(&inconsistent)).is_err();
+    std::panic::set_hook(quiet);
+    assert!(caught, "passes longer than their frame passed the check");
+    let bad = ocean(&["bench", "--backend", "tpu"]);
+    assert_eq!(bad.status.code(), Some(2), "{}", stderr(&bad));
+}
+
 fn main() -> std::process::ExitCode {
     run_tests!(gpu_harness::GPU_ADAPTER;
         cpu: fresnel_csv_contract, fresnel_rejects_bad_eta_without_panicking,
@@ -398,8 +471,9 @@ fn main() -> std::process::ExitCode {
             bad_scene_names_file_line_key_and_writes_nothing, heightfield_exr_contract,
             heightfield_of_gerstner_waves_is_their_closed_form,
             render_writes_png_and_exr_and_rejects_bad_input,
-            gpu_without_an_adapter_says_what_to_do_and_writes_nothing;
+            gpu_without_an_adapter_says_what_to_do_and_writes_nothing,
+            bench_cpu_alone_needs_no_gpu_and_prints_a_table;
         gpu: render_on_the_gpu_writes_png_and_exr, compare_prints_metrics_writes_images_and_passes,
-            compare_system_chiu_passes;
+            compare_system_chiu_passes, bench_quick_times_every_system_on_both_back_ends;
     )
 }

@@ -1,0 +1,452 @@
+//! `ocean bench`: a fixed set of frames and wave syntheses timed on both back ends, for
+//! comparing machines (issue 17). Each system's built-in scene at 1280×720, 1920×1080 and
+//! 3840×2160 on the CPU oracle and on the GPU, and the wave synthesis at N = 128 … 1024 (the
+//! CPU's `Synthesizer<f32>`, the GPU FFT); `--quick` runs the four systems at 320×180 and the
+//! synthesis at N = 64 and 128, well under a minute here.
+//!
+//! Per case, after one untimed warm-up: the median over the timed runs of
+//! - `frame_ms`: the whole frame as a caller sees it (GPU: recording, submission, GPU work
+//!   and reading the 8-bit picture back; CPU: every pass and the picture);
+//! - `encode_ms` (GPU): the same frame recorded and submitted with nothing read back, the
+//!   call returning without waiting (the real-time viewer's case);
+//! - per pass: GPU time from timestamp queries where the adapter has them, the CPU's wall
+//!   time per pass;
+//! - `peak_rss_mib`: the process's peak resident memory during the case (Linux: VmHWM,
+//!   reset before each case through /proc/self/clear_refs; `null` elsewhere). On a software
+//!   adapter (lavapipe) the GPU's memory is in it; on a hardware GPU it is not.
+//!
+//! Times on a shared machine are noisy: compare ratios within one run.
+
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+use anyhow::Context;
+use ocean_core::plan::{FramePlan, OutputKind, Pass, SYSTEMS, System};
+use ocean_core::scene::Scene;
+use serde::Serialize;
+
+/// Arguments of `ocean bench`.
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// The small set (320×180 frames, N = 64 and 128), for CI.
+    #[arg(long)]
+    quick: bool,
+    /// Print JSON instead of the table.
+    #[arg(long)]
+    json: bool,
+    /// Back ends to time: cpu, gpu or both.
+    #[arg(long, default_value = "both", value_parser = ["cpu", "gpu", "both"])]
+    backend: String,
+    /// Timed runs per case after the warm-up (default: 3 quick, 5 full).
+    #[arg(long)]
+    runs: Option<u32>,
+    /// Also write the JSON to this file.
+    #[arg(short, long)]
+    output: Option<PathBuf>,
+}
+
+/// One timed case.
+#[derive(Clone, Debug, Serialize)]
+pub struct Case {
+    /// `frame` or `waves`.
+    pub kind: &'static str,
+    /// The system (frames) or the synthesis (`cpu_synthesizer_f32`, `gpu_fft`).
+    pub name: String,
+    /// `cpu` or `gpu`.
+    pub backend: &'static str,
+    /// Image size (frames), pixels.
+    pub size: Option<[u32; 2]>,
+    /// Grid size (waves).
+    pub n: Option<u32>,
+    /// Median whole-frame (or whole-synthesis) time, ms.
+    pub frame_ms: f64,
+    /// GPU frames: median time to record and submit with nothing read back, ms.
+    pub encode_ms: Option<f64>,
+    /// Median time per pass, ms (GPU: timestamp queries; CPU: wall time), in frame order.
+    pub passes: Vec<(String, f64)>,
+    /// Peak resident memory during the case, MiB.
+    pub peak_rss_mib: Option<f64>,
+}
+
+/// The whole run.
+#[derive(Debug, Serialize)]
+pub struct Bench {
+    /// Whether it was `--quick`.
+    pub quick: bool,
+    /// Timed runs per case.
+    pub runs: u32,
+    /// The CPU's logical cores.
+    pub cores: usize,
+    /// The GPU adapter, when one was used.
+    pub adapter: Option<String>,
+    /// Every case.
+    pub cases: Vec<Case>,
+    /// How each system's frame time scales with its pixels, and the synthesis with
+    /// N² log₂ N, per back end: the exponent of a least-squares line through the cases'
+    /// (log size, log time).
+    pub fits: Vec<Fit>,
+    /// Wall time of the whole run, s.
+    pub total_s: f64,
+}
+
+/// A fitted power law: time ∝ size^exponent.
+#[derive(Clone, Debug, Serialize)]
+pub struct Fit {
+    /// The system (frames) or the synthesis.
+    pub name: String,
+    /// `cpu` or `gpu`.
+    pub backend: &'static str,
+    /// What the size is: `pixels` or `N² log2 N`.
+    pub against: &'static str,
+    /// The fitted exponent (1: linear in the size).
+    pub exponent: f64,
+    /// How many cases it went through.
+    pub points: usize,
+}
+
+/// The least-squares slope of (ln x, ln y); `None` under two points or one x.
+pub fn log_log_slope(points: &[(f64, f64)]) -> Option<f64> {
+    let logs: Vec<(f64, f64)> = points.iter().map(|&(x, y)| (x.ln(), y.ln())).collect();
+    let n = logs.len() as f64;
+    let (mx, my) = logs.iter().fold((0.0, 0.0), |(a, b), &(x, y)| (a + x / n, b + y / n));
+    let sxx: f64 = logs.iter().map(|&(x, _)| (x - mx) * (x - mx)).sum();
+    let sxy: f64 = logs.iter().map(|&(x, y)| (x - mx) * (y - my)).sum();
+    (logs.len() >= 2 && sxx > 0.0).then(|| sxy / sxx)
+}
+
+/// The fits of every (name, back end) with cases at two sizes or more.
+fn fits(cases: &[Case]) -> Vec<Fit> {
+    let mut keys: Vec<(&str, &'static str, &'static str)> = Vec::new();
+    for c in cases {
+        if !keys.iter().any(|k| k.0 == c.name && k.1 == c.backend && k.2 == c.kind) {
+            keys.push((&c.name, c.backend, c.kind));
+        }
+    }
+    keys.into_iter()
+        .filter_map(|(name, backend, kind)| {
+            let points: Vec<(f64, f64)> = cases
+                .iter()
+                .filter(|c| c.name == name && c.backend == backend && c.kind == kind)
+                .filter_map(|c| {
+                    let size = match (c.size, c.n) {
+                        (Some([w, h]), _) => f64::from(w) * f64::from(h),
+                        (None, Some(n)) => f64::from(n) * f64::from(n) * f64::from(n).log2(),
+                        _ => return None,
+                    };
+                    Some((size, c.frame_ms))
+                })
+                .collect();
+            let exponent = log_log_slope(&points)?;
+            let against = if kind == "frame" { "pixels" } else { "N² log2 N" };
+            Some(Fit { name: name.to_owned(), backend, against, exponent, points: points.len() })
+        })
+        .collect()
+}
+
+const FULL_SIZES: [[u32; 2]; 3] = [[1280, 720], [1920, 1080], [3840, 2160]];
+const QUICK_SIZES: [[u32; 2]; 1] = [[320, 180]];
+const FULL_N: [u32; 4] = [128, 256, 512, 1024];
+const QUICK_N: [u32; 2] = [64, 128];
+
+fn ms(d: Duration) -> f64 {
+    d.as_secs_f64() * 1e3
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
+}
+
+/// Medians of per-pass times gathered over runs, in first-seen order.
+#[derive(Default)]
+struct PassTimes(Vec<(Pass, Vec<f64>)>);
+
+impl PassTimes {
+    fn add(&mut self, timings: &[(Pass, Duration)]) {
+        // A pass timed twice in a frame (two Fresnel tables) counts once, summed.
+        let mut frame: Vec<(Pass, f64)> = Vec::new();
+        for (p, d) in timings {
+            match frame.iter_mut().find(|(q, _)| q == p) {
+                Some((_, v)) => *v += ms(*d),
+                None => frame.push((*p, ms(*d))),
+            }
+        }
+        for (p, v) in frame {
+            match self.0.iter_mut().find(|(q, _)| *q == p) {
+                Some((_, all)) => all.push(v),
+                None => self.0.push((p, vec![v])),
+            }
+        }
+    }
+
+    fn medians(self) -> Vec<(String, f64)> {
+        self.0.into_iter().map(|(p, v)| (p.name().to_owned(), median(v))).collect()
+    }
+}
+
+/// The process's peak resident memory since the last [`reset_peak`], MiB (Linux only).
+fn peak_rss_mib() -> Option<f64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib / 1024.0)
+}
+
+fn reset_peak() {
+    // "5" resets the peak resident set size (proc(5)); where it cannot, the peak is the
+    // process's since it started, which the table still reports.
+    let _ = std::fs::write("/proc/self/clear_refs", "5");
+}
+
+fn scene(system: System, [w, h]: [u32; 2]) -> anyhow::Result<Scene> {
+    let mut s = Scene::builtin_for(system).with_system(system)?;
+    (s.camera.width, s.camera.height) = (w, h);
+    Ok(s)
+}
+
+fn cpu_frame(system: System, size: [u32; 2], runs: u32) -> anyhow::Result<Case> {
+    let s = scene(system, size)?;
+    reset_peak();
+    ocean_cpu::render_scene(&s, OutputKind::Ldr, &mut |_| {})?;
+    let (mut walls, mut passes) = (Vec::new(), PassTimes::default());
+    for _ in 0..runs {
+        let t0 = Instant::now();
+        let r = ocean_cpu::render_scene(&s, OutputKind::Ldr, &mut |_| {})?;
+        walls.push(ms(t0.elapsed()));
+        passes.add(&r.buffers.timings);
+    }
+    Ok(Case {
+        kind: "frame",
+        name: system.name().to_owned(),
+        backend: "cpu",
+        size: Some(size),
+        n: None,
+        frame_ms: median(walls),
+        encode_ms: None,
+        passes: passes.medians(),
+        peak_rss_mib: peak_rss_mib(),
+    })
+}
+
+fn gpu_frame(
+    r: &mut ocean_gpu::Renderer,
+    system: System,
+    size: [u32; 2],
+    runs: u32,
+) -> anyhow::Result<Case> {
+    use ocean_gpu::Readback;
+    let s = scene(system, size)?;
+    let plan = FramePlan::new(&s, OutputKind::Ldr);
+    reset_peak();
+    r.run_with(&s, &plan, Readback::Output)?;
+    let (mut walls, mut encodes, mut passes) = (Vec::new(), Vec::new(), PassTimes::default());
+    for _ in 0..runs {
+        let f = r.run_with(&s, &plan, Readback::Output)?;
+        walls.push(ms(f.wall));
+        passes.add(&f.gpu_timings);
+        let f = r.run_with(&s, &plan, Readback::None)?;
+        encodes.push(ms(f.wall));
+        r.gpu().wait()?;
+    }
+    Ok(Case {
+        kind: "frame",
+        name: system.name().to_owned(),
+        backend: "gpu",
+        size: Some(size),
+        n: None,
+        frame_ms: median(walls),
+        encode_ms: Some(median(encodes)),
+        passes: passes.medians(),
+        peak_rss_mib: peak_rss_mib(),
+    })
+}
+
+fn waves(gpu: Option<&ocean_gpu::Gpu>, n: u32, runs: u32) -> anyhow::Result<Vec<Case>> {
+    use ocean_core::waves::{Synthesizer, WaveMaps};
+    let ocean = ocean_core::scene::Ocean { resolution: n, ..ocean_core::scene::Ocean::default() };
+    let modes = ocean.displacement_modes()?;
+    let mut cases = Vec::new();
+    let case = |name: &str, backend, times: Vec<f64>| Case {
+        kind: "waves",
+        name: name.to_owned(),
+        backend,
+        size: None,
+        n: Some(n),
+        frame_ms: median(times),
+        encode_ms: None,
+        passes: Vec::new(),
+        peak_rss_mib: peak_rss_mib(),
+    };
+    reset_peak();
+    let mut synth = Synthesizer::<f32>::new(n as usize)?;
+    let mut maps = WaveMaps::<f32>::new(n as usize, ocean.patch_size_m);
+    let mut times = Vec::new();
+    for i in 0..=runs {
+        let t0 = Instant::now();
+        synth.synthesize_into(&modes, 0.5 * f64::from(i), 1.0, &mut maps)?;
+        if i > 0 {
+            times.push(ms(t0.elapsed()));
+        }
+    }
+    cases.push(case("cpu_synthesizer_f32", "cpu", times));
+    if let Some(gpu) = gpu {
+        reset_peak();
+        let w = ocean_gpu::waves::GpuWaves::new(&gpu.device, &modes)?;
+        let mut times = Vec::new();
+        for i in 0..=runs {
+            let t0 = Instant::now();
+            let mut encoder = gpu.device.create_command_encoder(&Default::default());
+            w.encode(&gpu.queue, &mut encoder, 0.5 * f64::from(i), 1.0)?;
+            gpu.queue.submit([encoder.finish()]);
+            gpu.wait()?;
+            if i > 0 {
+                times.push(ms(t0.elapsed()));
+            }
+        }
+        cases.push(case("gpu_fft", "gpu", times));
+    }
+    Ok(cases)
+}
+
+/// Runs the set `args` chooses; `progress` hears each case's name as it starts.
+///
+/// # Errors
+/// A GPU asked for and not found, or a case that fails to render.
+pub fn measure(
+    quick: bool,
+    backend: &str,
+    runs: u32,
+    progress: &mut dyn FnMut(&str),
+) -> anyhow::Result<Bench> {
+    let start = Instant::now();
+    let (cpu, gpu) = (backend != "gpu", backend != "cpu");
+    let mut renderer = if gpu {
+        Some(
+            ocean_gpu::Renderer::new()
+                .context("`ocean bench` on the GPU (--backend cpu skips it)")?,
+        )
+    } else {
+        None
+    };
+    let sizes: &[[u32; 2]] = if quick { &QUICK_SIZES } else { &FULL_SIZES };
+    let ns: &[u32] = if quick { &QUICK_N } else { &FULL_N };
+    let mut cases = Vec::new();
+    for info in SYSTEMS {
+        for &size in sizes {
+            let label = format!("{} {}×{}", info.name, size[0], size[1]);
+            if cpu {
+                progress(&format!("frame {label} cpu"));
+                cases.push(cpu_frame(info.system, size, runs)?);
+            }
+            if let Some(r) = renderer.as_mut() {
+                progress(&format!("frame {label} gpu"));
+                cases.push(gpu_frame(r, info.system, size, runs)?);
+            }
+        }
+    }
+    for &n in ns {
+        progress(&format!("waves N = {n}"));
+        let g = renderer.as_ref().map(|r| r.gpu());
+        let mut w = waves(g, n, runs)?;
+        if !cpu {
+            w.retain(|c| c.backend == "gpu");
+        }
+        cases.extend(w);
+    }
+    Ok(Bench {
+        quick,
+        runs,
+        cores: std::thread::available_parallelism().map_or(1, |n| n.get()),
+        adapter: renderer.as_ref().map(|r| r.adapter().to_string()),
+        fits: fits(&cases),
+        cases,
+        total_s: start.elapsed().as_secs_f64(),
+    })
+}
+
+/// The table: one row per case.
+pub fn table(b: &Bench) -> String {
+    use std::fmt::Write;
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "ocean bench{}: median of {} runs after a warm-up; {} cores; GPU: {}; {:.0} s",
+        if b.quick { " --quick" } else { "" },
+        b.runs,
+        b.cores,
+        b.adapter.as_deref().unwrap_or("not used"),
+        b.total_s
+    );
+    let _ = writeln!(
+        out,
+        "{:<6} {:<20} {:>9} {:<4} {:>10} {:>10} {:>9}  passes (ms)",
+        "kind", "name", "size", "on", "total ms", "encode ms", "peak MiB"
+    );
+    for c in &b.cases {
+        let size = match (c.size, c.n) {
+            (Some([w, h]), _) => format!("{w}×{h}"),
+            (None, Some(n)) => format!("{n}²"),
+            _ => String::new(),
+        };
+        let opt = |v: Option<f64>, p: usize| v.map_or("—".to_owned(), |v| format!("{v:.p$}"));
+        let passes: Vec<String> = c.passes.iter().map(|(p, v)| format!("{p} {v:.2}")).collect();
+        let _ = writeln!(
+            out,
+            "{:<6} {:<20} {:>9} {:<4} {:>10.2} {:>10} {:>9}  {}",
+            c.kind,
+            c.name,
+            size,
+            c.backend,
+            c.frame_ms,
+            opt(c.encode_ms, 2),
+            opt(c.peak_rss_mib, 0),
+            passes.join(", ")
+        );
+    }
+    if !b.fits.is_empty() {
+        let _ = writeln!(out, "scaling (time ∝ size^exponent, least squares in log-log):");
+        for f in &b.fits {
+            let _ = writeln!(
+                out,
+                "  {:<20} {:<4} against {:<10} exponent {:.2} ({} points)",
+                f.name, f.backend, f.against, f.exponent, f.points
+            );
+        }
+    }
+    out
+}
+
+/// Runs `ocean bench`.
+pub fn run(args: Args) -> anyhow::Result<()> {
+    let runs = args.runs.unwrap_or(if args.quick { 3 } else { 5 }).max(1);
+    let bar = indicatif::ProgressBar::new_spinner();
+    let b = measure(args.quick, &args.backend, runs, &mut |what| {
+        bar.set_message(what.to_owned());
+        bar.tick();
+    })?;
+    bar.finish_and_clear();
+    let json = serde_json::to_string_pretty(&b)?;
+    if let Some(path) = &args.output {
+        ocean::output::write_atomic(path, json.as_bytes())
+            .with_context(|| format!("writing {}", path.display()))?;
+    }
+    if args.json {
+        println!("{json}");
+    } else {
+        print!("{}", table(&b));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_slope_of_a_power_law_is_its_exponent() {
+        let points: Vec<(f64, f64)> = [1.0, 4.0, 9.0].iter().map(|&x| (x, 3.0 * x * x)).collect();
+        assert!((log_log_slope(&points).unwrap_or(f64::NAN) - 2.0).abs() < 1e-12);
+        assert_eq!(log_log_slope(&points[..1]), None);
+        assert_eq!(log_log_slope(&[(2.0, 1.0), (2.0, 5.0)]), None);
+    }
+}
