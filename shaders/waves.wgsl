@@ -5,12 +5,18 @@
 //                spectra, packed two per complex array (four N×N arrays in `dst`)
 //   fft_rows     one radix-2 Stockham stage along x of all four arrays (`src` → `dst`)
 //   fft_columns  the same along z
+//   fft_rows_shared, fft_columns_shared
+//                every stage along x (z) in one dispatch: a workgroup per line and array
+//                holds the line in workgroup memory (two halves, ping and pong) between
+//                stages; the same butterflies, twiddles and operations as the one-stage
+//                entry points, so the same results; N ≤ FFT_SHARED_MAX
 //   pack         the maps as the water stage binds them: displacement (disp_x, height,
 //                disp_z, jacobian), displacement_slopes (slope_x, slope_z, 0, 0), bump
 //                (slope_x, slope_z, height, jacobian)
 //
 // A frame: spectrum into ping, log2(N) fft_rows then log2(N) fft_columns stages alternating
-// ping → pong → ping …, pack from ping (2·log2(N) passes is even). Conventions (unnormalised
+// ping → pong → ping …, pack from ping (2·log2(N) passes is even); or, for N ≤ FFT_SHARED_MAX,
+// spectrum, fft_rows_shared (ping → pong), fft_columns_shared (pong → ping), pack. Conventions (unnormalised
 // inverse DFT, bin (n mod N, m mod N), the multipliers, λ = −choppiness, the pairs) are
 // ocean-core's (waves::synthesis); the phase in integer turns and the FFT stage formula are
 // documented in ocean-core's waves::uniforms. CPU mirror: crates/ocean-cpu/src/shaders/waves.rs.
@@ -142,6 +148,69 @@ fn butterfly(base: u32, stride: u32, j: u32) {
     let out = 2u * j - q;
     dst[base + out * stride] = a + b;
     dst[base + (out + s) * stride] = complex_mul(d, w);
+}
+
+// The largest N the shared-memory FFT holds (two lines of N complex f32: 16 KiB, WebGPU's
+// guaranteed workgroup storage), and its threads per workgroup (WebGPU's guaranteed
+// invocations per workgroup).
+const FFT_SHARED_MAX: u32 = 1024u;
+const FFT_SHARED_THREADS: u32 = 256u;
+
+var<workgroup> fft_line: array<vec2<f32>, 2048>;
+
+// Every stage of the FFT of the line starting at `base` with element `stride`, in workgroup
+// memory, whose two halves, [0, N) and [FFT_SHARED_MAX, FFT_SHARED_MAX + N), take turns to be
+// read and written, stage by stage. Thread `local` does
+// butterflies local, local + FFT_SHARED_THREADS, … of each stage, as `butterfly` does one.
+fn fft_line_shared(base: u32, stride: u32, local: u32) {
+    let n = params.size;
+    let half = n / 2u;
+    for (var i = local; i < n; i += FFT_SHARED_THREADS) {
+        fft_line[i] = src[base + i * stride];
+    }
+    workgroupBarrier();
+    var read_at = 0u;
+    var write_at = FFT_SHARED_MAX;
+    for (var stage = 0u; stage < params.log2_size; stage++) {
+        let s = 1u << stage;
+        for (var j = local; j < half; j += FFT_SHARED_THREADS) {
+            let q = j & (s - 1u);
+            let a = fft_line[read_at + j];
+            let b = fft_line[read_at + j + half];
+            let w = twiddles[j - q];
+            let d = a - b;
+            let out = 2u * j - q;
+            fft_line[write_at + out] = a + b;
+            fft_line[write_at + out + s] = complex_mul(d, w);
+        }
+        workgroupBarrier();
+        let t = read_at;
+        read_at = write_at;
+        write_at = t;
+    }
+    for (var i = local; i < n; i += FFT_SHARED_THREADS) {
+        dst[base + i * stride] = fft_line[read_at + i];
+    }
+}
+
+// Workgroup (row, array); local.x: the thread.
+@compute @workgroup_size(256, 1, 1)
+fn fft_rows_shared(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(local_invocation_id) local: vec3<u32>,
+) {
+    let n = params.size;
+    fft_line_shared(group.y * n * n + group.x * n, 1u, local.x);
+}
+
+// Workgroup (column, array); local.x: the thread.
+@compute @workgroup_size(256, 1, 1)
+fn fft_columns_shared(
+    @builtin(workgroup_id) group: vec3<u32>,
+    @builtin(local_invocation_id) local: vec3<u32>,
+) {
+    let n = params.size;
+    fft_line_shared(group.y * n * n + group.x, n, local.x);
 }
 
 // id.x: butterfly, id.y: row (z index j), id.z: array.

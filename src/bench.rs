@@ -37,6 +37,9 @@ pub struct Args {
     /// Back ends to time: cpu, gpu or both.
     #[arg(long, default_value = "both", value_parser = ["cpu", "gpu", "both"])]
     backend: String,
+    /// Only the frames or only the wave synthesis.
+    #[arg(long, value_parser = ["frames", "waves"])]
+    only: Option<String>,
     /// Timed runs per case after the warm-up (default: 3 quick, 5 full).
     #[arg(long)]
     runs: Option<u32>,
@@ -66,6 +69,10 @@ pub struct Case {
     pub passes: Vec<(String, f64)>,
     /// Peak resident memory during the case, MiB.
     pub peak_rss_mib: Option<f64>,
+    /// GPU synthesis: the time its unavoidable memory traffic (the mode table read, the
+    /// three maps written: 80·N² bytes) takes at the device's copy bandwidth, ms; `frame_ms`
+    /// over this is how far from bandwidth-bound it runs.
+    pub bandwidth_bound_ms: Option<f64>,
 }
 
 /// The whole run.
@@ -79,6 +86,8 @@ pub struct Bench {
     pub cores: usize,
     /// The GPU adapter, when one was used.
     pub adapter: Option<String>,
+    /// The GPU's measured copy bandwidth (a 64 MiB buffer copy, bytes read + written), GB/s.
+    pub gpu_copy_gb_s: Option<f64>,
     /// Every case.
     pub cases: Vec<Case>,
     /// How each system's frame time scales with its pixels, and the synthesis with
@@ -225,6 +234,7 @@ fn cpu_frame(system: System, size: [u32; 2], runs: u32) -> anyhow::Result<Case> 
         encode_ms: None,
         passes: passes.medians(),
         peak_rss_mib: peak_rss_mib(),
+        bandwidth_bound_ms: None,
     })
 }
 
@@ -258,15 +268,44 @@ fn gpu_frame(
         encode_ms: Some(median(encodes)),
         passes: passes.medians(),
         peak_rss_mib: peak_rss_mib(),
+        bandwidth_bound_ms: None,
     })
 }
 
-fn waves(gpu: Option<&ocean_gpu::Gpu>, n: u32, runs: u32) -> anyhow::Result<Vec<Case>> {
+/// The device's copy bandwidth, GB/s: a 64 MiB buffer copied (read and written), the median
+/// of five after a warm-up.
+fn copy_bandwidth(gpu: &ocean_gpu::Gpu) -> anyhow::Result<f64> {
+    let size = 64u64 << 20;
+    let buffer = |usage| {
+        gpu.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("ocean.bench.copy"),
+            size,
+            usage,
+            mapped_at_creation: false,
+        })
+    };
+    let (from, to) = (buffer(wgpu::BufferUsages::COPY_SRC), buffer(wgpu::BufferUsages::COPY_DST));
+    let mut times = Vec::new();
+    for i in 0..6 {
+        let t0 = Instant::now();
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        encoder.copy_buffer_to_buffer(&from, 0, &to, 0, size);
+        gpu.queue.submit([encoder.finish()]);
+        gpu.wait()?;
+        if i > 0 {
+            times.push(t0.elapsed().as_secs_f64());
+        }
+    }
+    Ok(2.0 * size as f64 / median(times) / 1e9)
+}
+
+fn waves(gpu: Option<(&ocean_gpu::Gpu, f64)>, n: u32, runs: u32) -> anyhow::Result<Vec<Case>> {
     use ocean_core::waves::{Synthesizer, WaveMaps};
+    use ocean_gpu::waves::{FftKernel, GpuWaves};
     let ocean = ocean_core::scene::Ocean { resolution: n, ..ocean_core::scene::Ocean::default() };
     let modes = ocean.displacement_modes()?;
     let mut cases = Vec::new();
-    let case = |name: &str, backend, times: Vec<f64>| Case {
+    let case = |name: &str, backend, times: Vec<f64>, bound: Option<f64>| Case {
         kind: "waves",
         name: name.to_owned(),
         backend,
@@ -276,6 +315,7 @@ fn waves(gpu: Option<&ocean_gpu::Gpu>, n: u32, runs: u32) -> anyhow::Result<Vec<
         encode_ms: None,
         passes: Vec::new(),
         peak_rss_mib: peak_rss_mib(),
+        bandwidth_bound_ms: bound,
     };
     reset_peak();
     let mut synth = Synthesizer::<f32>::new(n as usize)?;
@@ -288,10 +328,21 @@ fn waves(gpu: Option<&ocean_gpu::Gpu>, n: u32, runs: u32) -> anyhow::Result<Vec<
             times.push(ms(t0.elapsed()));
         }
     }
-    cases.push(case("cpu_synthesizer_f32", "cpu", times));
-    if let Some(gpu) = gpu {
+    cases.push(case("cpu_synthesizer_f32", "cpu", times, None));
+    let Some((gpu, gb_s)) = gpu else { return Ok(cases) };
+    // The mode table (32 bytes a mode) read, three Rgba32Float maps written.
+    let bound_ms = 80.0 * f64::from(n) * f64::from(n) / (gb_s * 1e9) * 1e3;
+    // The frame's choice for this adapter, then both kernels (the shared one up to its N).
+    let mut kernels = vec![
+        ("gpu_fft", FftKernel::for_adapter(&gpu.info, n as usize)),
+        ("gpu_fft_stages", FftKernel::Stages),
+    ];
+    if n <= ocean_gpu::waves::FFT_SHARED_MAX {
+        kernels.push(("gpu_fft_shared", FftKernel::Shared));
+    }
+    for (name, kernel) in kernels {
         reset_peak();
-        let w = ocean_gpu::waves::GpuWaves::new(&gpu.device, &modes)?;
+        let w = GpuWaves::with_kernel(&gpu.device, &modes, kernel)?;
         let mut times = Vec::new();
         for i in 0..=runs {
             let t0 = Instant::now();
@@ -303,7 +354,7 @@ fn waves(gpu: Option<&ocean_gpu::Gpu>, n: u32, runs: u32) -> anyhow::Result<Vec<
                 times.push(ms(t0.elapsed()));
             }
         }
-        cases.push(case("gpu_fft", "gpu", times));
+        cases.push(case(name, "gpu", times, Some(bound_ms)));
     }
     Ok(cases)
 }
@@ -315,6 +366,7 @@ fn waves(gpu: Option<&ocean_gpu::Gpu>, n: u32, runs: u32) -> anyhow::Result<Vec<
 pub fn measure(
     quick: bool,
     backend: &str,
+    only: Option<&str>,
     runs: u32,
     progress: &mut dyn FnMut(&str),
 ) -> anyhow::Result<Bench> {
@@ -328,8 +380,13 @@ pub fn measure(
     } else {
         None
     };
-    let sizes: &[[u32; 2]] = if quick { &QUICK_SIZES } else { &FULL_SIZES };
-    let ns: &[u32] = if quick { &QUICK_N } else { &FULL_N };
+    let mut sizes: &[[u32; 2]] = if quick { &QUICK_SIZES } else { &FULL_SIZES };
+    let mut ns: &[u32] = if quick { &QUICK_N } else { &FULL_N };
+    match only {
+        Some("frames") => ns = &[],
+        Some("waves") => sizes = &[],
+        _ => {}
+    }
     let mut cases = Vec::new();
     for info in SYSTEMS {
         for &size in sizes {
@@ -344,9 +401,13 @@ pub fn measure(
             }
         }
     }
+    let bandwidth = match renderer.as_ref() {
+        Some(r) => Some(copy_bandwidth(r.gpu())?),
+        None => None,
+    };
     for &n in ns {
         progress(&format!("waves N = {n}"));
-        let g = renderer.as_ref().map(|r| r.gpu());
+        let g = renderer.as_ref().map(|r| r.gpu()).zip(bandwidth);
         let mut w = waves(g, n, runs)?;
         if !cpu {
             w.retain(|c| c.backend == "gpu");
@@ -358,6 +419,7 @@ pub fn measure(
         runs,
         cores: std::thread::available_parallelism().map_or(1, |n| n.get()),
         adapter: renderer.as_ref().map(|r| r.adapter().to_string()),
+        gpu_copy_gb_s: bandwidth,
         fits: fits(&cases),
         cases,
         total_s: start.elapsed().as_secs_f64(),
@@ -377,6 +439,9 @@ pub fn table(b: &Bench) -> String {
         b.adapter.as_deref().unwrap_or("not used"),
         b.total_s
     );
+    if let Some(bw) = b.gpu_copy_gb_s {
+        let _ = writeln!(out, "GPU buffer copy: {bw:.1} GB/s (read + written)");
+    }
     let _ = writeln!(
         out,
         "{:<6} {:<20} {:>9} {:<4} {:>10} {:>10} {:>9}  passes (ms)",
@@ -389,7 +454,10 @@ pub fn table(b: &Bench) -> String {
             _ => String::new(),
         };
         let opt = |v: Option<f64>, p: usize| v.map_or("—".to_owned(), |v| format!("{v:.p$}"));
-        let passes: Vec<String> = c.passes.iter().map(|(p, v)| format!("{p} {v:.2}")).collect();
+        let mut passes: Vec<String> = c.passes.iter().map(|(p, v)| format!("{p} {v:.2}")).collect();
+        if let Some(bound) = c.bandwidth_bound_ms {
+            passes.push(format!("bandwidth bound {bound:.4} ms ({:.0}× it)", c.frame_ms / bound));
+        }
         let _ = writeln!(
             out,
             "{:<6} {:<20} {:>9} {:<4} {:>10.2} {:>10} {:>9}  {}",
@@ -420,7 +488,7 @@ pub fn table(b: &Bench) -> String {
 pub fn run(args: Args) -> anyhow::Result<()> {
     let runs = args.runs.unwrap_or(if args.quick { 3 } else { 5 }).max(1);
     let bar = indicatif::ProgressBar::new_spinner();
-    let b = measure(args.quick, &args.backend, runs, &mut |what| {
+    let b = measure(args.quick, &args.backend, args.only.as_deref(), runs, &mut |what| {
         bar.set_message(what.to_owned());
         bar.tick();
     })?;

@@ -435,8 +435,13 @@ fn bench_quick_times_every_system_on_both_back_ends() {
         }
     }
     let waves: Vec<_> = cases.iter().filter(|c| c["kind"] == "waves").collect();
-    assert_eq!(waves.len(), 4, "N = 64 and 128 on both back ends");
+    assert_eq!(waves.len(), 8, "N = 64 and 128: the CPU, the frame's GPU FFT, both its kernels");
     assert!(json["adapter"].is_string());
+    assert!(json["gpu_copy_gb_s"].as_f64().is_some_and(|b| b > 0.0));
+    for c in waves.iter().filter(|c| c["backend"] == "gpu") {
+        let bound = c["bandwidth_bound_ms"].as_f64().expect("a GPU synthesis has its bound");
+        assert!(bound > 0.0 && bound < c["frame_ms"].as_f64().unwrap_or(0.0), "{c}");
+    }
 }
 
 fn bench_cpu_alone_needs_no_gpu_and_prints_a_table() {

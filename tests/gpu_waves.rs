@@ -541,6 +541,48 @@ fn gpu_matches_ocean_core_at_large_time() {
     }
 }
 
+/// The shared-memory FFT (one dispatch per axis, `FftKernel::Shared`, the default up to N =
+/// 1024) against the one-stage dispatches on the same device: the same butterflies and
+/// operations in another order of memory traffic. The CPU mirror shows them bit-identical
+/// (`ocean_cpu::shaders::waves` unit test); on the GPU they must be within the GPU↔mirror
+/// tolerance, and the count of values that are not bit-identical is printed.
+fn shared_memory_fft_matches_the_one_stage_fft() {
+    use ocean_gpu::waves::FftKernel;
+    let gpu = gpu("shared_memory_fft_matches_the_one_stage_fft")
+        .expect("the harness runs GPU tests with a GPU");
+    for n in [16, 256, 1024] {
+        let modes = build(n, Dispersion::deep(G));
+        let shared = GpuWaves::with_kernel(&gpu.device, &modes, FftKernel::Shared).unwrap();
+        let stages = GpuWaves::with_kernel(&gpu.device, &modes, FftKernel::Stages).unwrap();
+        assert_eq!(GpuWaves::new(&gpu.device, &modes).unwrap().kernel(), FftKernel::Shared);
+        let (a, b) = (gpu.run(&shared, 3.7, 1.3), gpu.run(&stages, 3.7, 1.3));
+        let (fa, fb) = (fields_of(&a), fields_of(&b));
+        let differ: usize =
+            fa.iter().zip(&fb).map(|(x, y)| x.iter().zip(y).filter(|(p, q)| p != q).count()).sum();
+        let wide: [Vec<f64>; 6] = fb.clone().map(|f| f.iter().map(|&v| f64::from(v)).collect());
+        let e = rel_errors(&fa, &wide);
+        println!(
+            "N = {n}: shared vs one-stage FFT: {differ} of {} values not bit-identical, rel [{}]",
+            6 * n * n,
+            e.map(|e| format!("{e:.1e}")).join(" ")
+        );
+        assert!(worst(&e) <= GPU_REL, "{e:?}");
+        // Lavapipe (CI) compiles both forms alike: measured bit-identical at every N.
+        if gpu.info.name.contains("llvmpipe") {
+            assert_eq!(differ, 0, "lavapipe: the two FFT kernels differ");
+        }
+        // The control: the sea a second later is far outside.
+        let later = fields_of(&gpu.run(&shared, 4.7, 1.3));
+        assert!(worst(&rel_errors(&later, &wide)) > 100.0 * GPU_REL);
+    }
+    let too_big = build(2048, Dispersion::deep(G));
+    assert!(matches!(
+        GpuWaves::with_kernel(&gpu.device, &too_big, FftKernel::Shared),
+        Err(WavesError::TooLarge { .. })
+    ));
+    assert_eq!(GpuWaves::new(&gpu.device, &too_big).unwrap().kernel(), FftKernel::Stages);
+}
+
 // ---------------------------------------------------------------------------------------------
 // (c) Phase at t = 10⁶ s and looping
 
@@ -751,7 +793,7 @@ fn main() -> std::process::ExitCode {
             mirror_flat_fields_without_choppiness, mirror_comparator_rejects_wrong_twiddles_and_h0,
             uniforms_are_shared;
         gpu: gpu_matches_the_mirror_dispatch_by_dispatch, gpu_cos_sin_against_rust,
-            gpu_matches_ocean_core_at_large_time;
+            gpu_matches_ocean_core_at_large_time, shared_memory_fft_matches_the_one_stage_fft;
         gpu_part: non_power_of_two_is_an_error, phase_is_accurate_at_a_million_seconds,
             looping_repeats_bit_for_bit, gpu_comparator_rejects_wrong_twiddles_and_h0;
     )

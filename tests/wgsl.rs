@@ -316,6 +316,8 @@ fn rust_consts() -> Vec<(&'static str, f64)> {
         ("HABLE_WHITE_SCALE", f64::from(tonemap::HABLE_WHITE_SCALE)),
         ("TAU", f64::from(waves::TAU)),
         ("TURN_UNIT", f64::from(waves::TURN_UNIT)),
+        ("FFT_SHARED_MAX", f64::from(ocean_core::waves::uniforms::FFT_SHARED_MAX)),
+        ("FFT_SHARED_THREADS", f64::from(ocean_core::waves::uniforms::FFT_SHARED_THREADS)),
         ("MIN_CHROMATICITY_Y", f64::from(preetham::MIN_CHROMATICITY_Y)),
         ("INV_PI", f64::from(objects::INV_PI)),
         ("SIN_C3", f64::from(waves::SIN_C3)),

@@ -28,7 +28,7 @@ use ocean_core::waves::{OceanSurface, Synthesizer, WaveMaps};
 
 use crate::device::{Error, Gpu};
 use crate::texture::{GpuTexture, MAP_FORMAT, map_usage};
-use crate::waves::{GpuWaves, WaveTexture, WavesError};
+use crate::waves::{FftKernel, GpuWaves, WaveTexture, WavesError};
 
 /// The three maps the water stage binds (group 0, bindings 1–3).
 pub struct WaveTextures {
@@ -165,9 +165,14 @@ impl GpuFft {
         let unavailable = |e: WavesError| {
             Error::Unavailable(format!("stage `waves` on the GPU: {e}; use the CPU synthesis"))
         };
-        let displacement =
-            GpuWaves::new(&gpu.device, &surface.displacement).map_err(unavailable)?;
-        let bump = GpuWaves::new(&gpu.device, &surface.bump).map_err(unavailable)?;
+        // The FFT's dispatch form for this adapter (`FftKernel::for_adapter`): the same maps
+        // either way.
+        let waves = |modes: &ocean_core::waves::WaveModes| {
+            let kernel = FftKernel::for_adapter(&gpu.info, modes.resolution());
+            GpuWaves::with_kernel(&gpu.device, modes, kernel).map_err(unavailable)
+        };
+        let displacement = waves(&surface.displacement)?;
+        let bump = waves(&surface.bump)?;
         let (n_d, n_b) = (surface.displacement.resolution(), surface.bump.resolution());
         Ok(Self {
             displacement,

@@ -6,8 +6,13 @@
 //! and the FFT stage formula: ocean-core's `waves::uniforms`. The CPU mirror, dispatch for
 //! dispatch: `ocean_cpu::shaders::waves`.
 //!
-//! A frame is `spectrum` into ping, then 2·log₂N FFT dispatches (rows, then columns)
-//! alternating ping → pong → ping …, then `pack` from ping. N must be a power of two.
+//! A frame is `spectrum` into ping, the FFT, then `pack` from ping. N must be a power of two.
+//! The FFT ([`FftKernel`]): for N ≤ [`FFT_SHARED_MAX`] one dispatch per axis
+//! (`fft_rows_shared`, `fft_columns_shared`: a workgroup per line holds it in workgroup memory
+//! through every stage, ping → pong → ping), else 2·log₂N one-stage dispatches (rows, then
+//! columns) alternating ping → pong → ping …. Both do the same butterflies with the same
+//! operations; [`GpuWaves::encode_dispatches`] runs the one-stage form, dispatch by dispatch,
+//! for the comparison with the CPU mirror.
 //!
 //! The three textures are written for every map: the water stage takes `displacement` and
 //! `displacement_slopes` from the displacement map's `GpuWaves` and `bump` from the bump
@@ -105,6 +110,34 @@ pub enum WavesBuffer {
     Pong,
 }
 
+pub use ocean_core::waves::uniforms::{FFT_SHARED_MAX, FFT_SHARED_THREADS};
+
+/// How the FFT's stages are dispatched.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FftKernel {
+    /// One dispatch per stage and axis (2·log₂N), through the storage buffers.
+    Stages,
+    /// One dispatch per axis, the line in workgroup memory between stages (N ≤
+    /// [`FFT_SHARED_MAX`], and the device's workgroup limits at least WebGPU's defaults).
+    Shared,
+}
+
+impl FftKernel {
+    /// The kernel the frame uses on `adapter` for N = `resolution`: [`Self::Shared`] where it
+    /// fits, except on a software adapter (`DeviceType::Cpu`, e.g. lavapipe), where it was
+    /// measured 1.2× (N = 1024) to 2.8× (N = 128) slower than [`Self::Stages`]: llvmpipe runs
+    /// a workgroup's invocations on one thread and pays for each barrier (`ocean bench`).
+    pub fn for_adapter(adapter: &wgpu::AdapterInfo, resolution: usize) -> Self {
+        if adapter.device_type == wgpu::DeviceType::Cpu
+            || resolution as u64 > u64::from(FFT_SHARED_MAX)
+        {
+            Self::Stages
+        } else {
+            Self::Shared
+        }
+    }
+}
+
 const WORKGROUP_2D: u32 = 8;
 const WORKGROUP_FFT: u32 = 64;
 const ARRAYS: u32 = 4;
@@ -122,6 +155,9 @@ pub struct GpuWaves {
     spectrum: wgpu::ComputePipeline,
     fft_rows: wgpu::ComputePipeline,
     fft_columns: wgpu::ComputePipeline,
+    fft_rows_shared: wgpu::ComputePipeline,
+    fft_columns_shared: wgpu::ComputePipeline,
+    kernel: FftKernel,
     pack: wgpu::ComputePipeline,
     shared_group: wgpu::BindGroup,
     /// Group 1 of `spectrum` (dst = ping), of each FFT pass, and of `pack` (src = ping).
@@ -199,12 +235,32 @@ impl GpuWaves {
     /// N not a power of two ([`WavesError::Core`]), larger than the device holds
     /// ([`WavesError::TooLarge`]), or a wgpu validation error.
     pub fn new(device: &wgpu::Device, modes: &WaveModes) -> Result<Self, WavesError> {
+        let limits = device.limits();
+        let shared = modes.resolution() as u64 <= u64::from(FFT_SHARED_MAX)
+            && limits.max_compute_workgroup_storage_size >= 2 * FFT_SHARED_MAX * 8
+            && limits.max_compute_invocations_per_workgroup >= FFT_SHARED_THREADS
+            && limits.max_compute_workgroup_size_x >= FFT_SHARED_THREADS;
+        let kernel = if shared { FftKernel::Shared } else { FftKernel::Stages };
+        Self::with_kernel(device, modes, kernel)
+    }
+
+    /// [`Self::new`] with the FFT dispatched as `kernel` says ([`FftKernel::Shared`] for N
+    /// beyond [`FFT_SHARED_MAX`] is [`WavesError::TooLarge`]).
+    ///
+    /// # Errors
+    /// As [`Self::new`].
+    pub fn with_kernel(
+        device: &wgpu::Device,
+        modes: &WaveModes,
+        kernel: FftKernel,
+    ) -> Result<Self, WavesError> {
         let n = modes.resolution();
         check_fft_size(n)?;
         let limits = device.limits();
         let needed = u64::from(ARRAYS) * (n * n) as u64 * 8;
         let limit_bytes = limits.max_storage_buffer_binding_size.min(limits.max_buffer_size);
         if needed > limit_bytes
+            || (kernel == FftKernel::Shared && n as u64 > u64::from(FFT_SHARED_MAX))
             || n as u64 > u64::from(limits.max_texture_dimension_2d)
             || (n as u64) > u64::from(limits.max_compute_workgroups_per_dimension)
         {
@@ -216,14 +272,14 @@ impl GpuWaves {
             });
         }
         let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let built = Self::build(device, modes);
+        let built = Self::build(device, modes, kernel);
         if let Some(e) = pollster::block_on(scope.pop()) {
             return Err(WavesError::Validation(e.to_string()));
         }
         Ok(built)
     }
 
-    fn build(device: &wgpu::Device, modes: &WaveModes) -> Self {
+    fn build(device: &wgpu::Device, modes: &WaveModes, kernel: FftKernel) -> Self {
         let n = modes.resolution() as u32;
         let source = ocean_core::shader_source::stage_source("waves")
             .expect("the waves stage is embedded and has no imports");
@@ -359,6 +415,9 @@ impl GpuWaves {
             spectrum: pipeline("spectrum"),
             fft_rows: pipeline("fft_rows"),
             fft_columns: pipeline("fft_columns"),
+            fft_rows_shared: pipeline("fft_rows_shared"),
+            fft_columns_shared: pipeline("fft_columns_shared"),
+            kernel,
             pack: pipeline("pack"),
             shared_group,
             spectrum_group,
@@ -373,6 +432,11 @@ impl GpuWaves {
     /// N.
     pub fn resolution(&self) -> usize {
         self.resolution as usize
+    }
+
+    /// How a frame dispatches the FFT.
+    pub fn kernel(&self) -> FftKernel {
+        self.kernel
     }
 
     /// Writes the uniforms of time `t` and `choppiness` (reduced and split in f64 on the CPU)
@@ -406,7 +470,10 @@ impl GpuWaves {
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) -> Result<(), WavesError> {
         self.write_uniforms(queue, t, choppiness)?;
-        self.record(encoder, 0..self.dispatch_count(), timestamps);
+        match self.kernel {
+            FftKernel::Stages => self.record(encoder, 0..self.dispatch_count(), timestamps),
+            FftKernel::Shared => self.record_shared(encoder, timestamps),
+        }
         Ok(())
     }
 
@@ -484,7 +551,8 @@ impl GpuWaves {
         Ok(())
     }
 
-    /// The number of dispatches of a frame: `spectrum`, 2·log₂N FFT passes, `pack`.
+    /// The number of dispatches of a frame of the one-stage FFT ([`FftKernel::Stages`], what
+    /// [`Self::encode_dispatches`] runs): `spectrum`, 2·log₂N FFT passes, `pack`.
     pub fn dispatch_count(&self) -> usize {
         2 * self.resolution.trailing_zeros() as usize + 2
     }
@@ -533,6 +601,36 @@ impl GpuWaves {
                 pass.dispatch_workgroups(tiles, tiles, 1);
             }
         }
+    }
+
+    /// A frame with the shared-memory FFT: `spectrum` (→ ping), `fft_rows_shared` (ping →
+    /// pong), `fft_columns_shared` (pong → ping), `pack` (from ping).
+    fn record_shared(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) {
+        let n = self.resolution;
+        let tiles = n.div_ceil(WORKGROUP_2D);
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("ocean.waves"),
+            timestamp_writes,
+        });
+        pass.set_bind_group(0, &self.shared_group, &[]);
+        pass.set_bind_group(2, &self.texture_group, &[]);
+        pass.set_pipeline(&self.spectrum);
+        pass.set_bind_group(1, &self.spectrum_group, &[]);
+        pass.dispatch_workgroups(tiles, tiles, 1);
+        // The one-stage groups 0 (ping → pong) and 1 (pong → ping); their stage uniform is
+        // not read.
+        for (pipeline, group) in [(&self.fft_rows_shared, 0), (&self.fft_columns_shared, 1)] {
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(1, &self.pass_groups[group], &[]);
+            pass.dispatch_workgroups(n, ARRAYS, 1);
+        }
+        pass.set_pipeline(&self.pack);
+        pass.set_bind_group(1, &self.pack_group, &[]);
+        pass.dispatch_workgroups(tiles, tiles, 1);
     }
 
     /// An output texture.

@@ -231,6 +231,14 @@ pub fn check_fft_size(resolution: usize) -> Result<()> {
     }
 }
 
+/// The largest N of the shared-memory FFT (`FFT_SHARED_MAX` in `waves.wgsl`: entry points
+/// `fft_rows_shared`, `fft_columns_shared`): two lines of N complex f32 in workgroup memory,
+/// 16 KiB, the workgroup storage every WebGPU device offers.
+pub const FFT_SHARED_MAX: u32 = 1024;
+/// Threads per workgroup of the shared-memory FFT (`FFT_SHARED_THREADS`), WebGPU's default
+/// limit of invocations per workgroup.
+pub const FFT_SHARED_THREADS: u32 = 256;
+
 /// The Stockham pass parameters of every FFT pass of one frame, rows then columns.
 pub fn fft_passes(resolution: usize) -> Vec<FftPassUniforms> {
     let stages = resolution.trailing_zeros();

@@ -13,8 +13,8 @@
 
 use ocean_core::waves::WaveModes;
 use ocean_core::waves::uniforms::{
-    FftPassUniforms, WaveModeData, WavesUniforms, check_fft_size, fft_passes, fft_twiddles,
-    wave_mode_table,
+    FFT_SHARED_MAX, FftPassUniforms, WaveModeData, WavesUniforms, check_fft_size, fft_passes,
+    fft_twiddles, wave_mode_table,
 };
 
 use crate::sampler::Texture2D;
@@ -168,6 +168,68 @@ pub fn fft_columns(
         return;
     }
     butterfly(id[2] * n * n + id[1], n, id[0], params, fft_pass, twiddles, src, dst);
+}
+
+/// `fft_line_shared(base, stride, local)` of every thread of a workgroup, one stage after
+/// another as the barriers order them: the line's whole FFT in the workgroup's `fft_line`
+/// (two halves, at 0 and at [`FFT_SHARED_MAX`], read and written in turn), then written to
+/// `dst`.
+pub fn fft_line_shared(
+    base: u32,
+    stride: u32,
+    params: &WavesUniforms,
+    twiddles: &[Vec2],
+    src: &[Vec2],
+    dst: &mut [Vec2],
+) {
+    let n = params.size;
+    let half = n / 2;
+    let mut fft_line = vec![[0.0f32; 2]; 2 * FFT_SHARED_MAX as usize];
+    for i in 0..n {
+        fft_line[i as usize] = src[(base + i * stride) as usize];
+    }
+    let (mut read_at, mut write_at) = (0u32, FFT_SHARED_MAX);
+    for stage in 0..params.log2_size {
+        let s = 1u32 << stage;
+        for j in 0..half {
+            let q = j & (s - 1);
+            let a = fft_line[(read_at + j) as usize];
+            let b = fft_line[(read_at + j + half) as usize];
+            let w = twiddles[(j - q) as usize];
+            let d = [a[0] - b[0], a[1] - b[1]];
+            let out = 2 * j - q;
+            fft_line[(write_at + out) as usize] = [a[0] + b[0], a[1] + b[1]];
+            fft_line[(write_at + out + s) as usize] = complex_mul(d, w);
+        }
+        std::mem::swap(&mut read_at, &mut write_at);
+    }
+    for i in 0..n {
+        dst[(base + i * stride) as usize] = fft_line[(read_at + i) as usize];
+    }
+}
+
+/// `fft_rows_shared(group)`: group.x row, group.y array.
+pub fn fft_rows_shared(
+    group: [u32; 3],
+    params: &WavesUniforms,
+    twiddles: &[Vec2],
+    src: &[Vec2],
+    dst: &mut [Vec2],
+) {
+    let n = params.size;
+    fft_line_shared(group[1] * n * n + group[0] * n, 1, params, twiddles, src, dst);
+}
+
+/// `fft_columns_shared(group)`: group.x column, group.y array.
+pub fn fft_columns_shared(
+    group: [u32; 3],
+    params: &WavesUniforms,
+    twiddles: &[Vec2],
+    src: &[Vec2],
+    dst: &mut [Vec2],
+) {
+    let n = params.size;
+    fft_line_shared(group[1] * n * n + group[0], n, params, twiddles, src, dst);
 }
 
 /// The three texels `pack(id)` stores: (displacement, displacement_slopes, bump), or `None`
@@ -365,5 +427,59 @@ mod tests {
         assert_eq!(cis_turns(0.0), [1.0, 0.0]);
         assert_eq!(cis_turns(0.25), [-0.0, 1.0]);
         assert_eq!(cis_turns(-0.5), [-1.0, -0.0]);
+    }
+
+    /// The shared-memory FFT (one dispatch per axis) against the one-stage dispatches: the
+    /// same butterflies in the same order of operations, so bit for bit, at every N it runs.
+    #[test]
+    fn the_shared_memory_fft_is_the_one_stage_fft() {
+        for n in [2u32, 8, 64, 1024] {
+            let size = (ARRAYS * n * n) as usize;
+            let mut state = 0x2545_f491_4f6c_dd1d_u64 ^ u64::from(n);
+            let mut next = || {
+                state ^= state << 13;
+                state ^= state >> 7;
+                state ^= state << 17;
+                (state >> 40) as f32 / (1u64 << 24) as f32 - 0.5
+            };
+            let input: Vec<Vec2> = (0..size).map(|_| [next(), next()]).collect();
+            let params = WavesUniforms {
+                size: n,
+                log2_size: n.trailing_zeros(),
+                time_ticks: [0, 0],
+                time_remainder: 0.0,
+                lambda: 0.0,
+                pad0: 0,
+                pad1: 0,
+            };
+            let twiddles = fft_twiddles(n as usize);
+            let mut stages = input.clone();
+            let mut scratch = vec![[0.0f32; 2]; size];
+            for (p, pass) in fft_passes(n as usize).iter().enumerate() {
+                let rows = p < n.trailing_zeros() as usize;
+                for id in (0..ARRAYS)
+                    .flat_map(|a| (0..n).flat_map(move |l| (0..n / 2).map(move |j| [j, l, a])))
+                {
+                    if rows {
+                        fft_rows(id, &params, pass, &twiddles, &stages, &mut scratch);
+                    } else {
+                        fft_columns(id, &params, pass, &twiddles, &stages, &mut scratch);
+                    }
+                }
+                std::mem::swap(&mut stages, &mut scratch);
+            }
+            let mut pong = vec![[0.0f32; 2]; size];
+            let mut ping = vec![[0.0f32; 2]; size];
+            for group in (0..ARRAYS).flat_map(|a| (0..n).map(move |l| [l, a, 0])) {
+                fft_rows_shared(group, &params, &twiddles, &input, &mut pong);
+            }
+            for group in (0..ARRAYS).flat_map(|a| (0..n).map(move |l| [l, a, 0])) {
+                fft_columns_shared(group, &params, &twiddles, &pong, &mut ping);
+            }
+            let differ = ping.iter().zip(&stages).filter(|(a, b)| a != b).count();
+            assert_eq!(differ, 0, "N = {n}: {differ} of {size} values differ");
+            // The control: the input itself differs from its transform.
+            assert!(input.iter().zip(&ping).filter(|(a, b)| a != b).count() > size / 2);
+        }
     }
 }
