@@ -264,7 +264,7 @@ fn the_sea_and_the_callers_boxes_hide_each_other() {
         assert!(box_over_sea > 200 && sea_over_box > 100, "the scene tests both ways");
         for boxes_first in [true, false] {
             let both = draw(&c, Some(&mut ocean), &boxes, format, compare, &cam, 2.0, boxes_first);
-            let bad = check_occlusion(&both, &sea, &only_boxes, compare, compare);
+            let bad = check_occlusion(&both, &sea, &only_boxes, compare);
             assert_eq!(bad, 0, "{compare:?}, boxes first {boxes_first}: {bad} pixels wrong");
         }
         // Negative control: the sea told the opposite convention of the caller's buffer.
@@ -276,27 +276,21 @@ fn the_sea_and_the_callers_boxes_hide_each_other() {
             EmbeddedOcean::new(&c.adapter, &c.device, &c.queue, scene(), target(format, other))
                 .unwrap();
         let both = draw(&c, Some(&mut wrong), &boxes, format, compare, &cam, 2.0, true);
-        let bad = check_occlusion(&both, &sea, &only_boxes, compare, compare);
+        let bad = check_occlusion(&both, &sea, &only_boxes, compare);
         assert!(bad > 100, "{compare:?}: the wrong convention passed the check ({bad} wrong)");
     }
 }
 
 /// Pixels of `both` that are neither the box (where its depth is nearer than the sea's) nor
 /// the sea (elsewhere), in colour or in depth.
-fn check_occlusion(
-    both: &Drawn,
-    sea: &Drawn,
-    boxes: &Drawn,
-    compare: DepthCompare,
-    buffer: DepthCompare,
-) -> usize {
+fn check_occlusion(both: &Drawn, sea: &Drawn, boxes: &Drawn, compare: DepthCompare) -> usize {
     let nearer = |a: f32, b: f32| match compare {
         DepthCompare::Less => a < b,
         DepthCompare::Greater => a > b,
     };
     (0..(W * H) as usize)
         .filter(|&i| {
-            let on_box = boxes.depth[i] != far(buffer);
+            let on_box = boxes.depth[i] != far(compare);
             let want = if on_box && nearer(boxes.depth[i], sea.depth[i]) { boxes } else { sea };
             both.color[i] != want.color[i] || both.depth[i] != want.depth[i]
         })
