@@ -435,7 +435,8 @@ fn wave_mips_match_the_cpu_mirror_bit_for_bit() {
     let chain = GpuMipChain::new(d, "wave-mips-check", w, h);
     let stage = WaveMipsStage::new(d).expect("the wave_mips pipelines");
     let mut encoder = d.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
-    stage.encode(d, &mut encoder, &slopes, &chain);
+    let kept = ocean_gpu::pool::FramePool::new(d, &gpu.queue);
+    stage.encode(&kept, &mut encoder, &slopes, &chain);
     let atlas = chain.pack(d, &mut encoder);
     let mut readback: Readbacks<()> = Readbacks::default();
     readback.copy(d, &mut encoder, (), "wave-mips-check", &atlas, MAP_FORMAT);

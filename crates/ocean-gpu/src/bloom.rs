@@ -5,10 +5,11 @@
 //! chain's coarsest level is a copy of the down chain's. CPU mirror:
 //! `ocean-cpu/src/shaders/bloom.rs`; what each step does and why: `ocean_core::bloom`.
 
+use crate::created::Counted;
 use ocean_core::frame_format::FrameFormat;
 use ocean_core::plan::BloomInputs;
 
-use crate::common::{bind_group, entry, label, pipeline_layout, shader_module, uniform_buffer};
+use crate::common::{entry, label, pipeline_layout, shader_module};
 use crate::device::Error;
 use crate::wave_mips::GpuMipChain;
 
@@ -46,13 +47,13 @@ impl BloomStage {
                     )));
                 }
                 let source = source.replace(declared, "texture_storage_2d<rgba16float, write>");
-                device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                device.new_shader_module(wgpu::ShaderModuleDescriptor {
                     label: Some(&name),
                     source: wgpu::ShaderSource::Wgsl(source.into()),
                 })
             }
         };
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        let layout = device.new_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some(&name),
             entries: &[
                 crate::common::uniform_entry(0, wgpu::ShaderStages::COMPUTE),
@@ -63,7 +64,7 @@ impl BloomStage {
         });
         let pipeline_layout = pipeline_layout(device, &name, &[&layout]);
         let make = |entry_point: &str| -> Result<wgpu::ComputePipeline, Error> {
-            Ok(device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            Ok(device.new_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                 label: Some(&name),
                 layout: Some(&pipeline_layout),
                 module: &module,
@@ -85,7 +86,7 @@ impl BloomStage {
     /// them the copy of the coarsest level), timed by `timestamps` (down, up).
     pub fn encode(
         &self,
-        device: &wgpu::Device,
+        kept: &crate::pool::FramePool,
         encoder: &mut wgpu::CommandEncoder,
         hdr: &wgpu::TextureView,
         inputs: &BloomInputs,
@@ -99,9 +100,8 @@ impl BloomStage {
                      src: &wgpu::TextureView,
                      dst: &wgpu::TextureView,
                      detail: &wgpu::TextureView| {
-            let uniforms = uniform_buffer(device, &name, params);
-            bind_group(
-                device,
+            let uniforms = kept.uniform(&name, params);
+            kept.bind_group(
                 &name,
                 &self.layout,
                 &[

@@ -1,7 +1,7 @@
 //! What the stage modules share: shader modules from the embedded WGSL, the fixed-function
 //! state the CPU rasterizer mirrors, bind-group-layout entries and uniform buffers.
 
-use wgpu::util::DeviceExt;
+use crate::created::Counted;
 
 use crate::device::Error;
 use crate::texture::DEPTH_FORMAT;
@@ -44,7 +44,7 @@ pub fn shader_module_with(
     techniques: &ocean_core::plan::Techniques,
 ) -> Result<wgpu::ShaderModule, Error> {
     let source = ocean_core::shader_source::stage_source_with(stage, techniques)?;
-    Ok(device.create_shader_module(wgpu::ShaderModuleDescriptor {
+    Ok(device.new_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some(&label(stage)),
         source: wgpu::ShaderSource::Wgsl(source.into()),
     }))
@@ -160,7 +160,7 @@ pub fn linear_sampler(
     label: &str,
     mode: wgpu::AddressMode,
 ) -> wgpu::Sampler {
-    device.create_sampler(&wgpu::SamplerDescriptor {
+    device.new_sampler(&wgpu::SamplerDescriptor {
         label: Some(label),
         address_mode_u: mode,
         address_mode_v: mode,
@@ -190,7 +190,7 @@ pub fn uniform_buffer<T: bytemuck::Pod>(
     label: &str,
     value: &T,
 ) -> wgpu::Buffer {
-    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+    device.new_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some(label),
         contents: bytemuck::bytes_of(value),
         usage: wgpu::BufferUsages::UNIFORM,
@@ -209,7 +209,7 @@ pub fn bind_group(
         .enumerate()
         .map(|(i, r)| wgpu::BindGroupEntry { binding: i as u32, resource: r.clone() })
         .collect();
-    device.create_bind_group(&wgpu::BindGroupDescriptor {
+    device.new_bind_group(&wgpu::BindGroupDescriptor {
         label: Some(label),
         layout,
         entries: &entries,
@@ -223,7 +223,7 @@ pub fn pipeline_layout(
     groups: &[&wgpu::BindGroupLayout],
 ) -> wgpu::PipelineLayout {
     let groups: Vec<Option<&wgpu::BindGroupLayout>> = groups.iter().map(|g| Some(*g)).collect();
-    device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+    device.new_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some(label),
         bind_group_layouts: &groups,
         immediate_size: 0,
@@ -298,7 +298,7 @@ pub fn fullscreen_pipeline(
     format: wgpu::TextureFormat,
 ) -> Result<wgpu::RenderPipeline, Error> {
     let name = &label(stage);
-    Ok(device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+    Ok(device.new_render_pipeline(&wgpu::RenderPipelineDescriptor {
         label: Some(name),
         layout: Some(&pipeline_layout(device, name, &[layout])),
         vertex: wgpu::VertexState {

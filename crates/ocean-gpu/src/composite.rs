@@ -7,11 +7,12 @@
 //! Bindings: group 0 — 0 the uniforms, 1 the output, 2 the frame's depth (`textureLoad`
 //! only). CPU mirror: `ocean-cpu/src/shaders/composite.rs`.
 
+use crate::created::Counted;
 use ocean_core::composite::CompositeUniforms;
 
 use crate::common::{
-    Load, begin_render_pass, bind_group, entry, label, pipeline_layout, primitive, shader_module,
-    texture_entry, uniform_buffer, uniform_entry,
+    Load, begin_render_pass, entry, label, pipeline_layout, primitive, shader_module,
+    texture_entry, uniform_entry,
 };
 use crate::device::Error;
 
@@ -38,7 +39,7 @@ impl CompositeStage {
         let name = label("composite");
         let module = shader_module(device, "composite")?;
         let fragment = wgpu::ShaderStages::FRAGMENT;
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        let layout = device.new_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some(&name),
             entries: &[
                 uniform_entry(0, fragment),
@@ -55,7 +56,7 @@ impl CompositeStage {
                 },
             ],
         });
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        let pipeline = device.new_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some(&name),
             layout: Some(&pipeline_layout(device, &name, &[&layout])),
             vertex: wgpu::VertexState {
@@ -90,7 +91,7 @@ impl CompositeStage {
     #[allow(clippy::too_many_arguments)]
     pub fn encode(
         &self,
-        device: &wgpu::Device,
+        kept: &crate::pool::FramePool,
         encoder: &mut wgpu::CommandEncoder,
         uniforms: &CompositeUniforms,
         output: &wgpu::TextureView,
@@ -99,9 +100,8 @@ impl CompositeStage {
         depth: &wgpu::TextureView,
     ) {
         let name = label("composite");
-        let buffer = uniform_buffer(device, &name, uniforms);
-        let group = bind_group(
-            device,
+        let buffer = kept.uniform(&name, uniforms);
+        let group = kept.bind_group(
             &name,
             &self.layout,
             &[

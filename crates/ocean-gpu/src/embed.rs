@@ -86,7 +86,6 @@ use ocean_core::scene::Scene;
 use crate::composite::CompositeStage;
 use crate::device::{Error, Gpu};
 use crate::frame::Renderer;
-use crate::texture::GpuTexture;
 use crate::timing::PassTimer;
 use crate::wave_maps::WaveSynthesis;
 
@@ -295,21 +294,26 @@ impl EmbeddedOcean {
             "recording the embedded frame",
             || -> Result<(), Error> {
                 let recorded = renderer.record(&inputs, state, encoder, PassTimer::off())?;
-                let gpu = renderer.gpu();
+
+                let kept = renderer.kept();
                 let empty;
                 let output = match recorded.output() {
                     Some(t) => t,
                     None => {
-                        empty = GpuTexture::empty_map(gpu, "ocean.composite.empty");
+                        empty = kept.empty_map("ocean.composite.empty");
                         &empty
                     }
                 };
                 let frame_depth = match &recorded.depth {
                     Some(d) => d.clone(),
-                    None => GpuTexture::depth(&gpu.device, "ocean.composite.depth", 1, 1),
+                    None => {
+                        let usage = crate::texture::depth_usage();
+                        let format = crate::texture::DEPTH_FORMAT;
+                        kept.texture("ocean.composite.depth", 1, 1, format, usage).0
+                    }
                 };
                 composite.encode(
-                    &gpu.device,
+                    kept,
                     encoder,
                     &uniforms,
                     &output.view,

@@ -7,9 +7,10 @@
 //! `shaders/water.wgsl`, through `shaders/foam/accumulated.wgsl`).
 //! CPU mirror: `ocean-cpu/src/shaders/foam.rs`.
 
+use crate::created::Counted;
 use ocean_core::foam::{FieldGrid, FoamStepUniforms};
 
-use crate::common::{bind_group, entry, label, pipeline_layout, shader_module, uniform_buffer};
+use crate::common::{entry, label, pipeline_layout, shader_module};
 use crate::device::Error;
 use crate::texture::{GpuTexture, MAP_FORMAT, map_usage};
 
@@ -55,7 +56,7 @@ impl FoamStage {
         let name = label("foam");
         let module = shader_module(device, "foam")?;
         let compute = wgpu::ShaderStages::COMPUTE;
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        let layout = device.new_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some(&name),
             entries: &[
                 crate::common::uniform_entry(0, compute),
@@ -66,7 +67,7 @@ impl FoamStage {
             ],
         });
         let pipeline_layout = pipeline_layout(device, &name, &[&layout]);
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        let pipeline = device.new_compute_pipeline(&wgpu::ComputePipelineDescriptor {
             label: Some(&name),
             layout: Some(&pipeline_layout),
             module: &module,
@@ -82,7 +83,7 @@ impl FoamStage {
     #[expect(clippy::too_many_arguments, reason = "one argument per binding and the timer")]
     pub fn encode_steps(
         &self,
-        device: &wgpu::Device,
+        kept: &crate::pool::FramePool,
         encoder: &mut wgpu::CommandEncoder,
         field: &mut GpuFoam,
         steps: &[FoamStepUniforms],
@@ -95,15 +96,14 @@ impl FoamStage {
             .iter()
             .enumerate()
             .map(|(k, params)| {
-                let uniforms = uniform_buffer(device, &name, params);
+                let uniforms = kept.uniform(&name, params);
                 // Step k reads what step k − 1 wrote.
                 let (src, dst) = if k % 2 == 0 {
                     (&field.current, &field.spare)
                 } else {
                     (&field.spare, &field.current)
                 };
-                bind_group(
-                    device,
+                kept.bind_group(
                     &name,
                     &self.layout,
                     &[

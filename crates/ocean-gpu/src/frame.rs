@@ -20,6 +20,7 @@
 //!
 //! A skipped pass leaves the plan's 1×1 zero texture where its map would be, as on the CPU.
 
+use crate::created::Counted;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -34,25 +35,27 @@ use ocean_core::plan::{
 use ocean_core::scene::{Ocean, Scene};
 use ocean_core::terrain::{Relief, relief_texels};
 use ocean_core::waves::OceanSurface;
-use wgpu::util::DeviceExt;
 
 use crate::bloom::BloomStage;
-use crate::common::{Load, begin_render_pass, bind_group, uniform_buffer};
+use crate::common::{Load, begin_render_pass};
 use crate::device::{AdapterReport, Error, Gpu};
 use crate::foam::{FoamStage, GpuFoam};
 use crate::fresnel_table::FresnelTableStage;
 use crate::objects::{ObjectsEntry, ObjectsStage, VertexChunk, vertex_chunks};
+use crate::pool::FramePool;
 use crate::shadow::ShadowStage;
 use crate::sky::SkyStage;
 use crate::spray::{GpuSpray, SprayStage};
 use crate::texture::{
-    FloatMap, GpuTexture, LDR_FORMAT, MAP_FORMAT, Readbacks, SHADOW_FORMAT, TexelData, map_usage,
+    DEPTH_FORMAT, FloatMap, GpuTexture, LDR_FORMAT, MAP_FORMAT, Readbacks, SHADOW_FORMAT,
+    TexelData, depth_usage, map_usage, target_usage,
 };
-use crate::timing::{PassTimer, PendingTimings};
+use crate::timing::{PassTimer, PendingTimings, TimerPool};
 use crate::tonemap::TonemapStage;
 use crate::water::{WaterDraw, WaterMeshBuffers, WaterStage, WaterTextures};
 use crate::wave_maps::{WaveMapSource, WaveSynthesis, make_source_from};
 use crate::wave_mips::{GpuMipChain, WaveMipsStage};
+use ocean_core::far_field::mip_level_count;
 
 /// What identifies an ocean's wave modes: everything but the time.
 pub fn wave_key(ocean: &Ocean) -> Ocean {
@@ -103,6 +106,9 @@ pub struct GpuFrame {
     pub adapter: AdapterReport,
     /// Which wave-map source made the maps, when the waves pass ran.
     pub wave_source: Option<&'static str>,
+    /// Passes whose results the renderer kept from an earlier frame because their inputs did
+    /// not change (the Fresnel tables of the same η, size and mapping): not recorded again.
+    pub reused: Vec<Pass>,
 }
 
 impl GpuFrame {
@@ -150,7 +156,18 @@ pub struct Renderer {
     /// The sea floor's relief as uploaded, and the relief it was made from (uploaded again
     /// only when the scene's relief changes).
     floor: Option<(Option<Arc<Relief>>, GpuTexture)>,
+    /// The frame's targets, buffers and bind groups, kept across frames.
+    kept: FramePool,
+    /// Timestamp query sets, back from read frames.
+    timers: TimerPool,
+    /// The Fresnel tables as last computed, with the uniforms they were computed from.
+    fresnel: KeptTables,
+    /// The far field's Fresnel filter table as uploaded, and the table it was made from.
+    filter: Option<(Arc<ocean_core::far_field::FresnelFilterTable>, GpuTexture)>,
 }
+
+/// Each Fresnel table's texture and the uniforms it was computed from.
+type KeptTables = Vec<(ResourceId, FresnelTableUniforms, GpuTexture)>;
 
 fn wgpu_format(f: Format) -> wgpu::TextureFormat {
     match f {
@@ -173,6 +190,10 @@ pub struct GpuBackend<'r> {
     spray: &'r mut Option<GpuSpray>,
     foam: &'r mut Option<GpuFoam>,
     floor_map: &'r GpuTexture,
+    kept: &'r FramePool,
+    fresnel: &'r mut KeptTables,
+    filter: &'r mut Option<(Arc<ocean_core::far_field::FresnelFilterTable>, GpuTexture)>,
+    reused: Vec<Pass>,
     encoder: &'r mut wgpu::CommandEncoder,
     timer: PassTimer,
     maps: Vec<(ResourceId, GpuTexture)>,
@@ -196,7 +217,7 @@ impl GpuBackend<'_> {
         if let Some((_, t)) = self.maps.iter().find(|(m, _)| *m == id) {
             return t.clone();
         }
-        let t = GpuTexture::empty_map(self.gpu, &format!("ocean.{}", id.name()));
+        let t = self.kept.empty_map(&format!("ocean.{}", id.name()));
         self.put(id, t.clone());
         t
     }
@@ -206,7 +227,12 @@ impl GpuBackend<'_> {
         let (size, format) =
             plan.resource(id).map_or(([1, 1], MAP_FORMAT), |r| (r.size, wgpu_format(r.format)));
         let label = format!("ocean.{}", id.name());
-        GpuTexture::target(&self.gpu.device, &label, size[0], size[1], format)
+        self.kept.texture(&label, size[0], size[1], format, target_usage()).0
+    }
+
+    /// A depth buffer of `width × height`, kept across frames.
+    fn depth_buffer(&self, label: &str, width: u32, height: u32) -> GpuTexture {
+        self.kept.texture(label, width, height, DEPTH_FORMAT, depth_usage()).0
     }
 
     /// The HDR frame and its depth, made by their first writer; with the sky skipped, that
@@ -220,12 +246,14 @@ impl GpuBackend<'_> {
                 t
             }
         };
-        let depth = self
-            .depth
-            .get_or_insert_with(|| {
-                GpuTexture::depth(&self.gpu.device, "ocean.hdr.depth", hdr.width, hdr.height)
-            })
-            .clone();
+        let depth = match &self.depth {
+            Some(d) => d.clone(),
+            None => {
+                let d = self.depth_buffer("ocean.hdr.depth", hdr.width, hdr.height);
+                self.depth = Some(d.clone());
+                d
+            }
+        };
         (hdr, depth)
     }
 
@@ -269,14 +297,7 @@ impl GpuBackend<'_> {
                 let r = frame.plan.resource(id);
                 let size = r.map_or([1, 1], |r| r.size);
                 let label = format!("ocean.waves.{}", id.name());
-                let t = GpuTexture::new(
-                    &self.gpu.device,
-                    &label,
-                    size[0],
-                    size[1],
-                    MAP_FORMAT,
-                    map_usage(),
-                );
+                let (t, _) = self.kept.texture(&label, size[0], size[1], MAP_FORMAT, map_usage());
                 crate::wave_maps::write(self.gpu, &t, &texels);
                 self.put(id, t);
             }
@@ -315,36 +336,59 @@ impl GpuBackend<'_> {
         for (src, dst) in ResourceId::SLOPE_CHAINS {
             let slopes = self.map(src);
             let label = format!("ocean.{}", dst.name());
-            let chain = GpuMipChain::new(&self.gpu.device, &label, slopes.width, slopes.height);
-            self.stages.wave_mips.encode(&self.gpu.device, self.encoder, &slopes, &chain);
+            let (w, h) = (slopes.width, slopes.height);
+            let chain = self.kept.chain(&label, w, h, mip_level_count(w, h), MAP_FORMAT);
+            self.stages.wave_mips.encode(self.kept, self.encoder, &slopes, &chain);
             self.chains.retain(|(m, _)| *m != dst);
             self.chains.push((dst, chain));
         }
         if let Some(table) = frame.plan.fresnel_filter(frame.scene) {
-            let (w, h) =
-                (ocean_core::far_field::FILTER_RADII, ocean_core::far_field::FILTER_SIGMAS);
-            let t = GpuTexture::upload_map(self.gpu, "ocean.fresnel_filter", w, h, &table.texels);
-            self.put(ResourceId::FresnelFilter, t);
+            // The table is ocean-core's cached one per η: uploaded again only when it changes.
+            if !self.filter.as_ref().is_some_and(|(kept, _)| Arc::ptr_eq(kept, &table)) {
+                let (w, h) =
+                    (ocean_core::far_field::FILTER_RADII, ocean_core::far_field::FILTER_SIGMAS);
+                let t =
+                    GpuTexture::upload_map(self.gpu, "ocean.fresnel_filter", w, h, &table.texels);
+                *self.filter = Some((table, t));
+            }
+            if let Some((_, t)) = self.filter.as_ref() {
+                let t = t.clone();
+                self.put(ResourceId::FresnelFilter, t);
+            }
         }
     }
 
     fn fresnel_textures(&mut self, frame: &FrameInputs<'_>) {
         let eta = frame.uniforms.water.eta;
+        let mut computed = false;
         for (id, eta) in [(ResourceId::FresnelAbove, eta), (ResourceId::FresnelBelow, 1.0 / eta)] {
             let size = frame.plan.resource(id).map_or(1, |r| r.size[0]);
+            let params = FresnelTableUniforms::new(eta, size, frame.plan.fresnel_mapping);
+            // A table depends on its uniforms alone: kept while they stay the same.
+            if let Some((_, _, t)) = self.fresnel.iter().find(|(i, p, _)| *i == id && *p == params)
+            {
+                let t = t.clone();
+                self.put(id, t);
+                continue;
+            }
             let label = format!("ocean.fresnel_table.{}", id.name());
             let target =
                 GpuTexture::new(&self.gpu.device, &label, size, size, MAP_FORMAT, map_usage());
-            let params = FresnelTableUniforms::new(eta, size, frame.plan.fresnel_mapping);
             let slot = self.timer.slot(Pass::FresnelTable);
             self.stages.fresnel_table.encode(
-                &self.gpu.device,
+                self.kept,
                 self.encoder,
                 &params,
                 &target,
                 self.timer.compute_writes(slot),
             );
+            self.fresnel.retain(|(i, _, _)| *i != id);
+            self.fresnel.push((id, params, target.clone()));
             self.put(id, target);
+            computed = true;
+        }
+        if !computed {
+            self.reused.push(Pass::FresnelTable);
         }
     }
 
@@ -354,14 +398,14 @@ impl GpuBackend<'_> {
         let tris = pass_triangles(frame.scene, &frame.poses, pass, frame.camera.eye);
         let vertices: &[ObjectVertex] = bytemuck::cast_slice(&tris);
         let max = self.gpu.device.limits().max_buffer_size.min(self.max_vertex_buffer_bytes);
-        vertex_chunks(&self.gpu.device, vertices, max)
+        vertex_chunks(self.kept, vertices, max)
     }
 
     fn objects_group(&mut self) -> wgpu::BindGroup {
         let displacement = self.map(ResourceId::Displacement);
         let shadow_map = self.map(ResourceId::ShadowMap);
         self.stages.objects.group(
-            &self.gpu.device,
+            self.kept,
             &self.frame_buffer,
             &displacement.view,
             &shadow_map.view,
@@ -370,17 +414,15 @@ impl GpuBackend<'_> {
     }
 
     fn frame_group(&self, layout: &wgpu::BindGroupLayout, label: &str) -> wgpu::BindGroup {
-        bind_group(&self.gpu.device, label, layout, &[self.frame_buffer.as_entire_binding()])
+        self.kept.bind_group(label, layout, &[self.frame_buffer.as_entire_binding()])
     }
 
     fn object_pass(&mut self, pass: &PlannedPass, frame: &FrameInputs<'_>) {
         let vertices = self.object_vertices(pass, frame);
-        let device = &self.gpu.device;
         match pass.name {
             Pass::ShadowMap => {
                 let target = self.target(frame.plan, ResourceId::ShadowMap);
-                let depth =
-                    GpuTexture::depth(device, "ocean.shadow.depth", target.width, target.height);
+                let depth = self.depth_buffer("ocean.shadow.depth", target.width, target.height);
                 let group = self.frame_group(&self.stages.shadow.frame_layout, "ocean.shadow");
                 let slot = self.timer.slot(Pass::ShadowMap);
                 self.stages.shadow.encode(
@@ -401,7 +443,7 @@ impl GpuBackend<'_> {
                 };
                 let target = self.target(frame.plan, id);
                 let label = format!("ocean.objects.{}", id.name());
-                let depth = GpuTexture::depth(device, &label, target.width, target.height);
+                let depth = self.depth_buffer(&label, target.width, target.height);
                 let group = self.objects_group();
                 let slot = self.timer.slot(pass.name);
                 self.stages.objects.encode(
@@ -465,23 +507,21 @@ impl GpuBackend<'_> {
             .unwrap_or_else(|| displacement_slopes.view.clone());
         let bump_view = chain_view(ResourceId::BumpMips).unwrap_or_else(|| bump.view.clone());
         let (hdr, depth) = self.start_hdr(frame.plan);
-        let device = &self.gpu.device;
         let mesh = &frame.mesh;
-        let water_vertices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("ocean.water.vertices"),
-            contents: bytemuck::cast_slice(&mesh.vertices),
-            usage: wgpu::BufferUsages::VERTEX,
-        });
-        let water_indices = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("ocean.water.indices"),
-            contents: bytemuck::cast_slice(&mesh.indices),
-            usage: wgpu::BufferUsages::INDEX,
-        });
-        let sky_buffer = uniform_buffer(device, "ocean.water.sky", &frame.environment);
-        let sky_lut = uniform_buffer(device, "ocean.water.sky_lut", &*frame.sky_lut);
+        let water_vertices = self.kept.data(
+            "ocean.water.vertices",
+            wgpu::BufferUsages::VERTEX,
+            bytemuck::cast_slice(&mesh.vertices),
+        );
+        let water_indices = self.kept.data(
+            "ocean.water.indices",
+            wgpu::BufferUsages::INDEX,
+            bytemuck::cast_slice(&mesh.indices),
+        );
+        let (sky_buffer, sky_lut) = self.sky_buffers(frame);
         let slot = self.timer.slot(Pass::Water);
         self.stages.water.encode(
-            device,
+            self.kept,
             self.encoder,
             &self.frame_buffer,
             &sky_buffer,
@@ -515,6 +555,17 @@ impl GpuBackend<'_> {
     }
 }
 
+impl GpuBackend<'_> {
+    /// The sky's uniform blocks, which passes `sky` and `water` both read: one buffer each,
+    /// uploaded once a frame at most.
+    fn sky_buffers(&self, frame: &FrameInputs<'_>) -> (wgpu::Buffer, wgpu::Buffer) {
+        (
+            self.kept.uniform("ocean.sky.sky", &frame.environment),
+            self.kept.uniform("ocean.sky.sky_lut", &*frame.sky_lut),
+        )
+    }
+}
+
 impl Backend for GpuBackend<'_> {
     type Error = Error;
 
@@ -539,13 +590,14 @@ impl Backend for GpuBackend<'_> {
 
     fn sky(&mut self, frame: &FrameInputs<'_>) -> Result<(), Error> {
         let (hdr, depth) = self.hdr(frame.plan);
+        let (sky, sky_lut) = self.sky_buffers(frame);
         let slot = self.timer.slot(Pass::Sky);
         self.stages.sky.encode(
-            &self.gpu.device,
+            self.kept,
             self.encoder,
             &frame.camera_uniforms,
-            &frame.environment,
-            &frame.sky_lut,
+            &sky,
+            &sky_lut,
             &hdr.view,
             &depth.view,
             self.timer.render_writes(slot),
@@ -594,7 +646,7 @@ impl Backend for GpuBackend<'_> {
         let displacement = self.map(ResourceId::Displacement);
         let Some(pool) = self.spray.as_mut() else { return Ok(()) };
         for u in &work.steps {
-            self.stages.spray.encode_step(device, self.encoder, pool, u, &displacement.view);
+            self.stages.spray.encode_step(self.kept, self.encoder, pool, u, &displacement.view);
         }
         pool.steps += steps;
         let u = work.draw;
@@ -602,7 +654,7 @@ impl Backend for GpuBackend<'_> {
         let slot = self.timer.slot(Pass::Spray);
         let Some(pool) = self.spray.as_ref() else { return Ok(()) };
         self.stages.spray.encode_draw(
-            &self.gpu.device,
+            self.kept,
             self.encoder,
             &self.frame_buffer,
             pool,
@@ -630,7 +682,7 @@ impl Backend for GpuBackend<'_> {
         let Some(field) = self.foam.as_mut() else { return Ok(()) };
         let slot = self.timer.slot(Pass::Foam);
         self.stages.foam.encode_steps(
-            &self.gpu.device,
+            self.kept,
             self.encoder,
             field,
             &work.steps,
@@ -647,15 +699,14 @@ impl Backend for GpuBackend<'_> {
     fn bloom(&mut self, frame: &FrameInputs<'_>) -> Result<(), Error> {
         let Some(inputs) = &frame.bloom else { return Ok(()) };
         let (hdr, _) = self.hdr(frame.plan);
-        let device = &self.gpu.device;
         let [w, h] = inputs.levels[0];
         let count = inputs.levels.len() as u32;
         let format = crate::texture::frame_format(inputs.format);
-        let down = GpuMipChain::with_format(device, "ocean.bloom_down", w, h, count, format);
-        let up = GpuMipChain::with_format(device, "ocean.bloom_up", w, h, count, format);
+        let down = self.kept.chain("ocean.bloom_down", w, h, count, format);
+        let up = self.kept.chain("ocean.bloom_up", w, h, count, format);
         let slots = [self.timer.slot(Pass::Bloom), self.timer.slot(Pass::Bloom)];
         self.stages.bloom.encode(
-            device,
+            self.kept,
             self.encoder,
             &hdr.view,
             inputs,
@@ -680,7 +731,7 @@ impl Backend for GpuBackend<'_> {
             };
             let slot = self.timer.slot(Pass::Tonemap);
             self.stages.tonemap.encode(
-                &self.gpu.device,
+                self.kept,
                 self.encoder,
                 t,
                 (&hdr.view, &glow),
@@ -729,6 +780,7 @@ impl Renderer {
                 tonemap: TonemapStage::new(d)?,
             })
         })??;
+        let kept = FramePool::new(&gpu.device, &gpu.queue);
         Ok(Self {
             gpu,
             stages,
@@ -740,6 +792,10 @@ impl Renderer {
             spray: None,
             foam: None,
             floor: None,
+            kept,
+            timers: TimerPool::default(),
+            fresnel: Vec::new(),
+            filter: None,
         })
     }
 
@@ -751,7 +807,7 @@ impl Renderer {
     pub fn spray_particles(&self) -> Result<Option<Vec<ocean_core::spray::Particle>>, Error> {
         let Some(pool) = &self.spray else { return Ok(None) };
         let device = &self.gpu.device;
-        let staging = device.create_buffer(&wgpu::BufferDescriptor {
+        let staging = device.new_buffer(&wgpu::BufferDescriptor {
             label: Some("ocean.spray.readback"),
             size: pool.particles.size(),
             usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
@@ -783,6 +839,11 @@ impl Renderer {
     /// The device.
     pub fn gpu(&self) -> &Gpu {
         &self.gpu
+    }
+
+    /// The objects its frames keep (for the embedding's composite, recorded after the frame).
+    pub(crate) fn kept(&self) -> &FramePool {
+        &self.kept
     }
 
     /// The adapter, for reports.
@@ -883,20 +944,20 @@ impl Renderer {
                 let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
                     label: Some("ocean.frame"),
                 });
-                let timer = PassTimer::new(&self.gpu);
-                let Recorded { maps, chains, timer, waves_cpu, wave_source, .. } =
+                let timer = PassTimer::from_pool(&self.gpu, &self.timers);
+                let Recorded { maps, chains, timer, waves_cpu, wave_source, reused, .. } =
                     self.record(&inputs, state, &mut encoder, timer)?;
                 timer.resolve(&mut encoder);
                 let gpu = &self.gpu;
                 let device = &gpu.device;
 
                 // readback
-                let mut readbacks: Readbacks<ResourceId> = Readbacks::default();
+                let mut readbacks: Readbacks<ResourceId> = Readbacks::kept(&self.kept);
                 let all = readback == Readback::All;
                 let output_back = readback != Readback::None;
                 let find = |id: ResourceId| maps.iter().find(|(m, _)| *m == id).map(|(_, t)| t);
                 let ldr = find(ResourceId::Ldr).cloned();
-                let empty = GpuTexture::empty_map(gpu, "ocean.empty");
+                let empty = self.kept.empty_map("ocean.empty");
                 for id in ResourceId::MAPS {
                     let wanted = all || (id == ResourceId::Hdr && output_back && ldr.is_none());
                     if !wanted {
@@ -928,12 +989,12 @@ impl Renderer {
                     Some(l) => l,
                     None => find(ResourceId::Hdr).cloned().unwrap_or(empty),
                 };
-                Ok((data, timings, pending, output, waves_cpu, wave_source))
+                Ok((data, timings, pending, output, waves_cpu, wave_source, reused))
             })??;
         drop(inputs);
         state.advance();
 
-        let (data, gpu_timings, pending_timings, output, waves_cpu, wave_source) = frame;
+        let (data, gpu_timings, pending_timings, output, waves_cpu, wave_source, reused) = frame;
         let mut maps = Vec::new();
         let mut ldr = None;
         for (key, texels) in data {
@@ -960,6 +1021,7 @@ impl Renderer {
             wall: start.elapsed(),
             adapter: self.gpu.report.clone(),
             wave_source,
+            reused,
         })
     }
 
@@ -1088,7 +1150,8 @@ impl Renderer {
                 &empty_floor
             }
         };
-        let device = &self.gpu.device;
+        self.kept.begin_frame();
+        let frame_buffer = self.kept.uniform("ocean.frame.uniforms", &inputs.uniforms);
         let mut backend = GpuBackend {
             gpu: &self.gpu,
             stages: &self.stages,
@@ -1096,20 +1159,24 @@ impl Renderer {
             spray: &mut self.spray,
             foam: &mut self.foam,
             floor_map,
+            kept: &self.kept,
+            fresnel: &mut self.fresnel,
+            filter: &mut self.filter,
+            reused: Vec::new(),
             encoder,
             timer,
             maps: Vec::new(),
             chains: Vec::new(),
             depth: None,
             hdr_started: false,
-            frame_buffer: uniform_buffer(device, "ocean.frame.uniforms", &inputs.uniforms),
+            frame_buffer,
             waves_cpu: None,
             max_vertex_buffer_bytes: self.max_vertex_buffer_bytes,
             wave_source: None,
         };
         run_frame(&mut backend, inputs, state, &mut |_| {})?;
-        let GpuBackend { timer, waves_cpu, wave_source, maps, chains, depth, .. } = backend;
-        Ok(Recorded { maps, chains, depth, timer, waves_cpu, wave_source })
+        let GpuBackend { timer, waves_cpu, wave_source, maps, chains, depth, reused, .. } = backend;
+        Ok(Recorded { maps, chains, depth, timer, waves_cpu, wave_source, reused })
     }
 }
 
@@ -1127,6 +1194,8 @@ pub(crate) struct Recorded {
     pub waves_cpu: Option<Duration>,
     /// As [`GpuFrame::wave_source`].
     pub wave_source: Option<&'static str>,
+    /// As [`GpuFrame::reused`].
+    pub reused: Vec<Pass>,
 }
 
 impl Recorded {

@@ -2,9 +2,10 @@
 //! invocation per texel, written to an `Rgba32Float` storage texture.
 //! CPU mirror: `ocean-cpu/src/shaders/fresnel_table.rs`.
 
+use crate::created::Counted;
 use ocean_core::frame::FresnelTableUniforms;
 
-use crate::common::{bind_group, entry, label, pipeline_layout, shader_module, uniform_buffer};
+use crate::common::{entry, label, pipeline_layout, shader_module};
 use crate::device::Error;
 use crate::texture::GpuTexture;
 
@@ -26,14 +27,14 @@ impl FresnelTableStage {
     pub fn new(device: &wgpu::Device) -> Result<Self, Error> {
         let name = label("fresnel_table");
         let module = shader_module(device, "fresnel_table")?;
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        let layout = device.new_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some(&name),
             entries: &[
                 crate::common::uniform_entry(0, wgpu::ShaderStages::COMPUTE),
                 crate::common::storage_map_entry(1),
             ],
         });
-        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        let pipeline = device.new_compute_pipeline(&wgpu::ComputePipelineDescriptor {
             label: Some(&name),
             layout: Some(&pipeline_layout(device, &name, &[&layout])),
             module: &module,
@@ -48,16 +49,15 @@ impl FresnelTableStage {
     /// storage usage) into `encoder`.
     pub fn encode(
         &self,
-        device: &wgpu::Device,
+        kept: &crate::pool::FramePool,
         encoder: &mut wgpu::CommandEncoder,
         params: &FresnelTableUniforms,
         table: &GpuTexture,
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
         let name = label("fresnel_table");
-        let uniforms = uniform_buffer(device, &name, params);
-        let group = bind_group(
-            device,
+        let uniforms = kept.uniform(&name, params);
+        let group = kept.bind_group(
             &name,
             &self.layout,
             &[uniforms.as_entire_binding(), wgpu::BindingResource::TextureView(&table.view)],

@@ -32,12 +32,14 @@
 pub mod bloom;
 pub mod common;
 pub mod composite;
+pub mod created;
 pub mod device;
 pub mod embed;
 pub mod foam;
 pub mod frame;
 pub mod fresnel_table;
 pub mod objects;
+pub mod pool;
 pub mod present;
 pub mod shadow;
 pub mod sky;

@@ -8,6 +8,7 @@
 //! writes, no blending, no culling (the CPU's `eye_state`).
 //! CPU mirror: `ocean-cpu/src/shaders/objects.rs`.
 
+use crate::created::Counted;
 use ocean_core::frame::ObjectVertex;
 
 use crate::common::{
@@ -65,7 +66,7 @@ impl ObjectsStage {
     pub fn new(device: &wgpu::Device, target: wgpu::TextureFormat) -> Result<Self, Error> {
         let name = label("objects");
         let module = shader_module(device, "objects")?;
-        let frame_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        let frame_layout = device.new_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some(&name),
             entries: &[
                 uniform_entry(0, wgpu::ShaderStages::VERTEX_FRAGMENT),
@@ -85,7 +86,7 @@ impl ObjectsStage {
         let pipeline = |which: ObjectsEntry| -> Result<wgpu::RenderPipeline, Error> {
             let (vs, fs) = which.entry_points();
             let (vs, fs) = (entry("objects", vs)?, entry("objects", fs)?);
-            Ok(device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            Ok(device.new_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some(&name),
                 layout: Some(&layout),
                 vertex: wgpu::VertexState {
@@ -122,14 +123,13 @@ impl ObjectsStage {
     /// floor's relief for the sun under the water.
     pub fn group(
         &self,
-        device: &wgpu::Device,
+        kept: &crate::pool::FramePool,
         frame: &wgpu::Buffer,
         displacement: &wgpu::TextureView,
         shadow_map: &wgpu::TextureView,
         floor_map: &wgpu::TextureView,
     ) -> wgpu::BindGroup {
-        crate::common::bind_group(
-            device,
+        kept.bind_group(
             "ocean.objects",
             &self.frame_layout,
             &[
@@ -187,11 +187,10 @@ pub struct VertexChunk {
 /// Vertex buffers of at most `max_bytes` each holding `vertices` (whole triangles), or one
 /// placeholder vertex when there are none (a buffer cannot be empty).
 pub fn vertex_chunks(
-    device: &wgpu::Device,
+    kept: &crate::pool::FramePool,
     vertices: &[ocean_core::frame::ObjectVertex],
     max_bytes: u64,
 ) -> Vec<VertexChunk> {
-    use wgpu::util::DeviceExt;
     let triangle = 3 * std::mem::size_of::<ocean_core::frame::ObjectVertex>() as u64;
     // u32 vertex counts bound a draw too.
     let per_chunk = (max_bytes / triangle).clamp(1, u64::from(u32::MAX / 3)) as usize * 3;
@@ -204,11 +203,11 @@ pub fn vertex_chunks(
     chunks
         .into_iter()
         .map(|c| VertexChunk {
-            buffer: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("ocean.objects.vertices"),
-                contents: bytemuck::cast_slice(c),
-                usage: wgpu::BufferUsages::VERTEX,
-            }),
+            buffer: kept.data(
+                "ocean.objects.vertices",
+                wgpu::BufferUsages::VERTEX,
+                bytemuck::cast_slice(c),
+            ),
             count: if vertices.is_empty() { 0 } else { c.len() as u32 },
         })
         .collect()

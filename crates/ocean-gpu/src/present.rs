@@ -10,6 +10,7 @@
 use crate::common::{
     Load, begin_render_pass, bind_group, fullscreen_pipeline, label, shader_module, texture_entry,
 };
+use crate::created::Counted;
 use crate::device::Error;
 
 /// The stage's pipeline for one target format.
@@ -35,7 +36,7 @@ impl PresentStage {
         }
         let name = label("present");
         let module = shader_module(device, "present")?;
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        let layout = device.new_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some(&name),
             entries: &[texture_entry(0, wgpu::ShaderStages::FRAGMENT, false)],
         });

@@ -7,6 +7,7 @@ use crate::common::{
     Load, begin_render_pass, depth_state, entry, label, pipeline_layout, primitive, replace_target,
     shader_module, uniform_entry,
 };
+use crate::created::Counted;
 use crate::device::Error;
 use crate::objects::OBJECT_VERTEX_LAYOUT;
 use crate::texture::SHADOW_FORMAT;
@@ -26,7 +27,7 @@ impl ShadowStage {
     pub fn new(device: &wgpu::Device) -> Result<Self, Error> {
         let name = label("shadow");
         let module = shader_module(device, "shadow")?;
-        let frame_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        let frame_layout = device.new_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some(&name),
             entries: &[uniform_entry(0, wgpu::ShaderStages::VERTEX)],
         });
@@ -35,7 +36,7 @@ impl ShadowStage {
             step_mode: wgpu::VertexStepMode::Vertex,
             attributes: &OBJECT_VERTEX_LAYOUT.attributes[..1],
         };
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        let pipeline = device.new_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some(&name),
             layout: Some(&pipeline_layout(device, &name, &[&frame_layout])),
             vertex: wgpu::VertexState {

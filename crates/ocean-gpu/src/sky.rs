@@ -8,13 +8,12 @@
 //! group 0 = `CameraUniforms`, group 1 = `SkyUniforms` and sky `atmosphere`'s `SkyLut`. CPU mirror: `ocean-cpu/src/shaders/sky.rs` (its `RASTER_STATE`: depth test
 //! `Always`, no depth writes, no blending — the same here).
 
-use ocean_core::atmosphere::SkyLut;
+use crate::created::Counted;
 use ocean_core::camera_uniforms::CameraUniforms;
-use ocean_core::sky::SkyUniforms;
 
 use crate::common::{
-    Load, begin_render_pass, bind_group, depth_state, entry, label, pipeline_layout, primitive,
-    replace_target, shader_module_with, uniform_buffer, uniform_entry,
+    Load, begin_render_pass, depth_state, entry, label, pipeline_layout, primitive, replace_target,
+    shader_module_with, uniform_entry,
 };
 use crate::device::Error;
 
@@ -39,16 +38,14 @@ impl SkyStage {
         let name = label("sky");
         let module = shader_module_with(device, "sky", techniques)?;
         let layout = |l: &str, entries: &[wgpu::BindGroupLayoutEntry]| {
-            device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                label: Some(l),
-                entries,
-            })
+            device
+                .new_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(l), entries })
         };
         let fragment = wgpu::ShaderStages::FRAGMENT;
         let camera_layout = layout("ocean.sky.camera", &[uniform_entry(0, fragment)]);
         let sky_layout =
             layout("ocean.sky.sky", &[uniform_entry(0, fragment), uniform_entry(1, fragment)]);
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+        let pipeline = device.new_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some(&name),
             layout: Some(&pipeline_layout(device, &name, &[&camera_layout, &sky_layout])),
             vertex: wgpu::VertexState {
@@ -77,30 +74,25 @@ impl SkyStage {
     #[expect(clippy::too_many_arguments, reason = "one argument per binding and attachment")]
     pub fn encode(
         &self,
-        device: &wgpu::Device,
+        kept: &crate::pool::FramePool,
         encoder: &mut wgpu::CommandEncoder,
         camera: &CameraUniforms,
-        sky: &SkyUniforms,
-        sky_lut: &SkyLut,
+        sky: &wgpu::Buffer,
+        sky_lut: &wgpu::Buffer,
         hdr: &wgpu::TextureView,
         depth: &wgpu::TextureView,
         timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
     ) {
         let name = label("sky");
-        let camera_group = bind_group(
-            device,
+        let camera_group = kept.bind_group(
             "ocean.sky.camera",
             &self.camera_layout,
-            &[uniform_buffer(device, "ocean.sky.camera", camera).as_entire_binding()],
+            &[kept.uniform("ocean.sky.camera", camera).as_entire_binding()],
         );
-        let sky_group = bind_group(
-            device,
+        let sky_group = kept.bind_group(
             "ocean.sky.sky",
             &self.sky_layout,
-            &[
-                uniform_buffer(device, "ocean.sky.sky", sky).as_entire_binding(),
-                uniform_buffer(device, "ocean.sky.sky_lut", sky_lut).as_entire_binding(),
-            ],
+            &[sky.as_entire_binding(), sky_lut.as_entire_binding()],
         );
         let mut pass = begin_render_pass(
             encoder,

@@ -7,12 +7,12 @@
 //! `SprayUniforms`). Draw state: reversed-Z `Greater` against the frame's depth, no depth
 //! write, blend One + One, no culling. CPU mirror: `ocean-cpu/src/shaders/spray.rs`.
 
+use crate::created::Counted;
 use ocean_core::spray::{Emitter, Particle, SprayUniforms};
-use wgpu::util::DeviceExt;
 
 use crate::common::{
-    Load, begin_render_pass, bind_group, depth_state, entry, label, pipeline_layout, primitive,
-    sampler_entry, shader_module, texture_entry, uniform_buffer, uniform_entry,
+    Load, begin_render_pass, depth_state, entry, label, pipeline_layout, primitive, sampler_entry,
+    shader_module, texture_entry, uniform_entry,
 };
 use crate::device::Error;
 use crate::texture::MAP_FORMAT;
@@ -65,14 +65,14 @@ impl GpuSpray {
     /// A pool of free slots for `key` (zeroed once, at creation).
     pub fn new(device: &wgpu::Device, key: ocean_core::spray::PoolKey) -> Self {
         let count = key.spray.particles;
-        let particles = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        let particles = device.new_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("ocean.spray.particles"),
             contents: bytemuck::cast_slice(&vec![Particle::default(); count as usize]),
             usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
         });
         let placeholder = [Emitter::default()];
         let e: &[Emitter] = if key.emitters.is_empty() { &placeholder } else { &key.emitters };
-        let emitter_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        let emitter_buffer = device.new_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("ocean.spray.emitters"),
             contents: bytemuck::cast_slice(e),
             usage: wgpu::BufferUsages::STORAGE,
@@ -91,7 +91,7 @@ impl SprayStage {
         let name = label("spray");
         let module = shader_module(device, "spray")?;
         let compute = wgpu::ShaderStages::COMPUTE;
-        let step_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        let step_layout = device.new_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("ocean.spray.step"),
             entries: &[
                 uniform_entry(0, compute),
@@ -102,7 +102,7 @@ impl SprayStage {
             ],
         });
         let vf = wgpu::ShaderStages::VERTEX_FRAGMENT;
-        let draw_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        let draw_layout = device.new_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("ocean.spray.draw"),
             entries: &[
                 uniform_entry(5, vf),
@@ -110,7 +110,7 @@ impl SprayStage {
                 uniform_entry(7, vf),
             ],
         });
-        let step = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        let step = device.new_compute_pipeline(&wgpu::ComputePipelineDescriptor {
             label: Some(&name),
             layout: Some(&pipeline_layout(device, "ocean.spray.step", &[&step_layout])),
             module: &module,
@@ -123,7 +123,7 @@ impl SprayStage {
             target != MAP_FORMAT || device.features().contains(wgpu::Features::FLOAT32_BLENDABLE);
         let (vs, fs) = (entry("spray", "vs_main")?, entry("spray", "fs_main")?);
         let draw = blendable.then(|| {
-            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            device.new_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some(&name),
                 layout: Some(&pipeline_layout(device, "ocean.spray.draw", &[&draw_layout])),
                 vertex: wgpu::VertexState {
@@ -173,16 +173,15 @@ impl SprayStage {
     /// sea's height from `displacement`.
     pub fn encode_step(
         &self,
-        device: &wgpu::Device,
+        kept: &crate::pool::FramePool,
         encoder: &mut wgpu::CommandEncoder,
         pool: &GpuSpray,
         params: &SprayUniforms,
         displacement: &wgpu::TextureView,
     ) {
         let name = label("spray");
-        let u = uniform_buffer(device, &name, params);
-        let group = bind_group(
-            device,
+        let u = kept.uniform(&name, params);
+        let group = kept.bind_group(
             &name,
             &self.step_layout,
             &[
@@ -212,7 +211,7 @@ impl SprayStage {
     #[expect(clippy::too_many_arguments, reason = "one argument per binding and attachment")]
     pub fn encode_draw(
         &self,
-        device: &wgpu::Device,
+        kept: &crate::pool::FramePool,
         encoder: &mut wgpu::CommandEncoder,
         frame: &wgpu::Buffer,
         pool: &GpuSpray,
@@ -223,17 +222,17 @@ impl SprayStage {
     ) {
         let Some(draw) = &self.draw else { return };
         let name = label("spray");
-        let u = uniform_buffer(device, &name, params);
+        let u = kept.uniform(&name, params);
         // Bindings 5–7: the draw's layout of group 0.
-        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some(&name),
-            layout: &self.draw_layout,
-            entries: &[
-                wgpu::BindGroupEntry { binding: 5, resource: frame.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 6, resource: pool.particles.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 7, resource: u.as_entire_binding() },
+        let group = kept.bind_group_numbered(
+            &name,
+            &self.draw_layout,
+            &[
+                (5, frame.as_entire_binding()),
+                (6, pool.particles.as_entire_binding()),
+                (7, u.as_entire_binding()),
             ],
-        });
+        );
         let mut pass = begin_render_pass(
             encoder,
             &name,

@@ -12,6 +12,7 @@
 //! frame into its command encoder, maps every buffer after the one submission and strips the
 //! padding.
 
+use crate::created::{Counted, CountedView};
 use std::sync::{Arc, Mutex};
 
 use crate::device::{Error, Gpu};
@@ -60,7 +61,7 @@ impl GpuTexture {
         format: wgpu::TextureFormat,
         usage: wgpu::TextureUsages,
     ) -> Self {
-        let texture = device.create_texture(&wgpu::TextureDescriptor {
+        let texture = device.new_texture(&wgpu::TextureDescriptor {
             label: Some(label),
             size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
             mip_level_count: 1,
@@ -70,7 +71,7 @@ impl GpuTexture {
             usage,
             view_formats: &[],
         });
-        let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
+        let view = texture.new_view(&wgpu::TextureViewDescriptor::default());
         Self { texture, view, width, height }
     }
 
@@ -82,25 +83,12 @@ impl GpuTexture {
         height: u32,
         format: wgpu::TextureFormat,
     ) -> Self {
-        let usage = wgpu::TextureUsages::RENDER_ATTACHMENT
-            | wgpu::TextureUsages::TEXTURE_BINDING
-            | wgpu::TextureUsages::COPY_SRC;
-        Self::new(device, label, width, height, format, usage)
+        Self::new(device, label, width, height, format, target_usage())
     }
 
     /// A depth buffer.
     pub fn depth(device: &wgpu::Device, label: &str, width: u32, height: u32) -> Self {
-        Self::new(
-            device,
-            label,
-            width,
-            height,
-            DEPTH_FORMAT,
-            // Sampled and copied by the embedding composite and its test (`crate::embed`).
-            wgpu::TextureUsages::RENDER_ATTACHMENT
-                | wgpu::TextureUsages::TEXTURE_BINDING
-                | wgpu::TextureUsages::COPY_SRC,
-        )
+        Self::new(device, label, width, height, DEPTH_FORMAT, depth_usage())
     }
 
     /// An `Rgba32Float` texture holding `texels` (row-major, row 0 first), which the frame
@@ -135,6 +123,21 @@ impl GpuTexture {
     pub fn empty_map(gpu: &Gpu, label: &str) -> Self {
         Self::upload_map(gpu, label, 1, 1, &[[0.0; 4]])
     }
+}
+
+/// Usage of a colour target that the frame samples and reads back.
+pub fn target_usage() -> wgpu::TextureUsages {
+    wgpu::TextureUsages::RENDER_ATTACHMENT
+        | wgpu::TextureUsages::TEXTURE_BINDING
+        | wgpu::TextureUsages::COPY_SRC
+}
+
+/// Usage of a depth buffer: sampled and copied by the embedding composite and its test
+/// (`crate::embed`).
+pub fn depth_usage() -> wgpu::TextureUsages {
+    wgpu::TextureUsages::RENDER_ATTACHMENT
+        | wgpu::TextureUsages::TEXTURE_BINDING
+        | wgpu::TextureUsages::COPY_SRC
 }
 
 /// Usage of a map that a stage writes (copy or storage), the frame samples and the tests read
@@ -198,15 +201,22 @@ pub(crate) fn map_for_reading(slice: wgpu::BufferSlice<'_>) -> MapState {
 /// The texture copies of one submission.
 pub struct Readbacks<K> {
     pending: Vec<Pending<K>>,
+    kept: Option<crate::pool::FramePool>,
 }
 
 impl<K> Default for Readbacks<K> {
     fn default() -> Self {
-        Self { pending: Vec::new() }
+        Self { pending: Vec::new(), kept: None }
     }
 }
 
 impl<K: Copy> Readbacks<K> {
+    /// Copies whose staging buffers come from `kept` (a renderer's frames: the same buffers
+    /// frame after frame) instead of being made for this submission.
+    pub fn kept(kept: &crate::pool::FramePool) -> Self {
+        Self { pending: Vec::new(), kept: Some(kept.clone()) }
+    }
+
     /// Records a copy of `texture` (of `format`: [`MAP_FORMAT`], [`HALF_FORMAT`],
     /// [`SHADOW_FORMAT`] or [`LDR_FORMAT`]) into `encoder`, to be read back under `key`.
     ///
@@ -248,12 +258,17 @@ impl<K: Copy> Readbacks<K> {
         let row = width * bytes_per_texel;
         let padded_row =
             row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
-        let buffer = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some(&format!("ocean.readback.{label}")),
-            size: u64::from(padded_row) * u64::from(height),
-            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-            mapped_at_creation: false,
-        });
+        let buffer_label = format!("ocean.readback.{label}");
+        let size = u64::from(padded_row) * u64::from(height);
+        let buffer = match &self.kept {
+            Some(kept) => kept.staging(&buffer_label, size),
+            None => device.new_buffer(&wgpu::BufferDescriptor {
+                label: Some(&buffer_label),
+                size,
+                usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+                mapped_at_creation: false,
+            }),
+        };
         encoder.copy_texture_to_buffer(
             texture.as_image_copy(),
             wgpu::TexelCopyBufferInfo {
@@ -284,15 +299,27 @@ impl<K: Copy> Readbacks<K> {
     /// # Errors
     /// [`Error::Readback`] if a buffer cannot be mapped.
     pub fn finish(self, gpu: &Gpu) -> Result<Vec<(K, TexelData)>, Error> {
-        if self.pending.is_empty() {
+        let Self { pending, kept } = self;
+        let read = Self::read(pending, gpu);
+        if read.is_err()
+            && let Some(kept) = kept
+        {
+            // A failed read may leave a buffer mapped: the next frame gets new ones.
+            kept.drop_staging();
+        }
+        read
+    }
+
+    fn read(pending: Vec<Pending<K>>, gpu: &Gpu) -> Result<Vec<(K, TexelData)>, Error> {
+        if pending.is_empty() {
             // Nothing to read: no reason to wait for the GPU.
             return Ok(Vec::new());
         }
         let results: Vec<MapState> =
-            self.pending.iter().map(|p| map_for_reading(p.buffer.slice(..))).collect();
+            pending.iter().map(|p| map_for_reading(p.buffer.slice(..))).collect();
         gpu.wait()?;
-        let mut out = Vec::with_capacity(self.pending.len());
-        for (p, slot) in self.pending.into_iter().zip(results) {
+        let mut out = Vec::with_capacity(pending.len());
+        for (p, slot) in pending.into_iter().zip(results) {
             let fail = |message: String| Error::Readback { what: p.label.clone(), message };
             let status = slot.lock().map_err(|_| fail("poisoned lock".into()))?.take();
             match status {

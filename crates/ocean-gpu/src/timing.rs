@@ -3,6 +3,8 @@
 //! several GPU passes (two Fresnel tables) gets the sum. Without the feature every call is a
 //! no-op and [`PassTimer::finish`] returns nothing.
 
+use crate::created::Counted;
+use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 use ocean_core::plan::Pass;
@@ -17,8 +19,27 @@ const MAX_GPU_PASSES: u32 = 16;
 pub struct PassTimer {
     queries: Option<Queries>,
     slots: Vec<Pass>,
+    home: Option<TimerPool>,
 }
 
+/// Query sets and their buffers a renderer keeps: a frame's timer comes back to the pool once
+/// its timestamps are read, so that a steady frame makes no query set.
+#[derive(Clone, Default)]
+pub struct TimerPool(Arc<Mutex<Vec<Queries>>>);
+
+impl TimerPool {
+    fn take(&self) -> Option<Queries> {
+        self.0.lock().ok()?.pop()
+    }
+
+    fn give(&self, q: Queries) {
+        if let Ok(mut free) = self.0.lock() {
+            free.push(q);
+        }
+    }
+}
+
+#[derive(Clone)]
 struct Queries {
     set: wgpu::QuerySet,
     resolve: wgpu::Buffer,
@@ -27,39 +48,46 @@ struct Queries {
 }
 
 impl PassTimer {
-    /// A timer for the next frame; inert without timestamp support.
+    /// A timer for the next frame, made afresh; inert without timestamp support.
     pub fn new(gpu: &Gpu) -> Self {
-        let queries = gpu.timestamps.then(|| {
-            let count = 2 * MAX_GPU_PASSES;
-            let size = u64::from(count) * 8;
-            Queries {
-                set: gpu.device.create_query_set(&wgpu::QuerySetDescriptor {
-                    label: Some("ocean.timestamps"),
-                    ty: wgpu::QueryType::Timestamp,
-                    count,
-                }),
-                resolve: gpu.device.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some("ocean.timestamps.resolve"),
-                    size,
-                    usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
-                    mapped_at_creation: false,
-                }),
-                readback: gpu.device.create_buffer(&wgpu::BufferDescriptor {
-                    label: Some("ocean.timestamps.readback"),
-                    size,
-                    usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-                    mapped_at_creation: false,
-                }),
-                period_ns: gpu.queue.get_timestamp_period(),
-            }
-        });
-        Self { queries, slots: Vec::new() }
+        Self::from_pool(gpu, &TimerPool::default())
+    }
+
+    /// A timer for the next frame, from `pool` when it holds a free one.
+    pub fn from_pool(gpu: &Gpu, pool: &TimerPool) -> Self {
+        let queries = gpu.timestamps.then(|| pool.take().unwrap_or_else(|| Self::queries(gpu)));
+        Self { queries, slots: Vec::new(), home: Some(pool.clone()) }
+    }
+
+    fn queries(gpu: &Gpu) -> Queries {
+        let count = 2 * MAX_GPU_PASSES;
+        let size = u64::from(count) * 8;
+        Queries {
+            set: gpu.device.new_query_set(&wgpu::QuerySetDescriptor {
+                label: Some("ocean.timestamps"),
+                ty: wgpu::QueryType::Timestamp,
+                count,
+            }),
+            resolve: gpu.device.new_buffer(&wgpu::BufferDescriptor {
+                label: Some("ocean.timestamps.resolve"),
+                size,
+                usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            }),
+            readback: gpu.device.new_buffer(&wgpu::BufferDescriptor {
+                label: Some("ocean.timestamps.readback"),
+                size,
+                usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+                mapped_at_creation: false,
+            }),
+            period_ns: gpu.queue.get_timestamp_period(),
+        }
     }
 
     /// A timer that times nothing: for frames recorded into a caller's encoder
     /// ([`crate::embed`]), whose submission this crate does not see.
     pub fn off() -> Self {
-        Self { queries: None, slots: Vec::new() }
+        Self { queries: None, slots: Vec::new(), home: None }
     }
 
     /// Reserves the begin/end queries of one GPU pass of `pass`; `None` without timestamps
@@ -131,15 +159,19 @@ impl PassTimer {
     pub fn finish_later(self) -> Option<PendingTimings> {
         let q = self.queries?;
         if self.slots.is_empty() {
+            if let Some(home) = &self.home {
+                home.give(q);
+            }
             return None;
         }
         let bytes = 2 * self.slots.len() as u64 * 8;
         let state = map_for_reading(q.readback.slice(..bytes));
         Some(PendingTimings {
-            readback: q.readback,
+            period_ns: q.period_ns,
+            queries: q,
+            home: self.home,
             bytes,
             slots: self.slots,
-            period_ns: q.period_ns,
             state,
         })
     }
@@ -147,7 +179,8 @@ impl PassTimer {
 
 /// Timestamps on their way back from the GPU ([`PassTimer::finish_later`]).
 pub struct PendingTimings {
-    readback: wgpu::Buffer,
+    queries: Queries,
+    home: Option<TimerPool>,
     bytes: u64,
     slots: Vec<Pass>,
     period_ns: f32,
@@ -166,7 +199,7 @@ impl PendingTimings {
         if let Err(e) = status {
             return Some(Err(fail(e.to_string())));
         }
-        let slice = self.readback.slice(..self.bytes);
+        let slice = self.queries.readback.slice(..self.bytes);
         let ticks: Vec<u64> = match slice.get_mapped_range() {
             Ok(view) => view
                 .chunks_exact(8)
@@ -174,7 +207,10 @@ impl PendingTimings {
                 .collect(),
             Err(e) => return Some(Err(fail(e.to_string()))),
         };
-        self.readback.unmap();
+        self.queries.readback.unmap();
+        if let Some(home) = &self.home {
+            home.give(self.queries.clone());
+        }
         let mut out: Vec<(Pass, Duration)> = Vec::new();
         for (i, pass) in self.slots.iter().enumerate() {
             let dt = ticks[2 * i + 1].saturating_sub(ticks[2 * i]);

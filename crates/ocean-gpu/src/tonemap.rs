@@ -2,11 +2,12 @@
 //! into an `Rgba8Unorm` target. Bindings: group 0 — 0 `TonemapUniforms`, 1 the HDR frame,
 //! 2 post `bloom`'s up chain, level 0 (`textureLoad` only). CPU mirror: `ocean-cpu/src/shaders/tonemap.rs`.
 
+use crate::created::Counted;
 use ocean_core::tonemap::TonemapUniforms;
 
 use crate::common::{
-    Load, begin_render_pass, bind_group, fullscreen_pipeline, label, shader_module, texture_entry,
-    uniform_buffer, uniform_entry,
+    Load, begin_render_pass, fullscreen_pipeline, label, shader_module, texture_entry,
+    uniform_entry,
 };
 use crate::device::Error;
 use crate::texture::LDR_FORMAT;
@@ -25,7 +26,7 @@ impl TonemapStage {
     pub fn new(device: &wgpu::Device) -> Result<Self, Error> {
         let name = label("tonemap");
         let module = shader_module(device, "tonemap")?;
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        let layout = device.new_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some(&name),
             entries: &[
                 uniform_entry(0, wgpu::ShaderStages::FRAGMENT),
@@ -41,7 +42,7 @@ impl TonemapStage {
     /// texture) into `ldr`.
     pub fn encode(
         &self,
-        device: &wgpu::Device,
+        kept: &crate::pool::FramePool,
         encoder: &mut wgpu::CommandEncoder,
         uniforms: &TonemapUniforms,
         (hdr, bloom): (&wgpu::TextureView, &wgpu::TextureView),
@@ -49,12 +50,11 @@ impl TonemapStage {
         timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
     ) {
         let name = label("tonemap");
-        let group = bind_group(
-            device,
+        let group = kept.bind_group(
             &name,
             &self.layout,
             &[
-                uniform_buffer(device, &name, uniforms).as_entire_binding(),
+                kept.uniform(&name, uniforms).as_entire_binding(),
                 wgpu::BindingResource::TextureView(hdr),
                 wgpu::BindingResource::TextureView(bloom),
             ],

@@ -12,6 +12,7 @@
 //! writes, no blending, no culling (the surface is seen from below under water).
 //! CPU mirror: `ocean-cpu/src/shaders/water.rs` (samplers `WRAP_LINEAR`, `CLAMP_LINEAR`).
 
+use crate::created::Counted;
 use ocean_core::geometry::WaterVertex;
 
 use crate::common::{
@@ -99,7 +100,7 @@ impl WaterStage {
         let module = shader_module_with(device, "water", techniques)?;
         let vf = wgpu::ShaderStages::VERTEX_FRAGMENT;
         let fragment = wgpu::ShaderStages::FRAGMENT;
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        let layout = device.new_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some(&name),
             entries: &[
                 uniform_entry(0, vf),
@@ -119,13 +120,13 @@ impl WaterStage {
                 texture_entry(13, fragment, true),
             ],
         });
-        let sky_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        let sky_layout = device.new_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("ocean.water.sky"),
             entries: &[uniform_entry(0, fragment), uniform_entry(1, fragment)],
         });
         let pipeline_layout = pipeline_layout(device, &name, &[&layout, &sky_layout]);
         let make = |vs: &str, buffers: &[Option<wgpu::VertexBufferLayout<'_>>]| {
-            Ok::<_, Error>(device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            Ok::<_, Error>(device.new_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some(&name),
                 layout: Some(&pipeline_layout),
                 vertex: wgpu::VertexState {
@@ -173,7 +174,7 @@ impl WaterStage {
     #[expect(clippy::too_many_arguments, reason = "one argument per binding and attachment")]
     pub fn encode(
         &self,
-        device: &wgpu::Device,
+        kept: &crate::pool::FramePool,
         encoder: &mut wgpu::CommandEncoder,
         frame: &wgpu::Buffer,
         sky: &wgpu::Buffer,
@@ -186,8 +187,7 @@ impl WaterStage {
     ) {
         let name = label("water");
         let t = textures;
-        let group = crate::common::bind_group(
-            device,
+        let group = kept.bind_group(
             &name,
             &self.layout,
             &[
@@ -207,8 +207,7 @@ impl WaterStage {
                 wgpu::BindingResource::TextureView(t.foam_field),
             ],
         );
-        let sky_group = crate::common::bind_group(
-            device,
+        let sky_group = kept.bind_group(
             "ocean.water.sky",
             &self.sky_layout,
             &[sky.as_entire_binding(), sky_lut.as_entire_binding()],

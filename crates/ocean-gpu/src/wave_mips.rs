@@ -3,10 +3,11 @@
 //! level after), each reading the level below through a one-level view and writing its own
 //! through another. CPU mirror: `ocean-cpu/src/shaders/wave_mips.rs`.
 
+use crate::created::{Counted, CountedView};
 use ocean_core::far_field::{mip_level_count, mip_level_row, mip_level_size};
 use ocean_core::frame::WaveMipsUniforms;
 
-use crate::common::{bind_group, entry, label, pipeline_layout, shader_module, uniform_buffer};
+use crate::common::{entry, label, pipeline_layout, shader_module};
 use crate::device::Error;
 use crate::texture::{GpuTexture, MAP_FORMAT, map_usage};
 
@@ -15,6 +16,7 @@ pub const WORKGROUP_SIZE: u32 = 8;
 
 /// An `Rgba32Float` texture (post `bloom`'s: the frame's format) with a mip chain and a view
 /// of each level.
+#[derive(Clone)]
 pub struct GpuMipChain {
     /// The texture.
     pub texture: wgpu::Texture,
@@ -57,7 +59,7 @@ impl GpuMipChain {
         count: u32,
         format: wgpu::TextureFormat,
     ) -> Self {
-        let texture = device.create_texture(&wgpu::TextureDescriptor {
+        let texture = device.new_texture(&wgpu::TextureDescriptor {
             label: Some(label),
             size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
             mip_level_count: count,
@@ -67,10 +69,10 @@ impl GpuMipChain {
             usage: map_usage(),
             view_formats: &[],
         });
-        let view = texture.create_view(&wgpu::TextureViewDescriptor::default());
+        let view = texture.new_view(&wgpu::TextureViewDescriptor::default());
         let levels = (0..count)
             .map(|k| {
-                texture.create_view(&wgpu::TextureViewDescriptor {
+                texture.new_view(&wgpu::TextureViewDescriptor {
                     base_mip_level: k,
                     mip_level_count: Some(1),
                     ..Default::default()
@@ -125,7 +127,7 @@ impl WaveMipsStage {
     pub fn new(device: &wgpu::Device) -> Result<Self, Error> {
         let name = label("wave_mips");
         let module = shader_module(device, "wave_mips")?;
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        let layout = device.new_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some(&name),
             entries: &[
                 crate::common::uniform_entry(0, wgpu::ShaderStages::COMPUTE),
@@ -135,7 +137,7 @@ impl WaveMipsStage {
         });
         let pipeline_layout = pipeline_layout(device, &name, &[&layout]);
         let make = |entry_point: &str| -> Result<wgpu::ComputePipeline, Error> {
-            Ok(device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            Ok(device.new_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                 label: Some(&name),
                 layout: Some(&pipeline_layout),
                 module: &module,
@@ -151,7 +153,7 @@ impl WaveMipsStage {
     /// (the same size as the chain's level 0).
     pub fn encode(
         &self,
-        device: &wgpu::Device,
+        kept: &crate::pool::FramePool,
         encoder: &mut wgpu::CommandEncoder,
         slopes: &GpuTexture,
         chain: &GpuMipChain,
@@ -165,9 +167,8 @@ impl WaveMipsStage {
             } else {
                 (&self.downsample, &chain.levels[k as usize - 1], mip_level_size(w, h, k - 1))
             };
-            let uniforms = uniform_buffer(device, &name, &WaveMipsUniforms::new(dst, src));
-            let group = bind_group(
-                device,
+            let uniforms = kept.uniform(&name, &WaveMipsUniforms::new(dst, src));
+            let group = kept.bind_group(
                 &name,
                 &self.layout,
                 &[

@@ -19,6 +19,7 @@
 //! map's. They are Rgba32Float with `STORAGE_BINDING | TEXTURE_BINDING | COPY_SRC`; filtering
 //! them in a sampler needs the `FLOAT32_FILTERABLE` feature.
 
+use crate::created::{Counted, CountedView};
 use std::ops::Range;
 
 use ocean_core::dispersion::Dispersion;
@@ -26,7 +27,6 @@ use ocean_core::waves::WaveModes;
 use ocean_core::waves::uniforms::{
     WaveModeData, WavesUniforms, check_fft_size, fft_passes, fft_twiddles, wave_mode_table,
 };
-use wgpu::util::DeviceExt;
 
 /// Errors of the GPU wave synthesis.
 #[derive(Debug, thiserror::Error)]
@@ -219,7 +219,7 @@ fn buffer_group(
         .enumerate()
         .map(|(i, b)| wgpu::BindGroupEntry { binding: i as u32, resource: b.as_entire_binding() })
         .collect();
-    device.create_bind_group(&wgpu::BindGroupDescriptor {
+    device.new_bind_group(&wgpu::BindGroupDescriptor {
         label: Some(label),
         layout,
         entries: &entries,
@@ -283,30 +283,30 @@ impl GpuWaves {
         let n = modes.resolution() as u32;
         let source = ocean_core::shader_source::stage_source("waves")
             .expect("the waves stage is embedded and has no imports");
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        let module = device.new_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("ocean.waves"),
             source: wgpu::ShaderSource::Wgsl(source.into()),
         });
 
-        let shared_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        let shared_layout = device.new_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("ocean.waves.shared"),
             entries: &[uniform_entry(0), storage_entry(1, true), storage_entry(2, true)],
         });
-        let pass_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        let pass_layout = device.new_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("ocean.waves.pass"),
             entries: &[uniform_entry(0), storage_entry(1, true), storage_entry(2, false)],
         });
-        let texture_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        let texture_layout = device.new_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("ocean.waves.textures"),
             entries: &[texture_entry(0), texture_entry(1), texture_entry(2)],
         });
-        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        let layout = device.new_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("ocean.waves"),
             bind_group_layouts: &[Some(&shared_layout), Some(&pass_layout), Some(&texture_layout)],
             immediate_size: 0,
         });
         let pipeline = |entry: &str| {
-            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            device.new_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                 label: Some(&format!("ocean.waves.{entry}")),
                 layout: Some(&layout),
                 module: &module,
@@ -316,25 +316,25 @@ impl GpuWaves {
             })
         };
 
-        let uniforms = device.create_buffer(&wgpu::BufferDescriptor {
+        let uniforms = device.new_buffer(&wgpu::BufferDescriptor {
             label: Some("ocean.waves.uniforms"),
             size: size_of::<WavesUniforms>() as u64,
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
         let storage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST;
-        let modes_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        let modes_buffer = device.new_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("ocean.waves.modes"),
             contents: bytemuck::cast_slice(&wave_mode_table(modes)),
             usage: storage,
         });
-        let twiddles = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        let twiddles = device.new_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("ocean.waves.twiddles"),
             contents: bytemuck::cast_slice(&fft_twiddles(n as usize)),
             usage: storage,
         });
         let ping_pong = |label| {
-            device.create_buffer(&wgpu::BufferDescriptor {
+            device.new_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
                 size: u64::from(ARRAYS * n * n) * 8,
                 usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
@@ -345,7 +345,7 @@ impl GpuWaves {
         let pass_uniforms: Vec<wgpu::Buffer> = fft_passes(n as usize)
             .iter()
             .map(|p| {
-                device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                device.new_buffer_init(&wgpu::util::BufferInitDescriptor {
                     label: Some("ocean.waves.fft_pass"),
                     contents: bytemuck::bytes_of(p),
                     usage: wgpu::BufferUsages::UNIFORM,
@@ -381,7 +381,7 @@ impl GpuWaves {
         );
 
         let textures = WaveTexture::ALL.map(|which| {
-            device.create_texture(&wgpu::TextureDescriptor {
+            device.new_texture(&wgpu::TextureDescriptor {
                 label: Some(&format!("ocean.waves.{}", which.name())),
                 size: wgpu::Extent3d { width: n, height: n, depth_or_array_layers: 1 },
                 mip_level_count: 1,
@@ -394,8 +394,8 @@ impl GpuWaves {
                 view_formats: &[],
             })
         });
-        let views = textures.each_ref().map(|t| t.create_view(&Default::default()));
-        let texture_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        let views = textures.each_ref().map(|t| t.new_view(&Default::default()));
+        let texture_group = device.new_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("ocean.waves.textures"),
             layout: &texture_layout,
             entries: &[0, 1, 2].map(|i| wgpu::BindGroupEntry {
@@ -671,7 +671,7 @@ impl GpuWaves {
         let n = self.resolution;
         let row_bytes = n * 16;
         let padded = row_bytes.next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
-        let staging = device.create_buffer(&wgpu::BufferDescriptor {
+        let staging = device.new_buffer(&wgpu::BufferDescriptor {
             label: Some("ocean.waves.readback"),
             size: u64::from(padded * n),
             usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
@@ -720,7 +720,7 @@ impl GpuWaves {
             WavesBuffer::Ping => &self.ping,
             WavesBuffer::Pong => &self.pong,
         };
-        let staging = device.create_buffer(&wgpu::BufferDescriptor {
+        let staging = device.new_buffer(&wgpu::BufferDescriptor {
             label: Some("ocean.waves.readback"),
             size: source.size(),
             usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
