@@ -109,22 +109,37 @@ pub struct Fit {
     pub against: &'static str,
     /// The fitted exponent (1: linear in the size).
     pub exponent: f64,
+    /// The fit's time at size 1, ms: time ≈ scale_ms · size^exponent.
+    pub scale_ms: f64,
     /// How many cases it went through.
     pub points: usize,
 }
 
-/// The least-squares slope of (ln x, ln y); `None` under two points or one x.
-pub fn log_log_slope(points: &[(f64, f64)]) -> Option<f64> {
+/// The least-squares line through (ln x, ln y): (slope, intercept); `None` under two points
+/// or one x.
+pub fn log_log_fit(points: &[(f64, f64)]) -> Option<(f64, f64)> {
     let logs: Vec<(f64, f64)> = points.iter().map(|&(x, y)| (x.ln(), y.ln())).collect();
     let n = logs.len() as f64;
     let (mx, my) = logs.iter().fold((0.0, 0.0), |(a, b), &(x, y)| (a + x / n, b + y / n));
     let sxx: f64 = logs.iter().map(|&(x, _)| (x - mx) * (x - mx)).sum();
     let sxy: f64 = logs.iter().map(|&(x, y)| (x - mx) * (y - my)).sum();
-    (logs.len() >= 2 && sxx > 0.0).then(|| sxy / sxx)
+    (logs.len() >= 2 && sxx > 0.0).then(|| {
+        let slope = sxy / sxx;
+        (slope, my - slope * mx)
+    })
+}
+
+/// What a case's time is fitted against: pixels for a frame, N² log₂ N for a synthesis.
+pub(crate) fn fit_size(c: &Case) -> Option<f64> {
+    match (c.size, c.n) {
+        (Some([w, h]), _) => Some(f64::from(w) * f64::from(h)),
+        (None, Some(n)) => Some(f64::from(n) * f64::from(n) * f64::from(n).log2()),
+        _ => None,
+    }
 }
 
 /// The fits of every (name, back end) with cases at two sizes or more.
-fn fits(cases: &[Case]) -> Vec<Fit> {
+pub(crate) fn fits(cases: &[Case]) -> Vec<Fit> {
     let mut keys: Vec<(&str, &'static str, &'static str)> = Vec::new();
     for c in cases {
         if !keys.iter().any(|k| k.0 == c.name && k.1 == c.backend && k.2 == c.kind) {
@@ -136,18 +151,18 @@ fn fits(cases: &[Case]) -> Vec<Fit> {
             let points: Vec<(f64, f64)> = cases
                 .iter()
                 .filter(|c| c.name == name && c.backend == backend && c.kind == kind)
-                .filter_map(|c| {
-                    let size = match (c.size, c.n) {
-                        (Some([w, h]), _) => f64::from(w) * f64::from(h),
-                        (None, Some(n)) => f64::from(n) * f64::from(n) * f64::from(n).log2(),
-                        _ => return None,
-                    };
-                    Some((size, c.frame_ms))
-                })
+                .filter_map(|c| Some((fit_size(c)?, c.frame_ms)))
                 .collect();
-            let exponent = log_log_slope(&points)?;
+            let (exponent, intercept) = log_log_fit(&points)?;
             let against = if kind == "frame" { "pixels" } else { "N² log2 N" };
-            Some(Fit { name: name.to_owned(), backend, against, exponent, points: points.len() })
+            Some(Fit {
+                name: name.to_owned(),
+                backend,
+                against,
+                exponent,
+                scale_ms: intercept.exp(),
+                points: points.len(),
+            })
         })
         .collect()
 }
@@ -213,7 +228,7 @@ fn scene(system: System, [w, h]: [u32; 2]) -> anyhow::Result<Scene> {
     Ok(s)
 }
 
-fn cpu_frame(system: System, size: [u32; 2], runs: u32) -> anyhow::Result<Case> {
+pub(crate) fn cpu_frame(system: System, size: [u32; 2], runs: u32) -> anyhow::Result<Case> {
     let s = scene(system, size)?;
     reset_peak();
     ocean_cpu::render_scene(&s, OutputKind::Ldr, &mut |_| {})?;
@@ -238,7 +253,7 @@ fn cpu_frame(system: System, size: [u32; 2], runs: u32) -> anyhow::Result<Case> 
     })
 }
 
-fn gpu_frame(
+pub(crate) fn gpu_frame(
     r: &mut ocean_gpu::Renderer,
     system: System,
     size: [u32; 2],
@@ -274,7 +289,7 @@ fn gpu_frame(
 
 /// The device's copy bandwidth, GB/s: a 64 MiB buffer copied (read and written), the median
 /// of five after a warm-up.
-fn copy_bandwidth(gpu: &ocean_gpu::Gpu) -> anyhow::Result<f64> {
+pub(crate) fn copy_bandwidth(gpu: &ocean_gpu::Gpu) -> anyhow::Result<f64> {
     let size = 64u64 << 20;
     let buffer = |usage| {
         gpu.device.create_buffer(&wgpu::BufferDescriptor {
@@ -299,7 +314,11 @@ fn copy_bandwidth(gpu: &ocean_gpu::Gpu) -> anyhow::Result<f64> {
     Ok(2.0 * size as f64 / median(times) / 1e9)
 }
 
-fn waves(gpu: Option<(&ocean_gpu::Gpu, f64)>, n: u32, runs: u32) -> anyhow::Result<Vec<Case>> {
+pub(crate) fn waves(
+    gpu: Option<(&ocean_gpu::Gpu, f64)>,
+    n: u32,
+    runs: u32,
+) -> anyhow::Result<Vec<Case>> {
     use ocean_core::waves::{Synthesizer, WaveMaps};
     use ocean_gpu::waves::{FftKernel, GpuWaves};
     let ocean = ocean_core::scene::Ocean { resolution: n, ..ocean_core::scene::Ocean::default() };
@@ -513,8 +532,9 @@ mod tests {
     #[test]
     fn the_slope_of_a_power_law_is_its_exponent() {
         let points: Vec<(f64, f64)> = [1.0, 4.0, 9.0].iter().map(|&x| (x, 3.0 * x * x)).collect();
-        assert!((log_log_slope(&points).unwrap_or(f64::NAN) - 2.0).abs() < 1e-12);
-        assert_eq!(log_log_slope(&points[..1]), None);
-        assert_eq!(log_log_slope(&[(2.0, 1.0), (2.0, 5.0)]), None);
+        let (slope, intercept) = log_log_fit(&points).unwrap_or((f64::NAN, f64::NAN));
+        assert!((slope - 2.0).abs() < 1e-12 && (intercept.exp() - 3.0).abs() < 1e-12);
+        assert_eq!(log_log_fit(&points[..1]), None);
+        assert_eq!(log_log_fit(&[(2.0, 1.0), (2.0, 5.0)]), None);
     }
 }

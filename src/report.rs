@@ -3,8 +3,9 @@
 //!
 //! Writes into `--out-dir`: `error_vs_time.csv` (columns `knob,setting,error_metric,error,
 //! time_ms,backend`), `error_vs_time.svg` (log error against log time, one panel per knob)
-//! and `report.md` (the tables, the Pareto-optimal settings per knob, the planner and the
-//! stability tables).
+//! `scaling.svg` (time against the size of the work, both back ends, fitted exponents:
+//! [`scaling`]) and `report.md` (the tables, the Pareto-optimal settings per knob, the
+//! planner, scaling and stability tables).
 //!
 //! A knob is one entry of [`KNOBS`]: a name, what it varies, and a function that measures
 //! every setting against the best one and returns rows. A measurement on another back end
@@ -33,6 +34,7 @@ use ocean_cpu::shaders::water;
 use ocean::output::write_atomic;
 
 mod far_field;
+mod scaling;
 mod surface;
 mod techniques;
 
@@ -42,7 +44,8 @@ pub struct Args {
     /// Fewer settings, smaller frames, 3 runs per timing: a few minutes on a 2-core machine.
     #[arg(long)]
     quick: bool,
-    /// Folder for error_vs_time.csv, error_vs_time.svg and report.md (created if missing).
+    /// Folder for error_vs_time.csv, error_vs_time.svg, scaling.svg and report.md (created if
+    /// missing).
     #[arg(long, default_value = "report")]
     out_dir: PathBuf,
 }
@@ -968,7 +971,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         std::fs::read_dir(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("reference/scenes"))
             .map(|d| d.count() as u64)
             .unwrap_or(8);
-    let total = KNOBS.iter().map(|k| (k.steps)(&ctx)).sum::<u64>() + scenes + 1;
+    let total =
+        KNOBS.iter().map(|k| (k.steps)(&ctx)).sum::<u64>() + scenes + 1 + scaling::steps(&ctx);
     let bar = ProgressBar::new(total);
     bar.set_style(
         ProgressStyle::with_template("{elapsed:>4} [{bar:30}] {pos}/{len} {msg}")
@@ -980,6 +984,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         rows.extend((knob.measure)(&ctx).with_context(|| format!("knob {}", knob.name))?);
     }
     let planner = planner(&ctx)?;
+    let scaling = scaling::measure(&ctx).context("the scaling measurements")?;
     let stability = ocean_verify::stability::cases()?;
     ctx.step("stability");
     ctx.bar.finish_and_clear();
@@ -992,13 +997,23 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     plot(&rows, &tmp)?;
     std::fs::rename(&tmp, &svg_path)
         .with_context(|| format!("cannot write {}", svg_path.display()))?;
-    let md = markdown(&args, &rows, &planner, &stability, start.elapsed().as_secs_f64());
+    let scaling_path = args.out_dir.join("scaling.svg");
+    let tmp = args.out_dir.join(format!(".scaling.svg.tmp-{}", std::process::id()));
+    scaling::plot(&scaling, &tmp)?;
+    std::fs::rename(&tmp, &scaling_path)
+        .with_context(|| format!("cannot write {}", scaling_path.display()))?;
+    let md = markdown(&args, &rows, &planner, &stability, start.elapsed().as_secs_f64()).replacen(
+        "## Numerical stability",
+        &format!("{}## Numerical stability", scaling::markdown(&scaling)),
+        1,
+    );
     write_atomic(&args.out_dir.join("report.md"), md.as_bytes())?;
     let failing = stability.iter().filter(|c| !c.passes()).count();
     eprintln!(
-        "wrote {}, {} and report.md in {} ({:.0} s){}",
+        "wrote {}, {}, {} and report.md in {} ({:.0} s){}",
         csv_path.display(),
         svg_path.display(),
+        scaling_path.display(),
         args.out_dir.display(),
         start.elapsed().as_secs_f64(),
         if failing > 0 { format!("; {failing} stability case(s) FAIL") } else { String::new() }

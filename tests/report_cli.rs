@@ -70,14 +70,35 @@ fn quick_report_writes_csv_plot_and_markdown() {
     let svg = std::fs::read_to_string(out.join("error_vs_time.svg")).unwrap();
     assert!(svg.starts_with("<svg") && svg.contains("reflection_map_resolution"));
     let md = std::fs::read_to_string(out.join("report.md")).unwrap();
-    for section in ["## Pareto-optimal settings", "## Planner", "## Numerical stability"] {
+    for section in
+        ["## Pareto-optimal settings", "## Planner", "## Scaling", "## Numerical stability"]
+    {
         assert!(md.contains(section), "{section} missing");
     }
     // The planner's pictures are bit-identical and every stability case holds.
     assert!(!md.contains("FAIL"), "{md}");
     // No temporary file is left behind.
     let names: Vec<_> = std::fs::read_dir(&out).unwrap().map(|e| e.unwrap().file_name()).collect();
-    assert_eq!(names.len(), 3, "{names:?}");
+    assert_eq!(names.len(), 4, "{names:?}");
+    // The scaling plot: both panels, every fitted series labelled with its exponent (the GPU's
+    // too under OCEAN_REQUIRE_GPU=1, where an adapter must be here).
+    let scaling = std::fs::read_to_string(out.join("scaling.svg")).unwrap();
+    assert!(scaling.contains("wave synthesis") && scaling.contains("frame: time"), "panels");
+    for series in ["cpu_synthesizer_f32 cpu: exponent", "hu cpu: exponent", "coastal cpu"] {
+        assert!(scaling.contains(series), "{series} missing from scaling.svg");
+    }
+    if std::env::var("OCEAN_REQUIRE_GPU").is_ok_and(|v| v == "1") {
+        assert!(scaling.contains("gpu_fft gpu: exponent") && scaling.contains("hu gpu: exponent"));
+    }
+    let exponents: Vec<f64> = md
+        .split("## Scaling")
+        .nth(1)
+        .unwrap()
+        .lines()
+        .filter(|l| l.starts_with("| ") && !l.starts_with("| what"))
+        .map(|l| l.split('|').nth(4).unwrap().trim().parse::<f64>().unwrap())
+        .collect();
+    assert!(exponents.len() >= 5 && exponents.iter().all(|e| e.is_finite()), "{exponents:?}");
 
     // Negative controls of the CSV check: a changed header, a NaN, a missing knob.
     assert!(!csv_problems(&csv.replacen("time_ms", "time", 1)).is_empty());
