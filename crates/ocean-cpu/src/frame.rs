@@ -234,10 +234,34 @@ pub fn draw_water(
     bindings: &water::Bindings<'_>,
     fragment: &(dyn Fn(&water::VertexOut, &water::Bindings<'_>) -> Option<[f32; 4]> + Sync),
 ) {
+    let (verts, indices) = water_vertices(mesh, bindings);
+    let state = RasterState { blend: BlendMode::Replace, ..eye_state() };
+    raster::draw_indexed(target, &state, &verts, &indices, |frag| {
+        fragment(&water::VertexOut::from_fragment(frag.frag_coord, &frag.varyings), bindings)
+    });
+}
+
+/// [`draw_water`] of the frame's `water::fs_main`, which never discards: each pixel is shaded
+/// once, for the water fragment that stays ([`raster::draw_indexed_visible`]); the same
+/// target bit for bit, without shading what the nearer water hides.
+fn draw_water_visible(target: &mut RenderTarget, mesh: &WaterMesh, bindings: &water::Bindings<'_>) {
+    let (verts, indices) = water_vertices(mesh, bindings);
+    let state = RasterState { blend: BlendMode::Replace, ..eye_state() };
+    raster::draw_indexed_visible(target, &state, &verts, &indices, |frag| {
+        water::fs_main(&water::VertexOut::from_fragment(frag.frag_coord, &frag.varyings), bindings)
+    });
+}
+
+/// The water's vertices, shaded, and its triangles.
+#[allow(clippy::type_complexity, reason = "a vertex list and its index triples")]
+fn water_vertices(
+    mesh: &WaterMesh,
+    bindings: &water::Bindings<'_>,
+) -> (Vec<Vertex<{ water::VARYINGS }>>, Vec<[u32; 3]>) {
     let vertex = |o: water::VertexOut| Vertex::new(o.clip.into(), o.varyings());
     let grid = bindings.frame.grid.vertex_count();
     let clipmap = bindings.frame.clip.vertex_count();
-    let (verts, indices): (Vec<Vertex<{ water::VARYINGS }>>, Vec<[u32; 3]>) = if clipmap > 0 {
+    if clipmap > 0 {
         // Surface `clipmap`: the vertex-index draw of its levels' triangle lists; every vertex
         // is a pure function of its index, so they are shaded in parallel.
         use rayon::prelude::*;
@@ -251,11 +275,7 @@ pub fn draw_water(
     } else {
         let verts = mesh.vertices.iter().map(|v| vertex(water::vs_main(v, bindings))).collect();
         (verts, mesh.indices.clone())
-    };
-    let state = RasterState { blend: BlendMode::Replace, ..eye_state() };
-    raster::draw_indexed(target, &state, &verts, &indices, |frag| {
-        fragment(&water::VertexOut::from_fragment(frag.frag_coord, &frag.varyings), bindings)
-    });
+    }
 }
 
 /// Reversed-Z depth state of the views from the eye: `Greater`, cleared to 0.
@@ -564,7 +584,7 @@ impl<'e> CpuBackend<'e> {
             shade_above,
             foam_coverage,
         };
-        draw_water(&mut hdr, &frame.mesh, &bindings, &|input, b| Some(water::fs_main(input, b)));
+        draw_water_visible(&mut hdr, &frame.mesh, &bindings);
         self.hdr = Some(hdr);
         Ok(())
     }

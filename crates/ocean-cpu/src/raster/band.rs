@@ -101,16 +101,84 @@ where
         return None;
     }
 
-    let s = tri.inv_w.at(xf, yf);
-    let inv_s = 1.0 / s;
-    let input = FragmentInput {
-        frag_coord: [xf + 0.5, yf + 0.5, frag_depth, s],
-        varyings: std::array::from_fn(|k| tri.varyings[k].at(xf, yf) * inv_s),
-        front_facing: tri.front_facing,
-    };
-    let src = shader(&input)?;
+    let src = shader(&fragment_input(xf, yf, frag_depth, tri))?;
     if state.depth_write {
         *depth = frag_depth;
     }
     Some(state.blend.apply(src, color))
+}
+
+/// The shader's input at pixel (x, y) of `tri` with the tested depth `frag_depth`.
+#[inline]
+fn fragment_input<const V: usize>(
+    xf: f32,
+    yf: f32,
+    frag_depth: f32,
+    tri: &TriangleSetup<V>,
+) -> FragmentInput<V> {
+    let s = tri.inv_w.at(xf, yf);
+    let inv_s = 1.0 / s;
+    FragmentInput {
+        frag_coord: [xf + 0.5, yf + 0.5, frag_depth, s],
+        varyings: std::array::from_fn(|k| tri.varyings[k].at(xf, yf) * inv_s),
+        front_facing: tri.front_facing,
+    }
+}
+
+/// [`raster_band`] for a shader that never discards under [`super::BlendMode::Replace`]: a
+/// pixel's colour is then the last fragment that passed its depth test, whatever the ones
+/// before it were, so the band runs every depth test first (in submission order, writing
+/// depth as the serial algorithm does) and shades only each pixel's last passing fragment,
+/// once, with the same input. Bit-identical to [`raster_band`] for a pure shader; the
+/// overdrawn fragments cost a depth test instead of a shading.
+pub fn raster_band_visible<const V: usize, F>(
+    band: Band,
+    color: &mut [[f32; 4]],
+    depth: &mut [f32],
+    tris: &[TriangleSetup<V>],
+    bin: &[usize],
+    state: &RasterState,
+    shader: &F,
+) where
+    F: Fn(&FragmentInput<V>) -> [f32; 4] + Sync,
+{
+    debug_assert_eq!(color.len(), (band.rows * band.width) as usize);
+    debug_assert!(matches!(state.blend, super::BlendMode::Replace));
+    const NONE: u32 = u32::MAX;
+    let mut last = vec![NONE; color.len()];
+    let band_y1 = band.y0 + band.rows - 1;
+    for &t in bin {
+        let tri = &tris[t];
+        let [bx0, by0, bx1, by1] = tri.bbox;
+        for y in by0.max(band.y0)..=by1.min(band_y1) {
+            let row = ((y - band.y0) * band.width) as usize;
+            let yi = i64::from(y);
+            let mut span = (i64::from(bx0), i64::from(bx1));
+            for edge in &tri.edges {
+                span = edge.clip_span(yi, span.0, span.1);
+            }
+            let yf = y as f32;
+            for x in span.0..=span.1 {
+                let i = row + x as usize;
+                let frag_depth = tri.z.at(x as f32, yf).clamp(0.0, 1.0);
+                if state.depth_compare.passes(frag_depth, depth[i]) {
+                    if state.depth_write {
+                        depth[i] = frag_depth;
+                    }
+                    last[i] = t as u32;
+                }
+            }
+        }
+    }
+    for (i, &t) in last.iter().enumerate() {
+        if t == NONE {
+            continue;
+        }
+        let tri = &tris[t as usize];
+        let (x, y) = (i as u32 % band.width, band.y0 + i as u32 / band.width);
+        let (xf, yf) = (x as f32, y as f32);
+        let frag_depth = tri.z.at(xf, yf).clamp(0.0, 1.0);
+        let src = shader(&fragment_input(xf, yf, frag_depth, tri));
+        color[i] = band.format.store4(state.blend.apply(src, color[i]));
+    }
 }

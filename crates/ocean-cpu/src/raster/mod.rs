@@ -42,7 +42,7 @@ pub use fixed_point::SUBPIXEL_BITS;
 pub use state::{BlendMode, CompareFunction, CullMode, FrontFace, RasterState};
 pub use target::RenderTarget;
 
-use band::{Band, raster_band};
+use band::{Band, raster_band, raster_band_visible};
 use setup::{TriangleSetup, setup_triangle};
 
 /// A vertex as a vertex shader outputs it: the clip-space position (`@builtin(position)`) and
@@ -108,16 +108,53 @@ pub fn draw_indexed<const V: usize, F>(
     draw_with(target, state, indices.len(), |i| indices[i].map(|k| vertices[k as usize]), shader);
 }
 
-/// The draw: parallel setup (collected in order), binning into bands, parallel bands.
-fn draw_with<const V: usize, F>(
+/// [`draw_indexed`] of a shader that never discards, under [`BlendMode::Replace`]: each
+/// pixel is shaded once, for the last fragment that passes its depth test (every depth test
+/// runs first, in submission order). The same target, bit for bit, as [`draw_indexed`] with
+/// `Some(shader(..))` for a pure shader, with the overdraw's shading left out.
+///
+/// # Panics
+/// If an index is out of range of `vertices`, or the state blends (only `Replace` makes the
+/// last passing fragment the whole story).
+pub fn draw_indexed_visible<const V: usize, F>(
     target: &mut RenderTarget,
+    state: &RasterState,
+    vertices: &[Vertex<V>],
+    indices: &[[u32; 3]],
+    shader: F,
+) where
+    F: Fn(&FragmentInput<V>) -> [f32; 4] + Sync,
+{
+    assert!(matches!(state.blend, BlendMode::Replace), "draw_indexed_visible blends nothing");
+    let fetch = |i: usize| indices[i].map(|k| vertices[k as usize]);
+    let Some((tris, bins)) = bin_triangles(target, state, indices.len(), fetch) else { return };
+    let (width, height, format) = (target.width, target.height, target.format);
+    let band_len = (BAND_ROWS * width) as usize;
+    target
+        .color
+        .par_chunks_mut(band_len)
+        .zip(target.depth.par_chunks_mut(band_len))
+        .zip(bins.par_iter())
+        .enumerate()
+        .for_each(|(k, ((color, depth), bin))| {
+            let y0 = k as u32 * BAND_ROWS;
+            let band = Band { y0, rows: BAND_ROWS.min(height - y0), width, format };
+            raster_band_visible(band, color, depth, &tris, bin, state, &shader);
+        });
+}
+
+/// The triangles set up (in parallel, collected in order) and binned into bands; `None` for
+/// an empty target.
+///
+/// # Panics
+/// If the target is beyond [`RenderTarget::MAX_SIZE`] or its buffers do not match its size.
+#[allow(clippy::type_complexity, reason = "the triangles and their bins, used together")]
+fn bin_triangles<const V: usize>(
+    target: &RenderTarget,
     state: &RasterState,
     count: usize,
     fetch: impl Fn(usize) -> [Vertex<V>; 3] + Sync,
-    shader: F,
-) where
-    F: Fn(&FragmentInput<V>) -> Option<[f32; 4]> + Sync,
-{
+) -> Option<(Vec<TriangleSetup<V>>, Vec<Vec<usize>>)> {
     let (width, height) = (target.width, target.height);
     let pixels = width as usize * height as usize;
     assert!(
@@ -130,7 +167,7 @@ fn draw_with<const V: usize, F>(
         "render target buffers do not match {width}x{height}"
     );
     if pixels == 0 {
-        return;
+        return None;
     }
 
     let tris: Vec<TriangleSetup<V>> = (0..count)
@@ -150,7 +187,21 @@ fn draw_with<const V: usize, F>(
             bin.push(i);
         }
     }
+    Some((tris, bins))
+}
 
+/// The draw: parallel setup (collected in order), binning into bands, parallel bands.
+fn draw_with<const V: usize, F>(
+    target: &mut RenderTarget,
+    state: &RasterState,
+    count: usize,
+    fetch: impl Fn(usize) -> [Vertex<V>; 3] + Sync,
+    shader: F,
+) where
+    F: Fn(&FragmentInput<V>) -> Option<[f32; 4]> + Sync,
+{
+    let Some((tris, bins)) = bin_triangles(target, state, count, fetch) else { return };
+    let (width, height) = (target.width, target.height);
     let band_len = (BAND_ROWS * width) as usize;
     let format = target.format;
     target
@@ -164,4 +215,79 @@ fn draw_with<const V: usize, F>(
             let band = Band { y0, rows: BAND_ROWS.min(height - y0), width, format };
             raster_band(band, color, depth, &tris, bin, state, &shader);
         });
+}
+
+#[cfg(test)]
+mod tests {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+
+    use super::*;
+
+    /// Random overlapping triangles at random depths (some poking out of the view, so that
+    /// clipping runs too) and their indices.
+    fn scene(count: usize) -> (Vec<Vertex<3>>, Vec<[u32; 3]>) {
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut unit = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 40) as f32 / (1u64 << 24) as f32
+        };
+        let vertices: Vec<Vertex<3>> = (0..3 * count)
+            .map(|_| {
+                let w = 0.5 + 2.0 * unit();
+                let clip = [(2.4 * unit() - 1.2) * w, (2.4 * unit() - 1.2) * w, unit() * w, w];
+                Vertex::new(clip, [unit(), unit(), 8.0 * unit()])
+            })
+            .collect();
+        let indices = (0..count as u32).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect();
+        (vertices, indices)
+    }
+
+    fn shade(f: &FragmentInput<3>) -> [f32; 4] {
+        let [x, y, z, s] = f.frag_coord;
+        let [a, b, c] = f.varyings;
+        [a * z + x * 1e-3, b.mul_add(s, y * 1e-3), c.sin(), if f.front_facing { 1.0 } else { 0.5 }]
+    }
+
+    /// A target cleared as the eye's views are (reversed Z: depth 0).
+    fn target() -> RenderTarget {
+        let mut t = RenderTarget::new(67, 45);
+        t.clear_depth(0.0);
+        t
+    }
+
+    fn bits(t: &RenderTarget) -> Vec<u32> {
+        t.color.iter().flatten().chain(&t.depth).map(|v| v.to_bits()).collect()
+    }
+
+    #[test]
+    fn shading_only_the_last_passing_fragment_gives_the_same_target() {
+        let state = RasterState {
+            depth_compare: CompareFunction::Greater,
+            cull_mode: CullMode::None,
+            ..RasterState::default()
+        };
+        let (vertices, indices) = scene(60);
+        let (serial_calls, visible_calls) = (AtomicUsize::new(0), AtomicUsize::new(0));
+        let mut serial = target();
+        draw_indexed(&mut serial, &state, &vertices, &indices, |f| {
+            serial_calls.fetch_add(1, Ordering::Relaxed);
+            Some(shade(f))
+        });
+        let mut visible = target();
+        draw_indexed_visible(&mut visible, &state, &vertices, &indices, |f| {
+            visible_calls.fetch_add(1, Ordering::Relaxed);
+            shade(f)
+        });
+        assert!(bits(&serial) == bits(&visible), "the targets differ");
+        let (serial_calls, visible_calls) = (serial_calls.into_inner(), visible_calls.into_inner());
+        // The scene overdraws, so the check saw hidden fragments left out.
+        assert!(visible_calls <= 67 * 45 && serial_calls > visible_calls + 500, "{serial_calls}");
+
+        // Control: the comparison sees one triangle fewer.
+        let mut fewer = target();
+        draw_indexed_visible(&mut fewer, &state, &vertices, &indices[1..], shade);
+        assert!(bits(&fewer) != bits(&visible), "a missing triangle went unseen");
+    }
 }
