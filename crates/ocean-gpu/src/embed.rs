@@ -260,7 +260,10 @@ impl EmbeddedOcean {
     /// Records the sea at `time_s` (the caller's clock, s; the scene's sea time is replaced)
     /// seen by `camera` into `encoder`: the frame's passes in this crate's targets, then the
     /// composite into `color` and `depth` (both loaded and kept; the caller clears them). The
-    /// caller submits the encoder.
+    /// caller submits the encoder, once per frame: the frame's targets, buffers and bind
+    /// groups are kept for the next ([`crate::pool`]), and its uniforms are written with
+    /// `Queue::write_buffer`, which lands at the next submission, so two frames of one
+    /// `EmbeddedOcean` recorded into one encoder would both see the second's uniforms.
     ///
     /// # Errors
     /// [`Error::Core`] for a camera whose matrices are not a rigid view and a symmetric

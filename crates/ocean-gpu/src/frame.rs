@@ -88,7 +88,9 @@ pub struct GpuFrame {
     /// The 8-bit sRGB RGBA picture, when the plan tonemaps and it was read back.
     pub ldr: Option<Vec<u8>>,
     /// The output texture on the GPU: the 8-bit picture (`Rgba8Unorm`) when the plan
-    /// tonemaps, else the HDR frame (`Rgba32Float`).
+    /// tonemaps, else the HDR frame (`Rgba32Float`). The renderer keeps its targets across
+    /// frames ([`crate::pool`]): the texture holds this frame until the renderer's next frame
+    /// is submitted, which draws into it again (copy it to keep it longer).
     pub output: GpuTexture,
     /// The frame's uniforms.
     pub uniforms: FrameUniforms,
