@@ -9,8 +9,8 @@
 //!   and reading the 8-bit picture back; CPU: every pass and the picture);
 //! - `encode_ms` (GPU): the same frame recorded and submitted with nothing read back, the
 //!   call returning without waiting (the real-time viewer's case);
-//! - per pass: GPU time from timestamp queries where the adapter has them, the CPU's wall
-//!   time per pass;
+//! - per pass, of the median run itself (so that they add up inside its total): GPU time
+//!   from timestamp queries where the adapter has them, the CPU's wall time per pass;
 //! - `peak_rss_mib`: the process's peak resident memory during the case (Linux: VmHWM,
 //!   reset before each case through /proc/self/clear_refs; `null` elsewhere). On a software
 //!   adapter (lavapipe) the GPU's memory is in it; on a hardware GPU it is not.
@@ -65,7 +65,8 @@ pub struct Case {
     pub frame_ms: f64,
     /// GPU frames: median time to record and submit with nothing read back, ms.
     pub encode_ms: Option<f64>,
-    /// Median time per pass, ms (GPU: timestamp queries; CPU: wall time), in frame order.
+    /// Time per pass of the median run (the one whose total is `frame_ms`), ms (GPU:
+    /// timestamp queries; CPU: wall time), in frame order.
     pub passes: Vec<(String, f64)>,
     /// Peak resident memory during the case, MiB.
     pub peak_rss_mib: Option<f64>,
@@ -181,30 +182,29 @@ fn median(mut v: Vec<f64>) -> f64 {
     v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
 }
 
-/// Medians of per-pass times gathered over runs, in first-seen order.
+/// The timed runs of a case: each run's total and its passes, so that the case reports one
+/// whole run (the median one by total) whose passes add up inside its total.
 #[derive(Default)]
-struct PassTimes(Vec<(Pass, Vec<f64>)>);
+struct Runs(Vec<(f64, Vec<(String, f64)>)>);
 
-impl PassTimes {
-    fn add(&mut self, timings: &[(Pass, Duration)]) {
+impl Runs {
+    fn add(&mut self, total_ms: f64, timings: &[(Pass, Duration)]) {
         // A pass timed twice in a frame (two Fresnel tables) counts once, summed.
-        let mut frame: Vec<(Pass, f64)> = Vec::new();
+        let mut passes: Vec<(String, f64)> = Vec::new();
         for (p, d) in timings {
-            match frame.iter_mut().find(|(q, _)| q == p) {
+            match passes.iter_mut().find(|(q, _)| q == p.name()) {
                 Some((_, v)) => *v += ms(*d),
-                None => frame.push((*p, ms(*d))),
+                None => passes.push((p.name().to_owned(), ms(*d))),
             }
         }
-        for (p, v) in frame {
-            match self.0.iter_mut().find(|(q, _)| *q == p) {
-                Some((_, all)) => all.push(v),
-                None => self.0.push((p, vec![v])),
-            }
-        }
+        self.0.push((total_ms, passes));
     }
 
-    fn medians(self) -> Vec<(String, f64)> {
-        self.0.into_iter().map(|(p, v)| (p.name().to_owned(), median(v))).collect()
+    /// The median run by total: (its total, its passes).
+    fn median_run(mut self) -> (f64, Vec<(String, f64)>) {
+        self.0.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let k = self.0.len() / 2;
+        self.0.into_iter().nth(k).unwrap_or((f64::NAN, Vec::new()))
     }
 }
 
@@ -232,22 +232,22 @@ pub(crate) fn cpu_frame(system: System, size: [u32; 2], runs: u32) -> anyhow::Re
     let s = scene(system, size)?;
     reset_peak();
     ocean_cpu::render_scene(&s, OutputKind::Ldr, &mut |_| {})?;
-    let (mut walls, mut passes) = (Vec::new(), PassTimes::default());
+    let mut timed = Runs::default();
     for _ in 0..runs {
         let t0 = Instant::now();
         let r = ocean_cpu::render_scene(&s, OutputKind::Ldr, &mut |_| {})?;
-        walls.push(ms(t0.elapsed()));
-        passes.add(&r.buffers.timings);
+        timed.add(ms(t0.elapsed()), &r.buffers.timings);
     }
+    let (frame_ms, passes) = timed.median_run();
     Ok(Case {
         kind: "frame",
         name: system.name().to_owned(),
         backend: "cpu",
         size: Some(size),
         n: None,
-        frame_ms: median(walls),
+        frame_ms,
         encode_ms: None,
-        passes: passes.medians(),
+        passes,
         peak_rss_mib: peak_rss_mib(),
         bandwidth_bound_ms: None,
     })
@@ -264,24 +264,24 @@ pub(crate) fn gpu_frame(
     let plan = FramePlan::new(&s, OutputKind::Ldr);
     reset_peak();
     r.run_with(&s, &plan, Readback::Output)?;
-    let (mut walls, mut encodes, mut passes) = (Vec::new(), Vec::new(), PassTimes::default());
+    let (mut timed, mut encodes) = (Runs::default(), Vec::new());
     for _ in 0..runs {
         let f = r.run_with(&s, &plan, Readback::Output)?;
-        walls.push(ms(f.wall));
-        passes.add(&f.gpu_timings);
+        timed.add(ms(f.wall), &f.gpu_timings);
         let f = r.run_with(&s, &plan, Readback::None)?;
         encodes.push(ms(f.wall));
         r.gpu().wait()?;
     }
+    let (frame_ms, passes) = timed.median_run();
     Ok(Case {
         kind: "frame",
         name: system.name().to_owned(),
         backend: "gpu",
         size: Some(size),
         n: None,
-        frame_ms: median(walls),
+        frame_ms,
         encode_ms: Some(median(encodes)),
-        passes: passes.medians(),
+        passes,
         peak_rss_mib: peak_rss_mib(),
         bandwidth_bound_ms: None,
     })

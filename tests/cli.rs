@@ -404,8 +404,9 @@ fn bench_cases(json: &serde_json::Value) -> Vec<serde_json::Value> {
             .iter()
             .map(|p| p[1].as_f64().expect("a pass's ms"))
             .sum();
-        // The passes are parts of the frame (the GPU's ran inside its wall time, the CPU's
-        // one after another in it); 1 % and 0.1 ms for clock granularity.
+        // The passes are parts of the frame (they are the median run's own: the GPU's ran
+        // inside its wall time, the CPU's one after another in it); 1 % and 0.1 ms for clock
+        // granularity.
         assert!(passes <= 1.01 * total + 0.1, "passes {passes} ms > frame {total} ms: {c}");
         if c["kind"] == "frame" {
             assert!(!c["passes"].as_array().expect("passes").is_empty(), "{c}");
