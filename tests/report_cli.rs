@@ -90,10 +90,9 @@ fn quick_report_writes_csv_plot_and_markdown() {
     if std::env::var("OCEAN_REQUIRE_GPU").is_ok_and(|v| v == "1") {
         assert!(scaling.contains("gpu_fft gpu: exponent") && scaling.contains("hu gpu: exponent"));
     }
-    let exponents: Vec<f64> = md
-        .split("## Scaling")
-        .nth(1)
-        .unwrap()
+    let section = md.split("## Scaling").nth(1).unwrap();
+    let section = section.split("\n## ").next().unwrap();
+    let exponents: Vec<f64> = section
         .lines()
         .filter(|l| l.starts_with("| ") && !l.starts_with("| what"))
         .map(|l| l.split('|').nth(4).unwrap().trim().parse::<f64>().unwrap())
