@@ -184,19 +184,6 @@ pub fn sampler_entry(binding: u32, visibility: wgpu::ShaderStages) -> wgpu::Bind
     }
 }
 
-/// A uniform buffer holding `value`.
-pub fn uniform_buffer<T: bytemuck::Pod>(
-    device: &wgpu::Device,
-    label: &str,
-    value: &T,
-) -> wgpu::Buffer {
-    device.new_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some(label),
-        contents: bytemuck::bytes_of(value),
-        usage: wgpu::BufferUsages::UNIFORM,
-    })
-}
-
 /// A bind group of buffers and views in binding order 0, 1, 2, …
 pub fn bind_group(
     device: &wgpu::Device,

@@ -262,62 +262,37 @@ impl FramePool {
     /// bytes; the buffer may be longer, so draw by count), written each frame; made again only
     /// when `bytes` outgrow it (to the next power of two).
     pub fn data(&self, label: &str, usage: wgpu::BufferUsages, bytes: &[u8]) -> wgpu::Buffer {
-        let usage = usage | wgpu::BufferUsages::COPY_DST;
         let len = (bytes.len() as u64).max(4);
-        let mut g = self.lock();
-        let frame = g.frame;
-        let n = g.next(BUFFER, label);
-        let found = g
-            .buffers
-            .iter_mut()
-            .find(|b| b.label == label && b.n == n && b.usage == usage && b.buffer.size() >= len);
-        let buffer = match found {
-            Some(b) => {
-                b.used = frame;
-                b.buffer.clone()
-            }
-            None => {
-                g.buffers.retain(|b| !(b.label == label && b.n == n && b.usage == usage));
-                let buffer = self.device.new_buffer(&wgpu::BufferDescriptor {
-                    label: Some(label),
-                    size: len.next_power_of_two(),
-                    usage,
-                    mapped_at_creation: false,
-                });
-                g.buffers.push(KeptBuffer {
-                    label: label.to_owned(),
-                    n,
-                    usage,
-                    buffer: buffer.clone(),
-                    bytes: Vec::new(),
-                    used: frame,
-                });
-                buffer
-            }
-        };
+        let buffer = self.keep_buffer(
+            label,
+            usage | wgpu::BufferUsages::COPY_DST,
+            |size| size >= len,
+            len.next_power_of_two(),
+        );
         if !bytes.is_empty() {
             self.queue.write_buffer(&buffer, 0, bytes);
         }
         buffer
     }
 
-    /// A readback buffer of exactly `size` bytes (`COPY_DST | MAP_READ`): the one this request
-    /// got in earlier frames, which their reads unmapped ([`crate::texture::Readbacks`] lets
-    /// every staging buffer go, [`Self::drop_staging`], when a read fails), else a new one.
-    pub fn staging(&self, label: &str, size: u64) -> wgpu::Buffer {
-        let usage = wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ;
+    /// This frame's next request of a `usage` buffer under `label`: the buffer the same request
+    /// got before while `fits` its size, else a new one of `size` bytes (replacing it).
+    fn keep_buffer(
+        &self,
+        label: &str,
+        usage: wgpu::BufferUsages,
+        fits: impl Fn(u64) -> bool,
+        size: u64,
+    ) -> wgpu::Buffer {
         let mut g = self.lock();
         let frame = g.frame;
         let n = g.next(BUFFER, label);
-        if let Some(b) = g
-            .buffers
-            .iter_mut()
-            .find(|b| b.label == label && b.n == n && b.usage == usage && b.buffer.size() == size)
-        {
+        let same = |b: &KeptBuffer| b.label == label && b.n == n && b.usage == usage;
+        if let Some(b) = g.buffers.iter_mut().find(|b| same(b) && fits(b.buffer.size())) {
             b.used = frame;
             return b.buffer.clone();
         }
-        g.buffers.retain(|b| !(b.label == label && b.n == n && b.usage == usage));
+        g.buffers.retain(|b| !same(b));
         let buffer = self.device.new_buffer(&wgpu::BufferDescriptor {
             label: Some(label),
             size,
@@ -333,6 +308,14 @@ impl FramePool {
             used: frame,
         });
         buffer
+    }
+
+    /// A readback buffer of exactly `size` bytes (`COPY_DST | MAP_READ`): the one this request
+    /// got in earlier frames, which their reads unmapped ([`crate::texture::Readbacks`] lets
+    /// every staging buffer go, [`Self::drop_staging`], when a read fails), else a new one.
+    pub fn staging(&self, label: &str, size: u64) -> wgpu::Buffer {
+        let usage = wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ;
+        self.keep_buffer(label, usage, |s| s == size, size)
     }
 
     /// Lets every readback buffer go (one may still be mapped after a failed read).

@@ -18,6 +18,9 @@ pub struct PresentStage {
     pipeline: wgpu::RenderPipeline,
     layout: wgpu::BindGroupLayout,
     format: wgpu::TextureFormat,
+    /// The bind group of the output view last presented: the renderer keeps its output
+    /// texture across frames, so a steady viewer makes no bind group per frame.
+    group: std::sync::Mutex<Option<(wgpu::TextureView, wgpu::BindGroup)>>,
 }
 
 impl PresentStage {
@@ -41,7 +44,7 @@ impl PresentStage {
             entries: &[texture_entry(0, wgpu::ShaderStages::FRAGMENT, false)],
         });
         let pipeline = fullscreen_pipeline(device, "present", &module, &layout, format)?;
-        Ok(Self { pipeline, layout, format })
+        Ok(Self { pipeline, layout, format, group: std::sync::Mutex::new(None) })
     }
 
     /// The target format the pipeline was made for.
@@ -59,8 +62,22 @@ impl PresentStage {
         target: &wgpu::TextureView,
     ) {
         let name = label("present");
-        let group =
-            bind_group(device, &name, &self.layout, &[wgpu::BindingResource::TextureView(output)]);
+        let group = {
+            let mut kept = self.group.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+            match &*kept {
+                Some((view, group)) if view == output => group.clone(),
+                _ => {
+                    let group = bind_group(
+                        device,
+                        &name,
+                        &self.layout,
+                        &[wgpu::BindingResource::TextureView(output)],
+                    );
+                    *kept = Some((output.clone(), group.clone()));
+                    group
+                }
+            }
+        };
         let mut pass = begin_render_pass(
             encoder,
             &name,

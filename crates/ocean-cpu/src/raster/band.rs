@@ -42,25 +42,36 @@ pub fn raster_band<const V: usize, F>(
 {
     debug_assert_eq!(color.len(), (band.rows * band.width) as usize);
     debug_assert!(bin.windows(2).all(|w| w[0] < w[1]), "submission order");
-    let band_y1 = band.y0 + band.rows - 1;
     for tri in bin.iter().map(|&i| &tris[i]) {
-        let [bx0, by0, bx1, by1] = tri.bbox;
-        for y in by0.max(band.y0)..=by1.min(band_y1) {
-            let row = ((y - band.y0) * band.width) as usize;
-            let yi = i64::from(y);
-            let mut span = (i64::from(bx0), i64::from(bx1));
-            for edge in &tri.edges {
-                span = edge.clip_span(yi, span.0, span.1);
+        for_each_covered(band, tri, |i, x, y| {
+            if let Some(c) = shade_pixel(x, y, tri, color[i], &mut depth[i], state, shader) {
+                // Blending read the stored value and worked in f32; the result is stored in
+                // the target's format (truncated to binary16 for `rgba16float`), as the GPU's
+                // blend unit writes it.
+                color[i] = band.format.store4(c);
             }
-            for x in span.0..=span.1 {
-                let i = row + x as usize;
-                if let Some(c) = shade_pixel(x, yi, tri, color[i], &mut depth[i], state, shader) {
-                    // Blending read the stored value and worked in f32; the result is stored
-                    // in the target's format (truncated to binary16 for `rgba16float`), as
-                    // the GPU's blend unit writes it.
-                    color[i] = band.format.store4(c);
-                }
-            }
+        });
+    }
+}
+
+/// Calls `f(i, x, y)` for every pixel centre of `band` that `tri` covers, row by row and left
+/// to right: `i` the pixel's index in the band's rows, (x, y) its integer coordinates.
+#[inline]
+fn for_each_covered<const V: usize>(
+    band: Band,
+    tri: &TriangleSetup<V>,
+    mut f: impl FnMut(usize, i64, i64),
+) {
+    let [bx0, by0, bx1, by1] = tri.bbox;
+    for y in by0.max(band.y0)..=by1.min(band.y0 + band.rows - 1) {
+        let row = ((y - band.y0) * band.width) as usize;
+        let yi = i64::from(y);
+        let mut span = (i64::from(bx0), i64::from(bx1));
+        for edge in &tri.edges {
+            span = edge.clip_span(yi, span.0, span.1);
+        }
+        for x in span.0..=span.1 {
+            f(row + x as usize, x, yi);
         }
     }
 }
@@ -145,30 +156,25 @@ pub fn raster_band_visible<const V: usize, F>(
     debug_assert_eq!(color.len(), (band.rows * band.width) as usize);
     debug_assert!(matches!(state.blend, super::BlendMode::Replace));
     const NONE: u32 = u32::MAX;
-    let mut last = vec![NONE; color.len()];
-    let band_y1 = band.y0 + band.rows - 1;
+    thread_local! {
+        /// Each pixel's last passing triangle, kept per thread across bands and draws (taken
+        /// out while in use, so a re-entrant band on this thread allocates its own).
+        static LAST: std::cell::Cell<Vec<u32>> = const { std::cell::Cell::new(Vec::new()) };
+    }
+    let mut last = LAST.take();
+    last.clear();
+    last.resize(color.len(), NONE);
     for &t in bin {
         let tri = &tris[t];
-        let [bx0, by0, bx1, by1] = tri.bbox;
-        for y in by0.max(band.y0)..=by1.min(band_y1) {
-            let row = ((y - band.y0) * band.width) as usize;
-            let yi = i64::from(y);
-            let mut span = (i64::from(bx0), i64::from(bx1));
-            for edge in &tri.edges {
-                span = edge.clip_span(yi, span.0, span.1);
-            }
-            let yf = y as f32;
-            for x in span.0..=span.1 {
-                let i = row + x as usize;
-                let frag_depth = tri.z.at(x as f32, yf).clamp(0.0, 1.0);
-                if state.depth_compare.passes(frag_depth, depth[i]) {
-                    if state.depth_write {
-                        depth[i] = frag_depth;
-                    }
-                    last[i] = t as u32;
+        for_each_covered(band, tri, |i, x, y| {
+            let frag_depth = tri.z.at(x as f32, y as f32).clamp(0.0, 1.0);
+            if state.depth_compare.passes(frag_depth, depth[i]) {
+                if state.depth_write {
+                    depth[i] = frag_depth;
                 }
+                last[i] = t as u32;
             }
-        }
+        });
     }
     for (i, &t) in last.iter().enumerate() {
         if t == NONE {
@@ -181,4 +187,5 @@ pub fn raster_band_visible<const V: usize, F>(
         let src = shader(&fragment_input(xf, yf, frag_depth, tri));
         color[i] = band.format.store4(state.blend.apply(src, color[i]));
     }
+    LAST.set(last);
 }

@@ -128,6 +128,18 @@ pub fn draw_indexed_visible<const V: usize, F>(
     assert!(matches!(state.blend, BlendMode::Replace), "draw_indexed_visible blends nothing");
     let fetch = |i: usize| indices[i].map(|k| vertices[k as usize]);
     let Some((tris, bins)) = bin_triangles(target, state, indices.len(), fetch) else { return };
+    for_each_band(target, &bins, |band, color, depth, bin| {
+        raster_band_visible(band, color, depth, &tris, bin, state, &shader);
+    });
+}
+
+/// Runs `draw` on every band of the target in parallel, with the band's rows of colour and
+/// depth and its bin of triangles.
+fn for_each_band(
+    target: &mut RenderTarget,
+    bins: &[Vec<usize>],
+    draw: impl Fn(Band, &mut [[f32; 4]], &mut [f32], &[usize]) + Sync,
+) {
     let (width, height, format) = (target.width, target.height, target.format);
     let band_len = (BAND_ROWS * width) as usize;
     target
@@ -138,8 +150,7 @@ pub fn draw_indexed_visible<const V: usize, F>(
         .enumerate()
         .for_each(|(k, ((color, depth), bin))| {
             let y0 = k as u32 * BAND_ROWS;
-            let band = Band { y0, rows: BAND_ROWS.min(height - y0), width, format };
-            raster_band_visible(band, color, depth, &tris, bin, state, &shader);
+            draw(Band { y0, rows: BAND_ROWS.min(height - y0), width, format }, color, depth, bin);
         });
 }
 
@@ -201,20 +212,9 @@ fn draw_with<const V: usize, F>(
     F: Fn(&FragmentInput<V>) -> Option<[f32; 4]> + Sync,
 {
     let Some((tris, bins)) = bin_triangles(target, state, count, fetch) else { return };
-    let (width, height) = (target.width, target.height);
-    let band_len = (BAND_ROWS * width) as usize;
-    let format = target.format;
-    target
-        .color
-        .par_chunks_mut(band_len)
-        .zip(target.depth.par_chunks_mut(band_len))
-        .zip(bins.par_iter())
-        .enumerate()
-        .for_each(|(k, ((color, depth), bin))| {
-            let y0 = k as u32 * BAND_ROWS;
-            let band = Band { y0, rows: BAND_ROWS.min(height - y0), width, format };
-            raster_band(band, color, depth, &tris, bin, state, &shader);
-        });
+    for_each_band(target, &bins, |band, color, depth, bin| {
+        raster_band(band, color, depth, &tris, bin, state, &shader);
+    });
 }
 
 #[cfg(test)]
