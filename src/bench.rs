@@ -229,28 +229,38 @@ fn scene(system: System, [w, h]: [u32; 2]) -> anyhow::Result<Scene> {
 }
 
 pub(crate) fn cpu_frame(system: System, size: [u32; 2], runs: u32) -> anyhow::Result<Case> {
-    let s = scene(system, size)?;
+    Ok(cpu_frame_of(&scene(system, size)?, system.name(), runs)?.0)
+}
+
+/// [`cpu_frame`] of any scene, named `name`, and the last run's frame (8-bit RGBA and the HDR
+/// frame) for the report's pictures.
+pub(crate) fn cpu_frame_of(
+    s: &Scene,
+    name: &str,
+    runs: u32,
+) -> anyhow::Result<(Case, ocean_cpu::Rendered)> {
     reset_peak();
-    ocean_cpu::render_scene(&s, OutputKind::Ldr, &mut |_| {})?;
+    let mut last = ocean_cpu::render_scene(s, OutputKind::Ldr, &mut |_| {})?;
     let mut timed = Runs::default();
     for _ in 0..runs {
         let t0 = Instant::now();
-        let r = ocean_cpu::render_scene(&s, OutputKind::Ldr, &mut |_| {})?;
-        timed.add(ms(t0.elapsed()), &r.buffers.timings);
+        last = ocean_cpu::render_scene(s, OutputKind::Ldr, &mut |_| {})?;
+        timed.add(ms(t0.elapsed()), &last.buffers.timings);
     }
     let (frame_ms, passes) = timed.median_run();
-    Ok(Case {
+    let case = Case {
         kind: "frame",
-        name: system.name().to_owned(),
+        name: name.to_owned(),
         backend: "cpu",
-        size: Some(size),
+        size: Some([s.camera.width, s.camera.height]),
         n: None,
         frame_ms,
         encode_ms: None,
         passes,
         peak_rss_mib: peak_rss_mib(),
         bandwidth_bound_ms: None,
-    })
+    };
+    Ok((case, last))
 }
 
 pub(crate) fn gpu_frame(
@@ -259,25 +269,34 @@ pub(crate) fn gpu_frame(
     size: [u32; 2],
     runs: u32,
 ) -> anyhow::Result<Case> {
+    gpu_frame_of(r, &scene(system, size)?, system.name(), runs)
+}
+
+/// [`gpu_frame`] of any scene, named `name`.
+pub(crate) fn gpu_frame_of(
+    r: &mut ocean_gpu::Renderer,
+    s: &Scene,
+    name: &str,
+    runs: u32,
+) -> anyhow::Result<Case> {
     use ocean_gpu::Readback;
-    let s = scene(system, size)?;
-    let plan = FramePlan::new(&s, OutputKind::Ldr);
+    let plan = FramePlan::new(s, OutputKind::Ldr);
     reset_peak();
-    r.run_with(&s, &plan, Readback::Output)?;
+    r.run_with(s, &plan, Readback::Output)?;
     let (mut timed, mut encodes) = (Runs::default(), Vec::new());
     for _ in 0..runs {
-        let f = r.run_with(&s, &plan, Readback::Output)?;
+        let f = r.run_with(s, &plan, Readback::Output)?;
         timed.add(ms(f.wall), &f.gpu_timings);
-        let f = r.run_with(&s, &plan, Readback::None)?;
+        let f = r.run_with(s, &plan, Readback::None)?;
         encodes.push(ms(f.wall));
         r.gpu().wait()?;
     }
     let (frame_ms, passes) = timed.median_run();
     Ok(Case {
         kind: "frame",
-        name: system.name().to_owned(),
+        name: name.to_owned(),
         backend: "gpu",
-        size: Some(size),
+        size: Some([s.camera.width, s.camera.height]),
         n: None,
         frame_ms,
         encode_ms: Some(median(encodes)),

@@ -1,22 +1,22 @@
 //! `ocean report`: error against run time for each quality knob, what the planner saves on the
-//! reference scenes, and the numerical-stability table (issue 5).
+//! reference scenes, the four systems side by side, scaling, and the numerical-stability table
+//! (issues 5, 17, 18).
 //!
-//! Writes into `--out-dir`: `error_vs_time.csv` (columns `knob,setting,error_metric,error,
-//! time_ms,backend`), `error_vs_time.svg` (log error against log time, one panel per knob)
-//! `scaling.svg` (time against the size of the work, both back ends, fitted exponents:
-//! [`scaling`]) and `report.md` (the tables, the Pareto-optimal settings per knob, the
-//! planner, scaling and stability tables).
+//! Writes into `--out-dir`: `index.html` (the report to read: [`html`]), `report.md` (the same
+//! tables as text, for diffs in review), `error_vs_time.csv` (columns `knob,setting,
+//! error_metric,error,time_ms,backend`), `error_vs_time.svg` and `.png` (one labelled panel per
+//! knob: [`plot`]), `scaling.svg` ([`scaling`]), `systems.png` (every system on every
+//! viewpoint: [`systems`]) and `pictures/` (each setting's crop and FLIP map: [`pictures`]).
 //!
 //! A knob is one entry of [`KNOBS`]: a name, what it varies, and a function that measures
 //! every setting against the best one and returns rows. A measurement on another back end
 //! (the GPU path) is one more entry whose rows carry its `backend`; the CSV, the plot and the
 //! Pareto tables group by (knob, metric, backend) already.
 //!
-//! Timings are medians of several runs of the same work in this process (5 with `--quick`,
+//! Timings are medians of several runs of the same work in this process (2 with `--quick`,
 //! 7 without), after one untimed warm-up run; the machine is shared, so compare times within
 //! one report only.
 
-use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -34,18 +34,24 @@ use ocean_cpu::shaders::water;
 use ocean::output::write_atomic;
 
 mod far_field;
+mod html;
+mod markdown;
+mod pictures;
+mod plot;
 mod scaling;
 mod surface;
+mod svg;
+mod systems;
 mod techniques;
 
 /// Arguments of `ocean report`.
 #[derive(clap::Args, Debug)]
 pub struct Args {
-    /// Fewer settings, smaller frames, 3 runs per timing: a few minutes on a 2-core machine.
+    /// Fewer settings, smaller frames, 2 runs per timing: about a minute on a 2-core machine.
     #[arg(long)]
     quick: bool,
-    /// Folder for error_vs_time.csv, error_vs_time.svg, scaling.svg and report.md (created if
-    /// missing).
+    /// Folder for index.html (the report to read), report.md, error_vs_time.{csv,svg,png},
+    /// scaling.svg, systems.png and pictures/ (created if missing).
     #[arg(long, default_value = "report")]
     out_dir: PathBuf,
 }
@@ -66,12 +72,17 @@ struct Ctx {
     quick: bool,
     runs: usize,
     bar: ProgressBar,
+    /// The frames of the knobs that change the picture, for the page's crops.
+    pictures: pictures::Pictures,
+    /// One GPU renderer for every measurement (made at first use; its pipelines and pools
+    /// then warm for all), or why there is none.
+    gpu: std::cell::RefCell<Option<Result<ocean_gpu::Renderer, String>>>,
 }
 
 impl Ctx {
     /// Frame size of the image knobs.
     fn frame_size(&self) -> (u32, u32) {
-        if self.quick { (320, 180) } else { (640, 360) }
+        if self.quick { (160, 90) } else { (640, 360) }
     }
 
     /// Median wall time of `runs` calls of `f`, ms, and the last result.
@@ -110,6 +121,13 @@ impl Ctx {
             .collect())
     }
 
+    /// The report's GPU renderer, or why there is none.
+    fn gpu(&self) -> std::cell::RefMut<'_, Result<ocean_gpu::Renderer, String>> {
+        std::cell::RefMut::map(self.gpu.borrow_mut(), |g| {
+            g.get_or_insert_with(|| ocean_gpu::Renderer::new().map_err(|e| e.to_string()))
+        })
+    }
+
     fn step(&self, what: &str) {
         self.bar.set_message(what.to_string());
         self.bar.inc(1);
@@ -120,8 +138,6 @@ impl Ctx {
 struct Knob {
     name: &'static str,
     varies: &'static str,
-    /// Whether the settings form an ordered family (joined by lines in the plot).
-    ordered: bool,
     /// How many progress steps `measure` takes.
     steps: fn(&Ctx) -> u64,
     measure: fn(&Ctx) -> anyhow::Result<Vec<Row>>,
@@ -136,7 +152,6 @@ const KNOBS: &[Knob] = &[
                  16² … 512², the paper's half-range texture, a 1D table in cos θ, Schlick; \
                  error over the hemisphere of view directions and over the water pixels of the \
                  default scene; time of the lookups of one 1280×720 frame",
-        ordered: false,
         steps: |_| 1,
         measure: fresnel_knob,
     },
@@ -146,14 +161,12 @@ const KNOBS: &[Knob] = &[
                  against the finest N at the coarsest grid's points (shared by every N, so the \
                  error is what the coarser band leaves out); f32 synthesis time",
         steps: |c| if c.quick { 5 } else { 6 },
-        ordered: true,
         measure: wave_resolution_knob,
     },
     Knob {
         name: "precision",
         varies: "f32 against f64 synthesis of the default scene's displacement map (N = 256)",
         steps: |_| 2,
-        ordered: true,
         measure: precision_knob,
     },
     Knob {
@@ -161,7 +174,6 @@ const KNOBS: &[Knob] = &[
         varies: "bump-map resolution (the default scene's 32 m bump tile): image error against \
                  the finest, CPU frame time",
         steps: |c| (if c.quick { 4 } else { 5 }) * (c.runs as u64 + 1),
-        ordered: true,
         measure: bump_resolution_knob,
     },
     Knob {
@@ -169,7 +181,6 @@ const KNOBS: &[Knob] = &[
         varies: "reflection map side as a fraction of the viewport ([quality] \
                  reflection_map_scale): image error against the full size, CPU frame time",
         steps: |c| 4 * (c.runs as u64 + 1),
-        ordered: true,
         measure: reflection_map_knob,
     },
     Knob {
@@ -179,7 +190,6 @@ const KNOBS: &[Knob] = &[
                  against the CPU frame, frame time (GPU: submission to readback of the 8-bit \
                  output). Without an adapter the knob has no GPU row and says why",
         steps: |c| 2 * (c.runs as u64 + 1),
-        ordered: false,
         measure: backend_knob,
     },
     Knob {
@@ -190,7 +200,6 @@ const KNOBS: &[Knob] = &[
                  of far field none; frame time on the CPU and the GPU (HDR read-back); and the \
                  cost of --spp itself (4, 16, 64 samples, CPU)",
         steps: far_field::steps,
-        ordered: false,
         measure: far_field::measure,
     },
     Knob {
@@ -202,7 +211,6 @@ const KNOBS: &[Knob] = &[
                  vertices submitted and the share inside the view; frame time on the CPU and the \
                  GPU (the GPU rows carry the CPU's geometry, which the cross-check holds it to)",
         steps: surface::steps,
-        ordered: false,
         measure: surface::measure,
     },
     Knob {
@@ -211,7 +219,6 @@ const KNOBS: &[Knob] = &[
                  default scene: what the clouds cost per frame on the CPU and the GPU, and how far \
                  they move the picture (mean |Δ log(1 + L)| against the clear sky's frame)",
         steps: surface::clouds_steps,
-        ordered: false,
         measure: surface::measure_clouds,
     },
     Knob {
@@ -221,7 +228,6 @@ const KNOBS: &[Knob] = &[
                  |Δ log(1 + L)| against hu's frame; each is its own model, so this is a change, \
                  not an error; GGX's energy balance is tests/ggx.rs' white furnace)",
         steps: techniques::shading_steps,
-        ordered: false,
         measure: techniques::measure_shading,
     },
     Knob {
@@ -230,7 +236,6 @@ const KNOBS: &[Knob] = &[
                  the bloom costs per frame on the CPU and the GPU, and how far it moves the \
                  picture (mean |Δ| of the 8-bit values over 255)",
         steps: techniques::post_steps,
-        ordered: false,
         measure: techniques::measure_post,
     },
     Knob {
@@ -239,7 +244,6 @@ const KNOBS: &[Knob] = &[
                  seed 002) on the default scene: frame time on the CPU and the GPU, and the mean \
                  |Δ log(1 + L)| of the f16 HDR frame against the f32 one",
         steps: techniques::frame_format_steps,
-        ordered: false,
         measure: techniques::measure_frame_format,
     },
     Knob {
@@ -247,7 +251,6 @@ const KNOBS: &[Knob] = &[
         varies: "near-patch refinement threshold ([quality] lod_split_threshold, radians): \
                  image error against the finest, CPU frame time",
         steps: |c| (if c.quick { 5 } else { 6 }) * (c.runs as u64 + 1),
-        ordered: true,
         measure: lod_knob,
     },
 ];
@@ -541,6 +544,18 @@ fn image_knob(
         .map(|((name, _), (ms, frame))| (name.clone(), ms, frame))
         .collect();
     let reference = &frames.last().context("one setting")?.2;
+    ctx.pictures.add(pictures::Set {
+        knob,
+        reference_is: format!("{}, the finest setting", frames[frames.len() - 1].0),
+        width: reference.width,
+        height: reference.height,
+        shots: frames
+            .iter()
+            .map(|(name, _, f)| pictures::Shot { setting: name.clone(), rgb: f.rgb.clone() })
+            .collect(),
+        reference: frames.len() - 1,
+        rows: None,
+    });
     let mut rows = Vec::new();
     for (name, ms, frame) in &frames {
         let (flip, rmse) = image_errors(reference, frame);
@@ -586,7 +601,8 @@ fn backend_knob(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
     let mut scene = Scene::builtin();
     (scene.camera.width, scene.camera.height) = ctx.frame_size();
     let plan = FramePlan::new(&scene, OutputKind::Ldr);
-    let mut gpu = match ocean_gpu::Renderer::new() {
+    let mut shared = ctx.gpu();
+    let mut gpu = match shared.as_mut() {
         Ok(r) => Some(r),
         Err(e) => {
             ctx.bar.suspend(|| eprintln!("report: backend knob has no GPU row: {e}"));
@@ -616,6 +632,19 @@ fn backend_knob(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
     let timed = ctx.time_interleaved(&mut works)?;
     drop(works);
     let reference = &timed.first().context("the CPU frame")?.1;
+    ctx.pictures.add(pictures::Set {
+        knob: "backend",
+        reference_is: "the CPU oracle's frame".into(),
+        width: size.0,
+        height: size.1,
+        shots: timed
+            .iter()
+            .zip([CPU, "gpu"])
+            .map(|((_, f), b)| pictures::Shot { setting: format!("{b} frame"), rgb: f.rgb.clone() })
+            .collect(),
+        reference: 0,
+        rows: None,
+    });
     let mut rows = Vec::new();
     for ((ms, frame), backend) in timed.iter().zip([CPU, "gpu"]) {
         let (flip, _) = image_errors(reference, frame);
@@ -682,7 +711,20 @@ fn planner(ctx: &Ctx) -> anyhow::Result<Vec<PlannerRow>> {
         };
         let mut pair: Vec<Work<'_, Vec<[f32; 4]>>> =
             vec![Box::new(|| frame(&full)), Box::new(|| frame(&pruned))];
-        let mut timed = ctx.time_interleaved(&mut pair)?.into_iter();
+        // --quick: one round, untimed warm-up left out (the pictures' bit-for-bit check is
+        // what the quick report is for; the full report times 7 rounds).
+        let mut timed = if ctx.quick {
+            let mut once = Vec::new();
+            for f in &mut pair {
+                let t0 = Instant::now();
+                let r = f()?;
+                once.push((t0.elapsed().as_secs_f64() * 1e3, r));
+            }
+            once
+        } else {
+            ctx.time_interleaved(&mut pair)?
+        }
+        .into_iter();
         drop(pair);
         let (full_ms, a) = timed.next().context("two plans")?;
         let (pruned_ms, b) = timed.next().context("two plans")?;
@@ -714,31 +756,7 @@ fn planner(ctx: &Ctx) -> anyhow::Result<Vec<PlannerRow>> {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Output: CSV, Pareto, SVG, Markdown
-
-fn csv(rows: &[Row]) -> String {
-    let mut s = String::from("knob,setting,error_metric,error,time_ms,backend\n");
-    let quote = |v: &str| {
-        if v.contains([',', '"', '\n']) {
-            format!("\"{}\"", v.replace('"', "\"\""))
-        } else {
-            v.into()
-        }
-    };
-    for r in rows {
-        let _ = writeln!(
-            s,
-            "{},{},{},{:e},{:.4},{}",
-            r.knob,
-            quote(&r.setting),
-            r.error_metric,
-            r.error,
-            r.time_ms,
-            r.backend
-        );
-    }
-    s
-}
+// Pareto
 
 /// The rows of `rows` not dominated by another (≤ error and ≤ time, one strictly).
 fn pareto<'a>(rows: &[&'a Row]) -> Vec<&'a Row> {
@@ -754,6 +772,34 @@ fn pareto<'a>(rows: &[&'a Row]) -> Vec<&'a Row> {
         .collect()
 }
 
+/// A knob's rows, (metric, backend) group by group, each with whether it is on its group's
+/// Pareto front.
+fn marked_rows<'a>(rows: &'a [Row], knob: &str) -> Vec<(&'a Row, bool)> {
+    let mut out = Vec::new();
+    for (k, metric, backend) in groups(rows).into_iter().filter(|g| g.0 == knob) {
+        let g: Vec<&Row> = rows
+            .iter()
+            .filter(|r| r.knob == k && r.error_metric == metric && r.backend == backend)
+            .collect();
+        let front = pareto(&g);
+        out.extend(g.iter().map(|r| (*r, front.iter().any(|f| std::ptr::eq(*f, *r)))));
+    }
+    out
+}
+
+/// A `lod` row of FLIP on the CPU, for the tests of the report's parts.
+#[cfg(test)]
+fn test_row(setting: &str, error: f64, time_ms: f64) -> Row {
+    Row {
+        knob: "lod",
+        setting: setting.into(),
+        error_metric: "flip_mean",
+        error,
+        time_ms,
+        backend: CPU,
+    }
+}
+
 /// (knob, metric, backend) groups in first-seen order.
 fn groups(rows: &[Row]) -> Vec<(&'static str, &'static str, &'static str)> {
     let mut g = Vec::new();
@@ -766,255 +812,118 @@ fn groups(rows: &[Row]) -> Vec<(&'static str, &'static str, &'static str)> {
     g
 }
 
-fn plot(rows: &[Row], path: &std::path::Path) -> anyhow::Result<()> {
-    use plotters::prelude::*;
-    let knobs: Vec<&str> = KNOBS.iter().map(|k| k.name).collect();
-    let root = SVGBackend::new(path, (1500, 900)).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| anyhow::anyhow!("plot: {e}"))?;
-    let panels = root.split_evenly((2, knobs.len().div_ceil(2)));
-    let palette = [&BLUE, &RED, &GREEN, &MAGENTA, &CYAN, &BLACK];
-    for (panel, knob) in panels.iter().zip(&knobs) {
-        // Log axes need positive values: the reference (error 0) is left out of the plot.
-        let pts: Vec<&Row> =
-            rows.iter().filter(|r| r.knob == *knob && r.error > 0.0 && r.time_ms > 0.0).collect();
-        if pts.is_empty() {
-            continue;
-        }
-        let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
-        for r in &pts {
-            (x0, x1) = (x0.min(r.time_ms), x1.max(r.time_ms));
-            (y0, y1) = (y0.min(r.error), y1.max(r.error));
-        }
-        // At least a decade on each axis, so that the log axes have labelled ticks.
-        let widen = |lo: f64, hi: f64| {
-            let (lo, hi) = (lo / 1.5, hi * 1.5);
-            let missing = (10.0 * lo / hi).max(1.0).sqrt();
-            (lo / missing, hi * missing)
-        };
-        let ((x0, x1), (y0, y1)) = (widen(x0, x1), widen(y0, y1));
-        let ordered = KNOBS.iter().any(|k| k.name == *knob && k.ordered);
-        let mut chart = ChartBuilder::on(panel)
-            .caption(*knob, ("sans-serif", 20))
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(70)
-            .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
-            .map_err(|e| anyhow::anyhow!("plot: {e}"))?;
-        chart
-            .configure_mesh()
-            .x_desc(if *knob == "fresnel" {
-                "time (ms per 1280×720 frame of lookups)"
-            } else {
-                "time (ms)"
-            })
-            .y_desc("error")
-            .y_label_formatter(&|v| format!("{v:.0e}"))
-            .draw()
-            .map_err(|e| anyhow::anyhow!("plot: {e}"))?;
-        let mut metrics: Vec<&str> = Vec::new();
-        for r in &pts {
-            if !metrics.contains(&r.error_metric) {
-                metrics.push(r.error_metric);
-            }
-        }
-        for (i, metric) in metrics.iter().enumerate() {
-            let color = palette[i % palette.len()];
-            let mut series: Vec<(f64, f64)> = pts
-                .iter()
-                .filter(|r| r.error_metric == *metric)
-                .map(|r| (r.time_ms, r.error))
-                .collect();
-            series.sort_by(|a, b| a.0.total_cmp(&b.0));
-            chart
-                .draw_series(series.iter().map(|&p| Circle::new(p, 4, color.filled())))
-                .map_err(|e| anyhow::anyhow!("plot: {e}"))?
-                .label(*metric)
-                .legend(move |(x, y)| Circle::new((x + 8, y), 4, color.filled()));
-            if ordered {
-                chart
-                    .draw_series(LineSeries::new(series, color.stroke_width(1)))
-                    .map_err(|e| anyhow::anyhow!("plot: {e}"))?;
-            }
-        }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.8))
-            .border_style(BLACK)
-            .draw()
-            .map_err(|e| anyhow::anyhow!("plot: {e}"))?;
-    }
-    root.present().map_err(|e| anyhow::anyhow!("plot: {e}"))?;
-    Ok(())
-}
-
-fn markdown(
-    args: &Args,
-    rows: &[Row],
-    planner: &[PlannerRow],
-    stability: &[ocean_verify::stability::Case],
-    elapsed_s: f64,
-) -> String {
-    let mut s = String::new();
-    let command = if args.quick { "ocean report --quick" } else { "ocean report" };
-    let _ = writeln!(s, "# ocean report\n");
-    let _ = writeln!(
-        s,
-        "Made by `{command} --out-dir {}` in {elapsed_s:.0} s. Times are medians of {} runs on \
-         this machine (shared, so compare within this report only); image knobs render the \
-         default scene at {}×{} on the CPU oracle.\n",
-        args.out_dir.display(),
-        if args.quick { 5 } else { 7 },
-        if args.quick { 320 } else { 640 },
-        if args.quick { 180 } else { 360 },
-    );
-    let _ = writeln!(s, "## Pareto-optimal settings\n");
-    let _ = writeln!(
-        s,
-        "A setting is Pareto-optimal when no other setting of its knob is both as accurate and \
-         as fast (and better in one). The reference (error 0) is always on the front.\n"
-    );
-    let _ = writeln!(s, "| knob | metric | backend | Pareto-optimal settings (error @ ms) |");
-    let _ = writeln!(s, "|---|---|---|---|");
-    for (knob, metric, backend) in groups(rows) {
-        let g: Vec<&Row> = rows
-            .iter()
-            .filter(|r| r.knob == knob && r.error_metric == metric && r.backend == backend)
-            .collect();
-        let mut front = pareto(&g);
-        front.sort_by(|a, b| a.time_ms.total_cmp(&b.time_ms));
-        let list: Vec<String> = front
-            .iter()
-            .map(|r| format!("{} ({:.2e} @ {:.3})", r.setting, r.error, r.time_ms))
-            .collect();
-        let _ = writeln!(s, "| {knob} | {metric} | {backend} | {} |", list.join("; "));
-    }
-    for knob in KNOBS {
-        let _ = writeln!(s, "\n## {}\n\n{}.\n", knob.name, knob.varies);
-        let _ = writeln!(s, "| setting | metric | error | time (ms) | backend | Pareto |");
-        let _ = writeln!(s, "|---|---|---|---|---|---|");
-        for (k, metric, backend) in groups(rows).into_iter().filter(|g| g.0 == knob.name) {
-            let g: Vec<&Row> = rows
-                .iter()
-                .filter(|r| r.knob == k && r.error_metric == metric && r.backend == backend)
-                .collect();
-            let front = pareto(&g);
-            for r in &g {
-                let mark = if front.iter().any(|f| std::ptr::eq(*f, *r)) { "✓" } else { "" };
-                let _ = writeln!(
-                    s,
-                    "| {} | {} | {:.3e} | {:.3} | {} | {mark} |",
-                    r.setting, r.error_metric, r.error, r.time_ms, r.backend
-                );
-            }
-        }
-    }
-    let _ = writeln!(s, "\n## Planner: what pruning saves on the reference scenes\n");
-    let _ = writeln!(
-        s,
-        "Each scene rendered by `FramePlan::full` (every rule off) and by its pruned plan \
-         (`ocean plan SCENE` prints it with reasons); the pictures are compared bit for bit.\n"
-    );
-    let _ = writeln!(
-        s,
-        "| scene | left out | objects culled | full (ms) | pruned (ms) | saved (ms) | HDR pixels differing |"
-    );
-    let _ = writeln!(s, "|---|---|---|---|---|---|---|");
-    for p in planner {
-        let names: Vec<&str> = p.pruned.iter().map(|q| q.name()).collect();
-        let _ = writeln!(
-            s,
-            "| {} | {} | {} | {:.1} | {:.1} | {:.1} | {} |",
-            p.scene,
-            if names.is_empty() { "—".into() } else { names.join(", ") },
-            if p.culled.is_empty() { "—" } else { &p.culled },
-            p.full_ms,
-            p.pruned_ms,
-            p.full_ms - p.pruned_ms,
-            p.differing
-        );
-    }
-    let _ = writeln!(s, "\n## Numerical stability\n");
-    let _ = writeln!(
-        s,
-        "Each case: whether every value is finite, its distance from the f64 reference and the \
-         bound it must meet (where each bound comes from: `crates/ocean-cpu/src/stability.rs`; \
-         `tests/stability.rs` asserts every row).\n"
-    );
-    let _ = writeln!(s, "| group | case | finite | error | bound | metric | note | ok |");
-    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|");
-    let cell = |v: &str| v.replace('|', "\\|");
-    for c in stability {
-        let _ = writeln!(
-            s,
-            "| {} | {} | {} | {:.2e} | {:.2e} | {} | {} | {} |",
-            c.group,
-            cell(&c.name),
-            if c.finite { "yes" } else { "NO" },
-            c.error,
-            c.bound,
-            cell(c.metric),
-            cell(&c.note),
-            if c.passes() { "✓" } else { "FAIL" }
-        );
-    }
-    s
+/// The text of report.md's section `heading` (up to the next `## `).
+fn section(md: &str, heading: &str) -> String {
+    md.split(heading)
+        .nth(1)
+        .map(|rest| format!("{heading}{}", rest.split("\n## ").next().unwrap_or("")))
+        .unwrap_or_default()
 }
 
 /// Runs `ocean report`.
 pub fn run(args: Args) -> anyhow::Result<()> {
     let start = Instant::now();
-    std::fs::create_dir_all(&args.out_dir)
-        .with_context(|| format!("cannot create {}", args.out_dir.display()))?;
-    let mut ctx =
-        Ctx { quick: args.quick, runs: if args.quick { 5 } else { 7 }, bar: ProgressBar::hidden() };
+    let dir = &args.out_dir;
+    std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let mut ctx = Ctx {
+        quick: args.quick,
+        runs: if args.quick { 2 } else { 7 },
+        bar: ProgressBar::hidden(),
+        pictures: pictures::Pictures::default(),
+        gpu: std::cell::RefCell::new(None),
+    };
     let scenes =
         std::fs::read_dir(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("reference/scenes"))
             .map(|d| d.count() as u64)
             .unwrap_or(8);
-    let total =
-        KNOBS.iter().map(|k| (k.steps)(&ctx)).sum::<u64>() + scenes + 1 + scaling::steps(&ctx);
+    let total = KNOBS.iter().map(|k| (k.steps)(&ctx)).sum::<u64>()
+        + scenes
+        + 1
+        + scaling::steps(&ctx)
+        + systems::steps(&ctx);
     let bar = ProgressBar::new(total);
     bar.set_style(
         ProgressStyle::with_template("{elapsed:>4} [{bar:30}] {pos}/{len} {msg}")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
     ctx.bar = bar;
+    // Where the report's time went, for its header (and for keeping --quick quick).
+    let mut spent: Vec<(String, f64)> = Vec::new();
+    let mut lap = Instant::now();
+    let mut took = |what: &str| {
+        spent.push((what.to_string(), lap.elapsed().as_secs_f64()));
+        lap = Instant::now();
+    };
     let mut rows = Vec::new();
     for knob in KNOBS {
         rows.extend((knob.measure)(&ctx).with_context(|| format!("knob {}", knob.name))?);
+        took(knob.name);
     }
     let planner = planner(&ctx)?;
+    took("planner");
     let scaling = scaling::measure(&ctx).context("the scaling measurements")?;
+    took("scaling");
+    let systems = systems::measure(&ctx).context("the systems section")?;
+    took("systems");
     let stability = ocean_verify::stability::cases()?;
     ctx.step("stability");
-    ctx.bar.finish_and_clear();
+    took("stability");
+    ctx.bar.set_message("writing");
 
-    let csv_path = args.out_dir.join("error_vs_time.csv");
-    write_atomic(&csv_path, csv(&rows).as_bytes())?;
+    write_atomic(&dir.join("error_vs_time.csv"), markdown::csv(&rows).as_bytes())?;
+    let knob_names: Vec<&'static str> = KNOBS.iter().map(|k| k.name).collect();
+    let overview = plot::overview(&rows, &knob_names);
+    write_atomic(&dir.join("error_vs_time.svg"), overview.as_bytes())?;
+    write_atomic(&dir.join("error_vs_time.png"), &svg::png_of(&overview, 1.0)?)?;
+    let knob_plots: Vec<(&'static str, String)> =
+        knob_names.iter().map(|k| (*k, plot::knob(&rows, k))).collect();
     // plotters writes the SVG itself: into a temporary name, then renamed.
-    let svg_path = args.out_dir.join("error_vs_time.svg");
-    let tmp = args.out_dir.join(format!(".error_vs_time.svg.tmp-{}", std::process::id()));
-    plot(&rows, &tmp)?;
-    std::fs::rename(&tmp, &svg_path)
-        .with_context(|| format!("cannot write {}", svg_path.display()))?;
-    let scaling_path = args.out_dir.join("scaling.svg");
-    let tmp = args.out_dir.join(format!(".scaling.svg.tmp-{}", std::process::id()));
+    let scaling_path = dir.join("scaling.svg");
+    let tmp = dir.join(format!(".scaling.svg.tmp-{}", std::process::id()));
     scaling::plot(&scaling, &tmp)?;
     std::fs::rename(&tmp, &scaling_path)
         .with_context(|| format!("cannot write {}", scaling_path.display()))?;
-    let md = markdown(&args, &rows, &planner, &stability, start.elapsed().as_secs_f64()).replacen(
-        "## Numerical stability",
-        &format!("{}## Numerical stability", scaling::markdown(&scaling)),
-        1,
-    );
-    write_atomic(&args.out_dir.join("report.md"), md.as_bytes())?;
+    let scaling_svg = std::fs::read_to_string(&scaling_path)?;
+    write_atomic(&dir.join("systems.png"), &svg::png_of(&systems::sheet(&systems)?, 1.0)?)?;
+    let shown = ctx.pictures.write(dir)?;
+    took("writing");
+    let elapsed_s = start.elapsed().as_secs_f64();
+    let spent = spent.iter().map(|(w, s)| format!("{w} {s:.1} s")).collect::<Vec<_>>().join(", ");
+    let md = markdown::markdown(&args, ctx.runs, &rows, &planner, &stability, elapsed_s)
+        .replacen(
+            "\n\n## Pareto",
+            &format!(" Ran on {}. Time spent: {spent}.\n\n## Pareto", html::machine(&systems.gpu)),
+            1,
+        )
+        .replacen(
+            "## Numerical stability",
+            &format!("{}## Numerical stability", scaling::markdown(&scaling)),
+            1,
+        );
+    write_atomic(&dir.join("report.md"), md.as_bytes())?;
+    let command = if args.quick { "ocean report --quick" } else { "ocean report" };
+    let page = html::page(&html::Page {
+        command: format!("{command} --out-dir {}", dir.display()),
+        elapsed_s,
+        spent,
+        machine: html::machine(&systems.gpu),
+        rows: &rows,
+        overview: &overview,
+        knob_plots: &knob_plots,
+        pictures: &shown,
+        systems: &systems,
+        stability: &stability,
+        planner_md: section(&md, "## Planner"),
+        scaling_md: section(&md, "## Scaling"),
+        scaling_svg: &scaling_svg,
+    });
+    write_atomic(&dir.join("index.html"), page.as_bytes())?;
+    ctx.bar.finish_and_clear();
     let failing = stability.iter().filter(|c| !c.passes()).count();
     eprintln!(
-        "wrote {}, {}, {} and report.md in {} ({:.0} s){}",
-        csv_path.display(),
-        svg_path.display(),
-        scaling_path.display(),
-        args.out_dir.display(),
+        "wrote {} (open it in a browser), report.md, error_vs_time.{{csv,svg,png}}, scaling.svg, \
+         systems.png and pictures/ in {:.0} s{}",
+        dir.join("index.html").display(),
         start.elapsed().as_secs_f64(),
         if failing > 0 { format!("; {failing} stability case(s) FAIL") } else { String::new() }
     );

@@ -57,6 +57,7 @@ pub(super) fn measure(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
         f
     })?;
     let mut rows = Vec::new();
+    let mut shots: Vec<(String, Vec<[f32; 4]>)> = vec![("none 64 spp".into(), truth.clone())];
     let mut push = |setting: String, frame: &[[f32; 4]], ms: f64, backend: &'static str| {
         for (b, rows_b) in bands.iter().enumerate() {
             if !rows_b.is_empty() {
@@ -81,6 +82,7 @@ pub(super) fn measure(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
             f
         })?;
         push(format!("none {spp} spp"), &f, ms, CPU);
+        shots.push((format!("none {spp} spp"), f));
     }
     for far in FAR_FIELDS {
         let s = scene(ctx, far, 1);
@@ -90,9 +92,32 @@ pub(super) fn measure(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
             f
         })?;
         push(far.to_string(), &f, ms, CPU);
+        shots.push((far.to_string(), f));
     }
-    match ocean_gpu::Renderer::new() {
-        Ok(mut gpu) => {
+    // The pictures: the band within 2° of the horizon and as many rows of sky above it.
+    let band = bands.iter().find(|b| !b.is_empty());
+    if let (Some(first), Some(last)) =
+        (band.and_then(|b| b.iter().min()), band.and_then(|b| b.iter().max()))
+    {
+        let exposure = base.camera.exposure as f32;
+        ctx.pictures.add(super::pictures::Set {
+            knob: "far_field",
+            reference_is: "far field none at 64 samples per pixel (--spp 64)".into(),
+            width: w,
+            height: h,
+            shots: shots
+                .iter()
+                .map(|(name, f)| super::pictures::Shot {
+                    setting: name.clone(),
+                    rgb: super::pictures::display(f, exposure),
+                })
+                .collect(),
+            reference: 0,
+            rows: Some((first.saturating_sub(last - first + 1), last + 1)),
+        });
+    }
+    match ctx.gpu().as_mut() {
+        Ok(gpu) => {
             for far in FAR_FIELDS {
                 let s = scene(ctx, far, 1);
                 let plan = FramePlan::new(&s, OutputKind::Hdr);

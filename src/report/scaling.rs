@@ -16,10 +16,10 @@ use crate::bench::{Case, Fit, fit_size};
 use super::Ctx;
 
 /// Frame sizes of the quick report and of the full one.
-const QUICK_SIZES: [[u32; 2]; 3] = [[160, 90], [320, 180], [640, 360]];
+const QUICK_SIZES: [[u32; 2]; 3] = [[80, 45], [160, 90], [320, 180]];
 const FULL_SIZES: [[u32; 2]; 3] = [[320, 180], [640, 360], [1280, 720]];
 /// Synthesis sizes.
-const QUICK_N: [u32; 3] = [64, 128, 256];
+const QUICK_N: [u32; 3] = [32, 64, 128];
 const FULL_N: [u32; 4] = [64, 128, 256, 512];
 
 /// The measured cases and their fits.
@@ -41,8 +41,9 @@ pub(super) fn steps(ctx: &Ctx) -> u64 {
 pub(super) fn measure(ctx: &Ctx) -> anyhow::Result<Scaling> {
     let sizes: &[[u32; 2]] = if ctx.quick { &QUICK_SIZES } else { &FULL_SIZES };
     let ns: &[u32] = if ctx.quick { &QUICK_N } else { &FULL_N };
-    let runs = if ctx.quick { 2 } else { 5 };
-    let mut renderer = ocean_gpu::Renderer::new().map_err(|e| e.to_string());
+    let runs = if ctx.quick { 1 } else { 5 };
+    let mut shared = ctx.gpu();
+    let renderer = &mut *shared;
     if let Err(e) = &renderer {
         ctx.bar.suspend(|| eprintln!("report: the scaling plot has no GPU series: {e}"));
     }
@@ -71,7 +72,7 @@ pub(super) fn measure(ctx: &Ctx) -> anyhow::Result<Scaling> {
     Ok(Scaling {
         fits: crate::bench::fits(&cases),
         cases,
-        gpu: renderer.map(|r| r.adapter().to_string()),
+        gpu: renderer.as_ref().map(|r| r.adapter().to_string()).map_err(Clone::clone),
     })
 }
 

@@ -65,7 +65,10 @@ fn seen_points(camera: &Camera, depth: &[f32]) -> Vec<Option<DVec3>> {
 }
 
 /// The vertices the frame's water pass submits and the share of them inside the view.
-fn vertices_in_view(r: &ocean_cpu::Rendered, scene: &Scene) -> anyhow::Result<(u64, f64)> {
+pub(super) fn vertices_in_view(
+    r: &ocean_cpu::Rendered,
+    scene: &Scene,
+) -> anyhow::Result<(u64, f64)> {
     let fb = &r.buffers;
     let camera = Camera::from_scene(&scene.camera)?;
     let (slopes, bump) = fb.water_slopes(&r.plan);
@@ -101,7 +104,8 @@ pub(super) fn measure(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
         ctx.step("surface reference");
         Ok(seen_points(&camera, &r.buffers.hdr.depth))
     })?;
-    let mut gpu = match ocean_gpu::Renderer::new() {
+    let mut shared = ctx.gpu();
+    let mut gpu = match shared.as_mut() {
         Ok(g) => Some(g),
         Err(e) => {
             ctx.bar.suspend(|| eprintln!("report: surface knob has no GPU rows: {e}"));
@@ -196,7 +200,8 @@ pub(super) fn measure_clouds(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
     let all: Vec<u32> = (0..h).collect();
     let mut frames: Vec<Vec<[f32; 4]>> = Vec::new();
     let mut rows = Vec::new();
-    let mut gpu = ocean_gpu::Renderer::new().ok();
+    let mut shared = ctx.gpu();
+    let mut gpu = shared.as_mut().ok();
     for sky in ["preetham", "preetham_clouds"] {
         let s = sky_scene(sky);
         let (ms, f) = ctx.time(|| {

@@ -152,7 +152,9 @@ fn measure(
     let (w, h) = ctx.frame_size();
     let mut first: Option<Vec<[f32; 4]>> = None;
     let mut rows = Vec::new();
-    let mut gpu = ocean_gpu::Renderer::new().ok();
+    let mut shared = ctx.gpu();
+    let mut gpu = shared.as_mut().ok();
+    let mut shots = Vec::new();
     for (name, edit) in settings {
         let mut s = Scene::builtin();
         (s.camera.width, s.camera.height) = (w, h);
@@ -166,6 +168,16 @@ fn measure(
             Ok(frame_values(&r, output))
         })?;
         let d = first.as_ref().map_or(0.0, |f0| change(output, &f, f0, w, h));
+        let exposure = s.camera.exposure as f32;
+        shots.push(super::pictures::Shot {
+            setting: (*name).into(),
+            rgb: match output {
+                OutputKind::Ldr => {
+                    f.iter().flat_map(|p| [p[0] as u8, p[1] as u8, p[2] as u8]).collect()
+                }
+                OutputKind::Hdr => super::pictures::display(&f, exposure),
+            },
+        });
         first.get_or_insert(f);
         let row = |time_ms, backend| Row {
             knob,
@@ -186,6 +198,18 @@ fn measure(
             rows.push(row(gms, "gpu"));
         }
     }
+    ctx.pictures.add(super::pictures::Set {
+        knob,
+        reference_is: format!(
+            "{}, the first setting (a change of model, not an error)",
+            settings[0].0
+        ),
+        width: w,
+        height: h,
+        shots,
+        reference: 0,
+        rows: None,
+    });
     Ok(rows)
 }
 

@@ -1,0 +1,465 @@
+//! Error against run time, drawn so that the plot explains itself (issue 18): each point
+//! labelled with its setting, each back end's Pareto front drawn as a line, dominated settings
+//! greyed, the reference (error 0) drawn in a strip of its own under the log axis instead of
+//! vanishing from it, one metric per panel, units on both axes, the legend above the data.
+//!
+//! `overview` draws one panel per knob (its headline metric, [`headline_metric`]); `knob`
+//! draws one panel per metric of one knob for its section of the HTML page.
+
+use super::svg::{Anchor, Svg, text_width};
+use super::{Row, pareto};
+
+/// Colour of each back end's points and front.
+fn colour(backend: &str) -> &'static str {
+    if backend == "gpu" { "#c0392b" } else { "#1f5fa8" }
+}
+
+/// Colour of a dominated setting.
+const GREY: &str = "#a8a8a8";
+
+/// Style of the strip that holds the settings of error 0 (the reference).
+const ZERO_STRIP: &str = r##"fill="#e3f1e3" stroke="#444444" stroke-width="1""##;
+
+/// What a metric measures, with its unit, for the y-axis.
+pub(super) fn metric_label(metric: &str) -> String {
+    let band = |m: &str| m.rsplit('_').next().unwrap_or("").to_string();
+    match metric {
+        "flip_mean" => "mean FLIP error (0–1)".into(),
+        "rmse_linear" => "RMSE of linear RGB".into(),
+        "rms_height_m" => "RMS height error (m)".into(),
+        "max_abs_height_m" => "max |Δ height| (m)".into(),
+        "log_l_change" => "mean |Δ log(1 + L)| (change)".into(),
+        "ldr_mean_change" => "mean |Δ 8-bit| / 255 (change)".into(),
+        "max_abs_theta_le_76deg" => "max |ΔF|, θ ≤ 76°".into(),
+        "max_abs_hemisphere" => "max |ΔF|, hemisphere".into(),
+        "rms_hemisphere" => "RMS ΔF, hemisphere".into(),
+        "max_abs_frame_pixels" => "max |ΔF|, frame pixels".into(),
+        "rms_frame_pixels" => "RMS ΔF, frame pixels".into(),
+        m if m.starts_with("white_furnace_loss") => {
+            format!("white-furnace loss at {}", m.rsplit('_').next().unwrap_or(""))
+        }
+        m if m.starts_with("log_l_") => format!("mean |Δ log(1 + L)|, {} band", band(m)),
+        m if m.starts_with("height_m_") => format!("mean height error (m), {} band", band(m)),
+        m if m.starts_with("position_m_") => {
+            format!("mean position error (m), {} band", band(m))
+        }
+        m => m.to_string(),
+    }
+}
+
+/// What the x-axis of a knob's panels measures.
+pub(super) fn time_label(knob: &str) -> &'static str {
+    match knob {
+        "fresnel" => "time (ms per 1280×720 frame of lookups)",
+        "wave_resolution" | "precision" => "synthesis time (ms)",
+        _ => "frame time (ms)",
+    }
+}
+
+/// The metric a knob's overview panel shows: FLIP where it has it (what a viewer sees), the
+/// horizon band for the far field (what it is for), else its first.
+pub(super) fn headline_metric(rows: &[&Row]) -> Option<&'static str> {
+    let has = |m: &str| rows.iter().any(|r| r.error_metric == m);
+    for preferred in
+        ["flip_mean", "log_l_horizon", "rms_frame_pixels", "position_m_middle", "rms_height_m"]
+    {
+        if has(preferred) {
+            return rows.iter().find(|r| r.error_metric == preferred).map(|r| r.error_metric);
+        }
+    }
+    rows.first().map(|r| r.error_metric)
+}
+
+/// One panel: rows of one metric (any back ends) of one knob.
+pub(super) struct Panel<'a> {
+    /// Title above the panel.
+    pub title: String,
+    /// x-axis title.
+    pub x_label: &'static str,
+    /// y-axis title.
+    pub y_label: String,
+    /// The points.
+    pub rows: Vec<&'a Row>,
+}
+
+/// A figure of `panels` in `columns` columns, each `size` px, as SVG text.
+pub(super) fn figure(panels: &[Panel<'_>], columns: usize, size: (f64, f64)) -> String {
+    let columns = columns.clamp(1, panels.len().max(1));
+    let rows = panels.len().div_ceil(columns).max(1);
+    let mut svg = Svg::new(size.0 * columns as f64, size.1 * rows as f64);
+    for (i, p) in panels.iter().enumerate() {
+        let origin = ((i % columns) as f64 * size.0, (i / columns) as f64 * size.1);
+        draw_panel(&mut svg, origin, size, p);
+    }
+    svg.finish()
+}
+
+/// The overview: one panel per knob, its headline metric.
+pub(super) fn overview(rows: &[Row], knobs: &[&'static str]) -> String {
+    let panels: Vec<Panel<'_>> = knobs
+        .iter()
+        .filter_map(|knob| {
+            let of: Vec<&Row> = rows.iter().filter(|r| r.knob == *knob).collect();
+            let metric = headline_metric(&of)?;
+            Some(Panel {
+                title: (*knob).to_string(),
+                x_label: time_label(knob),
+                y_label: metric_label(metric),
+                rows: of.into_iter().filter(|r| r.error_metric == metric).collect(),
+            })
+        })
+        .collect();
+    figure(&panels, 3, (520.0, 400.0))
+}
+
+/// One knob's figure: a panel per metric.
+pub(super) fn knob(rows: &[Row], knob: &'static str) -> String {
+    let mut metrics: Vec<&'static str> = Vec::new();
+    for r in rows.iter().filter(|r| r.knob == knob) {
+        if !metrics.contains(&r.error_metric) {
+            metrics.push(r.error_metric);
+        }
+    }
+    let panels: Vec<Panel<'_>> = metrics
+        .iter()
+        .map(|m| Panel {
+            title: format!("{knob}: {m}"),
+            x_label: time_label(knob),
+            y_label: metric_label(m),
+            rows: rows.iter().filter(|r| r.knob == knob && r.error_metric == *m).collect(),
+        })
+        .collect();
+    figure(&panels, 3, (460.0, 360.0))
+}
+
+/// A log axis from 10^lo to 10^hi mapped onto [a, b] px.
+#[derive(Clone, Copy)]
+struct LogAxis {
+    lo: f64,
+    hi: f64,
+    a: f64,
+    b: f64,
+}
+
+impl LogAxis {
+    /// An axis covering `values` (positive) with margins, at least one decade wide.
+    fn covering(values: impl Iterator<Item = f64>, a: f64, b: f64) -> Option<Self> {
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for v in values.filter(|v| *v > 0.0 && v.is_finite()) {
+            (lo, hi) = (lo.min(v.log10()), hi.max(v.log10()));
+        }
+        if !lo.is_finite() {
+            return None;
+        }
+        let pad = ((1.0 - (hi - lo)) / 2.0).max(0.0) + 0.12 * (hi - lo).max(0.5);
+        Some(Self { lo: lo - pad, hi: hi + pad, a, b })
+    }
+
+    fn at(&self, v: f64) -> f64 {
+        self.a + (v.log10() - self.lo) / (self.hi - self.lo) * (self.b - self.a)
+    }
+
+    /// Tick values: every decade, and 2 and 5 times it where the axis spans under 3 decades.
+    fn ticks(&self) -> Vec<(f64, bool)> {
+        let mut t = Vec::new();
+        let fine = self.hi - self.lo < 3.0;
+        for k in self.lo.floor() as i32..=self.hi.ceil() as i32 {
+            for (m, major) in [(1.0, true), (2.0, false), (5.0, false)] {
+                let v = m * 10f64.powi(k);
+                let l = v.log10();
+                if l >= self.lo && l <= self.hi && (major || fine) {
+                    t.push((v, major));
+                }
+            }
+        }
+        t
+    }
+}
+
+/// A tick's text: plain decimals from 0.001 to 10⁴, else scientific.
+fn tick_text(v: f64) -> String {
+    if (1e-3..1e4).contains(&v) {
+        let s = format!("{v:.3}");
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        format!("{v:.0e}")
+    }
+}
+
+/// An axis-aligned box (x0, y0, x1, y1).
+type Boxed = (f64, f64, f64, f64);
+
+fn overlap(a: Boxed, b: Boxed) -> f64 {
+    let w = (a.2.min(b.2) - a.0.max(b.0)).max(0.0);
+    let h = (a.3.min(b.3) - a.1.max(b.1)).max(0.0);
+    w * h
+}
+
+fn draw_panel(svg: &mut Svg, (ox, oy): (f64, f64), (w, h): (f64, f64), p: &Panel<'_>) {
+    const LABEL: f64 = 10.5;
+    svg.text_styled(
+        (ox + w / 2.0, oy + 20.0),
+        15.0,
+        Anchor::Middle,
+        &p.title,
+        r##"fill="#111111" font-weight="bold""##,
+    );
+    let drawable: Vec<&Row> =
+        p.rows.iter().copied().filter(|r| r.time_ms > 0.0 && r.time_ms.is_finite()).collect();
+    let left_out = p.rows.len() - drawable.len();
+    let mut backends: Vec<&str> = Vec::new();
+    for r in &drawable {
+        if !backends.contains(&r.backend) {
+            backends.push(r.backend);
+        }
+    }
+    // The legend, above the plot area.
+    let mut lx = ox + 62.0;
+    let ly = oy + 38.0;
+    for b in &backends {
+        svg.marker((lx, ly - 4.0), *b == "gpu", 4.0, &format!(r#"fill="{}""#, colour(b)));
+        svg.text((lx + 8.0, ly), 11.0, Anchor::Start, b);
+        lx += 16.0 + text_width(b, 11.0);
+    }
+    svg.line((lx, ly - 4.0), (lx + 18.0, ly - 4.0), r##"stroke="#555555" stroke-width="1.5""##);
+    svg.text((lx + 22.0, ly), 11.0, Anchor::Start, "Pareto front");
+    lx += 30.0 + text_width("Pareto front", 11.0);
+    svg.circle((lx, ly - 4.0), 4.0, &format!(r#"fill="{GREY}""#));
+    svg.text((lx + 8.0, ly), 11.0, Anchor::Start, "dominated");
+    lx += 22.0 + text_width("dominated", 11.0);
+    if drawable.iter().any(|r| r.error == 0.0) {
+        svg.rect((lx - 4.0, ly - 9.0), (14.0, 10.0), ZERO_STRIP);
+        svg.text((lx + 14.0, ly), 11.0, Anchor::Start, "error 0 (reference)");
+    }
+
+    let (left, right, top, bottom) = (ox + 62.0, ox + w - 14.0, oy + 50.0, oy + h - 46.0);
+    let has_zero = drawable.iter().any(|r| r.error == 0.0);
+    let strip = if has_zero { 24.0 } else { 0.0 };
+    let log_bottom = bottom - strip - if has_zero { 8.0 } else { 0.0 };
+    let Some(x) = LogAxis::covering(drawable.iter().map(|r| r.time_ms), left, right) else {
+        svg.text((ox + w / 2.0, oy + h / 2.0), 12.0, Anchor::Middle, "no timed setting");
+        return;
+    };
+    let y = LogAxis::covering(drawable.iter().map(|r| r.error), log_bottom, top);
+    let zero_y = bottom - strip / 2.0;
+    let frame = r##"fill="none" stroke="#444444" stroke-width="1""##;
+    let grid = r##"stroke="#e4e4e4" stroke-width="1""##;
+    svg.rect((left, top), (right - left, log_bottom - top), frame);
+    if has_zero {
+        svg.rect((left, bottom - strip), (right - left, strip), ZERO_STRIP);
+        svg.text((left - 6.0, zero_y + 4.0), 10.0, Anchor::End, "0");
+        // Break marks: the strip is not on the log scale.
+        for xx in [left, right] {
+            svg.line(
+                (xx - 4.0, log_bottom + 6.0),
+                (xx + 4.0, log_bottom + 2.0),
+                r##"stroke="#444444""##,
+            );
+        }
+    }
+    for (v, major) in x.ticks() {
+        let px = x.at(v);
+        svg.line((px, top), (px, bottom), grid);
+        svg.line(
+            (px, bottom),
+            (px, bottom + if major { 5.0 } else { 3.0 }),
+            r##"stroke="#444444""##,
+        );
+        svg.text((px, bottom + 16.0), 10.0, Anchor::Middle, &tick_text(v));
+    }
+    if let Some(y) = &y {
+        for (v, major) in y.ticks() {
+            let py = y.at(v);
+            svg.line((left, py), (right, py), grid);
+            svg.line(
+                (left - if major { 5.0 } else { 3.0 }, py),
+                (left, py),
+                r##"stroke="#444444""##,
+            );
+            svg.text((left - 7.0, py + 3.5), 10.0, Anchor::End, &tick_text(v));
+        }
+    } else {
+        svg.text(
+            (ox + w / 2.0, (top + log_bottom) / 2.0),
+            11.0,
+            Anchor::Middle,
+            "every setting: error 0",
+        );
+    }
+    svg.text((ox + w / 2.0 + 24.0, oy + h - 12.0), 11.5, Anchor::Middle, p.x_label);
+    svg.vertical_text((ox + 16.0, (top + bottom) / 2.0), 11.5, &p.y_label);
+    if left_out > 0 {
+        svg.text_styled(
+            (right, oy + h - 2.0),
+            9.0,
+            Anchor::End,
+            &format!("{left_out} setting(s) without a time not drawn"),
+            r##"fill="#777777""##,
+        );
+    }
+
+    let at = |r: &Row| -> (f64, f64) {
+        let py = match (&y, r.error > 0.0) {
+            (Some(y), true) => y.at(r.error),
+            _ => zero_y,
+        };
+        (x.at(r.time_ms), py)
+    };
+    // Fronts first (under the points), one per back end.
+    let mut on_front: Vec<&Row> = Vec::new();
+    for b in &backends {
+        let group: Vec<&Row> = drawable.iter().copied().filter(|r| r.backend == *b).collect();
+        let mut front = pareto(&group);
+        front.sort_by(|a, c| a.time_ms.total_cmp(&c.time_ms));
+        let pts: Vec<(f64, f64)> = front.iter().map(|r| at(r)).collect();
+        if pts.len() > 1 {
+            svg.polyline(
+                &pts,
+                &format!(r#"stroke="{}" stroke-width="1.5" stroke-opacity="0.8""#, colour(b)),
+            );
+        }
+        on_front.extend(front);
+    }
+    let is_front = |r: &Row| on_front.iter().any(|f| std::ptr::eq(*f, r));
+    // Points, dominated ones first so that the front's sit on top.
+    let mut order: Vec<&Row> = drawable.clone();
+    order.sort_by_key(|r| is_front(r));
+    let mut taken: Vec<Boxed> = order
+        .iter()
+        .map(|r| {
+            let (px, py) = at(r);
+            (px - 5.0, py - 5.0, px + 5.0, py + 5.0)
+        })
+        .collect();
+    for r in &order {
+        let fill = if is_front(r) { colour(r.backend) } else { GREY };
+        svg.marker(
+            at(r),
+            r.backend == "gpu",
+            4.0,
+            &format!(r##"fill="{fill}" stroke="#ffffff" stroke-width="0.8""##),
+        );
+    }
+    // Labels: the front's first, each at the free place nearest its point.
+    let mut labelled = order.clone();
+    labelled.reverse();
+    for r in labelled {
+        let (px, py) = at(r);
+        // A long setting keeps its name without the details in brackets (the knob's table
+        // has them): "projected_grid 8 px (21600 vertices; …)" → "projected_grid 8 px".
+        let name = match r.setting.split_once(" (") {
+            Some((short, _)) if text_width(&r.setting, LABEL) > 150.0 => short,
+            _ => r.setting.as_str(),
+        };
+        let text =
+            if backends.len() > 1 { format!("{name} ({})", r.backend) } else { name.to_string() };
+        let tw = text_width(&text, LABEL);
+        let candidates = [
+            (px + 7.0, py + 3.5, Anchor::Start),
+            (px - 7.0, py + 3.5, Anchor::End),
+            (px, py - 8.0, Anchor::Middle),
+            (px, py + 15.0, Anchor::Middle),
+            (px + 6.0, py - 7.0, Anchor::Start),
+            (px + 6.0, py + 13.0, Anchor::Start),
+            (px - 6.0, py - 7.0, Anchor::End),
+            (px - 6.0, py + 13.0, Anchor::End),
+            // Further out, joined to the point by a leader line.
+            (px + 14.0, py - 14.0, Anchor::Start),
+            (px + 14.0, py + 20.0, Anchor::Start),
+            (px - 14.0, py - 14.0, Anchor::End),
+            (px - 14.0, py + 20.0, Anchor::End),
+            (px + 24.0, py - 26.0, Anchor::Start),
+            (px + 24.0, py + 32.0, Anchor::Start),
+            (px - 24.0, py - 26.0, Anchor::End),
+            (px - 24.0, py + 32.0, Anchor::End),
+        ];
+        let boxed = |(tx, ty, a): (f64, f64, Anchor)| -> Boxed {
+            let x0 = match a {
+                Anchor::Start => tx,
+                Anchor::Middle => tx - tw / 2.0,
+                Anchor::End => tx - tw,
+            };
+            (x0, ty - LABEL * 0.8, x0 + tw, ty + LABEL * 0.25)
+        };
+        let cost = |c: (f64, f64, Anchor)| -> f64 {
+            let b = boxed(c);
+            let outside = (left - b.0).max(0.0)
+                + (b.2 - right).max(0.0)
+                + (top - b.1).max(0.0)
+                + (b.3 - bottom).max(0.0);
+            taken.iter().map(|t| overlap(*t, b)).sum::<f64>() + 50.0 * outside
+        };
+        // The first free place in the list's order (nearest first), else the least covered.
+        let best = candidates
+            .iter()
+            .copied()
+            .enumerate()
+            .min_by(|(i, a), (j, b)| {
+                (cost(*a), *i).partial_cmp(&(cost(*b), *j)).unwrap_or(std::cmp::Ordering::Equal)
+            })
+            .map_or(candidates[0], |(_, c)| c);
+        let b = boxed(best);
+        taken.push(b);
+        if (best.1 - py).abs() > 16.0 {
+            let end_x = match best.2 {
+                Anchor::Start => b.0,
+                Anchor::End => b.2,
+                Anchor::Middle => (b.0 + b.2) / 2.0,
+            };
+            let end_y = if best.1 < py { b.3 } else { b.1 };
+            svg.line((px, py), (end_x, end_y), r##"stroke="#999999" stroke-width="0.7""##);
+        }
+        let fill = if is_front(r) { "#111111" } else { "#8a8a8a" };
+        svg.text_styled((best.0, best.1), LABEL, best.2, &text, &format!(r#"fill="{fill}""#));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::report::test_row as row;
+
+    #[test]
+    fn the_reference_is_drawn_and_every_point_labelled() {
+        let rows =
+            [row("fine", 0.0, 10.0), row("coarse", 0.1, 2.0), row("slow and bad", 0.2, 20.0)];
+        let svg = figure(
+            &[Panel {
+                title: "lod".into(),
+                x_label: "frame time (ms)",
+                y_label: "FLIP".into(),
+                rows: rows.iter().collect(),
+            }],
+            1,
+            (400.0, 300.0),
+        );
+        for label in ["fine", "coarse", "slow and bad", "error 0 (reference)", "Pareto front"] {
+            assert!(svg.contains(&format!(">{label}<")), "{label} missing");
+        }
+        // The dominated setting is grey, the front is one line through two points.
+        assert!(svg.contains(&format!(r#"fill="{GREY}" stroke"#)));
+        assert_eq!(svg.matches("<polyline").count(), 1);
+        // Control: without the reference there is no zero strip.
+        let svg = figure(
+            &[Panel {
+                title: "lod".into(),
+                x_label: "frame time (ms)",
+                y_label: "FLIP".into(),
+                rows: rows[1..].iter().collect(),
+            }],
+            1,
+            (400.0, 300.0),
+        );
+        assert!(!svg.contains("error 0 (reference)"));
+    }
+
+    #[test]
+    fn log_ticks_cover_at_least_a_decade() {
+        let a = LogAxis::covering([3.0, 4.0].into_iter(), 0.0, 100.0).unwrap();
+        assert!(a.hi - a.lo >= 1.0);
+        assert!(a.ticks().iter().any(|t| t.1) || a.ticks().len() >= 2, "{:?}", a.ticks());
+        assert_eq!(tick_text(0.01), "0.01");
+        assert_eq!(tick_text(20.0), "20");
+        assert_eq!(tick_text(1e-5), "1e-5");
+    }
+}
