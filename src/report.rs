@@ -42,6 +42,7 @@ mod scaling;
 mod surface;
 mod svg;
 mod systems;
+mod systems_figures;
 mod techniques;
 
 /// Arguments of `ocean report`.
@@ -884,7 +885,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     std::fs::rename(&tmp, &scaling_path)
         .with_context(|| format!("cannot write {}", scaling_path.display()))?;
     let scaling_svg = std::fs::read_to_string(&scaling_path)?;
-    write_atomic(&dir.join("systems.png"), &svg::png_of(&systems::sheet(&systems)?, 1.0)?)?;
+    write_atomic(&dir.join("systems.png"), &svg::png_of(&systems_figures::sheet(&systems)?, 1.0)?)?;
     let shown = ctx.pictures.write(dir)?;
     took("writing");
     let elapsed_s = start.elapsed().as_secs_f64();

@@ -7,37 +7,13 @@
 use std::fmt::Write as _;
 
 use super::pictures::Written;
-use super::plot::{headline_metric, metric_label};
+use super::plot::{good_enough, headline_metric, metric_label, suggestion};
 use super::systems::Systems;
 use super::{KNOBS, Row, groups, marked_rows, pareto};
 
 /// `text` with the characters HTML gives a meaning escaped.
 pub(super) fn esc(text: &str) -> String {
     super::svg::esc(text)
-}
-
-/// The error under which a setting of a knob's headline metric counts as good enough for the
-/// page's suggestion, and why; `None` for metrics that measure a change of model, where no
-/// setting is more correct than another.
-pub(super) fn good_enough(metric: &str) -> Option<(f64, &'static str)> {
-    match metric {
-        "flip_mean" => Some((0.01, "≤ 0.01: seen only by flipping between the two")),
-        "rms_frame_pixels" => Some((1e-3, "≤ 0.001: under one 8-bit step of a reflection")),
-        "rms_height_m" => Some((0.01, "≤ 1 cm")),
-        "log_l_horizon" => Some((0.02, "≤ 0.02: about 2 % in luminance")),
-        "position_m_middle" => Some((0.05, "≤ 5 cm")),
-        _ => None,
-    }
-}
-
-/// The page's suggestion for one (knob, back end): the fastest setting whose headline error
-/// is within [`good_enough`], with its error and time.
-fn suggestion<'a>(rows: &[&'a Row]) -> Option<&'a Row> {
-    let (bound, _) = good_enough(rows.first()?.error_metric)?;
-    let mut ok: Vec<&Row> =
-        rows.iter().copied().filter(|r| r.error <= bound && r.time_ms.is_finite()).collect();
-    ok.sort_by(|a, b| a.time_ms.total_cmp(&b.time_ms));
-    ok.first().copied()
 }
 
 /// Everything the page shows.
@@ -106,6 +82,7 @@ pub(super) fn page(p: &Page<'_>) -> String {
         o,
         "<p><img src=\"systems.png\" alt=\"every system on every viewpoint\" style=\"max-width:100%\"></p>"
     );
+    let _ = writeln!(o, "<div class=\"figure\">{}</div>", super::systems_figures::chart(p.systems));
     o.push_str(&super::systems::html(p.systems));
     stability(&mut o, p.stability);
     knobs(&mut o, p);

@@ -17,6 +17,9 @@ fn colour(backend: &str) -> &'static str {
 /// Colour of a dominated setting.
 const GREY: &str = "#a8a8a8";
 
+/// Colour of the page's rule of "good enough" and of the suggested settings.
+const GOOD: &str = "#1e8a3c";
+
 /// Style of the strip that holds the settings of error 0 (the reference).
 const ZERO_STRIP: &str = r##"fill="#e3f1e3" stroke="#444444" stroke-width="1""##;
 
@@ -68,6 +71,30 @@ pub(super) fn headline_metric(rows: &[&Row]) -> Option<&'static str> {
         }
     }
     rows.first().map(|r| r.error_metric)
+}
+
+/// The error under which a setting of a knob's headline metric counts as good enough for the
+/// page's suggestion, and why; `None` for metrics that measure a change of model, where no
+/// setting is more correct than another.
+pub(super) fn good_enough(metric: &str) -> Option<(f64, &'static str)> {
+    match metric {
+        "flip_mean" => Some((0.01, "≤ 0.01: seen only by flipping between the two")),
+        "rms_frame_pixels" => Some((1e-3, "≤ 0.001: under one 8-bit step of a reflection")),
+        "rms_height_m" => Some((0.01, "≤ 1 cm")),
+        "log_l_horizon" => Some((0.02, "≤ 0.02: about 2 % in luminance")),
+        "position_m_middle" => Some((0.05, "≤ 5 cm")),
+        _ => None,
+    }
+}
+
+/// The page's suggestion for one (knob, back end): the fastest setting whose headline error
+/// is within [`good_enough`], with its error and time.
+pub(super) fn suggestion<'a>(rows: &[&'a Row]) -> Option<&'a Row> {
+    let (bound, _) = good_enough(rows.first()?.error_metric)?;
+    let mut ok: Vec<&Row> =
+        rows.iter().copied().filter(|r| r.error <= bound && r.time_ms.is_finite()).collect();
+    ok.sort_by(|a, b| a.time_ms.total_cmp(&b.time_ms));
+    ok.first().copied()
 }
 
 /// One panel: rows of one metric (any back ends) of one knob.
@@ -177,8 +204,10 @@ impl LogAxis {
 }
 
 /// A tick's text: plain decimals from 0.001 to 10⁴, else scientific.
-fn tick_text(v: f64) -> String {
-    if (1e-3..1e4).contains(&v) {
+pub(super) fn tick_text(v: f64) -> String {
+    if v == 0.0 {
+        "0".into()
+    } else if (1e-3..1e4).contains(&v) {
         let s = format!("{v:.3}");
         s.trim_end_matches('0').trim_end_matches('.').to_string()
     } else {
@@ -213,26 +242,59 @@ fn draw_panel(svg: &mut Svg, (ox, oy): (f64, f64), (w, h): (f64, f64), p: &Panel
             backends.push(r.backend);
         }
     }
-    // The legend, above the plot area.
-    let mut lx = ox + 62.0;
-    let ly = oy + 38.0;
-    for b in &backends {
-        svg.marker((lx, ly - 4.0), *b == "gpu", 4.0, &format!(r#"fill="{}""#, colour(b)));
-        svg.text((lx + 8.0, ly), 11.0, Anchor::Start, b);
-        lx += 16.0 + text_width(b, 11.0);
+    // The legend, above the plot area, wrapped onto a second line where it is too wide.
+    #[derive(Clone, Copy)]
+    enum Key<'k> {
+        Backend(&'k str),
+        Front,
+        Dominated,
+        Zero,
+        Suggested,
     }
-    svg.line((lx, ly - 4.0), (lx + 18.0, ly - 4.0), r##"stroke="#555555" stroke-width="1.5""##);
-    svg.text((lx + 22.0, ly), 11.0, Anchor::Start, "Pareto front");
-    lx += 30.0 + text_width("Pareto front", 11.0);
-    svg.circle((lx, ly - 4.0), 4.0, &format!(r#"fill="{GREY}""#));
-    svg.text((lx + 8.0, ly), 11.0, Anchor::Start, "dominated");
-    lx += 22.0 + text_width("dominated", 11.0);
+    let mut keys: Vec<Key<'_>> = backends.iter().map(|b| Key::Backend(b)).collect();
+    keys.extend([Key::Front, Key::Dominated]);
     if drawable.iter().any(|r| r.error == 0.0) {
-        svg.rect((lx - 4.0, ly - 9.0), (14.0, 10.0), ZERO_STRIP);
-        svg.text((lx + 14.0, ly), 11.0, Anchor::Start, "error 0 (reference)");
+        keys.push(Key::Zero);
+    }
+    if drawable.first().and_then(|r| good_enough(r.error_metric)).is_some() {
+        keys.push(Key::Suggested);
+    }
+    const KEY: f64 = 10.5;
+    let (mut lx, mut ly) = (ox + 62.0, oy + 38.0);
+    for key in keys {
+        let text = match key {
+            Key::Backend(b) => b,
+            Key::Front => "Pareto front",
+            Key::Dominated => "dominated",
+            Key::Zero => "error 0 (reference)",
+            Key::Suggested => "suggested",
+        };
+        let swatch = if matches!(key, Key::Front) { 22.0 } else { 12.0 };
+        let width = swatch + text_width(text, KEY) + 12.0;
+        if lx + width > ox + w - 8.0 {
+            (lx, ly) = (ox + 62.0, ly + 14.0);
+        }
+        let mid = (lx + 4.0, ly - 4.0);
+        match key {
+            Key::Backend(b) => {
+                svg.marker(mid, b == "gpu", 4.0, &format!(r#"fill="{}""#, colour(b)));
+            }
+            Key::Front => svg.line(
+                (lx, ly - 4.0),
+                (lx + 18.0, ly - 4.0),
+                r##"stroke="#555555" stroke-width="1.5""##,
+            ),
+            Key::Dominated => svg.circle(mid, 4.0, &format!(r#"fill="{GREY}""#)),
+            Key::Zero => svg.rect((lx - 2.0, ly - 9.0), (12.0, 10.0), ZERO_STRIP),
+            Key::Suggested => {
+                svg.circle(mid, 5.0, &format!(r#"fill="none" stroke="{GOOD}" stroke-width="2""#))
+            }
+        }
+        svg.text((lx + swatch, ly), KEY, Anchor::Start, text);
+        lx += width;
     }
 
-    let (left, right, top, bottom) = (ox + 62.0, ox + w - 14.0, oy + 50.0, oy + h - 46.0);
+    let (left, right, top, bottom) = (ox + 62.0, ox + w - 14.0, ly + 12.0, oy + h - 46.0);
     let has_zero = drawable.iter().any(|r| r.error == 0.0);
     let strip = if has_zero { 24.0 } else { 0.0 };
     let log_bottom = bottom - strip - if has_zero { 8.0 } else { 0.0 };
@@ -321,6 +383,34 @@ fn draw_panel(svg: &mut Svg, (ox, oy): (f64, f64), (w, h): (f64, f64), p: &Panel
         on_front.extend(front);
     }
     let is_front = |r: &Row| on_front.iter().any(|f| std::ptr::eq(*f, r));
+    // The rule of the page's suggestion: a dashed line at the bound, a ring round each back
+    // end's suggested setting.
+    let rule = drawable.first().and_then(|r| good_enough(r.error_metric));
+    if let (Some((bound, _)), Some(y)) = (rule, &y)
+        && (y.lo..=y.hi).contains(&bound.log10())
+    {
+        let py = y.at(bound);
+        svg.line(
+            (left, py),
+            (right, py),
+            &format!(r#"stroke="{GOOD}" stroke-width="1.2" stroke-dasharray="5 4""#),
+        );
+        svg.text_styled(
+            (left + 4.0, py - 4.0),
+            9.5,
+            Anchor::Start,
+            &format!("good enough: ≤ {}", tick_text(bound)),
+            &format!(r#"fill="{GOOD}""#),
+        );
+    }
+    if rule.is_some() {
+        for b in &backends {
+            let group: Vec<&Row> = drawable.iter().copied().filter(|r| r.backend == *b).collect();
+            if let Some(s) = suggestion(&group) {
+                svg.circle(at(s), 8.5, &format!(r#"fill="none" stroke="{GOOD}" stroke-width="2""#));
+            }
+        }
+    }
     // Points, dominated ones first so that the front's sit on top.
     let mut order: Vec<&Row> = drawable.clone();
     order.sort_by_key(|r| is_front(r));
@@ -438,6 +528,9 @@ mod tests {
         }
         // The dominated setting is grey, the front is one line through two points.
         assert!(svg.contains(&format!(r#"fill="{GREY}" stroke"#)));
+        // FLIP has a rule: nothing but the reference meets it here, so the ring is on it (the
+        // legend's ring is the other).
+        assert_eq!(svg.matches(&format!(r#"stroke="{GOOD}" stroke-width="2""#)).count(), 2);
         assert_eq!(svg.matches("<polyline").count(), 1);
         // Control: without the reference there is no zero strip.
         let svg = figure(
@@ -451,6 +544,20 @@ mod tests {
             (400.0, 300.0),
         );
         assert!(!svg.contains("error 0 (reference)"));
+        // A setting within the rule: the dashed line at the bound, and the ring moves to it.
+        let ok = [row("ok", 0.005, 5.0), row("coarse", 0.1, 2.0), row("fine", 0.0, 10.0)];
+        let svg = figure(
+            &[Panel {
+                title: "lod".into(),
+                x_label: "frame time (ms)",
+                y_label: "FLIP".into(),
+                rows: ok.iter().collect(),
+            }],
+            1,
+            (400.0, 300.0),
+        );
+        assert!(svg.contains("good enough: ≤ 0.01"), "{svg}");
+        assert_eq!(suggestion(&ok.iter().collect::<Vec<_>>()).unwrap().setting, "ok");
     }
 
     #[test]
@@ -461,5 +568,6 @@ mod tests {
         assert_eq!(tick_text(0.01), "0.01");
         assert_eq!(tick_text(20.0), "20");
         assert_eq!(tick_text(1e-5), "1e-5");
+        assert_eq!(tick_text(0.0), "0");
     }
 }

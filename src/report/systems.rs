@@ -17,7 +17,6 @@ use ocean_core::scene::Scene;
 use ocean_core::supersample::{band_error, box_filter, sea_bands};
 
 use super::Ctx;
-use super::svg::{Anchor, Svg, png_rgb};
 use crate::bench::Case;
 
 /// A reference viewpoint: its name, what it is, and the edit of a system's scene.
@@ -114,8 +113,25 @@ pub(super) struct Systems {
     pub gpu: Result<String, String>,
 }
 
+impl Systems {
+    /// Every system's shot at the first viewpoint, and every pass any of them timed on either
+    /// back end, in first-seen order.
+    pub(super) fn first_viewpoint(&self) -> (Vec<&Shot>, Vec<&str>) {
+        let firsts: Vec<&Shot> = self.shots.iter().filter(|t| t.viewpoint == 0).collect();
+        let mut passes: Vec<&str> = Vec::new();
+        for t in &firsts {
+            for (p, _) in t.cpu.passes.iter().chain(t.gpu.iter().flat_map(|g| g.passes.iter())) {
+                if !passes.contains(&p.as_str()) {
+                    passes.push(p);
+                }
+            }
+        }
+        (firsts, passes)
+    }
+}
+
 /// Systems the section shows: those available.
-fn systems() -> impl Iterator<Item = System> {
+pub(super) fn systems() -> impl Iterator<Item = System> {
     SYSTEMS.iter().map(|s| s.system).filter(|s| s.available())
 }
 
@@ -200,55 +216,6 @@ pub(super) fn measure(ctx: &Ctx) -> anyhow::Result<Systems> {
     }
     let gpu = gpu.as_ref().map(|g| g.adapter().to_string()).map_err(Clone::clone);
     Ok(Systems { size: (w, h), shots, gpu })
-}
-
-/// The contact sheet: a row per system, a column per viewpoint, labelled (SVG with the
-/// pictures embedded; the PNG is rendered from it).
-pub(super) fn sheet(s: &Systems) -> anyhow::Result<String> {
-    let (w, h) = (f64::from(s.size.0).max(240.0), f64::from(s.size.1).max(135.0));
-    let (left, top, gap) = (110.0, 34.0, 6.0);
-    let names: Vec<System> = systems().collect();
-    let mut svg = Svg::new(
-        left + VIEWPOINTS.len() as f64 * (w + gap),
-        top + names.len() as f64 * (h + gap) + 4.0,
-    );
-    for (v, vp) in VIEWPOINTS.iter().enumerate() {
-        svg.text_styled(
-            (left + v as f64 * (w + gap) + w / 2.0, 22.0),
-            14.0,
-            Anchor::Middle,
-            vp.name,
-            r##"fill="#111111" font-weight="bold""##,
-        );
-    }
-    for (row, system) in names.iter().enumerate() {
-        let y = top + row as f64 * (h + gap);
-        svg.text_styled(
-            (left - 10.0, y + h / 2.0 + 5.0),
-            15.0,
-            Anchor::End,
-            system.name(),
-            r##"fill="#111111" font-weight="bold""##,
-        );
-        for shot in s.shots.iter().filter(|t| t.system == *system) {
-            let x = left + shot.viewpoint as f64 * (w + gap);
-            svg.png((x, y), (w, h), &png_rgb(&shot.rgb, s.size.0, s.size.1)?);
-            svg.text_styled(
-                (x + 4.0, y + h - 5.0),
-                10.0,
-                Anchor::Start,
-                &format!(
-                    "CPU {:.0} ms{}",
-                    shot.cpu.frame_ms,
-                    shot.gpu
-                        .as_ref()
-                        .map_or(String::new(), |g| format!(" · GPU {:.1} ms", g.frame_ms))
-                ),
-                r##"fill="#ffffff" stroke="#000000" stroke-width="2.5" paint-order="stroke""##,
-            );
-        }
-    }
-    Ok(svg.finish())
 }
 
 /// Each system's techniques that no other system uses, with where each comes from: rows of
@@ -336,15 +303,7 @@ pub(super) fn html(s: &Systems) -> String {
         "<h3>Frame time per pass ({} viewpoint, ms: CPU / GPU)</h3>",
         VIEWPOINTS[0].name
     );
-    let firsts: Vec<&Shot> = s.shots.iter().filter(|t| t.viewpoint == 0).collect();
-    let mut passes: Vec<&str> = Vec::new();
-    for t in &firsts {
-        for (p, _) in t.cpu.passes.iter().chain(t.gpu.iter().flat_map(|g| g.passes.iter())) {
-            if !passes.contains(&p.as_str()) {
-                passes.push(p);
-            }
-        }
-    }
+    let (firsts, passes) = s.first_viewpoint();
     let _ = write!(o, "<table><tr><th>pass</th>");
     for t in &firsts {
         let _ = write!(o, "<th>{}</th>", t.system.name());
