@@ -8,13 +8,9 @@ use std::fmt::Write as _;
 
 use super::pictures::Written;
 use super::plot::{good_enough, headline_metric, metric_label, suggestion};
+use super::svg::esc;
 use super::systems::Systems;
 use super::{KNOBS, Row, groups, marked_rows, pareto};
-
-/// `text` with the characters HTML gives a meaning escaped.
-pub(super) fn esc(text: &str) -> String {
-    super::svg::esc(text)
-}
 
 /// Everything the page shows.
 pub(super) struct Page<'a> {

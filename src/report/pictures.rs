@@ -10,7 +10,9 @@
 use std::cell::RefCell;
 use std::path::Path;
 
-use super::svg::{png_rgb, write};
+use ocean::output::write_atomic;
+
+use super::svg::png_rgb;
 
 /// One setting's frame, 8-bit sRGB.
 pub(super) struct Shot {
@@ -68,19 +70,22 @@ pub(super) struct Written {
     pub shown: Vec<Shown>,
 }
 
-/// The frame's ACES curve and sRGB encoding at `exposure`, for display (the far field's and the
-/// techniques' HDR frames): not the frame's own tonemap pass, which adds its vignette and
-/// bloom; the same curve.
+/// The HDR frame through the tonemap pass's own functions (ocean-cpu's mirror of
+/// `tonemap.wgsl`: exposure, the default ACES curve, clamp, sRGB, 8-bit rounding), for showing
+/// the far field's and the techniques' HDR frames; without the pass's vignette and bloom, which
+/// the frame's own output would add. A non-finite value shows as 0.
 pub(super) fn display(hdr: &[[f32; 4]], exposure: f32) -> Vec<u8> {
-    let aces = |x: f32| (x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14);
-    let srgb =
-        |c: f32| if c <= 0.003_130_8 { 12.92 * c } else { 1.055 * c.powf(1.0 / 2.4) - 0.055 };
+    use ocean_cpu::shaders::tonemap::{TonemapUniforms, quantize_unorm8, srgb_oetf, tone_curve};
+    use ocean_cpu::shaders::wgsl::{Vec3, clamp};
+    let curve = TonemapUniforms::DEFAULT;
     hdr.iter()
         .flat_map(|p| {
-            [0, 1, 2].map(|c| {
-                let v = if p[c].is_finite() { (p[c] * exposure).max(0.0) } else { 0.0 };
-                (srgb(aces(v).clamp(0.0, 1.0)) * 255.0).round() as u8
-            })
+            let exposed = [p[0], p[1], p[2]]
+                .map(|c| if c.is_finite() { (c * exposure).max(0.0) } else { 0.0 });
+            let mapped =
+                clamp(tone_curve(Vec3::from(exposed), &curve), Vec3::splat(0.0), Vec3::splat(1.0));
+            let encoded: [f32; 3] = quantize_unorm8(srgb_oetf(mapped)).into();
+            encoded.map(|c| (c * 255.0).round() as u8)
         })
         .collect()
 }
@@ -93,7 +98,7 @@ fn flip_map(reference: &[u8], test: &[u8], w: u32, h: u32) -> nv_flip::FlipImage
 }
 
 /// The `cw` × `ch` window (top-left corner) of `map` with the largest summed value, searched on
-/// a grid of eighths of the frame.
+/// a grid of sixteenths of the frame.
 fn worst_window(map: &[f32], w: u32, h: u32, cw: u32, ch: u32) -> (u32, u32) {
     let (sx, sy) = ((w / 16).max(1), (h / 16).max(1));
     let mut best = (0.0f64, (0, 0));
@@ -190,14 +195,16 @@ impl Pictures {
             let mut shown = Vec::new();
             for (i, shot) in set.shots.iter().enumerate() {
                 let name = format!("{}_{i}.png", set.knob);
-                write(&sub, &name, &png_rgb(&crop(&shot.rgb, w, window), window.2, window.3)?)?;
+                write_atomic(
+                    &sub.join(&name),
+                    &png_rgb(&crop(&shot.rgb, w, window), window.2, window.3)?,
+                )?;
                 let flip = match &maps[i] {
                     Some(m) => {
                         let coloured = m.apply_color_lut(&lut).to_vec();
                         let fname = format!("{}_{i}_flip.png", set.knob);
-                        write(
-                            &sub,
-                            &fname,
+                        write_atomic(
+                            &sub.join(&fname),
                             &png_rgb(&crop(&coloured, w, window), window.2, window.3)?,
                         )?;
                         Some(format!("pictures/{fname}"))

@@ -62,15 +62,10 @@ pub(super) fn time_label(knob: &str) -> &'static str {
 /// The metric a knob's overview panel shows: FLIP where it has it (what a viewer sees), the
 /// horizon band for the far field (what it is for), else its first.
 pub(super) fn headline_metric(rows: &[&Row]) -> Option<&'static str> {
-    let has = |m: &str| rows.iter().any(|r| r.error_metric == m);
-    for preferred in
-        ["flip_mean", "log_l_horizon", "rms_frame_pixels", "position_m_middle", "rms_height_m"]
-    {
-        if has(preferred) {
-            return rows.iter().find(|r| r.error_metric == preferred).map(|r| r.error_metric);
-        }
-    }
-    rows.first().map(|r| r.error_metric)
+    ["flip_mean", "log_l_horizon", "rms_frame_pixels", "position_m_middle", "rms_height_m"]
+        .into_iter()
+        .find(|m| rows.iter().any(|r| r.error_metric == *m))
+        .or_else(|| rows.first().map(|r| r.error_metric))
 }
 
 /// The error under which a setting of a knob's headline metric counts as good enough for the

@@ -4,7 +4,6 @@
 //! needs no fonts from the system and looks the same on every machine).
 
 use std::fmt::Write as _;
-use std::path::Path;
 
 use anyhow::Context;
 
@@ -37,7 +36,7 @@ pub(super) fn text_width(text: &str, size: f64) -> f64 {
     })
 }
 
-/// `text` with the characters XML gives a meaning escaped.
+/// `text` with the characters XML and HTML give a meaning escaped.
 pub(super) fn esc(text: &str) -> String {
     let mut s = String::with_capacity(text.len());
     for c in text.chars() {
@@ -213,11 +212,6 @@ pub(super) fn png_rgb(rgb: &[u8], width: u32, height: u32) -> anyhow::Result<Vec
 }
 
 use image::ImageEncoder as _;
-
-/// Writes `bytes` to `dir/name` (atomically).
-pub(super) fn write(dir: &Path, name: &str, bytes: &[u8]) -> anyhow::Result<()> {
-    ocean::output::write_atomic(&dir.join(name), bytes)
-}
 
 #[cfg(test)]
 mod tests {

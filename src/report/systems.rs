@@ -258,8 +258,8 @@ pub(super) fn html(s: &Systems) -> String {
             .collect::<Vec<_>>()
             .join("; "),
         match &s.gpu {
-            Ok(a) => super::html::esc(a),
-            Err(e) => format!("none ({})", super::html::esc(e)),
+            Ok(a) => super::svg::esc(a),
+            Err(e) => format!("none ({})", super::svg::esc(e)),
         }
     );
     let _ = writeln!(
@@ -326,7 +326,7 @@ pub(super) fn html(s: &Systems) -> String {
         let _ = writeln!(
             o,
             "<tr><td>{sys}</td><td>{stage}</td><td><code>{t}</code></td><td>{}</td></tr>",
-            super::html::esc(source)
+            super::svg::esc(source)
         );
     }
     let _ = writeln!(o, "</table>");
