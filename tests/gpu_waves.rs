@@ -174,6 +174,7 @@ async fn open_gpu() -> Result<Gpu, String> {
     let adapter = wgpu::util::initialize_adapter_from_env_or_default(&instance, None)
         .await
         .map_err(|e| format!("no adapter: {e}"))?;
+    gpu_harness::testable(&adapter.get_info())?;
     let (device, queue) = adapter
         .request_device(&wgpu::DeviceDescriptor {
             label: Some("ocean.test"),

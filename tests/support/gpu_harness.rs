@@ -91,9 +91,32 @@ pub const GPU_ADAPTER: Requirement = Requirement {
 };
 
 /// Whether ocean-gpu gets an adapter and a device with the renderer's features and limits in
-/// this environment (`WGPU_BACKEND`, ...), as the renderer and the `ocean` binary ask for it.
+/// this environment (`WGPU_BACKEND`, ...), as the renderer and the `ocean` binary ask for it,
+/// and whether the tests may use that adapter ([`testable`]).
 pub fn adapter() -> Result<(), String> {
-    ocean_gpu::Gpu::new().map(|_| ()).map_err(|e| e.to_string())
+    let gpu = ocean_gpu::Gpu::new().map_err(|e| e.to_string())?;
+    testable(&gpu.info)
+}
+
+/// Whether the GPU tests may run on `info`'s adapter: any backend but wgpu's GL.
+///
+/// The tests hold the GPU to the CPU oracle with lavapipe's tolerances, and the oracle mirrors
+/// a Vulkan (or Metal, DX12) pipeline; an OpenGL adapter such as Mesa's llvmpipe through EGL
+/// is at best a different conformant GPU (the envelope's case, not the exact one). And wgpu's
+/// GL backend has one context per adapter that the test threads would share: on a machine
+/// with only Mesa GL, `tests/gpu_waves.rs` ran on it and failed at random with "Could not lock
+/// adapter context. This is most-likely a deadlock." So a GL adapter is "missing", and its
+/// tests are ignored with this reason (a failure under `OCEAN_REQUIRE_GPU=1`).
+pub fn testable(info: &wgpu::AdapterInfo) -> Result<(), String> {
+    if info.backend == wgpu::Backend::Gl {
+        return Err(format!(
+            "the only adapter is \"{}\" on wgpu's OpenGL backend, which the GPU tests do not \
+             use (the oracle's tolerances are for a Vulkan pipeline such as lavapipe's, and \
+             one GL context cannot be shared by the test threads)",
+            info.name
+        ));
+    }
+    Ok(())
 }
 
 /// `OCEAN_REQUIRE_GPU=1`: a missing requirement is a failure (CI).
