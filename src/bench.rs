@@ -21,6 +21,7 @@ use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 use anyhow::Context;
+use ocean::memory_arg::peak_rss_mib;
 use ocean_core::plan::{FramePlan, OutputKind, Pass, SYSTEMS, System};
 use ocean_core::scene::Scene;
 use serde::Serialize;
@@ -206,14 +207,6 @@ impl Runs {
         let k = self.0.len() / 2;
         self.0.into_iter().nth(k).unwrap_or((f64::NAN, Vec::new()))
     }
-}
-
-/// The process's peak resident memory since the last [`reset_peak`], MiB (Linux only).
-fn peak_rss_mib() -> Option<f64> {
-    let status = std::fs::read_to_string("/proc/self/status").ok()?;
-    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
-    let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kib / 1024.0)
 }
 
 fn reset_peak() {
@@ -525,6 +518,8 @@ pub fn table(b: &Bench) -> String {
 /// Runs `ocean bench`.
 pub fn run(args: Args) -> anyhow::Result<()> {
     let runs = args.runs.unwrap_or(if args.quick { 3 } else { 5 }).max(1);
+    // Before minutes of measuring: the output's folder exists and takes a file.
+    let out = args.output.as_deref().map(ocean::output::OutputFile::reserve).transpose()?;
     let bar = indicatif::ProgressBar::new_spinner();
     let b = measure(args.quick, &args.backend, args.only.as_deref(), runs, &mut |what| {
         bar.set_message(what.to_owned());
@@ -532,9 +527,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     })?;
     bar.finish_and_clear();
     let json = serde_json::to_string_pretty(&b)?;
-    if let Some(path) = &args.output {
-        ocean::output::write_atomic(path, json.as_bytes())
-            .with_context(|| format!("writing {}", path.display()))?;
+    if let Some(out) = out {
+        out.commit(json.as_bytes())?;
     }
     if args.json {
         println!("{json}");

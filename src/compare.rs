@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 
 use anyhow::{Context, bail};
-use ocean_verify::cross_check::{check_scene, map_pass, write_artefacts};
+use ocean_verify::cross_check::{artefacts, check_scene, map_pass};
 
 /// Arguments of `ocean compare`.
 #[derive(clap::Args, Debug)]
@@ -32,6 +32,7 @@ pub struct Args {
 
 /// Runs `ocean compare`.
 pub fn run(args: Args) -> anyhow::Result<()> {
+    args.memory.limit_inputs();
     if let Some(dir) = &args.against {
         return against(&args, dir);
     }
@@ -75,8 +76,11 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     if let Some(i) = &check.image {
         println!("  [{:<14}] {}", "tonemap", i.line(&check.image_limits));
     }
-    write_artefacts(&args.out_dir, &check, &renders)
-        .with_context(|| format!("cannot write to {}", args.out_dir.display()))?;
+    std::fs::create_dir_all(&args.out_dir)
+        .with_context(|| format!("cannot make {}", args.out_dir.display()))?;
+    for (file, bytes) in artefacts(&check, &renders)? {
+        ocean::output::write_atomic(&args.out_dir.join(file), &bytes)?;
+    }
     println!("wrote {}/{name}.{{cpu,gpu,diff,flip}}.png and {name}.json", args.out_dir.display());
     let failures = check.failures();
     if !failures.is_empty() {
@@ -87,27 +91,21 @@ pub fn run(args: Args) -> anyhow::Result<()> {
 
 /// `ocean compare --against DIR`: the oracle's frame against a dump folder.
 fn against(args: &Args, dir: &std::path::Path) -> anyhow::Result<()> {
+    use ocean::output::{encode_png, write_atomic};
     use ocean_core::plan::OutputKind;
     use ocean_verify::compare::compare_float_in;
-    use ocean_verify::cross_check::{float_diff_png, save_rgba};
+    use ocean_verify::cross_check::float_diff_png;
 
-    let manifest: Option<serde_json::Value> = std::fs::read_to_string(dir.join("manifest.json"))
-        .ok()
-        .map(|t| serde_json::from_str(&t))
-        .transpose()
-        .with_context(|| format!("{}/manifest.json is not JSON", dir.display()))?;
+    if !dir.is_dir() {
+        bail!("--against {}: not a folder (a dump of `ocean render --dump-passes`)", dir.display());
+    }
+    let manifest = ocean::dump::read_manifest(dir)?.unwrap_or_default();
     // The manifest's scene, where no SCENE is given and the dump holds one.
-    let dumped_text = manifest
-        .as_ref()
-        .and_then(|m| m["scene"]["toml"].as_str())
-        .filter(|t| args.scene.is_none() && !t.is_empty());
-    let from_manifest = dumped_text.is_some();
-    let mut scene = match dumped_text {
+    let mut scene = match manifest.scene_toml.as_deref().filter(|_| args.scene.is_none()) {
         Some(text) => {
             // The system the dump was made with, unless --system says otherwise.
-            let dumped = manifest.as_ref().and_then(|m| m["frame"]["system"].as_str());
             let system = ocean::scene_arg::SystemArg {
-                system: args.system.system.clone().or(dumped.map(str::to_owned)),
+                system: args.system.system.clone().or(manifest.system.clone()),
             };
             ocean::scene_arg::scene_from_text(
                 text,
@@ -117,14 +115,13 @@ fn against(args: &Args, dir: &std::path::Path) -> anyhow::Result<()> {
         }
         None => ocean::scene_arg::load_scene(args.scene.as_ref(), &args.system)?,
     };
-    // The manifest's frame (a dump made with --size or --time) unless --size says otherwise.
-    if let (true, Some(frame)) = (from_manifest, manifest.as_ref().map(|m| &m["frame"])) {
-        if let (Some(w), Some(h)) = (frame["width"].as_u64(), frame["height"].as_u64()) {
-            (scene.camera.width, scene.camera.height) = (w as u32, h as u32);
-        }
-        if let Some(t) = frame["time_s"].as_f64() {
-            scene.ocean.time_s = t;
-        }
+    // The manifest's frame (the dump's size and time, also for the built-in scene, whose
+    // text a dump leaves empty) unless --size says otherwise.
+    if let Some((w, h)) = manifest.size {
+        (scene.camera.width, scene.camera.height) = (w, h);
+    }
+    if let Some(t) = manifest.time_s {
+        scene.ocean.time_s = t;
     }
     if let Some(s) = &args.size {
         (scene.camera.width, scene.camera.height) = ocean::output::parse_size(s)?;
@@ -163,8 +160,8 @@ fn against(args: &Args, dir: &std::path::Path) -> anyhow::Result<()> {
             compare_float_in(id.name(), true, ((w, h), ours), (theirs.0, &theirs.1), format);
         println!("  [{pass:<14}] {}", stats.line());
         if theirs.0 == (w, h) {
-            let png = float_diff_png(ours, &theirs.1, format);
-            save_rgba(&args.out_dir.join(format!("{}.diff.png", id.name())), w, h, png)?;
+            let png = encode_png(float_diff_png(ours, &theirs.1, format), w, h)?;
+            write_atomic(&args.out_dir.join(format!("{}.diff.png", id.name())), &png)?;
         }
         if !stats.passed() {
             failures.push(stats.line());
@@ -172,8 +169,10 @@ fn against(args: &Args, dir: &std::path::Path) -> anyhow::Result<()> {
         summary.push(stats.to_json());
     }
     let json = serde_json::json!({"against": dir.display().to_string(), "resources": summary});
-    std::fs::write(args.out_dir.join("against.json"), serde_json::to_string_pretty(&json)?)
-        .with_context(|| format!("cannot write to {}", args.out_dir.display()))?;
+    write_atomic(
+        &args.out_dir.join("against.json"),
+        serde_json::to_string_pretty(&json)?.as_bytes(),
+    )?;
     println!("wrote {}/<resource>.diff.png and against.json", args.out_dir.display());
     if !failures.is_empty() {
         bail!(

@@ -157,7 +157,10 @@ pub fn write(
     map: &MapOf<'_>,
     ldr: Option<&[u8]>,
 ) -> anyhow::Result<Vec<String>> {
-    std::fs::create_dir_all(dir).with_context(|| format!("cannot make {}", dir.display()))?;
+    // Written whole or not at all: into a temporary folder beside `dir`, renamed into place
+    // once the manifest is written (a full disk half-way left a partial dump without one).
+    let staging = crate::output::StagingDir::create(dir)?;
+    let dir = staging.path();
     let mut files = Vec::new();
     let mut resources = Vec::new();
     for id in dumped(plan) {
@@ -211,7 +214,85 @@ pub fn write(
         serde_json::to_string_pretty(&manifest)?.as_bytes(),
     )?;
     files.push("manifest.json".to_owned());
+    staging.publish(|old| {
+        ocean_core::input::read_text(&old.join("manifest.json"), MAX_MANIFEST_BYTES)
+            .is_ok_and(|t| t.contains(LAYOUT))
+    })?;
     Ok(files)
+}
+
+/// The largest `manifest.json` read, bytes: a manifest holds the scene's text (at most
+/// [`ocean_core::scene::MAX_SCENE_FILE_BYTES`]) and the plan (tens of KB).
+pub const MAX_MANIFEST_BYTES: u64 = ocean_core::scene::MAX_SCENE_FILE_BYTES + (1 << 20);
+
+/// What `compare --against` takes from a dump's `manifest.json`, every number checked.
+#[derive(Debug, Default)]
+pub struct Manifest {
+    /// The dumped scene's TOML text, when the dump holds one that is not empty.
+    pub scene_toml: Option<String>,
+    /// The system the frame was rendered with.
+    pub system: Option<String>,
+    /// The frame's size, pixels.
+    pub size: Option<(u32, u32)>,
+    /// The frame's time, s.
+    pub time_s: Option<f64>,
+}
+
+/// Reads `DIR/manifest.json`: `Ok(None)` when there is none.
+///
+/// # Errors
+/// A manifest that is not a regular file (a folder, a device, a link to `/dev/zero`), larger
+/// than [`MAX_MANIFEST_BYTES`], not UTF-8, not JSON, or with a frame size, time or text of the
+/// wrong type or out of range; each message names the file and the key.
+pub fn read_manifest(dir: &Path) -> anyhow::Result<Option<Manifest>> {
+    let path = dir.join("manifest.json");
+    if std::fs::symlink_metadata(&path).is_err() {
+        return Ok(None);
+    }
+    let text = ocean_core::input::read_text(&path, MAX_MANIFEST_BYTES)
+        .map_err(|e| anyhow::anyhow!("the dump's manifest {e}"))?;
+    let v: Value =
+        serde_json::from_str(&text).with_context(|| format!("{} is not JSON", path.display()))?;
+    let key = |k: &str| format!("{}: `{k}`", path.display());
+    let string = |v: &Value, k: &str| -> anyhow::Result<Option<String>> {
+        match v {
+            Value::Null => Ok(None),
+            Value::String(s) => Ok(Some(s.clone())),
+            other => bail!("{} must be a string, got {other}", key(k)),
+        }
+    };
+    let frame = &v["frame"];
+    let side = |k: &str| -> anyhow::Result<Option<u32>> {
+        let max = ocean_core::scene::MAX_IMAGE_SIDE;
+        match &frame[k] {
+            Value::Null => Ok(None),
+            n => match n.as_u64().and_then(|n| u32::try_from(n).ok()) {
+                Some(n) if (1..=max).contains(&n) => Ok(Some(n)),
+                _ => bail!(
+                    "{} must be a whole number of pixels, 1..={max}, got {n}",
+                    key(&format!("frame.{k}"))
+                ),
+            },
+        }
+    };
+    let size = match (side("width")?, side("height")?) {
+        (Some(w), Some(h)) => Some((w, h)),
+        (None, None) => None,
+        _ => bail!("{} must give both frame.width and frame.height, or neither", path.display()),
+    };
+    let time_s = match &frame["time_s"] {
+        Value::Null => None,
+        t => match t.as_f64() {
+            Some(t) if t.is_finite() => Some(t),
+            _ => bail!("{} must be a finite number of seconds, got {t}", key("frame.time_s")),
+        },
+    };
+    Ok(Some(Manifest {
+        scene_toml: string(&v["scene"]["toml"], "scene.toml")?.filter(|t| !t.is_empty()),
+        system: string(&frame["system"], "frame.system")?,
+        size,
+        time_s,
+    }))
 }
 
 /// A resource read from a dump: (width, height) and its texels, row-major.
@@ -225,6 +306,13 @@ pub type ReadMap = ((u32, u32), Vec<[f32; 4]>);
 pub fn read(dir: &Path, id: ResourceId) -> anyhow::Result<ReadMap> {
     use exr::prelude::*;
     let path = dir.join(file_name(id));
+    // The header first: a forged size is refused before a texel is decoded (4 channels of
+    // f32 as [f32; 4] texels, plus the samples as stored). A mip chain's atlas is up to twice
+    // as tall as its level 0.
+    let (size, stored) = ocean_core::input::exr_header(&path).map_err(anyhow::Error::msg)?;
+    let max_side = 2 * u64::from(ocean_core::scene::MAX_IMAGE_SIDE);
+    ocean_core::input::check_image_size(&path, size, max_side, stored + 16)
+        .map_err(anyhow::Error::msg)?;
     let image = read_all_flat_layers_from_file(&path)
         .with_context(|| format!("cannot read {}", path.display()))?;
     let Some(layer) = image.layer_data.first() else { bail!("{} holds no layer", path.display()) };

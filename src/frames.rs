@@ -29,6 +29,8 @@ pub(crate) struct Sequence<'a> {
     pub fps: f64,
     pub shard: Shard,
     pub overwrite: bool,
+    /// `--replay-any`: step any number of earlier frames for their state.
+    pub replay_any: bool,
 }
 
 /// A drawn frame: the 8-bit picture (when the plan tonemaps) and the HDR frame.
@@ -86,7 +88,19 @@ impl Renderer {
     }
 }
 
-/// Renders the sequence.
+/// The most earlier frames a run steps undrawn for their state (foam `accumulated`, the
+/// spray's pool) unless `--replay-any` allows more: 100,000 frames of foam take about 1.5 h
+/// here (55 ms a step at 1280×720); frame 1,000,000 of `foam_storm.toml` alone would take 14 h.
+pub const MAX_REPLAY_FRAMES: u64 = 100_000;
+
+/// How many frames of `range` shard `shard` holds, counted, not listed.
+fn shard_len(range: FrameRange, shard: Shard) -> u64 {
+    range.len().saturating_sub(shard.index).div_ceil(shard.count)
+}
+
+/// Renders the sequence. Frames stream: nothing before the first frame depends on the
+/// range's length (a range of 10⁹ frames once listed every frame first: 8.7 GB, no frame in
+/// 60 s).
 pub(crate) fn run(seq: Sequence<'_>) -> anyhow::Result<()> {
     ensure!(
         seq.fps.is_finite() && seq.fps > 0.0,
@@ -97,6 +111,7 @@ pub(crate) fn run(seq: Sequence<'_>) -> anyhow::Result<()> {
         bail!("--spp with --frames is not supported yet: render the frames at 1 sample per pixel");
     }
     let pattern = FramePattern::parse(seq.pattern)?;
+    seq.memory.limit_inputs();
     let mut scene = ocean::scene_arg::load_scene(seq.scene, seq.system)?;
     if let Some(t) = seq.time {
         scene.ocean.time_s = t;
@@ -106,100 +121,156 @@ pub(crate) fn run(seq: Sequence<'_>) -> anyhow::Result<()> {
     }
     ocean::scene_arg::revalidate(&scene, "--time/--size")?;
     let step_s = 1.0 / seq.fps;
-    let last_time = scene.ocean.time_s + (seq.range.end - 1) as f64 * step_s;
+    // Every frame's time within the scene's limits, checked on the last one before the first
+    // is drawn (--fps 1e-300 failed only after frame 0 was written).
+    let mut last_frame = scene.clone();
+    last_frame.ocean.time_s = scene.ocean.time_s + (seq.range.end - 1) as f64 * step_s;
     ensure!(
-        last_time.is_finite(),
+        last_frame.ocean.time_s.is_finite(),
         "--frames {}..{} at {} fps: the last frame's time is not a finite number",
         seq.range.start,
         seq.range.end,
         seq.fps
     );
+    ocean::scene_arg::revalidate(
+        &last_frame,
+        &format!(
+            "--frames {}..{} at --fps {:?}: the last frame's time, {:?} s,",
+            seq.range.start, seq.range.end, seq.fps, last_frame.ocean.time_s
+        ),
+    )?;
     // One plan for every frame, whatever the range: a looping sea plays its cycle (any
     // count of two or more frames plans alike), so frame n does not depend on the range.
     let plan = FramePlan::for_frames(&scene, seq.kind, seq.range.end.max(2));
     let advance = plan.carries_state().then(|| plan.advance_only());
     seq.memory.check(&scene, &plan, &[seq.backend.memory()])?;
 
-    let mine: Vec<u64> = seq.shard.frames(seq.range).collect();
-    let todo: Vec<u64> =
-        mine.iter().copied().filter(|n| seq.overwrite || !pattern.path(*n).exists()).collect();
-    let on_disk = mine.len() - todo.len();
-    if let Some(first) = todo.first() {
-        // Before any work: the folder exists (made if missing) and takes files.
-        let path = pattern.path(*first);
-        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-            std::fs::create_dir_all(dir)
-                .with_context(|| format!("cannot make the folder {}", dir.display()))?;
-        }
-        drop(ocean::output::OutputFile::reserve(&path)?);
-    }
-    let Some(&last) = todo.last() else {
+    let total = shard_len(seq.range, seq.shard);
+    if total == 0 {
         eprintln!(
-            "nothing to render: all {} frame(s) of shard {}/{} are on disk (--overwrite renders them again)",
-            mine.len(),
+            "nothing to render: shard {}/{} of {}..{} holds no frame (the range has {})",
             seq.shard.index,
-            seq.shard.count
+            seq.shard.count,
+            seq.range.start,
+            seq.range.end,
+            seq.range.len()
+        );
+        return Ok(());
+    }
+    let on_disk = |n: u64| !seq.overwrite && pattern.path(n).exists();
+    // The first frame to draw: the frames before it that are on disk are counted as they are
+    // passed, one look each, as the loop below would.
+    let Some(first) = seq.shard.frames(seq.range).find(|n| !on_disk(*n)) else {
+        eprintln!(
+            "nothing to render: all {total} frame(s) of shard {}/{} are on disk (--overwrite \
+             renders them again)",
+            seq.shard.index, seq.shard.count
         );
         return Ok(());
     };
+    let last = seq.range.start + seq.shard.index + (total - 1) * seq.shard.count;
+    // What the request costs before it starts: the frames to draw, and, where the scene
+    // carries state from frame to frame, the earlier frames stepped undrawn for it.
+    let replay = if advance.is_some() { (last + 1).saturating_sub(total) } else { 0 };
+    eprintln!(
+        "frames {}..{} (shard {}/{}): {total} to draw from frame {first}{}",
+        seq.range.start,
+        seq.range.end,
+        seq.shard.index,
+        seq.shard.count,
+        if replay > 0 {
+            format!(
+                "; the scene carries state from frame to frame, so up to {replay} earlier \
+                 frame(s) are stepped undrawn first (from frame 0)"
+            )
+        } else {
+            String::new()
+        }
+    );
+    if replay > MAX_REPLAY_FRAMES && !seq.replay_any {
+        bail!(
+            "this run would step {replay} frames undrawn for their state (foam or spray carry \
+             state, so frame n needs frames 0..n), more than {MAX_REPLAY_FRAMES}: render a \
+             range that starts earlier, fewer shards, or pass --replay-any to run it anyway"
+        );
+    }
+    {
+        // Before any work: the folder exists (made if missing) and takes files.
+        let path = pattern.path(first);
+        make_parent(&path)?;
+        drop(ocean::output::OutputFile::reserve(&path)?);
+    }
 
     let mut renderer = match seq.backend {
         Backend::Cpu => Renderer::Cpu,
         Backend::Gpu => Renderer::Gpu(Box::new(ocean_gpu::Renderer::new()?)),
     };
-    let bar = ProgressBar::new(todo.len() as u64);
+    // One unit a frame the run passes through: drawn, stepped for its state, or on disk.
+    let work = if advance.is_some() { last + 1 } else { total };
+    let bar = ProgressBar::new(work);
     bar.set_style(
         ProgressStyle::with_template(
-            "{elapsed:>4} [{bar:30}] {pos}/{len} frames, {per_sec}, ETA {eta} {msg}",
+            "{elapsed:>4} [{bar:30}] {pos}/{len} frames passed, {per_sec}, ETA {eta} {msg}",
         )
         .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
     let start = Instant::now();
     let mut state = FrameState::new(step_s);
-    let mut stepped = 0u64;
-    let mut pending = todo.iter().copied().peekable();
-    while let Some(&next) = pending.peek() {
-        let n = state.frame;
-        if n < next {
+    let (mut stepped, mut drawn) = (0u64, 0u64);
+    for next in seq.shard.frames(seq.range).skip_while(|n| *n < first) {
+        if on_disk(next) {
+            if advance.is_none() {
+                bar.inc(1);
+            }
+            continue;
+        }
+        while state.frame < next {
+            let n = state.frame;
             match &advance {
                 // Frames before it leave state this one continues: step them undrawn.
                 Some(a) => {
                     bar.set_message(format!("stepping frame {n} (state for frame {next})"));
                     renderer.step(&scene, a, &mut state).with_context(|| format!("frame {n}"))?;
                     stepped += 1;
+                    bar.inc(1);
                 }
                 None => state.frame = next,
             }
-            continue;
         }
-        bar.set_message(format!("frame {n}"));
+        bar.set_message(format!("frame {next}"));
         let (ldr, hdr) =
-            renderer.draw(&scene, &plan, &mut state).with_context(|| format!("frame {n}"))?;
-        let path = pattern.path(n);
+            renderer.draw(&scene, &plan, &mut state).with_context(|| format!("frame {next}"))?;
+        let path = pattern.path(next);
         let bytes = encode(seq.kind, ldr, &hdr, scene.camera.width, scene.camera.height)?;
+        make_parent(&path)?;
         let out = ocean::output::OutputFile::reserve(&path)?;
-        out.commit(&bytes).with_context(|| format!("frame {n}"))?;
-        pending.next();
+        out.commit(&bytes).with_context(|| format!("frame {next}"))?;
+        drawn += 1;
         bar.inc(1);
-        if n == last {
-            break;
-        }
     }
     bar.finish_and_clear();
     let secs = start.elapsed().as_secs_f64();
     eprintln!(
-        "wrote {} frame(s) of {}..{}, first {}, last {last} (shard {}/{} holds {}; {on_disk} \
+        "wrote {drawn} frame(s) of {}..{}, first {first} (shard {}/{} holds {total}; {} \
          already on disk, kept; {stepped} earlier frame(s) stepped for their state) to {} in \
          {secs:.2} s, {:.2} s a frame",
-        todo.len(),
         seq.range.start,
         seq.range.end,
-        todo[0],
         seq.shard.index,
         seq.shard.count,
-        mine.len(),
+        total - drawn,
         seq.pattern.display(),
-        secs / todo.len() as f64
+        secs / drawn.max(1) as f64
     );
+    Ok(())
+}
+
+/// Makes the folder of an output when it is missing (a pattern may number its folders too:
+/// `out/{}/frame.png`).
+fn make_parent(path: &Path) -> anyhow::Result<()> {
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty() && !d.is_dir()) {
+        std::fs::create_dir_all(dir)
+            .with_context(|| format!("cannot make the folder {}", dir.display()))?;
+    }
     Ok(())
 }

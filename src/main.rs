@@ -66,6 +66,12 @@ fn main() -> ExitCode {
         Command::View(a) => ocean::view::run(a),
         Command::Bench(a) => bench::run(a),
     };
+    // What a refused input cost (tests/hostile_files.rs holds it under 100 MB).
+    if std::env::var_os("OCEAN_PRINT_PEAK_MEMORY").is_some()
+        && let Some(mib) = ocean::memory_arg::peak_rss_mib()
+    {
+        eprintln!("peak resident memory: {mib:.1} MiB");
+    }
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {

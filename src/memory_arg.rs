@@ -21,6 +21,12 @@ impl MemoryArg {
         self.memory_limit.unwrap_or_else(default_limit)
     }
 
+    /// Holds every image the command reads (a heightmap, a dump's maps) to the limit, checked
+    /// from its header before it is decoded (`ocean_core::input`).
+    pub fn limit_inputs(&self) {
+        ocean_core::input::set_decode_budget(self.limit());
+    }
+
     /// Refuses the frame when its estimate on `backends` together exceeds the limit.
     ///
     /// # Errors
@@ -45,4 +51,13 @@ impl MemoryArg {
             anyhow::anyhow!("{e} [the limit is {source}]")
         })
     }
+}
+
+/// The process's peak resident memory (since it started, or since `ocean bench` reset it),
+/// MiB; Linux only.
+pub fn peak_rss_mib() -> Option<f64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib / 1024.0)
 }

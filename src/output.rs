@@ -7,9 +7,50 @@ use std::sync::Mutex;
 
 use anyhow::{Context, bail};
 
-/// The folder an output goes to and the temporary name it is first written under; errors for
-/// a path without a file name, a missing folder, or a path that is a folder.
-fn target(path: &Path) -> anyhow::Result<(PathBuf, String)> {
+use ocean_core::input::kind_of;
+
+/// Where an output really goes: `path` itself when it does not exist or is a regular file; the
+/// file a symbolic link names when that is a regular file (written through: the link stays a
+/// link). Anything else — a device node, a FIFO, a socket, a folder, a link to one of them or
+/// to nothing — is refused, since the temporary renamed over it would replace what is not
+/// ocean's (as root, `-o n` with `n` a device node turned the node into a JSON file).
+fn resolve(path: &Path) -> anyhow::Result<PathBuf> {
+    let Ok(meta) = std::fs::symlink_metadata(path) else { return Ok(path.to_owned()) };
+    let t = meta.file_type();
+    if t.is_file() {
+        return Ok(path.to_owned());
+    }
+    if !t.is_symlink() {
+        bail!(
+            "cannot write {}: it exists and is {}; ocean replaces only regular files",
+            path.display(),
+            kind_of(t)
+        );
+    }
+    let real = std::fs::canonicalize(path).with_context(|| {
+        format!("cannot write {}: it is a link to a file that does not exist", path.display())
+    })?;
+    let t = std::fs::metadata(&real)
+        .with_context(|| format!("cannot write {}", path.display()))?
+        .file_type();
+    if !t.is_file() {
+        bail!(
+            "cannot write {}: it is a link to {}, which is {}; ocean replaces only regular files",
+            path.display(),
+            real.display(),
+            kind_of(t)
+        );
+    }
+    Ok(real)
+}
+
+/// The folder an output goes to, the temporary name it is first written under and the path
+/// the temporary is renamed to ([`resolve`]); errors for a path without a file name, a missing
+/// folder, or a path that is not (a link to) a regular file.
+fn target(path: &Path) -> anyhow::Result<(PathBuf, String, PathBuf)> {
+    path.file_name().with_context(|| format!("output path {} has no file name", path.display()))?;
+    let real = resolve(path)?;
+    let path = &real;
     let file_name = path
         .file_name()
         .with_context(|| format!("output path {} has no file name", path.display()))?;
@@ -23,7 +64,8 @@ fn target(path: &Path) -> anyhow::Result<(PathBuf, String)> {
     if path.is_dir() {
         bail!("cannot write {}: it is a folder", path.display());
     }
-    Ok((dir, format!(".{}.tmp-", file_name.to_string_lossy())))
+    let prefix = format!(".{}.tmp-", file_name.to_string_lossy());
+    Ok((dir, prefix, real))
 }
 
 /// The temporaries being written now, removed by the SIGINT/SIGTERM handler
@@ -50,7 +92,16 @@ fn remove_stale(dir: &Path, prefix: &str) -> usize {
         let name = entry.file_name();
         let Some(pid) = name.to_str().and_then(|n| n.strip_prefix(prefix)) else { continue };
         let Ok(pid) = pid.parse::<u32>() else { continue };
-        if pid != std::process::id() && !alive(pid) && std::fs::remove_file(entry.path()).is_ok() {
+        if pid == std::process::id() || alive(pid) {
+            continue;
+        }
+        let path = entry.path();
+        let gone = if path.is_dir() {
+            std::fs::remove_dir_all(&path).is_ok()
+        } else {
+            std::fs::remove_file(&path).is_ok()
+        };
+        if gone {
             removed += 1;
         }
     }
@@ -62,7 +113,10 @@ fn remove_stale(dir: &Path, prefix: &str) -> usize {
 /// removed on an error, on SIGINT/SIGTERM, or (after SIGKILL) by the next run that writes the
 /// same name. [`Self::commit`] writes the bytes and renames the temporary into place.
 pub struct OutputFile {
+    /// The path asked for, for messages.
     path: PathBuf,
+    /// What the temporary is renamed to: the path, or the regular file a link at it names.
+    real: PathBuf,
     tmp: PathBuf,
     file: Option<std::fs::File>,
 }
@@ -74,7 +128,7 @@ impl OutputFile {
     /// A path without a file name, a missing folder, a path that is a folder, or a folder that
     /// takes no new file.
     pub fn reserve(path: &Path) -> anyhow::Result<Self> {
-        let (dir, prefix) = target(path)?;
+        let (dir, prefix, real) = target(path)?;
         remove_stale(&dir, &prefix);
         let tmp = dir.join(format!("{prefix}{}", std::process::id()));
         pending().push(tmp.clone());
@@ -86,7 +140,7 @@ impl OutputFile {
                 return Err(e).with_context(|| format!("cannot write {}", path.display()));
             }
         };
-        Ok(Self { path: path.to_owned(), tmp, file: Some(file) })
+        Ok(Self { path: path.to_owned(), real, tmp, file: Some(file) })
     }
 
     /// Writes `bytes` and renames the temporary to the path.
@@ -99,7 +153,7 @@ impl OutputFile {
             f.write_all(bytes)?;
             f.sync_all()?;
             drop(f);
-            std::fs::rename(&self.tmp, &self.path)
+            std::fs::rename(&self.tmp, &self.real)
         })();
         result.with_context(|| format!("cannot write {}", self.path.display()))
     }
@@ -113,6 +167,102 @@ impl Drop for OutputFile {
     }
 }
 
+/// A folder of outputs written under a temporary name beside its target (`.NAME.tmp-PID`) and
+/// renamed into place whole by [`Self::publish`], so that a failure half-way (a full disk)
+/// or an interrupt leaves no partial folder: it is removed on an error, on drop and on
+/// SIGINT/SIGTERM.
+pub struct StagingDir {
+    target: PathBuf,
+    tmp: PathBuf,
+    published: bool,
+}
+
+impl StagingDir {
+    /// Creates the temporary folder beside `target`.
+    ///
+    /// # Errors
+    /// A target without a name, one that exists and is not a folder, or a parent folder that
+    /// takes no new folder.
+    pub fn create(target: &Path) -> anyhow::Result<Self> {
+        let name = target
+            .file_name()
+            .with_context(|| format!("output folder {} has no name", target.display()))?;
+        if let Ok(m) = std::fs::symlink_metadata(target)
+            && !m.is_dir()
+        {
+            bail!(
+                "cannot write the folder {}: it exists and is {}",
+                target.display(),
+                kind_of(m.file_type())
+            );
+        }
+        let parent = match target.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+            _ => PathBuf::from("."),
+        };
+        std::fs::create_dir_all(&parent)
+            .with_context(|| format!("cannot make the folder {}", parent.display()))?;
+        let prefix = format!(".{}.tmp-", name.to_string_lossy());
+        remove_stale(&parent, &prefix);
+        let tmp = parent.join(format!("{prefix}{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&tmp);
+        pending().push(tmp.clone());
+        if let Err(e) = std::fs::create_dir(&tmp) {
+            pending().retain(|p| *p != tmp);
+            return Err(e).with_context(|| format!("cannot write the folder {}", target.display()));
+        }
+        Ok(Self { target: target.to_owned(), tmp, published: false })
+    }
+
+    /// The temporary folder, to write the files into.
+    pub fn path(&self) -> &Path {
+        &self.tmp
+    }
+
+    /// Puts the folder in place. A folder already at the target is replaced when it is empty
+    /// or `replaceable` says so (a previous dump); otherwise it is kept and this is an error.
+    ///
+    /// # Errors
+    /// A target that holds something else, or a rename that fails.
+    pub fn publish(mut self, replaceable: impl Fn(&Path) -> bool) -> anyhow::Result<()> {
+        let target = self.target.clone();
+        if target.is_dir() {
+            let empty = std::fs::read_dir(&target).is_ok_and(|mut d| d.next().is_none());
+            if !empty && !replaceable(&target) {
+                bail!(
+                    "{} exists and holds files that are not ocean's: choose a new or an empty \
+                     folder",
+                    target.display()
+                );
+            }
+            let mut old = self.tmp.clone().into_os_string();
+            old.push("-old");
+            let old = PathBuf::from(old);
+            std::fs::rename(&target, &old)
+                .with_context(|| format!("cannot replace {}", target.display()))?;
+            if let Err(e) = std::fs::rename(&self.tmp, &target) {
+                let _ = std::fs::rename(&old, &target);
+                return Err(e).with_context(|| format!("cannot write {}", target.display()));
+            }
+            let _ = std::fs::remove_dir_all(&old);
+        } else {
+            std::fs::rename(&self.tmp, &target)
+                .with_context(|| format!("cannot write {}", target.display()))?;
+        }
+        self.published = true;
+        Ok(())
+    }
+}
+
+impl Drop for StagingDir {
+    fn drop(&mut self) {
+        if !self.published {
+            let _ = std::fs::remove_dir_all(&self.tmp);
+        }
+        pending().retain(|p| *p != self.tmp);
+    }
+}
+
 /// Installs the SIGINT/SIGTERM handler of the command line: it removes every temporary being
 /// written and exits with status 130, so an interrupted run leaves no `.NAME.tmp-PID` behind.
 ///
@@ -122,7 +272,11 @@ pub fn remove_temporaries_on_interrupt() -> anyhow::Result<()> {
     ctrlc::set_handler(|| {
         let paths: Vec<PathBuf> = pending().drain(..).collect();
         for p in &paths {
-            let _ = std::fs::remove_file(p);
+            if p.is_dir() {
+                let _ = std::fs::remove_dir_all(p);
+            } else {
+                let _ = std::fs::remove_file(p);
+            }
         }
         eprintln!("interrupted: stopped, {} temporary file(s) removed", paths.len());
         std::process::exit(130);

@@ -60,6 +60,11 @@ pub struct Args {
     /// killed run resumes where it stopped).
     #[arg(long)]
     overwrite: bool,
+    /// With --frames: step any number of earlier frames for a stateful scene's state (foam,
+    /// spray). Without it a run that would step more than 100,000 frames undrawn is refused
+    /// before it starts.
+    #[arg(long)]
+    replay_any: bool,
 }
 
 /// Render back ends.
@@ -83,8 +88,8 @@ impl Backend {
 
 /// Runs `ocean render`.
 pub fn run(args: Args) -> anyhow::Result<()> {
-    if args.frames.is_none() && (args.shard.is_some() || args.overwrite) {
-        bail!("--shard and --overwrite belong to an animation: add --frames A..B");
+    if args.frames.is_none() && (args.shard.is_some() || args.overwrite || args.replay_any) {
+        bail!("--shard, --overwrite and --replay-any belong to an animation: add --frames A..B");
     }
     if args.dump_passes.is_some() && (args.frames.is_some() || args.spp != 1) {
         bail!("--dump-passes dumps one frame at 1 sample per pixel: leave out --frames and --spp");
@@ -109,10 +114,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             fps: args.fps,
             shard: args.shard.unwrap_or_default(),
             overwrite: args.overwrite,
+            replay_any: args.replay_any,
         });
     }
     // Before any work: a render of minutes must not end in "cannot write".
     let out = ocean::output::OutputFile::reserve(&args.output)?;
+    args.memory.limit_inputs();
     let mut scene = ocean::scene_arg::load_scene(args.scene.as_ref(), &args.system)?;
     if let Some(t) = args.time {
         scene.ocean.time_s = t;

@@ -33,6 +33,7 @@ pub mod fuzz;
 pub mod geometry;
 pub mod ggx;
 pub mod heightfield;
+pub mod input;
 pub mod plan;
 pub mod registry;
 pub mod rng;

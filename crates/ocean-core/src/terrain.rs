@@ -56,12 +56,13 @@ impl Relief {
     /// A relief from normalised samples v (row-major, `width × height`), v ↦ lo + v·(hi − lo).
     ///
     /// # Errors
-    /// A message when the size is zero or too large, the count is wrong, or a sample is not
-    /// finite.
+    /// A message when the size is zero or too large, the count is wrong, or a sample or the
+    /// height it maps to is not finite (an EXR sample of 3e38 is finite, but its height in
+    /// f32 is not: the floor would be infinite, and vanish).
     pub fn from_normalised(
         width: u32,
         height: u32,
-        v: &[f64],
+        v: impl ExactSizeIterator<Item = f64>,
         range: [f64; 2],
     ) -> Result<Self, String> {
         if width == 0 || height == 0 || width > MAX_RELIEF_SIDE || height > MAX_RELIEF_SIDE {
@@ -72,12 +73,23 @@ impl Relief {
         if v.len() != width as usize * height as usize {
             return Err(format!("{width}×{height} texels need {} samples", width * height));
         }
-        if let Some(i) = v.iter().position(|s| !s.is_finite()) {
-            let (x, y) = (i % width as usize, i / width as usize);
-            return Err(format!("the heightmap's texel ({x}, {y}) is not finite"));
+        let mut heights = Vec::with_capacity(v.len());
+        for (i, s) in v.enumerate() {
+            let h = (range[0] + s * (range[1] - range[0])) as f32;
+            if !h.is_finite() {
+                let (x, y) = (i % width as usize, i / width as usize);
+                return Err(if s.is_finite() {
+                    format!(
+                        "the heightmap's texel ({x}, {y}) = {s:e} maps to a height beyond f32's \
+                         range ({:e} m, with height_range_m {range:?})",
+                        range[0] + s * (range[1] - range[0])
+                    )
+                } else {
+                    format!("the heightmap's texel ({x}, {y}) is not finite")
+                });
+            }
+            heights.push(h);
         }
-        let heights: Vec<f32> =
-            v.iter().map(|s| (range[0] + s * (range[1] - range[0])) as f32).collect();
         Ok(Self::from_heights(width, height, heights))
     }
 
@@ -97,17 +109,14 @@ impl Relief {
     /// [`Self::from_normalised`].
     pub fn load(path: &Path, range: [f64; 2]) -> Result<Self, String> {
         let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
-        let (w, h, v) = match ext.as_deref() {
-            Some("png") => read_png16(path)?,
-            Some("exr") => read_exr(path)?,
-            _ => {
-                return Err(format!(
-                    "{}: a heightmap is a 16-bit grayscale .png or an .exr",
-                    path.display()
-                ));
-            }
-        };
-        Self::from_normalised(w, h, &v, range).map_err(|e| format!("{}: {e}", path.display()))
+        match ext.as_deref() {
+            Some("png") => read_png16(path, range),
+            Some("exr") => read_exr(path, range),
+            _ => Err(format!(
+                "{}: a heightmap is a 16-bit grayscale .png or an .exr",
+                path.display()
+            )),
+        }
     }
 
     /// Texel (i, j), clamped to the map.
@@ -132,15 +141,16 @@ impl Relief {
     }
 }
 
-fn read_png16(path: &Path) -> Result<(u32, u32, Vec<f64>), String> {
-    let img = image::ImageReader::open(path)
-        .map_err(|e| format!("{}: {e}", path.display()))?
-        .decode()
-        .map_err(|e| format!("{}: {e}", path.display()))?;
-    match img {
+/// Reads a 16-bit grayscale PNG heightmap: its header first (size and the memory decoding
+/// takes, 2 bytes a texel decoded + 4 for the relief's f32), then its pixels.
+fn read_png16(path: &Path, range: [f64; 2]) -> Result<Relief, String> {
+    let size = crate::input::png_size(path)?;
+    crate::input::check_image_size(path, size, u64::from(MAX_RELIEF_SIDE), 2 + 4)?;
+    match crate::input::decode_png(path)? {
         image::DynamicImage::ImageLuma16(g) => {
             let (w, h) = g.dimensions();
-            Ok((w, h, g.into_raw().into_iter().map(|s| f64::from(s) / 65535.0).collect()))
+            let v = g.as_raw().iter().map(|&s| f64::from(s) / 65535.0);
+            Relief::from_normalised(w, h, v, range).map_err(|e| format!("{}: {e}", path.display()))
         }
         other => Err(format!(
             "{}: a heightmap PNG must be 16-bit grayscale, this one is {:?} (8 bits would \
@@ -151,8 +161,12 @@ fn read_png16(path: &Path) -> Result<(u32, u32, Vec<f64>), String> {
     }
 }
 
-fn read_exr(path: &Path) -> Result<(u32, u32, Vec<f64>), String> {
+/// Reads an EXR heightmap: its header first (size, and the memory decoding takes: every
+/// channel's samples + 4 bytes a texel for the relief), then its pixels.
+fn read_exr(path: &Path, range: [f64; 2]) -> Result<Relief, String> {
     use exr::prelude::*;
+    let (size, bytes_per_texel) = crate::input::exr_header(path)?;
+    crate::input::check_image_size(path, size, u64::from(MAX_RELIEF_SIDE), bytes_per_texel + 4)?;
     let image =
         read_all_flat_layers_from_file(path).map_err(|e| format!("{}: {e}", path.display()))?;
     let layer = image
@@ -170,13 +184,19 @@ fn read_exr(path: &Path) -> Result<(u32, u32, Vec<f64>), String> {
                 path.display()
             )
         })?;
-    let v: Vec<f64> = match &channel.sample_data {
-        FlatSamples::F16(s) => s.iter().map(|x| f64::from(x.to_f32())).collect(),
-        FlatSamples::F32(s) => s.iter().map(|&x| f64::from(x)).collect(),
-        FlatSamples::U32(s) => s.iter().map(|&x| f64::from(x)).collect(),
+    let (w, h) = (layer.size.0 as u32, layer.size.1 as u32);
+    let relief = match &channel.sample_data {
+        FlatSamples::F16(s) => {
+            Relief::from_normalised(w, h, s.iter().map(|x| f64::from(x.to_f32())), range)
+        }
+        FlatSamples::F32(s) => {
+            Relief::from_normalised(w, h, s.iter().map(|&x| f64::from(x)), range)
+        }
+        FlatSamples::U32(s) => {
+            Relief::from_normalised(w, h, s.iter().map(|&x| f64::from(x)), range)
+        }
     };
-    let (w, h) = (layer.size.0, layer.size.1);
-    Ok((w as u32, h as u32, v))
+    relief.map_err(|e| format!("{}: {e}", path.display()))
 }
 
 impl Terrain {

@@ -42,6 +42,15 @@ fn value_error(e: impl std::fmt::Display) -> PyErr {
     PyValueError::new_err(e.to_string())
 }
 
+/// `eta` as the command line takes it (`ocean fresnel --eta`): finite and above 0.
+fn check_eta(eta: f64) -> PyResult<()> {
+    if eta > 0.0 && eta.is_finite() {
+        Ok(())
+    } else {
+        Err(PyValueError::new_err(format!("eta must be finite and > 0, got {eta}")))
+    }
+}
+
 /// fresnel(eta, cos_theta) -> ndarray: the exact unpolarised Fresnel reflectance of eq. 2
 /// (Hu et al. 2004) for relative index `eta` = n_t/n_i at incidence cos θ (1 past the
 /// critical angle when eta < 1: total internal reflection).
@@ -51,6 +60,7 @@ fn fresnel<'py>(
     eta: f64,
     cos_theta: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+    check_eta(eta)?;
     map1(py, cos_theta, |c| ocean_core::fresnel::fresnel_exact(c, eta))
 }
 
@@ -63,6 +73,7 @@ fn fresnel_schlick<'py>(
     eta: f64,
     cos_theta: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+    check_eta(eta)?;
     map1(py, cos_theta, |c| ocean_core::fresnel::fresnel_schlick(c, eta))
 }
 
@@ -181,14 +192,17 @@ fn height<'py>(
     Ok(ArrayD::from_shape_vec(IxDyn(x.shape()), out).map_err(value_error)?.into_pyarray(py))
 }
 
-/// render(scene_toml, backend="cpu") -> ndarray: the linear HDR frame (H × W × 4 float32,
-/// row 0 at the top, before exposure and tonemap) of the scene by the CPU oracle.
+/// render(scene_toml, backend="cpu", memory_limit=None) -> ndarray: the linear HDR frame
+/// (H × W × 4 float32, row 0 at the top, before exposure and tonemap) of the scene by the CPU
+/// oracle. As `ocean render`, a frame whose estimated memory exceeds `memory_limit` bytes
+/// (default: three quarters of the machine's memory) raises `ValueError` before any work.
 #[pyfunction]
-#[pyo3(signature = (scene_toml, backend="cpu"))]
+#[pyo3(signature = (scene_toml, backend="cpu", memory_limit=None))]
 fn render<'py>(
     py: Python<'py>,
     scene_toml: &str,
     backend: &str,
+    memory_limit: Option<u64>,
 ) -> PyResult<Bound<'py, PyArray3<f32>>> {
     if backend != "cpu" {
         return Err(PyValueError::new_err(format!(
@@ -196,7 +210,16 @@ fn render<'py>(
              path is `ocean render --backend gpu`"
         )));
     }
+    let limit = memory_limit.unwrap_or_else(ocean_core::plan::memory::default_limit);
+    if limit == 0 {
+        return Err(PyValueError::new_err("memory_limit must be above 0 bytes"));
+    }
+    ocean_core::input::set_decode_budget(limit);
     let s = scene(scene_toml)?;
+    let plan = FramePlan::new(&s, OutputKind::Hdr);
+    ocean_core::plan::memory::MemoryEstimate::of(&s, &plan, ocean_core::plan::memory::MemoryBackend::Cpu)
+        .check(limit)
+        .map_err(|e| PyValueError::new_err(format!("memory_limit: {e}")))?;
     let (w, h) = (s.camera.width as usize, s.camera.height as usize);
     let r = py
         .allow_threads(|| ocean_cpu::render_scene(&s, OutputKind::Hdr, &mut |_| {}))

@@ -209,3 +209,68 @@ def test_the_amplitudes_carry_the_maps_variance():
     # Another seed draws other amplitudes of the same spectrum.
     other = ocean.amplitudes(SMALL.replace("seed = 5", "seed = 6"))
     assert np.abs(other - h0).max() > 0.1 * np.abs(h0).max()
+
+
+# Hostile inputs (issue 36, item 9): the module refuses what the command line refuses, with a
+# ValueError naming the argument, and reads a heightmap's header before its pixels.
+
+
+@pytest.mark.parametrize("eta", [float("nan"), 0.0, -1.33, float("inf")])
+def test_fresnel_refuses_an_eta_the_cli_refuses(eta):
+    for f in (ocean.fresnel, ocean.fresnel_schlick):
+        with pytest.raises(ValueError, match="eta"):
+            f(eta, [0.5])
+    # Control: the same call with a valid eta answers.
+    assert np.isfinite(ocean.fresnel(1.33, [0.5])).all()
+
+
+def test_render_applies_the_memory_estimate():
+    scene = "[camera]\nwidth = 64\nheight = 36\n"
+    with pytest.raises(ValueError, match="memory_limit"):
+        ocean.render(scene, memory_limit=1 << 20)
+    with pytest.raises(ValueError, match="memory_limit"):
+        ocean.render(scene, memory_limit=0)
+    assert ocean.render(scene, memory_limit=8 << 30).shape == (36, 64, 4)
+
+
+def forged_exr(w, h):
+    """An EXR header (one float channel Y, no compression) whose data window claims w x h,
+    and no pixels: a few hundred bytes."""
+    import struct
+
+    out = bytearray(b"\x76\x2f\x31\x01\x02\x00\x00\x00")
+
+    def attr(name, kind, value):
+        out.extend(name.encode() + b"\0" + kind.encode() + b"\0")
+        out.extend(struct.pack("<i", len(value)) + value)
+
+    attr("channels", "chlist", b"Y\0" + struct.pack("<i", 2) + b"\0\0\0\0" + struct.pack("<ii", 1, 1) + b"\0")
+    attr("compression", "compression", b"\0")
+    window = struct.pack("<iiii", 0, 0, w - 1, h - 1)
+    attr("dataWindow", "box2i", window)
+    attr("displayWindow", "box2i", window)
+    attr("lineOrder", "lineOrder", b"\0")
+    attr("pixelAspectRatio", "float", struct.pack("<f", 1.0))
+    attr("screenWindowCenter", "v2f", b"\0" * 8)
+    attr("screenWindowWidth", "float", struct.pack("<f", 1.0))
+    out.extend(b"\0" + b"\0" * 64)
+    return bytes(out)
+
+
+def floor_scene(path):
+    return (
+        f'[terrain]\nkind = "heightmap"\nheightmap = "{path}"\nheight_range_m = [-2.0, 6.0]\n'
+        "depth_m = 10.0\ncenter = [0.0, -30.0]\nextent_m = 60.0\n"
+    )
+
+
+def test_heightmaps_are_checked_before_decoding(tmp_path):
+    forged = tmp_path / "claims32k.exr"
+    forged.write_bytes(forged_exr(32768, 32768))
+    for f in (ocean.render, lambda s: ocean.height(s, 0.0, [0.0], [0.0])):
+        with pytest.raises(ValueError, match="32768×32768"):
+            f(floor_scene(forged))
+    fifo = tmp_path / "pipe.png"
+    os.mkfifo(fifo)
+    with pytest.raises(ValueError, match="named pipe"):
+        ocean.render(floor_scene(fifo))

@@ -198,14 +198,16 @@ pub fn map_pass(name: &str) -> Option<Pass> {
     ResourceId::MAPS.iter().find(|m| m.name() == name).and_then(|m| m.writer())
 }
 
-/// Writes an RGBA8 picture as PNG.
+/// An RGBA8 picture encoded as PNG.
 ///
 /// # Errors
-/// A file that cannot be written.
-pub fn save_rgba(path: &Path, w: u32, h: u32, rgba: Vec<u8>) -> std::io::Result<()> {
+/// A pixel count that does not match the size, or an encoder error.
+pub fn rgba_png(w: u32, h: u32, rgba: Vec<u8>) -> std::io::Result<Vec<u8>> {
     let img = image::RgbaImage::from_raw(w, h, rgba)
         .ok_or_else(|| std::io::Error::other("image size does not match its pixels"))?;
-    img.save(path).map_err(std::io::Error::other)
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    img.write_to(&mut bytes, image::ImageFormat::Png).map_err(std::io::Error::other)?;
+    Ok(bytes.into_inner())
 }
 
 /// A float map as a PNG: RGB × 255 clamped (for a look, not for measurement), alpha opaque.
@@ -233,19 +235,24 @@ pub fn float_diff_png(
         .collect()
 }
 
-/// Writes `<dir>/<scene>.{cpu,gpu,diff,flip}.png`, a PNG pair and difference map of every
-/// float buffer beyond its limit (`<scene>.<map>.{cpu,gpu,diff}.png`), and
-/// `<dir>/<scene>.json` with the summary.
+/// The files of a check, encoded, with their names: `<scene>.{cpu,gpu,diff,flip}.png`, a PNG
+/// pair and difference map of every float buffer beyond its limit
+/// (`<scene>.<map>.{cpu,gpu,diff}.png`), and `<scene>.json` with the summary. The caller
+/// writes them (`ocean compare` each atomically, so a full disk leaves no empty file).
 ///
 /// # Errors
-/// If a file cannot be written.
-pub fn write_artefacts(dir: &Path, check: &SceneCheck, renders: &Renders) -> std::io::Result<()> {
-    std::fs::create_dir_all(dir)?;
+/// If a picture cannot be encoded.
+pub fn artefacts(check: &SceneCheck, renders: &Renders) -> std::io::Result<Vec<(String, Vec<u8>)>> {
+    let mut files = Vec::new();
+    let mut save = |file: String, w: u32, h: u32, rgba: Vec<u8>| -> std::io::Result<()> {
+        files.push((file, rgba_png(w, h, rgba)?));
+        Ok(())
+    };
     let name = &check.scene;
     let (w, h) = check.size;
     if let (Some(c), Some(g)) = (&renders.cpu.ldr, &renders.gpu.ldr) {
-        save_rgba(&dir.join(format!("{name}.cpu.png")), w, h, c.clone())?;
-        save_rgba(&dir.join(format!("{name}.gpu.png")), w, h, g.clone())?;
+        save(format!("{name}.cpu.png"), w, h, c.clone())?;
+        save(format!("{name}.gpu.png"), w, h, g.clone())?;
         let diff: Vec<u8> = c
             .chunks_exact(4)
             .zip(g.chunks_exact(4))
@@ -254,7 +261,7 @@ pub fn write_artefacts(dir: &Path, check: &SceneCheck, renders: &Renders) -> std
                 [d.saturating_mul(32), u8::from(d > 1) * 255, 0, 255]
             })
             .collect();
-        save_rgba(&dir.join(format!("{name}.diff.png")), w, h, diff)?;
+        save(format!("{name}.diff.png"), w, h, diff)?;
         if let Some(i) = &check.image {
             let flip: Vec<u8> = i
                 .flip_map
@@ -264,7 +271,7 @@ pub fn write_artefacts(dir: &Path, check: &SceneCheck, renders: &Renders) -> std
                     [v, v, v, 255]
                 })
                 .collect();
-            save_rgba(&dir.join(format!("{name}.flip.png")), w, h, flip)?;
+            save(format!("{name}.flip.png"), w, h, flip)?;
         }
     }
     for m in check.maps.iter().filter(|m| !m.passed()) {
@@ -275,15 +282,29 @@ pub fn write_artefacts(dir: &Path, check: &SceneCheck, renders: &Renders) -> std
             continue;
         }
         let (mw, mh) = c.0;
-        save_rgba(&dir.join(format!("{name}.{}.cpu.png", m.name)), mw, mh, float_png(c))?;
-        save_rgba(&dir.join(format!("{name}.{}.gpu.png", m.name)), mw, mh, float_png(gpu_map(g)))?;
-        save_rgba(
-            &dir.join(format!("{name}.{}.diff.png", m.name)),
+        save(format!("{name}.{}.cpu.png", m.name), mw, mh, float_png(c))?;
+        save(format!("{name}.{}.gpu.png", m.name), mw, mh, float_png(gpu_map(g)))?;
+        save(
+            format!("{name}.{}.diff.png", m.name),
             mw,
             mh,
             float_diff_png(c.1, &g.texels, m.format),
         )?;
     }
     let text = serde_json::to_string_pretty(&check.to_json()).map_err(std::io::Error::other)?;
-    std::fs::write(dir.join(format!("{name}.json")), text)
+    files.push((format!("{name}.json"), text.into_bytes()));
+    Ok(files)
+}
+
+/// Writes [`artefacts`] into `dir` (created if missing), plainly: for the tests' output
+/// folders.
+///
+/// # Errors
+/// If a file cannot be written.
+pub fn write_artefacts(dir: &Path, check: &SceneCheck, renders: &Renders) -> std::io::Result<()> {
+    std::fs::create_dir_all(dir)?;
+    for (file, bytes) in artefacts(check, renders)? {
+        std::fs::write(dir.join(file), bytes)?;
+    }
+    Ok(())
 }

@@ -60,14 +60,10 @@ impl fmt::Display for SceneSource {
 /// A scene error: what is wrong, where (file, line, column, key) and, for I/O, the cause.
 #[derive(Debug, thiserror::Error)]
 pub enum SceneError {
-    /// The file could not be read.
-    #[error("cannot read scene file {path}: {source}")]
-    Io {
-        /// The file.
-        path: PathBuf,
-        /// The cause.
-        source: std::io::Error,
-    },
+    /// The file could not be read: `"PATH: why"` (missing, not a regular file, larger than
+    /// [`MAX_SCENE_FILE_BYTES`], not UTF-8).
+    #[error("cannot read scene file {0}")]
+    Read(String),
     /// The text is not valid TOML, has an unknown key or a value of the wrong type, or a value
     /// out of range.
     #[error("{source_name}:{line}:{column}: {}{message}", key.as_ref().map(|k| format!("key `{k}`: ")).unwrap_or_default())]
@@ -785,6 +781,9 @@ pub const MAX_RESOLUTION: u32 = 4096;
 pub const MAX_BUMP_PATCH_DIVISOR: u32 = 65_536;
 /// The largest image side: a 16384² f32 RGBA frame is 4 GiB.
 pub const MAX_IMAGE_SIDE: u32 = 16384;
+/// The largest scene file read, bytes: the reference scenes are 1–3 KB and 64 Gerstner waves
+/// take about 8 KB; a larger file is a mistake (a link to `/dev/zero` would never end).
+pub const MAX_SCENE_FILE_BYTES: u64 = 4 << 20;
 
 impl Scene {
     /// The built-in default scene.
@@ -811,8 +810,7 @@ impl Scene {
 
     /// Reads and validates a scene file.
     pub fn load(path: &Path) -> Result<Self, SceneError> {
-        let text = std::fs::read_to_string(path)
-            .map_err(|source| SceneError::Io { path: path.to_owned(), source })?;
+        let text = crate::input::read_text(path, MAX_SCENE_FILE_BYTES).map_err(SceneError::Read)?;
         Self::from_toml(&text, SceneSource::File(path.to_owned()))
     }
 
