@@ -28,6 +28,10 @@ pub struct Args {
     /// DIR/manifest.json, else the default.
     #[arg(long, value_name = "DIR")]
     against: Option<PathBuf>,
+    /// With --against: a resource of the oracle's plan that the dump does not hold (not in
+    /// its manifest's list) is a failure; without it, it is reported `not in dump`.
+    #[arg(long, requires = "against")]
+    require_all: bool,
 }
 
 /// Runs `ocean compare`.
@@ -132,9 +136,22 @@ fn against(args: &Args, dir: &std::path::Path) -> anyhow::Result<()> {
     let r = ocean_cpu::render_scene(&scene, OutputKind::Ldr, &mut |_| {})?;
     std::fs::create_dir_all(&args.out_dir)
         .with_context(|| format!("cannot make {}", args.out_dir.display()))?;
+    let made_by = manifest.adapter.as_ref().map_or_else(
+        || "an unknown adapter".to_owned(),
+        |a| {
+            let s = |k: &str| a[k].as_str().unwrap_or("?").to_owned();
+            format!(
+                "{} ({}, {}, driver {})",
+                s("name"),
+                s("backend"),
+                s("device_type"),
+                s("driver")
+            )
+        },
+    );
     println!(
-        "{} against the CPU oracle ({}x{}, limits: rel {:e} / abs {:e}, one binary16 step on \
-         rgba16float resources)",
+        "{} (made by {made_by}) against the CPU oracle ({}x{}, limits: rel {:e} / abs {:e}, one \
+         binary16 step on rgba16float resources)",
         dir.display(),
         scene.camera.width,
         scene.camera.height,
@@ -143,9 +160,27 @@ fn against(args: &Args, dir: &std::path::Path) -> anyhow::Result<()> {
     );
     let mut failures = Vec::new();
     let mut summary = Vec::new();
-    for id in ocean::dump::dumped(&plan) {
+    let mut not_in_dump = Vec::new();
+    let planned = ocean::dump::dumped(&plan);
+    // What the dump lists that the oracle's frame does not make: reported, not judged.
+    for name in manifest.resources.iter().flatten() {
+        if !planned.iter().any(|id| id.name() == name) {
+            println!("  [{:<14}] {name:<20} not in the oracle's plan (not compared)", "");
+        }
+    }
+    for id in planned {
         let Some((w, h, ours)) = r.buffers.map(id) else { continue };
         let pass = id.writer().map_or("", |p| p.name());
+        // The resources the manifest lists; without a list, the files that are there.
+        let held = match &manifest.resources {
+            Some(list) => list.iter().any(|n| n == id.name()),
+            None => std::fs::symlink_metadata(dir.join(ocean::dump::file_name(id))).is_ok(),
+        };
+        if !held {
+            println!("  [{pass:<14}] {:<20} not in dump", id.name());
+            not_in_dump.push(id.name());
+            continue;
+        }
         let theirs = match ocean::dump::read(dir, id) {
             Ok(t) => t,
             Err(e) => {
@@ -168,7 +203,15 @@ fn against(args: &Args, dir: &std::path::Path) -> anyhow::Result<()> {
         }
         summary.push(stats.to_json());
     }
-    let json = serde_json::json!({"against": dir.display().to_string(), "resources": summary});
+    if args.require_all && !not_in_dump.is_empty() {
+        failures.push(format!("not in dump (--require-all): {}", not_in_dump.join(", ")));
+    }
+    let json = serde_json::json!({
+        "against": dir.display().to_string(),
+        "adapter": manifest.adapter,
+        "resources": summary,
+        "not_in_dump": not_in_dump,
+    });
     write_atomic(
         &args.out_dir.join("against.json"),
         serde_json::to_string_pretty(&json)?.as_bytes(),

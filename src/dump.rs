@@ -11,8 +11,10 @@
 //!   texture's row 0.
 //! - `ldr.png`: the 8-bit sRGB picture, when the plan tonemaps.
 //! - `manifest.json`: the scene (its text and path), the plan (as `ocean plan --json`), the
-//!   frame's time and size, the conventions, and per resource: the pass and technique that
-//!   wrote it, its format, size, mip levels and layout, and each channel's meaning and unit.
+//!   frame's time and size, the back end and its adapter (name, vendor, device type, driver,
+//!   backend: the provenance of the numbers), the conventions, and per resource: the pass and
+//!   technique that wrote it, its format, size, mip levels and layout, and each channel's
+//!   meaning and unit.
 
 use std::path::Path;
 
@@ -153,10 +155,29 @@ pub fn write(
     scene: &Scene,
     scene_source: (&str, &str),
     plan: &FramePlan,
-    backend: &str,
+    adapter: Option<&ocean_gpu::AdapterReport>,
     map: &MapOf<'_>,
     ldr: Option<&[u8]>,
 ) -> anyhow::Result<Vec<String>> {
+    let backend = if adapter.is_some() { "gpu" } else { "cpu" };
+    let adapter = match adapter {
+        Some(a) => json!({
+            "name": a.name,
+            "vendor": a.vendor,
+            "device_type": a.device_type,
+            "driver": a.driver,
+            "backend": a.backend,
+            "software": a.is_software,
+        }),
+        None => json!({
+            "name": "ocean CPU oracle",
+            "vendor": null,
+            "device_type": "Cpu",
+            "driver": format!("ocean {}", env!("CARGO_PKG_VERSION")),
+            "backend": "cpu",
+            "software": true,
+        }),
+    };
     // Written whole or not at all: into a temporary folder beside `dir`, renamed into place
     // once the manifest is written (a full disk half-way left a partial dump without one).
     let staging = crate::output::StagingDir::create(dir)?;
@@ -198,6 +219,7 @@ pub fn write(
     let manifest = json!({
         "layout": LAYOUT,
         "backend": backend,
+        "adapter": adapter,
         "scene": {"path": scene_source.0, "toml": scene_source.1},
         "frame": {
             "system": plan.system.name(),
@@ -236,6 +258,11 @@ pub struct Manifest {
     pub size: Option<(u32, u32)>,
     /// The frame's time, s.
     pub time_s: Option<f64>,
+    /// The names of the resources the dump lists (`None`: the manifest lists none, and every
+    /// resource of the plan is looked for).
+    pub resources: Option<Vec<String>>,
+    /// Who made the dump (`adapter`: name, vendor, device type, driver, backend), as written.
+    pub adapter: Option<Value>,
 }
 
 /// Reads `DIR/manifest.json`: `Ok(None)` when there is none.
@@ -287,11 +314,32 @@ pub fn read_manifest(dir: &Path) -> anyhow::Result<Option<Manifest>> {
             _ => bail!("{} must be a finite number of seconds, got {t}", key("frame.time_s")),
         },
     };
+    let resources = match &v["resources"] {
+        Value::Null => None,
+        Value::Array(list) => Some(
+            list.iter()
+                .map(|r| match &r["name"] {
+                    Value::String(n) => Ok(n.clone()),
+                    other => {
+                        bail!("{}: every resource needs a `name`, got {other}", key("resources"))
+                    }
+                })
+                .collect::<anyhow::Result<Vec<_>>>()?,
+        ),
+        other => bail!("{} must be a list, got {other}", key("resources")),
+    };
+    let adapter = match &v["adapter"] {
+        Value::Null => None,
+        a @ Value::Object(_) => Some(a.clone()),
+        other => bail!("{} must be an object, got {other}", key("adapter")),
+    };
     Ok(Some(Manifest {
         scene_toml: string(&v["scene"]["toml"], "scene.toml")?.filter(|t| !t.is_empty()),
         system: string(&frame["system"], "frame.system")?,
         size,
         time_s,
+        resources,
+        adapter,
     }))
 }
 

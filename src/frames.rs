@@ -216,7 +216,7 @@ pub(crate) fn run(seq: Sequence<'_>) -> anyhow::Result<()> {
     );
     let start = Instant::now();
     let mut state = FrameState::new(step_s);
-    let (mut stepped, mut drawn) = (0u64, 0u64);
+    let (mut stepped, mut drawn, mut last_drawn) = (0u64, 0u64, first);
     for next in seq.shard.frames(seq.range).skip_while(|n| *n < first) {
         if on_disk(next) {
             if advance.is_none() {
@@ -246,14 +246,15 @@ pub(crate) fn run(seq: Sequence<'_>) -> anyhow::Result<()> {
         let out = ocean::output::OutputFile::reserve(&path)?;
         out.commit(&bytes).with_context(|| format!("frame {next}"))?;
         drawn += 1;
+        last_drawn = next;
         bar.inc(1);
     }
     bar.finish_and_clear();
     let secs = start.elapsed().as_secs_f64();
     eprintln!(
-        "wrote {drawn} frame(s) of {}..{}, first {first} (shard {}/{} holds {total}; {} \
-         already on disk, kept; {stepped} earlier frame(s) stepped for their state) to {} in \
-         {secs:.2} s, {:.2} s a frame",
+        "wrote {drawn} frame(s) of {}..{}, first {first}, last {last_drawn} (shard {}/{} holds \
+         {total}; {} already on disk, kept; {stepped} earlier frame(s) stepped for their \
+         state) to {} in {secs:.2} s, {:.2} s a frame",
         seq.range.start,
         seq.range.end,
         seq.shard.index,

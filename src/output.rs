@@ -20,6 +20,9 @@ fn resolve(path: &Path) -> anyhow::Result<PathBuf> {
     if t.is_file() {
         return Ok(path.to_owned());
     }
+    if t.is_dir() {
+        bail!("cannot write {}: it is a folder", path.display());
+    }
     if !t.is_symlink() {
         bail!(
             "cannot write {}: it exists and is {}; ocean replaces only regular files",

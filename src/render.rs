@@ -155,7 +155,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 .collect();
             if let Some(dir) = &args.dump_passes {
                 let map = |id| r.buffers.map(id).map(|(w, h, t)| ((w, h), t));
-                dump(dir, &scene, args.scene.as_deref(), &r.plan, "cpu", &map, r.ldr.as_deref())?;
+                dump(dir, &scene, args.scene.as_deref(), &r.plan, None, &map, r.ldr.as_deref())?;
             }
             (r.ldr, r.buffers.hdr.color, passes, "CPU".to_owned())
         }
@@ -170,7 +170,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             let f = renderer.run_with(&scene, &plan, readback)?;
             if let Some(dir) = &args.dump_passes {
                 let map = |id| f.map(id).map(|m| ((m.width, m.height), &m.texels[..]));
-                dump(dir, &scene, args.scene.as_deref(), &plan, "gpu", &map, f.ldr.as_deref())?;
+                let adapter = Some(renderer.adapter());
+                dump(dir, &scene, args.scene.as_deref(), &plan, adapter, &map, f.ldr.as_deref())?;
             }
             let hdr = f.map(FrameMap::Hdr).map(|m| m.texels.clone()).unwrap_or_default();
             let passes = f
@@ -235,18 +236,19 @@ fn dump(
     scene: &ocean_core::scene::Scene,
     path: Option<&std::path::Path>,
     plan: &FramePlan,
-    backend: &str,
+    adapter: Option<&ocean_gpu::AdapterReport>,
     map: &ocean::dump::MapOf<'_>,
     ldr: Option<&[u8]>,
 ) -> anyhow::Result<()> {
     let (shown, text) = match path {
         Some(p) => (
             p.display().to_string(),
-            std::fs::read_to_string(p).with_context(|| format!("cannot read {}", p.display()))?,
+            ocean_core::input::read_text(p, ocean_core::scene::MAX_SCENE_FILE_BYTES)
+                .map_err(|e| anyhow!("cannot read {e}"))?,
         ),
         None => ("(the built-in default scene)".to_owned(), String::new()),
     };
-    let files = ocean::dump::write(dir, scene, (&shown, &text), plan, backend, map, ldr)?;
+    let files = ocean::dump::write(dir, scene, (&shown, &text), plan, adapter, map, ldr)?;
     eprintln!("dumped {} file(s) to {}: {}", files.len(), dir.display(), files.join(", "));
     Ok(())
 }

@@ -162,6 +162,46 @@ fn compare_against_passes_on_the_oracles_dump_and_fails_on_a_changed_one() {
 }
 
 #[test]
+fn the_manifest_names_its_adapter_and_a_resource_left_out_is_not_in_dump() {
+    let dir = dump("default", "provenance");
+    let out = dir.parent().unwrap().join("cmp");
+    let m = manifest(&dir);
+    assert_eq!(m["backend"], "cpu");
+    assert_eq!(m["adapter"]["name"], "ocean CPU oracle", "{}", m["adapter"]);
+    assert_eq!(m["adapter"]["backend"], "cpu");
+    // A dump that leaves a resource out (another engine may make only some): its manifest
+    // does not list it, and the comparison reports it and passes ...
+    let mut less = m.clone();
+    less["resources"].as_array_mut().unwrap().retain(|r| r["name"] != "shadow_map");
+    std::fs::write(dir.join("manifest.json"), serde_json::to_string(&less).unwrap()).unwrap();
+    std::fs::remove_file(dir.join("shadow_map.exr")).unwrap();
+    let o = against(&dir, &out);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{text}\n{}", String::from_utf8_lossy(&o.stderr));
+    assert!(text.contains("shadow_map") && text.contains("not in dump"), "{text}");
+    assert!(text.contains("made by ocean CPU oracle"), "{text}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("against.json")).unwrap()).unwrap();
+    assert_eq!(summary["not_in_dump"], serde_json::json!(["shadow_map"]));
+    // ... unless --require-all asks for every resource.
+    let o = ocean(&[
+        "compare",
+        "--against",
+        &dir.to_string_lossy(),
+        "--out-dir",
+        &out.to_string_lossy(),
+        "--require-all",
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("not in dump (--require-all): shadow_map"), "{err}");
+    // Control: a resource the manifest lists but whose file is gone is a failure either way.
+    std::fs::write(dir.join("manifest.json"), serde_json::to_string(&m).unwrap()).unwrap();
+    let o = against(&dir, &out);
+    assert_eq!(o.status.code(), Some(1), "{}", String::from_utf8_lossy(&o.stdout));
+}
+
+#[test]
 fn a_dump_is_refused_with_frames_or_supersampling() {
     let dir = folder("refused");
     let d = dir.join("dump");

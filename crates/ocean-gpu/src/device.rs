@@ -94,6 +94,8 @@ pub enum Error {
 pub struct AdapterReport {
     /// The adapter's name, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)".
     pub name: String,
+    /// The vendor's PCI id as hex ("0x10de" for NVIDIA; lavapipe reports "0x10005", Mesa's).
+    pub vendor: String,
     /// The backend, e.g. "Vulkan".
     pub backend: String,
     /// Integrated, discrete, virtual, CPU or other.
@@ -109,6 +111,7 @@ impl AdapterReport {
     fn new(info: &wgpu::AdapterInfo) -> Self {
         Self {
             name: info.name.clone(),
+            vendor: format!("{:#x}", info.vendor),
             backend: format!("{:?}", info.backend),
             device_type: format!("{:?}", info.device_type),
             driver: format!("{} {}", info.driver, info.driver_info).trim().to_owned(),
