@@ -158,8 +158,8 @@ pub(crate) fn run(seq: Sequence<'_>) -> anyhow::Result<()> {
         return Ok(());
     }
     let on_disk = |n: u64| !seq.overwrite && pattern.path(n).exists();
-    // The first frame to draw: the frames before it that are on disk are counted as they are
-    // passed, one look each, as the loop below would.
+    // The first frame to draw, found by looking at the frames before it one by one (on disk
+    // and kept): work in proportion to what is already done, not to the range.
     let Some(first) = seq.shard.frames(seq.range).find(|n| !on_disk(*n)) else {
         eprintln!(
             "nothing to render: all {total} frame(s) of shard {}/{} are on disk (--overwrite \
@@ -173,7 +173,7 @@ pub(crate) fn run(seq: Sequence<'_>) -> anyhow::Result<()> {
     // carries state from frame to frame, the earlier frames stepped undrawn for it.
     let replay = if advance.is_some() { (last + 1).saturating_sub(total) } else { 0 };
     eprintln!(
-        "frames {}..{} (shard {}/{}): {total} to draw from frame {first}{}",
+        "frames {}..{} (shard {}/{}): {total} in the shard, the first to draw is frame {first}{}",
         seq.range.start,
         seq.range.end,
         seq.shard.index,
