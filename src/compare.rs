@@ -32,11 +32,31 @@ pub struct Args {
     /// its manifest's list) is a failure; without it, it is reported `not in dump`.
     #[arg(long, requires = "against")]
     require_all: bool,
+    /// Plant a bug: the GPU runs its WGSL with the named one-line change (the oracle stays
+    /// correct), to see that the comparison catches it. `--mutants` lists them.
+    #[arg(long, value_name = "NAME", conflicts_with = "against")]
+    mutant: Option<String>,
+    /// List the planted bugs (name, file, what each changes, the scene that runs it) and exit.
+    #[arg(long, conflicts_with_all = ["against", "mutant"])]
+    mutants: bool,
 }
 
 /// Runs `ocean compare`.
 pub fn run(args: Args) -> anyhow::Result<()> {
     args.memory.limit_inputs();
+    if args.mutants {
+        for m in ocean_core::mutants::MUTANTS {
+            println!("{:<28} {:<28} {:<22} {}", m.name, m.file, m.scene, m.changes);
+        }
+        return Ok(());
+    }
+    let mutant = args
+        .mutant
+        .as_deref()
+        .map(ocean_core::mutants::find)
+        .transpose()
+        .map_err(|e| anyhow::anyhow!("--mutant: {e}"))?;
+    ocean_core::mutants::activate(mutant);
     if let Some(dir) = &args.against {
         return against(&args, dir);
     }
@@ -87,6 +107,13 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     }
     println!("wrote {}/{name}.{{cpu,gpu,diff,flip}}.png and {name}.json", args.out_dir.display());
     let failures = check.failures();
+    if let Some(m) = mutant {
+        if failures.is_empty() {
+            println!("planted bug {} ({}: {}) NOT caught", m.name, m.file, m.changes);
+        } else {
+            println!("planted bug {} caught by {} check(s)", m.name, failures.len());
+        }
+    }
     if !failures.is_empty() {
         bail!("CPU and GPU differ beyond tolerance:\n{}", failures.join("\n"));
     }

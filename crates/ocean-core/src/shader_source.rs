@@ -81,7 +81,8 @@ pub fn stage_source_with(stage: &str, techniques: &Techniques) -> Result<String>
     let mut out = String::with_capacity(entry.source.len() * 4);
     let mut included = Vec::new();
     let mut stack = vec![entry.file.to_owned()];
-    resolve(stage, entry.source, techniques, &mut stack, &mut included, &mut out)?;
+    let source = crate::mutants::apply(entry.file, entry.source);
+    resolve(stage, &source, techniques, &mut stack, &mut included, &mut out)?;
     Ok(out)
 }
 
@@ -120,9 +121,10 @@ fn resolve(
                 reason: format!("`{}` imports unknown file `{path}`", stack.join(" -> ")),
             });
         };
+        let text = crate::mutants::apply(&path, text);
         out.push_str(&format!("// ---- begin {path}\n"));
         stack.push(path.clone());
-        resolve(stage, text, techniques, stack, included, out)?;
+        resolve(stage, &text, techniques, stack, included, out)?;
         stack.pop();
         included.push(path.clone());
         out.push_str(&format!("// ---- end {path}\n"));
