@@ -441,3 +441,44 @@ fn islands_are_validated_with_the_key_and_the_reason() {
     let refraction = plan.passes.iter().find(|p| p.name == Pass::RefractionMap).unwrap();
     assert!(refraction.reason.contains("island 120 m across"), "{}", refraction.reason);
 }
+
+/// The floor's triangles are made from a world-space grid kept per floor (the coastal frame
+/// drew its island's 257² vertices four times a frame); each must equal the vertex evaluated
+/// directly from the floor — height, central-difference normal, wet-sand albedo, shifted by the
+/// eye — bit for bit, for every eye, and a changed floor must not be served the old grid.
+#[test]
+fn the_kept_floor_grid_gives_the_directly_evaluated_vertices() {
+    use ocean_core::terrain::{terrain_triangles, wet_sand_color};
+    let scene = Scene::builtin_for(ocean_core::plan::System::Coastal);
+    let mut t = scene.terrain.clone().expect("the coastal scene has an island");
+    let direct = |t: &ocean_core::scene::Terrain, eye: DVec3, wet: f64, i: u32, j: u32| {
+        let (qx, qz) = t.mesh_quads();
+        let (sx, sz) = (t.extent_m / f64::from(qx), t.extent_m / f64::from(qz));
+        let x = t.center[0] - 0.5 * t.extent_m + f64::from(i) * sx;
+        let z = t.center[1] - 0.5 * t.extent_m + f64::from(j) * sz;
+        let (hx, hz) = (0.5 * sx, 0.5 * sz);
+        let dx = (t.height(x + hx, z) - t.height(x - hx, z)) / (2.0 * hx);
+        let dz = (t.height(x, z + hz) - t.height(x, z - hz)) / (2.0 * hz);
+        let n = DVec3::new(-dx, 1.0, -dz).normalize().as_vec3().to_array();
+        let y = t.height(x, z);
+        let c = wet_sand_color(t.color, y, wet).map(|v| v as f32);
+        ((DVec3::new(x, y, z) - eye).as_vec3().to_array(), n, c)
+    };
+    let check = |t: &ocean_core::scene::Terrain, eye: DVec3, wet: f64| {
+        let tris = terrain_triangles(t, eye, wet);
+        let qx = t.mesh_quads().0;
+        // Triangle 2k of row j starts at vertex (k, j); spot-check a spread of them.
+        for (i, j) in [(0, 0), (qx / 2, 7), (qx - 1, qx / 3), (13, qx - 1)] {
+            let v = tris[(2 * (j * qx + i)) as usize][0];
+            let want = direct(t, eye, wet, i, j);
+            assert_eq!((v.position, v.normal, v.color), want, "vertex ({i}, {j}) at eye {eye}");
+        }
+    };
+    check(&t, DVec3::new(0.0, 8.0, 40.0), 1.2);
+    check(&t, DVec3::new(-30.0, 2.5, 10.0), 1.2); // the same grid, another eye
+    check(&t, DVec3::new(-30.0, 2.5, 10.0), 0.6); // another wet band
+    t.color = [0.8, 0.6, 0.3]; // another floor: not the kept grid
+    check(&t, DVec3::new(-30.0, 2.5, 10.0), 0.6);
+    t.prepare(); // a new relief (same values, new identity)
+    check(&t, DVec3::new(5.0, 1.0, -5.0), 0.6);
+}

@@ -337,25 +337,90 @@ pub fn island_relief(t: &Terrain) -> Relief {
     Relief::from_heights(n, n, heights)
 }
 
-/// Triangles of the sea floor's drawn square, camera-relative, counter-clockwise seen from
-/// above; normals from the floor's central differences (the plane's own for a plane). Sand
-/// below `wet_top_m` (> 0) is wet: [`wet_sand_color`].
-pub fn terrain_triangles(t: &Terrain, eye: DVec3, wet_top_m: f64) -> Vec<[ObjectVertex; 3]> {
+/// A floor mesh's vertices in world space, row-major ((qx + 1) × (qz + 1)): the point (f64),
+/// its normal and its albedo — everything of a vertex but the camera-relative shift, which is
+/// all that changes from pass to pass and frame to frame.
+struct FloorGrid {
+    /// The floor it was made for, without its relief (compared by value) …
+    terrain: Terrain,
+    /// … and its relief (compared by identity: a relief is made once, at load or `prepare`).
+    relief: Option<Arc<Relief>>,
+    /// `wet_top_m`'s bits.
+    wet_top: u64,
+    /// Quads per side.
+    quads: (u32, u32),
+    /// The vertices.
+    vertices: Vec<(DVec3, [f32; 3], [f32; 3])>,
+}
+
+/// How many floor grids are kept: a frame draws the floor in up to four passes (shadow,
+/// reflection, refraction, objects) and the CPU and GPU back ends may alternate scenes.
+const FLOOR_GRIDS_KEPT: usize = 4;
+
+/// The world-space grid of floor `t` under a wet band up to `wet_top_m`, made once and kept:
+/// a relief floor's 257² vertices take five height lookups each, and the coastal frame drew
+/// its island four times a frame, every frame (the bulk of its CPU encode).
+fn floor_grid(t: &Terrain, wet_top_m: f64) -> Arc<FloorGrid> {
+    static KEPT: std::sync::Mutex<Vec<Arc<FloorGrid>>> = std::sync::Mutex::new(Vec::new());
+    let relief = t.relief().and(t.relief.clone());
+    let mut bare = t.clone();
+    bare.relief = None;
+    let same = |g: &FloorGrid| {
+        g.wet_top == wet_top_m.to_bits()
+            && g.terrain == bare
+            && match (&g.relief, &relief) {
+                (None, None) => true,
+                (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+                _ => false,
+            }
+    };
+    // A poisoned list still holds whole grids (each is pushed complete).
+    let mut kept = KEPT.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    if let Some(g) = kept.iter().find(|g| same(g)) {
+        return Arc::clone(g);
+    }
     let (qx, qz) = t.mesh_quads();
     let (x0, z0) = t.corner();
     let (sx, sz) = (t.extent_m / f64::from(qx), t.extent_m / f64::from(qz));
     // Half a vertex spacing: the differences span the mesh's own resolution.
     let (hx, hz) = (0.5 * sx, 0.5 * sz);
+    let mut vertices = Vec::with_capacity(((qx + 1) * (qz + 1)) as usize);
+    for j in 0..=qz {
+        for i in 0..=qx {
+            let x = x0 + f64::from(i) * sx;
+            let z = z0 + f64::from(j) * sz;
+            let dx = (t.height(x + hx, z) - t.height(x - hx, z)) / (2.0 * hx);
+            let dz = (t.height(x, z + hz) - t.height(x, z - hz)) / (2.0 * hz);
+            let normal = DVec3::new(-dx, 1.0, -dz).normalize().as_vec3().to_array();
+            let y = t.height(x, z);
+            let color = wet_sand_color(t.color, y, wet_top_m).map(|v| v as f32);
+            vertices.push((DVec3::new(x, y, z), normal, color));
+        }
+    }
+    let grid = Arc::new(FloorGrid {
+        terrain: bare,
+        relief,
+        wet_top: wet_top_m.to_bits(),
+        quads: (qx, qz),
+        vertices,
+    });
+    if kept.len() >= FLOOR_GRIDS_KEPT {
+        kept.remove(0);
+    }
+    kept.push(Arc::clone(&grid));
+    grid
+}
+
+/// Triangles of the sea floor's drawn square, camera-relative, counter-clockwise seen from
+/// above; normals from the floor's central differences (the plane's own for a plane). Sand
+/// below `wet_top_m` (> 0) is wet: [`wet_sand_color`]. The world-space grid is made once per
+/// floor ([`floor_grid`]); only the shift by `eye` is done per call.
+pub fn terrain_triangles(t: &Terrain, eye: DVec3, wet_top_m: f64) -> Vec<[ObjectVertex; 3]> {
+    let grid = floor_grid(t, wet_top_m);
+    let (qx, qz) = grid.quads;
     let vertex = |i: u32, j: u32| {
-        let x = x0 + f64::from(i) * sx;
-        let z = z0 + f64::from(j) * sz;
-        let dx = (t.height(x + hx, z) - t.height(x - hx, z)) / (2.0 * hx);
-        let dz = (t.height(x, z + hz) - t.height(x, z - hz)) / (2.0 * hz);
-        let normal = DVec3::new(-dx, 1.0, -dz).normalize().as_vec3().to_array();
-        let y = t.height(x, z);
-        let p = DVec3::new(x, y, z) - eye;
-        let color = wet_sand_color(t.color, y, wet_top_m).map(|v| v as f32);
-        ObjectVertex { position: p.as_vec3().to_array(), normal, color }
+        let (p, normal, color) = grid.vertices[(j * (qx + 1) + i) as usize];
+        ObjectVertex { position: (p - eye).as_vec3().to_array(), normal, color }
     };
     let row = |j: u32| (0..=qx).map(|i| vertex(i, j)).collect::<Vec<_>>();
     let mut tris = Vec::with_capacity(t.mesh_triangles() as usize);
