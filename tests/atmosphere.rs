@@ -205,3 +205,18 @@ fn the_sky_view_table_reproduces_the_model() {
         assert!(other > bound, "the negative control must fail the bound: {other}");
     }
 }
+
+/// The kept sky table (made once per altitude, sun and irradiance) is the table made anew,
+/// bit for bit, and another sun gets another table (not the kept one).
+#[test]
+fn the_kept_sky_table_is_the_fresh_one() {
+    use ocean_core::atmosphere::SkyLut;
+    let sun = [0.3, 0.5, -0.812_403_840_463_596];
+    let top = [1.7, 1.8, 1.9];
+    let first = SkyLut::kept(2.0, sun, top);
+    let again = SkyLut::kept(2.0, sun, top);
+    assert!(*first == *SkyLut::new(2.0, sun, top) && *again == *first);
+    let lower = [0.3, 0.2, -0.932_737_905_308_881_5];
+    let other = SkyLut::kept(2.0, lower, top);
+    assert!(*other == *SkyLut::new(2.0, lower, top) && *other != *first);
+}

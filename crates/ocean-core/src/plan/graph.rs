@@ -214,7 +214,7 @@ fn atmosphere_environment(
     };
     let top = top_irradiance(sea);
     let altitude = camera.eye.y.max(0.0);
-    let lut = SkyLut::new(altitude, dir, top);
+    let lut = SkyLut::kept(altitude, dir, top);
     let at_eye = sun_at_eye(altitude, dir, top);
     uniforms.sun.radiance = at_eye.map(|e| e as f32);
     environment.sun_radiance = [at_eye[0] as f32, at_eye[1] as f32, at_eye[2] as f32, 0.0];
