@@ -738,3 +738,18 @@ fn random_views_and_parameters_stay_conforming() {
     }
     println!("{checked} random meshes conforming");
 }
+
+/// The kept near patch (made once per params and eye) is the patch built anew, and another
+/// eye gets its own (not the kept one).
+#[test]
+fn the_kept_near_patch_is_the_fresh_one() {
+    let p = PatchParams::default();
+    let eye = [3.25, 12.0, -7.5];
+    let first = NearPatch::kept(&p, eye).unwrap();
+    assert_eq!(first, NearPatch::build(&p, eye).unwrap());
+    assert_eq!(NearPatch::kept(&p, eye).unwrap(), first);
+    let higher = [3.25, 40.0, -7.5];
+    let other = NearPatch::kept(&p, higher).unwrap();
+    assert_eq!(other, NearPatch::build(&p, higher).unwrap());
+    assert_ne!(other, first);
+}

@@ -141,7 +141,7 @@ impl WaterMesh {
         }
         let horizontal = forward[0].hypot(forward[2]);
         let yaw = if horizontal > 1e-12 * length { forward[0].atan2(forward[2]) } else { 0.0 };
-        let near = NearPatch::build(params, eye)?;
+        let near = NearPatch::kept(params, eye)?;
         let height = effective_height(params, eye[1])?;
         Self::stitch(&near, &far.place(yaw, height)?, eye)
     }
@@ -269,7 +269,7 @@ impl WaterMesh {
     /// `far_patch` rule): the far patch and the stitch would be clipped whole, so they are not
     /// built. The far-ring fields are 0.
     pub fn near_only(params: &PatchParams, eye: [f64; 3]) -> Result<Self> {
-        let near = NearPatch::build(params, eye)?;
+        let near = NearPatch::kept(params, eye)?;
         Ok(Self {
             origin: near.origin,
             origin_cell: near.origin_cell,
