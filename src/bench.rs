@@ -8,7 +8,10 @@
 //! - `frame_ms`: the whole frame as a caller sees it (GPU: recording, submission, GPU work
 //!   and reading the 8-bit picture back; CPU: every pass and the picture);
 //! - `encode_ms` (GPU): the same frame recorded and submitted with nothing read back, the
-//!   call returning without waiting (the real-time viewer's case);
+//!   call returning without waiting (the CPU's share of a real-time frame);
+//! - `steady_ms` (GPU): what a real-time user sees, without read-back: [`STEADY_FRAMES`]
+//!   frames recorded and submitted back to back, one wait at the end, the total divided by
+//!   their count (the GPU's and the CPU's work overlap as in a viewer);
 //! - per pass, of the median run itself (so that they add up inside its total): GPU time
 //!   from timestamp queries where the adapter has them, the CPU's wall time per pass;
 //! - `peak_rss_mib`: the process's peak resident memory during the case (Linux: VmHWM,
@@ -66,6 +69,9 @@ pub struct Case {
     pub frame_ms: f64,
     /// GPU frames: median time to record and submit with nothing read back, ms.
     pub encode_ms: Option<f64>,
+    /// GPU frames: median time per frame of [`STEADY_FRAMES`] submitted back to back without
+    /// read-back and one wait, ms.
+    pub steady_ms: Option<f64>,
     /// Time per pass of the median run (the one whose total is `frame_ms`), ms (GPU:
     /// timestamp queries; CPU: wall time), in frame order.
     pub passes: Vec<(String, f64)>,
@@ -88,6 +94,8 @@ pub struct Bench {
     pub cores: usize,
     /// The GPU adapter, when one was used.
     pub adapter: Option<String>,
+    /// The same, field by field.
+    pub adapter_info: Option<AdapterInfo>,
     /// The GPU's measured copy bandwidth (a 64 MiB buffer copy, bytes read + written), GB/s.
     pub gpu_copy_gb_s: Option<f64>,
     /// Every case.
@@ -98,6 +106,36 @@ pub struct Bench {
     pub fits: Vec<Fit>,
     /// Wall time of the whole run, s.
     pub total_s: f64,
+}
+
+/// The GPU adapter of a run, field by field: whose figures these are.
+#[derive(Clone, Debug, Serialize)]
+pub struct AdapterInfo {
+    /// Its name ("NVIDIA H200", "llvmpipe (LLVM 15.0.6, 256 bits)").
+    pub name: String,
+    /// The PCI vendor id ("0x10de").
+    pub vendor: String,
+    /// Discrete, integrated, CPU, …
+    pub device_type: String,
+    /// The driver and its version.
+    pub driver: String,
+    /// wgpu's backend ("Vulkan").
+    pub backend: String,
+    /// Whether it is a software rasterizer on the CPU.
+    pub software: bool,
+}
+
+impl AdapterInfo {
+    fn of(a: &ocean_gpu::AdapterReport) -> Self {
+        Self {
+            name: a.name.clone(),
+            vendor: a.vendor.clone(),
+            device_type: a.device_type.clone(),
+            driver: a.driver.clone(),
+            backend: a.backend.clone(),
+            software: a.is_software,
+        }
+    }
 }
 
 /// A fitted power law: time ∝ size^exponent.
@@ -249,12 +287,16 @@ pub(crate) fn cpu_frame_of(
         n: None,
         frame_ms,
         encode_ms: None,
+        steady_ms: None,
         passes,
         peak_rss_mib: peak_rss_mib(),
         bandwidth_bound_ms: None,
     };
     Ok((case, last))
 }
+
+/// Frames submitted back to back for `steady_ms`.
+pub const STEADY_FRAMES: u32 = 8;
 
 pub(crate) fn gpu_frame(
     r: &mut ocean_gpu::Renderer,
@@ -276,13 +318,19 @@ pub(crate) fn gpu_frame_of(
     let plan = FramePlan::new(s, OutputKind::Ldr);
     reset_peak();
     r.run_with(s, &plan, Readback::Output)?;
-    let (mut timed, mut encodes) = (Runs::default(), Vec::new());
+    let (mut timed, mut encodes, mut steady) = (Runs::default(), Vec::new(), Vec::new());
     for _ in 0..runs {
         let f = r.run_with(s, &plan, Readback::Output)?;
         timed.add(ms(f.wall), &f.gpu_timings);
         let f = r.run_with(s, &plan, Readback::None)?;
         encodes.push(ms(f.wall));
         r.gpu().wait()?;
+        let start = Instant::now();
+        for _ in 0..STEADY_FRAMES {
+            r.run_with(s, &plan, Readback::None)?;
+        }
+        r.gpu().wait()?;
+        steady.push(ms(start.elapsed()) / f64::from(STEADY_FRAMES));
     }
     let (frame_ms, passes) = timed.median_run();
     Ok(Case {
@@ -293,6 +341,7 @@ pub(crate) fn gpu_frame_of(
         n: None,
         frame_ms,
         encode_ms: Some(median(encodes)),
+        steady_ms: Some(median(steady)),
         passes,
         peak_rss_mib: peak_rss_mib(),
         bandwidth_bound_ms: None,
@@ -344,6 +393,7 @@ pub(crate) fn waves(
         n: Some(n),
         frame_ms: median(times),
         encode_ms: None,
+        steady_ms: None,
         passes: Vec::new(),
         peak_rss_mib: peak_rss_mib(),
         bandwidth_bound_ms: bound,
@@ -450,6 +500,7 @@ pub fn measure(
         runs,
         cores: std::thread::available_parallelism().map_or(1, |n| n.get()),
         adapter: renderer.as_ref().map(|r| r.adapter().to_string()),
+        adapter_info: renderer.as_ref().map(|r| AdapterInfo::of(r.adapter())),
         gpu_copy_gb_s: bandwidth,
         fits: fits(&cases),
         cases,
@@ -475,8 +526,8 @@ pub fn table(b: &Bench) -> String {
     }
     let _ = writeln!(
         out,
-        "{:<6} {:<20} {:>9} {:<4} {:>10} {:>10} {:>9}  passes (ms)",
-        "kind", "name", "size", "on", "total ms", "encode ms", "peak MiB"
+        "{:<6} {:<20} {:>9} {:<4} {:>10} {:>10} {:>10} {:>9}  passes (ms)",
+        "kind", "name", "size", "on", "total ms", "encode ms", "steady ms", "peak MiB"
     );
     for c in &b.cases {
         let size = match (c.size, c.n) {
@@ -491,13 +542,14 @@ pub fn table(b: &Bench) -> String {
         }
         let _ = writeln!(
             out,
-            "{:<6} {:<20} {:>9} {:<4} {:>10.2} {:>10} {:>9}  {}",
+            "{:<6} {:<20} {:>9} {:<4} {:>10.2} {:>10} {:>10} {:>9}  {}",
             c.kind,
             c.name,
             size,
             c.backend,
             c.frame_ms,
             opt(c.encode_ms, 2),
+            opt(c.steady_ms, 2),
             opt(c.peak_rss_mib, 0),
             passes.join(", ")
         );

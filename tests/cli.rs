@@ -411,6 +411,12 @@ fn bench_cases(json: &serde_json::Value) -> Vec<serde_json::Value> {
         if c["kind"] == "frame" {
             assert!(!c["passes"].as_array().expect("passes").is_empty(), "{c}");
             assert_eq!(c["backend"] == "gpu", c["encode_ms"].as_f64().is_some(), "{c}");
+            // The steady frame (no read-back, frames back to back) is a GPU frame's figure.
+            assert_eq!(
+                c["backend"] == "gpu",
+                c["steady_ms"].as_f64().is_some_and(|v| v > 0.0),
+                "{c}"
+            );
         }
         if let Some(m) = c["peak_rss_mib"].as_f64() {
             assert!(m > 1.0, "{c}");
@@ -438,6 +444,10 @@ fn bench_quick_times_every_system_on_both_back_ends() {
     let waves: Vec<_> = cases.iter().filter(|c| c["kind"] == "waves").collect();
     assert_eq!(waves.len(), 8, "N = 64 and 128: the CPU, the frame's GPU FFT, both its kernels");
     assert!(json["adapter"].is_string());
+    let info = &json["adapter_info"];
+    for key in ["name", "vendor", "device_type", "driver", "backend"] {
+        assert!(info[key].as_str().is_some_and(|v| !v.is_empty()), "adapter_info.{key}: {info}");
+    }
     assert!(json["gpu_copy_gb_s"].as_f64().is_some_and(|b| b > 0.0));
     for c in waves.iter().filter(|c| c["backend"] == "gpu") {
         let bound = c["bandwidth_bound_ms"].as_f64().expect("a GPU synthesis has its bound");
