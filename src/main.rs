@@ -15,7 +15,8 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
-/// Ocean renderer after Hu et al. 2004: a deterministic CPU oracle and a wgpu real-time path.
+/// Ocean renderer of four published systems (Hu et al. 2004, Chiu & Chang, Welch 2019, a coastal
+/// shader): a deterministic CPU oracle and a wgpu real-time path that is checked against it.
 #[derive(Parser, Debug)]
 #[command(name = "ocean", version, about, long_about = None)]
 struct Cli {
