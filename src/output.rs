@@ -51,21 +51,17 @@ fn resolve(path: &Path) -> anyhow::Result<PathBuf> {
 /// the temporary is renamed to ([`resolve`]); errors for a path without a file name, a missing
 /// folder, or a path that is not (a link to) a regular file.
 fn target(path: &Path) -> anyhow::Result<(PathBuf, String, PathBuf)> {
-    path.file_name().with_context(|| format!("output path {} has no file name", path.display()))?;
     let real = resolve(path)?;
-    let path = &real;
-    let file_name = path
+    let file_name = real
         .file_name()
         .with_context(|| format!("output path {} has no file name", path.display()))?;
+    let path = &real;
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
         _ => PathBuf::from("."),
     };
     if !dir.is_dir() {
         bail!("cannot write {}: folder {} does not exist", path.display(), dir.display());
-    }
-    if path.is_dir() {
-        bail!("cannot write {}: it is a folder", path.display());
     }
     let prefix = format!(".{}.tmp-", file_name.to_string_lossy());
     Ok((dir, prefix, real))

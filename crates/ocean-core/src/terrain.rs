@@ -414,7 +414,7 @@ fn floor_grid(t: &Terrain, wet_top_m: f64) -> Arc<FloorGrid> {
 /// Triangles of the sea floor's drawn square, camera-relative, counter-clockwise seen from
 /// above; normals from the floor's central differences (the plane's own for a plane). Sand
 /// below `wet_top_m` (> 0) is wet: [`wet_sand_color`]. The world-space grid is made once per
-/// floor ([`floor_grid`]); only the shift by `eye` is done per call.
+/// floor (`floor_grid`); only the shift by `eye` is done per call.
 pub fn terrain_triangles(t: &Terrain, eye: DVec3, wet_top_m: f64) -> Vec<[ObjectVertex; 3]> {
     let grid = floor_grid(t, wet_top_m);
     let (qx, qz) = grid.quads;
