@@ -34,6 +34,7 @@ pub mod geometry;
 pub mod ggx;
 pub mod heightfield;
 pub mod input;
+mod kept;
 pub mod mutants;
 pub mod plan;
 pub mod registry;

@@ -341,44 +341,40 @@ pub fn island_relief(t: &Terrain) -> Relief {
 /// its normal and its albedo — everything of a vertex but the camera-relative shift, which is
 /// all that changes from pass to pass and frame to frame.
 struct FloorGrid {
-    /// The floor it was made for, without its relief (compared by value) …
-    terrain: Terrain,
-    /// … and its relief (compared by identity: a relief is made once, at load or `prepare`).
-    relief: Option<Arc<Relief>>,
-    /// `wet_top_m`'s bits.
-    wet_top: u64,
     /// Quads per side.
     quads: (u32, u32),
     /// The vertices.
     vertices: Vec<(DVec3, [f32; 3], [f32; 3])>,
 }
 
-/// How many floor grids are kept: a frame draws the floor in up to four passes (shadow,
-/// reflection, refraction, objects) and the CPU and GPU back ends may alternate scenes.
-const FLOOR_GRIDS_KEPT: usize = 4;
+/// A relief compared by identity: a relief is made once, at load or `prepare`, and comparing
+/// its texels would cost what keeping the grid saves.
+struct SameRelief(Option<Arc<Relief>>);
 
-/// The world-space grid of floor `t` under a wet band up to `wet_top_m`, made once and kept:
-/// a relief floor's 257² vertices take five height lookups each, and the coastal frame drew
-/// its island four times a frame, every frame (the bulk of its CPU encode).
+impl PartialEq for SameRelief {
+    fn eq(&self, other: &Self) -> bool {
+        match (&self.0, &other.0) {
+            (None, None) => true,
+            (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+            _ => false,
+        }
+    }
+}
+
+/// The world-space grid of floor `t` under a wet band up to `wet_top_m`, made once and kept
+/// (`crate::kept`): a relief floor's 257² vertices take five height lookups each, and the
+/// coastal frame drew its island four times a frame, every frame (the bulk of its CPU encode).
 fn floor_grid(t: &Terrain, wet_top_m: f64) -> Arc<FloorGrid> {
-    static KEPT: std::sync::Mutex<Vec<Arc<FloorGrid>>> = std::sync::Mutex::new(Vec::new());
-    let relief = t.relief().and(t.relief.clone());
+    type Key = (Terrain, SameRelief, u64);
+    static KEPT: crate::kept::Kept<Key, Arc<FloorGrid>> = crate::kept::Kept::new();
     let mut bare = t.clone();
     bare.relief = None;
-    let same = |g: &FloorGrid| {
-        g.wet_top == wet_top_m.to_bits()
-            && g.terrain == bare
-            && match (&g.relief, &relief) {
-                (None, None) => true,
-                (Some(a), Some(b)) => Arc::ptr_eq(a, b),
-                _ => false,
-            }
-    };
-    // A poisoned list still holds whole grids (each is pushed complete).
-    let mut kept = KEPT.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-    if let Some(g) = kept.iter().find(|g| same(g)) {
-        return Arc::clone(g);
-    }
+    let key = (bare, SameRelief(t.relief().and(t.relief.clone())), wet_top_m.to_bits());
+    KEPT.get(key, || Arc::new(make_floor_grid(t, wet_top_m)))
+}
+
+/// [`floor_grid`]'s grid, made.
+fn make_floor_grid(t: &Terrain, wet_top_m: f64) -> FloorGrid {
     let (qx, qz) = t.mesh_quads();
     let (x0, z0) = t.corner();
     let (sx, sz) = (t.extent_m / f64::from(qx), t.extent_m / f64::from(qz));
@@ -397,18 +393,7 @@ fn floor_grid(t: &Terrain, wet_top_m: f64) -> Arc<FloorGrid> {
             vertices.push((DVec3::new(x, y, z), normal, color));
         }
     }
-    let grid = Arc::new(FloorGrid {
-        terrain: bare,
-        relief,
-        wet_top: wet_top_m.to_bits(),
-        quads: (qx, qz),
-        vertices,
-    });
-    if kept.len() >= FLOOR_GRIDS_KEPT {
-        kept.remove(0);
-    }
-    kept.push(Arc::clone(&grid));
-    grid
+    FloorGrid { quads: (qx, qz), vertices }
 }
 
 /// Triangles of the sea floor's drawn square, camera-relative, counter-clockwise seen from

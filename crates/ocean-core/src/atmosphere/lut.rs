@@ -81,18 +81,13 @@ pub fn lut_direction(u: f64, v: f64, sun: [f64; 3]) -> [f64; 3] {
     [h * (cos_phi * ax - sin_phi * az), y, h * (cos_phi * az + sin_phi * ax)]
 }
 
-/// How many sky tables [`SkyLut::kept`] holds: the CPU and the GPU frame of a comparison, and a
-/// reflection seen from another eye, each ask for their own.
-const LUTS_KEPT: usize = 4;
-
 impl SkyLut {
     /// [`Self::new`], made once per (altitude, sun, irradiance) and copied from then on: a
     /// steady frame with the same eye height and sun asks the same table (2 × 32² scattering
     /// integrals, the bulk of a `welch` frame's CPU encode when it was made every frame).
     pub fn kept(altitude_m: f64, sun: [f64; 3], sun_irradiance: [f64; 3]) -> Box<Self> {
-        type Key = [u64; 7];
-        static KEPT: std::sync::Mutex<Vec<(Key, Box<SkyLut>)>> = std::sync::Mutex::new(Vec::new());
-        let key: Key = [
+        static KEPT: crate::kept::Kept<[u64; 7], Box<SkyLut>> = crate::kept::Kept::new();
+        let key = [
             altitude_m.to_bits(),
             sun[0].to_bits(),
             sun[1].to_bits(),
@@ -101,18 +96,7 @@ impl SkyLut {
             sun_irradiance[1].to_bits(),
             sun_irradiance[2].to_bits(),
         ];
-        // A poisoned list still holds whole tables (each is pushed complete).
-        let lock = || KEPT.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-        if let Some((_, lut)) = lock().iter().find(|(k, _)| *k == key) {
-            return lut.clone();
-        }
-        let lut = Self::new(altitude_m, sun, sun_irradiance);
-        let mut kept = lock();
-        if kept.len() >= LUTS_KEPT {
-            kept.remove(0);
-        }
-        kept.push((key, lut.clone()));
-        lut
+        KEPT.get(key, || Self::new(altitude_m, sun, sun_irradiance))
     }
 
     /// The table of the sky seen from `altitude_m` above the sea with the sun along unit

@@ -212,10 +212,6 @@ pub struct NearPatch {
     pub deepest_level: u32,
 }
 
-/// How many near patches [`NearPatch::kept`] holds: a frame asks one for its eye; the CPU
-/// and GPU frames of a comparison, and a few views in turn, each ask again.
-const PATCHES_KEPT: usize = 4;
-
 impl NearPatch {
     /// [`Self::build`], made once per (params, eye) and copied from then on: a steady camera
     /// asks the same patch every frame (its quadtree refinement was a share of `hu`'s CPU
@@ -224,21 +220,9 @@ impl NearPatch {
     /// # Errors
     /// As [`Self::build`] (an error is not kept).
     pub fn kept(params: &PatchParams, eye: [f64; 3]) -> Result<Self> {
-        type Kept = (PatchParams, [u64; 3], NearPatch);
-        static KEPT: std::sync::Mutex<Vec<Kept>> = std::sync::Mutex::new(Vec::new());
-        let bits = eye.map(f64::to_bits);
-        // A poisoned list still holds whole patches (each is pushed complete).
-        let lock = || KEPT.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-        if let Some((_, _, patch)) = lock().iter().find(|(p, e, _)| *e == bits && p == params) {
-            return Ok(patch.clone());
-        }
-        let patch = Self::build(params, eye)?;
-        let mut kept = lock();
-        if kept.len() >= PATCHES_KEPT {
-            kept.remove(0);
-        }
-        kept.push((params.clone(), bits, patch.clone()));
-        Ok(patch)
+        static KEPT: crate::kept::Kept<(PatchParams, [u64; 3]), NearPatch> =
+            crate::kept::Kept::new();
+        KEPT.get_or_make((params.clone(), eye.map(f64::to_bits)), || Self::build(params, eye))
     }
 
     /// Builds the near patch for an eye at `eye` (world x, y, z, metres): centred on the
