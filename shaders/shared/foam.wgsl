@@ -49,10 +49,16 @@ fn foam_texture(x: f32, z: f32, seed: u32) -> f32 {
     return (n0 * 2.0 + n1) * (1.0 / 3.0);
 }
 
-// The foam texture at the undisplaced point `pos` (m, relative to the mesh's reference point).
+// The foam texture at the undisplaced point `pos` (m, relative to the mesh's reference point),
+// on axes along and across the wind, its cells FOAM_STREAK times longer along it (streaks).
 fn foam_texture_at(pos: vec2<f32>) -> f32 {
     let f = frame.foam;
-    let q = (pos + f.noise_origin) * f.inv_noise_cell;
+    // The origin added to the first product: the order lavapipe's compiler reassociates a
+    // sum of two products and a constant into (shared/gerstner.wgsl), so both back ends round
+    // alike.
+    let along = (pos.x * f.wind.x + f.noise_origin.x) + pos.y * f.wind.y;
+    let across = (pos.y * f.wind.x + f.noise_origin.y) - pos.x * f.wind.y;
+    let q = vec2<f32>(along, across) * vec2<f32>(f.inv_noise_cell_along, f.inv_noise_cell);
     return foam_texture(q.x, q.y, f.seed);
 }
 
@@ -65,7 +71,10 @@ fn foam_mix(t: f32, n: f32) -> f32 {
 // parameterisation, Jacobian j.
 fn heuristic_turbulence(h: f32, s: f32, j: f32) -> f32 {
     let slope = s / max(j, FOAM_MIN_JACOBIAN);
-    return clamp((max(h, 0.0) * frame.foam.inv_crest_height) * (slope * frame.foam.inv_crest_slope) - 1.0, 0.0, 1.0);
+    let high = clamp(h * frame.foam.inv_crest_height, 0.0, 1.0);
+    let steep = clamp(slope * frame.foam.inv_crest_slope, 0.0, 1.0);
+    let compressed = clamp((1.0 - j) * frame.foam.inv_softness, 0.0, 1.0);
+    return high * steep * compressed;
 }
 
 // `jacobian`'s turbulence.

@@ -221,7 +221,10 @@ struct FoamBlock {
     window_outer: f32,
     inv_window_band: f32,
     seed: u32,
+    inv_noise_cell_along: f32,
+    wind: vec2<f32>,
     pad0: f32,
+    pad1: f32,
 }
 
 struct FrameUniforms {

@@ -12,11 +12,17 @@
 //!
 //! - `heuristic` (seed 002, §Water Surface: "a combination of the normal and height of the
 //!   wave are used to estimate areas of turbulence … such as on the crests"): with h the
-//!   point's height above the mean sea plane and s the slope of the displaced surface,
-//!   t = clamp((max(h, 0)/crest_height_m)·(s/crest_slope) − 1, 0, 1): foam where a crest is
-//!   both high and steep. s = |∇h|/max(J, 0.1) (J the horizontal Jacobian): the slope of the
-//!   displaced surface, exact in one dimension (dh/dx' = h'(x)/(1 + D'(x))), so that choppier
-//!   crests, which the horizontal displacement compresses, are steeper and foam more.
+//!   point's height above the mean sea plane, s the slope of the displaced surface and J the
+//!   horizontal Jacobian,
+//!   t = clamp(h/crest_height_m, 0, 1) · clamp(s/crest_slope, 0, 1) · clamp((1 − J)/softness, 0, 1):
+//!   foam where a crest is high, steep *and* compressed, each factor rising from 0 (at the mean
+//!   plane, on flat water, where the surface is not compressed) to 1. A product, so that no
+//!   one of them alone whitens the sea: the upper flank of a long swell is high but neither
+//!   steep nor compressed, a trough is compressed under a choppy sea but below the mean plane
+//!   (an earlier form, (h/crest_height)·(s/crest_slope) − 1, whitened whole swell flanks near
+//!   the eye). t = 0 wherever h ≤ 0 or J ≥ 1, so foam never covers a trough or a stretched
+//!   surface. s = |∇h|/max(J, 0.1): the slope of the displaced surface, exact in one
+//!   dimension (dh/dx' = h'(x)/(1 + D'(x))).
 //! - `jacobian`: t = clamp((threshold − J)/softness, 0, 1): foam where the horizontal
 //!   displacement compresses (J < 1) or folds (J < 0) the surface (Tessendorf 2001 §4.4).
 //! - `accumulated`: a field f carried across frames in [`crate::plan::FrameState`], one fixed
@@ -32,10 +38,11 @@
 //!   waves' analytic Jacobian at the lattice point. The water samples the field bilinearly
 //!   (repeat addressing: the torus) and fades it out towards the window's edge.
 //!
-//! The foam texture is value noise on a lattice of `texture_scale_m` cells, periodic over
-//! [`FOAM_NOISE_PERIOD`] cells so the mesh's reference point can be reduced modulo the period
-//! in f64 ([`FoamBlock::noise_origin`]): two octaves of an integer hash (multiply–xorshift,
-//! as the clouds'), blended with smoothstep weights.
+//! The foam texture is value noise on a lattice whose axes run along and across the wind, its
+//! cells `texture_scale_m` wide and [`FOAM_STREAK`] times that long (foam streaks downwind),
+//! periodic over [`FOAM_NOISE_PERIOD`] cells so the mesh's reference point can be reduced
+//! modulo the period in f64 ([`FoamBlock::noise_origin`]): two octaves of an integer hash
+//! (multiply–xorshift, as the clouds'), blended with smoothstep weights.
 
 use bytemuck::{Pod, Zeroable};
 
@@ -43,6 +50,11 @@ use crate::scene::Scene;
 
 /// The noise lattice's period, cells (a power of two).
 pub const FOAM_NOISE_PERIOD: u32 = 256;
+
+/// How many times longer than wide a cell of the foam texture is along the wind: white water
+/// is drawn out downwind into streaks (windrows), so a patch of foam is longer than it is
+/// wide in the direction the wind blows.
+pub const FOAM_STREAK: f64 = 3.0;
 /// 1/π of the foam's Lambertian lighting (the objects' `INV_PI`).
 pub const FOAM_INV_PI: f32 = std::f32::consts::FRAC_1_PI;
 /// The smallest J the heuristic's slope divides by (a fold, J ≤ 0, is as steep as this).
@@ -74,9 +86,10 @@ pub struct FoamBlock {
     pub color: [f32; 3],
     /// 1/`[foam] crest_height_m`.
     pub inv_crest_height: f32,
-    /// The mesh's reference point modulo the noise's period (f64, rounded once), m.
+    /// The mesh's reference point on the texture's axes (along, across the wind), each modulo
+    /// the noise's period on that axis (f64, rounded once), m.
     pub noise_origin: [f32; 2],
-    /// 1/`[foam] texture_scale_m`.
+    /// 1/`[foam] texture_scale_m`: the texture's cells across the wind.
     pub inv_noise_cell: f32,
     /// 1/`[foam] crest_slope`.
     pub inv_crest_slope: f32,
@@ -93,8 +106,14 @@ pub struct FoamBlock {
     pub inv_window_band: f32,
     /// `[foam] seed`.
     pub seed: u32,
+    /// 1/(`[foam] texture_scale_m` · [`FOAM_STREAK`]): the texture's cells along the wind.
+    pub inv_noise_cell_along: f32,
+    /// The unit vector the wind blows towards, (x, z): the texture's along-wind axis.
+    pub wind: [f32; 2],
     /// Padding.
     pub pad0: f32,
+    /// Padding.
+    pub pad1: f32,
 }
 
 /// Where the `accumulated` field lives: its side (texels), spacing (m) and whether it is a
@@ -140,7 +159,12 @@ impl FoamBlock {
     /// technique `waves`, for a mesh whose reference point is world (x, z) `mesh_origin`.
     pub fn new(scene: &Scene, technique: &str, waves: &str, mesh_origin: [f64; 2]) -> Self {
         let f = &scene.foam;
+        // The texture lies on axes along and across the wind, so the reference point is
+        // turned onto them (in f64) before each coordinate is reduced modulo its period.
         let noise_period = f.texture_scale_m * f64::from(FOAM_NOISE_PERIOD);
+        let (sin_w, cos_w) = scene.ocean.wind_direction_deg.to_radians().sin_cos();
+        let along = mesh_origin[0] * cos_w + mesh_origin[1] * sin_w;
+        let across = mesh_origin[1] * cos_w - mesh_origin[0] * sin_w;
         let grid = FieldGrid::of(scene, waves);
         let side = grid.side_m();
         // The fade ends 0.45 of the side from the eye, where the window's nearest edge
@@ -154,7 +178,10 @@ impl FoamBlock {
             inv_softness: (1.0 / f.softness) as f32,
             color: f.color.map(|c| c as f32),
             inv_crest_height: (1.0 / f.crest_height_m) as f32,
-            noise_origin: mesh_origin.map(|c| c.rem_euclid(noise_period) as f32),
+            noise_origin: [
+                along.rem_euclid(noise_period * FOAM_STREAK) as f32,
+                across.rem_euclid(noise_period) as f32,
+            ],
             inv_noise_cell: (1.0 / f.texture_scale_m) as f32,
             inv_crest_slope: (1.0 / f.crest_slope) as f32,
             field_origin: mesh_origin.map(|c| c.rem_euclid(side) as f32),
@@ -163,7 +190,10 @@ impl FoamBlock {
             window_outer: window_outer as f32,
             inv_window_band: inv_window_band as f32,
             seed: f.seed,
+            inv_noise_cell_along: (1.0 / (f.texture_scale_m * FOAM_STREAK)) as f32,
+            wind: [cos_w as f32, sin_w as f32],
             pad0: 0.0,
+            pad1: 0.0,
         }
     }
 }
@@ -215,10 +245,13 @@ pub fn foam_mix(t: f32, n: f32, intensity: f32) -> f32 {
 }
 
 /// `heuristic`'s turbulence for height `h` (m), slope magnitude `s` of the undisplaced
-/// parameterisation and Jacobian `j`.
+/// parameterisation and Jacobian `j`: high × steep × compressed (the module doc).
 pub fn heuristic_turbulence(h: f32, s: f32, j: f32, foam: &FoamBlock) -> f32 {
     let slope = s / j.max(FOAM_MIN_JACOBIAN);
-    ((h.max(0.0) * foam.inv_crest_height) * (slope * foam.inv_crest_slope) - 1.0).clamp(0.0, 1.0)
+    let high = (h * foam.inv_crest_height).clamp(0.0, 1.0);
+    let steep = (slope * foam.inv_crest_slope).clamp(0.0, 1.0);
+    let compressed = ((1.0 - j) * foam.inv_softness).clamp(0.0, 1.0);
+    high * steep * compressed
 }
 
 /// `jacobian`'s turbulence (and `accumulated`'s source) for Jacobian `j`.

@@ -612,7 +612,10 @@ pub const SHARED: &[SharedFile] = &[
                 window_outer,
                 inv_window_band,
                 seed,
-                pad0
+                inv_noise_cell_along,
+                wind,
+                pad0,
+                pad1
             }),
             block!(FrameUniforms {
                 view,

@@ -14,13 +14,15 @@ pub struct Foam {
     /// `jacobian`, `accumulated`: foam where the horizontal displacement's Jacobian J is
     /// below this (J < 1 where the surface is compressed, J < 0 where it folds).
     pub threshold: f64,
-    /// Width of the ramp in J below the threshold over which foam rises from 0 to full.
+    /// Width of the ramp in J over which foam rises from 0 to full: below the threshold
+    /// (`jacobian`, `accumulated`), below J = 1 (`heuristic`'s compression factor).
     pub softness: f64,
-    /// `heuristic`: the crest height (m above the mean sea plane) that with
-    /// `crest_slope` marks a turbulent crest (seed 002: "the normal and height of the wave").
+    /// `heuristic`: the height above the mean sea plane (m) at which a crest counts as fully
+    /// high (seed 002: "the normal and height of the wave"); foam needs the crest high, steep
+    /// and compressed (J < 1) at once.
     pub crest_height_m: f64,
-    /// `heuristic`: the slope of the displaced surface that with `crest_height_m` marks a
-    /// turbulent crest.
+    /// `heuristic`: the slope of the displaced surface at which a crest counts as fully
+    /// steep.
     pub crest_slope: f64,
     /// Side of one cell of the foam texture's value noise, m.
     pub texture_scale_m: f64,

@@ -8,12 +8,14 @@ use ocean_core::frame::FrameUniforms;
 use super::frame::dot3;
 use super::shadow::sun_visibility;
 use crate::sampler::Texture2D;
-use crate::shaders::wgsl::{Vec2, Vec3, max};
+use crate::shaders::wgsl::{Vec2, Vec3, max, vec2};
 
 /// `foam_texture_at(pos)`.
 pub fn foam_texture_at(pos: Vec2, frame: &FrameUniforms) -> f32 {
     let f = &frame.foam;
-    let q = (pos + Vec2::from(f.noise_origin)) * f.inv_noise_cell;
+    let along = (pos.x * f.wind[0] + f.noise_origin[0]) + pos.y * f.wind[1];
+    let across = (pos.y * f.wind[0] + f.noise_origin[1]) - pos.x * f.wind[1];
+    let q = vec2(along, across) * vec2(f.inv_noise_cell_along, f.inv_noise_cell);
     foam_texture(q.x, q.y, f.seed)
 }
 
