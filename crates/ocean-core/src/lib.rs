@@ -39,6 +39,7 @@ pub mod mutants;
 pub mod plan;
 pub mod registry;
 pub mod rng;
+pub mod sand;
 pub mod scene;
 pub mod shader_source;
 pub mod shoaling;

@@ -623,7 +623,8 @@ pub struct Terrain {
     pub slope_direction_deg: f64,
     /// Side of the drawn square (and of the heightmap), m.
     pub extent_m: f64,
-    /// Linear RGB albedo (sand).
+    /// Linear RGB albedo; by default dry beach sand from a measured spectrum
+    /// ([`crate::sand::DRY_SAND_ALBEDO`]).
     pub color: [f64; 3],
     /// `kind = "heightmap"`: the file, relative to the scene file's folder (to the working
     /// folder for scene text).
@@ -659,7 +660,7 @@ impl Default for Terrain {
             slope: 0.0,
             slope_direction_deg: 0.0,
             extent_m: 400.0,
-            color: [0.76, 0.70, 0.50],
+            color: crate::sand::DRY_SAND_ALBEDO,
             heightmap: None,
             height_range_m: [0.0, 1.0],
             island_radius_m: 60.0,
