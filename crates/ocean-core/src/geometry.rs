@@ -36,7 +36,7 @@ pub use mesh::{MeshSummary, WaterMesh};
 pub use near::NearPatch;
 pub use params::{
     DEFAULT_NEAR_SIZE_M, MAX_HEIGHT_M, MAX_NEAR_LEVELS, PatchParams, STITCH_CLEARANCE,
-    stitch_radius,
+    stitch_radius, wave_reach_m,
 };
 pub use projected::{HORIZON_DISTANCE_H, ProjectedGrid};
 

@@ -14,6 +14,27 @@ pub const DEFAULT_NEAR_SIZE_M: f64 = 512.0;
 /// side (grid coordinates stay far inside i32, the mesh inside u32 indices).
 pub const MAX_NEAR_LEVELS: u32 = 15;
 
+/// How far from an eye `height_m` above the sea the displacement map's waves still show, m:
+/// the distance d at which its longest wave, the patch side L, seen foreshortened spans one
+/// pixel of `pixel_rad` (L·H/(d² + H²) = p, so d = √(L·H/p − H²)); beyond it every wave the
+/// map holds is below a pixel and the far patch's filtered bump map stands for them. 0 where
+/// even L spans less than a pixel (an eye so high that the map's waves never show) and for
+/// inputs that are not finite and positive.
+///
+/// Seed 000's near patch follows the viewer but has a fixed size; the far patch beyond it
+/// carries neither the displacement nor its slopes, so an eye high enough that its view lies
+/// beyond the patch saw the sea as bump-map speckle without its swell (`tests/hu_from_above.rs`:
+/// the wave contrast at 300 m was 0.09 of the projected grid's). Growing the patch to this
+/// reach ([`PatchParams::with_reach`]) keeps the swell wherever it is visible.
+pub fn wave_reach_m(patch_side_m: f64, height_m: f64, pixel_rad: f64) -> f64 {
+    let (l, h, p) = (patch_side_m, height_m, pixel_rad);
+    if !(l > 0.0 && h > 0.0 && p > 0.0 && l.is_finite() && h.is_finite() && p.is_finite()) {
+        return 0.0;
+    }
+    let d2 = l * h / p - h * h;
+    if d2 > 0.0 { d2.sqrt() } else { 0.0 }
+}
+
 /// Largest viewpoint height |eye.y| accepted, metres. Beyond it the far patch's outer ring
 /// (`far_max_radius · H`) would approach f32's range.
 pub const MAX_HEIGHT_M: f64 = 1.0e6;
@@ -106,6 +127,31 @@ impl PatchParams {
     /// `resolution` times per side ([`Self::for_grid`] of L/N).
     pub fn for_ocean(patch_size_m: f64, resolution: u32) -> Self {
         Self::for_grid(patch_size_m / f64::from(resolution.max(1)))
+    }
+
+    /// These parameters with the near patch grown so that it covers every point of the sea
+    /// within `reach_m` of the eye (its half side at least `reach_m`): the next power-of-two
+    /// multiple of the grid spacing, never smaller than today's side, at most
+    /// 2^[`MAX_NEAR_LEVELS`] cells. The refinement goes down to the grid as before, the
+    /// boundary keeps its `boundary_segments` and the taper stays a sixteenth of the side.
+    /// A `reach_m` that is not finite and positive leaves the parameters as they are.
+    pub fn with_reach(mut self, reach_m: f64) -> Self {
+        let g = self.grid_spacing_m;
+        let current = (self.near_size_m / g).log2().round();
+        if !(reach_m.is_finite() && reach_m > 0.0 && g > 0.0 && current.is_finite()) {
+            return self;
+        }
+        let wanted = (2.0 * reach_m / g).log2().ceil();
+        let levels = wanted.max(current).min(f64::from(MAX_NEAR_LEVELS));
+        if levels <= current {
+            return self;
+        }
+        let levels = levels as u32;
+        let side = g * f64::from(1u32 << levels);
+        self.near_size_m = side;
+        self.max_depth = 2 * levels;
+        self.weight_taper_m = side / 16.0;
+        self
     }
 
     /// Checks every field and returns the derived integer layout.

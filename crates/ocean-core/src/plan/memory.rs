@@ -287,7 +287,10 @@ fn object_triangles(scene: &Scene, index: usize) -> u64 {
 /// to the patch's half diagonal R holds ∫ 2πr dr / (θ²r²/4) = (8π/θ²) ln(R/d₀). The bintree's
 /// forced splits at most double the count.
 pub fn water_triangles(scene: &Scene) -> u64 {
-    let p = scene.patch_params();
+    // The near patch as the scene's camera sizes it (a camera that cannot be built has no
+    // frame: the scene's grid alone).
+    let p = crate::camera::Camera::from_scene(&scene.camera)
+        .map_or_else(|_| scene.patch_params(), |c| scene.patch_params_for(&c));
     let g = p.grid_spacing_m;
     let levels = (p.near_size_m / g).log2().round().clamp(0.0, 31.0);
     let full = 2.0 * 4f64.powf(levels);

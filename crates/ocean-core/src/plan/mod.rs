@@ -446,7 +446,7 @@ fn footprint_inside_near_patch(scene: &Scene, camera: &Camera) -> Option<([f64; 
         }
         bbox = [bbox[0].min(p.x), bbox[1].min(p.z), bbox[2].max(p.x), bbox[3].max(p.z)];
     }
-    let params = scene.patch_params();
+    let params = scene.patch_params_for(camera);
     let (c, half) = crate::geometry::near_patch_square(&params, [eye.x, eye.z]).ok()?;
     // One grid cell inside the boundary: the footprint then clears the far patch by a cell.
     let inner = half - params.grid_spacing_m;
@@ -1103,7 +1103,7 @@ impl FramePlan {
     /// The water mesh of this plan's frame (seed 000 §3): near and far patch, or the near
     /// patch alone where the plan leaves the far patch out.
     pub fn water_mesh(&self, scene: &Scene, camera: &Camera) -> crate::Result<WaterMesh> {
-        let params = scene.patch_params();
+        let params = scene.patch_params_for(camera);
         // The surfaces drawn from the vertex index (frame::ClipmapBlock, ProjectedGridBlock):
         // the mesh only fixes the reference point, for the clipmap the eye snapped to twice
         // level 0's quad, for the grid the eye's (x, z) on the displacement grid.
@@ -1258,9 +1258,13 @@ mod tests {
         s.camera.position = [3.0, -25.0, -7.0];
         s.camera.look_at = [3.0, 0.0, -7.1];
         assert!(!FramePlan::new(&s, OutputKind::Ldr).runs(Pass::FarPatch));
-        // Higher up the footprint leaves the near patch; tilted up, the horizon shows.
+        // Higher up the near patch grows with the eye (Scene::patch_params_for) and still
+        // holds the footprint below; tilted up, the horizon shows.
         s.camera.position = [3.0, 400.0, -7.0];
         s.camera.look_at = [3.0, 0.0, -7.1];
+        assert!(!FramePlan::new(&s, OutputKind::Ldr).runs(Pass::FarPatch));
+        s.camera.position = [3.0, 400.0, -7.0];
+        s.camera.look_at = [3.0, 390.0, -100.0];
         assert!(FramePlan::new(&s, OutputKind::Ldr).runs(Pass::FarPatch));
         s.camera.position = [0.0, 25.0, 0.0];
         s.camera.look_at = [0.0, 20.0, -10.0];
