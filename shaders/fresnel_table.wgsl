@@ -1,7 +1,7 @@
 // Stage `fresnel_table`: the 2D Fresnel texture of seed 000 §5.1/§5.3, one invocation per
 // texel: RGB = the normalised local view vector (normal = +Z), A = F of eq. 2 for it.
 // Texel (i, j): s = (i + 0.5)/N, t = (j + 0.5)/N; whole hemisphere x = 2s − 1, y = 2t − 1,
-// z = sqrt(max(0, 1 − x² − y²)), clamped to the rim outside the unit disc (DESIGN.md); the
+// z = sqrt(max(0, 1 − x² − y²)), clamped to the rim outside the unit disc (docs/design.md); the
 // paper's half range x = s − 0.5, y = t − 0.5; or the grazing mapping the renderer uses: texel
 // i at u = 2i/(N − 1) − 1 (the rim on the edge texels' centres), the square to the disc by the
 // elliptical grid mapping d, ρ = |d| = sqrt(1 − z), V = (d·sqrt(1 + z), z).

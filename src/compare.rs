@@ -1,5 +1,5 @@
 //! `ocean compare`: renders a scene on the CPU oracle and on the GPU, prints the per-pass and
-//! final metrics against DESIGN.md's tolerances, writes both pictures, their difference and
+//! final metrics against docs/design.md's tolerances, writes both pictures, their difference and
 //! FLIP maps and a JSON summary, and exits non-zero beyond tolerance.
 
 use std::path::PathBuf;
@@ -24,7 +24,7 @@ pub struct Args {
     memory: ocean::memory_arg::MemoryArg,
     /// Compare a folder in the layout of `ocean render --dump-passes` (from another engine,
     /// or another run) with the CPU oracle's frame of the scene, resource by resource, with
-    /// DESIGN.md's float tolerance; no GPU is used. The scene is SCENE, else the one in
+    /// docs/design.md's float tolerance; no GPU is used. The scene is SCENE, else the one in
     /// DIR/manifest.json, else the default.
     #[arg(long, value_name = "DIR")]
     against: Option<PathBuf>,

@@ -1,7 +1,7 @@
 //! Per-pass dumps: `ocean render --dump-passes DIR` writes every float resource of a frame as
 //! an EXR with named channels and a `manifest.json` that says what each one is;
 //! `ocean compare --against DIR` holds a folder in that layout (the oracle's, or one written
-//! by another engine) against the oracle, resource by resource, with DESIGN.md's tolerances.
+//! by another engine) against the oracle, resource by resource, with docs/design.md's tolerances.
 //!
 //! The layout (`manifest.json`, `"layout": "ocean-dump/1"`):
 //!

@@ -1,5 +1,5 @@
 //! `ocean fresnel`: the exact Fresnel term of eq. 2 (seed 000) as CSV, or the 2D Fresnel
-//! texture of §5.1 as EXR (DESIGN.md's contracts).
+//! texture of §5.1 as EXR (docs/design.md's contracts).
 
 use std::path::PathBuf;
 
@@ -22,10 +22,10 @@ pub struct Args {
     /// Write the N×N 2D Fresnel texture instead of the CSV (needs -o FILE.exr).
     #[arg(long, value_name = "N")]
     table: Option<usize>,
-    /// Which view vectors the texels stand for: `hemisphere` (DESIGN.md's contract: x = 2s−1,
+    /// Which view vectors the texels stand for: `hemisphere` (docs/design.md's contract: x = 2s−1,
     /// y = 2t−1), `half-range` (the paper's V = (s−0.5, t−0.5, …), about ±30° only) or
     /// `grazing` (the renderer's: the rim on the edge texels' centres, radius ∝ sqrt(1 − cos θ);
-    /// see the README).
+    /// see docs/commands.md).
     #[arg(long, requires = "table", default_value = "hemisphere", value_parser = parse_mapping)]
     mapping: TextureMapping,
     /// Same as `--mapping half-range` (kept for scripts that used it).

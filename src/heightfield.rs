@@ -1,5 +1,5 @@
 //! `ocean heightfield`: the displacement map of a scene's ocean at a time, as EXR
-//! (DESIGN.md: N×N, pixel (i, j) at x = i·L/N, z = j·L/N, channels `height`, `disp_x`,
+//! (docs/design.md: N×N, pixel (i, j) at x = i·L/N, z = j·L/N, channels `height`, `disp_x`,
 //! `disp_z`, `slope_x`, `slope_z`, `jacobian`). Under waves `fft` the maps the FFT makes;
 //! under waves `gerstner` the sum of the waves evaluated at the same N×N points of the window
 //! [0, L)² (the waves are not periodic, so the window is only where the samples lie).

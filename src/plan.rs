@@ -1,5 +1,5 @@
 //! `ocean plan`: the frame graph of a scene: its system and the technique of every stage, the
-//! passes it runs and why each is in or out, and the resources with their sizes (DESIGN.md:
+//! passes it runs and why each is in or out, and the resources with their sizes (docs/design.md:
 //! `--json` prints `{"system": …, "techniques": {stage: technique, …}, "passes": [{"name",
 //! "reason", …}…], "skipped": […], "resources": […]}`, plus the objects each object pass
 //! draws).

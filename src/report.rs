@@ -346,7 +346,7 @@ fn fresnel_knob(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
         Box::new(move |v: [f64; 3]| fresnel_schlick(v[2] as f32, eta as f32)),
     ));
 
-    // DESIGN.md's tolerance table bounds the 256² texture within 76° of the normal.
+    // docs/design.md's tolerance table bounds the 256² texture within 76° of the normal.
     let cos_76 = 76f64.to_radians().cos();
     let within_76: Vec<([f64; 3], f64)> =
         hemisphere.iter().copied().filter(|(v, _)| v[2] >= cos_76).collect();

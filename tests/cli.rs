@@ -1,4 +1,4 @@
-//! The command line's contracts (DESIGN.md): CSV and EXR layouts, exit codes, clear errors,
+//! The command line's contracts (docs/design.md): CSV and EXR layouts, exit codes, clear errors,
 //! no output file on failure.
 //!
 //! The GPU commands' tests need an adapter: without one they fail under `OCEAN_REQUIRE_GPU=1`
@@ -370,7 +370,7 @@ fn compare_prints_metrics_writes_images_and_passes() {
 }
 
 /// `ocean compare --system chiu` on the built-in scene: every pass of Chiu & Chang's system
-/// (projected grid, shading chiu, clouds, spray) within DESIGN.md's tolerances, exit 0.
+/// (projected grid, shading chiu, clouds, spray) within docs/design.md's tolerances, exit 0.
 fn compare_system_chiu_passes() {
     let dir = tempfile::tempdir().expect("a temp dir");
     let out = dir.path().join("cmp");

@@ -1,4 +1,4 @@
-//! The CPU output is a pure function of the scene (DESIGN.md, determinism contract): the same
+//! The CPU output is a pure function of the scene (docs/design.md, determinism contract): the same
 //! bytes for 1 and 2 rayon threads, and across two runs.
 
 use ocean_core::scene::Scene;

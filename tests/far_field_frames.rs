@@ -34,7 +34,7 @@ fn bands(scene: &Scene) -> [Vec<u32>; 3] {
     sea_bands(&Camera::from_scene(&s.camera).unwrap(), H)
 }
 
-/// The scenes: the four the issue names (whose table the README quotes), then three more
+/// The scenes: the four the issue names (whose table docs/far-field.md quotes), then three more
 /// reference scenes; every check below runs on all seven.
 fn scenes() -> Vec<(&'static str, Scene)> {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("reference/scenes");
@@ -52,14 +52,14 @@ fn scenes() -> Vec<(&'static str, Scene)> {
     ]
 }
 
-/// DESIGN's limit per band against the 64-sample frame.
+/// docs/design.md's limit per band against the 64-sample frame.
 const BAND_LIMIT: f64 = 0.06;
 
 /// The issue's limit on the horizon band's mean brightness against the 64-sample frame's.
 const HORIZON_BRIGHTNESS: f64 = 0.10;
 
 /// The checks (and the table the note quotes), in every band of every scene: `variance` is
-/// within DESIGN's 0.06 of the 64-sample frame, its horizon band's mean brightness within
+/// within docs/design.md's 0.06 of the 64-sample frame, its horizon band's mean brightness within
 /// 10 %, and it and `mip` flicker at most 1.5× as much as the 64-sample frames between two
 /// frames 1/30 s apart. Negative control: `none` flickers more, and is over 0.06 in the
 /// horizon and middle bands (the near band's pixels resolve its waves at this size).
@@ -87,7 +87,7 @@ fn far_fields_against_the_64_sample_frame() {
                 let ratio = band_luminance(&a, W, rows) / band_luminance(&truth, W, rows);
                 let flicker = band_error(&a, &b, W, rows);
                 let truth_flicker = band_error(&truth, &truth_next, W, rows);
-                let over = if e > BAND_LIMIT { " (over DESIGN's limit)" } else { "" };
+                let over = if e > BAND_LIMIT { " (over docs/design.md's limit)" } else { "" };
                 eprintln!(
                     "{name} | {far} | {band} | {e:.4}{over} | {ratio:.3} | {flicker:.4} ({truth_flicker:.4})"
                 );

@@ -306,7 +306,7 @@ fn gpu_fields(scene: &Scene, frames: u64) -> Vec<Vec<[f32; 4]>> {
         .collect()
 }
 
-/// The largest |cpu − gpu| beyond DESIGN.md's float tolerance (rel 1e-5, abs 1e-6), and the
+/// The largest |cpu − gpu| beyond docs/design.md's float tolerance (rel 1e-5, abs 1e-6), and the
 /// largest difference.
 fn float_compare(cpu: &[[f32; 4]], gpu: &[[f32; 4]]) -> (usize, f64) {
     assert_eq!(cpu.len(), gpu.len());

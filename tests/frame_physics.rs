@@ -122,7 +122,7 @@ fn compare(scene: &Scene, frame: &FrameBuffers) -> Comparison {
             // The table's own error for this very direction (ocean-core's f64 table vs eq. 2).
             let bound = (f_table - f_exact).abs() + snap_exact + snap + 1e-5;
             if theta <= 75.0 {
-                // Where the 256² table meets DESIGN's 2e-3 (tests/fresnel.rs measures it).
+                // Where the 256² table meets docs/design.md's 2e-3 (tests/fresnel.rs measures it).
                 c.vs_exact_below_75 =
                     c.vs_exact_below_75.max((f_pixel - f_exact).abs() - snap_exact);
             }
@@ -152,7 +152,7 @@ fn calm_sea_reflects_the_sky_with_the_fresnel_weight() {
     // the same bilinear rule: 1e-5 covers both, plus the sub-pixel snapping term per pixel.
     assert_eq!(c.vs_table_beyond_snap, 0, "F in the picture is not the table's F");
     // And eq. 2 within the table's own error for each pixel's direction; up to 75° from the
-    // normal, within DESIGN's 2e-3 for the 256² table.
+    // normal, within docs/design.md's 2e-3 for the 256² table.
     assert_eq!(c.vs_exact_beyond_bound, 0);
     println!("  |F_pixel − eq. 2| up to θ = 75°: {:.2e} (beyond snapping)", c.vs_exact_below_75);
     assert!(c.vs_exact_below_75 <= 2e-3);

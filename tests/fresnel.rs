@@ -18,7 +18,7 @@ use ocean_core::tables::{
 const WATER: f64 = 1.333;
 const WATER_INSIDE: f64 = 1.0 / 1.333;
 
-/// DESIGN.md's tolerance for eq. 2 against the s/p form, evaluated in f32.
+/// docs/design.md's tolerance for eq. 2 against the s/p form, evaluated in f32.
 const F32_TOL: f64 = 1e-6;
 
 /// Polar angles in degrees, ascending: 0° to 90° in steps of 0.001°, with approaches to 90°
@@ -591,10 +591,10 @@ fn table_1d_error() -> ocean_core::Result<()> {
 }
 
 // ---------------------------------------------------------------------------------------------
-// The 2D Fresnel texture (seed 000 §5.1, §5.3; DESIGN.md's `ocean fresnel --table` layout)
+// The 2D Fresnel texture (seed 000 §5.1, §5.3; docs/design.md's `ocean fresnel --table` layout)
 // ---------------------------------------------------------------------------------------------
 
-/// DESIGN.md's contract for texel (i, j), written out independently of the library.
+/// docs/design.md's contract for texel (i, j), written out independently of the library.
 fn contract_vector(i: usize, j: usize, n: usize) -> [f64; 3] {
     let s = (i as f64 + 0.5) / n as f64;
     let t = (j as f64 + 0.5) / n as f64;
@@ -740,7 +740,7 @@ fn texture_error_against_table_size() -> ocean_core::Result<()> {
         previous = Some((e.max_abs_below(60.0), e.rms));
 
         if n == 256 {
-            // DESIGN.md's "256²: ≤ 2e-3" holds for view directions up to 76° from the normal
+            // docs/design.md's "256²: ≤ 2e-3" holds for view directions up to 76° from the normal
             // (measured 1.35e-3 below 75°, 1.8e-3 in 75°–76°, 2.4e-3 in 76°–77°) and not over
             // the whole hemisphere: the rim clamp gives 0.415 at grazing. Both are recorded.
             assert!(e.max_abs_below(76.0) <= 2e-3, "{:e}", e.max_abs_below(76.0));
@@ -911,7 +911,7 @@ fn grazing_mapping_meets_2e3_over_the_whole_hemisphere() -> ocean_core::Result<(
         }
         previous = Some(e.max_abs);
         if n == 256 {
-            // DESIGN.md's 2e-3 at 256², now over the whole hemisphere (measured 1.33e-3), where
+            // docs/design.md's 2e-3 at 256², now over the whole hemisphere (measured 1.33e-3), where
             // the contract's mapping is off by 0.41 at the horizon.
             assert!(e.max_abs <= 2e-3, "{:e}", e.max_abs);
             let hemisphere = texture_error(n, WATER, TextureMapping::Hemisphere, SAMPLES)?;

@@ -1,5 +1,5 @@
 //! CPU ↔ GPU cross-check (issue 4): every reference scene at 160×90 through the CPU oracle and
-//! the wgpu path, every float buffer within DESIGN.md's rel 1e-5 / abs 1e-6, the 8-bit picture
+//! the wgpu path, every float buffer within docs/design.md's rel 1e-5 / abs 1e-6, the 8-bit picture
 //! within the tolerance row of the adapter that ran (lavapipe: ≥ 99.5 % of pixels within
 //! 1/255, FLIP mean ≤ 0.005). On a failure the CPU and GPU pictures, difference images and a
 //! JSON summary go to `target/gpu-cross-check/`.
@@ -127,7 +127,7 @@ fn reference_scenes_match_the_cpu_oracle() {
     }
     assert!(
         failures.is_empty(),
-        "CPU and GPU differ beyond DESIGN.md's tolerances (images and JSON in {}):\n{}",
+        "CPU and GPU differ beyond docs/design.md's tolerances (images and JSON in {}):\n{}",
         out.display(),
         failures.join("\n")
     );
@@ -593,9 +593,9 @@ fn image_comparator_fails_past_each_limit() {
 /// The renderer as `ocean render --backend gpu` runs it: the wave maps from the GPU FFT every
 /// frame. lavapipe's `sin`/`cos` differ from the CPU's by up to 1 ulp (tests/gpu_waves.rs
 /// measures it over 65,536 angles), so the maps differ from the CPU synthesis by a few 1e-7 of
-/// each field's magnitude — DESIGN's FFT tolerance is rel 1e-5 of the field (max norm) — and
+/// each field's magnitude — docs/design.md's FFT tolerance is rel 1e-5 of the field (max norm) — and
 /// the differences are then amplified through the bumped normal and the sun's (V·R)^400, so
-/// the HDR frame is held to DESIGN's final-image tolerances (≥ 99.5 % of pixels within 1/255,
+/// the HDR frame is held to docs/design.md's final-image tolerances (≥ 99.5 % of pixels within 1/255,
 /// FLIP mean ≤ 0.005), not the float-buffer ones. Every other map must still meet those.
 fn gpu_fft_frames_meet_the_image_tolerances() {
     let mut renderer = renderer_with(WaveSynthesis::GpuFft);

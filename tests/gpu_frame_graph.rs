@@ -1,6 +1,6 @@
 //! The frame graph on both back ends (issue 10): the GPU obeys the plan's `[quality]` sizes
 //! and its cycle, and every resource both back ends allocate has the plan's size — checked
-//! with the cross-check's comparators (float maps within DESIGN.md's rel 1e-5 / abs 1e-6, the
+//! with the cross-check's comparators (float maps within docs/design.md's rel 1e-5 / abs 1e-6, the
 //! picture within the adapter's tolerance row, and each map's size equal to the plan's).
 //!
 //! Before the frame graph the GPU hard-coded 256² Fresnel textures and a viewport-sized

@@ -4,9 +4,9 @@
 //!
 //! Measures (printed with `--nocapture`):
 //! - "rel": max |value − reference| over a field divided by the max |reference| of that field
-//!   (as in tests/waves.rs); mirror vs ocean-core must be ≤ 1e-5 (DESIGN.md, FFT synthesis in
+//!   (as in tests/waves.rs); mirror vs ocean-core must be ≤ 1e-5 (docs/design.md, FFT synthesis in
 //!   f32).
-//! - GPU vs mirror: every element within abs 1e-6 + rel 1e-5·|mirror| (DESIGN.md, CPU vs GPU
+//! - GPU vs mirror: every element within abs 1e-6 + rel 1e-5·|mirror| (docs/design.md, CPU vs GPU
 //!   float buffers) *and* rel ≤ 1e-5 per field — the second is the stricter one for the
 //!   spectra, whose values are mostly below 1e-6.
 //!
@@ -104,10 +104,10 @@ fn worst(e: &[f64]) -> f64 {
     e.iter().copied().fold(0.0, f64::max)
 }
 
-/// DESIGN.md: CPU vs GPU float buffers.
+/// docs/design.md: CPU vs GPU float buffers.
 const GPU_REL: f64 = 1e-5;
 const GPU_ABS: f64 = 1e-6;
-/// DESIGN.md: FFT synthesis vs the reference, f32.
+/// docs/design.md: FFT synthesis vs the reference, f32.
 const SYNTHESIS_REL: f64 = 1e-5;
 
 /// GPU (`a`) against the mirror (`b`) for one field.

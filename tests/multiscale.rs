@@ -123,7 +123,7 @@ fn the_height_query_is_the_rendered_surface() {
         "{n} vertices: |vertex − query sample| ≤ {sample_err:.2e} m, |height_at − rendered y| ≤ \
          {height_err:.2e} m (the single field's query: {single_err:.2e} m)"
     );
-    // The maps against the f64 direct sum (README: within 1e-5 of the map's range) and the f32
+    // The maps against the f64 direct sum (docs/chiu.md: within 1e-5 of the map's range) and the f32
     // vertex: 2e-5 m on a sea of H_s ≈ 2 m.
     assert!(sample_err < 2e-5 && height_err < 2e-5, "{sample_err} {height_err}");
     assert!(single_err > 1e-2, "negative control: {single_err}");

@@ -150,7 +150,7 @@ fn the_bilinear_term_vanishes_so_vertices_lie_on_the_projector_rays() {
 /// Vertices of a 320 × 180-quad grid (1280×720 at 4 px a cell) and the share of them that
 /// land inside the image, for a few typical views with the default sea's bound (H_s ≈ 2 m,
 /// A = 6 m): what the grid spends outside the picture covers the waves that a displacement
-/// may lift into it. Printed for the README; the test holds the share above a half for eyes
+/// may lift into it. Printed for docs/chiu.md; the test holds the share above a half for eyes
 /// above the waves' slab.
 #[test]
 fn share_of_the_grid_in_view() {

@@ -130,7 +130,7 @@ fn the_check_catches_a_non_finite_pixel() {
     assert!(parse("[sun]\nintensity = 1e300\n").is_none(), "the old NaN case is refused");
 }
 
-/// The README's table row of a limit.
+/// docs/scenes.md's table row of a limit.
 fn readme_row(l: &ocean_core::scene::Limit) -> String {
     let n = ocean_core::error::number;
     let what = if l.whole { " (whole)" } else { "" };
@@ -138,13 +138,13 @@ fn readme_row(l: &ocean_core::scene::Limit) -> String {
 }
 
 #[test]
-fn the_readme_lists_every_limit_as_validation_applies_it() {
+fn the_scene_reference_lists_every_limit_as_validation_applies_it() {
     let readme =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/scenes.md")).unwrap();
     let missing: Vec<String> = ocean_core::scene::LIMITS
         .iter()
         .map(readme_row)
         .filter(|row| !readme.contains(row.as_str()))
         .collect();
-    assert!(missing.is_empty(), "README rows missing or out of date:\n{}", missing.join("\n"));
+    assert!(missing.is_empty(), "docs/scenes.md rows missing or out of date:\n{}", missing.join("\n"));
 }

@@ -134,7 +134,7 @@ fn band_variance_check_rejects_a_wrong_spectrum() {
 
 #[test]
 fn fully_developed_pm_sea_has_hs_near_0_22_u10_squared_over_g() {
-    // Pierson & Moskowitz (1964) as DESIGN states it: Hs ≈ 0.22 U₁₀²/g. A 2 km patch at
+    // Pierson & Moskowitz (1964) as docs/design.md states it: Hs ≈ 0.22 U₁₀²/g. A 2 km patch at
     // N = 512 resolves k up to 0.8 rad/m; the PM tail beyond, ∫ α/(2k³) dk = α/(4k²), is
     // 1 % of the variance at 10 m/s, i.e. Hs 0.5 % low: the limit below allows 3 %.
     let u10 = 10.0;

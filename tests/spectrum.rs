@@ -160,7 +160,7 @@ fn pm_significant_wave_height_matches_closed_form() {
         let closed_off = 2.0 * (PM_ALPHA / beta_off).sqrt() * (U19_5_PER_U10 * u10).powi(2) / G;
         assert!(rel(hs, closed_off) > 1e-6);
     }
-    // DESIGN.md: Hs ≈ 0.22 U₁₀²/g. The published figure has two digits: ±0.005.
+    // docs/design.md: Hs ≈ 0.22 U₁₀²/g. The published figure has two digits: ±0.005.
     assert!((coefficient_u10 - 0.22).abs() <= 0.005, "{coefficient_u10}");
     // Negative control: forgetting U₁₉.₅ = 1.026 U₁₀ (0.2092) is outside that rounding.
     assert!((coefficient_u19 - 0.22).abs() > 0.005, "{coefficient_u19}");
@@ -491,7 +491,7 @@ fn tma_tends_to_jonswap_in_deep_water_and_loses_energy_in_shallow_water() {
 
 // --- Phillips --------------------------------------------------------------------------
 
-/// DESIGN.md's Phillips spectrum, written out independently.
+/// docs/design.md's Phillips spectrum, written out independently.
 fn phillips_design(a: f64, wind: f64, dir: f64, l: f64, kx: f64, kz: f64) -> f64 {
     let k2 = kx * kx + kz * kz;
     let big_l = wind * wind / G;
@@ -543,7 +543,7 @@ fn phillips_density_is_the_design_formula() {
             assert_eq!(s.omnidirectional(k), 0.0, "k={k}");
         }
     }
-    println!("Phillips density vs DESIGN formula: worst relative difference {worst:.1e}");
+    println!("Phillips density vs docs/design.md formula: worst relative difference {worst:.1e}");
 }
 
 #[test]

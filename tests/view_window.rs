@@ -1,7 +1,7 @@
 //! `ocean view` in a real window (issue 6): each test starts its own Xvfb (X virtual frame
 //! buffer), runs the viewer there on the GPU path (lavapipe in CI), and holds its screenshot
 //! against `ocean render --backend gpu` of the same scene, size and time (frame i of a
-//! `--frames` run shows t0 + i/60), within DESIGN.md's final-image tolerance for the adapter
+//! `--frames` run shows t0 + i/60), within docs/design.md's final-image tolerance for the adapter
 //! (lavapipe: ≥ 99.5 % of pixels within 1/255, FLIP mean ≤ 0.005). The screenshot is read
 //! back from the window's own surface texture where the surface allows it.
 //!

@@ -1,4 +1,4 @@
-//! Stage `far_field` (DESIGN.md, "Filtering and ground truth"): what becomes of the wave
+//! Stage `far_field` (docs/design.md, "Filtering and ground truth"): what becomes of the wave
 //! detail a pixel cannot resolve, after Bruneton, Neyret & Holzschuch 2010.
 //!
 //! - `none`: the wave maps' level 0, bilinear (a far pixel picks one slope: it sparkles).
@@ -20,7 +20,7 @@
 //! stretched the unresolved variance over 16× the area at grazing views). The LOD is explicit
 //! (`textureSampleLevel`), not the GPU's derivative-based one, so both back ends select
 //! levels from the same f32 arithmetic, with no 2×2 quads, and a footprint does not jump at
-//! the edges of the far patch's long triangles (see the README).
+//! the edges of the far patch's long triangles (see docs/far-field.md).
 //!
 //! **Visible facets** (far field `variance`): the displacement map's slopes are geometry, and
 //! at a grazing view the eye sees the wave faces turned towards it and not their backs. A

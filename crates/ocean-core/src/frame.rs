@@ -475,7 +475,7 @@ pub struct FresnelTableUniforms {
     pub eta: f32,
     /// N of the N×N table.
     pub size: u32,
-    /// [`crate::tables::TextureMapping::code`]: 0 the whole hemisphere (DESIGN.md), 1 the
+    /// [`crate::tables::TextureMapping::code`]: 0 the whole hemisphere (docs/design.md), 1 the
     /// paper's half range, 2 the grazing mapping.
     pub mapping: u32,
     /// 2/(N − 1), the step of the grazing mapping's u between texel centres, formed in f64

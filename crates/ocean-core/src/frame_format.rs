@@ -23,7 +23,7 @@
 //! finite value or to the appropriately signed infinity"). Toward zero is what lavapipe does,
 //! measured for fragment outputs and storage writes alike (`tests/gpu_precision.rs`: of
 //! 16384 values spread over the binary16 range, round-to-nearest-even disagreed with it on
-//! 8198, truncation on none), and the oracle mirrors the driver it checks (DESIGN.md,
+//! 8198, truncation on none), and the oracle mirrors the driver it checks (docs/design.md,
 //! "where lavapipe approximates, mirror the approximation"). A GPU that rounds to nearest
 //! (Vulkan allows it; no hardware GPU was measured here) stores at most one step from this.
 //!

@@ -1,5 +1,5 @@
 //! The maps of a scene's sea at its time on the N × N grid of its patch, as `ocean
-//! heightfield` writes them and the Python module returns them (DESIGN.md's heightfield
+//! heightfield` writes them and the Python module returns them (docs/design.md's heightfield
 //! contract).
 
 use crate::scene::Scene;

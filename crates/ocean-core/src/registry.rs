@@ -214,7 +214,7 @@ use EntryKind::{Compute, Fragment, Vertex};
 
 const VS_FS: &[(&str, EntryKind)] = &[("vs_main", Vertex), ("fs_main", Fragment)];
 
-/// Every stage with WGSL, in the order of DESIGN.md's stage table, then `present` (the
+/// Every stage with WGSL, in the order of docs/design.md's stage table, then `present` (the
 /// real-time viewer's copy of the output into its window) and `composite` (the output into an
 /// embedding program's targets, `ocean_gpu::embed`); neither is a pass of the frame plan.
 pub const STAGES: &[StageEntry] = &[

@@ -13,7 +13,7 @@
 //!
 //! D(k, θ) is the directional spreading, θ the wave direction relative to the direction the wind
 //! blows towards; ∫_{−π}^{π} D dθ = 1 exactly (in closed form), so spreading moves energy between
-//! directions but never changes how much there is (DESIGN.md, "Spectra").
+//! directions but never changes how much there is (docs/design.md, "Spectra").
 //!
 //! The significant wave height is Hs = 4 sqrt(m₀) (the spectral estimate H_m0).
 //!
@@ -72,7 +72,7 @@ pub const PM_ALPHA: f64 = 8.1e-3;
 pub const PM_BETA: f64 = 0.74;
 
 /// U₁₉.₅ / U₁₀: Pierson & Moskowitz measured the wind at 19.5 m; for a neutral log profile with
-/// drag coefficient 1.3·10⁻³ the wind there is 1.026 times the 10 m wind (DESIGN.md "Spectra";
+/// drag coefficient 1.3·10⁻³ the wind there is 1.026 times the 10 m wind (docs/design.md "Spectra";
 /// Stewart, *Introduction to Physical Oceanography*, 2008, ch. 16).
 pub const U19_5_PER_U10: f64 = 1.026;
 
@@ -456,7 +456,7 @@ impl WaveSpectrum {
     /// The directional wavenumber spectrum F(kx, kz), m⁴: m₀ = ∫∫ F dkx dkz.
     /// F = S_k(|k|) D(|k|, θ) / |k|, θ = atan2(kz, kx) − wind direction.
     ///
-    /// Phillips is evaluated as DESIGN.md writes it (Tessendorf 2001):
+    /// Phillips is evaluated as docs/design.md writes it (Tessendorf 2001):
     /// P(k) = A exp(−1/(kL)²)/k⁴ |k̂·ŵ|² exp(−k²l²), L = V²/g; it equals S_k D/k with
     /// S_k = Aπ exp(…) exp(…)/k³ and D = cos²θ/π.
     ///

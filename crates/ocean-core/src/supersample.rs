@@ -63,7 +63,7 @@ pub fn box_filter(samples: &[[f32; 4]], width: u32, height: u32, k: u32) -> Vec<
 }
 
 /// The bands of sea the far-field checks measure separately, by the depression of a pixel
-/// row's centre ray below the horizon (DESIGN.md, "Filtering and ground truth").
+/// row's centre ray below the horizon (docs/design.md, "Filtering and ground truth").
 pub const BAND_NAMES: [&str; 3] = ["horizon", "middle", "near"];
 
 /// Upper bounds of the horizon and middle bands' depressions, degrees: horizon below 2°,

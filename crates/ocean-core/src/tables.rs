@@ -8,7 +8,7 @@
 //!   directly (§5.1, Fig. 4), so neither the bumped normal nor V·N is formed per pixel, and the
 //!   RGB channels give the normalised bumped view vector for the specular term (§5.3).
 //!
-//! Sampling follows the GPU rule that the CPU oracle also follows (DESIGN.md, determinism
+//! Sampling follows the GPU rule that the CPU oracle also follows (docs/design.md, determinism
 //! contract): texel centres at +0.5, clamp-to-edge addressing, bilinear (linear) filtering with
 //! full-float weights, all in `f32`:
 //! u = s·N − 0.5, i₀ = ⌊u⌋, w = u − i₀, i₁ = i₀ + 1, both indices clamped to [0, N − 1], and
@@ -113,7 +113,7 @@ impl FresnelTable1D {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum TextureMapping {
-    /// DESIGN.md's contract: texel coordinates (s, t) ∈ [0, 1]² stand for x = 2s − 1,
+    /// docs/design.md's contract: texel coordinates (s, t) ∈ [0, 1]² stand for x = 2s − 1,
     /// y = 2t − 1, z = sqrt(max(0, 1 − x² − y²)), so the unit disc covers the whole hemisphere
     /// up to grazing views; outside the disc the vector is clamped to the rim (x, y)/r, z = 0.
     #[default]
@@ -273,7 +273,7 @@ impl TextureMapping {
 /// is stored, so the four channels of a texel agree with each other exactly.
 ///
 /// Texel (i, j) has s = (i + 0.5)/N, t = (j + 0.5)/N and is stored row-major at `j·N + i`
-/// (the layout of DESIGN.md's `ocean fresnel --table` contract).
+/// (the layout of docs/design.md's `ocean fresnel --table` contract).
 ///
 /// Accuracy of the bilinear lookup with the [`TextureMapping::Hemisphere`] mapping (measured
 /// in `tests/fresnel.rs`): away from the rim F is smooth in (x, y) and the error is second

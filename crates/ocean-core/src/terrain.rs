@@ -1,4 +1,4 @@
-//! The sea floor (`[terrain]`, DESIGN.md): its height anywhere, its drawn mesh and what the
+//! The sea floor (`[terrain]`, docs/design.md): its height anywhere, its drawn mesh and what the
 //! shaders need of it (the uniforms of [`TerrainBlock`] and the relief map).
 //!
 //! The floor is a plane — `depth_m` below the sea plane at `center`, rising by `slope` towards

@@ -14,7 +14,7 @@
 //!    darkening is smooth (quadratic, like the cos⁴ fall-off of a lens to second order) and
 //!    round whatever the aspect ratio. It multiplies the exposed light before the curve, as a
 //!    lens's fall-off does; s = 0 leaves every pixel's bits unchanged (x · 1 = x). Only + − ×
-//!    on f32, so CPU and GPU agree bit for bit. (DESIGN.md lists `vignette` as a post
+//!    on f32, so CPU and GPU agree bit for bit. (docs/design.md lists `vignette` as a post
 //!    technique; a per-pixel multiply needs no pass of its own, so it is this key of the
 //!    final pass instead.)
 //! 4. Operator (`[post] curve`), then clamped to [0, 1]:

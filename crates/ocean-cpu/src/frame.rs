@@ -27,7 +27,7 @@ use crate::shaders::{
     bloom, fresnel_table, objects, shadow, sky, spray, tonemap, water, wave_mips,
 };
 
-/// Default side of the 2D Fresnel textures (the error table in the README: 256² is within 2e-3
+/// Default side of the 2D Fresnel textures (docs/design.md's tolerance table: 256² is within 2e-3
 /// of eq. 2 up to 76° from the normal); a scene's `[quality] fresnel_table_size` and the plan
 /// choose the size a frame uses.
 pub const FRESNEL_TABLE_SIZE: u32 = ocean_core::scene::DEFAULT_FRESNEL_TABLE_SIZE;

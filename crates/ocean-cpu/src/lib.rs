@@ -1,7 +1,7 @@
 //! The deterministic software renderer of `ocean`: the correctness oracle for the wgpu path.
 //!
 //! Everything here follows the Vulkan rules as Mesa's lavapipe implements them (see the
-//! "Determinism contract" in the project's DESIGN.md), and every result is a pure function of
+//! "Determinism contract" in the project's docs/design.md), and every result is a pure function of
 //! its inputs: bit-identical across runs and across any number of rayon threads.
 //!
 //! - [`raster`]: triangle rasterizer (clipping, 8-bit sub-pixel snapping, top-left fill rule,

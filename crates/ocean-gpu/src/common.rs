@@ -6,7 +6,7 @@ use crate::created::Counted;
 use crate::device::Error;
 use crate::texture::DEPTH_FORMAT;
 
-/// The label of a stage's objects: `"ocean.<stage>"` (DESIGN.md, one name per stage).
+/// The label of a stage's objects: `"ocean.<stage>"` (docs/design.md, one name per stage).
 pub fn label(stage: &str) -> String {
     format!("ocean.{stage}")
 }

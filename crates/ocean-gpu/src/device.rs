@@ -7,7 +7,7 @@
 //! a Vulkan adapter that runs every stage on the CPU.
 //!
 //! Features the frame needs: `FLOAT32_FILTERABLE` (the water stage filters its `Rgba32Float`
-//! maps bilinearly, DESIGN.md: "intermediate textures use float formats"). `TIMESTAMP_QUERY`
+//! maps bilinearly, docs/design.md: "intermediate textures use float formats"). `TIMESTAMP_QUERY`
 //! is requested when the adapter has it, for GPU time per pass, and `FLOAT32_BLENDABLE` for
 //! the spray's additive sprites (pass `spray` is refused without it). Errors never panic: an absent
 //! adapter or feature is an [`Error`] that says what to install or to use `--backend cpu`.
@@ -103,7 +103,7 @@ pub struct AdapterReport {
     /// The driver and its version.
     pub driver: String,
     /// Whether the adapter is a software rasterizer on the CPU (lavapipe, SwiftShader, WARP):
-    /// DESIGN.md's "lavapipe" tolerance row applies, else the hardware row.
+    /// docs/design.md's "lavapipe" tolerance row applies, else the hardware row.
     pub is_software: bool,
 }
 

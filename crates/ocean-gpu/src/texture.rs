@@ -1,6 +1,6 @@
 //! Textures of the frame and their readback.
 //!
-//! Formats (DESIGN.md, "Determinism contract"): every intermediate map is `Rgba32Float`, which
+//! Formats (docs/design.md, "Determinism contract"): every intermediate map is `Rgba32Float`, which
 //! lavapipe filters with full-float weights, as the CPU's sampler does, but for the frame's
 //! colour buffers under frame format `rgba16float` ([`HALF_FORMAT`], read back exactly as
 //! f32; `ocean_core::frame_format` says how a value is stored); the shadow map is

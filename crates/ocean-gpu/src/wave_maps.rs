@@ -19,7 +19,7 @@
 //!   `Queue::write_texture`: what both back ends use where the plan says
 //!   `WavesKernel::Synthesis` (a side that is not a power of two), and the fallback where the
 //!   GPU FFT's buffers exceed the device's limits. Chosen on purpose elsewhere, its maps are
-//!   ocean-core's, not the oracle's mirror's (within DESIGN.md's FFT tolerance, 1e-5).
+//!   ocean-core's, not the oracle's mirror's (within docs/design.md's FFT tolerance, 1e-5).
 
 use ocean_core::frame::{bump_texels, displacement_slope_texels, displacement_texels};
 use ocean_core::plan::WavesKernel;

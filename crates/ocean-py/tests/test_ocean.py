@@ -1,6 +1,6 @@
 """The Python bindings against independent numpy formulas, published values and the Rust CLI.
 
-Run after building the module (see the README's "Python" section):
+Run after building the module (see docs/commands.md, "Python"):
     pytest crates/ocean-py/tests
 The CLI is `target/release/ocean` (or $OCEAN_BIN); tests that need it fail when it is missing.
 """
@@ -139,7 +139,7 @@ seed = 5
 
 def test_the_height_query_is_the_map_at_its_texels():
     # Without choppiness a texel's sample is its own point: the query (f64, every mode)
-    # equals the f32 map there to the f32 FFT's rounding (DESIGN.md: FFT vs direct sum,
+    # equals the f32 map there to the f32 FFT's rounding (docs/design.md: FFT vs direct sum,
     # rel 1e-5 in f32, here of the map's range).
     m = ocean.heightfield(SMALL, 3.0)["height"].astype(np.float64)
     i = np.array([0, 5, 17, 40, 63])
@@ -198,7 +198,7 @@ def test_spectrum_integrates_to_the_published_hs_and_spreading_to_one():
 
 def test_the_amplitudes_carry_the_maps_variance():
     # Parseval: at t = 0 the height is Σ h̃ e^{ik·x} with h̃(k) = h̃₀(k) + conj(h̃₀(−k)), so the
-    # map's mean square is Σ |h̃|² (rel 1e-5: DESIGN.md's f32 FFT tolerance).
+    # map's mean square is Σ |h̃|² (rel 1e-5: docs/design.md's f32 FFT tolerance).
     h0 = ocean.amplitudes(SMALL)
     n = h0.shape[0]
     assert h0.shape == (n, n) and h0.dtype == np.complex128

@@ -1,4 +1,4 @@
-//! The comparators of DESIGN.md's tolerance table, each with a negative control in the tests:
+//! The comparators of docs/design.md's tolerance table, each with a negative control in the tests:
 //! - [`compare_float`] for float buffers (wave maps, Fresnel tables, shadow, reflection and
 //!   refraction maps, the HDR frame): a value passes when |gpu − cpu| ≤ max([`FLOAT_ABS`],
 //!   [`FLOAT_REL`]·|cpu|), computed in f64; reports max abs/rel error and where. A buffer in
@@ -13,10 +13,10 @@ use ocean_core::frame_format::FrameFormat;
 use ocean_gpu::AdapterReport;
 use serde_json::{Value, json};
 
-/// Relative limit for CPU vs GPU float buffers (DESIGN.md: "lavapipe matches CPU f32 to a
+/// Relative limit for CPU vs GPU float buffers (docs/design.md: "lavapipe matches CPU f32 to a
 /// few ULP (measured)").
 pub const FLOAT_REL: f64 = 1e-5;
-/// Absolute limit for CPU vs GPU float buffers (DESIGN.md, same row), for values near 0.
+/// Absolute limit for CPU vs GPU float buffers (docs/design.md, same row), for values near 0.
 pub const FLOAT_ABS: f64 = 1e-6;
 
 /// Limits of the final 8-bit image.
@@ -33,21 +33,21 @@ pub struct ImageLimits {
 }
 
 impl ImageLimits {
-    /// DESIGN.md, "CPU vs GPU final image (lavapipe)": same raster rules, transcendental ULP
+    /// docs/design.md, "CPU vs GPU final image (lavapipe)": same raster rules, transcendental ULP
     /// differences.
     pub const SOFTWARE: Self = Self {
         min_within_1: Some(0.995),
         max_flip_mean: 0.005,
         max_flip_p99: None,
-        origin: "DESIGN.md tolerance table, CPU vs GPU final image (lavapipe)",
+        origin: "docs/design.md tolerance table, CPU vs GPU final image (lavapipe)",
     };
-    /// DESIGN.md, "CPU vs GPU final image (hardware GPU)": real GPUs fuse and approximate
+    /// docs/design.md, "CPU vs GPU final image (hardware GPU)": real GPUs fuse and approximate
     /// more.
     pub const HARDWARE: Self = Self {
         min_within_1: None,
         max_flip_mean: 0.02,
         max_flip_p99: Some(0.1),
-        origin: "DESIGN.md tolerance table, CPU vs GPU final image (hardware GPU)",
+        origin: "docs/design.md tolerance table, CPU vs GPU final image (hardware GPU)",
     };
 
     /// The row for an adapter: the software row for a CPU rasterizer (lavapipe), else the
@@ -169,7 +169,7 @@ impl FloatStats {
             "format": self.format.name(),
             "limit": {"rel": FLOAT_REL, "abs": FLOAT_ABS,
                       "half_steps": if self.format == FrameFormat::Rgba16Float { 1 } else { 0 },
-                      "origin": "DESIGN.md tolerance table, CPU vs GPU float buffers; one \
+                      "origin": "docs/design.md tolerance table, CPU vs GPU float buffers; one \
                                  binary16 step on rgba16float buffers (ocean_core::frame_format)"},
         })
     }

@@ -140,7 +140,7 @@ pub fn check_plan(
     let gpu = renderer.run(scene, &plan)?;
     let mut maps = Vec::new();
     // Pass `bloom` on the same input as the GPU's: the CPU mirror run on the GPU's HDR frame
-    // (DESIGN.md's float tolerance is for the same inputs). Its bright pass x − threshold
+    // (docs/design.md's float tolerance is for the same inputs). Its bright pass x − threshold
     // cancels digits, so the HDR frames' own allowed difference (rel 1e-5) can become a
     // larger relative one in the pyramid; fed the same frame, the pass's arithmetic is what
     // is compared. The picture still compares the two frames end to end.

@@ -1,6 +1,6 @@
 //! How `ocean` checks itself, shared by the tests, `ocean compare` and `ocean report`:
 //!
-//! - [`compare`]: the comparators of DESIGN.md's tolerance table (float buffers, 8-bit
+//! - [`compare`]: the comparators of docs/design.md's tolerance table (float buffers, 8-bit
 //!   pictures with FLIP), each with its limits.
 //! - [`cross_check`]: one scene and plan through the CPU oracle and the wgpu path, every map
 //!   compared and held to the plan's size; artefacts for a failure.

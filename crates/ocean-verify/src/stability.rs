@@ -10,7 +10,7 @@
 //!   of F for the rounding of its own ~15 f32 operations: where F is steep (the critical angle,
 //!   where dF/dc is infinite) a forward bound would have to grow with the slope; this one does
 //!   on its own.
-//! - **Synthesis** (f32 maps against f64 maps of the same modes): DESIGN.md's relative 1e-5
+//! - **Synthesis** (f32 maps against f64 maps of the same modes): docs/design.md's relative 1e-5
 //!   for f32 synthesis, as RMS over the field relative to its RMS.
 //! - **Cameras** (a flat sea under a uniform sky, F read back per pixel against the f64 table
 //!   lookup of the pixel's own ray): the spread of the table's F over the rays the rasterizer's
@@ -185,7 +185,7 @@ fn ocean(text: &str) -> Result<Scene, Error> {
     })
 }
 
-/// Relative RMS bound of f32 synthesis (DESIGN.md's tolerance table).
+/// Relative RMS bound of f32 synthesis (docs/design.md's tolerance table).
 const SYNTHESIS_REL: f64 = 1e-5;
 
 fn synthesis_row(group: &'static str, name: &str, scene: &Scene) -> Result<Case, Error> {

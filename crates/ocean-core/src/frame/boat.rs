@@ -41,7 +41,7 @@ use crate::scene::{Object, Scene, Shape};
 /// boat's horizontal place and heading, which no force restores and which so depend on the
 /// whole run (7 mm to 4 cm, up to 1e-3 rad). At 128² under shading
 /// `chiu` (`coastal_boat`) the run costs 0.54 s a frame on one core, 0.38 s on two (5 height
-/// queries a sub-step at ~1 ms each; `README.md`, "A boat in a scene").
+/// queries a sub-step at ~1 ms each; docs/coastal.md, "A boat in a scene").
 pub const SETTLE_STEPS: usize = 128;
 
 /// The bow's share of the hull's length: the last 30 % narrows from the full beam to a

@@ -1,4 +1,4 @@
-//! One frame for both back ends (DESIGN.md, "One frame, two back ends"): [`FrameInputs`]
+//! One frame for both back ends (docs/design.md, "One frame, two back ends"): [`FrameInputs`]
 //! computes once, from the scene, the plan and the [`FrameState`], everything a pass needs
 //! (camera, mesh, uniform blocks, time); [`run_frame`] walks the plan's passes in order and
 //! hands each to a [`Backend`], which knows how to execute one pass and nothing else. A back

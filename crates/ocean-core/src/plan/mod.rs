@@ -1,5 +1,5 @@
 //! The frame plan: which passes a scene needs, in order, and why each is in or out. Both back
-//! ends run a [`FramePlan`] and never decide on their own (DESIGN.md, "Data flow").
+//! ends run a [`FramePlan`] and never decide on their own (docs/design.md, "Data flow").
 //!
 //! Every rule leaves out a pass whose contribution to the picture is exactly zero, so the
 //! pruned frame is bit-identical to the full one:
@@ -59,7 +59,7 @@ pub use technique::{
     known_systems, technique, waves_per_vertex,
 };
 
-/// A pass of the frame, named as in DESIGN.md (the name of its stage, or of the map an
+/// A pass of the frame, named as in docs/design.md (the name of its stage, or of the map an
 /// object pass fills, or of the work it stands for: `cycle`, `far_patch`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
 #[serde(rename_all = "snake_case")]

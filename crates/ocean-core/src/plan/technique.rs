@@ -1,4 +1,4 @@
-//! The technique axis (DESIGN.md, "Systems and techniques"): a **stage** is one step of the
+//! The technique axis (docs/design.md, "Systems and techniques"): a **stage** is one step of the
 //! frame, a **technique** one way to do it, a **system** one seed paper's choice of technique
 //! per stage. This file is the one table of both; `ocean plan` prints it, the scene's
 //! `system` and `[techniques]` keys choose from it, and the planner turns the choice into
@@ -12,7 +12,7 @@ use std::fmt;
 use crate::frame_format::FrameFormat;
 use serde::{Deserialize, Serialize};
 
-/// A stage of the technique table, in DESIGN.md's order.
+/// A stage of the technique table, in docs/design.md's order.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Stage {
@@ -96,7 +96,7 @@ const fn t(
     TechniqueInfo { stage, name, source, available }
 }
 
-/// Every technique of every stage (DESIGN.md's table).
+/// Every technique of every stage (docs/design.md's table).
 pub const TECHNIQUES: &[TechniqueInfo] = &[
     t(Stage::Waves, "fft", "Tessendorf spectrum → displacement + bump maps (seed 000)", true),
     t(Stage::Waves, "gerstner", "sum of Gerstner waves, per vertex (seed 002)", true),
@@ -143,7 +143,7 @@ pub const TECHNIQUES: &[TechniqueInfo] = &[
         "bright pass + blur pyramid added before the tonemap (seed 002, Jimenez 2014)",
         true,
     ),
-    // DESIGN.md's third post technique, `vignette`, is the `[post] vignette` key of the final
+    // docs/design.md's third post technique, `vignette`, is the `[post] vignette` key of the final
     // pass instead: a per-pixel multiply needs no pass of its own, and as a key it combines
     // with either technique.
 ];
@@ -189,7 +189,7 @@ pub struct SystemInfo {
     pub frame_format: crate::frame_format::FrameFormat,
 }
 
-/// The systems, one per seed paper (DESIGN.md). A stage a paper does not name keeps the
+/// The systems, one per seed paper (docs/design.md). A stage a paper does not name keeps the
 /// neutral technique (`none`, `tonemap`).
 pub const SYSTEMS: &[SystemInfo] = &[
     SystemInfo {

@@ -1,5 +1,5 @@
 //! Scene files: TOML, every key defaulted, unknown keys and bad values reported with the key,
-//! the file, the line and the column (DESIGN.md, "Scene files").
+//! the file, the line and the column (docs/design.md, "Scene files").
 //!
 //! Parsing happens in two steps. serde reads the text into [`Scene`] (unknown keys and wrong
 //! types are caught here, and the `toml` crate gives the byte span); then [`Scene::validate`]
@@ -172,7 +172,7 @@ impl TechniqueOverrides {
     }
 }
 
-/// Default side of the 2D Fresnel textures (README: 256² is within 2e-3 of eq. 2 up to 76°
+/// Default side of the 2D Fresnel textures (docs/design.md, "Tolerances": 256² is within 2e-3 of eq. 2 up to 76°
 /// from the normal).
 pub const DEFAULT_FRESNEL_TABLE_SIZE: u32 = 256;
 
@@ -625,7 +625,7 @@ pub enum TerrainKind {
     Island,
 }
 
-/// The `[terrain]` table: the sea floor (DESIGN.md; [`crate::terrain`] has its geometry).
+/// The `[terrain]` table: the sea floor (docs/design.md; [`crate::terrain`] has its geometry).
 /// Drawn as a square of side `extent_m` about `center` in the main view, the refraction map
 /// and the reflection map; its depth under each point of the sea is eq. 8's y (shading
 /// `chiu`), the plane's (and the relief's edge) also beyond the drawn square.

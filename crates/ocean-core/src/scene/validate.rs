@@ -4,7 +4,7 @@
 //!
 //! Two layers:
 //! - [`LIMITS`], one range per numeric key (vectors and colours per component), each with the
-//!   reason for its bounds. The README's table, the property test's extreme scenes and the
+//!   reason for its bounds. docs/scenes.md's table, the property test's extreme scenes and the
 //!   fuzzer read the same table.
 //! - Cross-key checks: the quantities the frame derives from several keys (the bump map's
 //!   band, the time the wave phase holds, the view, the spectrum, the water mesh) are built

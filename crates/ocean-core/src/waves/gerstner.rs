@@ -3,7 +3,7 @@
 //!
 //! Each wave has amplitude A, wavenumber k = 2π/λ, unit direction D in (x, z), steepness
 //! s ∈ [0, 1] and phase φ; ω = ω(k) is the scene's dispersion (deep, finite depth, looping).
-//! With θ = k D·(x, z) − ω t + φ (DESIGN.md):
+//! With θ = k D·(x, z) − ω t + φ (docs/design.md):
 //!
 //! ```text
 //! height h = Σ A sin θ            horizontal D(x) = Σ (s/k) D cos θ
@@ -42,7 +42,7 @@ use crate::rng::mix64;
 /// The most waves a sea may hold (explicit or drawn): the per-vertex sum's cost.
 pub const MAX_GERSTNER_WAVES: usize = 64;
 
-/// A `[[gerstner.waves]]` entry: one explicit wave (DESIGN.md).
+/// A `[[gerstner.waves]]` entry: one explicit wave (docs/design.md).
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct GerstnerWave {

@@ -113,7 +113,7 @@ pub fn signed_index(b: usize, n: usize) -> Option<i64> {
 /// The random amplitudes h0(k) of one map, with each mode's wave vector and frequency.
 ///
 /// Amplitudes (the normalisation is chosen so that the expected variance of the field is the
-/// integral of the spectrum over the band, `DESIGN.md`, "Spectra"):
+/// integral of the spectrum over the band, `docs/design.md`, "Spectra"):
 ///
 /// ```text
 /// h0(k) = (ξ_r + i ξ_i) · ½ · sqrt(F(k) Δk² w),   Δk = 2π/L,   E|h0(k)|² = F(k) Δk² w / 2

@@ -99,7 +99,7 @@ pub struct WaveMaps<T> {
 }
 
 impl<T: MapFloat> WaveMaps<T> {
-    /// The channel names of `ocean heightfield` (DESIGN.md), in the order of [`Self::fields`].
+    /// The channel names of `ocean heightfield` (docs/design.md), in the order of [`Self::fields`].
     pub const FIELD_NAMES: [&'static str; 6] =
         ["height", "disp_x", "disp_z", "slope_x", "slope_z", "jacobian"];
 

@@ -5,7 +5,7 @@
 //! no `mul_add`, no fused or reordered operations. `a * b + c` rounds the product and then the
 //! sum; `dot(a, b)` is `(a.x * b.x + a.y * b.y) + a.z * b.z`, left to right. A GPU may
 //! evaluate a `dot` or a matrix product in another order or with fused multiply-adds; those
-//! differences are what the CPU ↔ GPU tolerances of `DESIGN.md` cover.
+//! differences are what the CPU ↔ GPU tolerances of `docs/design.md` cover.
 //!
 //! At the mirrors' boundaries (ocean-core's uniforms and vertex formats, the sampler's
 //! textures, the rasterizer's positions and outputs) vectors are `[f32; N]`; `From`/`Into`
