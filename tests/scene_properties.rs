@@ -146,5 +146,9 @@ fn the_scene_reference_lists_every_limit_as_validation_applies_it() {
         .map(readme_row)
         .filter(|row| !readme.contains(row.as_str()))
         .collect();
-    assert!(missing.is_empty(), "docs/scenes.md rows missing or out of date:\n{}", missing.join("\n"));
+    assert!(
+        missing.is_empty(),
+        "docs/scenes.md rows missing or out of date:\n{}",
+        missing.join("\n")
+    );
 }
