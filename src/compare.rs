@@ -120,6 +120,27 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// The dump's 8-bit picture (`DIR/ldr.png`) as RGBA, `None` where the dump has none.
+///
+/// # Errors
+/// A file that is not a PNG within the decode budget, or not `w`×`h`.
+fn dumped_picture(dir: &std::path::Path, w: u32, h: u32) -> anyhow::Result<Option<Vec<u8>>> {
+    let path = dir.join("ldr.png");
+    if std::fs::symlink_metadata(&path).is_err() {
+        return Ok(None);
+    }
+    let image = ocean_core::input::decode_png(&path).map_err(|e| anyhow::anyhow!("{e}"))?;
+    if (image.width(), image.height()) != (w, h) {
+        bail!(
+            "{} is {}x{}, the oracle's picture {w}x{h}",
+            path.display(),
+            image.width(),
+            image.height()
+        );
+    }
+    Ok(Some(image.to_rgba8().into_raw()))
+}
+
 /// `ocean compare --against DIR`: the oracle's frame against a dump folder.
 fn against(args: &Args, dir: &std::path::Path) -> anyhow::Result<()> {
     use ocean::output::{encode_png, write_atomic};
@@ -229,6 +250,42 @@ fn against(args: &Args, dir: &std::path::Path) -> anyhow::Result<()> {
             failures.push(stats.line());
         }
         summary.push(stats.to_json());
+    }
+    // The picture: the dump's `ldr.png` against the oracle's, by the picture row of the
+    // adapter that made it (the manifest's `software`; the hardware row when it does not say).
+    if let Some(ours) = r.ldr.as_deref() {
+        let software = manifest.adapter.as_ref().and_then(|a| a["software"].as_bool());
+        let limits = if software == Some(true) {
+            ocean_verify::compare::ImageLimits::SOFTWARE
+        } else {
+            ocean_verify::compare::ImageLimits::HARDWARE
+        };
+        let (w, h) = (scene.camera.width, scene.camera.height);
+        match dumped_picture(dir, w, h) {
+            Ok(None) => {
+                println!("  [{:<14}] {:<20} not in dump", "tonemap", "ldr");
+                not_in_dump.push("ldr");
+            }
+            Ok(Some(theirs)) => {
+                let stats = ocean_verify::compare::compare_image(ours, &theirs, w, h);
+                println!("  [{:<14}] {} ({})", "tonemap", stats.line(&limits), limits.origin);
+                let failed = stats.failures(&limits);
+                if !failed.is_empty() {
+                    failures.push(format!("ldr: {}", failed.join("; ")));
+                }
+                let mut json = stats.to_json(&limits);
+                json["name"] = "ldr".into();
+                json["limits"] = limits.origin.into();
+                summary.push(json);
+            }
+            Err(e) => {
+                println!("  [{:<14}] {:<20} MISSING {e:#}", "tonemap", "ldr");
+                failures.push(format!("ldr: {e:#}"));
+                summary.push(
+                    serde_json::json!({"name": "ldr", "passed": false, "error": format!("{e:#}")}),
+                );
+            }
+        }
     }
     if args.require_all && !not_in_dump.is_empty() {
         failures.push(format!("not in dump (--require-all): {}", not_in_dump.join(", ")));

@@ -162,6 +162,62 @@ fn compare_against_passes_on_the_oracles_dump_and_fails_on_a_changed_one() {
 }
 
 #[test]
+fn the_dumps_picture_is_compared_with_the_oracles() {
+    let dir = dump("default", "against-ldr");
+    let out = dir.parent().unwrap().join("cmp");
+    let o = against(&dir, &out);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{text}\n{}", String::from_utf8_lossy(&o.stderr));
+    // The CPU oracle's dump says `software`: the lavapipe row (99.5 % within 1/255).
+    assert!(
+        text.contains("ldr") && text.contains("100.000 %") && text.contains("(lavapipe)"),
+        "{text}"
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("against.json")).unwrap()).unwrap();
+    let ldr = json["resources"].as_array().unwrap().iter().find(|r| r["name"] == "ldr").unwrap();
+    assert_eq!(ldr["passed"], true, "{ldr}");
+
+    // A block of 20×10 pixels 40 levels darker (8.7 % of the picture) fails, naming `ldr`.
+    let path = dir.join("ldr.png");
+    let mut rgba = image::open(&path).unwrap().to_rgba8();
+    let (w, h) = rgba.dimensions();
+    for y in 10..20 {
+        for x in 20..40 {
+            let p = rgba.get_pixel_mut(x, y);
+            for c in 0..3 {
+                p[c] = p[c].saturating_sub(40);
+            }
+        }
+    }
+    std::fs::write(&path, ocean::output::encode_png(rgba.into_raw(), w, h).unwrap()).unwrap();
+    let o = against(&dir, &out);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "a darkened picture passed");
+    assert!(err.contains("ldr") && err.contains("within 1/255"), "{err}");
+
+    // A picture of the wrong size fails; none at all is `not in dump`, a failure only with
+    // --require-all.
+    std::fs::write(&path, ocean::output::encode_png(vec![0; 4 * 8 * 8], 8, 8).unwrap()).unwrap();
+    let o = against(&dir, &out);
+    assert!(!o.status.success() && String::from_utf8_lossy(&o.stderr).contains("8x8"));
+    std::fs::remove_file(&path).unwrap();
+    let o = against(&dir, &out);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success() && text.contains("not in dump"), "{text}");
+    let strict = ocean(&[
+        "compare",
+        "--against",
+        &dir.to_string_lossy(),
+        "--out-dir",
+        &out.to_string_lossy(),
+        "--require-all",
+    ]);
+    assert!(!strict.status.success());
+    assert!(String::from_utf8_lossy(&strict.stderr).contains("ldr"));
+}
+
+#[test]
 fn the_manifest_names_its_adapter_and_a_resource_left_out_is_not_in_dump() {
     let dir = dump("default", "provenance");
     let out = dir.parent().unwrap().join("cmp");
