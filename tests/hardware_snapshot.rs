@@ -1,0 +1,185 @@
+//! Real hardware in the tests: the NVIDIA H200's frames of 19 scenes (`reference/hardware/h200`,
+//! made with the shaders of 502430e; see its README) against the CPU oracle of today.
+//!
+//! Each scene is one test. The snapshot is of one commit's shaders, so a scene counts only while
+//! the oracle still renders that commit's frame of it: `oracle.json` holds a 64-bit FNV-1a digest
+//! of the bits of the oracle's HDR frame as it was then, and a scene whose frame has changed since
+//! is reported **ignored, stale**, with the reason — never as passing. A scene that is not stale
+//! must pass the hardware picture row of docs/design.md's tolerance table (the dump's `ldr.png`
+//! against the oracle's: FLIP mean ≤ 0.02, P99 ≤ 0.1); its HDR frame's relative error is printed
+//! (p50, p99), for the per-texel envelope that is to replace the picture row.
+//!
+//! Negative controls: a planted change to a picture (a tenth of it 25 % darker) fails the row,
+//! and one bit flipped in a frame changes its digest. `OCEAN_HARDWARE_DIGESTS=1` prints the digests
+//! of this build's oracle (to refresh `oracle.json` after re-rendering the snapshot on a GPU).
+
+#![allow(clippy::unwrap_used, reason = "a panic in a test is its failure report")]
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::Arc;
+
+use libtest_mimic::{Arguments, Failed, Trial};
+use ocean_core::plan::OutputKind;
+use ocean_verify::compare::{ImageLimits, compare_image};
+
+fn snapshot_dir() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("reference/hardware/h200")
+}
+
+/// 64-bit FNV-1a over the bits of a frame's texels.
+fn digest(texels: &[[f32; 4]]) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for t in texels {
+        for v in t {
+            for b in v.to_bits().to_le_bytes() {
+                h ^= u64::from(b);
+                h = h.wrapping_mul(0x0000_0100_0000_01b3);
+            }
+        }
+    }
+    h
+}
+
+/// The oracle's frame of a dump's scene, as `ocean compare --against` renders it.
+struct Oracle {
+    width: u32,
+    height: u32,
+    hdr: Vec<[f32; 4]>,
+    ldr: Vec<u8>,
+}
+
+fn oracle(dir: &Path) -> Oracle {
+    let manifest = ocean::dump::read_manifest(dir).unwrap().unwrap();
+    let system = ocean::scene_arg::SystemArg { system: manifest.system.clone() };
+    let mut scene = match manifest.scene_toml.as_deref() {
+        Some(text) => ocean::scene_arg::scene_from_text(text, "manifest.json", &system).unwrap(),
+        None => ocean::scene_arg::load_scene(None, &system).unwrap(),
+    };
+    let (width, height) = manifest.size.unwrap();
+    (scene.camera.width, scene.camera.height) = (width, height);
+    scene.ocean.time_s = manifest.time_s.unwrap();
+    let r = ocean_cpu::render_scene(&scene, OutputKind::Ldr, &mut |_| {}).unwrap();
+    Oracle { width, height, hdr: r.buffers.hdr.color.clone(), ldr: r.ldr.unwrap() }
+}
+
+fn picture(path: &Path) -> Vec<u8> {
+    image::open(path).unwrap().to_rgba8().into_raw()
+}
+
+/// The hardware picture row: Err with the figures past it.
+fn picture_row(ours: &[u8], theirs: &[u8], w: u32, h: u32) -> Result<String, String> {
+    let limits = ImageLimits::HARDWARE;
+    let stats = compare_image(ours, theirs, w, h);
+    let line = stats.line(&limits);
+    if stats.failures(&limits).is_empty() { Ok(line) } else { Err(line) }
+}
+
+/// p50 and p99 of |gpu − cpu| / max(|cpu|, 1e-3) over the HDR frame's RGB.
+fn relative_error(ours: &[[f32; 4]], theirs: &[[f32; 4]]) -> (f64, f64) {
+    let mut e: Vec<f64> = ours
+        .iter()
+        .zip(theirs)
+        .flat_map(|(a, b)| {
+            (0..3).map(move |c| {
+                let (x, y) = (f64::from(a[c]), f64::from(b[c]));
+                (y - x).abs() / x.abs().max(1e-3)
+            })
+        })
+        .collect();
+    e.sort_by(f64::total_cmp);
+    let q = |f: f64| e[((e.len() - 1) as f64 * f) as usize];
+    (q(0.5), q(0.99))
+}
+
+fn check_scene(dir: &Path, o: &Oracle) -> Result<(), Failed> {
+    let theirs = picture(&dir.join("ldr.png"));
+    let row = picture_row(&o.ldr, &theirs, o.width, o.height);
+    let ((w, h), hdr) = ocean::dump::read(dir, ocean_core::plan::ResourceId::Hdr).unwrap();
+    assert_eq!((w, h), (o.width, o.height));
+    let (p50, p99) = relative_error(&o.hdr, &hdr);
+    let name = dir.file_name().unwrap().to_string_lossy();
+    match row {
+        Ok(line) => {
+            println!("{name}: {line}; HDR relative error p50 {p50:.1e}, p99 {p99:.1e}");
+            Ok(())
+        }
+        Err(line) => Err(format!("{name}: the H200's picture is off the oracle's: {line}").into()),
+    }
+}
+
+/// The controls, on the oracle's own frame of a scene: the picture row passes it against
+/// itself and fails it with a tenth of it 25 % darker; one bit flipped in one texel of the HDR
+/// frame changes the digest (so a changed frame is stale).
+fn controls(o: &Oracle) -> Result<(), Failed> {
+    picture_row(&o.ldr, &o.ldr, o.width, o.height).map_err(|l| format!("itself failed: {l}"))?;
+    let mut dark = o.ldr.clone();
+    let w = o.width as usize;
+    for y in 0..o.height as usize / 10 {
+        for x in 0..w {
+            for c in 0..3 {
+                let v = &mut dark[4 * (y * w + x) + c];
+                *v = (f32::from(*v) * 0.75) as u8;
+            }
+        }
+    }
+    if picture_row(&o.ldr, &dark, o.width, o.height).is_ok() {
+        return Err("a tenth of the picture 25 % darker passed the picture row".into());
+    }
+    let mut hdr = o.hdr.clone();
+    let mid = hdr.len() / 2;
+    hdr[mid][1] = f32::from_bits(hdr[mid][1].to_bits() ^ 1);
+    if digest(&hdr) == digest(&o.hdr) {
+        return Err("one bit flipped left the digest unchanged".into());
+    }
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    let args = Arguments::from_args();
+    let root = snapshot_dir();
+    let digests: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(root.join("oracle.json")).unwrap()).unwrap();
+    let mut scenes: Vec<PathBuf> = std::fs::read_dir(&root)
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.join("manifest.json").is_file())
+        .collect();
+    scenes.sort();
+    assert_eq!(scenes.len(), 19, "the snapshot holds 19 scenes");
+    let print = std::env::var_os("OCEAN_HARDWARE_DIGESTS").is_some_and(|v| v == "1");
+    let mut trials = Vec::new();
+    let mut first = None;
+    let mut out = serde_json::Map::new();
+    for dir in scenes {
+        let name = dir.file_name().unwrap().to_string_lossy().into_owned();
+        let o = Arc::new(oracle(&dir));
+        let now = digest(&o.hdr);
+        first.get_or_insert_with(|| o.clone());
+        out.insert(name.clone(), format!("{now:016x}").into());
+        let stored =
+            digests["hdr_fnv64"][&name].as_str().map(|s| u64::from_str_radix(s, 16).unwrap());
+        let Some(stored) = stored else {
+            // A scene without a digest is a failure, not a pass.
+            trials.push(Trial::test(name.clone(), move || {
+                Err(format!("{name}: no digest in oracle.json").into())
+            }));
+            continue;
+        };
+        if now == stored {
+            trials.push(Trial::test(name, move || check_scene(&dir, &o)));
+        } else {
+            println!(
+                "{name}: stale — the oracle's frame has changed since the snapshot's commit (digest {now:016x}, snapshot {stored:016x}); re-render it on a GPU to test it again"
+            );
+            trials.push(Trial::test(format!("{name} (stale)"), || Ok(())).with_ignored_flag(true));
+        }
+    }
+    if print {
+        println!("{}", serde_json::to_string_pretty(&out).unwrap());
+    }
+    let first = first.unwrap();
+    trials.push(Trial::test("controls", move || controls(&first)));
+    libtest_mimic::run(&args, trials).exit_code()
+}
