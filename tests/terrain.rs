@@ -481,4 +481,14 @@ fn the_kept_floor_grid_gives_the_directly_evaluated_vertices() {
     check(&t, DVec3::new(-30.0, 2.5, 10.0), 0.6);
     t.prepare(); // a new relief (same values, new identity)
     check(&t, DVec3::new(5.0, 1.0, -5.0), 0.6);
+    // The camera-relative list is kept per floor and eye: the passes of a frame (and a still
+    // camera's frames) get the very same list; another eye or another floor gets another.
+    let eye = DVec3::new(5.0, 1.0, -5.0);
+    let a = terrain_triangles(&t, eye, 0.6);
+    assert!(std::sync::Arc::ptr_eq(&a, &terrain_triangles(&t, eye, 0.6)), "not kept");
+    let moved = terrain_triangles(&t, eye + DVec3::X, 0.6);
+    assert!(!std::sync::Arc::ptr_eq(&a, &moved), "another eye got the old list");
+    assert_eq!(moved[0][0].position[0], a[0][0].position[0] - 1.0, "not shifted by the eye");
+    t.color = [0.5, 0.5, 0.5];
+    assert!(!std::sync::Arc::ptr_eq(&a, &terrain_triangles(&t, eye, 0.6)), "another floor");
 }

@@ -623,8 +623,23 @@ fn push_object_triangles(
 }
 
 /// The triangles an object pass of the plan draws: its objects' (boats at `poses`), then the
-/// sea floor's when the pass draws it.
+/// sea floor's when the pass draws it ([`pass_object_triangles`] then
+/// [`pass_floor_triangles`], in one list).
 pub fn pass_triangles(
+    scene: &Scene,
+    poses: &ObjectPoses,
+    pass: &crate::plan::PlannedPass,
+    eye: DVec3,
+) -> Vec<[ObjectVertex; 3]> {
+    let mut tris = pass_object_triangles(scene, poses, pass, eye);
+    if let Some(floor) = pass_floor_triangles(scene, pass, eye) {
+        tris.extend_from_slice(&floor);
+    }
+    tris
+}
+
+/// The triangles of an object pass's objects (boats at `poses`), camera-relative.
+pub fn pass_object_triangles(
     scene: &Scene,
     poses: &ObjectPoses,
     pass: &crate::plan::PlannedPass,
@@ -635,10 +650,20 @@ pub fn pass_triangles(
         let o = &scene.objects[i];
         push_object_triangles(&mut tris, o, poses.of(i, o), eye);
     }
-    if let (true, Some(t)) = (pass.terrain, &scene.terrain) {
-        tris.extend(terrain_triangles(t, eye, wet_top_m(scene)));
-    }
     tris
+}
+
+/// The sea floor's triangles when an object pass draws it, camera-relative: one kept list per
+/// floor and eye ([`terrain_triangles`]), shared by the frame's passes.
+pub fn pass_floor_triangles(
+    scene: &Scene,
+    pass: &crate::plan::PlannedPass,
+    eye: DVec3,
+) -> Option<std::sync::Arc<Vec<[ObjectVertex; 3]>>> {
+    match (pass.terrain, &scene.terrain) {
+        (true, Some(t)) => Some(terrain_triangles(t, eye, wet_top_m(scene))),
+        _ => None,
+    }
 }
 
 /// The representative wavelengths (m) of the displacement's and the bump map's waves that

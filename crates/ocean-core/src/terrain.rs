@@ -399,9 +399,26 @@ fn make_floor_grid(t: &Terrain, wet_top_m: f64) -> FloorGrid {
 /// Triangles of the sea floor's drawn square, camera-relative, counter-clockwise seen from
 /// above; normals from the floor's central differences (the plane's own for a plane). Sand
 /// below `wet_top_m` (> 0) is wet: [`wet_sand_color`]. The world-space grid is made once per
-/// floor (`floor_grid`); only the shift by `eye` is done per call.
-pub fn terrain_triangles(t: &Terrain, eye: DVec3, wet_top_m: f64) -> Vec<[ObjectVertex; 3]> {
+/// floor (`floor_grid`), and the camera-relative triangles once per floor and eye and kept:
+/// the passes of a frame that draw the floor (up to four) share one list, and so do the
+/// frames of a still camera; a caller may tell the same list by its pointer
+/// ([`Arc::ptr_eq`]).
+pub fn terrain_triangles(t: &Terrain, eye: DVec3, wet_top_m: f64) -> Arc<Vec<[ObjectVertex; 3]>> {
+    type Key = (usize, [u64; 3]);
+    static KEPT: crate::kept::Kept<Key, (Arc<FloorGrid>, Arc<Vec<[ObjectVertex; 3]>>)> =
+        crate::kept::Kept::new();
     let grid = floor_grid(t, wet_top_m);
+    // The grid's address names it while the kept entry holds it (so it cannot be reused).
+    let key = (Arc::as_ptr(&grid) as usize, eye.to_array().map(f64::to_bits));
+    KEPT.get(key, || {
+        let tris = Arc::new(make_terrain_triangles(&grid, t, eye));
+        (grid.clone(), tris)
+    })
+    .1
+}
+
+/// [`terrain_triangles`]' list, made.
+fn make_terrain_triangles(grid: &FloorGrid, t: &Terrain, eye: DVec3) -> Vec<[ObjectVertex; 3]> {
     let (qx, qz) = grid.quads;
     let vertex = |i: u32, j: u32| {
         let (p, normal, color) = grid.vertices[(j * (qx + 1) + i) as usize];

@@ -26,7 +26,7 @@ use std::time::{Duration, Instant};
 
 use ocean_core::frame::{
     FrameUniforms, FresnelTableUniforms, ObjectVertex, bump_texels, displacement_slope_texels,
-    displacement_texels, pass_triangles,
+    displacement_texels, pass_floor_triangles, pass_object_triangles,
 };
 use ocean_core::plan::{
     Backend, FoamWork, Format, FrameInputs, FramePlan, FrameState, Pass, PlannedPass, ResourceId,
@@ -41,7 +41,9 @@ use crate::common::{Load, begin_render_pass};
 use crate::device::{AdapterReport, Error, Gpu};
 use crate::foam::{FoamStage, GpuFoam};
 use crate::fresnel_table::FresnelTableStage;
-use crate::objects::{ObjectsEntry, ObjectsStage, VertexChunk, vertex_chunks};
+use crate::objects::{
+    ObjectsEntry, ObjectsStage, VertexChunk, labelled_vertex_chunks, vertex_chunks,
+};
 use crate::pool::FramePool;
 use crate::shadow::ShadowStage;
 use crate::sky::SkyStage;
@@ -164,12 +166,18 @@ pub struct Renderer {
     timers: TimerPool,
     /// The Fresnel tables as last computed, with the uniforms they were computed from.
     fresnel: KeptTables,
+    /// The sea floor's triangles as last uploaded, and the list they were uploaded from.
+    floor_vertices: KeptFloor,
     /// The far field's Fresnel filter table as uploaded, and the table it was made from.
     filter: Option<(Arc<ocean_core::far_field::FresnelFilterTable>, GpuTexture)>,
 }
 
 /// Each Fresnel table's texture and the uniforms it was computed from.
 type KeptTables = Vec<(ResourceId, FresnelTableUniforms, GpuTexture)>;
+
+/// The sea floor's vertex buffers and the kept triangle list they hold (ocean-core's
+/// `terrain_triangles`: one list per floor and eye, told apart by its pointer).
+type KeptFloor = Option<(Arc<Vec<[ObjectVertex; 3]>>, Vec<VertexChunk>)>;
 
 fn wgpu_format(f: Format) -> wgpu::TextureFormat {
     match f {
@@ -194,6 +202,7 @@ pub struct GpuBackend<'r> {
     floor_map: &'r GpuTexture,
     kept: &'r FramePool,
     fresnel: &'r mut KeptTables,
+    floor_vertices: &'r mut KeptFloor,
     filter: &'r mut Option<(Arc<ocean_core::far_field::FresnelFilterTable>, GpuTexture)>,
     reused: Vec<Pass>,
     encoder: &'r mut wgpu::CommandEncoder,
@@ -394,13 +403,30 @@ impl GpuBackend<'_> {
         }
     }
 
-    /// The triangles of a pass's objects, camera-relative, in ocean-core's order; one zero
-    /// vertex keeps a buffer non-empty.
-    fn object_vertices(&self, pass: &PlannedPass, frame: &FrameInputs<'_>) -> Vec<VertexChunk> {
-        let tris = pass_triangles(frame.scene, &frame.poses, pass, frame.camera.eye);
-        let vertices: &[ObjectVertex] = bytemuck::cast_slice(&tris);
+    /// The triangles of a pass's objects, camera-relative, in ocean-core's order (its
+    /// objects', then the sea floor's); one zero vertex keeps a buffer non-empty. The floor's
+    /// buffers are uploaded once per kept list: the passes of a frame, and the frames of a
+    /// still camera, draw the same ones.
+    fn object_vertices(&mut self, pass: &PlannedPass, frame: &FrameInputs<'_>) -> Vec<VertexChunk> {
+        let eye = frame.camera.eye;
+        let tris = pass_object_triangles(frame.scene, &frame.poses, pass, eye);
         let max = self.gpu.device.limits().max_buffer_size.min(self.max_vertex_buffer_bytes);
-        vertex_chunks(self.kept, vertices, max)
+        let mut chunks = vertex_chunks(self.kept, bytemuck::cast_slice(&tris), max);
+        if let Some(floor) = pass_floor_triangles(frame.scene, pass, eye) {
+            let kept = self.floor_vertices.as_ref().filter(|(list, _)| Arc::ptr_eq(list, &floor));
+            let floor_chunks = match kept {
+                Some((_, c)) => c.clone(),
+                None => {
+                    let vertices: &[ObjectVertex] = bytemuck::cast_slice(&floor);
+                    let c =
+                        labelled_vertex_chunks(self.kept, "ocean.floor.vertices", vertices, max);
+                    *self.floor_vertices = Some((floor, c.clone()));
+                    c
+                }
+            };
+            chunks.extend(floor_chunks);
+        }
+        chunks
     }
 
     fn objects_group(&mut self) -> wgpu::BindGroup {
@@ -797,6 +823,7 @@ impl Renderer {
             kept,
             timers: TimerPool::default(),
             fresnel: Vec::new(),
+            floor_vertices: None,
             filter: None,
         })
     }
@@ -1163,6 +1190,7 @@ impl Renderer {
             floor_map,
             kept: &self.kept,
             fresnel: &mut self.fresnel,
+            floor_vertices: &mut self.floor_vertices,
             filter: &mut self.filter,
             reused: Vec::new(),
             encoder,

@@ -177,6 +177,7 @@ impl ObjectsStage {
 /// One vertex buffer of the objects' triangles and how many vertices it holds. The triangles
 /// are cut into buffers no larger than the device's `max_buffer_size`, drawn in order in one
 /// pass, so any number of objects that fits the memory limit draws the same picture.
+#[derive(Clone)]
 pub struct VertexChunk {
     /// Whole triangles of [`ocean_core::frame::ObjectVertex`].
     pub buffer: wgpu::Buffer,
@@ -188,6 +189,16 @@ pub struct VertexChunk {
 /// placeholder vertex when there are none (a buffer cannot be empty).
 pub fn vertex_chunks(
     kept: &crate::pool::FramePool,
+    vertices: &[ocean_core::frame::ObjectVertex],
+    max_bytes: u64,
+) -> Vec<VertexChunk> {
+    labelled_vertex_chunks(kept, "ocean.objects.vertices", vertices, max_bytes)
+}
+
+/// [`vertex_chunks`] into the pool's buffers of `label`.
+pub fn labelled_vertex_chunks(
+    kept: &crate::pool::FramePool,
+    label: &str,
     vertices: &[ocean_core::frame::ObjectVertex],
     max_bytes: u64,
 ) -> Vec<VertexChunk> {
@@ -203,11 +214,7 @@ pub fn vertex_chunks(
     chunks
         .into_iter()
         .map(|c| VertexChunk {
-            buffer: kept.data(
-                "ocean.objects.vertices",
-                wgpu::BufferUsages::VERTEX,
-                bytemuck::cast_slice(c),
-            ),
+            buffer: kept.data(label, wgpu::BufferUsages::VERTEX, bytemuck::cast_slice(c)),
             count: if vertices.is_empty() { 0 } else { c.len() as u32 },
         })
         .collect()
