@@ -405,8 +405,9 @@ fn make_floor_grid(t: &Terrain, wet_top_m: f64) -> FloorGrid {
 /// ([`Arc::ptr_eq`]).
 pub fn terrain_triangles(t: &Terrain, eye: DVec3, wet_top_m: f64) -> Arc<Vec<[ObjectVertex; 3]>> {
     type Key = (usize, [u64; 3]);
-    static KEPT: crate::kept::Kept<Key, (Arc<FloorGrid>, Arc<Vec<[ObjectVertex; 3]>>)> =
-        crate::kept::Kept::new();
+    /// The grid (held, so that its address stays its own) and its triangles from one eye.
+    type Value = (Arc<FloorGrid>, Arc<Vec<[ObjectVertex; 3]>>);
+    static KEPT: crate::kept::Kept<Key, Value> = crate::kept::Kept::new();
     let grid = floor_grid(t, wet_top_m);
     // The grid's address names it while the kept entry holds it (so it cannot be reused).
     let key = (Arc::as_ptr(&grid) as usize, eye.to_array().map(f64::to_bits));
