@@ -7,8 +7,12 @@
 //! and compressed (J < 1), on the built-in `welch` scene, `welch_stormy_sunset` and `foam_gerstner` (its foam
 //! switched to `heuristic`; `welch_calm_day` shows too little foam to measure); the foam
 //! must show (at least [`MIN_FOAM_PIXELS`] pixels) and must not be a sheet (at most
-//! [`MAX_FOAM_SHARE`] of the water). Negative controls: the same measure applied to every
-//! water pixel (what a sheet of foam would cover) and to the troughs fails.
+//! [`MAX_FOAM_SHARE`] of the water). Negative controls, on a sample of the water whose
+//! surface points are marched the same way: as many pixels as the foam covers, but taken
+//! evenly over the water, fail the crest share (so the crest measure tells crests from
+//! anywhere); and the formula this replaced, evaluated at the sampled surface points, fails
+//! the share (so the measure tells a sheet from crest foam — the crest share alone cannot: a
+//! Gerstner swell's upper half is compressed, J < 1, so the old sheet was "on a crest" too).
 
 #![allow(clippy::unwrap_used, reason = "a panic in a test is its failure report")]
 
@@ -49,15 +53,16 @@ fn hdr(scene: &Scene) -> Vec<[f32; 4]> {
     r.buffers.hdr.color.clone()
 }
 
-/// Where a pixel's ray meets the displaced surface: (height above the mean plane, J) at the
-/// surface point, or `None` where the ray meets no water within `far` m.
+/// Where a pixel's ray meets the displaced surface: (height above the mean plane, J, the
+/// heuristic's slope |∇h|/max(J, 0.1)) at the surface point, or `None` where the ray meets no
+/// water within `far` m.
 fn surface_at(
     surface: &WaveSurface,
     eye: DVec3,
     d: DVec3,
     bound: f64,
     far: f64,
-) -> Option<(f64, f64)> {
+) -> Option<(f64, f64, f64)> {
     if d.y >= 0.0 {
         return None;
     }
@@ -84,7 +89,8 @@ fn surface_at(
             }
             let p = eye + d * hi;
             let s = surface.invert(p.x, p.z).sample;
-            return Some((s.height, s.jacobian));
+            let slope = s.slope_x.hypot(s.slope_z) / s.jacobian.max(0.1);
+            return Some((s.height, s.jacobian, slope));
         }
         t0 = t1;
     }
@@ -97,14 +103,21 @@ const CONTROL_STRIDE: usize = 7;
 /// The pixels below the horizon, and the marched ones.
 struct Water {
     below_horizon: usize,
+    /// Pixels of the every-[`CONTROL_STRIDE`]-th sample (marched, whether or not they hit
+    /// water within 400 m).
+    sampled: usize,
     marched: Vec<WaterPixel>,
 }
 
 /// A pixel of the water: whether the foam covers it, and the surface there.
 struct WaterPixel {
     foam: bool,
+    /// Whether the pixel is one of the every-[`CONTROL_STRIDE`]-th sample.
+    sampled: bool,
     height: f64,
     jacobian: f64,
+    /// The old formula's turbulence, (max(h, 0)/crest_height)·(slope/crest_slope) − 1, here.
+    old_turbulence: f64,
 }
 
 /// The water of `scene` at [`SIZE`].
@@ -123,7 +136,8 @@ fn water_pixels(mut scene: Scene) -> Water {
     };
     let camera = Camera::from_scene(&scene.camera).unwrap();
     let far = 400.0;
-    let mut water = Water { below_horizon: 0, marched: Vec::new() };
+    let mut water = Water { below_horizon: 0, sampled: 0, marched: Vec::new() };
+    let (crest_h, crest_s) = (scene.foam.crest_height_m, scene.foam.crest_slope);
     for y in 0..SIZE.1 {
         for x in 0..SIZE.0 {
             let i = (y * SIZE.0 + x) as usize;
@@ -135,11 +149,15 @@ fn water_pixels(mut scene: Scene) -> Water {
             water.below_horizon += 1;
             let sum = |c: [f32; 4]| f64::from(c[0]) + f64::from(c[1]) + f64::from(c[2]);
             let foam = sum(with[i]) > sum(without[i]) * (1.0 + FOAM_RISE) + 1e-6;
-            if !foam && !water.below_horizon.is_multiple_of(CONTROL_STRIDE) {
+            let sampled = water.below_horizon.is_multiple_of(CONTROL_STRIDE);
+            water.sampled += usize::from(sampled);
+            if !foam && !sampled {
                 continue;
             }
-            if let Some((height, jacobian)) = surface_at(&surface, camera.eye, d, bound, far) {
-                water.marched.push(WaterPixel { foam, height, jacobian });
+            if let Some((height, jacobian, slope)) = surface_at(&surface, camera.eye, d, bound, far)
+            {
+                let old_turbulence = (height.max(0.0) / crest_h) * (slope / crest_s) - 1.0;
+                water.marched.push(WaterPixel { foam, sampled, height, jacobian, old_turbulence });
             }
         }
     }
@@ -152,13 +170,13 @@ fn on_crest(pixels: &[&WaterPixel]) -> f64 {
     crest as f64 / pixels.len().max(1) as f64
 }
 
-/// The measure: Err with the figures when the foam is not on the crests.
-fn check(name: &str, below_horizon: usize, foam: &[&WaterPixel]) -> Result<String, String> {
-    let share = foam.len() as f64 / below_horizon.max(1) as f64;
+/// The measure: Err with the figures when the foam is not on the crests. `share` is the foam's
+/// share of the pixels below the horizon (of the sample's, for a control on the sample).
+fn check(name: &str, share: f64, foam: &[&WaterPixel]) -> Result<String, String> {
     let crest = on_crest(foam);
     let line = format!(
-        "{name}: {below_horizon} pixels below the horizon, foam on {} ({:.2} %) within 400 m, \
-         {:.1} % of them on a crest",
+        "{name}: foam on {} pixels ({:.2} % of those below the horizon) within 400 m, {:.1} % \
+         of them on a crest",
         foam.len(),
         100.0 * share,
         100.0 * crest
@@ -189,19 +207,26 @@ fn heuristic_foam_lies_on_the_crests() {
         assert_eq!(plan.techniques.of(Stage::Foam).name, "heuristic", "{name}");
         let water = water_pixels(scene);
         let foam: Vec<_> = water.marched.iter().filter(|p| p.foam).collect();
-        match check(name, water.below_horizon, &foam) {
+        let share = foam.len() as f64 / water.below_horizon.max(1) as f64;
+        match check(name, share, &foam) {
             Ok(line) => println!("{line}"),
             Err(line) => failures.push(line),
         }
-        // Negative controls, on the sample of the water: foam on all of it (the measure of a
-        // sheet, at the sample's share), and as much foam as the frame has on troughs only.
-        let sample: Vec<_> = water.marched.iter().filter(|p| !p.foam).collect();
-        let sheet = check("sheet", sample.len(), &sample);
-        assert!(sheet.is_err(), "{name}: a sheet of foam passed: {sheet:?}");
-        let troughs: Vec<_> = sample.iter().copied().filter(|p| p.height < 0.0).collect();
-        let troughs = &troughs[..troughs.len().min(foam.len().max(MIN_FOAM_PIXELS))];
-        let control = check("troughs", water.below_horizon, troughs);
-        assert!(control.is_err(), "{name}: foam in the troughs passed: {control:?}");
+        // Negative controls on the sample. As much "foam" spread evenly over the water (every
+        // k-th sampled pixel): it must fail on the crest share.
+        let sample: Vec<_> = water.marched.iter().filter(|p| p.sampled).collect();
+        let k = (sample.len() / foam.len().max(MIN_FOAM_PIXELS)).max(1);
+        let even: Vec<_> = sample.iter().copied().step_by(k).collect();
+        let even_share = even.len() as f64 / water.sampled.max(1) as f64;
+        let spread = check("  control, spread evenly", even_share, &even);
+        println!("{}", spread.as_ref().unwrap_or_else(|e| e));
+        assert!(on_crest(&even) < MIN_ON_CREST, "{name}: foam anywhere passed: {spread:?}");
+        // The old formula at the sampled points (the noise at its mean: foam where t > 0.3).
+        let old: Vec<_> = sample.iter().copied().filter(|p| p.old_turbulence > 0.3).collect();
+        let old_share = old.len() as f64 / water.sampled.max(1) as f64;
+        let old_check = check("  control, the old formula", old_share, &old);
+        println!("{}", old_check.as_ref().unwrap_or_else(|e| e));
+        assert!(old_check.is_err(), "{name}: the old formula passed: {old_check:?}");
     }
     assert!(failures.is_empty(), "foam off the crests:\n{}", failures.join("\n"));
 }

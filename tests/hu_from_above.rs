@@ -8,7 +8,8 @@
 //! The measure, **large-scale wave contrast**: the frame's log-luminance band-passed — its mean
 //! over a 3×3 box (the bump map's pixel-scale speckle averages out) less its mean over a 25×25
 //! box (the Fresnel gradient towards the horizon and the glitter path's breadth cancel) —
-//! RMS over the pixels whose coarse box lies below the horizon by [`BELOW_HORIZON_RAD`]. From eye heights 10, 100, 300 and
+//! RMS over the pixels whose coarse box lies below the horizon by [`BELOW_HORIZON_RAD`] (judged
+//! at the box's top row, in the frame's centre column). From eye heights 10, 100, 300 and
 //! 1000 m the `hu` frame's contrast must lie within [`MAX_RATIO`] of the projected grid's, both
 //! ways. Negative control: the same measure tells a sea without its swell (the projected grid
 //! of a calmer sea) apart.

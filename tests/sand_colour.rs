@@ -13,6 +13,14 @@
 //!   the published albedo under the same light, tonemapped as the frame is; and it reads as
 //!   sand: yellow (CIELAB hue angle 60°–100°), not grey (chroma ≥ [`MIN_CHROMA`]). The albedo
 //!   this replaced, (0.76, 0.70, 0.50), fails both picture checks.
+//!
+//! What each part can catch: the HDR ratio and the ΔE check hold the renderer to carrying the
+//! default albedo through its light and tonemap (a change of the default, of the terrain's
+//! shading or of the tonemap fails them), but they take the published albedo from
+//! `ocean_core::sand`: whether *that* is the measured spectrum's colour is `sand.rs`'s own
+//! tests (the spectrum recomputed, a flat spectrum grey, a falling one blue, the CIE fit at
+//! the table's peaks). The hue and chroma limits are a reading of the picture, and the chroma
+//! limit is a regression guard set between the two measured values, not a physical bound.
 
 #![allow(clippy::unwrap_used, reason = "a panic in a test is its failure report")]
 

@@ -484,8 +484,14 @@ fn the_kept_floor_grid_gives_the_directly_evaluated_vertices() {
     // The camera-relative list is kept per floor and eye: the passes of a frame (and a still
     // camera's frames) get the very same list; another eye or another floor gets another.
     let eye = DVec3::new(5.0, 1.0, -5.0);
+    // (The kept lists are the process's, shared with the tests running beside this one: a
+    // pair of calls may see its entry pushed out between them, rarely; three tries.)
     let a = terrain_triangles(&t, eye, 0.6);
-    assert!(std::sync::Arc::ptr_eq(&a, &terrain_triangles(&t, eye, 0.6)), "not kept");
+    let kept = (0..3).any(|_| {
+        let first = terrain_triangles(&t, eye, 0.6);
+        std::sync::Arc::ptr_eq(&first, &terrain_triangles(&t, eye, 0.6))
+    });
+    assert!(kept, "not kept");
     let moved = terrain_triangles(&t, eye + DVec3::X, 0.6);
     assert!(!std::sync::Arc::ptr_eq(&a, &moved), "another eye got the old list");
     assert_eq!(moved[0][0].position[0], a[0][0].position[0] - 1.0, "not shifted by the eye");

@@ -1,9 +1,10 @@
 // Stage `foam`'s shared pieces (ocean-core foam, whose f32 functions these write out): the
-// foam texture (two octaves of hashed value noise on a world-fixed lattice of
-// `[foam] texture_scale_m` cells), the coverage from a turbulence and the texture, and the
-// foam's light (Lambertian, albedo `[foam] color`, lit as the objects are). The foam
-// techniques (shaders/foam/<technique>.wgsl, `technique/foam`) give the turbulence; water.wgsl
-// draws the foam over the shaded water. Reads the importing stage's `frame`.
+// foam texture (two octaves of hashed value noise on a world-fixed lattice whose cells are
+// `[foam] texture_scale_m` across the wind and FOAM_STREAK times that along it), the coverage
+// from a turbulence and the texture, and the foam's light (Lambertian, albedo `[foam] color`,
+// lit as the objects are). The foam techniques (shaders/foam/<technique>.wgsl,
+// `technique/foam`) give the turbulence; water.wgsl draws the foam over the shaded water.
+// Reads the importing stage's `frame`.
 // CPU mirror: ocean-cpu/src/shaders/shared/foam.rs.
 
 // #import shared/shadow.wgsl

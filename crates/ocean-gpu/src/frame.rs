@@ -175,9 +175,10 @@ pub struct Renderer {
 /// Each Fresnel table's texture and the uniforms it was computed from.
 type KeptTables = Vec<(ResourceId, FresnelTableUniforms, GpuTexture)>;
 
-/// The sea floor's vertex buffers and the kept triangle list they hold (ocean-core's
-/// `terrain_triangles`: one list per floor and eye, told apart by its pointer).
-type KeptFloor = Option<(Arc<Vec<[ObjectVertex; 3]>>, Vec<VertexChunk>)>;
+/// The sea floor's vertex buffers, the kept triangle list they hold (ocean-core's
+/// `terrain_triangles`: one list per floor and eye, told apart by its pointer) and the buffer
+/// size they were cut to.
+type KeptFloor = Option<(Arc<Vec<[ObjectVertex; 3]>>, u64, Vec<VertexChunk>)>;
 
 fn wgpu_format(f: Format) -> wgpu::TextureFormat {
     match f {
@@ -413,14 +414,17 @@ impl GpuBackend<'_> {
         let max = self.gpu.device.limits().max_buffer_size.min(self.max_vertex_buffer_bytes);
         let mut chunks = vertex_chunks(self.kept, bytemuck::cast_slice(&tris), max);
         if let Some(floor) = pass_floor_triangles(frame.scene, pass, eye) {
-            let kept = self.floor_vertices.as_ref().filter(|(list, _)| Arc::ptr_eq(list, &floor));
+            let kept = self
+                .floor_vertices
+                .as_ref()
+                .filter(|(list, cut, _)| Arc::ptr_eq(list, &floor) && *cut == max);
             let floor_chunks = match kept {
-                Some((_, c)) => c.clone(),
+                Some((_, _, c)) => c.clone(),
                 None => {
                     let vertices: &[ObjectVertex] = bytemuck::cast_slice(&floor);
                     let c =
                         labelled_vertex_chunks(self.kept, "ocean.floor.vertices", vertices, max);
-                    *self.floor_vertices = Some((floor, c.clone()));
+                    *self.floor_vertices = Some((floor, max, c.clone()));
                     c
                 }
             };
