@@ -5,16 +5,12 @@
 
 #![allow(clippy::unwrap_used, reason = "a panic in a test is its failure report")]
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+#[path = "support/cli.rs"]
+mod ocean_cli;
 
-fn ocean(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_ocean"))
-        .args(args)
-        .env("RUST_BACKTRACE", "0")
-        .output()
-        .expect("the ocean binary runs")
-}
+use std::path::{Path, PathBuf};
+
+use ocean_cli::ocean;
 
 fn ok(args: &[&str]) -> String {
     let o = ocean(args);

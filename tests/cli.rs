@@ -10,21 +10,13 @@
 #[path = "support/gpu_harness.rs"]
 mod gpu_harness;
 
+#[path = "support/cli.rs"]
+mod ocean_cli;
+
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Output;
 
-fn ocean(args: &[&str]) -> Output {
-    ocean_env(args, &[])
-}
-
-fn ocean_env(args: &[&str], env: &[(&str, &str)]) -> Output {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_ocean"));
-    c.args(args).env("RUST_BACKTRACE", "0");
-    for (k, v) in env {
-        c.env(k, v);
-    }
-    c.output().expect("the ocean binary runs")
-}
+use ocean_cli::{ocean, ocean_env};
 
 fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()

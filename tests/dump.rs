@@ -5,18 +5,15 @@
 
 #![allow(clippy::unwrap_used, reason = "a panic in a test is its failure report")]
 
+#[path = "support/cli.rs"]
+mod ocean_cli;
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
 use ocean_core::plan::ResourceId;
 
-fn ocean(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_ocean"))
-        .args(args)
-        .env("RUST_BACKTRACE", "0")
-        .output()
-        .expect("the ocean binary runs")
-}
+use ocean_cli::ocean;
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))

@@ -2,7 +2,8 @@
 //! oracle (the GPU side is in `tests/gpu_frame_graph.rs`); systems and `[techniques]` in
 //! scenes and on the command line.
 
-use std::process::Command;
+#[path = "support/cli.rs"]
+mod ocean_cli;
 
 use ocean_core::plan::{FramePlan, FrameState, OutputKind, Pass, ResourceId, Stage, System};
 use ocean_core::scene::{Scene, SceneError, SceneSource};
@@ -152,13 +153,7 @@ fn a_looping_animation_precomputes_its_cycle_once_and_plays_it() {
     assert!(pictures[0] != pictures[2], "the sea moves between frames");
 }
 
-fn ocean(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_ocean"))
-        .args(args)
-        .env("RUST_BACKTRACE", "0")
-        .output()
-        .expect("the ocean binary runs")
-}
+use ocean_cli::ocean;
 
 #[test]
 fn render_with_an_unknown_system_exits_1_lists_the_systems_and_writes_nothing() {

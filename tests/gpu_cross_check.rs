@@ -7,7 +7,7 @@
 //! The adapter that ran is printed, and must be a real wgpu adapter (never the CPU compared
 //! with itself). Without any adapter the GPU tests fail under `OCEAN_REQUIRE_GPU=1` (CI) and
 //! are otherwise reported ignored, with why (tests/support/gpu_harness.rs). The comparators'
-//! negative controls need no GPU.
+//! own tests and negative controls are ocean-verify's (`crates/ocean-verify/tests/comparators.rs`).
 
 #![allow(clippy::unwrap_used, reason = "a panic in a test is its failure report")]
 
@@ -19,9 +19,7 @@ use std::path::PathBuf;
 
 use ocean_core::scene::Scene;
 use ocean_gpu::{FrameMap, Renderer, WaveSynthesis};
-use ocean_verify::compare::{
-    FLOAT_ABS, FLOAT_REL, ImageLimits, allowance, compare_float, compare_image,
-};
+use ocean_verify::compare::compare_float;
 use ocean_verify::cross_check::{check_scene, cpu_map, write_artefacts};
 
 /// Small enough for CI on lavapipe with 2 cores, large enough to show every pass.
@@ -455,141 +453,6 @@ fn wave_mips_match_the_cpu_mirror_bit_for_bit() {
     assert_eq!(differing, 0);
 }
 
-/// The float comparator at its boundary: a value exactly at the allowance passes, one ULP
-/// beyond fails, for values where the relative and where the absolute limit governs.
-fn float_comparator_fails_one_ulp_past_the_limit() {
-    for cpu in [1.0f32, -3.75, 0.02, 1e-3, 0.0, 2e-7, 12345.678] {
-        let allowed = allowance(cpu);
-        assert_eq!(allowed, FLOAT_ABS.max(FLOAT_REL * f64::from(cpu).abs()));
-        // The largest f32 above cpu still within the allowance, and the next one.
-        let mut at = (f64::from(cpu) + allowed) as f32;
-        while f64::from(at) - f64::from(cpu) > allowed {
-            at = at.next_down();
-        }
-        while f64::from(at.next_up()) - f64::from(cpu) <= allowed {
-            at = at.next_up();
-        }
-        let beyond = at.next_up();
-        let texels = |v: f32| vec![[0.5, 0.25, 0.0, 1.0], [0.5, v, 0.0, 1.0]];
-        let base = texels(cpu);
-        let ok = compare_float("control", true, ((2, 1), &base), ((2, 1), &texels(at)));
-        assert!(ok.passed(), "cpu {cpu}: {at} is within the allowance {allowed}: {}", ok.line());
-        let bad = compare_float("control", true, ((2, 1), &base), ((2, 1), &texels(beyond)));
-        assert!(!bad.passed(), "cpu {cpu}: {beyond} is one ULP past the limit: {}", bad.line());
-        let w = bad.worst.expect("the worst value is located");
-        assert_eq!((w.x, w.y, w.channel), (1, 0, 1));
-    }
-    // A NaN on one side, and a size mismatch, fail.
-    let a = vec![[1.0; 4]];
-    assert!(
-        !compare_float("nan", true, ((1, 1), &a), ((1, 1), &[[1.0, f32::NAN, 1.0, 1.0]])).passed()
-    );
-    assert!(!compare_float("size", true, ((1, 1), &a), ((2, 1), &[[1.0; 4]; 2])).passed());
-    assert!(compare_float("same", true, ((1, 1), &a), ((1, 1), &a)).passed());
-}
-
-/// The allowance of an `rgba16float` buffer: one binary16 step at the CPU's value passes,
-/// the next f32 beyond it fails, where the step is more than the f32 tolerance (everywhere
-/// but near 0, where the absolute 1e-6 covers the subnormal steps); an f32 buffer does not
-/// take the step (negative control).
-fn half_comparator_allows_one_binary16_step_and_no_more() {
-    use ocean_core::frame_format::{FrameFormat, half_step};
-    use ocean_verify::compare::compare_float_in;
-    let f16 = FrameFormat::Rgba16Float;
-    for cpu in [1.0f32, 0.37, 3.25, 1234.5, 0.002, 65504.0 - 32.0] {
-        let step = half_step(cpu);
-        assert!(f64::from(step) > allowance(cpu), "cpu {cpu}: the step is the larger allowance");
-        let at = cpu + step;
-        let beyond = at.next_up();
-        let one = |v: f32| vec![[cpu, 0.5, 0.25, 1.0], [v, 0.5, 0.25, 1.0]];
-        let base = one(cpu);
-        let ok = compare_float_in("half", true, ((2, 1), &base), ((2, 1), &one(at)), f16);
-        assert!(ok.passed(), "cpu {cpu}: one step {step} passes: {}", ok.line());
-        let bad = compare_float_in("half", true, ((2, 1), &base), ((2, 1), &one(beyond)), f16);
-        assert!(!bad.passed(), "cpu {cpu}: past one step fails: {}", bad.line());
-        let f32_buffer = compare_float("f32", true, ((2, 1), &base), ((2, 1), &one(at)));
-        assert!(!f32_buffer.passed(), "cpu {cpu}: an f32 buffer allows no step");
-    }
-}
-
-/// A smooth test picture (FLIP of a picture with itself is 0).
-fn gradient(w: u32, h: u32) -> Vec<u8> {
-    (0..w * h)
-        .flat_map(|i| {
-            let (x, y) = (i % w, i / w);
-            [(x * 255 / w) as u8, (y * 255 / h) as u8, 128, 255]
-        })
-        .collect()
-}
-
-/// The image comparator: each limit fails just past it.
-fn image_comparator_fails_past_each_limit() {
-    let (w, h) = (64u32, 64u32);
-    let n = (w * h) as usize;
-    let cpu = gradient(w, h);
-    let limits = ImageLimits::SOFTWARE;
-    let same = compare_image(&cpu, &cpu, w, h);
-    assert_eq!(same.within_1, 1.0);
-    assert_eq!(same.flip_mean, 0.0);
-    assert!(same.failures(&limits).is_empty());
-
-    // Within 1/255 everywhere still passes that criterion.
-    let off_by_one: Vec<u8> = cpu.iter().map(|&v| v.saturating_add(1)).collect();
-    assert_eq!(compare_image(&cpu, &off_by_one, w, h).within_1, 1.0);
-
-    // ≥ 99.5 %: the largest number of pixels allowed 2/255 off, then one more.
-    let allowed = n - (0.995 * n as f64).ceil() as usize;
-    let mut gpu = cpu.clone();
-    for p in 0..allowed {
-        gpu[4 * (p * 97 % n)] ^= 2; // spread over the picture, 2/255 off
-    }
-    let s = compare_image(&cpu, &gpu, w, h);
-    assert!(s.failures(&limits).is_empty(), "{}", s.line(&limits));
-    let mut extra = allowed;
-    while gpu[4 * (extra * 97 % n)] != cpu[4 * (extra * 97 % n)] {
-        extra += 1;
-    }
-    gpu[4 * (extra * 97 % n)] ^= 2;
-    let s = compare_image(&cpu, &gpu, w, h);
-    assert!(
-        s.failures(&limits).iter().any(|f| f.contains("within 1/255")),
-        "one pixel past 99.5 %: {}",
-        s.line(&limits)
-    );
-
-    // FLIP mean: a block of inverted pixels, grown until the mean passes 0.005; the block
-    // one pixel smaller passes.
-    let mut prev_ok: Option<Vec<u8>> = None;
-    for k in 1..n {
-        let mut gpu = cpu.clone();
-        for p in 0..k {
-            for c in 0..3 {
-                gpu[4 * p + c] = 255 - gpu[4 * p + c];
-            }
-        }
-        let s = compare_image(&cpu, &gpu, w, h);
-        let loose = ImageLimits { min_within_1: None, ..limits };
-        if s.flip_mean > limits.max_flip_mean {
-            assert!(!s.failures(&loose).is_empty(), "{}", s.line(&loose));
-            let ok = prev_ok.expect("a single changed pixel keeps the mean under 0.005");
-            assert!(compare_image(&cpu, &ok, w, h).failures(&loose).is_empty());
-            break;
-        }
-        prev_ok = Some(gpu);
-    }
-    // FLIP P99 (hardware row): the same with the P99 limit.
-    let hw = ImageLimits::HARDWARE;
-    let mut gpu = cpu.clone();
-    for p in 0..n / 50 {
-        for c in 0..3 {
-            gpu[4 * p + c] = 255 - gpu[4 * p + c];
-        }
-    }
-    let s = compare_image(&cpu, &gpu, w, h);
-    assert!(s.flip_p99 > 0.1, "{}", s.line(&hw));
-    assert!(s.failures(&hw).iter().any(|f| f.contains("P99")), "{}", s.line(&hw));
-}
-
 /// The renderer as `ocean render --backend gpu` runs it: the wave maps from the GPU FFT every
 /// frame. lavapipe's `sin`/`cos` differ from the CPU's by up to 1 ulp (tests/gpu_waves.rs
 /// measures it over 65,536 angles), so the maps differ from the CPU synthesis by a few 1e-7 of
@@ -735,8 +598,6 @@ fn bloom_chains_are_compared_on_the_same_input_and_can_fail() {
 
 fn main() -> std::process::ExitCode {
     run_tests!(gpu_harness::GPU_ADAPTER;
-        cpu: float_comparator_fails_one_ulp_past_the_limit, half_comparator_allows_one_binary16_step_and_no_more,
-            image_comparator_fails_past_each_limit;
         gpu: reference_scenes_match_the_cpu_oracle, rasterizer_matches_lavapipe_bit_for_bit,
             gpu_fft_frames_meet_the_image_tolerances,
             a_new_sea_on_a_running_renderer_equals_a_fresh_renderer,

@@ -10,6 +10,9 @@
 
 #![allow(clippy::unwrap_used, reason = "a panic in a test is its failure report")]
 
+#[path = "support/cli.rs"]
+mod ocean_cli;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
@@ -19,8 +22,8 @@ use std::time::{Duration, Instant};
 const REFUSED_MIB: f64 = 100.0;
 
 fn ocean() -> Command {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_ocean"));
-    c.env("RUST_BACKTRACE", "0").env("OCEAN_PRINT_PEAK_MEMORY", "1");
+    let mut c = ocean_cli::command();
+    c.env("OCEAN_PRINT_PEAK_MEMORY", "1");
     c
 }
 

@@ -4,6 +4,9 @@
 //! what is wrong. The invariant behind items 4 and 5 is held on random scenes in
 //! `tests/scene_properties.rs`; the memory estimate behind item 3 in `tests/memory_estimate.rs`.
 
+#[path = "support/cli.rs"]
+mod ocean_cli;
+
 use std::process::{Command, Output};
 use std::time::{Duration, Instant};
 
@@ -11,11 +14,7 @@ use ocean_core::scene::{Scene, SceneSource};
 
 fn ocean(args: &[&str]) -> (Output, Duration) {
     let start = Instant::now();
-    let o = Command::new(env!("CARGO_BIN_EXE_ocean"))
-        .args(args)
-        .env("RUST_BACKTRACE", "0")
-        .output()
-        .expect("the ocean binary runs");
+    let o = ocean_cli::ocean(args);
     (o, start.elapsed())
 }
 
@@ -135,7 +134,7 @@ fn sigint_or_sigterm_during_a_render_removes_its_temporary() {
     for signal in ["-INT", "-TERM"] {
         let dir = tempfile::tempdir().unwrap();
         let out = dir.path().join("big.png");
-        let child = Command::new(env!("CARGO_BIN_EXE_ocean"))
+        let child = ocean_cli::command()
             .args(["render", "--size", "3000x3000", "-o", out.to_str().unwrap()])
             .stderr(std::process::Stdio::piped())
             .spawn()

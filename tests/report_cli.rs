@@ -15,17 +15,14 @@
 #[path = "support/gpu_harness.rs"]
 mod gpu_harness;
 
+#[path = "support/cli.rs"]
+mod ocean_cli;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::sync::OnceLock;
 
-fn ocean(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_ocean"))
-        .args(args)
-        .env("RUST_BACKTRACE", "0")
-        .output()
-        .expect("the ocean binary runs")
-}
+use ocean_cli::ocean;
 
 const HEADER: &str = "knob,setting,error_metric,error,time_ms,backend";
 

@@ -3,15 +3,14 @@
 
 #![allow(clippy::unwrap_used, reason = "a panic in a test is its failure report")]
 
-use std::process::Command;
+#[path = "support/cli.rs"]
+mod ocean_cli;
 
 use ocean_core::plan::OutputKind;
 use ocean_core::scene::Scene;
 use ocean_core::supersample::{box_filter, grid_side};
 
-fn ocean(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_ocean")).args(args).output().unwrap()
-}
+use ocean_cli::ocean;
 
 #[test]
 fn one_sample_per_pixel_is_the_plain_frame() {

@@ -16,6 +16,9 @@
 #[path = "support/gpu_harness.rs"]
 mod gpu_harness;
 
+#[path = "support/cli.rs"]
+mod ocean_cli;
+
 use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};
@@ -104,9 +107,7 @@ fn out_dir(test: &str) -> PathBuf {
 }
 
 fn ocean() -> Command {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_ocean"));
-    c.env("RUST_BACKTRACE", "0");
-    c
+    ocean_cli::command()
 }
 
 /// Runs `ocean view ARGS` on the display, X11 only (a Wayland session of the caller must not
