@@ -152,29 +152,11 @@ fn against(args: &Args, dir: &std::path::Path) -> anyhow::Result<()> {
         bail!("--against {}: not a folder (a dump of `ocean render --dump-passes`)", dir.display());
     }
     let manifest = ocean::dump::read_manifest(dir)?.unwrap_or_default();
-    // The manifest's scene, where no SCENE is given and the dump holds one.
-    let mut scene = match manifest.scene_toml.as_deref().filter(|_| args.scene.is_none()) {
-        Some(text) => {
-            // The system the dump was made with, unless --system says otherwise.
-            let system = ocean::scene_arg::SystemArg {
-                system: args.system.system.clone().or(manifest.system.clone()),
-            };
-            ocean::scene_arg::scene_from_text(
-                text,
-                &format!("{}/manifest.json", dir.display()),
-                &system,
-            )?
-        }
-        None => ocean::scene_arg::load_scene(args.scene.as_ref(), &args.system)?,
-    };
-    // The manifest's frame (the dump's size and time, also for the built-in scene, whose
-    // text a dump leaves empty) unless --size says otherwise.
-    if let Some((w, h)) = manifest.size {
-        (scene.camera.width, scene.camera.height) = (w, h);
-    }
-    if let Some(t) = manifest.time_s {
-        scene.ocean.time_s = t;
-    }
+    let mut scene = manifest.scene(
+        &format!("{}/manifest.json", dir.display()),
+        args.scene.as_ref(),
+        &args.system,
+    )?;
     if let Some(s) = &args.size {
         (scene.camera.width, scene.camera.height) = ocean::output::parse_size(s)?;
     }

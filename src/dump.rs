@@ -265,6 +265,38 @@ pub struct Manifest {
     pub adapter: Option<Value>,
 }
 
+impl Manifest {
+    /// The dumped frame's scene as `compare --against` renders it: `scene` when given (under
+    /// `system`), else the manifest's text, else the built-in scene, both under `system` or
+    /// else the manifest's system; at the manifest's size and time (also for the built-in
+    /// scene, whose text a dump leaves empty). `what` names the manifest in errors.
+    ///
+    /// # Errors
+    /// The scene cannot be read or parsed, or the system is unknown.
+    pub fn scene(
+        &self,
+        what: &str,
+        scene: Option<&std::path::PathBuf>,
+        system: &crate::scene_arg::SystemArg,
+    ) -> anyhow::Result<ocean_core::scene::Scene> {
+        // The system the dump was made with, unless one is given.
+        let dumped =
+            crate::scene_arg::SystemArg { system: system.system.clone().or(self.system.clone()) };
+        let mut s = match (scene, self.scene_toml.as_deref()) {
+            (Some(path), _) => crate::scene_arg::load_scene(Some(path), system)?,
+            (None, Some(text)) => crate::scene_arg::scene_from_text(text, what, &dumped)?,
+            (None, None) => crate::scene_arg::load_scene(None, &dumped)?,
+        };
+        if let Some((w, h)) = self.size {
+            (s.camera.width, s.camera.height) = (w, h);
+        }
+        if let Some(t) = self.time_s {
+            s.ocean.time_s = t;
+        }
+        Ok(s)
+    }
+}
+
 /// Reads `DIR/manifest.json`: `Ok(None)` when there is none.
 ///
 /// # Errors

@@ -158,6 +158,39 @@ fn compare_against_passes_on_the_oracles_dump_and_fails_on_a_changed_one() {
     assert!(err.contains("shadow_map") && err.contains("hdr"), "{err}");
 }
 
+/// A built-in scene's dump carries no scene text, only its system: `--against` renders the
+/// built-in scene under that system (it rendered `hu`'s, and every map of a `chiu` dump failed).
+#[test]
+fn a_built_in_systems_dump_is_compared_under_its_system() {
+    let dir = folder("against-chiu");
+    let o = ocean(&[
+        "render",
+        "--system",
+        "chiu",
+        "--size",
+        "64x36",
+        "--dump-passes",
+        &dir.join("dump").to_string_lossy(),
+        "-o",
+        &dir.join("picture.png").to_string_lossy(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = against(&dir.join("dump"), &dir.join("cmp"));
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{text}\n{}", String::from_utf8_lossy(&o.stderr));
+    // Negative control: the same dump held to another system fails.
+    let o = ocean(&[
+        "compare",
+        "--against",
+        &dir.join("dump").to_string_lossy(),
+        "--system",
+        "hu",
+        "--out-dir",
+        &dir.join("cmp").to_string_lossy(),
+    ]);
+    assert!(!o.status.success(), "a chiu dump passed as hu's");
+}
+
 #[test]
 fn the_dumps_picture_is_compared_with_the_oracles() {
     let dir = dump("default", "against-ldr");

@@ -57,14 +57,9 @@ struct Oracle {
 
 fn oracle(dir: &Path) -> Oracle {
     let manifest = ocean::dump::read_manifest(dir).unwrap().unwrap();
-    let system = ocean::scene_arg::SystemArg { system: manifest.system.clone() };
-    let mut scene = match manifest.scene_toml.as_deref() {
-        Some(text) => ocean::scene_arg::scene_from_text(text, "manifest.json", &system).unwrap(),
-        None => ocean::scene_arg::load_scene(None, &system).unwrap(),
-    };
+    let none = ocean::scene_arg::SystemArg { system: None };
+    let scene = manifest.scene("manifest.json", None, &none).unwrap();
     let (width, height) = manifest.size.unwrap();
-    (scene.camera.width, scene.camera.height) = (width, height);
-    scene.ocean.time_s = manifest.time_s.unwrap();
     let r = ocean_cpu::render_scene(&scene, OutputKind::Ldr, &mut |_| {}).unwrap();
     Oracle { width, height, hdr: r.buffers.hdr.color.clone(), ldr: r.ldr.unwrap() }
 }
