@@ -8,9 +8,12 @@
 //!   perspective-correct varyings, f32 depth test), parallel over disjoint row bands.
 //! - [`sampler`]: `textureSample` / `textureSampleLevel` on a 2D f32 texture, level 0.
 //! - [`mip`]: mip chains and `textureSampleLevel` between their levels, as lavapipe blends.
+//! - [`envelope`]: the scalar types a mirror runs over: exact f32, the hardware envelope,
+//!   a random conformant GPU.
 //! - [`shaders`]: one module per WGSL stage (and per shared WGSL file), same names, same
 //!   order of operations.
 
+pub mod envelope;
 pub mod frame;
 pub mod mip;
 pub mod raster;

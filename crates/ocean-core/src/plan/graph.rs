@@ -159,23 +159,7 @@ impl<'a> FrameInputs<'a> {
             camera.height,
         )?;
         let bloom = plan.runs(Pass::Bloom).then(|| BloomInputs::new(scene));
-        let tonemap = plan
-            .runs(Pass::Tonemap)
-            .then(|| {
-                TonemapUniforms::for_image(
-                    scene.camera.exposure,
-                    &scene.post,
-                    scene.camera.width,
-                    scene.camera.height,
-                )
-                .map(|mut t| {
-                    // The bloom's share of each level: strength / L (crate::bloom, step 4);
-                    // 0 where the pass does not run, so the frame is the plain tonemap's.
-                    t.bloom_scale = bloom.as_ref().map_or(0.0, |b| b.scale(scene));
-                    t
-                })
-            })
-            .transpose()?;
+        let tonemap = tonemap_uniforms(scene, plan)?;
         Ok(Self {
             scene,
             plan,
@@ -192,6 +176,32 @@ impl<'a> FrameInputs<'a> {
             poses,
         })
     }
+}
+
+/// The `tonemap` pass's uniforms for `scene` under `plan` (`None` where the pass does not run):
+/// the camera's exposure, the `[post]` curve and vignette for the image's size, and the bloom's
+/// share of each level where pass `bloom` runs.
+///
+/// # Errors
+/// An exposure or `[post]` value the uniforms cannot hold.
+pub fn tonemap_uniforms(scene: &Scene, plan: &FramePlan) -> crate::Result<Option<TonemapUniforms>> {
+    let bloom = plan.runs(Pass::Bloom).then(|| BloomInputs::new(scene));
+    plan.runs(Pass::Tonemap)
+        .then(|| {
+            TonemapUniforms::for_image(
+                scene.camera.exposure,
+                &scene.post,
+                scene.camera.width,
+                scene.camera.height,
+            )
+            .map(|mut t| {
+                // The bloom's share of each level: strength / L (crate::bloom, step 4);
+                // 0 where the pass does not run, so the frame is the plain tonemap's.
+                t.bloom_scale = bloom.as_ref().map_or(0.0, |b| b.scale(scene));
+                t
+            })
+        })
+        .transpose()
 }
 
 /// Sky `atmosphere` (ocean_core::atmosphere): the sky-view table seen from the eye, the sun's

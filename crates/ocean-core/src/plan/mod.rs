@@ -51,6 +51,7 @@ use crate::scene::{Object, Scene, Shape};
 
 pub use graph::{
     Backend, BloomInputs, DrawMesh, FoamField, FoamWork, FrameInputs, FrameState, run_frame,
+    tonemap_uniforms,
 };
 
 pub use resource::{Format, Resource, ResourceId, SHADOW_MAP_SIZE};

@@ -5,9 +5,10 @@ use rayon::prelude::*;
 
 pub use ocean_core::tonemap::TonemapUniforms;
 
+use crate::envelope::{ByteRange, Iv, Jitter, JitterRules, Real, map3, zip3};
 use crate::sampler::Texture2D;
 use crate::shaders::shared::fullscreen::fullscreen_position;
-use crate::shaders::wgsl::{Vec2, Vec3, Vec4, clamp, max, min, pow, round, select, vec4};
+use crate::shaders::wgsl::{Components, Vec2, Vec3, Vec4, vec4};
 
 pub use ocean_core::tonemap::{HABLE_P, HABLE_Q, HABLE_R, HABLE_S, HABLE_T, HABLE_WHITE_SCALE};
 
@@ -49,39 +50,35 @@ impl HdrFrame<'_> {
 
 /// ACES filmic curve, K. Narkowicz's fit: x (2.51 x + 0.03) / (x (2.43 x + 0.59) + 0.14).
 pub fn aces_narkowicz(x: Vec3) -> Vec3 {
-    (x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14)
+    x.map(aces_r)
 }
 
 /// Hable's filmic curve (Uncharted 2), normalised so that the white point W maps to 1:
 /// x (P x + Q) / (x (R x + S) + T) · (1/g(W)) (`ocean_core::tonemap`).
 pub fn hable(x: Vec3) -> Vec3 {
-    (x * (HABLE_P * x + HABLE_Q)) / (x * (HABLE_R * x + HABLE_S) + HABLE_T) * HABLE_WHITE_SCALE
+    x.map(hable_r)
 }
 
 /// `tone_curve(x)`: the curve `tonemap.curve` selects (1 Hable, else ACES).
 pub fn tone_curve(x: Vec3, tonemap: &TonemapUniforms) -> Vec3 {
-    if tonemap.curve == 1 { hable(x) } else { aces_narkowicz(x) }
+    x.map(|c| curve_r(c, tonemap.curve))
 }
 
 /// `vignette_factor(p)`: max(1 − s·r², 0) at the pixel centre `p`, r = 0 at the centre and 1
 /// at the corner.
 pub fn vignette_factor(p: Vec2, tonemap: &TonemapUniforms) -> f32 {
-    let d = p - Vec2::from(tonemap.center);
-    let r2 = (d.x * d.x + d.y * d.y) * tonemap.inv_corner2;
-    max(1.0 - tonemap.vignette * r2, 0.0)
+    vignette_factor_r([p.x, p.y], tonemap)
 }
 
 /// sRGB OETF, IEC 61966-2-1: 12.92 c for c ≤ 0.0031308, else 1.055 c^(1/2.4) − 0.055.
 pub fn srgb_oetf(c: Vec3) -> Vec3 {
-    let lo = 12.92 * c;
-    let hi = 1.055 * pow(c, Vec3::splat(SRGB_INV_GAMMA)) - 0.055;
-    select(hi, lo, c.le(Vec3::splat(0.0031308)))
+    c.map(srgb_oetf_r)
 }
 
 /// Rounds to the nearest multiple of 1/255, ties to even: `round(v · 255) / 255` (WGSL
 /// `round` is Rust's `round_ties_even`; both are exact).
 pub fn quantize_unorm8(v: Vec3) -> Vec3 {
-    round(v * 255.0) / 255.0
+    v.map(quantize_r)
 }
 
 /// `vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOut`.
@@ -114,20 +111,77 @@ pub fn fs_main_with_bloom(
 ) -> [f32; 4] {
     let texel = [input.position.x as i32, input.position.y as i32];
     let hdr = hdr_frame.texture_load(texel).xyz();
-    let exposed = hdr * tonemap.exposure;
-    let sanitised = min(max(exposed, Vec3::splat(0.0)), Vec3::splat(HDR_MAX));
-    let bloomed = sanitised + tonemap.bloom_scale * bloom_at(texel, bloom);
-    let x = bloomed * vignette_factor(input.position.xy(), tonemap);
-    let mapped = clamp(tone_curve(x, tonemap), Vec3::splat(0.0), Vec3::splat(1.0));
-    let encoded = srgb_oetf(mapped);
-    quantize_unorm8(encoded).extend(1.0).into()
+    let b = bloom_at(texel, bloom);
+    let [r, g, bl] = shade(
+        [hdr.x, hdr.y, hdr.z],
+        [b.x, b.y, b.z],
+        [input.position.x, input.position.y],
+        tonemap,
+    );
+    [r, g, bl, 1.0]
+}
+
+/// `fs_main`'s arithmetic after its texture reads, over any [`Real`]: `f32` for the exact
+/// frame (lavapipe's bits), [`crate::envelope::Iv`] for the envelope of a hardware GPU,
+/// [`crate::envelope::Jitter`] for a random conformant GPU. `hdr` is the HDR texel, `bloom`
+/// `bloom_at(texel)` (zeros without post `bloom`), `p` the pixel centre.
+pub fn shade<R: Real>(hdr: [R; 3], bloom: [R; 3], p: [R; 2], tonemap: &TonemapUniforms) -> [R; 3] {
+    let exposure = R::lit(tonemap.exposure);
+    let exposed = map3(hdr, |c| c * exposure);
+    let sanitised = map3(exposed, |c| c.max(R::lit(0.0)).min(R::lit(HDR_MAX)));
+    let bloom_scale = R::lit(tonemap.bloom_scale);
+    let bloomed = zip3(sanitised, bloom, |s, b| s + bloom_scale * b);
+    let v = vignette_factor_r(p, tonemap);
+    let x = map3(bloomed, |c| c * v);
+    let curve = tonemap.curve;
+    let mapped = map3(x, |c| curve_r(c, curve).clamp(R::lit(0.0), R::lit(1.0)));
+    let encoded = map3(mapped, srgb_oetf_r);
+    map3(encoded, quantize_r)
+}
+
+/// `vignette_factor(p)` over any [`Real`].
+fn vignette_factor_r<R: Real>(p: [R; 2], tonemap: &TonemapUniforms) -> R {
+    let dx = p[0] - R::lit(tonemap.center[0]);
+    let dy = p[1] - R::lit(tonemap.center[1]);
+    let r2 = (dx * dx + dy * dy) * R::lit(tonemap.inv_corner2);
+    (R::lit(1.0) - R::lit(tonemap.vignette) * r2).max(R::lit(0.0))
+}
+
+/// `tone_curve(x)` for one component over any [`Real`].
+fn curve_r<R: Real>(x: R, curve: u32) -> R {
+    if curve == 1 { hable_r(x) } else { aces_r(x) }
+}
+
+/// `aces_narkowicz` for one component over any [`Real`].
+fn aces_r<R: Real>(x: R) -> R {
+    let l = R::lit;
+    (x * (l(2.51) * x + l(0.03))) / (x * (l(2.43) * x + l(0.59)) + l(0.14))
+}
+
+/// `hable` for one component over any [`Real`].
+fn hable_r<R: Real>(x: R) -> R {
+    let l = R::lit;
+    (x * (l(HABLE_P) * x + l(HABLE_Q))) / (x * (l(HABLE_R) * x + l(HABLE_S)) + l(HABLE_T))
+        * l(HABLE_WHITE_SCALE)
+}
+
+/// `quantize_unorm8` for one component over any [`Real`].
+fn quantize_r<R: Real>(c: R) -> R {
+    (c * R::lit(255.0)).round() / R::lit(255.0)
+}
+
+/// `srgb_oetf(c)` for one component over any [`Real`].
+fn srgb_oetf_r<R: Real>(c: R) -> R {
+    let lo = R::lit(12.92) * c;
+    let hi = R::lit(1.055) * c.pow(R::lit(SRGB_INV_GAMMA)) - R::lit(0.055);
+    R::select(hi, lo, c.le(R::lit(0.0031308)))
 }
 
 /// What an `Rgba8Unorm` target stores for a shader output `v` in [0, 1]: v · 255 rounded to
 /// the nearest integer. For the outputs of [`fs_main`], multiples of 1/255, v · 255 is within
 /// 2·10⁻⁵ of an integer, so every rounding Vulkan allows gives the same byte.
 pub fn store_unorm8(v: f32) -> u8 {
-    (clamp(v, 0.0, 1.0) * 255.0).round_ties_even() as u8
+    Real::store_unorm8(v).lo
 }
 
 /// The `tonemap` pass over a whole `width × height` HDR frame (row-major, row 0 at the top):
@@ -175,4 +229,97 @@ pub fn tonemap_to_rgba8_with_bloom(
         }
     });
     out
+}
+
+/// [`shade`] at every pixel of a `width × height` frame over the scalar `R`, rows in
+/// parallel: `texel(i)` gives pixel i's HDR texel and `bloom_at` value, `out` turns the shaded
+/// value into what is kept.
+fn shade_frame<R: Real, T: Send>(
+    width: u32,
+    height: u32,
+    tonemap: &TonemapUniforms,
+    texel: impl Fn(usize) -> ([R; 3], [R; 3]) + Sync,
+    out: impl Fn(usize, [R; 3]) -> T + Sync,
+) -> Vec<T> {
+    use rayon::prelude::*;
+    let w = width as usize;
+    (0..w * height as usize)
+        .into_par_iter()
+        .with_min_len(w.max(1))
+        .map(|i| {
+            let p = [R::lit((i % w) as f32 + 0.5), R::lit((i / w) as f32 + 0.5)];
+            let (hdr, bloom) = texel(i);
+            out(i, shade(hdr, bloom, p, tonemap))
+        })
+        .collect()
+}
+
+/// The RGB of a texel as exact intervals.
+fn points(t: [f32; 4]) -> [Iv; 3] {
+    [Iv::point(t[0]), Iv::point(t[1]), Iv::point(t[2])]
+}
+
+/// The tonemap pass's envelope: per pixel, the value each of R, G, B may take before the
+/// store and the bytes a conformant GPU may store, given the HDR frame `hdr` as intervals
+/// (points for a GPU's own frame) and `bloom` as the `bloom_at` value per pixel (`None`
+/// without post `bloom`).
+///
+/// # Panics
+/// If `hdr` (or `bloom`) does not hold `width · height` texels.
+pub fn envelope(
+    hdr: &[[Iv; 3]],
+    bloom: Option<&[[Iv; 3]]>,
+    width: u32,
+    height: u32,
+    tonemap: &TonemapUniforms,
+) -> Vec<[(Iv, ByteRange); 3]> {
+    let n = width as usize * height as usize;
+    assert_eq!(hdr.len(), n, "HDR frame is not {width}x{height}");
+    assert!(bloom.is_none_or(|b| b.len() == n), "bloom is not {width}x{height}");
+    let zero = [Iv::point(0.0); 3];
+    shade_frame(
+        width,
+        height,
+        tonemap,
+        |i| (hdr[i], bloom.map_or(zero, |b| b[i])),
+        |_, v| v.map(|c| (c, c.store_unorm8())),
+    )
+}
+
+/// [`envelope`] of a GPU's own HDR frame (every texel a point), without bloom.
+pub fn envelope_of(
+    hdr: &[[f32; 4]],
+    width: u32,
+    height: u32,
+    tonemap: &TonemapUniforms,
+) -> Vec<[(Iv, ByteRange); 3]> {
+    let hdr: Vec<[Iv; 3]> = hdr.iter().map(|&t| points(t)).collect();
+    envelope(&hdr, None, width, height, tonemap)
+}
+
+/// The tonemap pass as one random conformant GPU computes it (`rules`): per pixel, R, G, B
+/// before the store and the bytes stored. Without bloom.
+///
+/// # Panics
+/// If `hdr` does not hold `width · height` texels.
+pub fn jitter(
+    hdr: &[[f32; 4]],
+    width: u32,
+    height: u32,
+    tonemap: &TonemapUniforms,
+    rules: JitterRules,
+) -> Vec<[(f32, u8); 3]> {
+    assert_eq!(hdr.len(), width as usize * height as usize, "HDR frame is not {width}x{height}");
+    let zero = [Jitter(0.0); 3];
+    shade_frame(
+        width,
+        height,
+        tonemap,
+        |i| {
+            Jitter::reseed(rules, i as u64);
+            let t = hdr[i];
+            ([Jitter(t[0]), Jitter(t[1]), Jitter(t[2])], zero)
+        },
+        |_, v| v.map(|c| (c.0, c.store_unorm8().lo)),
+    )
 }

@@ -1,0 +1,337 @@
+//! [`Iv`]: an f32 value's envelope, [lo, hi] in f64, each operation widened by what the Vulkan
+//! precision rules ("Precision and Operation of SPIR-V Instructions") and WGSL's "Floating
+//! Point Accuracy" allow it. The bounds are computed in f64 and rounded outward, so the f64
+//! arithmetic never narrows them.
+//!
+//! The rules carried (docs/tolerances.md has the table):
+//! - `+ − ×`: either f32 neighbour of the exact result (rounding either way), so 1 ULP; a fused
+//!   `a·b + c` is one rounding of the exact value, inside the unfused interval;
+//! - `÷`: 2.5 ULP for |divisor| in [2⁻¹²⁶, 2¹²⁶], anything outside;
+//! - `pow(x, y)`: exp2(y · log2 x) with log2 within 2⁻²¹ absolute on [0.5, 2] and 3 ULP
+//!   elsewhere (the larger of both is taken everywhere), exp2 within 3 + 2|t| ULP;
+//! - subnormal results may be flushed to 0;
+//! - a result beyond f32's range may be ±∞; an operation the rules leave undefined (0 · ∞,
+//!   division by a subnormal, log of a negative) or a possible NaN makes the interval *full*:
+//!   any value, NaN included.
+//!
+//! The ULP of an interval is that of its largest magnitude: every value inside has a ULP no
+//! larger, so the widening covers each.
+
+use std::ops::{Add, Div, Mul, Sub};
+
+use super::{Real, Tri};
+
+/// The envelope of an f32 value: every value a conformant implementation may compute lies in
+/// [`lo`, `hi`]; `full` (any value, NaN included) where the rules leave it undefined.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Iv {
+    /// Lower bound (may be −∞).
+    pub lo: f64,
+    /// Upper bound (may be +∞).
+    pub hi: f64,
+    /// Any value, NaN included.
+    pub full: bool,
+}
+
+/// The bytes an 8-bit unorm store may hold, `lo..=hi`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ByteRange {
+    /// Smallest byte.
+    pub lo: u8,
+    /// Largest byte.
+    pub hi: u8,
+}
+
+impl ByteRange {
+    /// Whether `b` is inside.
+    pub fn contains(self, b: u8) -> bool {
+        (self.lo..=self.hi).contains(&b)
+    }
+    /// How far `b` lies outside, in codes (0 inside).
+    pub fn distance(self, b: u8) -> u8 {
+        if b < self.lo { self.lo - b } else { b.saturating_sub(self.hi) }
+    }
+}
+
+const F32_MAX: f64 = f32::MAX as f64;
+const F32_MIN_NORMAL: f64 = f32::MIN_POSITIVE as f64;
+
+/// The f32 ULP at magnitude `m` ≥ 0 (the spacing of f32 values in m's binade): 2⁻¹⁴⁹ below
+/// the normal range, +∞ for non-finite m.
+pub fn f32_ulp(m: f64) -> f64 {
+    let m = m.abs();
+    if !m.is_finite() {
+        return f64::INFINITY;
+    }
+    if m < F32_MIN_NORMAL {
+        return f64::from(f32::from_bits(1));
+    }
+    let e = ((m.to_bits() >> 52) & 0x7ff) as i32 - 1023;
+    // f32's top binade ends at 2^128; a magnitude past f32::MAX keeps that binade's ULP.
+    2f64.powi(e.min(127) - 23)
+}
+
+/// log2's allowance at a result of magnitude up to `m`: the larger of 2⁻²¹ (absolute, for
+/// arguments in [0.5, 2]) and 3 ULP (elsewhere).
+pub(crate) fn log2_allowance(m: f64) -> f64 {
+    (2f64.powi(-21)).max(3.0 * f32_ulp(m))
+}
+
+/// exp2's allowance in ULP of the result for an argument `t`: 3 + 2|t|.
+pub(crate) fn exp2_ulps(t: f64) -> f64 {
+    3.0 + 2.0 * t.abs()
+}
+
+/// ÷'s allowance in ULP.
+pub(crate) const DIV_ULPS: f64 = 2.5;
+
+/// Whether the rules define ÷ for a divisor of magnitude `m`.
+pub(crate) fn divisor_defined(m: f64) -> bool {
+    (2f64.powi(-126)..=2f64.powi(126)).contains(&m)
+}
+
+impl Iv {
+    /// Any value, NaN included.
+    pub const FULL: Iv = Iv { lo: f64::NEG_INFINITY, hi: f64::INFINITY, full: true };
+
+    /// The exact value `v` (a literal, a uniform, a texel read).
+    pub fn point(v: f32) -> Iv {
+        if v.is_nan() {
+            return Iv::FULL;
+        }
+        Iv { lo: f64::from(v), hi: f64::from(v), full: false }
+    }
+
+    /// [lo, hi] (lo ≤ hi).
+    pub fn new(lo: f64, hi: f64) -> Iv {
+        debug_assert!(lo <= hi, "[{lo}, {hi}]");
+        Iv { lo, hi, full: false }
+    }
+
+    /// Whether the f32 `v` lies inside (a NaN only in a full interval).
+    pub fn contains(self, v: f32) -> bool {
+        if self.full {
+            return true;
+        }
+        !v.is_nan() && (self.lo..=self.hi).contains(&f64::from(v))
+    }
+
+    /// The largest magnitude inside.
+    pub fn magnitude(self) -> f64 {
+        self.lo.abs().max(self.hi.abs())
+    }
+
+    /// The smallest interval holding both.
+    pub fn hull(self, o: Iv) -> Iv {
+        if self.full || o.full {
+            return Iv::FULL;
+        }
+        Iv::new(self.lo.min(o.lo), self.hi.max(o.hi))
+    }
+
+    /// Half the width relative to the largest magnitude (0 for a point; ∞ when full or
+    /// unbounded).
+    pub fn rel_half_width(self) -> f64 {
+        if self.full {
+            return f64::INFINITY;
+        }
+        let w = 0.5 * (self.hi - self.lo);
+        if w == 0.0 { 0.0 } else { w / self.magnitude() }
+    }
+
+    /// From exact bounds `[lo, hi]` (already rounded outward), widened by `ulps` f32 ULP of
+    /// the largest magnitude, then what f32 storage allows: overflow to ±∞ and flushed
+    /// subnormals.
+    fn rounded(lo: f64, hi: f64, ulps: f64) -> Iv {
+        if lo.is_nan() || hi.is_nan() {
+            return Iv::FULL;
+        }
+        let u = ulps * f32_ulp(lo.abs().max(hi.abs()));
+        Iv::stored((lo - u).next_down(), (hi + u).next_up())
+    }
+
+    /// Bounds past f32's range may round to ±∞ (or, rounding toward 0, to ±f32::MAX);
+    /// subnormals may flush to 0.
+    fn stored(mut lo: f64, mut hi: f64) -> Iv {
+        lo = lo.min(F32_MAX);
+        hi = hi.max(-F32_MAX);
+        if hi > F32_MAX {
+            hi = f64::INFINITY;
+        }
+        if lo < -F32_MAX {
+            lo = f64::NEG_INFINITY;
+        }
+        if lo > 0.0 && lo < F32_MIN_NORMAL {
+            lo = 0.0;
+        }
+        if hi < 0.0 && hi > -F32_MIN_NORMAL {
+            hi = 0.0;
+        }
+        Iv::new(lo, hi)
+    }
+
+    /// log2 of the interval's normal part (`None` where it has none) with the rule's
+    /// allowance.
+    fn log2_normal(self) -> Option<Iv> {
+        if self.hi < F32_MIN_NORMAL {
+            return None;
+        }
+        let (lo, hi) = (self.lo.max(F32_MIN_NORMAL).log2(), self.hi.log2());
+        let a = log2_allowance(lo.abs().max(hi.abs()));
+        // f64's log2 is within 1 ULP of f64: far inside 2⁻²¹, and the outward steps cover it.
+        Some(Iv::stored((lo - a).next_down().next_down(), (hi + a).next_up().next_up()))
+    }
+
+    /// exp2 of the interval with the rule's allowance, 3 + 2|t| ULP at the interval's largest
+    /// |t| (an exp2 is never negative).
+    fn exp2(self) -> Iv {
+        if self.full {
+            return Iv::FULL;
+        }
+        let ulps = exp2_ulps(self.magnitude());
+        let (lo, hi) = (self.lo.exp2(), self.hi.exp2());
+        // The lower end's ULP taken one binade up covers the staircase inside.
+        let lo = (lo - ulps * f32_ulp(2.0 * lo)).next_down().next_down().max(0.0);
+        let hi = (hi + ulps * f32_ulp(hi)).next_up().next_up();
+        Iv::stored(lo, hi)
+    }
+}
+
+/// The four products' (or quotients') hull, rounded outward.
+fn corners(a: Iv, b: Iv, f: impl Fn(f64, f64) -> f64) -> (f64, f64) {
+    let c = [f(a.lo, b.lo), f(a.lo, b.hi), f(a.hi, b.lo), f(a.hi, b.hi)];
+    if c.iter().any(|v| v.is_nan()) {
+        return (f64::NAN, f64::NAN);
+    }
+    let lo = c.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = c.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    (lo.next_down(), hi.next_up())
+}
+
+impl Add for Iv {
+    type Output = Iv;
+    fn add(self, b: Iv) -> Iv {
+        if self.full || b.full {
+            return Iv::FULL;
+        }
+        Iv::rounded((self.lo + b.lo).next_down(), (self.hi + b.hi).next_up(), 1.0)
+    }
+}
+
+impl Sub for Iv {
+    type Output = Iv;
+    fn sub(self, b: Iv) -> Iv {
+        if self.full || b.full {
+            return Iv::FULL;
+        }
+        Iv::rounded((self.lo - b.hi).next_down(), (self.hi - b.lo).next_up(), 1.0)
+    }
+}
+
+impl Mul for Iv {
+    type Output = Iv;
+    fn mul(self, b: Iv) -> Iv {
+        if self.full || b.full {
+            return Iv::FULL;
+        }
+        let (lo, hi) = corners(self, b, |x, y| x * y);
+        Iv::rounded(lo, hi, 1.0)
+    }
+}
+
+impl Div for Iv {
+    type Output = Iv;
+    fn div(self, b: Iv) -> Iv {
+        if self.full || b.full || b.lo <= 0.0 && b.hi >= 0.0 {
+            return Iv::FULL;
+        }
+        let (m_lo, m_hi) = (b.lo.abs().min(b.hi.abs()), b.magnitude());
+        if !divisor_defined(m_lo) || !divisor_defined(m_hi) {
+            return Iv::FULL;
+        }
+        let (lo, hi) = corners(self, b, |x, y| x / y);
+        Iv::rounded(lo, hi, DIV_ULPS)
+    }
+}
+
+impl Real for Iv {
+    type Cond = Tri;
+    fn lit(v: f32) -> Iv {
+        Iv::point(v)
+    }
+    /// SPIR-V's FMax is undefined for a NaN operand: a full operand gives a full result.
+    fn max(self, b: Iv) -> Iv {
+        if self.full || b.full {
+            return Iv::FULL;
+        }
+        Iv::new(self.lo.max(b.lo), self.hi.max(b.hi))
+    }
+    fn min(self, b: Iv) -> Iv {
+        if self.full || b.full {
+            return Iv::FULL;
+        }
+        Iv::new(self.lo.min(b.lo), self.hi.min(b.hi))
+    }
+    /// exp2(e · log2 x) over x's normal part; where x may be 0 or subnormal (flushed, or
+    /// with log2 in [−149, −126]) and e > 0, also anything from 0 to what that gives.
+    fn pow(self, e: Iv) -> Iv {
+        if self.full || e.full || self.lo < 0.0 {
+            return Iv::FULL;
+        }
+        let normal = self.log2_normal().map(|l| (l * e).exp2());
+        if self.lo >= F32_MIN_NORMAL {
+            return normal.unwrap_or(Iv::FULL);
+        }
+        if e.lo <= 0.0 {
+            // pow(0, e ≤ 0) is undefined.
+            return Iv::FULL;
+        }
+        // Flushed: 0; kept: log2 x in [−149, −126], so up to exp2(−126 e) and its allowance.
+        let a = log2_allowance(149.0);
+        let tail = Iv::new(0.0, (Iv::new(-149.0 - a, -126.0 + a) * e).exp2().hi);
+        normal.map_or(tail, |n| n.hull(tail))
+    }
+    fn round(self) -> Iv {
+        if self.full {
+            return Iv::FULL;
+        }
+        Iv::new(self.lo.round_ties_even(), self.hi.round_ties_even())
+    }
+    fn le(self, b: Iv) -> Tri {
+        if self.full || b.full {
+            Tri::Either
+        } else if self.hi <= b.lo {
+            Tri::True
+        } else if self.lo > b.hi {
+            Tri::False
+        } else {
+            Tri::Either
+        }
+    }
+    fn select(f: Iv, t: Iv, cond: Tri) -> Iv {
+        match cond {
+            Tri::True => t,
+            Tri::False => f,
+            Tri::Either => f.hull(t),
+        }
+    }
+    /// Vulkan's conversion to unorm: clamp to [0, 1], then r = v · 255 becomes "one of the two
+    /// integers closest to r" (rounding to nearest is only recommended), so a non-integral r
+    /// may give its floor or its ceiling.
+    fn store_unorm8(self) -> ByteRange {
+        if self.full {
+            return ByteRange { lo: 0, hi: 255 };
+        }
+        let r_lo = (self.lo.clamp(0.0, 1.0) * 255.0).next_down();
+        let r_hi = (self.hi.clamp(0.0, 1.0) * 255.0).next_up();
+        // An exactly integral r is stored exactly; the outward step above makes that
+        // unreachable for non-point bounds, as it must: only a point is known integral.
+        let (lo, hi) = if self.lo == self.hi && (self.lo * 255.0).fract() == 0.0 {
+            let b = (self.lo.clamp(0.0, 1.0) * 255.0) as u8;
+            (b, b)
+        } else {
+            (r_lo.floor().max(0.0) as u8, r_hi.ceil().min(255.0) as u8)
+        };
+        ByteRange { lo, hi }
+    }
+}

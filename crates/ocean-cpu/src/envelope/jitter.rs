@@ -1,0 +1,158 @@
+//! [`Jitter`]: one conformant implementation drawn at random. Each operation takes the exact
+//! result of its f32 operands and returns an f32 within the allowance [`super::Iv`] carries
+//! (× [`JitterRules::scale`]): half the draws at the allowance's very edge, where an envelope
+//! that is too narrow shows first. Subnormal results are flushed at random; an 8-bit store of
+//! a non-integral r = v · 255 writes its floor or its ceiling.
+//!
+//! The draws come from a per-thread generator ([`Jitter::reseed`] before each pixel), so a
+//! frame is reproducible for a seed at any number of threads.
+
+use std::cell::Cell;
+use std::ops::{Add, Div, Mul, Sub};
+
+use ocean_core::rng::{SplitMix64, mix64};
+
+use super::interval::{DIV_ULPS, exp2_ulps, f32_ulp, log2_allowance};
+use super::{ByteRange, Real};
+
+/// The rules a [`Jitter`] draws within.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct JitterRules {
+    /// The frame's seed (each pixel reseeds from it and its index).
+    pub seed: u64,
+    /// Multiplies every allowance: 1 for a conformant implementation, 2 for the negative
+    /// control (an implementation twice as loose as the rules).
+    pub scale: f64,
+}
+
+thread_local! {
+    static STATE: Cell<(u64, f64)> = const { Cell::new((0, 1.0)) };
+}
+
+/// An f32 computed by a random conformant implementation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Jitter(pub f32);
+
+impl Jitter {
+    /// Restarts this thread's draws for pixel `index` of a frame under `rules`.
+    pub fn reseed(rules: JitterRules, index: u64) {
+        let mut g = SplitMix64::new(rules.seed ^ index.wrapping_mul(0x9e37_79b9_7f4a_7c15));
+        STATE.set((g.next_u64(), rules.scale));
+    }
+}
+
+/// The next draw in [0, 1) and the scale.
+fn draw() -> (f64, f64) {
+    let (s, scale) = STATE.get();
+    let s = s.wrapping_add(0x9e37_79b9_7f4a_7c15);
+    STATE.set((s, scale));
+    let v = mix64(s);
+    ((v >> 11) as f64 / (1u64 << 53) as f64, scale)
+}
+
+/// An f32 within `allowance` of `exact` (at the edge half the time), rounded toward `exact`
+/// so it stays inside; subnormals flushed half the time.
+fn within(exact: f64, allowance: f64) -> Jitter {
+    if !exact.is_finite() {
+        return Jitter(exact as f32);
+    }
+    let (r, scale) = draw();
+    let a = allowance * scale;
+    let t = if r < 0.25 {
+        exact - a
+    } else if r < 0.5 {
+        exact + a
+    } else {
+        exact + (4.0 * r - 3.0) * a
+    };
+    let mut v = toward(t, exact);
+    if v != 0.0 && v.abs() < f32::MIN_POSITIVE && draw().0 < 0.5 {
+        v = 0.0;
+    }
+    Jitter(v)
+}
+
+/// `t` rounded to an f32 on the side of `exact`.
+fn toward(t: f64, exact: f64) -> f32 {
+    let n = t as f32;
+    let d = f64::from(n);
+    if (d > t && t >= exact) || (d < t && t <= exact) {
+        // Rounded away from exact: step back one f32.
+        if d > t { n.next_down() } else { n.next_up() }
+    } else {
+        n
+    }
+}
+
+/// An f32 operation with `ulps` ULP of allowance (1: rounding either way).
+fn rounded(exact: f64, ulps: f64) -> Jitter {
+    within(exact, ulps * f32_ulp(exact))
+}
+
+impl Add for Jitter {
+    type Output = Jitter;
+    fn add(self, b: Jitter) -> Jitter {
+        rounded(f64::from(self.0) + f64::from(b.0), 1.0)
+    }
+}
+
+impl Sub for Jitter {
+    type Output = Jitter;
+    fn sub(self, b: Jitter) -> Jitter {
+        rounded(f64::from(self.0) - f64::from(b.0), 1.0)
+    }
+}
+
+impl Mul for Jitter {
+    type Output = Jitter;
+    fn mul(self, b: Jitter) -> Jitter {
+        rounded(f64::from(self.0) * f64::from(b.0), 1.0)
+    }
+}
+
+impl Div for Jitter {
+    type Output = Jitter;
+    fn div(self, b: Jitter) -> Jitter {
+        rounded(f64::from(self.0) / f64::from(b.0), DIV_ULPS)
+    }
+}
+
+impl Real for Jitter {
+    type Cond = bool;
+    fn lit(v: f32) -> Jitter {
+        Jitter(v)
+    }
+    fn max(self, b: Jitter) -> Jitter {
+        Jitter(self.0.max(b.0))
+    }
+    fn min(self, b: Jitter) -> Jitter {
+        Jitter(self.0.min(b.0))
+    }
+    /// A subnormal or zero x is flushed (→ 0) half the time.
+    fn pow(self, e: Jitter) -> Jitter {
+        let x = f64::from(self.0);
+        if x == 0.0 || x < f64::from(f32::MIN_POSITIVE) && draw().0 < 0.5 {
+            return Jitter(0.0);
+        }
+        let exact = x.log2();
+        let l = within(exact, log2_allowance(exact.abs()));
+        let t = f64::from((l * e).0);
+        let v = rounded(t.exp2(), exp2_ulps(t));
+        Jitter(v.0.max(0.0))
+    }
+    fn round(self) -> Jitter {
+        Jitter(self.0.round_ties_even())
+    }
+    fn le(self, b: Jitter) -> bool {
+        self.0 <= b.0
+    }
+    fn select(f: Jitter, t: Jitter, cond: bool) -> Jitter {
+        if cond { t } else { f }
+    }
+    fn store_unorm8(self) -> ByteRange {
+        let r = f64::from(self.0.clamp(0.0, 1.0)) * 255.0;
+        let b = if r.fract() == 0.0 || draw().0 < 0.5 { r.floor() } else { r.ceil() };
+        let b = b as u8;
+        ByteRange { lo: b, hi: b }
+    }
+}

@@ -1,0 +1,141 @@
+//! The oracle's answer for a hardware GPU: per texel, the interval in which any conformant
+//! implementation of the same WGSL must land (docs/tolerances.md).
+//!
+//! A mirror written over [`Real`] serves three scalar types:
+//! - `f32`: the exact frame, lavapipe's arithmetic, bit for bit (what every mirror computed
+//!   before; monomorphised, so no slower);
+//! - [`Iv`]: the envelope — each operation's result widened by the error the Vulkan and WGSL
+//!   precision rules allow it, so the interval holds every conformant result;
+//! - [`Jitter`]: one conformant implementation drawn at random (each rounding, each
+//!   transcendental's error, each rounding of the 8-bit store chosen within the rules, or
+//!   `scale` times the rules for the negative control): the envelope's soundness test without
+//!   hardware.
+//!
+//! Stages whose mirrors run over [`Real`]: `tonemap` ([`crate::shaders::tonemap`]). The
+//! others have no envelope yet; `ocean compare --tolerance envelope` reports them as not
+//! judged.
+
+mod interval;
+mod jitter;
+
+use std::ops::{Add, Div, Mul, Sub};
+
+pub use interval::{ByteRange, Iv, f32_ulp};
+pub use jitter::{Jitter, JitterRules};
+
+/// A comparison's outcome: decided, or (for an envelope) either way.
+pub trait Cond: Copy {
+    /// The outcome when it is decided.
+    fn decided(self) -> Option<bool>;
+}
+
+impl Cond for bool {
+    #[inline]
+    fn decided(self) -> Option<bool> {
+        Some(self)
+    }
+}
+
+/// A comparison of two intervals: true for every pair of values, false for every pair, or
+/// either — then a `select` on it takes both branches, united.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Tri {
+    /// False for every pair of values in the operands.
+    False,
+    /// True for every pair.
+    True,
+    /// True for some pairs, false for others.
+    Either,
+}
+
+impl Cond for Tri {
+    fn decided(self) -> Option<bool> {
+        match self {
+            Tri::False => Some(false),
+            Tri::True => Some(true),
+            Tri::Either => None,
+        }
+    }
+}
+
+/// The scalar a mirror computes with: WGSL's `f32` operations, each with the semantics of the
+/// implementing type (exact lavapipe f32, an interval, or a random conformant result).
+pub trait Real:
+    Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + Div<Output = Self>
+{
+    /// What a comparison yields.
+    type Cond: Cond;
+    /// A literal or uniform: an exact f32.
+    fn lit(v: f32) -> Self;
+    /// WGSL `max(a, b)`.
+    fn max(self, b: Self) -> Self;
+    /// WGSL `min(a, b)`.
+    fn min(self, b: Self) -> Self;
+    /// WGSL `clamp(e, low, high)` = min(max(e, low), high).
+    #[inline]
+    fn clamp(self, low: Self, high: Self) -> Self {
+        self.max(low).min(high)
+    }
+    /// WGSL `pow(e1, e2)` for e1 ≥ 0 (Vulkan: inherited from exp2(e2 · log2 e1)).
+    fn pow(self, e: Self) -> Self;
+    /// WGSL `round(e)`: to the nearest integer, halves to even (exact).
+    fn round(self) -> Self;
+    /// `a <= b`.
+    fn le(self, b: Self) -> Self::Cond;
+    /// WGSL `select(f, t, cond)`.
+    fn select(f: Self, t: Self, cond: Self::Cond) -> Self;
+    /// What an 8-bit unorm target stores for a shader output: every byte a conformant
+    /// implementation may write, as a range.
+    fn store_unorm8(self) -> ByteRange;
+}
+
+impl Real for f32 {
+    type Cond = bool;
+    #[inline]
+    fn lit(v: f32) -> Self {
+        v
+    }
+    /// Rust's `f32::max`: IEEE maxNum, as `shaders::wgsl::max`.
+    #[inline]
+    fn max(self, b: Self) -> Self {
+        f32::max(self, b)
+    }
+    #[inline]
+    fn min(self, b: Self) -> Self {
+        f32::min(self, b)
+    }
+    #[inline]
+    fn pow(self, e: Self) -> Self {
+        self.powf(e)
+    }
+    #[inline]
+    fn round(self) -> Self {
+        self.round_ties_even()
+    }
+    #[inline]
+    fn le(self, b: Self) -> bool {
+        self <= b
+    }
+    #[inline]
+    fn select(f: Self, t: Self, cond: bool) -> Self {
+        if cond { t } else { f }
+    }
+    /// Lavapipe's store: clamp to [0, 1], × 255, rounded to nearest even.
+    #[inline]
+    fn store_unorm8(self) -> ByteRange {
+        let b = (self.clamp(0.0, 1.0) * 255.0).round_ties_even() as u8;
+        ByteRange { lo: b, hi: b }
+    }
+}
+
+/// Three components, one operation each (a `vec3<f32>` of any [`Real`]).
+#[inline]
+pub fn map3<R: Real>(v: [R; 3], f: impl Fn(R) -> R) -> [R; 3] {
+    v.map(f)
+}
+
+/// Component-wise `f(a, b)`.
+#[inline]
+pub fn zip3<R: Real>(a: [R; 3], b: [R; 3], f: impl Fn(R, R) -> R) -> [R; 3] {
+    [f(a[0], b[0]), f(a[1], b[1]), f(a[2], b[2])]
+}

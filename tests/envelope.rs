@@ -1,0 +1,239 @@
+//! The hardware envelope (ocean-cpu `envelope`, docs/tolerances.md): its operations hold
+//! every result a conformant GPU may compute, drawn at random ([`Jitter`]) — and a GPU twice
+//! as loose leaves them; the `tonemap` pass's envelope holds the random conformant GPUs on the
+//! NVIDIA H200's own HDR frames (`reference/hardware/h200`) and the H200's own 8-bit pictures,
+//! and a 3 % exposure error leaves it.
+
+#![allow(clippy::unwrap_used, reason = "a panic in a test is its failure report")]
+
+use std::path::{Path, PathBuf};
+
+use ocean_core::plan::{FramePlan, OutputKind, ResourceId};
+use ocean_core::rng::SplitMix64;
+use ocean_core::tonemap::TonemapUniforms;
+use ocean_cpu::envelope::{Iv, Jitter, JitterRules, Real};
+use ocean_cpu::shaders::tonemap;
+
+/// Operands over many binades, both signs, and the edges (0, subnormals).
+fn operands(n: usize, seed: u64) -> Vec<f32> {
+    let mut g = SplitMix64::new(seed);
+    let mut v = vec![0.0, -0.0, 1.0, f32::MIN_POSITIVE, 1e-40, 0.0031308, 65504.0];
+    while v.len() < n {
+        let m = g.next_open_closed() as f32 + 0.5;
+        let e = (g.next_u64() % 40) as i32 - 20;
+        let s = if g.next_u64() & 1 == 0 { 1.0 } else { -1.0 };
+        v.push(s * m * 2f32.powi(e));
+    }
+    v
+}
+
+type Op<R> = fn(R, R) -> R;
+
+/// The binary operations the mirrors use, each in its Iv and its Jitter form.
+fn ops() -> Vec<(&'static str, Op<Iv>, Op<Jitter>, bool)> {
+    vec![
+        ("+", |a, b| a + b, |a, b| a + b, true),
+        ("-", |a, b| a - b, |a, b| a - b, true),
+        ("*", |a, b| a * b, |a, b| a * b, true),
+        ("/", |a, b| a / b, |a, b| a / b, true),
+        // pow takes |a| (the mirrors raise values ≥ 0) and the sRGB exponent or |b|.
+        ("pow", |a, b| pow_iv(a, b), |a, b| pow_j(a, b), true),
+        ("max", |a, b| a.max(b), |a, b| a.max(b), false),
+        ("round", |a, _| a.round(), |a, _| a.round(), false),
+    ]
+}
+
+fn pow_iv(a: Iv, b: Iv) -> Iv {
+    let a = Iv::new(a.lo.abs().min(a.hi.abs()), a.magnitude());
+    let e = Iv::new(b.lo.abs().min(b.hi.abs()).min(4.0), b.magnitude().min(4.0));
+    a.pow(e)
+}
+
+fn pow_j(a: Jitter, b: Jitter) -> Jitter {
+    Jitter(a.0.abs()).pow(Jitter(b.0.abs().min(4.0)))
+}
+
+/// For each op, over pairs of operands and draws: how many results fall outside the op's
+/// envelope at `scale`.
+fn escapes(scale: f64) -> Vec<(&'static str, usize, usize)> {
+    let xs = operands(200, 1);
+    let ys = operands(60, 2);
+    let mut out = Vec::new();
+    for (name, iv, jit, _) in ops() {
+        let (mut tried, mut outside) = (0, 0);
+        for (i, &a) in xs.iter().enumerate() {
+            for (j, &b) in ys.iter().enumerate() {
+                let env = iv(Iv::point(a), Iv::point(b));
+                for k in 0..4u64 {
+                    Jitter::reseed(JitterRules { seed: k, scale }, (i * 1000 + j) as u64);
+                    let v = jit(Jitter(a), Jitter(b)).0;
+                    tried += 1;
+                    if !env.contains(v) {
+                        outside += 1;
+                    }
+                }
+            }
+        }
+        out.push((name, tried, outside));
+    }
+    out
+}
+
+#[test]
+fn every_conformant_result_is_inside_and_twice_the_rules_leaves() {
+    for (name, tried, outside) in escapes(1.0) {
+        println!("{name:>5}: {outside} of {tried} conformant results outside");
+        assert_eq!(outside, 0, "{name}: a result within the rules left the envelope");
+    }
+    // Negative control: an implementation twice as loose leaves the envelope of every
+    // rounding operation (exact ones — max, round — have nothing to loosen).
+    let loose = escapes(2.0);
+    for ((name, tried, outside), (_, _, _, rounds)) in loose.into_iter().zip(ops()) {
+        println!("{name:>5}: {outside} of {tried} results of a GPU twice as loose outside");
+        if rounds {
+            assert!(outside > 0, "{name}: twice the rules never left the envelope");
+        }
+    }
+}
+
+#[test]
+fn undefined_operations_give_a_full_interval() {
+    let x = Iv::point(1.0);
+    assert!((x / Iv::point(0.0)).full, "÷ 0");
+    assert!((x / Iv::point(1e-40)).full, "÷ a subnormal");
+    assert!(Iv::point(-1.0).pow(Iv::point(0.5)).full, "pow of a negative");
+    assert!(Iv::point(f32::NAN).full, "a NaN");
+    assert!((Iv::point(f32::INFINITY) * Iv::point(0.0)).full, "∞ · 0");
+    // Overflow may round to ∞; a subnormal result may flush to 0.
+    let big = Iv::point(f32::MAX) + Iv::point(f32::MAX);
+    assert!(big.contains(f32::INFINITY));
+    let tiny = Iv::point(1e-20) * Iv::point(1e-20);
+    assert!(tiny.contains(0.0));
+    // And a plain value is not full, nor wide.
+    let one = Iv::point(1.0) + Iv::point(2.0);
+    assert!(!one.full && one.contains(3.0) && !one.contains(3.001));
+}
+
+fn snapshot() -> Vec<PathBuf> {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("reference/hardware/h200");
+    let mut v: Vec<PathBuf> = std::fs::read_dir(root)
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.join("manifest.json").is_file())
+        .collect();
+    v.sort();
+    assert_eq!(v.len(), 19, "the snapshot holds 19 scenes");
+    v
+}
+
+/// A dump's HDR frame, its 8-bit picture and the tonemap's uniforms (`None` where its scene
+/// runs post `bloom`, whose output the dump does not hold).
+struct Dumped {
+    name: String,
+    w: u32,
+    h: u32,
+    hdr: Vec<[f32; 4]>,
+    ldr: Vec<u8>,
+    tonemap: Option<TonemapUniforms>,
+}
+
+fn dumped(dir: &Path) -> Dumped {
+    let manifest = ocean::dump::read_manifest(dir).unwrap().unwrap();
+    let none = ocean::scene_arg::SystemArg { system: None };
+    let scene = manifest.scene("manifest.json", None, &none).unwrap();
+    let plan = FramePlan::new(&scene, OutputKind::Ldr);
+    let t = ocean_core::plan::tonemap_uniforms(&scene, &plan).unwrap().unwrap();
+    let ((w, h), hdr) = ocean::dump::read(dir, ResourceId::Hdr).unwrap();
+    let ldr = image::open(dir.join("ldr.png")).unwrap().to_rgba8().into_raw();
+    Dumped {
+        name: dir.file_name().unwrap().to_string_lossy().into_owned(),
+        w,
+        h,
+        hdr,
+        ldr,
+        tonemap: (t.bloom_scale == 0.0).then_some(t),
+    }
+}
+
+/// Texels (pixel, channel) of `bytes` (RGBA) outside the envelope's bytes.
+fn bytes_outside(env: &[[(Iv, ocean_cpu::envelope::ByteRange); 3]], bytes: &[u8]) -> usize {
+    env.iter()
+        .enumerate()
+        .map(|(i, px)| (0..3).filter(|&c| !px[c].1.contains(bytes[4 * i + c])).count())
+        .sum()
+}
+
+#[test]
+fn random_conformant_gpus_stay_inside_the_tonemap_envelope() {
+    let (mut texels, mut frames) = (0usize, 0usize);
+    let mut loose_outside = 0usize;
+    for dir in snapshot() {
+        let d = dumped(&dir);
+        let Some(t) = d.tonemap else { continue };
+        let env = tonemap::envelope_of(&d.hdr, d.w, d.h, &t);
+        for seed in 0..8 {
+            let rules = JitterRules { seed, scale: 1.0 };
+            let got = tonemap::jitter(&d.hdr, d.w, d.h, &t, rules);
+            for (e, g) in env.iter().zip(&got) {
+                for c in 0..3 {
+                    assert!(
+                        e[c].0.contains(g[c].0) && e[c].1.contains(g[c].1),
+                        "{} seed {seed}: {:?} / {} outside {:?}",
+                        d.name,
+                        g[c],
+                        g[c].1,
+                        e[c]
+                    );
+                }
+            }
+            texels += 3 * got.len();
+            frames += 1;
+        }
+        // Negative control: twice the rules leaves the float envelope somewhere.
+        let got = tonemap::jitter(&d.hdr, d.w, d.h, &t, JitterRules { seed: 99, scale: 2.0 });
+        loose_outside += env
+            .iter()
+            .zip(&got)
+            .map(|(e, g)| (0..3).filter(|&c| !e[c].0.contains(g[c].0)).count())
+            .sum::<usize>();
+    }
+    println!("{frames} frames, {texels} texels of random conformant GPUs: 0 outside");
+    println!("twice the rules: {loose_outside} texels outside");
+    assert!(frames >= 8 * 17, "{frames} frames");
+    assert!(loose_outside > 0, "a GPU twice as loose as the rules never left the envelope");
+}
+
+#[test]
+fn the_h200_pictures_are_inside_the_tonemap_envelope_and_an_exposure_error_is_not() {
+    let mut judged = 0;
+    for dir in snapshot() {
+        let d = dumped(&dir);
+        let Some(t) = d.tonemap else {
+            println!("{}: not judged (post bloom: its output is not in the dump)", d.name);
+            continue;
+        };
+        let env = tonemap::envelope_of(&d.hdr, d.w, d.h, &t);
+        let outside = bytes_outside(&env, &d.ldr);
+        // The oracle's own tonemap of the same frame is one conformant GPU.
+        let ours = tonemap::tonemap_to_rgba8(&d.hdr, d.w, d.h, &t);
+        let ours_outside = bytes_outside(&env, &ours);
+        // Power: the same frame with a 3 % exposure error.
+        let off = TonemapUniforms { exposure: t.exposure * 1.03, ..t };
+        let wrong = tonemap::tonemap_to_rgba8(&d.hdr, d.w, d.h, &off);
+        let wrong_outside = bytes_outside(&env, &wrong);
+        let width: Vec<u8> =
+            env.iter().flat_map(|px| px.iter().map(|(_, b)| b.hi - b.lo)).collect();
+        let wide = width.iter().filter(|&&w| w > 2).count();
+        println!(
+            "{}: H200 {outside}, oracle {ours_outside}, exposure +3 % {wrong_outside} of {} bytes outside; envelope wider than 3 codes at {wide}",
+            d.name,
+            3 * env.len()
+        );
+        assert_eq!(outside, 0, "{}: the H200's picture left the envelope", d.name);
+        assert_eq!(ours_outside, 0, "{}: the oracle's picture left the envelope", d.name);
+        assert!(wrong_outside > 0, "{}: a 3 % exposure error stayed inside", d.name);
+        judged += 1;
+    }
+    assert_eq!(judged, 17, "17 of the 19 scenes run no bloom");
+}
