@@ -6,6 +6,7 @@ use std::path::PathBuf;
 
 use anyhow::{Context, bail};
 use ocean_verify::cross_check::{artefacts, check_scene, map_pass};
+use ocean_verify::envelope::Tolerance;
 
 /// Arguments of `ocean compare`.
 #[derive(clap::Args, Debug)]
@@ -36,9 +37,107 @@ pub struct Args {
     /// correct), to see that the comparison catches it. `--mutants` lists them.
     #[arg(long, value_name = "NAME", conflicts_with = "against")]
     mutant: Option<String>,
+    /// How the GPU's resources are held: `exact` (docs/design.md's float and picture rows,
+    /// lavapipe's figures) or `envelope` (what any conformant GPU may produce:
+    /// docs/tolerances.md; today the 8-bit picture, the other resources reported as not
+    /// judged). Default: exact on a software adapter, the envelope on hardware — with
+    /// --against, the dump's adapter, the envelope when the manifest does not say.
+    #[arg(long, value_enum, conflicts_with = "mutants")]
+    tolerance: Option<ToleranceArg>,
     /// List the planted bugs (name, file, what each changes, the scene that runs it) and exit.
     #[arg(long, conflicts_with_all = ["against", "mutant"])]
     mutants: bool,
+}
+
+/// `--tolerance`.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+enum ToleranceArg {
+    /// docs/design.md's float and picture rows.
+    Exact,
+    /// The envelope of any conformant GPU.
+    Envelope,
+}
+
+impl ToleranceArg {
+    fn resolve(arg: Option<Self>, software: Option<bool>) -> Tolerance {
+        match arg {
+            Some(ToleranceArg::Exact) => Tolerance::Exact,
+            Some(ToleranceArg::Envelope) => Tolerance::Envelope,
+            None => Tolerance::for_software(software),
+        }
+    }
+}
+
+/// What the envelope judges of a frame as a GPU made it: the picture, against the `tonemap`
+/// envelope of the GPU's own HDR frame (and bloom); the float resources, whose passes have no
+/// envelope yet, are listed as not judged. Prints a line per resource; returns the failures and
+/// the JSON entries.
+/// A float frame as read back: (width, height) and its texels.
+type FrameRef<'a> = ((u32, u32), &'a [[f32; 4]]);
+
+struct GpuSide<'a> {
+    /// The HDR frame, (width, height) and texels.
+    hdr: Option<FrameRef<'a>>,
+    /// The bloom up chain's atlas, where the pass ran and the frame holds it.
+    bloom_up: Option<&'a [[f32; 4]]>,
+    /// The 8-bit picture.
+    ldr: Option<&'a [u8]>,
+}
+
+fn envelope_verdict(
+    scene: &ocean_core::scene::Scene,
+    plan: &ocean_core::plan::FramePlan,
+    gpu: &GpuSide<'_>,
+    resources: &[ocean_core::plan::ResourceId],
+) -> anyhow::Result<(Vec<String>, Vec<serde_json::Value>)> {
+    use ocean_core::plan::Pass;
+    let mut failures = Vec::new();
+    let mut json = Vec::new();
+    for &id in resources {
+        let pass = id.writer().map_or("", |p| p.name());
+        let (why, entry) = ocean_verify::envelope::not_judged(id);
+        println!("  [{pass:<14}] {:<20} not judged: {why}", id.name());
+        json.push(entry);
+    }
+    let Some(tonemap) = ocean_core::plan::tonemap_uniforms(scene, plan)? else {
+        return Ok((failures, json));
+    };
+    let not_judged = |why: &str, json: &mut Vec<serde_json::Value>| {
+        println!("  [{:<14}] {:<20} not judged: {why}", "tonemap", "ldr");
+        json.push(serde_json::json!({"name": "ldr", "tolerance": "envelope", "judged": false, "why": why}));
+    };
+    let (Some(((w, h), hdr)), Some(ldr)) = (gpu.hdr, gpu.ldr) else {
+        not_judged("the GPU's HDR frame or picture is missing", &mut json);
+        failures.push("ldr: the GPU's HDR frame or picture is missing".to_owned());
+        return Ok((failures, json));
+    };
+    let bloom = match (plan.runs(Pass::Bloom), gpu.bloom_up) {
+        (false, _) => None,
+        (true, Some(atlas)) => ocean_verify::envelope::bloom_level0(atlas, w, h),
+        (true, None) => {
+            not_judged("pass bloom's output (bloom_up) is not in the frame", &mut json);
+            return Ok((failures, json));
+        }
+    };
+    if plan.runs(Pass::Bloom) && bloom.is_none() {
+        bail!("bloom_up is smaller than its level 0 for {w}x{h}");
+    }
+    let envelope = ocean_cpu::shaders::tonemap::envelope_of(hdr, bloom.as_ref(), w, h, &tonemap);
+    let no_bloom = ocean_cpu::sampler::Texture2D::new(1, 1, vec![[0.0; 4]]);
+    let exact = ocean_cpu::shaders::tonemap::tonemap_to_rgba8_with_bloom(
+        hdr,
+        w,
+        h,
+        &tonemap,
+        bloom.as_ref().unwrap_or(&no_bloom),
+    );
+    let verdict = ocean_verify::envelope::judge_picture("ldr", &envelope, ldr, &exact, w);
+    println!("  [{:<14}] {}", "tonemap", verdict.line());
+    if !verdict.passed() {
+        failures.push(verdict.line());
+    }
+    json.push(verdict.to_json());
+    Ok((failures, json))
 }
 
 /// Runs `ocean compare`.
@@ -87,26 +186,62 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         check.adapter,
         check.wave_source.unwrap_or("skipped")
     );
-    println!(
-        "limits: float maps rel {:e} / abs {:e}; picture: {}",
-        ocean_verify::compare::FLOAT_REL,
-        ocean_verify::compare::FLOAT_ABS,
-        check.image_limits.origin
-    );
-    for m in &check.maps {
-        let pass = map_pass(&m.name).map_or("", |p| p.name());
-        println!("  [{pass:<14}] {}", m.line());
-    }
-    if let Some(i) = &check.image {
-        println!("  [{:<14}] {}", "tonemap", i.line(&check.image_limits));
-    }
+    let tolerance = ToleranceArg::resolve(args.tolerance, Some(check.adapter.is_software));
+    let mut envelope_json = None;
+    let failures = match tolerance {
+        Tolerance::Exact => {
+            println!(
+                "limits: float maps rel {:e} / abs {:e}; picture: {}",
+                ocean_verify::compare::FLOAT_REL,
+                ocean_verify::compare::FLOAT_ABS,
+                check.image_limits.origin
+            );
+            for m in &check.maps {
+                let pass = map_pass(&m.name).map_or("", |p| p.name());
+                println!("  [{pass:<14}] {}", m.line());
+            }
+            if let Some(i) = &check.image {
+                println!("  [{:<14}] {}", "tonemap", i.line(&check.image_limits));
+            }
+            check.failures()
+        }
+        Tolerance::Envelope => {
+            use ocean_core::plan::ResourceId;
+            println!("limits: the envelope of any conformant GPU (docs/tolerances.md)");
+            let gpu = &renders.gpu;
+            let plan = &gpu.plan;
+            let ran: Vec<ResourceId> = ocean::dump::dumped(plan);
+            let side = GpuSide {
+                hdr: gpu.map(ResourceId::Hdr).map(|m| ((m.width, m.height), &m.texels[..])),
+                bloom_up: gpu.map(ResourceId::BloomUp).map(|m| &m.texels[..]),
+                ldr: gpu.ldr.as_deref(),
+            };
+            let (f, json) = envelope_verdict(&scene, plan, &side, &ran)?;
+            envelope_json = Some(serde_json::json!({
+                "scene": name,
+                "adapter": check.adapter.name,
+                "tolerance": "envelope",
+                "resources": json,
+            }));
+            f
+        }
+    };
     std::fs::create_dir_all(&args.out_dir)
         .with_context(|| format!("cannot make {}", args.out_dir.display()))?;
     for (file, bytes) in artefacts(&check, &renders)? {
         ocean::output::write_atomic(&args.out_dir.join(file), &bytes)?;
     }
-    println!("wrote {}/{name}.{{cpu,gpu,diff,flip}}.png and {name}.json", args.out_dir.display());
-    let failures = check.failures();
+    if let Some(json) = envelope_json {
+        ocean::output::write_atomic(
+            &args.out_dir.join(format!("{name}.envelope.json")),
+            serde_json::to_string_pretty(&json)?.as_bytes(),
+        )?;
+    }
+    println!(
+        "wrote {}/{name}.{{cpu,gpu,diff,flip}}.png and {name}.json ({} tolerance)",
+        args.out_dir.display(),
+        tolerance.name()
+    );
     if let Some(m) = mutant {
         if failures.is_empty() {
             println!("planted bug {} ({}: {}) NOT caught", m.name, m.file, m.changes);
@@ -163,7 +298,6 @@ fn against(args: &Args, dir: &std::path::Path) -> anyhow::Result<()> {
     ocean::scene_arg::revalidate(&scene, "--size, or the manifest's frame")?;
     let plan = ocean_core::plan::FramePlan::new(&scene, OutputKind::Ldr);
     args.memory.check(&scene, &plan, &[ocean_core::plan::memory::MemoryBackend::Cpu])?;
-    let r = ocean_cpu::render_scene(&scene, OutputKind::Ldr, &mut |_| {})?;
     std::fs::create_dir_all(&args.out_dir)
         .with_context(|| format!("cannot make {}", args.out_dir.display()))?;
     let made_by = manifest.adapter.as_ref().map_or_else(
@@ -179,6 +313,11 @@ fn against(args: &Args, dir: &std::path::Path) -> anyhow::Result<()> {
             )
         },
     );
+    let software = manifest.adapter.as_ref().and_then(|a| a["software"].as_bool());
+    let tolerance = ToleranceArg::resolve(args.tolerance, software);
+    if tolerance == Tolerance::Envelope {
+        return against_envelope(args, dir, &manifest, &scene, &plan, &made_by);
+    }
     println!(
         "{} (made by {made_by}) against the CPU oracle ({}x{}, limits: rel {:e} / abs {:e}, one \
          binary16 step on rgba16float resources)",
@@ -188,6 +327,7 @@ fn against(args: &Args, dir: &std::path::Path) -> anyhow::Result<()> {
         ocean_verify::compare::FLOAT_REL,
         ocean_verify::compare::FLOAT_ABS
     );
+    let r = ocean_cpu::render_scene(&scene, OutputKind::Ldr, &mut |_| {})?;
     let mut failures = Vec::new();
     let mut summary = Vec::new();
     let mut not_in_dump = Vec::new();
@@ -236,7 +376,6 @@ fn against(args: &Args, dir: &std::path::Path) -> anyhow::Result<()> {
     // The picture: the dump's `ldr.png` against the oracle's, by the picture row of the
     // adapter that made it (the manifest's `software`; the hardware row when it does not say).
     if let Some(ours) = r.ldr.as_deref() {
-        let software = manifest.adapter.as_ref().and_then(|a| a["software"].as_bool());
         let limits = if software == Some(true) {
             ocean_verify::compare::ImageLimits::SOFTWARE
         } else {
@@ -286,6 +425,84 @@ fn against(args: &Args, dir: &std::path::Path) -> anyhow::Result<()> {
     if !failures.is_empty() {
         bail!(
             "{} differs from the oracle beyond tolerance:\n{}",
+            dir.display(),
+            failures.join("\n")
+        );
+    }
+    Ok(())
+}
+
+/// `--against DIR --tolerance envelope`: the dump's picture against the `tonemap` envelope of
+/// the dump's own HDR frame (and bloom); its float resources listed as not judged (their passes
+/// have no envelope yet). The oracle's frame is not rendered: the envelope is of the dump's
+/// inputs.
+fn against_envelope(
+    args: &Args,
+    dir: &std::path::Path,
+    manifest: &ocean::dump::Manifest,
+    scene: &ocean_core::scene::Scene,
+    plan: &ocean_core::plan::FramePlan,
+    made_by: &str,
+) -> anyhow::Result<()> {
+    use ocean_core::plan::ResourceId;
+    println!(
+        "{} (made by {made_by}), {}x{}: held to the envelope of any conformant GPU \
+         (docs/tolerances.md)",
+        dir.display(),
+        scene.camera.width,
+        scene.camera.height
+    );
+    let listed = |id: ResourceId| match &manifest.resources {
+        Some(list) => list.iter().any(|n| n == id.name()),
+        None => std::fs::symlink_metadata(dir.join(ocean::dump::file_name(id))).is_ok(),
+    };
+    let mut held = Vec::new();
+    let mut not_in_dump = Vec::new();
+    for id in ocean::dump::dumped(plan) {
+        if listed(id) {
+            held.push(id);
+        } else if id != ResourceId::BloomDown && id != ResourceId::BloomUp {
+            println!("  [{:<14}] {:<20} not in dump", id.writer().map_or("", |p| p.name()), id.name());
+            not_in_dump.push(id.name());
+        }
+    }
+    let read = |id: ResourceId| -> anyhow::Result<Option<ocean::dump::ReadMap>> {
+        if listed(id) { ocean::dump::read(dir, id).map(Some) } else { Ok(None) }
+    };
+    let hdr = read(ResourceId::Hdr)?;
+    let bloom_up = read(ResourceId::BloomUp)?;
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    if let Some(((hw, hh), _)) = &hdr
+        && (*hw, *hh) != (w, h)
+    {
+        bail!("{}: hdr is {hw}x{hh}, the frame {w}x{h}", dir.display());
+    }
+    let ldr = dumped_picture(dir, w, h)?;
+    let side = GpuSide {
+        hdr: hdr.as_ref().map(|(size, t)| (*size, &t[..])),
+        bloom_up: bloom_up.as_ref().map(|(_, t)| &t[..]),
+        ldr: ldr.as_deref(),
+    };
+    held.retain(|&id| id != ResourceId::BloomDown && id != ResourceId::BloomUp);
+    let (mut failures, json) = envelope_verdict(scene, plan, &side, &held)?;
+    if args.require_all && !not_in_dump.is_empty() {
+        failures.push(format!("not in dump (--require-all): {}", not_in_dump.join(", ")));
+    }
+    let json = serde_json::json!({
+        "against": dir.display().to_string(),
+        "adapter": manifest.adapter,
+        "tolerance": "envelope",
+        "resources": json,
+        "not_in_dump": not_in_dump,
+    });
+    ocean::output::write_atomic(
+        &args.out_dir.join("against.json"),
+        serde_json::to_string_pretty(&json)?.as_bytes(),
+    )?;
+    println!("wrote {}/against.json", args.out_dir.display());
+    if !failures.is_empty() {
+        bail!(
+            "{} leaves the envelope of any conformant GPU:\n{}",
             dir.display(),
             failures.join("\n")
         );

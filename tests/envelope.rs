@@ -171,10 +171,10 @@ fn random_conformant_gpus_stay_inside_the_tonemap_envelope() {
     for dir in snapshot() {
         let d = dumped(&dir);
         let Some(t) = d.tonemap else { continue };
-        let env = tonemap::envelope_of(&d.hdr, d.w, d.h, &t);
+        let env = tonemap::envelope_of(&d.hdr, None, d.w, d.h, &t);
         for seed in 0..8 {
             let rules = JitterRules { seed, scale: 1.0 };
-            let got = tonemap::jitter(&d.hdr, d.w, d.h, &t, rules);
+            let got = tonemap::jitter(&d.hdr, None, d.w, d.h, &t, rules);
             for (e, g) in env.iter().zip(&got) {
                 for c in 0..3 {
                     assert!(
@@ -191,7 +191,7 @@ fn random_conformant_gpus_stay_inside_the_tonemap_envelope() {
             frames += 1;
         }
         // Negative control: twice the rules leaves the float envelope somewhere.
-        let got = tonemap::jitter(&d.hdr, d.w, d.h, &t, JitterRules { seed: 99, scale: 2.0 });
+        let got = tonemap::jitter(&d.hdr, None, d.w, d.h, &t, JitterRules { seed: 99, scale: 2.0 });
         loose_outside += env
             .iter()
             .zip(&got)
@@ -213,7 +213,7 @@ fn the_h200_pictures_are_inside_the_tonemap_envelope_and_an_exposure_error_is_no
             println!("{}: not judged (post bloom: its output is not in the dump)", d.name);
             continue;
         };
-        let env = tonemap::envelope_of(&d.hdr, d.w, d.h, &t);
+        let env = tonemap::envelope_of(&d.hdr, None, d.w, d.h, &t);
         let outside = bytes_outside(&env, &d.ldr);
         // The oracle's own tonemap of the same frame is one conformant GPU.
         let ours = tonemap::tonemap_to_rgba8(&d.hdr, d.w, d.h, &t);

@@ -6,6 +6,7 @@ use ocean_core::frame_format::FrameFormat;
 use ocean_core::plan::BloomInputs;
 use rayon::prelude::*;
 
+use crate::envelope::{Real, zip3};
 use crate::mip::MipChain;
 use crate::sampler::Texture2D;
 use crate::shaders::wgsl::{Vec3, max, min};
@@ -52,18 +53,26 @@ pub fn down(id: [u32; 2], params: &BloomUniforms, src: &Texture2D, bright_pass: 
 /// `upsample_at(p, size)` of `bloom.wgsl` (and `bloom_at` of `tonemap.wgsl`): the 2×
 /// bilinear upsample of `coarse` at fine texel `p`, coarse coordinates clamped to its size.
 pub fn upsample_at(coarse: &Texture2D, p: [i32; 2]) -> Vec3 {
+    Vec3::from(upsample_at_r::<f32>(coarse, p))
+}
+
+/// [`upsample_at`] over any [`Real`] (each texel read exactly: a GPU's own texture, or the
+/// oracle's in the exact frame).
+pub fn upsample_at_r<R: Real>(coarse: &Texture2D, p: [i32; 2]) -> [R; 3] {
     let size = [coarse.width as i32, coarse.height as i32];
     let load = |x: i32, y: i32| {
         let t = coarse.texel(x as u32, y as u32);
-        Vec3::from([t[0], t[1], t[2]])
+        [R::lit(t[0]), R::lit(t[1]), R::lit(t[2])]
     };
     let m = p.map(|v| v >> 1);
     let far: [i32; 2] = std::array::from_fn(|k| if p[k] & 1 == 1 { m[k] + 1 } else { m[k] - 1 });
     let n: [i32; 2] = std::array::from_fn(|k| m[k].clamp(0, size[k] - 1));
     let f: [i32; 2] = std::array::from_fn(|k| far[k].clamp(0, size[k] - 1));
-    let a = 0.75 * load(n[0], n[1]) + 0.25 * load(f[0], n[1]);
-    let b = 0.75 * load(n[0], f[1]) + 0.25 * load(f[0], f[1]);
-    0.75 * a + 0.25 * b
+    let (near, far_w) = (R::lit(0.75), R::lit(0.25));
+    let mix = |x: [R; 3], y: [R; 3]| zip3(x, y, |x, y| near * x + far_w * y);
+    let a = mix(load(n[0], n[1]), load(f[0], n[1]));
+    let b = mix(load(n[0], f[1]), load(f[0], f[1]));
+    mix(a, b)
 }
 
 /// `upsample(id)`: texel `id` of `up[k]` = `detail` (`down[k]`) + the upsample of `coarse`

@@ -177,9 +177,10 @@ fn srgb_oetf_r<R: Real>(c: R) -> R {
     R::select(hi, lo, c.le(R::lit(0.0031308)))
 }
 
-/// What an `Rgba8Unorm` target stores for a shader output `v` in [0, 1]: v · 255 rounded to
-/// the nearest integer. For the outputs of [`fs_main`], multiples of 1/255, v · 255 is within
-/// 2·10⁻⁵ of an integer, so every rounding Vulkan allows gives the same byte.
+/// What lavapipe's `Rgba8Unorm` target stores for a shader output `v`: v · 255 rounded to the
+/// nearest integer. Vulkan requires only one of the two integers closest to v · 255 (nearest
+/// is recommended), so for the outputs of [`fs_main`], within a few ULP of multiples of 1/255,
+/// another conformant GPU may store one code less or more: [`crate::envelope`] carries that.
 pub fn store_unorm8(v: f32) -> u8 {
     Real::store_unorm8(v).lo
 }
@@ -259,58 +260,63 @@ fn points(t: [f32; 4]) -> [Iv; 3] {
     [Iv::point(t[0]), Iv::point(t[1]), Iv::point(t[2])]
 }
 
+/// The pixel index `i`'s texel coordinates in a `width`-wide frame.
+fn texel_of(i: usize, width: u32) -> [i32; 2] {
+    [(i % width as usize) as i32, (i / width as usize) as i32]
+}
+
 /// The tonemap pass's envelope: per pixel, the value each of R, G, B may take before the
 /// store and the bytes a conformant GPU may store, given the HDR frame `hdr` as intervals
-/// (points for a GPU's own frame) and `bloom` as the `bloom_at` value per pixel (`None`
-/// without post `bloom`).
+/// (points for a GPU's own frame) and the `bloom` binding's texels as read (a GPU's own up
+/// chain's level 0; `None` without post `bloom`).
 ///
 /// # Panics
-/// If `hdr` (or `bloom`) does not hold `width · height` texels.
+/// If `hdr` does not hold `width · height` texels.
 pub fn envelope(
     hdr: &[[Iv; 3]],
-    bloom: Option<&[[Iv; 3]]>,
+    bloom: Option<&Texture2D>,
     width: u32,
     height: u32,
     tonemap: &TonemapUniforms,
 ) -> Vec<[(Iv, ByteRange); 3]> {
-    let n = width as usize * height as usize;
-    assert_eq!(hdr.len(), n, "HDR frame is not {width}x{height}");
-    assert!(bloom.is_none_or(|b| b.len() == n), "bloom is not {width}x{height}");
-    let zero = [Iv::point(0.0); 3];
+    assert_eq!(hdr.len(), width as usize * height as usize, "HDR frame is not {width}x{height}");
+    let bloom = bloom.unwrap_or(&NO_BLOOM);
     shade_frame(
         width,
         height,
         tonemap,
-        |i| (hdr[i], bloom.map_or(zero, |b| b[i])),
+        |i| (hdr[i], crate::shaders::bloom::upsample_at_r(bloom, texel_of(i, width))),
         |_, v| v.map(|c| (c, c.store_unorm8())),
     )
 }
 
-/// [`envelope`] of a GPU's own HDR frame (every texel a point), without bloom.
+/// [`envelope`] of a GPU's own HDR frame (every texel a point).
 pub fn envelope_of(
     hdr: &[[f32; 4]],
+    bloom: Option<&Texture2D>,
     width: u32,
     height: u32,
     tonemap: &TonemapUniforms,
 ) -> Vec<[(Iv, ByteRange); 3]> {
     let hdr: Vec<[Iv; 3]> = hdr.iter().map(|&t| points(t)).collect();
-    envelope(&hdr, None, width, height, tonemap)
+    envelope(&hdr, bloom, width, height, tonemap)
 }
 
 /// The tonemap pass as one random conformant GPU computes it (`rules`): per pixel, R, G, B
-/// before the store and the bytes stored. Without bloom.
+/// before the store and the bytes stored.
 ///
 /// # Panics
 /// If `hdr` does not hold `width · height` texels.
 pub fn jitter(
     hdr: &[[f32; 4]],
+    bloom: Option<&Texture2D>,
     width: u32,
     height: u32,
     tonemap: &TonemapUniforms,
     rules: JitterRules,
 ) -> Vec<[(f32, u8); 3]> {
     assert_eq!(hdr.len(), width as usize * height as usize, "HDR frame is not {width}x{height}");
-    let zero = [Jitter(0.0); 3];
+    let bloom = bloom.unwrap_or(&NO_BLOOM);
     shade_frame(
         width,
         height,
@@ -318,7 +324,8 @@ pub fn jitter(
         |i| {
             Jitter::reseed(rules, i as u64);
             let t = hdr[i];
-            ([Jitter(t[0]), Jitter(t[1]), Jitter(t[2])], zero)
+            let glow = crate::shaders::bloom::upsample_at_r(bloom, texel_of(i, width));
+            ([Jitter(t[0]), Jitter(t[1]), Jitter(t[2])], glow)
         },
         |_, v| v.map(|c| (c.0, c.store_unorm8().lo)),
     )

@@ -1,0 +1,205 @@
+//! The verdict by the envelope (docs/tolerances.md): a texel outside the interval any
+//! conformant GPU may produce fails; the figures say how wide the envelope was.
+//!
+//! Today the `tonemap` pass has its envelope, given its inputs as the GPU read them (its own
+//! HDR frame and bloom): the 8-bit picture is judged; the float resources, whose passes have no
+//! envelope yet, are reported as not judged.
+
+use ocean_core::plan::ResourceId;
+use ocean_cpu::envelope::{ByteRange, Iv};
+use ocean_cpu::sampler::Texture2D;
+use serde_json::{Value, json};
+
+/// How `ocean compare` holds a GPU's resources.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Tolerance {
+    /// docs/design.md's float and picture rows (lavapipe's figures): for a software adapter.
+    Exact,
+    /// The envelope of any conformant implementation: for a hardware or unknown adapter.
+    Envelope,
+}
+
+impl Tolerance {
+    /// The default for an adapter: exact on a software one (lavapipe), the envelope on
+    /// hardware and when it is unknown.
+    pub fn for_software(software: Option<bool>) -> Tolerance {
+        if software == Some(true) { Tolerance::Exact } else { Tolerance::Envelope }
+    }
+
+    /// Its name on the command line and in JSON.
+    pub fn name(self) -> &'static str {
+        match self {
+            Tolerance::Exact => "exact",
+            Tolerance::Envelope => "envelope",
+        }
+    }
+}
+
+/// The texel furthest outside.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WorstByte {
+    /// Pixel column and row.
+    pub pixel: (u32, u32),
+    /// 0 R, 1 G, 2 B.
+    pub channel: usize,
+    /// The byte the GPU stored.
+    pub got: u8,
+    /// The bytes allowed.
+    pub allowed: ByteRange,
+    /// What the exact frame (lavapipe's arithmetic) stores there.
+    pub exact: u8,
+}
+
+/// An 8-bit picture against its envelope.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PictureVerdict {
+    /// The resource (`ldr`).
+    pub name: String,
+    /// Bytes judged (R, G, B of every pixel).
+    pub bytes: usize,
+    /// Bytes outside their range.
+    pub outside: usize,
+    /// The envelope's width in codes (hi − lo) at the median and the 99th percentile.
+    pub codes_p50: u8,
+    /// See `codes_p50`.
+    pub codes_p99: u8,
+    /// The value before the store: the envelope's relative half-width, median and 99th
+    /// percentile.
+    pub rel_half_width_p50: f64,
+    /// See `rel_half_width_p50`.
+    pub rel_half_width_p99: f64,
+    /// The byte furthest outside, if any.
+    pub worst: Option<WorstByte>,
+}
+
+/// Judges the RGBA8 picture `rgba` (`width` wide) by `envelope` (one entry per pixel: R, G, B's
+/// value before the store and its bytes); `exact` is the exact frame's picture, for the report.
+///
+/// # Panics
+/// If the picture and the envelope differ in pixel count.
+pub fn judge_picture(
+    name: &str,
+    envelope: &[[(Iv, ByteRange); 3]],
+    rgba: &[u8],
+    exact: &[u8],
+    width: u32,
+) -> PictureVerdict {
+    assert_eq!(rgba.len(), envelope.len() * 4, "picture and envelope sizes differ");
+    assert_eq!(exact.len(), rgba.len(), "exact picture size differs");
+    let mut outside = 0;
+    let mut worst: Option<(u8, WorstByte)> = None;
+    let mut codes = Vec::with_capacity(envelope.len() * 3);
+    let mut rel = Vec::with_capacity(envelope.len() * 3);
+    for (i, px) in envelope.iter().enumerate() {
+        for (c, (value, bytes)) in px.iter().enumerate() {
+            let got = rgba[4 * i + c];
+            codes.push(bytes.hi - bytes.lo);
+            rel.push(value.rel_half_width());
+            let d = bytes.distance(got);
+            if d > 0 {
+                outside += 1;
+                if worst.is_none_or(|(w, _)| d > w) {
+                    let w = width.max(1) as usize;
+                    let at = WorstByte {
+                        pixel: ((i % w) as u32, (i / w) as u32),
+                        channel: c,
+                        got,
+                        allowed: *bytes,
+                        exact: exact[4 * i + c],
+                    };
+                    worst = Some((d, at));
+                }
+            }
+        }
+    }
+    codes.sort_unstable();
+    rel.sort_by(f64::total_cmp);
+    PictureVerdict {
+        name: name.to_owned(),
+        bytes: codes.len(),
+        outside,
+        codes_p50: quantile(&codes, 0.5).unwrap_or(0),
+        codes_p99: quantile(&codes, 0.99).unwrap_or(0),
+        rel_half_width_p50: quantile(&rel, 0.5).unwrap_or(0.0),
+        rel_half_width_p99: quantile(&rel, 0.99).unwrap_or(0.0),
+        worst: worst.map(|(_, w)| w),
+    }
+}
+
+fn quantile<T: Copy>(sorted: &[T], q: f64) -> Option<T> {
+    (!sorted.is_empty()).then(|| sorted[((sorted.len() - 1) as f64 * q).round() as usize])
+}
+
+impl PictureVerdict {
+    /// No byte outside.
+    pub fn passed(&self) -> bool {
+        self.outside == 0
+    }
+
+    /// One line for the terminal.
+    pub fn line(&self) -> String {
+        let head = format!(
+            "{:<20} {} of {} bytes outside the envelope (width p50 {} / p99 {} codes; before the store rel ±{:.1e} / ±{:.1e})",
+            self.name,
+            self.outside,
+            self.bytes,
+            self.codes_p50,
+            self.codes_p99,
+            self.rel_half_width_p50,
+            self.rel_half_width_p99
+        );
+        match self.worst {
+            Some(w) => format!(
+                "{head}; worst at ({}, {}) {}: {} not in {}..={} (exact {}) FAIL",
+                w.pixel.0,
+                w.pixel.1,
+                ["R", "G", "B"][w.channel],
+                w.got,
+                w.allowed.lo,
+                w.allowed.hi,
+                w.exact
+            ),
+            None => format!("{head} ok"),
+        }
+    }
+
+    /// The JSON summary's entry.
+    pub fn to_json(&self) -> Value {
+        json!({
+            "name": self.name,
+            "tolerance": "envelope",
+            "passed": self.passed(),
+            "bytes": self.bytes,
+            "outside": self.outside,
+            "ambiguous_share": 0.0,
+            "codes_p50": self.codes_p50,
+            "codes_p99": self.codes_p99,
+            "rel_half_width_p50": self.rel_half_width_p50,
+            "rel_half_width_p99": self.rel_half_width_p99,
+            "worst": self.worst.map(|w| json!({
+                "pixel": [w.pixel.0, w.pixel.1],
+                "channel": w.channel,
+                "got": w.got,
+                "lo": w.allowed.lo,
+                "hi": w.allowed.hi,
+                "exact": w.exact,
+            })),
+        })
+    }
+}
+
+/// A resource the envelope does not judge yet, with why, for the report and the JSON.
+pub fn not_judged(id: ResourceId) -> (String, Value) {
+    let pass = id.writer().map_or("", |p| p.name());
+    let why = format!("pass {pass} has no envelope yet");
+    let json = json!({"name": id.name(), "tolerance": "envelope", "judged": false, "why": why});
+    (why, json)
+}
+
+/// The level 0 of a bloom up chain's atlas (`atlas_width` wide: level 0 is its first rows),
+/// for a `width × height` frame.
+pub fn bloom_level0(atlas: &[[f32; 4]], width: u32, height: u32) -> Option<Texture2D> {
+    let [w, h] = ocean_core::bloom::level_size(width, height, 0);
+    let n = w as usize * h as usize;
+    (atlas.len() >= n).then(|| Texture2D::new(w, h, atlas[..n].to_vec()))
+}
