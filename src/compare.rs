@@ -78,7 +78,9 @@ type FrameRef<'a> = ((u32, u32), &'a [[f32; 4]]);
 struct GpuSide<'a> {
     /// The HDR frame, (width, height) and texels.
     hdr: Option<FrameRef<'a>>,
-    /// The bloom up chain's atlas, where the pass ran and the frame holds it.
+    /// The bloom down chain's atlas, where the pass ran and the frame holds it.
+    bloom_down: Option<&'a [[f32; 4]]>,
+    /// The bloom up chain's atlas, likewise.
     bloom_up: Option<&'a [[f32; 4]]>,
     /// The 8-bit picture.
     ldr: Option<&'a [u8]>,
@@ -90,10 +92,23 @@ fn envelope_verdict(
     gpu: &GpuSide<'_>,
     resources: &[ocean_core::plan::ResourceId],
 ) -> anyhow::Result<(Vec<String>, Vec<serde_json::Value>)> {
-    use ocean_core::plan::Pass;
+    use ocean_core::plan::{Pass, ResourceId};
     let mut failures = Vec::new();
     let mut json = Vec::new();
-    for &id in resources {
+    let mut judged = Vec::new();
+    if plan.runs(Pass::Bloom)
+        && let (Some(((w, h), hdr)), Some(down), Some(up)) = (gpu.hdr, gpu.bloom_down, gpu.bloom_up)
+    {
+        for v in bloom_verdicts(scene, (w, h), hdr, down, up)? {
+            println!("  [{:<14}] {}", "bloom", v.line());
+            if !v.passed() {
+                failures.push(v.line());
+            }
+            json.push(v.to_json());
+        }
+        judged.extend([ResourceId::BloomDown, ResourceId::BloomUp]);
+    }
+    for &id in resources.iter().filter(|id| !judged.contains(id)) {
         let pass = id.writer().map_or("", |p| p.name());
         let (why, entry) = ocean_verify::envelope::not_judged(id);
         println!("  [{pass:<14}] {:<20} not judged: {why}", id.name());
@@ -138,6 +153,41 @@ fn envelope_verdict(
     }
     json.push(verdict.to_json());
     Ok((failures, json))
+}
+
+/// Pass `bloom`'s chains against its envelope given the GPU's own inputs (each level from the
+/// GPU's level before it: ocean-cpu `bloom::envelope`).
+fn bloom_verdicts(
+    scene: &ocean_core::scene::Scene,
+    (w, h): (u32, u32),
+    hdr: &[[f32; 4]],
+    down: &[[f32; 4]],
+    up: &[[f32; 4]],
+) -> anyhow::Result<Vec<ocean_verify::envelope::FloatVerdict>> {
+    use ocean_cpu::mip::MipChain;
+    use ocean_cpu::sampler::Texture2D;
+    let inputs = ocean_core::plan::BloomInputs::new(scene);
+    let [bw, bh] = ocean_core::bloom::level_size(w, h, 0);
+    let levels = inputs.down.len() as u32;
+    let rows = ocean_cpu::mip::level_row(bh, levels);
+    let chain = |name: &str, atlas: &[[f32; 4]]| -> anyhow::Result<MipChain> {
+        if atlas.len() != bw as usize * rows as usize {
+            bail!("{name}: {} texels, the plan's chain {bw}x{rows}", atlas.len());
+        }
+        Ok(MipChain {
+            width: bw,
+            height: bh,
+            levels,
+            atlas: Texture2D::new(bw, rows, atlas.to_vec()),
+        })
+    };
+    let (down, up) = (chain("bloom_down", down)?, chain("bloom_up", up)?);
+    let hdr = Texture2D::new(w, h, hdr.to_vec());
+    let (down_env, up_env) = ocean_cpu::shaders::bloom::envelope(&hdr, &down, &up, &inputs);
+    Ok(vec![
+        ocean_verify::envelope::judge_floats("bloom_down", &down_env, &down.atlas.texels, bw),
+        ocean_verify::envelope::judge_floats("bloom_up", &up_env, &up.atlas.texels, bw),
+    ])
 }
 
 /// Runs `ocean compare`.
@@ -213,6 +263,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             let ran: Vec<ResourceId> = ocean::dump::dumped(plan);
             let side = GpuSide {
                 hdr: gpu.map(ResourceId::Hdr).map(|m| ((m.width, m.height), &m.texels[..])),
+                bloom_down: gpu.map(ResourceId::BloomDown).map(|m| &m.texels[..]),
                 bloom_up: gpu.map(ResourceId::BloomUp).map(|m| &m.texels[..]),
                 ldr: gpu.ldr.as_deref(),
             };
@@ -461,8 +512,12 @@ fn against_envelope(
     for id in ocean::dump::dumped(plan) {
         if listed(id) {
             held.push(id);
-        } else if id != ResourceId::BloomDown && id != ResourceId::BloomUp {
-            println!("  [{:<14}] {:<20} not in dump", id.writer().map_or("", |p| p.name()), id.name());
+        } else {
+            println!(
+                "  [{:<14}] {:<20} not in dump",
+                id.writer().map_or("", |p| p.name()),
+                id.name()
+            );
             not_in_dump.push(id.name());
         }
     }
@@ -470,6 +525,7 @@ fn against_envelope(
         if listed(id) { ocean::dump::read(dir, id).map(Some) } else { Ok(None) }
     };
     let hdr = read(ResourceId::Hdr)?;
+    let bloom_down = read(ResourceId::BloomDown)?;
     let bloom_up = read(ResourceId::BloomUp)?;
     let (w, h) = (scene.camera.width, scene.camera.height);
     if let Some(((hw, hh), _)) = &hdr
@@ -480,10 +536,10 @@ fn against_envelope(
     let ldr = dumped_picture(dir, w, h)?;
     let side = GpuSide {
         hdr: hdr.as_ref().map(|(size, t)| (*size, &t[..])),
+        bloom_down: bloom_down.as_ref().map(|(_, t)| &t[..]),
         bloom_up: bloom_up.as_ref().map(|(_, t)| &t[..]),
         ldr: ldr.as_deref(),
     };
-    held.retain(|&id| id != ResourceId::BloomDown && id != ResourceId::BloomUp);
     let (mut failures, json) = envelope_verdict(scene, plan, &side, &held)?;
     if args.require_all && !not_in_dump.is_empty() {
         failures.push(format!("not in dump (--require-all): {}", not_in_dump.join(", ")));

@@ -96,6 +96,36 @@ fn every_conformant_result_is_inside_and_twice_the_rules_leaves() {
     }
 }
 
+/// Four-term sums, some cancelling, in any order (`Jitter::sum` reassociates at random):
+/// how many of `draws` results leave the `Iv` sum's envelope at `scale`.
+fn sum_escapes(scale: f64, draws: u64) -> usize {
+    let xs = operands(400, 3);
+    let mut outside = 0;
+    for (i, w) in xs.windows(4).enumerate() {
+        // Every other window cancels: its last term is minus the sum of the others, rounded.
+        let mut t = [w[0], w[1], w[2], w[3]];
+        if i % 2 == 1 {
+            t[3] = -(t[0] + t[1] + t[2]);
+        }
+        let env = Iv::sum(&t.map(Iv::point));
+        for k in 0..draws {
+            Jitter::reseed(JitterRules { seed: k, scale }, i as u64);
+            if !env.contains(Jitter::sum(&t.map(Jitter)).0) {
+                outside += 1;
+            }
+        }
+    }
+    outside
+}
+
+#[test]
+fn reassociated_sums_stay_inside_and_twice_the_rules_leaves() {
+    assert_eq!(sum_escapes(1.0, 16), 0, "a reassociated sum within the rules left the envelope");
+    let loose = sum_escapes(2.0, 16);
+    println!("4-term sums, twice the rules: {loose} of {} outside", 397 * 16);
+    assert!(loose > 0, "a sum twice as loose as the rules never left the envelope");
+}
+
 #[test]
 fn undefined_operations_give_a_full_interval() {
     let x = Iv::point(1.0);
@@ -236,4 +266,63 @@ fn the_h200_pictures_are_inside_the_tonemap_envelope_and_an_exposure_error_is_no
         judged += 1;
     }
     assert_eq!(judged, 17, "17 of the 19 scenes run no bloom");
+}
+
+/// A bloom scene's frame: the H200's HDR frame and the scene's bloom inputs.
+fn bloom_frames() -> Vec<(String, ocean_cpu::sampler::Texture2D, ocean_core::plan::BloomInputs)> {
+    snapshot()
+        .into_iter()
+        .filter_map(|dir| {
+            let manifest = ocean::dump::read_manifest(&dir).unwrap().unwrap();
+            let none = ocean::scene_arg::SystemArg { system: None };
+            let scene = manifest.scene("manifest.json", None, &none).unwrap();
+            let plan = FramePlan::new(&scene, OutputKind::Ldr);
+            plan.runs(ocean_core::plan::Pass::Bloom).then(|| {
+                let ((w, h), hdr) = ocean::dump::read(&dir, ResourceId::Hdr).unwrap();
+                let name = dir.file_name().unwrap().to_string_lossy().into_owned();
+                let inputs = ocean_core::plan::BloomInputs::new(&scene);
+                (name, ocean_cpu::sampler::Texture2D::new(w, h, hdr), inputs)
+            })
+        })
+        .collect()
+}
+
+/// Values of `chain` outside `env` (atlas layout).
+fn chain_outside(env: &[Option<[Iv; 3]>], chain: &ocean_cpu::mip::MipChain) -> usize {
+    let v = ocean_verify::envelope::judge_floats("chain", env, &chain.atlas.texels, chain.width);
+    assert!(v.values > 0, "nothing judged");
+    v.outside
+}
+
+#[test]
+fn random_conformant_gpus_stay_inside_the_bloom_envelope() {
+    use ocean_cpu::shaders::bloom;
+    let frames = bloom_frames();
+    assert_eq!(frames.len(), 2, "the snapshot's two bloom scenes");
+    let (mut runs, mut loose) = (0, 0);
+    for (name, hdr, inputs) in &frames {
+        // The oracle's own chains are one conformant GPU's.
+        let (down, up) = bloom::dispatch(hdr, inputs);
+        let (de, ue) = bloom::envelope(hdr, &down, &up, inputs);
+        assert_eq!(chain_outside(&de, &down) + chain_outside(&ue, &up), 0, "{name}: the oracle");
+        // Negative control of the comparator: one value of the up chain 0.1 % off.
+        let mut bad = up.clone();
+        let k = bad.atlas.texels.len() / 3;
+        bad.atlas.texels[k][1] = bad.atlas.texels[k][1] * 1.001 + 1e-3;
+        assert_eq!(chain_outside(&ue, &bad), 1, "{name}: a value 0.1 % off");
+        for seed in 0..8 {
+            let (down, up) = bloom::jitter(hdr, inputs, JitterRules { seed, scale: 1.0 });
+            let (de, ue) = bloom::envelope(hdr, &down, &up, inputs);
+            let out = chain_outside(&de, &down) + chain_outside(&ue, &up);
+            assert_eq!(out, 0, "{name} seed {seed}: a conformant GPU left the bloom envelope");
+            runs += 1;
+        }
+        let (down, up) = bloom::jitter(hdr, inputs, JitterRules { seed: 99, scale: 2.0 });
+        let (de, ue) = bloom::envelope(hdr, &down, &up, inputs);
+        loose += chain_outside(&de, &down) + chain_outside(&ue, &up);
+    }
+    println!(
+        "{runs} bloom pyramids of random conformant GPUs: 0 outside; twice the rules: {loose} outside"
+    );
+    assert!(loose > 0, "a GPU twice as loose as the rules never left the bloom envelope");
 }

@@ -94,7 +94,7 @@ pub fn judge_picture(
         for (c, (value, bytes)) in px.iter().enumerate() {
             let got = rgba[4 * i + c];
             codes.push(bytes.hi - bytes.lo);
-            rel.push(value.rel_half_width());
+            rel.extend(value.rel_half_width());
             let d = bytes.distance(got);
             if d > 0 {
                 outside += 1;
@@ -183,6 +183,135 @@ impl PictureVerdict {
                 "lo": w.allowed.lo,
                 "hi": w.allowed.hi,
                 "exact": w.exact,
+            })),
+        })
+    }
+}
+
+/// The float texel furthest outside its interval.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WorstTexel {
+    /// Column and row (in a chain, of its atlas).
+    pub texel: (u32, u32),
+    /// 0 R, 1 G, 2 B.
+    pub channel: usize,
+    /// The GPU's value.
+    pub got: f32,
+    /// The interval.
+    pub allowed: Iv,
+}
+
+/// A float resource against its envelope.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FloatVerdict {
+    /// The resource.
+    pub name: String,
+    /// Values judged (R, G, B of every texel with an envelope).
+    pub values: usize,
+    /// Values outside.
+    pub outside: usize,
+    /// The envelope's relative half-width, median and 99th percentile.
+    pub rel_half_width_p50: f64,
+    /// See `rel_half_width_p50`.
+    pub rel_half_width_p99: f64,
+    /// The value furthest outside (relative to the interval's magnitude), if any.
+    pub worst: Option<WorstTexel>,
+}
+
+/// Judges a GPU's float resource `gpu` (`width` wide) by `envelope` (per texel; `None` where
+/// nothing is judged, e.g. a chain's padding).
+///
+/// # Panics
+/// If the two differ in texel count.
+pub fn judge_floats(
+    name: &str,
+    envelope: &[Option<[Iv; 3]>],
+    gpu: &[[f32; 4]],
+    width: u32,
+) -> FloatVerdict {
+    assert_eq!(envelope.len(), gpu.len(), "{name}: envelope and resource sizes differ");
+    let (mut values, mut outside) = (0, 0);
+    let mut worst: Option<(f64, WorstTexel)> = None;
+    let mut rel = Vec::new();
+    for (i, (e, g)) in envelope.iter().zip(gpu).enumerate() {
+        let Some(e) = e else { continue };
+        for c in 0..3 {
+            values += 1;
+            rel.extend(e[c].rel_half_width());
+            if e[c].contains(g[c]) {
+                continue;
+            }
+            outside += 1;
+            let v = f64::from(g[c]);
+            let d = if v.is_nan() { f64::INFINITY } else { (e[c].lo - v).max(v - e[c].hi) };
+            let d = d / e[c].magnitude().max(f64::MIN_POSITIVE);
+            if worst.is_none_or(|(w, _)| d > w) {
+                let w = width.max(1) as usize;
+                let at = WorstTexel {
+                    texel: ((i % w) as u32, (i / w) as u32),
+                    channel: c,
+                    got: g[c],
+                    allowed: e[c],
+                };
+                worst = Some((d, at));
+            }
+        }
+    }
+    rel.sort_by(f64::total_cmp);
+    FloatVerdict {
+        name: name.to_owned(),
+        values,
+        outside,
+        rel_half_width_p50: quantile(&rel, 0.5).unwrap_or(0.0),
+        rel_half_width_p99: quantile(&rel, 0.99).unwrap_or(0.0),
+        worst: worst.map(|(_, w)| w),
+    }
+}
+
+impl FloatVerdict {
+    /// No value outside (and something judged).
+    pub fn passed(&self) -> bool {
+        self.outside == 0 && self.values > 0
+    }
+
+    /// One line for the terminal.
+    pub fn line(&self) -> String {
+        let head = format!(
+            "{:<20} {} of {} values outside the envelope (rel half-width p50 {:.1e} / p99 {:.1e})",
+            self.name, self.outside, self.values, self.rel_half_width_p50, self.rel_half_width_p99
+        );
+        match self.worst {
+            Some(w) => format!(
+                "{head}; worst at ({}, {}) {}: {:e} not in [{:e}, {:e}] FAIL",
+                w.texel.0,
+                w.texel.1,
+                ["R", "G", "B"][w.channel],
+                w.got,
+                w.allowed.lo,
+                w.allowed.hi
+            ),
+            None if self.values == 0 => format!("{head}: nothing judged FAIL"),
+            None => format!("{head} ok"),
+        }
+    }
+
+    /// The JSON summary's entry.
+    pub fn to_json(&self) -> Value {
+        json!({
+            "name": self.name,
+            "tolerance": "envelope",
+            "passed": self.passed(),
+            "values": self.values,
+            "outside": self.outside,
+            "ambiguous_share": 0.0,
+            "rel_half_width_p50": self.rel_half_width_p50,
+            "rel_half_width_p99": self.rel_half_width_p99,
+            "worst": self.worst.map(|w| json!({
+                "texel": [w.texel.0, w.texel.1],
+                "channel": w.channel,
+                "got": w.got,
+                "lo": w.allowed.lo,
+                "hi": w.allowed.hi,
             })),
         })
     }

@@ -129,14 +129,18 @@ impl Iv {
         Iv::new(self.lo.min(o.lo), self.hi.max(o.hi))
     }
 
-    /// Half the width relative to the largest magnitude (0 for a point; ∞ when full or
-    /// unbounded).
-    pub fn rel_half_width(self) -> f64 {
+    /// Half the width relative to the largest magnitude (∞ when full or unbounded); `None`
+    /// for an interval within f32's subnormal range (a 0 and its rounding slack, where a
+    /// relative width means nothing).
+    pub fn rel_half_width(self) -> Option<f64> {
         if self.full {
-            return f64::INFINITY;
+            return Some(f64::INFINITY);
         }
-        let w = 0.5 * (self.hi - self.lo);
-        if w == 0.0 { 0.0 } else { w / self.magnitude() }
+        let m = self.magnitude();
+        if m < F32_MIN_NORMAL {
+            return None;
+        }
+        Some(0.5 * (self.hi - self.lo) / m)
     }
 
     /// From exact bounds `[lo, hi]` (already rounded outward), widened by `ulps` f32 ULP of
@@ -195,6 +199,47 @@ impl Iv {
         let hi = (hi + ulps * f32_ulp(hi)).next_up().next_up();
         Iv::stored(lo, hi)
     }
+}
+
+const HALF_MAX: f64 = 65504.0;
+const HALF_MIN_NORMAL: f64 = 6.103_515_625e-5; // 2⁻¹⁴
+
+/// The spacing of binary16 values at magnitude `a` < 65536.
+fn half_spacing(a: f64) -> f64 {
+    if a < HALF_MIN_NORMAL {
+        return 2f64.powi(-24);
+    }
+    let e = ((a.to_bits() >> 52) & 0x7ff) as i32 - 1023;
+    2f64.powi(e.min(15) - 10)
+}
+
+/// The largest binary16 value ≤ x (−∞ below −65504).
+pub(crate) fn half_floor(x: f64) -> f64 {
+    if x < 0.0 {
+        return -half_ceil(-x);
+    }
+    if x >= HALF_MAX {
+        return if x.is_infinite() { x } else { HALF_MAX };
+    }
+    let s = half_spacing(x);
+    (x / s).floor() * s
+}
+
+/// The smallest binary16 value ≥ x (+∞ above 65504).
+pub(crate) fn half_ceil(x: f64) -> f64 {
+    if x < 0.0 {
+        return -half_floor(-x);
+    }
+    if x > HALF_MAX {
+        return f64::INFINITY;
+    }
+    let s = half_spacing(x);
+    (x / s).ceil() * s
+}
+
+/// Whether a binary16 value is subnormal (a store may flush it to 0).
+pub(crate) fn half_subnormal(x: f64) -> bool {
+    x != 0.0 && x.abs() < HALF_MIN_NORMAL
 }
 
 /// The four products' (or quotients') hull, rounded outward.
@@ -290,6 +335,42 @@ impl Real for Iv {
         let a = log2_allowance(149.0);
         let tail = Iv::new(0.0, (Iv::new(-149.0 - a, -126.0 + a) * e).exp2().hi);
         normal.map_or(tail, |n| n.hull(tail))
+    }
+    /// Either binary16 neighbour of each end (rounding either way; past 65504, 65504 or ∞),
+    /// subnormals possibly flushed to 0.
+    fn store_half(self) -> Iv {
+        if self.full {
+            return Iv::FULL;
+        }
+        let mut lo = half_floor(self.lo);
+        let mut hi = half_ceil(self.hi);
+        if lo > 0.0 && half_subnormal(lo) {
+            lo = 0.0;
+        }
+        if hi < 0.0 && half_subnormal(hi) {
+            hi = 0.0;
+        }
+        Iv::new(lo, hi)
+    }
+    /// The exact sum's interval widened by (n − 1) ULP of the sum of the terms' magnitudes:
+    /// every partial sum of any order of evaluation is no larger than that, so each of the
+    /// n − 1 roundings errs by at most one such ULP — the bound holds for every reassociation
+    /// and fusion.
+    fn sum(terms: &[Iv]) -> Iv {
+        if terms.iter().any(|t| t.full) {
+            return Iv::FULL;
+        }
+        let (mut lo, mut hi, mut mag) = (0.0f64, 0.0f64, 0.0f64);
+        for t in terms {
+            lo = (lo + t.lo).next_down();
+            hi = (hi + t.hi).next_up();
+            mag = (mag + t.magnitude()).next_up();
+        }
+        let u = (terms.len().saturating_sub(1)) as f64 * f32_ulp(mag);
+        if lo.is_nan() || hi.is_nan() {
+            return Iv::FULL;
+        }
+        Iv::stored((lo - u).next_down(), (hi + u).next_up())
     }
     fn round(self) -> Iv {
         if self.full {

@@ -12,7 +12,9 @@ use std::ops::{Add, Div, Mul, Sub};
 
 use ocean_core::rng::{SplitMix64, mix64};
 
-use super::interval::{DIV_ULPS, exp2_ulps, f32_ulp, log2_allowance};
+use super::interval::{
+    DIV_ULPS, exp2_ulps, f32_ulp, half_ceil, half_floor, half_subnormal, log2_allowance,
+};
 use super::{ByteRange, Real};
 
 /// The rules a [`Jitter`] draws within.
@@ -149,10 +151,52 @@ impl Real for Jitter {
     fn select(f: Jitter, t: Jitter, cond: bool) -> Jitter {
         if cond { t } else { f }
     }
+    /// A random binary16 neighbour (at scale s, up to s − 1 further binary16 steps either
+    /// way: a store looser than the rules); a subnormal one flushed half the time.
+    fn store_half(self) -> Jitter {
+        let x = f64::from(self.0);
+        if !x.is_finite() {
+            return self;
+        }
+        let (lo, hi) = (half_floor(x), half_ceil(x));
+        let (r, scale) = draw();
+        let extra = (scale - 1.0).max(0.0).round();
+        let k = (r * (2.0 * extra + 2.0)).floor() - extra;
+        let step = hi - lo;
+        let v = if step == 0.0 || !step.is_finite() {
+            if draw().0 < 0.5 { lo } else { hi }
+        } else {
+            lo + k * step
+        };
+        if half_subnormal(v) && draw().0 < 0.5 {
+            return Jitter(0.0);
+        }
+        Jitter(v as f32)
+    }
+    /// The terms in a random order, each addition jittered.
+    fn sum(terms: &[Jitter]) -> Jitter {
+        let mut order: Vec<Jitter> = terms.to_vec();
+        for i in (1..order.len()).rev() {
+            let j = (draw().0 * (i + 1) as f64) as usize;
+            order.swap(i, j.min(i));
+        }
+        let mut s = order[0];
+        for &t in &order[1..] {
+            s = s + t;
+        }
+        s
+    }
+    /// Floor or ceiling of v · 255 (at scale s, up to s − 1 codes further either way).
     fn store_unorm8(self) -> ByteRange {
         let r = f64::from(self.0.clamp(0.0, 1.0)) * 255.0;
-        let b = if r.fract() == 0.0 || draw().0 < 0.5 { r.floor() } else { r.ceil() };
-        let b = b as u8;
+        let (d, scale) = draw();
+        let extra = (scale - 1.0).max(0.0).round();
+        let b = if r.fract() == 0.0 {
+            r
+        } else {
+            r.floor() + (d * (2.0 * extra + 2.0)).floor() - extra
+        };
+        let b = b.clamp(0.0, 255.0) as u8;
         ByteRange { lo: b, hi: b }
     }
 }

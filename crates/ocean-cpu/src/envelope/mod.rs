@@ -20,8 +20,14 @@ mod jitter;
 
 use std::ops::{Add, Div, Mul, Sub};
 
+use ocean_core::frame_format::FrameFormat;
+
 pub use interval::{ByteRange, Iv, f32_ulp};
 pub use jitter::{Jitter, JitterRules};
+
+/// A chain's envelope in [`crate::mip::MipChain`]'s atlas layout: RGB per texel, `None` in the
+/// padding.
+pub type AtlasEnvelope = Vec<Option<[Iv; 3]>>;
 
 /// A comparison's outcome: decided, or (for an envelope) either way.
 pub trait Cond: Copy {
@@ -87,6 +93,26 @@ pub trait Real:
     /// What an 8-bit unorm target stores for a shader output: every byte a conformant
     /// implementation may write, as a range.
     fn store_unorm8(self) -> ByteRange;
+    /// What an `rgba16float` texel stores of the value, read back as f32.
+    fn store_half(self) -> Self;
+    /// `terms[0] + terms[1] + …`, written left to right (the exact frame's order); a GPU may
+    /// reassociate the sum.
+    #[inline]
+    fn sum(terms: &[Self]) -> Self {
+        let mut s = terms[0];
+        for &t in &terms[1..] {
+            s = s + t;
+        }
+        s
+    }
+    /// What a texel of `format` stores of the value.
+    #[inline]
+    fn store(self, format: FrameFormat) -> Self {
+        match format {
+            FrameFormat::Rgba32Float => self,
+            FrameFormat::Rgba16Float => self.store_half(),
+        }
+    }
 }
 
 impl Real for f32 {
@@ -119,6 +145,11 @@ impl Real for f32 {
     #[inline]
     fn select(f: Self, t: Self, cond: bool) -> Self {
         if cond { t } else { f }
+    }
+    /// Lavapipe's store: toward zero (`ocean_core::frame_format::round_to_half`).
+    #[inline]
+    fn store_half(self) -> Self {
+        ocean_core::frame_format::round_to_half(self)
     }
     /// Lavapipe's store: clamp to [0, 1], × 255, rounded to nearest even.
     #[inline]
