@@ -9,6 +9,13 @@
 //! against the oracle's: FLIP mean ≤ 0.02, P99 ≤ 0.1); its HDR frame's relative error is printed
 //! (p50, p99), for the per-texel envelope that is to replace the picture row.
 //!
+//! Each scene is also held to the envelope of any conformant GPU (docs/tolerances.md) as a user
+//! would: `ocean compare --against DIR --tolerance envelope`, which judges the picture against
+//! the `tonemap` envelope of the dump's own HDR frame. That verdict does not depend on the
+//! oracle's frame, only on the judged passes' shaders: it is stale (ignored) when one of them
+//! differs from the snapshot's (`envelope_shaders_fnv64`), and a scene whose picture's inputs
+//! are not all in the dump (pass bloom's chains) is ignored with that reason.
+//!
 //! Negative controls: a planted change to a picture (a tenth of it 25 % darker) fails the row,
 //! and one bit flipped in a frame changes its digest.
 //!
@@ -26,6 +33,9 @@ use std::process::ExitCode;
 use std::sync::Arc;
 
 use libtest_mimic::{Arguments, Failed, Trial};
+
+#[path = "support/cli.rs"]
+mod cli;
 use ocean_core::plan::OutputKind;
 use ocean_verify::compare::{ImageLimits, compare_image};
 
@@ -136,6 +146,109 @@ fn controls(o: &Oracle) -> Result<(), Failed> {
     Ok(())
 }
 
+/// 64-bit FNV-1a of a file's bytes.
+fn file_digest(path: &Path) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for b in std::fs::read(path).unwrap() {
+        h ^= u64::from(b);
+        h = h.wrapping_mul(0x0000_0100_0000_01b3);
+    }
+    h
+}
+
+/// The shaders of the passes the envelope judges from the dump's own inputs whose bytes differ
+/// from the snapshot's (`oracle.json`'s `envelope_shaders_fnv64`): while none does, the
+/// envelope verdict of a scene does not depend on the oracle's frame.
+fn changed_envelope_shaders(digests: &serde_json::Value) -> Vec<String> {
+    let shaders = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("shaders");
+    let stored = digests["envelope_shaders_fnv64"].as_object().expect("envelope_shaders_fnv64");
+    assert!(!stored.is_empty(), "no shader digests");
+    stored
+        .iter()
+        .filter(|(file, d)| {
+            format!("{:016x}", file_digest(&shaders.join(file))) != d.as_str().unwrap()
+        })
+        .map(|(file, _)| file.clone())
+        .collect()
+}
+
+/// `ocean compare --against DIR --tolerance envelope` on one scene of the snapshot: exit 0,
+/// the picture judged with 0 bytes outside (and pass bloom's chains, where the dump holds
+/// them), everything else listed as not judged.
+fn envelope_scene(dir: &Path) -> Result<(), Failed> {
+    let name = dir.file_name().unwrap().to_string_lossy().into_owned();
+    let out =
+        std::env::temp_dir().join(format!("ocean-h200-envelope-{name}-{}", std::process::id()));
+    let out_s = out.to_string_lossy().into_owned();
+    let dir_s = dir.to_string_lossy().into_owned();
+    let o = cli::ocean(&[
+        "compare",
+        "--size",
+        "256x144",
+        "--against",
+        &dir_s,
+        "--tolerance",
+        "envelope",
+        "--out-dir",
+        &out_s,
+    ]);
+    let stdout = String::from_utf8_lossy(&o.stdout).into_owned();
+    if !o.status.success() {
+        return Err(format!(
+            "{name}: exit {:?}\n{stdout}{}",
+            o.status.code(),
+            String::from_utf8_lossy(&o.stderr)
+        )
+        .into());
+    }
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("against.json")).unwrap()).unwrap();
+    let _ = std::fs::remove_dir_all(&out);
+    let resources = json["resources"].as_array().unwrap();
+    let ldr = resources.iter().find(|r| r["name"] == "ldr").ok_or("no ldr entry")?;
+    if ldr["passed"] != true || ldr["outside"] != 0 {
+        return Err(format!("{name}: the picture was not judged inside: {ldr}").into());
+    }
+    let judged: Vec<&str> = resources
+        .iter()
+        .filter(|r| r["judged"] != false)
+        .map(|r| r["name"].as_str().unwrap())
+        .collect();
+    println!(
+        "{name}: envelope: {} judged, 0 outside (ldr width p50 {} / p99 {} codes)",
+        judged.join(", "),
+        ldr["codes_p50"],
+        ldr["codes_p99"]
+    );
+    Ok(())
+}
+
+/// The envelope verdict's negative control: the `calm` dump with one byte of its picture three
+/// codes off must fail `ocean compare --against` (exit 1, 1 byte outside).
+fn envelope_control() -> Result<(), Failed> {
+    let src = snapshot_dir().join("calm");
+    let tmp =
+        std::env::temp_dir().join(format!("ocean-h200-envelope-control-{}", std::process::id()));
+    let dump = tmp.join("calm");
+    std::fs::create_dir_all(&dump).unwrap();
+    for f in ["manifest.json", "hdr.exr"] {
+        std::fs::copy(src.join(f), dump.join(f)).unwrap();
+    }
+    let mut ldr = image::open(src.join("ldr.png")).unwrap().to_rgba8();
+    let p = ldr.get_pixel_mut(100, 100);
+    p[1] = if p[1] > 128 { p[1] - 3 } else { p[1] + 3 };
+    ldr.save(dump.join("ldr.png")).unwrap();
+    let (d, out) =
+        (dump.to_string_lossy().into_owned(), tmp.join("out").to_string_lossy().into_owned());
+    let o = cli::ocean(&["compare", "--against", &d, "--tolerance", "envelope", "--out-dir", &out]);
+    let stdout = String::from_utf8_lossy(&o.stdout).into_owned();
+    let _ = std::fs::remove_dir_all(&tmp);
+    if o.status.code() != Some(1) || !stdout.contains("1 of 110592 bytes outside") {
+        return Err(format!("one byte three codes off was not caught:\n{stdout}").into());
+    }
+    Ok(())
+}
+
 fn main() -> ExitCode {
     let args = Arguments::from_args();
     let root = snapshot_dir();
@@ -150,11 +263,42 @@ fn main() -> ExitCode {
     scenes.sort();
     assert_eq!(scenes.len(), 19, "the snapshot holds 19 scenes");
     let print = std::env::var_os("OCEAN_HARDWARE_DIGESTS").is_some_and(|v| v == "1");
+    let changed = changed_envelope_shaders(&digests);
     let mut trials = Vec::new();
     let mut first = None;
     let mut out = serde_json::Map::new();
     for dir in scenes {
         let name = dir.file_name().unwrap().to_string_lossy().into_owned();
+        // The envelope's verdict from the dump's own inputs: stale only when the judged
+        // passes' shaders changed; a scene whose picture's inputs are not all in the dump
+        // (pass bloom's chains) is ignored with that reason, never passed.
+        let manifest = ocean::dump::read_manifest(&dir).unwrap().unwrap();
+        let none = ocean::scene_arg::SystemArg { system: None };
+        let scene = manifest.scene("manifest.json", None, &none).unwrap();
+        let bloom = ocean_core::plan::FramePlan::new(&scene, OutputKind::Ldr)
+            .runs(ocean_core::plan::Pass::Bloom);
+        let lacks_bloom = bloom && !dir.join("bloom_up.exr").is_file();
+        let trial_name = format!("{name} (envelope)");
+        if !changed.is_empty() {
+            let why = format!(
+                "{name}: stale for the envelope: {} changed since the snapshot",
+                changed.join(", ")
+            );
+            println!("{why}");
+            trials.push(
+                Trial::test(trial_name, move || Err(why.clone().into())).with_ignored_flag(true),
+            );
+        } else if lacks_bloom {
+            let why =
+                format!("{name}: the picture's input bloom_up is not in the dump: not judged");
+            println!("{why}");
+            trials.push(
+                Trial::test(trial_name, move || Err(why.clone().into())).with_ignored_flag(true),
+            );
+        } else {
+            let d = dir.clone();
+            trials.push(Trial::test(trial_name, move || envelope_scene(&d)));
+        }
         let o = Arc::new(oracle(&dir));
         let now = digest(&o.hdr);
         first.get_or_insert_with(|| o.clone());
@@ -187,5 +331,6 @@ fn main() -> ExitCode {
     }
     let first = first.unwrap();
     trials.push(Trial::test("controls", move || controls(&first)));
+    trials.push(Trial::test("envelope control", envelope_control));
     libtest_mimic::run(&args, trials).exit_code()
 }
