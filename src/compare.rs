@@ -5,6 +5,7 @@
 use std::path::PathBuf;
 
 use anyhow::{Context, bail};
+use ocean::verdict::{GpuSide, envelope_verdict};
 use ocean_verify::cross_check::{artefacts, check_scene, map_pass};
 use ocean_verify::envelope::Tolerance;
 
@@ -66,128 +67,6 @@ impl ToleranceArg {
             None => Tolerance::for_software(software),
         }
     }
-}
-
-/// What the envelope judges of a frame as a GPU made it: the picture, against the `tonemap`
-/// envelope of the GPU's own HDR frame (and bloom); the float resources, whose passes have no
-/// envelope yet, are listed as not judged. Prints a line per resource; returns the failures and
-/// the JSON entries.
-/// A float frame as read back: (width, height) and its texels.
-type FrameRef<'a> = ((u32, u32), &'a [[f32; 4]]);
-
-struct GpuSide<'a> {
-    /// The HDR frame, (width, height) and texels.
-    hdr: Option<FrameRef<'a>>,
-    /// The bloom down chain's atlas, where the pass ran and the frame holds it.
-    bloom_down: Option<&'a [[f32; 4]]>,
-    /// The bloom up chain's atlas, likewise.
-    bloom_up: Option<&'a [[f32; 4]]>,
-    /// The 8-bit picture.
-    ldr: Option<&'a [u8]>,
-}
-
-fn envelope_verdict(
-    scene: &ocean_core::scene::Scene,
-    plan: &ocean_core::plan::FramePlan,
-    gpu: &GpuSide<'_>,
-    resources: &[ocean_core::plan::ResourceId],
-) -> anyhow::Result<(Vec<String>, Vec<serde_json::Value>)> {
-    use ocean_core::plan::{Pass, ResourceId};
-    let mut failures = Vec::new();
-    let mut json = Vec::new();
-    let mut judged = Vec::new();
-    if plan.runs(Pass::Bloom)
-        && let (Some(((w, h), hdr)), Some(down), Some(up)) = (gpu.hdr, gpu.bloom_down, gpu.bloom_up)
-    {
-        for v in bloom_verdicts(scene, (w, h), hdr, down, up)? {
-            println!("  [{:<14}] {}", "bloom", v.line());
-            if !v.passed() {
-                failures.push(v.line());
-            }
-            json.push(v.to_json());
-        }
-        judged.extend([ResourceId::BloomDown, ResourceId::BloomUp]);
-    }
-    for &id in resources.iter().filter(|id| !judged.contains(id)) {
-        let pass = id.writer().map_or("", |p| p.name());
-        let (why, entry) = ocean_verify::envelope::not_judged(id);
-        println!("  [{pass:<14}] {:<20} not judged: {why}", id.name());
-        json.push(entry);
-    }
-    let Some(tonemap) = ocean_core::plan::tonemap_uniforms(scene, plan)? else {
-        return Ok((failures, json));
-    };
-    let not_judged = |why: &str, json: &mut Vec<serde_json::Value>| {
-        println!("  [{:<14}] {:<20} not judged: {why}", "tonemap", "ldr");
-        json.push(serde_json::json!({"name": "ldr", "tolerance": "envelope", "judged": false, "why": why}));
-    };
-    let (Some(((w, h), hdr)), Some(ldr)) = (gpu.hdr, gpu.ldr) else {
-        not_judged("the GPU's HDR frame or picture is missing", &mut json);
-        failures.push("ldr: the GPU's HDR frame or picture is missing".to_owned());
-        return Ok((failures, json));
-    };
-    let bloom = match (plan.runs(Pass::Bloom), gpu.bloom_up) {
-        (false, _) => None,
-        (true, Some(atlas)) => ocean_verify::envelope::bloom_level0(atlas, w, h),
-        (true, None) => {
-            not_judged("pass bloom's output (bloom_up) is not in the frame", &mut json);
-            return Ok((failures, json));
-        }
-    };
-    if plan.runs(Pass::Bloom) && bloom.is_none() {
-        bail!("bloom_up is smaller than its level 0 for {w}x{h}");
-    }
-    let envelope = ocean_cpu::shaders::tonemap::envelope_of(hdr, bloom.as_ref(), w, h, &tonemap);
-    let no_bloom = ocean_cpu::sampler::Texture2D::new(1, 1, vec![[0.0; 4]]);
-    let exact = ocean_cpu::shaders::tonemap::tonemap_to_rgba8_with_bloom(
-        hdr,
-        w,
-        h,
-        &tonemap,
-        bloom.as_ref().unwrap_or(&no_bloom),
-    );
-    let verdict = ocean_verify::envelope::judge_picture("ldr", &envelope, ldr, &exact, w);
-    println!("  [{:<14}] {}", "tonemap", verdict.line());
-    if !verdict.passed() {
-        failures.push(verdict.line());
-    }
-    json.push(verdict.to_json());
-    Ok((failures, json))
-}
-
-/// Pass `bloom`'s chains against its envelope given the GPU's own inputs (each level from the
-/// GPU's level before it: ocean-cpu `bloom::envelope`).
-fn bloom_verdicts(
-    scene: &ocean_core::scene::Scene,
-    (w, h): (u32, u32),
-    hdr: &[[f32; 4]],
-    down: &[[f32; 4]],
-    up: &[[f32; 4]],
-) -> anyhow::Result<Vec<ocean_verify::envelope::FloatVerdict>> {
-    use ocean_cpu::mip::MipChain;
-    use ocean_cpu::sampler::Texture2D;
-    let inputs = ocean_core::plan::BloomInputs::new(scene);
-    let [bw, bh] = ocean_core::bloom::level_size(w, h, 0);
-    let levels = inputs.down.len() as u32;
-    let rows = ocean_cpu::mip::level_row(bh, levels);
-    let chain = |name: &str, atlas: &[[f32; 4]]| -> anyhow::Result<MipChain> {
-        if atlas.len() != bw as usize * rows as usize {
-            bail!("{name}: {} texels, the plan's chain {bw}x{rows}", atlas.len());
-        }
-        Ok(MipChain {
-            width: bw,
-            height: bh,
-            levels,
-            atlas: Texture2D::new(bw, rows, atlas.to_vec()),
-        })
-    };
-    let (down, up) = (chain("bloom_down", down)?, chain("bloom_up", up)?);
-    let hdr = Texture2D::new(w, h, hdr.to_vec());
-    let (down_env, up_env) = ocean_cpu::shaders::bloom::envelope(&hdr, &down, &up, &inputs);
-    Ok(vec![
-        ocean_verify::envelope::judge_floats("bloom_down", &down_env, &down.atlas.texels, bw),
-        ocean_verify::envelope::judge_floats("bloom_up", &up_env, &up.atlas.texels, bw),
-    ])
 }
 
 /// Runs `ocean compare`.
@@ -267,14 +146,17 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 bloom_up: gpu.map(ResourceId::BloomUp).map(|m| &m.texels[..]),
                 ldr: gpu.ldr.as_deref(),
             };
-            let (f, json) = envelope_verdict(&scene, plan, &side, &ran)?;
+            let v = envelope_verdict(&scene, plan, &side, &ran)?;
+            for l in &v.lines {
+                println!("{l}");
+            }
             envelope_json = Some(serde_json::json!({
                 "scene": name,
                 "adapter": check.adapter.name,
                 "tolerance": "envelope",
-                "resources": json,
+                "resources": v.json,
             }));
-            f
+            v.failures
         }
     };
     std::fs::create_dir_all(&args.out_dir)
@@ -540,7 +422,11 @@ fn against_envelope(
         bloom_up: bloom_up.as_ref().map(|(_, t)| &t[..]),
         ldr: ldr.as_deref(),
     };
-    let (mut failures, json) = envelope_verdict(scene, plan, &side, &held)?;
+    let v = envelope_verdict(scene, plan, &side, &held)?;
+    for l in &v.lines {
+        println!("{l}");
+    }
+    let (mut failures, json) = (v.failures, v.json);
     if args.require_all && !not_in_dump.is_empty() {
         failures.push(format!("not in dump (--require-all): {}", not_in_dump.join(", ")));
     }

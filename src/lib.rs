@@ -5,6 +5,7 @@
 //! - [`dump`]: per-pass dumps (`ocean render --dump-passes`, `ocean compare --against`).
 //! - [`output`]: atomic output files, PNG/EXR encoding.
 //! - [`scene_arg`]: the scene a command renders, and `--system`.
+//! - [`verdict`]: the envelope's verdict on a frame a GPU made (`compare`, `selftest`).
 //! - [`view`]: `ocean view`, the real-time viewer (winit window, egui panel), with its
 //!   window-free parts (camera controller, parameter mapping) testable on their own.
 
@@ -13,4 +14,5 @@ pub mod dump;
 pub mod memory_arg;
 pub mod output;
 pub mod scene_arg;
+pub mod verdict;
 pub mod view;

@@ -9,6 +9,7 @@ mod heightfield;
 mod plan;
 mod render;
 mod report;
+mod selftest;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -41,6 +42,9 @@ enum Command {
     Compare(compare::Args),
     /// Fly over the ocean in a window (GPU path), changing the sea while it runs.
     View(ocean::view::Args),
+    /// Hold the GPU to the envelope of any conformant GPU on every reference scene, and check
+    /// that every planted bug leaves it (`--quick`: small frames, about a minute on lavapipe).
+    Selftest(selftest::Args),
     /// Time every system's frame at 720p/1080p/2160p and the wave synthesis at N = 128…1024
     /// on both back ends (`--quick`: a small set for CI), as a table or JSON.
     Bench(bench::Args),
@@ -66,6 +70,7 @@ fn main() -> ExitCode {
         Command::Compare(a) => compare::run(a),
         Command::View(a) => ocean::view::run(a),
         Command::Bench(a) => bench::run(a),
+        Command::Selftest(a) => selftest::run(a),
     };
     // What a refused input cost (tests/hostile_files.rs holds it under 100 MB).
     if std::env::var_os("OCEAN_PRINT_PEAK_MEMORY").is_some()

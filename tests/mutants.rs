@@ -5,13 +5,20 @@
 //! least one stage of its scene, and leaves WGSL that naga validates. The GPU test renders each
 //! mutant's scene at 160×90 with the mutated WGSL on the GPU and the correct oracle on the CPU
 //! (`ocean compare --mutant`): every float map and the picture are compared, and at least one
-//! check must fail; the same scenes unmutated must pass (the control).
+//! check must fail; the same scenes unmutated must pass (the control). `ocean selftest --quick`
+//! runs here too: every scene within the envelope, every bug in a pass the envelope judges
+//! caught.
 
 #![allow(clippy::unwrap_used, reason = "a panic in a test is its failure report")]
 
 #[macro_use]
 #[path = "support/gpu_harness.rs"]
 mod gpu_harness;
+
+#[path = "support/cli.rs"]
+mod cli;
+
+use cli::ocean;
 
 use std::collections::BTreeSet;
 use std::path::PathBuf;
@@ -100,9 +107,6 @@ fn every_mutant_is_one_line_of_valid_wgsl_that_its_scene_runs() {
 }
 
 fn the_command_line_lists_the_bank_and_refuses_an_unknown_name() {
-    let ocean = |args: &[&str]| {
-        std::process::Command::new(env!("CARGO_BIN_EXE_ocean")).args(args).output().unwrap()
-    };
     let o = ocean(&["compare", "--mutants"]);
     let listed = String::from_utf8(o.stdout).unwrap();
     assert!(o.status.success());
@@ -161,10 +165,54 @@ fn every_mutant_is_caught_with_the_exact_tolerance() {
     assert!(missed.is_empty(), "not caught:\n{}", missed.join("\n"));
 }
 
+/// `ocean selftest --quick` on this adapter (lavapipe in CI): every reference scene and built-in
+/// system within the envelope, the whole bank planted, and every planted bug in a pass the
+/// envelope judges (tonemap, bloom) caught; the summary line and the JSON agree.
+fn selftest_quick_judges_every_scene_and_catches_the_judged_passes_bugs() {
+    let json = std::env::temp_dir().join(format!("ocean-selftest-{}.json", std::process::id()));
+    let json_s = json.to_string_lossy().into_owned();
+    let scenes = root().join("reference/scenes").to_string_lossy().into_owned();
+    let o = ocean(&["selftest", "--quick", "--scenes", &scenes, "--json", &json_s]);
+    let out = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert!(o.status.success(), "{out}{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let _ = std::fs::remove_file(&json);
+    let reference = std::fs::read_dir(root().join("reference/scenes"))
+        .unwrap()
+        .flatten()
+        .filter(|e| e.path().extension().is_some_and(|x| x == "toml"))
+        .count();
+    assert_eq!(v["scenes"], reference + 4, "every reference scene and the four systems");
+    assert_eq!(v["scenes_within"], v["scenes"], "{out}");
+    assert_eq!(v["planted"], MUTANTS.len(), "the whole bank");
+    let judged: Vec<&str> =
+        v["judged"].as_array().unwrap().iter().map(|j| j.as_str().unwrap()).collect();
+    assert!(judged.contains(&"ldr") && judged.contains(&"bloom_up"), "{judged:?}");
+    for r in v["planted_results"].as_array().unwrap() {
+        let file = r["file"].as_str().unwrap();
+        if file == "tonemap.wgsl" || file == "bloom.wgsl" {
+            assert_eq!(r["caught"], true, "a bug in a judged pass was missed: {r}");
+        }
+    }
+    let line = out.lines().last().unwrap();
+    let caught = v["planted_caught"].as_u64().unwrap();
+    assert!(
+        line.ends_with(&format!(
+            "{0}/{0} scenes within the envelope; {caught}/{1} planted bugs caught",
+            reference + 4,
+            MUTANTS.len()
+        )),
+        "{line}"
+    );
+    println!("{line}");
+}
+
 fn main() -> std::process::ExitCode {
     run_tests!(gpu_harness::GPU_ADAPTER;
         cpu: every_mutant_is_one_line_of_valid_wgsl_that_its_scene_runs,
             the_command_line_lists_the_bank_and_refuses_an_unknown_name;
-        gpu: every_mutant_is_caught_with_the_exact_tolerance;
+        gpu: every_mutant_is_caught_with_the_exact_tolerance,
+            selftest_quick_judges_every_scene_and_catches_the_judged_passes_bugs;
     )
 }

@@ -1,0 +1,158 @@
+//! The envelope's verdict on a frame a GPU made (docs/tolerances.md), shared by `ocean compare`
+//! and `ocean selftest`: each judged pass is held to the envelope of its arithmetic given the
+//! inputs the GPU itself read, so a verdict needs no oracle frame and localises a fault to a
+//! pass.
+
+use anyhow::bail;
+use ocean_core::plan::{FramePlan, Pass, ResourceId};
+use ocean_core::scene::Scene;
+use serde_json::{Value, json};
+
+/// A float frame as read back: (width, height) and its texels.
+pub type FrameRef<'a> = ((u32, u32), &'a [[f32; 4]]);
+
+/// What a GPU made of a frame, as far as the envelope's passes read it.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct GpuSide<'a> {
+    /// The HDR frame, (width, height) and texels.
+    pub hdr: Option<FrameRef<'a>>,
+    /// The bloom down chain's atlas, where the pass ran and the frame holds it.
+    pub bloom_down: Option<&'a [[f32; 4]]>,
+    /// The bloom up chain's atlas, likewise.
+    pub bloom_up: Option<&'a [[f32; 4]]>,
+    /// The 8-bit picture.
+    pub ldr: Option<&'a [u8]>,
+}
+
+/// The envelope's verdict on one frame.
+#[derive(Clone, Debug, Default)]
+pub struct Verdict {
+    /// One line per resource, for the terminal.
+    pub lines: Vec<String>,
+    /// Every resource outside its envelope (or missing), one line each.
+    pub failures: Vec<String>,
+    /// The JSON entries, one per resource.
+    pub json: Vec<Value>,
+    /// The resources judged.
+    pub judged: Vec<&'static str>,
+    /// The resources not judged (their passes have no envelope yet, or an input is missing).
+    pub not_judged: Vec<&'static str>,
+}
+
+impl Verdict {
+    /// Whether everything judged is inside.
+    pub fn passed(&self) -> bool {
+        self.failures.is_empty()
+    }
+}
+
+/// The envelope's verdict on a frame as a GPU made it: pass `bloom`'s chains (each level
+/// from the GPU's own level before it) and the picture (against the `tonemap` envelope of the
+/// GPU's own HDR frame and bloom); `resources`, the frame's other float resources, whose passes
+/// have no envelope yet, are listed as not judged.
+///
+/// # Errors
+/// A resource of the wrong size, or uniforms the scene cannot make.
+pub fn envelope_verdict(
+    scene: &Scene,
+    plan: &FramePlan,
+    gpu: &GpuSide<'_>,
+    resources: &[ResourceId],
+) -> anyhow::Result<Verdict> {
+    let mut v = Verdict::default();
+    if plan.runs(Pass::Bloom)
+        && let (Some(((w, h), hdr)), Some(down), Some(up)) = (gpu.hdr, gpu.bloom_down, gpu.bloom_up)
+    {
+        for f in bloom_verdicts(scene, (w, h), hdr, down, up)? {
+            v.lines.push(format!("  [{:<14}] {}", "bloom", f.line()));
+            if !f.passed() {
+                v.failures.push(f.line());
+            }
+            v.json.push(f.to_json());
+        }
+        v.judged.extend(["bloom_down", "bloom_up"]);
+    }
+    for &id in resources.iter().filter(|id| !v.judged.contains(&id.name())) {
+        let pass = id.writer().map_or("", |p| p.name());
+        let (why, entry) = ocean_verify::envelope::not_judged(id);
+        v.lines.push(format!("  [{pass:<14}] {:<20} not judged: {why}", id.name()));
+        v.json.push(entry);
+        v.not_judged.push(id.name());
+    }
+    let Some(tonemap) = ocean_core::plan::tonemap_uniforms(scene, plan)? else {
+        return Ok(v);
+    };
+    let not_judged = |why: &str, v: &mut Verdict| {
+        v.lines.push(format!("  [{:<14}] {:<20} not judged: {why}", "tonemap", "ldr"));
+        v.json.push(json!({"name": "ldr", "tolerance": "envelope", "judged": false, "why": why}));
+        v.not_judged.push("ldr");
+    };
+    let (Some(((w, h), hdr)), Some(ldr)) = (gpu.hdr, gpu.ldr) else {
+        not_judged("the GPU's HDR frame or picture is missing", &mut v);
+        v.failures.push("ldr: the GPU's HDR frame or picture is missing".to_owned());
+        return Ok(v);
+    };
+    let bloom = match (plan.runs(Pass::Bloom), gpu.bloom_up) {
+        (false, _) => None,
+        (true, Some(atlas)) => ocean_verify::envelope::bloom_level0(atlas, w, h),
+        (true, None) => {
+            not_judged("pass bloom's output (bloom_up) is not in the frame", &mut v);
+            return Ok(v);
+        }
+    };
+    if plan.runs(Pass::Bloom) && bloom.is_none() {
+        bail!("bloom_up is smaller than its level 0 for {w}x{h}");
+    }
+    let envelope = ocean_cpu::shaders::tonemap::envelope_of(hdr, bloom.as_ref(), w, h, &tonemap);
+    let no_bloom = ocean_cpu::sampler::Texture2D::new(1, 1, vec![[0.0; 4]]);
+    let exact = ocean_cpu::shaders::tonemap::tonemap_to_rgba8_with_bloom(
+        hdr,
+        w,
+        h,
+        &tonemap,
+        bloom.as_ref().unwrap_or(&no_bloom),
+    );
+    let verdict = ocean_verify::envelope::judge_picture("ldr", &envelope, ldr, &exact, w);
+    v.lines.push(format!("  [{:<14}] {}", "tonemap", verdict.line()));
+    if !verdict.passed() {
+        v.failures.push(verdict.line());
+    }
+    v.json.push(verdict.to_json());
+    v.judged.push("ldr");
+    Ok(v)
+}
+
+/// Pass `bloom`'s chains against its envelope given the GPU's own inputs (each level from the
+/// GPU's level before it: ocean-cpu `bloom::envelope`).
+fn bloom_verdicts(
+    scene: &Scene,
+    (w, h): (u32, u32),
+    hdr: &[[f32; 4]],
+    down: &[[f32; 4]],
+    up: &[[f32; 4]],
+) -> anyhow::Result<Vec<ocean_verify::envelope::FloatVerdict>> {
+    use ocean_cpu::mip::MipChain;
+    use ocean_cpu::sampler::Texture2D;
+    let inputs = ocean_core::plan::BloomInputs::new(scene);
+    let [bw, bh] = ocean_core::bloom::level_size(w, h, 0);
+    let levels = inputs.down.len() as u32;
+    let rows = ocean_cpu::mip::level_row(bh, levels);
+    let chain = |name: &str, atlas: &[[f32; 4]]| -> anyhow::Result<MipChain> {
+        if atlas.len() != bw as usize * rows as usize {
+            bail!("{name}: {} texels, the plan's chain {bw}x{rows}", atlas.len());
+        }
+        Ok(MipChain {
+            width: bw,
+            height: bh,
+            levels,
+            atlas: Texture2D::new(bw, rows, atlas.to_vec()),
+        })
+    };
+    let (down, up) = (chain("bloom_down", down)?, chain("bloom_up", up)?);
+    let hdr = Texture2D::new(w, h, hdr.to_vec());
+    let (down_env, up_env) = ocean_cpu::shaders::bloom::envelope(&hdr, &down, &up, &inputs);
+    Ok(vec![
+        ocean_verify::envelope::judge_floats("bloom_down", &down_env, &down.atlas.texels, bw),
+        ocean_verify::envelope::judge_floats("bloom_up", &up_env, &up.atlas.texels, bw),
+    ])
+}
