@@ -141,9 +141,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             let plan = &gpu.plan;
             let ran: Vec<ResourceId> = ocean::dump::dumped(plan);
             let side = GpuSide {
-                hdr: gpu.map(ResourceId::Hdr).map(|m| ((m.width, m.height), &m.texels[..])),
-                bloom_down: gpu.map(ResourceId::BloomDown).map(|m| &m.texels[..]),
-                bloom_up: gpu.map(ResourceId::BloomUp).map(|m| &m.texels[..]),
+                maps: ResourceId::MAPS
+                    .into_iter()
+                    .filter_map(|id| {
+                        gpu.map(id).map(|m| (id, ((m.width, m.height), &m.texels[..])))
+                    })
+                    .collect(),
                 ldr: gpu.ldr.as_deref(),
             };
             let v = envelope_verdict(&scene, plan, &side, &ran)?;
@@ -403,23 +406,19 @@ fn against_envelope(
             not_in_dump.push(id.name());
         }
     }
-    let read = |id: ResourceId| -> anyhow::Result<Option<ocean::dump::ReadMap>> {
-        if listed(id) { ocean::dump::read(dir, id).map(Some) } else { Ok(None) }
-    };
-    let hdr = read(ResourceId::Hdr)?;
-    let bloom_down = read(ResourceId::BloomDown)?;
-    let bloom_up = read(ResourceId::BloomUp)?;
+    let mut read = Vec::new();
+    for id in ResourceId::MAPS.into_iter().filter(|&id| listed(id)) {
+        read.push((id, ocean::dump::read(dir, id)?));
+    }
     let (w, h) = (scene.camera.width, scene.camera.height);
-    if let Some(((hw, hh), _)) = &hdr
+    if let Some((_, ((hw, hh), _))) = read.iter().find(|(id, _)| *id == ResourceId::Hdr)
         && (*hw, *hh) != (w, h)
     {
         bail!("{}: hdr is {hw}x{hh}, the frame {w}x{h}", dir.display());
     }
     let ldr = dumped_picture(dir, w, h)?;
     let side = GpuSide {
-        hdr: hdr.as_ref().map(|(size, t)| (*size, &t[..])),
-        bloom_down: bloom_down.as_ref().map(|(_, t)| &t[..]),
-        bloom_up: bloom_up.as_ref().map(|(_, t)| &t[..]),
+        maps: read.iter().map(|(id, (size, t))| (*id, (*size, &t[..]))).collect(),
         ldr: ldr.as_deref(),
     };
     let v = envelope_verdict(scene, plan, &side, &held)?;

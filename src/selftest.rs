@@ -39,9 +39,10 @@ fn judge(renderer: &mut Renderer, scene: &Scene) -> anyhow::Result<Verdict> {
     let plan = FramePlan::new(scene, OutputKind::Ldr);
     let frame = renderer.run(scene, &plan)?;
     let side = GpuSide {
-        hdr: frame.map(ResourceId::Hdr).map(|m| ((m.width, m.height), &m.texels[..])),
-        bloom_down: frame.map(ResourceId::BloomDown).map(|m| &m.texels[..]),
-        bloom_up: frame.map(ResourceId::BloomUp).map(|m| &m.texels[..]),
+        maps: ResourceId::MAPS
+            .into_iter()
+            .filter_map(|id| frame.map(id).map(|m| (id, ((m.width, m.height), &m.texels[..]))))
+            .collect(),
         ldr: frame.ldr.as_deref(),
     };
     envelope_verdict(scene, &frame.plan, &side, &ocean::dump::dumped(&frame.plan))

@@ -11,17 +11,25 @@ use serde_json::{Value, json};
 /// A float frame as read back: (width, height) and its texels.
 pub type FrameRef<'a> = ((u32, u32), &'a [[f32; 4]]);
 
-/// What a GPU made of a frame, as far as the envelope's passes read it.
-#[derive(Clone, Copy, Debug, Default)]
+/// What a GPU made of a frame: its float resources as read back (or read from a dump), and
+/// its 8-bit picture.
+#[derive(Clone, Debug, Default)]
 pub struct GpuSide<'a> {
-    /// The HDR frame, (width, height) and texels.
-    pub hdr: Option<FrameRef<'a>>,
-    /// The bloom down chain's atlas, where the pass ran and the frame holds it.
-    pub bloom_down: Option<&'a [[f32; 4]]>,
-    /// The bloom up chain's atlas, likewise.
-    pub bloom_up: Option<&'a [[f32; 4]]>,
+    /// The float resources the frame holds.
+    pub maps: Vec<(ResourceId, FrameRef<'a>)>,
     /// The 8-bit picture.
     pub ldr: Option<&'a [u8]>,
+}
+
+impl<'a> GpuSide<'a> {
+    /// A resource, if the frame holds it.
+    pub fn map(&self, id: ResourceId) -> Option<FrameRef<'a>> {
+        self.maps.iter().find(|(m, _)| *m == id).map(|(_, f)| *f)
+    }
+
+    fn texels(&self, id: ResourceId) -> Option<&'a [[f32; 4]]> {
+        self.map(id).map(|(_, t)| t)
+    }
 }
 
 /// The envelope's verdict on one frame.
@@ -61,7 +69,11 @@ pub fn envelope_verdict(
 ) -> anyhow::Result<Verdict> {
     let mut v = Verdict::default();
     if plan.runs(Pass::Bloom)
-        && let (Some(((w, h), hdr)), Some(down), Some(up)) = (gpu.hdr, gpu.bloom_down, gpu.bloom_up)
+        && let (Some(((w, h), hdr)), Some(down), Some(up)) = (
+            gpu.map(ResourceId::Hdr),
+            gpu.texels(ResourceId::BloomDown),
+            gpu.texels(ResourceId::BloomUp),
+        )
     {
         for f in bloom_verdicts(scene, (w, h), hdr, down, up)? {
             v.lines.push(format!("  [{:<14}] {}", "bloom", f.line()));
@@ -71,6 +83,38 @@ pub fn envelope_verdict(
             v.json.push(f.to_json());
         }
         v.judged.extend(["bloom_down", "bloom_up"]);
+    }
+    if plan.runs(Pass::WaveMips) {
+        for (source, chain) in ResourceId::SLOPE_CHAINS {
+            if let (Some(((w, h), src)), Some((_, atlas))) = (gpu.map(source), gpu.map(chain)) {
+                let f = wave_mips_verdict(chain, (w, h), src, atlas)?;
+                v.lines.push(format!("  [{:<14}] {}", "wave_mips", f.line()));
+                if !f.passed() {
+                    v.failures.push(f.line());
+                }
+                v.json.push(f.to_json());
+                v.judged.push(chain.name());
+            }
+        }
+    }
+    // The far field's Fresnel filter is computed on the CPU and uploaded: the GPU must hold it
+    // bit for bit (an upload has no arithmetic to allow for).
+    if let (Some(table), Some(((w, _), texels))) =
+        (plan.fresnel_filter(scene), gpu.map(ResourceId::FresnelFilter))
+    {
+        let env: Vec<Option<[ocean_cpu::envelope::Iv; 4]>> =
+            table.texels.iter().map(|t| Some(t.map(ocean_cpu::envelope::Iv::point))).collect();
+        let f = if env.len() == texels.len() {
+            ocean_verify::envelope::judge_floats("fresnel_filter", &env, texels, w)
+        } else {
+            bail!("fresnel_filter: {} texels, the table {}", texels.len(), env.len());
+        };
+        v.lines.push(format!("  [{:<14}] {} (an upload: exact)", "wave_mips", f.line()));
+        if !f.passed() {
+            v.failures.push(f.line());
+        }
+        v.json.push(f.to_json());
+        v.judged.push("fresnel_filter");
     }
     for &id in resources.iter().filter(|id| !v.judged.contains(&id.name())) {
         let pass = id.writer().map_or("", |p| p.name());
@@ -87,12 +131,12 @@ pub fn envelope_verdict(
         v.json.push(json!({"name": "ldr", "tolerance": "envelope", "judged": false, "why": why}));
         v.not_judged.push("ldr");
     };
-    let (Some(((w, h), hdr)), Some(ldr)) = (gpu.hdr, gpu.ldr) else {
+    let (Some(((w, h), hdr)), Some(ldr)) = (gpu.map(ResourceId::Hdr), gpu.ldr) else {
         not_judged("the GPU's HDR frame or picture is missing", &mut v);
         v.failures.push("ldr: the GPU's HDR frame or picture is missing".to_owned());
         return Ok(v);
     };
-    let bloom = match (plan.runs(Pass::Bloom), gpu.bloom_up) {
+    let bloom = match (plan.runs(Pass::Bloom), gpu.texels(ResourceId::BloomUp)) {
         (false, _) => None,
         (true, Some(atlas)) => ocean_verify::envelope::bloom_level0(atlas, w, h),
         (true, None) => {
@@ -120,6 +164,27 @@ pub fn envelope_verdict(
     v.json.push(verdict.to_json());
     v.judged.push("ldr");
     Ok(v)
+}
+
+/// One of pass `wave_mips`' chains against its envelope given the GPU's own slope map and
+/// levels (ocean-cpu `wave_mips::envelope`).
+fn wave_mips_verdict(
+    chain: ResourceId,
+    (w, h): (u32, u32),
+    src: &[[f32; 4]],
+    atlas: &[[f32; 4]],
+) -> anyhow::Result<ocean_verify::envelope::FloatVerdict> {
+    use ocean_cpu::mip::{MipChain, level_count, level_row};
+    use ocean_cpu::sampler::Texture2D;
+    let levels = level_count(w, h);
+    let rows = level_row(h, levels);
+    if atlas.len() != w as usize * rows as usize {
+        bail!("{}: {} texels, the chain of a {w}x{h} map {w}x{rows}", chain.name(), atlas.len());
+    }
+    let gpu =
+        MipChain { width: w, height: h, levels, atlas: Texture2D::new(w, rows, atlas.to_vec()) };
+    let env = ocean_cpu::shaders::wave_mips::envelope(&Texture2D::new(w, h, src.to_vec()), &gpu);
+    Ok(ocean_verify::envelope::judge_floats(chain.name(), &env, atlas, w))
 }
 
 /// Pass `bloom`'s chains against its envelope given the GPU's own inputs (each level from the

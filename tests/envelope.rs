@@ -326,3 +326,51 @@ fn random_conformant_gpus_stay_inside_the_bloom_envelope() {
     );
     assert!(loose > 0, "a GPU twice as loose as the rules never left the bloom envelope");
 }
+
+#[test]
+fn random_conformant_gpus_stay_inside_the_wave_mips_envelope() {
+    use ocean_cpu::sampler::Texture2D;
+    use ocean_cpu::shaders::wave_mips;
+    // The oracle's slope maps of a reference scene, and a non-square random map.
+    let mut scene = ocean_core::scene::Scene::load(
+        &PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("reference/scenes/calm.toml"),
+    )
+    .unwrap();
+    (scene.camera.width, scene.camera.height) = (64, 36);
+    let r = ocean_cpu::render_scene(&scene, OutputKind::Ldr, &mut |_| {}).unwrap();
+    let mut maps = Vec::new();
+    for id in [ResourceId::DisplacementSlopes, ResourceId::Bump] {
+        let (w, h, t) = r.buffers.map(id).unwrap();
+        maps.push((id.name().to_owned(), Texture2D::new(w, h, t.to_vec())));
+    }
+    let mut g = SplitMix64::new(7);
+    let random: Vec<[f32; 4]> = (0..64 * 16)
+        .map(|_| std::array::from_fn(|_| (g.next_open_closed() as f32 - 0.5) * 3.0))
+        .collect();
+    maps.push(("random 64x16".to_owned(), Texture2D::new(64, 16, random)));
+    let (mut runs, mut loose) = (0, 0);
+    for (name, slopes) in &maps {
+        let exact = wave_mips::dispatch(slopes);
+        let judge = |env: &[Option<[Iv; 4]>], c: &ocean_cpu::mip::MipChain| {
+            let v = ocean_verify::envelope::judge_floats("mips", env, &c.atlas.texels, c.width);
+            assert!(v.values > 0);
+            v.outside
+        };
+        assert_eq!(judge(&wave_mips::envelope(slopes, &exact), &exact), 0, "{name}: the oracle");
+        let mut bad = exact.clone();
+        let k = bad.width as usize * bad.height as usize + 3;
+        bad.atlas.texels[k][2] = bad.atlas.texels[k][2] * 1.0001 + 1e-6;
+        assert_eq!(judge(&wave_mips::envelope(slopes, &exact), &bad), 1, "{name}: one value off");
+        for seed in 0..8 {
+            let c = wave_mips::jitter(slopes, JitterRules { seed, scale: 1.0 });
+            assert_eq!(judge(&wave_mips::envelope(slopes, &c), &c), 0, "{name} seed {seed}");
+            runs += 1;
+        }
+        let c = wave_mips::jitter(slopes, JitterRules { seed: 99, scale: 2.0 });
+        loose += judge(&wave_mips::envelope(slopes, &c), &c);
+    }
+    println!(
+        "{runs} wave_mips chains of random conformant GPUs: 0 outside; twice the rules: {loose} outside"
+    );
+    assert!(loose > 0, "a GPU twice as loose as the rules never left the wave_mips envelope");
+}

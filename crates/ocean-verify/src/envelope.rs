@@ -193,7 +193,7 @@ impl PictureVerdict {
 pub struct WorstTexel {
     /// Column and row (in a chain, of its atlas).
     pub texel: (u32, u32),
-    /// 0 R, 1 G, 2 B.
+    /// 0 R, 1 G, 2 B, 3 A.
     pub channel: usize,
     /// The GPU's value.
     pub got: f32,
@@ -218,14 +218,14 @@ pub struct FloatVerdict {
     pub worst: Option<WorstTexel>,
 }
 
-/// Judges a GPU's float resource `gpu` (`width` wide) by `envelope` (per texel; `None` where
-/// nothing is judged, e.g. a chain's padding).
+/// Judges a GPU's float resource `gpu` (`width` wide) by `envelope` (per texel, its first `N`
+/// channels; `None` where nothing is judged, e.g. a chain's padding).
 ///
 /// # Panics
 /// If the two differ in texel count.
-pub fn judge_floats(
+pub fn judge_floats<const N: usize>(
     name: &str,
-    envelope: &[Option<[Iv; 3]>],
+    envelope: &[Option<[Iv; N]>],
     gpu: &[[f32; 4]],
     width: u32,
 ) -> FloatVerdict {
@@ -235,7 +235,7 @@ pub fn judge_floats(
     let mut rel = Vec::new();
     for (i, (e, g)) in envelope.iter().zip(gpu).enumerate() {
         let Some(e) = e else { continue };
-        for c in 0..3 {
+        for c in 0..N {
             values += 1;
             rel.extend(e[c].rel_half_width());
             if e[c].contains(g[c]) {
@@ -285,7 +285,7 @@ impl FloatVerdict {
                 "{head}; worst at ({}, {}) {}: {:e} not in [{:e}, {:e}] FAIL",
                 w.texel.0,
                 w.texel.1,
-                ["R", "G", "B"][w.channel],
+                ["R", "G", "B", "A"][w.channel],
                 w.got,
                 w.allowed.lo,
                 w.allowed.hi

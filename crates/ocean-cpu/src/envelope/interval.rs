@@ -372,6 +372,9 @@ impl Real for Iv {
         }
         Iv::stored((lo - u).next_down(), (hi + u).next_up())
     }
+    fn sum_as_written(terms: &[Iv], _: impl FnOnce(&[Iv]) -> Iv) -> Iv {
+        Self::sum(terms)
+    }
     fn round(self) -> Iv {
         if self.full {
             return Iv::FULL;

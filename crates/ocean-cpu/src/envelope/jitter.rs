@@ -142,6 +142,9 @@ impl Real for Jitter {
         let v = rounded(t.exp2(), exp2_ulps(t));
         Jitter(v.0.max(0.0))
     }
+    fn sum_as_written(terms: &[Jitter], _: impl FnOnce(&[Jitter]) -> Jitter) -> Jitter {
+        Self::sum(terms)
+    }
     fn round(self) -> Jitter {
         Jitter(self.0.round_ties_even())
     }

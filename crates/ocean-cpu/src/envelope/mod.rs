@@ -105,6 +105,13 @@ pub trait Real:
         }
         s
     }
+    /// A sum the exact frame evaluates as `written` (WGSL's parenthesisation, e.g.
+    /// `(a + b) + (c + d)`) and a GPU may reassociate: the exact frame computes `written`, an
+    /// envelope or a random GPU [`Real::sum`] of `terms`.
+    #[inline]
+    fn sum_as_written(terms: &[Self], written: impl FnOnce(&[Self]) -> Self) -> Self {
+        written(terms)
+    }
     /// What a texel of `format` stores of the value.
     #[inline]
     fn store(self, format: FrameFormat) -> Self {

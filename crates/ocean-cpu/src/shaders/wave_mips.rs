@@ -3,24 +3,96 @@
 
 use ocean_core::frame::WaveMipsUniforms;
 
+use crate::envelope::{Iv, Jitter, JitterRules, Real};
 use crate::mip::{MipChain, level_count, level_size};
 use crate::sampler::Texture2D;
 
 /// `moments(id)`: texel `id` of level 0 from the slope map `src`.
 pub fn moments(id: [u32; 2], src: &Texture2D) -> [f32; 4] {
-    let s = src.texel(id[0], id[1]);
+    moments_r(id, src)
+}
+
+/// [`moments`] over any [`Real`] (the texel read exactly).
+pub fn moments_r<R: Real>(id: [u32; 2], src: &Texture2D) -> [R; 4] {
+    let s = src.texel(id[0], id[1]).map(R::lit);
     [s[0], s[1], s[0] * s[0], s[1] * s[1]]
 }
 
 /// `downsample(id)`: texel `id` of the level after `src`.
 pub fn downsample(id: [u32; 2], params: &WaveMipsUniforms, src: &Texture2D) -> [f32; 4] {
+    downsample_r(id, params, src)
+}
+
+/// [`downsample`] over any [`Real`]: `((a + b) + (c + d)) * 0.25`, a sum a GPU may
+/// reassociate.
+pub fn downsample_r<R: Real>(id: [u32; 2], params: &WaveMipsUniforms, src: &Texture2D) -> [R; 4] {
     let x0 = (2 * id[0]).min(params.src_width - 1);
     let x1 = (2 * id[0] + 1).min(params.src_width - 1);
     let y0 = (2 * id[1]).min(params.src_height - 1);
     let y1 = (2 * id[1] + 1).min(params.src_height - 1);
     let (a, b) = (src.texel(x0, y0), src.texel(x1, y0));
     let (c, d) = (src.texel(x0, y1), src.texel(x1, y1));
-    std::array::from_fn(|k| ((a[k] + b[k]) + (c[k] + d[k])) * 0.25)
+    std::array::from_fn(|k| {
+        let t = [a[k], b[k], c[k], d[k]].map(R::lit);
+        R::sum_as_written(&t, |t| (t[0] + t[1]) + (t[2] + t[3])) * R::lit(0.25)
+    })
+}
+
+/// The envelope of a GPU's chain given what it read: level 0 from the GPU's slope map
+/// `slopes`, each later level from the GPU's own level before it (`chain`, its atlas).
+/// [`MipChain`]'s atlas layout, `None` in the padding.
+///
+/// # Panics
+/// If `chain` is not the full chain of `slopes`.
+pub fn envelope(slopes: &Texture2D, chain: &MipChain) -> Vec<Option<[Iv; 4]>> {
+    let (w, h) = (slopes.width, slopes.height);
+    assert_eq!([chain.width, chain.height, chain.levels], [w, h, level_count(w, h)], "the chain");
+    let mut levels: Vec<Vec<[Iv; 4]>> =
+        vec![(0..w * h).map(|k| moments_r([k % w, k / w], slopes)).collect()];
+    for k in 1..chain.levels {
+        let [lw, lh] = level_size(w, h, k);
+        let src = chain.level(k - 1);
+        let params = WaveMipsUniforms::new([lw, lh], [src.width, src.height]);
+        levels.push((0..lw * lh).map(|t| downsample_r([t % lw, t / lw], &params, &src)).collect());
+    }
+    let rows = crate::mip::level_row(h, chain.levels);
+    let mut atlas = vec![None; w as usize * rows as usize];
+    for (k, level) in levels.iter().enumerate() {
+        let [lw, lh] = level_size(w, h, k as u32);
+        let row = crate::mip::level_row(h, k as u32) as usize;
+        for j in 0..lh as usize {
+            for i in 0..lw as usize {
+                atlas[(row + j) * w as usize + i] = Some(level[j * lw as usize + i]);
+            }
+        }
+    }
+    atlas
+}
+
+/// The chain as one random conformant GPU computes it (`rules`).
+pub fn jitter(slopes: &Texture2D, rules: JitterRules) -> MipChain {
+    let (w, h) = (slopes.width, slopes.height);
+    let unwrap = |v: [Jitter; 4]| v.map(|c| c.0);
+    let texels = (0..w * h)
+        .map(|k| {
+            Jitter::reseed(rules, u64::from(k));
+            unwrap(moments_r([k % w, k / w], slopes))
+        })
+        .collect();
+    let mut levels = vec![Texture2D::new(w, h, texels)];
+    for k in 1..level_count(w, h) {
+        let [lw, lh] = level_size(w, h, k);
+        let src = &levels[k as usize - 1];
+        let params = WaveMipsUniforms::new([lw, lh], [src.width, src.height]);
+        let texels = (0..lw * lh)
+            .map(|t| {
+                Jitter::reseed(rules, (u64::from(k) << 32) + u64::from(t));
+                unwrap(downsample_r([t % lw, t / lw], &params, src))
+            })
+            .collect();
+        levels.push(Texture2D::new(lw, lh, texels));
+    }
+    MipChain::from_levels(&levels)
 }
 
 /// The whole chain of `slopes` (one dispatch of `moments`, then one of `downsample` per
