@@ -97,6 +97,27 @@ pub fn envelope_verdict(
             }
         }
     }
+    if plan.runs(Pass::FresnelTable) {
+        let eta = scene.water.ior as f32;
+        for (id, eta) in [(ResourceId::FresnelAbove, eta), (ResourceId::FresnelBelow, 1.0 / eta)] {
+            let (Some(((w, _), texels)), Some(r)) = (gpu.map(id), plan.resource(id)) else {
+                continue;
+            };
+            let params =
+                ocean_core::frame::FresnelTableUniforms::new(eta, r.size[0], plan.fresnel_mapping);
+            let env = ocean_cpu::shaders::fresnel_table::envelope(&params);
+            if env.len() != texels.len() {
+                bail!("{}: {} texels, the table {}", id.name(), texels.len(), env.len());
+            }
+            let f = ocean_verify::envelope::judge_floats(id.name(), &env, texels, w);
+            v.lines.push(format!("  [{:<14}] {}", "fresnel_table", f.line()));
+            if !f.passed() {
+                v.failures.push(f.line());
+            }
+            v.json.push(f.to_json());
+            v.judged.push(id.name());
+        }
+    }
     // The far field's Fresnel filter is computed on the CPU and uploaded: the GPU must hold it
     // bit for bit (an upload has no arithmetic to allow for).
     if let (Some(table), Some(((w, _), texels))) =

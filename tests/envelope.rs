@@ -38,9 +38,14 @@ fn ops() -> Vec<(&'static str, Op<Iv>, Op<Jitter>, bool)> {
         ("/", |a, b| a / b, |a, b| a / b, true),
         // pow takes |a| (the mirrors raise values ≥ 0) and the sRGB exponent or |b|.
         ("pow", |a, b| pow_iv(a, b), |a, b| pow_j(a, b), true),
+        ("sqrt", |a, _| abs_iv(a).sqrt(), |a, _| Jitter(a.0.abs()).sqrt(), true),
         ("max", |a, b| a.max(b), |a, b| a.max(b), false),
         ("round", |a, _| a.round(), |a, _| a.round(), false),
     ]
+}
+
+fn abs_iv(a: Iv) -> Iv {
+    Iv::new(a.lo.abs().min(a.hi.abs()), a.magnitude())
 }
 
 fn pow_iv(a: Iv, b: Iv) -> Iv {
@@ -373,4 +378,40 @@ fn random_conformant_gpus_stay_inside_the_wave_mips_envelope() {
         "{runs} wave_mips chains of random conformant GPUs: 0 outside; twice the rules: {loose} outside"
     );
     assert!(loose > 0, "a GPU twice as loose as the rules never left the wave_mips envelope");
+}
+
+#[test]
+fn random_conformant_gpus_stay_inside_the_fresnel_table_envelope() {
+    use ocean_core::frame::FresnelTableUniforms;
+    use ocean_core::tables::TextureMapping;
+    use ocean_cpu::shaders::fresnel_table;
+    let (mut runs, mut loose) = (0, 0);
+    // Water from above and below, η → 1 (the cancelling branch), η > 2 (the direct branch),
+    // η = 1 exactly (no interface); every mapping.
+    for eta in [1.333f32, 1.0 / 1.333, 1.0001, 2.5, 1.0] {
+        for mapping in
+            [TextureMapping::Hemisphere, TextureMapping::PaperHalfRange, TextureMapping::Grazing]
+        {
+            let params = FresnelTableUniforms::new(eta, 48, mapping);
+            let env = fresnel_table::envelope(&params);
+            let judge = |t: &ocean_cpu::sampler::Texture2D| {
+                ocean_verify::envelope::judge_floats("table", &env, &t.texels, t.width).outside
+            };
+            assert_eq!(
+                judge(&fresnel_table::dispatch(&params)),
+                0,
+                "η {eta} {mapping:?}: the oracle"
+            );
+            for seed in 0..8 {
+                let t = fresnel_table::jitter(&params, JitterRules { seed, scale: 1.0 });
+                assert_eq!(judge(&t), 0, "η {eta} {mapping:?} seed {seed}");
+                runs += 1;
+            }
+            loose += judge(&fresnel_table::jitter(&params, JitterRules { seed: 99, scale: 2.0 }));
+        }
+    }
+    println!(
+        "{runs} Fresnel tables of random conformant GPUs: 0 outside; twice the rules: {loose} outside"
+    );
+    assert!(loose > 0, "a GPU twice as loose as the rules never left the Fresnel table's envelope");
 }

@@ -167,7 +167,8 @@ fn every_mutant_is_caught_with_the_exact_tolerance() {
 
 /// `ocean selftest --quick` on this adapter (lavapipe in CI): every reference scene and built-in
 /// system within the envelope, the whole bank planted, and every planted bug in a pass the
-/// envelope judges (tonemap, bloom) caught; the summary line and the JSON agree.
+/// envelope judges (tonemap, bloom, wave_mips, fresnel_table) caught; the summary line and the
+/// JSON agree.
 fn selftest_quick_judges_every_scene_and_catches_the_judged_passes_bugs() {
     let json = std::env::temp_dir().join(format!("ocean-selftest-{}.json", std::process::id()));
     let json_s = json.to_string_lossy().into_owned();
@@ -191,7 +192,15 @@ fn selftest_quick_judges_every_scene_and_catches_the_judged_passes_bugs() {
     assert!(judged.contains(&"ldr") && judged.contains(&"bloom_up"), "{judged:?}");
     for r in v["planted_results"].as_array().unwrap() {
         let file = r["file"].as_str().unwrap();
-        if file == "tonemap.wgsl" || file == "bloom.wgsl" {
+        // The files of the passes the envelope judges (fresnel.wgsl through the Fresnel tables).
+        let judged_files = [
+            "tonemap.wgsl",
+            "bloom.wgsl",
+            "wave_mips.wgsl",
+            "fresnel_table.wgsl",
+            "shared/fresnel.wgsl",
+        ];
+        if judged_files.contains(&file) {
             assert_eq!(r["caught"], true, "a bug in a judged pass was missed: {r}");
         }
     }

@@ -381,6 +381,52 @@ impl Real for Iv {
         }
         Iv::new(self.lo.round_ties_even(), self.hi.round_ties_even())
     }
+    /// 1 / inversesqrt(x): inversesqrt within 2 ULP, the division within 2.5 ULP; a 0 or
+    /// subnormal argument (inversesqrt ∞, or flushed) gives 0.
+    fn sqrt(self) -> Iv {
+        if self.full || self.lo < 0.0 {
+            return Iv::FULL;
+        }
+        let normal = (self.hi >= F32_MIN_NORMAL).then(|| {
+            let lo = self.lo.max(F32_MIN_NORMAL);
+            let inv =
+                Iv::rounded((1.0 / self.hi.sqrt()).next_down(), (1.0 / lo.sqrt()).next_up(), 2.0);
+            Iv::point(1.0) / inv
+        });
+        let tiny = (self.lo < F32_MIN_NORMAL)
+            .then(|| Iv::new(0.0, (F32_MIN_NORMAL.sqrt() * (1.0 + 2f64.powi(-20))).next_up()));
+        match (normal, tiny) {
+            (Some(n), Some(t)) => n.hull(t),
+            (Some(n), None) => n,
+            (None, Some(t)) => t,
+            (None, None) => Iv::FULL,
+        }
+    }
+    fn lt(self, b: Iv) -> Tri {
+        if self.full || b.full {
+            Tri::Either
+        } else if self.hi < b.lo {
+            Tri::True
+        } else if self.lo >= b.hi {
+            Tri::False
+        } else {
+            Tri::Either
+        }
+    }
+    fn eq(self, b: Iv) -> Tri {
+        if self.full || b.full {
+            Tri::Either
+        } else if self.lo == self.hi && b.lo == b.hi && self.lo == b.lo {
+            Tri::True
+        } else if self.hi < b.lo || self.lo > b.hi {
+            Tri::False
+        } else {
+            Tri::Either
+        }
+    }
+    fn hull(self, b: Iv) -> Iv {
+        Iv::hull(self, b)
+    }
     fn le(self, b: Iv) -> Tri {
         if self.full || b.full {
             Tri::Either

@@ -148,6 +148,24 @@ impl Real for Jitter {
     fn round(self) -> Jitter {
         Jitter(self.0.round_ties_even())
     }
+    /// 1 / inversesqrt(x), each step jittered within its allowance.
+    fn sqrt(self) -> Jitter {
+        let x = f64::from(self.0);
+        if x < f64::from(f32::MIN_POSITIVE) {
+            return Jitter(if x < 0.0 { f32::NAN } else { 0.0 });
+        }
+        let inv = rounded(1.0 / x.sqrt(), 2.0);
+        Jitter(1.0) / inv
+    }
+    fn lt(self, b: Jitter) -> bool {
+        self.0 < b.0
+    }
+    fn eq(self, b: Jitter) -> bool {
+        self.0 == b.0
+    }
+    fn hull(self, _: Jitter) -> Jitter {
+        self
+    }
     fn le(self, b: Jitter) -> bool {
         self.0 <= b.0
     }

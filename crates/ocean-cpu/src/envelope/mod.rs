@@ -86,8 +86,17 @@ pub trait Real:
     fn pow(self, e: Self) -> Self;
     /// WGSL `round(e)`: to the nearest integer, halves to even (exact).
     fn round(self) -> Self;
+    /// WGSL `sqrt(e)` for e ≥ 0 (Vulkan: inherited from 1 / inversesqrt(e)).
+    fn sqrt(self) -> Self;
     /// `a <= b`.
     fn le(self, b: Self) -> Self::Cond;
+    /// `a < b`.
+    fn lt(self, b: Self) -> Self::Cond;
+    /// `a == b`.
+    fn eq(self, b: Self) -> Self::Cond;
+    /// The smallest value holding both (an interval's hull; for a decided scalar, never
+    /// needed: `self`).
+    fn hull(self, b: Self) -> Self;
     /// WGSL `select(f, t, cond)`.
     fn select(f: Self, t: Self, cond: Self::Cond) -> Self;
     /// What an 8-bit unorm target stores for a shader output: every byte a conformant
@@ -146,8 +155,24 @@ impl Real for f32 {
         self.round_ties_even()
     }
     #[inline]
+    fn sqrt(self) -> Self {
+        f32::sqrt(self)
+    }
+    #[inline]
     fn le(self, b: Self) -> bool {
         self <= b
+    }
+    #[inline]
+    fn lt(self, b: Self) -> bool {
+        self < b
+    }
+    #[inline]
+    fn eq(self, b: Self) -> bool {
+        self == b
+    }
+    #[inline]
+    fn hull(self, _: Self) -> Self {
+        self
     }
     #[inline]
     fn select(f: Self, t: Self, cond: bool) -> Self {
@@ -163,6 +188,34 @@ impl Real for f32 {
     fn store_unorm8(self) -> ByteRange {
         let b = (self.clamp(0.0, 1.0) * 255.0).round_ties_even() as u8;
         ByteRange { lo: b, hi: b }
+    }
+}
+
+/// `if cond { t() } else { f() }` for a data-dependent branch: where the bounds cannot decide
+/// `cond`, both branches, united.
+#[inline]
+pub fn choose<R: Real>(cond: R::Cond, t: impl FnOnce() -> R, f: impl FnOnce() -> R) -> R {
+    match cond.decided() {
+        Some(true) => t(),
+        Some(false) => f(),
+        None => t().hull(f()),
+    }
+}
+
+/// [`choose`] for a vector.
+#[inline]
+pub fn choose_n<R: Real, const N: usize>(
+    cond: R::Cond,
+    t: impl FnOnce() -> [R; N],
+    f: impl FnOnce() -> [R; N],
+) -> [R; N] {
+    match cond.decided() {
+        Some(true) => t(),
+        Some(false) => f(),
+        None => {
+            let (a, b) = (t(), f());
+            std::array::from_fn(|i| a[i].hull(b[i]))
+        }
     }
 }
 
