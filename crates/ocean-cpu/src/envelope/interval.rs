@@ -56,6 +56,15 @@ impl ByteRange {
 const F32_MAX: f64 = f32::MAX as f64;
 const F32_MIN_NORMAL: f64 = f32::MIN_POSITIVE as f64;
 
+const TWO_POW_M21: f64 = 1.0 / (1u64 << 21) as f64;
+const TWO_POW_126: f64 = 8.507_059_173_023_462e37;
+
+/// 2^e for |e| < 1023, from the bits.
+#[inline]
+fn pow2(e: i32) -> f64 {
+    f64::from_bits(((e + 1023) as u64) << 52)
+}
+
 /// The f32 ULP at magnitude `m` ≥ 0 (the spacing of f32 values in m's binade): 2⁻¹⁴⁹ below
 /// the normal range, +∞ for non-finite m.
 pub fn f32_ulp(m: f64) -> f64 {
@@ -68,13 +77,13 @@ pub fn f32_ulp(m: f64) -> f64 {
     }
     let e = ((m.to_bits() >> 52) & 0x7ff) as i32 - 1023;
     // f32's top binade ends at 2^128; a magnitude past f32::MAX keeps that binade's ULP.
-    2f64.powi(e.min(127) - 23)
+    pow2(e.min(127) - 23)
 }
 
 /// log2's allowance at a result of magnitude up to `m`: the larger of 2⁻²¹ (absolute, for
 /// arguments in [0.5, 2]) and 3 ULP (elsewhere).
 pub(crate) fn log2_allowance(m: f64) -> f64 {
-    (2f64.powi(-21)).max(3.0 * f32_ulp(m))
+    TWO_POW_M21.max(3.0 * f32_ulp(m))
 }
 
 /// exp2's allowance in ULP of the result for an argument `t`: 3 + 2|t|.
@@ -87,7 +96,7 @@ pub(crate) const DIV_ULPS: f64 = 2.5;
 
 /// Whether the rules define ÷ for a divisor of magnitude `m`.
 pub(crate) fn divisor_defined(m: f64) -> bool {
-    (2f64.powi(-126)..=2f64.powi(126)).contains(&m)
+    (F32_MIN_NORMAL..=TWO_POW_126).contains(&m)
 }
 
 impl Iv {
@@ -207,10 +216,10 @@ const HALF_MIN_NORMAL: f64 = 6.103_515_625e-5; // 2⁻¹⁴
 /// The spacing of binary16 values at magnitude `a` < 65536.
 fn half_spacing(a: f64) -> f64 {
     if a < HALF_MIN_NORMAL {
-        return 2f64.powi(-24);
+        return pow2(-24);
     }
     let e = ((a.to_bits() >> 52) & 0x7ff) as i32 - 1023;
-    2f64.powi(e.min(15) - 10)
+    pow2(e.min(15) - 10)
 }
 
 /// The largest binary16 value ≤ x (−∞ below −65504).
@@ -242,15 +251,28 @@ pub(crate) fn half_subnormal(x: f64) -> bool {
     x != 0.0 && x.abs() < HALF_MIN_NORMAL
 }
 
-/// The four products' (or quotients') hull, rounded outward.
+/// The four products' (or quotients') hull, rounded outward. `f` must be monotone in each
+/// argument on each sign-constant piece (× and ÷ are), so with a point operand, or both
+/// operands ≥ 0, two corners decide it.
+#[inline]
 fn corners(a: Iv, b: Iv, f: impl Fn(f64, f64) -> f64) -> (f64, f64) {
-    let c = [f(a.lo, b.lo), f(a.lo, b.hi), f(a.hi, b.lo), f(a.hi, b.hi)];
-    if c.iter().any(|v| v.is_nan()) {
+    let (x, y) = if b.lo == b.hi {
+        (f(a.lo, b.lo), f(a.hi, b.lo))
+    } else if a.lo == a.hi {
+        (f(a.lo, b.lo), f(a.lo, b.hi))
+    } else {
+        let c = [f(a.lo, b.lo), f(a.lo, b.hi), f(a.hi, b.lo), f(a.hi, b.hi)];
+        if c.iter().any(|v| v.is_nan()) {
+            return (f64::NAN, f64::NAN);
+        }
+        let lo = c.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = c.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        return (lo.next_down(), hi.next_up());
+    };
+    if x.is_nan() || y.is_nan() {
         return (f64::NAN, f64::NAN);
     }
-    let lo = c.iter().copied().fold(f64::INFINITY, f64::min);
-    let hi = c.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    (lo.next_down(), hi.next_up())
+    (x.min(y).next_down(), x.max(y).next_up())
 }
 
 impl Add for Iv {
