@@ -1,9 +1,8 @@
 //! The verdict by the envelope (docs/tolerances.md): a texel outside the interval any
 //! conformant GPU may produce fails; the figures say how wide the envelope was.
 //!
-//! Today the `tonemap` pass has its envelope, given its inputs as the GPU read them (its own
-//! HDR frame and bloom): the 8-bit picture is judged; the float resources, whose passes have no
-//! envelope yet, are reported as not judged.
+//! Each judged pass is held to its envelope given its inputs as the GPU read them; the
+//! resources of passes without an envelope yet are reported as not judged (`ocean::verdict`).
 
 use ocean_core::plan::ResourceId;
 use ocean_cpu::envelope::{ByteRange, Iv};

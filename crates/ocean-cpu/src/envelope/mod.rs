@@ -11,9 +11,9 @@
 //!   `scale` times the rules for the negative control): the envelope's soundness test without
 //!   hardware.
 //!
-//! Stages whose mirrors run over [`Real`]: `tonemap` ([`crate::shaders::tonemap`]). The
-//! others have no envelope yet; `ocean compare --tolerance envelope` reports them as not
-//! judged.
+//! Passes whose mirrors run over [`Real`]: `tonemap`, `bloom`, `wave_mips` and
+//! `fresnel_table` (with `shared/fresnel.wgsl`). The others have no envelope yet;
+//! `ocean compare --tolerance envelope` reports their resources as not judged.
 
 mod interval;
 mod jitter;
