@@ -148,6 +148,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                     })
                     .collect(),
                 ldr: gpu.ldr.as_deref(),
+                oracle_hdr: Some(&renders.cpu.buffers.hdr.color),
             };
             let v = envelope_verdict(&scene, plan, &side, &ran)?;
             for l in &v.lines {
@@ -417,9 +418,17 @@ fn against_envelope(
         bail!("{}: hdr is {hw}x{hh}, the frame {w}x{h}", dir.display());
     }
     let ldr = dumped_picture(dir, w, h)?;
+    // The oracle's frame says which pixels hold the sky, where the sky pass has an envelope.
+    let sky = plan.techniques.of(ocean_core::plan::Stage::Sky).name;
+    let oracle = if sky == "preetham" {
+        Some(ocean_cpu::render_scene(scene, ocean_core::plan::OutputKind::Ldr, &mut |_| {})?)
+    } else {
+        None
+    };
     let side = GpuSide {
         maps: read.iter().map(|(id, (size, t))| (*id, (*size, &t[..]))).collect(),
         ldr: ldr.as_deref(),
+        oracle_hdr: oracle.as_ref().map(|r| &r.buffers.hdr.color[..]),
     };
     let v = envelope_verdict(scene, plan, &side, &held)?;
     for l in &v.lines {

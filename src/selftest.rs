@@ -38,12 +38,15 @@ pub struct Args {
 fn judge(renderer: &mut Renderer, scene: &Scene) -> anyhow::Result<Verdict> {
     let plan = FramePlan::new(scene, OutputKind::Ldr);
     let frame = renderer.run(scene, &plan)?;
+    // The oracle's frame tells which pixels hold the sky (a small frame: cheap).
+    let oracle = ocean_cpu::render_scene(scene, OutputKind::Ldr, &mut |_| {})?;
     let side = GpuSide {
         maps: ResourceId::MAPS
             .into_iter()
             .filter_map(|id| frame.map(id).map(|m| (id, ((m.width, m.height), &m.texels[..]))))
             .collect(),
         ldr: frame.ldr.as_deref(),
+        oracle_hdr: Some(&oracle.buffers.hdr.color),
     };
     envelope_verdict(scene, &frame.plan, &side, &ocean::dump::dumped(&frame.plan))
 }

@@ -19,6 +19,9 @@ pub struct GpuSide<'a> {
     pub maps: Vec<(ResourceId, FrameRef<'a>)>,
     /// The 8-bit picture.
     pub ldr: Option<&'a [u8]>,
+    /// The oracle's final HDR frame of the same scene, if at hand: where it still holds the
+    /// exact sky pass, the GPU's `hdr` is judged against the sky's envelope.
+    pub oracle_hdr: Option<&'a [[f32; 4]]>,
 }
 
 impl<'a> GpuSide<'a> {
@@ -137,6 +140,16 @@ pub fn envelope_verdict(
         v.json.push(f.to_json());
         v.judged.push("fresnel_filter");
     }
+    if let (Some(((w, h), hdr)), Some(oracle)) = (gpu.map(ResourceId::Hdr), gpu.oracle_hdr)
+        && let Some(f) = sky_verdict(scene, plan, (w, h), hdr, oracle)?
+    {
+        v.lines.push(format!("  [{:<14}] {}", "sky", f.line()));
+        if !f.passed() {
+            v.failures.push(f.line());
+        }
+        v.json.push(f.to_json());
+        v.judged.push("hdr (sky)");
+    }
     for &id in resources.iter().filter(|id| !v.judged.contains(&id.name())) {
         let pass = id.writer().map_or("", |p| p.name());
         let (why, entry) = ocean_verify::envelope::not_judged(id);
@@ -185,6 +198,68 @@ pub fn envelope_verdict(
     v.json.push(verdict.to_json());
     v.judged.push("ldr");
     Ok(v)
+}
+
+/// The HDR frame's sky pixels against the sky pass's envelope: the pixels where the oracle's
+/// final frame still holds its exact sky pass, and so do their eight neighbours (a pixel next
+/// to geometry is ambiguous: the GPU's rasteriser may cover it within its sub-pixel
+/// precision, and it is counted apart). `None` for a sky technique without an envelope yet, or
+/// a frame without a sky pixel.
+fn sky_verdict(
+    scene: &Scene,
+    plan: &FramePlan,
+    (w, h): (u32, u32),
+    hdr: &[[f32; 4]],
+    oracle: &[[f32; 4]],
+) -> anyhow::Result<Option<ocean_verify::envelope::RegionVerdict>> {
+    use ocean_cpu::shaders::sky;
+    let technique = plan.techniques.of(ocean_core::plan::Stage::Sky).name;
+    let camera = ocean_core::camera::Camera::from_scene(&scene.camera)?;
+    let camera = ocean_core::camera_uniforms::CameraUniforms::new(
+        camera.view_proj().to_cols_array_2d(),
+        [0.0; 3],
+        camera.width,
+        camera.height,
+    )?;
+    let uniforms = ocean_core::frame::scene_sky(scene)?.uniforms();
+    let format = plan.frame_format;
+    let (Some(env), Some(exact)) = (
+        sky::envelope(technique, &camera, &uniforms, (w, h), format),
+        sky::exact(technique, &camera, &uniforms, (w, h), format),
+    ) else {
+        return Ok(None);
+    };
+    if hdr.len() != env.len() || oracle.len() != env.len() {
+        bail!("hdr: {} texels, the frame {w}x{h}", hdr.len());
+    }
+    let holds_sky: Vec<bool> = oracle
+        .iter()
+        .zip(&exact)
+        .map(|(o, e)| (0..3).all(|c| o[c].to_bits() == e[c].to_bits()))
+        .collect();
+    let (wi, hi) = (w as i64, h as i64);
+    let region: Vec<Option<bool>> = (0..env.len())
+        .map(|i| {
+            if !holds_sky[i] {
+                return None;
+            }
+            let (x, y) = ((i % w as usize) as i64, (i / w as usize) as i64);
+            let inner = (-1..=1).all(|dy| {
+                (-1..=1).all(|dx| {
+                    let (nx, ny) = (x + dx, y + dy);
+                    !(0..wi).contains(&nx)
+                        || !(0..hi).contains(&ny)
+                        || holds_sky[(ny * wi + nx) as usize]
+                })
+            });
+            Some(inner)
+        })
+        .collect();
+    // A frame without a sky pixel (looking down at the sea) leaves the sky unjudged.
+    if !region.contains(&Some(true)) {
+        return Ok(None);
+    }
+    Ok(Some(ocean_verify::envelope::judge_region("hdr (sky pixels)", &env, &region, hdr, w)))
 }
 
 /// One of pass `wave_mips`' chains against its envelope given the GPU's own slope map and

@@ -415,3 +415,59 @@ fn random_conformant_gpus_stay_inside_the_fresnel_table_envelope() {
     );
     assert!(loose > 0, "a GPU twice as loose as the rules never left the Fresnel table's envelope");
 }
+
+#[test]
+fn random_conformant_gpus_stay_inside_the_sky_envelope() {
+    use ocean_cpu::shaders::sky;
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("reference/scenes");
+    let (mut runs, mut loose, mut scenes) = (0, 0, 0);
+    let mut names: Vec<PathBuf> = std::fs::read_dir(&root)
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    names.sort();
+    for path in names {
+        let mut scene = ocean_core::scene::Scene::load(&path).unwrap();
+        (scene.camera.width, scene.camera.height) = (96, 54);
+        let plan = FramePlan::new(&scene, OutputKind::Ldr);
+        let technique = plan.techniques.of(ocean_core::plan::Stage::Sky).name;
+        let camera = ocean_core::camera::Camera::from_scene(&scene.camera).unwrap();
+        let camera = ocean_core::camera_uniforms::CameraUniforms::new(
+            camera.view_proj().to_cols_array_2d(),
+            [0.0; 3],
+            camera.width,
+            camera.height,
+        )
+        .unwrap();
+        let u = ocean_core::frame::scene_sky(&scene).unwrap().uniforms();
+        let size = (96, 54);
+        let Some(env) = sky::envelope(technique, &camera, &u, size, plan.frame_format) else {
+            continue;
+        };
+        scenes += 1;
+        let outside = |v: &[[f32; 3]]| {
+            env.iter()
+                .zip(v)
+                .map(|(e, g)| (0..3).filter(|&c| !e[c].contains(g[c])).count())
+                .sum::<usize>()
+        };
+        let exact = sky::exact(technique, &camera, &u, size, plan.frame_format).unwrap();
+        assert_eq!(outside(&exact), 0, "{}: the oracle", path.display());
+        for seed in 0..8 {
+            let rules = JitterRules { seed, scale: 1.0 };
+            let j = sky::jitter(technique, &camera, &u, size, plan.frame_format, rules).unwrap();
+            assert_eq!(outside(&j), 0, "{} seed {seed}", path.display());
+            runs += 1;
+        }
+        let rules = JitterRules { seed: 99, scale: 2.0 };
+        loose +=
+            outside(&sky::jitter(technique, &camera, &u, size, plan.frame_format, rules).unwrap());
+    }
+    println!(
+        "{runs} Preetham skies ({scenes} scenes) of random conformant GPUs: 0 outside; twice the rules: {loose} outside"
+    );
+    assert!(scenes >= 10, "{scenes} scenes with a Preetham sky");
+    assert!(loose > 0, "a GPU twice as loose as the rules never left the sky's envelope");
+}

@@ -11,7 +11,8 @@
 //!
 //! Each scene is also held to the envelope of any conformant GPU (docs/tolerances.md) as a user
 //! would: `ocean compare --against DIR --tolerance envelope`, which judges the picture against
-//! the `tonemap` envelope of the dump's own HDR frame. That verdict does not depend on the
+//! the `tonemap` envelope of the dump's own HDR frame, and the HDR frame's sky pixels (where the
+//! oracle draws no geometry, one pixel in from its edge) against the Preetham sky's envelope. That verdict does not depend on the
 //! oracle's frame, only on the judged passes' shaders: it is stale (ignored) when one of them
 //! differs from the snapshot's (`envelope_shaders_fnv64`), and a scene whose picture's inputs
 //! are not all in the dump (pass bloom's chains) is ignored with that reason.
@@ -208,6 +209,12 @@ fn envelope_scene(dir: &Path) -> Result<(), Failed> {
     let ldr = resources.iter().find(|r| r["name"] == "ldr").ok_or("no ldr entry")?;
     if ldr["passed"] != true || ldr["outside"] != 0 {
         return Err(format!("{name}: the picture was not judged inside: {ldr}").into());
+    }
+    // The sky's pixels of the HDR frame, where the scene's sky has an envelope (Preetham).
+    if let Some(sky) = resources.iter().find(|r| r["name"] == "hdr (sky pixels)")
+        && (sky["passed"] != true || sky["outside"] != 0)
+    {
+        return Err(format!("{name}: the sky's pixels were not judged inside: {sky}").into());
     }
     let judged: Vec<&str> = resources
         .iter()

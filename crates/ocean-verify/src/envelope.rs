@@ -331,3 +331,87 @@ pub fn bloom_level0(atlas: &[[f32; 4]], width: u32, height: u32) -> Option<Textu
     let n = w as usize * h as usize;
     (atlas.len() >= n).then(|| Texture2D::new(w, h, atlas[..n].to_vec()))
 }
+
+/// The most of a screen resource that may be ambiguous (pixels whose coverage a conformant
+/// rasteriser may change within its sub-pixel precision).
+pub const MAX_AMBIGUOUS_SHARE: f64 = 0.02;
+
+/// A screen resource judged on a region of its pixels (e.g. the sky's, where no geometry is
+/// drawn): the pixels judged, the ambiguous ones beside them, the rest not judged.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RegionVerdict {
+    /// The values judged.
+    pub inner: FloatVerdict,
+    /// Pixels judged.
+    pub judged: usize,
+    /// Pixels counted apart as ambiguous.
+    pub ambiguous: usize,
+    /// All pixels of the resource.
+    pub pixels: usize,
+}
+
+/// Judges `gpu` (`width` wide) by `envelope` where `region` is `Some(true)`; `Some(false)`
+/// counts a pixel as ambiguous, `None` leaves it out.
+///
+/// # Panics
+/// If the three differ in length.
+pub fn judge_region<const N: usize>(
+    name: &str,
+    envelope: &[[Iv; N]],
+    region: &[Option<bool>],
+    gpu: &[[f32; 4]],
+    width: u32,
+) -> RegionVerdict {
+    assert_eq!(envelope.len(), region.len(), "{name}: region and envelope sizes differ");
+    let masked: Vec<Option<[Iv; N]>> =
+        envelope.iter().zip(region).map(|(e, r)| (*r == Some(true)).then_some(*e)).collect();
+    RegionVerdict {
+        inner: judge_floats(name, &masked, gpu, width),
+        judged: region.iter().filter(|r| **r == Some(true)).count(),
+        ambiguous: region.iter().filter(|r| **r == Some(false)).count(),
+        pixels: region.len(),
+    }
+}
+
+impl RegionVerdict {
+    /// The ambiguous pixels' share of the resource.
+    pub fn ambiguous_share(&self) -> f64 {
+        self.ambiguous as f64 / self.pixels.max(1) as f64
+    }
+
+    /// No value outside, something judged, and at most [`MAX_AMBIGUOUS_SHARE`] ambiguous.
+    pub fn passed(&self) -> bool {
+        self.inner.passed() && self.ambiguous_share() <= MAX_AMBIGUOUS_SHARE
+    }
+
+    /// One line for the terminal.
+    pub fn line(&self) -> String {
+        let share = format!(
+            " on {} of {} pixels, {} ambiguous ({:.2} %, at most {} %)",
+            self.judged,
+            self.pixels,
+            self.ambiguous,
+            100.0 * self.ambiguous_share(),
+            100.0 * MAX_AMBIGUOUS_SHARE
+        );
+        let mut l = self.inner.line();
+        // The inner line ends in ok or FAIL: say where it was judged before that.
+        if let Some(at) = l.find(" values outside the envelope") {
+            l.insert_str(at + " values outside the envelope".len(), &share);
+        }
+        if self.inner.passed() && !self.passed() {
+            l.push_str(" — too many ambiguous pixels FAIL");
+        }
+        l
+    }
+
+    /// The JSON summary's entry.
+    pub fn to_json(&self) -> Value {
+        let mut j = self.inner.to_json();
+        j["passed"] = self.passed().into();
+        j["pixels_judged"] = self.judged.into();
+        j["pixels_ambiguous"] = self.ambiguous.into();
+        j["ambiguous_share"] = self.ambiguous_share().into();
+        j
+    }
+}

@@ -145,3 +145,50 @@ fn image_comparator_fails_past_each_limit() {
     assert!(s.flip_p99 > 0.1, "{}", s.line(&hw));
     assert!(s.failures(&hw).iter().any(|f| f.contains("P99")), "{}", s.line(&hw));
 }
+
+/// The envelope's comparators at their edges: a value at an interval's end passes and the next
+/// f32 past it fails; a byte at its range's end passes and the next fails; a region with more
+/// than 2 % ambiguous pixels fails even with nothing outside; nothing judged is no pass.
+#[test]
+fn envelope_comparators_fail_one_step_past_the_envelope() {
+    use ocean_cpu::envelope::{ByteRange, Iv};
+    use ocean_verify::envelope::{MAX_AMBIGUOUS_SHARE, judge_floats, judge_picture, judge_region};
+    let e = Iv::new(1.0, 1.5);
+    let env = vec![Some([e; 3]); 4];
+    let inside = vec![[1.0f32, 1.5, 1.25, 0.0]; 4];
+    assert!(judge_floats("x", &env, &inside, 2).passed());
+    let mut past = inside.clone();
+    past[3][1] = 1.5f32.next_up();
+    let v = judge_floats("x", &env, &past, 2);
+    assert_eq!((v.outside, v.worst.map(|w| (w.texel, w.channel))), (1, Some(((1, 1), 1))));
+    assert!(!v.passed());
+    past[3][1] = f32::NAN;
+    assert!(!judge_floats("x", &env, &past, 2).passed(), "a NaN outside a bounded interval");
+    let none: Vec<Option<[Iv; 3]>> = vec![None; 4];
+    assert!(!judge_floats("x", &none, &inside, 2).passed(), "nothing judged");
+
+    let bytes = vec![[(Iv::new(0.5, 0.5), ByteRange { lo: 100, hi: 102 }); 3]; 2];
+    let exact = vec![101u8; 8];
+    let ok = vec![100u8, 102, 101, 255, 101, 101, 101, 255];
+    assert!(judge_picture("ldr", &bytes, &ok, &exact, 2).passed());
+    let mut off = ok.clone();
+    off[5] = 103;
+    let p = judge_picture("ldr", &bytes, &off, &exact, 2);
+    assert_eq!(
+        (p.outside, p.worst.map(|w| (w.pixel, w.channel, w.got))),
+        (1, Some(((1, 0), 1, 103)))
+    );
+
+    // 100 pixels: 2 ambiguous pass, 3 fail.
+    let env = vec![[e; 3]; 100];
+    let gpu = vec![[1.2f32; 4]; 100];
+    let mut region = vec![Some(true); 100];
+    region[0] = Some(false);
+    region[1] = Some(false);
+    region[2] = None;
+    let r = judge_region("hdr", &env, &region, &gpu, 10);
+    assert!(r.passed() && r.ambiguous_share() <= MAX_AMBIGUOUS_SHARE, "{}", r.line());
+    region[3] = Some(false);
+    let r = judge_region("hdr", &env, &region, &gpu, 10);
+    assert!(!r.passed(), "3 % ambiguous passed: {}", r.line());
+}

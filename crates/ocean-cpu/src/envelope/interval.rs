@@ -91,6 +91,9 @@ pub(crate) fn exp2_ulps(t: f64) -> f64 {
     3.0 + 2.0 * t.abs()
 }
 
+/// atan and atan2's allowance in ULP.
+pub(crate) const ATAN_ULPS: f64 = 4096.0;
+
 /// ÷'s allowance in ULP.
 pub(crate) const DIV_ULPS: f64 = 2.5;
 
@@ -423,6 +426,31 @@ impl Real for Iv {
             (None, Some(t)) => t,
             (None, None) => Iv::FULL,
         }
+    }
+    /// [e^lo, e^hi], each end widened by 3 + 2|x| ULP of its value at the interval's
+    /// largest |x| (the lower end's ULP a binade up).
+    fn exp(self) -> Iv {
+        if self.full {
+            return Iv::FULL;
+        }
+        let ulps = exp2_ulps(self.magnitude());
+        let (lo, hi) = (self.lo.exp(), self.hi.exp());
+        let lo = (lo - ulps * f32_ulp(2.0 * lo)).next_down().next_down().max(0.0);
+        let hi = (hi + ulps * f32_ulp(hi)).next_up().next_up();
+        Iv::stored(lo, hi)
+    }
+    /// For y ≥ 0 atan2 is monotone in each argument on every box (decreasing in x; in y as
+    /// the sign of x), so the corners bound it; 4096 ULP of the largest magnitude. A box that
+    /// reaches y < 0 or holds (0, 0) is full.
+    fn atan2(self, x: Iv) -> Iv {
+        if self.full || x.full || self.lo < 0.0 || (self.lo <= 0.0 && x.lo <= 0.0 && x.hi >= 0.0) {
+            return Iv::FULL;
+        }
+        let c =
+            [self.lo.atan2(x.lo), self.lo.atan2(x.hi), self.hi.atan2(x.lo), self.hi.atan2(x.hi)];
+        let lo = c.iter().copied().fold(f64::INFINITY, f64::min).next_down();
+        let hi = c.iter().copied().fold(f64::NEG_INFINITY, f64::max).next_up();
+        Iv::rounded(lo, hi, ATAN_ULPS)
     }
     fn lt(self, b: Iv) -> Tri {
         if self.full || b.full {

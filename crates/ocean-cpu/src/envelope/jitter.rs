@@ -13,7 +13,7 @@ use std::ops::{Add, Div, Mul, Sub};
 use ocean_core::rng::{SplitMix64, mix64};
 
 use super::interval::{
-    DIV_ULPS, exp2_ulps, f32_ulp, half_ceil, half_floor, half_subnormal, log2_allowance,
+    ATAN_ULPS, DIV_ULPS, exp2_ulps, f32_ulp, half_ceil, half_floor, half_subnormal, log2_allowance,
 };
 use super::{ByteRange, Real};
 
@@ -156,6 +156,14 @@ impl Real for Jitter {
         }
         let inv = rounded(1.0 / x.sqrt(), 2.0);
         Jitter(1.0) / inv
+    }
+    fn exp(self) -> Jitter {
+        let x = f64::from(self.0);
+        let v = rounded(x.exp(), exp2_ulps(x));
+        Jitter(v.0.max(0.0))
+    }
+    fn atan2(self, x: Jitter) -> Jitter {
+        rounded(f64::from(self.0).atan2(f64::from(x.0)), ATAN_ULPS)
     }
     fn lt(self, b: Jitter) -> bool {
         self.0 < b.0

@@ -33,12 +33,18 @@ pub type AtlasEnvelope = Vec<Option<[Iv; 3]>>;
 pub trait Cond: Copy {
     /// The outcome when it is decided.
     fn decided(self) -> Option<bool>;
+    /// `self && o`.
+    fn and(self, o: Self) -> Self;
 }
 
 impl Cond for bool {
     #[inline]
     fn decided(self) -> Option<bool> {
         Some(self)
+    }
+    #[inline]
+    fn and(self, o: bool) -> bool {
+        self && o
     }
 }
 
@@ -60,6 +66,13 @@ impl Cond for Tri {
             Tri::False => Some(false),
             Tri::True => Some(true),
             Tri::Either => None,
+        }
+    }
+    fn and(self, o: Tri) -> Tri {
+        match (self, o) {
+            (Tri::False, _) | (_, Tri::False) => Tri::False,
+            (Tri::True, Tri::True) => Tri::True,
+            _ => Tri::Either,
         }
     }
 }
@@ -86,6 +99,10 @@ pub trait Real:
     fn pow(self, e: Self) -> Self;
     /// WGSL `round(e)`: to the nearest integer, halves to even (exact).
     fn round(self) -> Self;
+    /// WGSL `exp(e)` (Vulkan: 3 + 2|e| ULP).
+    fn exp(self) -> Self;
+    /// WGSL `atan2(y, x)` with `self` = y ≥ 0 (Vulkan: 4096 ULP).
+    fn atan2(self, x: Self) -> Self;
     /// WGSL `sqrt(e)` for e ≥ 0 (Vulkan: inherited from 1 / inversesqrt(e)).
     fn sqrt(self) -> Self;
     /// `a <= b`.
@@ -159,6 +176,14 @@ impl Real for f32 {
         f32::sqrt(self)
     }
     #[inline]
+    fn exp(self) -> Self {
+        f32::exp(self)
+    }
+    #[inline]
+    fn atan2(self, x: Self) -> Self {
+        f32::atan2(self, x)
+    }
+    #[inline]
     fn le(self, b: Self) -> bool {
         self <= b
     }
@@ -217,6 +242,45 @@ pub fn choose_n<R: Real, const N: usize>(
             std::array::from_fn(|i| a[i].hull(b[i]))
         }
     }
+}
+
+/// `dot(a, b)` = (a.x b.x + a.y b.y) + a.z b.z in the exact frame; a GPU may reassociate it.
+#[inline]
+pub fn dot3<R: Real>(a: [R; 3], b: [R; 3]) -> R {
+    R::sum(&[a[0] * b[0], a[1] * b[1], a[2] * b[2]])
+}
+
+/// `cross(a, b)`.
+#[inline]
+pub fn cross3<R: Real>(a: [R; 3], b: [R; 3]) -> [R; 3] {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+
+/// `length(a)` = sqrt(dot(a, a)).
+#[inline]
+pub fn length3<R: Real>(a: [R; 3]) -> R {
+    dot3(a, a).sqrt()
+}
+
+/// `normalize(a)` = a / length(a).
+#[inline]
+pub fn normalize3<R: Real>(a: [R; 3]) -> [R; 3] {
+    let l = length3(a);
+    a.map(|c| c / l)
+}
+
+/// `m * v` for a column-major 4×4 `m`: per row ((m0 v.x + m1 v.y) + m2 v.z) + m3 v.w in the
+/// exact frame; a GPU may reassociate each row.
+#[inline]
+pub fn mat4_mul_vec4<R: Real>(m: &[[f32; 4]; 4], v: [R; 4]) -> [R; 4] {
+    std::array::from_fn(|r| {
+        R::sum(&[
+            R::lit(m[0][r]) * v[0],
+            R::lit(m[1][r]) * v[1],
+            R::lit(m[2][r]) * v[2],
+            R::lit(m[3][r]) * v[3],
+        ])
+    })
 }
 
 /// Three components, one operation each (a `vec3<f32>` of any [`Real`]).

@@ -122,3 +122,77 @@ pub fn render_sky(
         Some(fs_main(&VertexOut { position: frag.frag_coord.into() }, camera, sky, lut, t))
     });
 }
+
+/// `fs_main` of technique `preetham` over any [`crate::envelope::Real`] at every pixel of a
+/// `width × height` frame, stored in `format`; `each(i)` runs before pixel i (a
+/// [`crate::envelope::Jitter`] reseeds there). `None` for a technique without an envelope yet.
+fn preetham_frame<R: crate::envelope::Real + Send>(
+    technique: &str,
+    camera: &CameraUniforms,
+    sky: &SkyUniforms,
+    (width, height): (u32, u32),
+    format: ocean_core::frame_format::FrameFormat,
+    each: impl Fn(usize) + Sync,
+) -> Option<Vec<[R; 3]>> {
+    use rayon::prelude::*;
+
+    use crate::shaders::shared::camera::view_ray_r;
+    use crate::shaders::shared::preetham::{preetham_radiance_r, preetham_sun_disc_r};
+    if technique != "preetham" {
+        return None;
+    }
+    let w = width as usize;
+    Some(
+        (0..w * height as usize)
+            .into_par_iter()
+            .with_min_len(w.max(1))
+            .map(|i| {
+                each(i);
+                let p = [R::lit((i % w) as f32 + 0.5), R::lit((i / w) as f32 + 0.5)];
+                let dir = view_ray_r(camera, p);
+                let (s, d) = (preetham_radiance_r(sky, dir), preetham_sun_disc_r(sky, dir));
+                std::array::from_fn(|c| (s[c] + d[c]).store(format))
+            })
+            .collect(),
+    )
+}
+
+/// The sky pass's envelope at every pixel (what any conformant GPU writes there before the
+/// passes after it), for the techniques that have one (`preetham`); `None` for the others.
+pub fn envelope(
+    technique: &str,
+    camera: &CameraUniforms,
+    sky: &SkyUniforms,
+    size: (u32, u32),
+    format: ocean_core::frame_format::FrameFormat,
+) -> Option<Vec<[crate::envelope::Iv; 3]>> {
+    preetham_frame(technique, camera, sky, size, format, |_| {})
+}
+
+/// The sky pass as one random conformant GPU computes it (`rules`), for the techniques that
+/// have an envelope.
+pub fn jitter(
+    technique: &str,
+    camera: &CameraUniforms,
+    sky: &SkyUniforms,
+    size: (u32, u32),
+    format: ocean_core::frame_format::FrameFormat,
+    rules: crate::envelope::JitterRules,
+) -> Option<Vec<[f32; 3]>> {
+    use crate::envelope::Jitter;
+    let v: Vec<[Jitter; 3]> =
+        preetham_frame(technique, camera, sky, size, format, |i| Jitter::reseed(rules, i as u64))?;
+    Some(v.into_iter().map(|p| p.map(|c| c.0)).collect())
+}
+
+/// The exact sky pass (f32, lavapipe's arithmetic) at every pixel, for the techniques that
+/// have an envelope: which pixels of a frame still hold it tells where the sky is judged.
+pub fn exact(
+    technique: &str,
+    camera: &CameraUniforms,
+    sky: &SkyUniforms,
+    size: (u32, u32),
+    format: ocean_core::frame_format::FrameFormat,
+) -> Option<Vec<[f32; 3]>> {
+    preetham_frame(technique, camera, sky, size, format, |_| {})
+}
