@@ -420,7 +420,7 @@ fn against_envelope(
     let ldr = dumped_picture(dir, w, h)?;
     // The oracle's frame says which pixels hold the sky, where the sky pass has an envelope.
     let sky = plan.techniques.of(ocean_core::plan::Stage::Sky).name;
-    let oracle = if sky == "preetham" {
+    let oracle = if ocean_cpu::shaders::sky::ENVELOPE_TECHNIQUES.contains(&sky) {
         Some(ocean_cpu::render_scene(scene, ocean_core::plan::OutputKind::Ldr, &mut |_| {})?)
     } else {
         None

@@ -214,18 +214,21 @@ fn sky_verdict(
 ) -> anyhow::Result<Option<ocean_verify::envelope::RegionVerdict>> {
     use ocean_cpu::shaders::sky;
     let technique = plan.techniques.of(ocean_core::plan::Stage::Sky).name;
-    let camera = ocean_core::camera::Camera::from_scene(&scene.camera)?;
-    let camera = ocean_core::camera_uniforms::CameraUniforms::new(
-        camera.view_proj().to_cols_array_2d(),
-        [0.0; 3],
-        camera.width,
-        camera.height,
-    )?;
-    let uniforms = ocean_core::frame::scene_sky(scene)?.uniforms();
+    if !sky::ENVELOPE_TECHNIQUES.contains(&technique) {
+        return Ok(None);
+    }
+    // The sky's uniforms and table as the frame hands them to both back ends.
+    let frame =
+        ocean_core::plan::FrameInputs::new(scene, plan, &ocean_core::plan::FrameState::new(0.0))?;
+    let inputs = sky::SkyInputs {
+        camera: &frame.camera_uniforms,
+        sky: &frame.environment,
+        lut: &frame.sky_lut,
+    };
     let format = plan.frame_format;
     let (Some(env), Some(exact)) = (
-        sky::envelope(technique, &camera, &uniforms, (w, h), format),
-        sky::exact(technique, &camera, &uniforms, (w, h), format),
+        sky::envelope(technique, inputs, (w, h), format),
+        sky::exact(technique, inputs, (w, h), format),
     ) else {
         return Ok(None);
     };

@@ -427,6 +427,33 @@ impl Real for Iv {
             (None, None) => Iv::FULL,
         }
     }
+    fn abs(self) -> Iv {
+        if self.full {
+            Iv::FULL
+        } else if self.lo >= 0.0 {
+            self
+        } else if self.hi <= 0.0 {
+            Iv::new(-self.hi, -self.lo)
+        } else {
+            Iv::new(0.0, self.magnitude())
+        }
+    }
+    /// The fraction over each cell is `x − k` on the part of the interval in [k, k + 1),
+    /// with the subtraction's rounding (exact for nearby values, but the rules allow one ULP).
+    fn floor_cases(self) -> Option<[Option<(f32, Iv)>; 2]> {
+        if self.full || !self.lo.is_finite() || !self.hi.is_finite() {
+            return None;
+        }
+        let (k0, k1) = (self.lo.floor(), self.hi.floor());
+        let cell = |k: f64, lo: f64, hi: f64| (k as f32, Iv::new(lo, hi) - Iv::point(k as f32));
+        if k0 == k1 {
+            Some([Some(cell(k0, self.lo, self.hi)), None])
+        } else if k1 == k0 + 1.0 {
+            Some([Some(cell(k0, self.lo, k1.next_down())), Some(cell(k1, k1, self.hi))])
+        } else {
+            None
+        }
+    }
     /// [e^lo, e^hi], each end widened by 3 + 2|x| ULP of its value at the interval's
     /// largest |x| (the lower end's ULP a binade up).
     fn exp(self) -> Iv {

@@ -157,6 +157,13 @@ impl Real for Jitter {
         let inv = rounded(1.0 / x.sqrt(), 2.0);
         Jitter(1.0) / inv
     }
+    fn abs(self) -> Jitter {
+        Jitter(self.0.abs())
+    }
+    fn floor_cases(self) -> Option<[Option<(f32, Jitter)>; 2]> {
+        let k = self.0.floor();
+        Some([Some((k, self - Jitter(k))), None])
+    }
     fn exp(self) -> Jitter {
         let x = f64::from(self.0);
         let v = rounded(x.exp(), exp2_ulps(x));

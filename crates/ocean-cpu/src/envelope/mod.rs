@@ -99,6 +99,12 @@ pub trait Real:
     fn pow(self, e: Self) -> Self;
     /// WGSL `round(e)`: to the nearest integer, halves to even (exact).
     fn round(self) -> Self;
+    /// WGSL `abs(e)` (exact).
+    fn abs(self) -> Self;
+    /// The integer parts `floor(self)` may take, each with the fraction `self − floor(self)`
+    /// over the values that floor there: one for a decided scalar, up to two for an interval
+    /// across an integer; `None` past two (the caller's result is then anything).
+    fn floor_cases(self) -> Option<[Option<(f32, Self)>; 2]>;
     /// WGSL `exp(e)` (Vulkan: 3 + 2|e| ULP).
     fn exp(self) -> Self;
     /// WGSL `atan2(y, x)` with `self` = y ≥ 0 (Vulkan: 4096 ULP).
@@ -180,6 +186,15 @@ impl Real for f32 {
         f32::exp(self)
     }
     #[inline]
+    fn abs(self) -> Self {
+        f32::abs(self)
+    }
+    #[inline]
+    fn floor_cases(self) -> Option<[Option<(f32, Self)>; 2]> {
+        let k = self.floor();
+        Some([Some((k, self - k)), None])
+    }
+    #[inline]
     fn atan2(self, x: Self) -> Self {
         f32::atan2(self, x)
     }
@@ -241,6 +256,24 @@ pub fn choose_n<R: Real, const N: usize>(
             let (a, b) = (t(), f());
             std::array::from_fn(|i| a[i].hull(b[i]))
         }
+    }
+}
+
+/// `f(floor(x), x − floor(x))` for a lookup indexed by `floor(x)`: where an interval spans an
+/// integer, both cells' results, united; past two cells, `full` (anything).
+#[inline]
+pub fn on_floor<R: Real, const N: usize>(
+    x: R,
+    full: [R; N],
+    f: impl Fn(f32, R) -> [R; N],
+) -> [R; N] {
+    match x.floor_cases() {
+        Some([Some((k, t)), None]) => f(k, t),
+        Some([Some((k0, t0)), Some((k1, t1))]) => {
+            let (a, b) = (f(k0, t0), f(k1, t1));
+            std::array::from_fn(|i| a[i].hull(b[i]))
+        }
+        _ => full,
     }
 }
 

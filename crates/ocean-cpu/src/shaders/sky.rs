@@ -123,13 +123,26 @@ pub fn render_sky(
     });
 }
 
-/// `fs_main` of technique `preetham` over any [`crate::envelope::Real`] at every pixel of a
-/// `width × height` frame, stored in `format`; `each(i)` runs before pixel i (a
+/// What the sky pass's envelope reads: its uniforms and, for `atmosphere`, the sky-view table.
+#[derive(Clone, Copy, Debug)]
+pub struct SkyInputs<'a> {
+    /// The camera's uniforms.
+    pub camera: &'a CameraUniforms,
+    /// The sky's uniforms.
+    pub sky: &'a SkyUniforms,
+    /// The sky-view table (`atmosphere`).
+    pub lut: &'a SkyLut,
+}
+
+/// The techniques whose mirror runs over [`crate::envelope::Real`].
+pub const ENVELOPE_TECHNIQUES: [&str; 2] = ["preetham", "atmosphere"];
+
+/// `fs_main` of a technique with an envelope over any [`crate::envelope::Real`] at every pixel
+/// of a `width × height` frame, stored in `format`; `each(i)` runs before pixel i (a
 /// [`crate::envelope::Jitter`] reseeds there). `None` for a technique without an envelope yet.
 fn preetham_frame<R: crate::envelope::Real + Send>(
     technique: &str,
-    camera: &CameraUniforms,
-    sky: &SkyUniforms,
+    inputs: SkyInputs<'_>,
     (width, height): (u32, u32),
     format: ocean_core::frame_format::FrameFormat,
     each: impl Fn(usize) + Sync,
@@ -138,9 +151,12 @@ fn preetham_frame<R: crate::envelope::Real + Send>(
 
     use crate::shaders::shared::camera::view_ray_r;
     use crate::shaders::shared::preetham::{preetham_radiance_r, preetham_sun_disc_r};
-    if technique != "preetham" {
+    use crate::shaders::shared::sky_lut::sky_lut_radiance_r;
+    if !ENVELOPE_TECHNIQUES.contains(&technique) {
         return None;
     }
+    let atmosphere = technique == "atmosphere";
+    let SkyInputs { camera, sky, lut } = inputs;
     let w = width as usize;
     Some(
         (0..w * height as usize)
@@ -150,7 +166,13 @@ fn preetham_frame<R: crate::envelope::Real + Send>(
                 each(i);
                 let p = [R::lit((i % w) as f32 + 0.5), R::lit((i / w) as f32 + 0.5)];
                 let dir = view_ray_r(camera, p);
-                let (s, d) = (preetham_radiance_r(sky, dir), preetham_sun_disc_r(sky, dir));
+                let s = if atmosphere {
+                    let sun = [0, 1, 2].map(|c| R::lit(sky.sun_direction[c]));
+                    sky_lut_radiance_r(lut, dir, sun)
+                } else {
+                    preetham_radiance_r(sky, dir)
+                };
+                let d = preetham_sun_disc_r(sky, dir);
                 std::array::from_fn(|c| (s[c] + d[c]).store(format))
             })
             .collect(),
@@ -158,30 +180,29 @@ fn preetham_frame<R: crate::envelope::Real + Send>(
 }
 
 /// The sky pass's envelope at every pixel (what any conformant GPU writes there before the
-/// passes after it), for the techniques that have one (`preetham`); `None` for the others.
+/// passes after it), for the techniques that have one ([`ENVELOPE_TECHNIQUES`]); `None` for
+/// the others.
 pub fn envelope(
     technique: &str,
-    camera: &CameraUniforms,
-    sky: &SkyUniforms,
+    inputs: SkyInputs<'_>,
     size: (u32, u32),
     format: ocean_core::frame_format::FrameFormat,
 ) -> Option<Vec<[crate::envelope::Iv; 3]>> {
-    preetham_frame(technique, camera, sky, size, format, |_| {})
+    preetham_frame(technique, inputs, size, format, |_| {})
 }
 
 /// The sky pass as one random conformant GPU computes it (`rules`), for the techniques that
 /// have an envelope.
 pub fn jitter(
     technique: &str,
-    camera: &CameraUniforms,
-    sky: &SkyUniforms,
+    inputs: SkyInputs<'_>,
     size: (u32, u32),
     format: ocean_core::frame_format::FrameFormat,
     rules: crate::envelope::JitterRules,
 ) -> Option<Vec<[f32; 3]>> {
     use crate::envelope::Jitter;
     let v: Vec<[Jitter; 3]> =
-        preetham_frame(technique, camera, sky, size, format, |i| Jitter::reseed(rules, i as u64))?;
+        preetham_frame(technique, inputs, size, format, |i| Jitter::reseed(rules, i as u64))?;
     Some(v.into_iter().map(|p| p.map(|c| c.0)).collect())
 }
 
@@ -189,10 +210,9 @@ pub fn jitter(
 /// have an envelope: which pixels of a frame still hold it tells where the sky is judged.
 pub fn exact(
     technique: &str,
-    camera: &CameraUniforms,
-    sky: &SkyUniforms,
+    inputs: SkyInputs<'_>,
     size: (u32, u32),
     format: ocean_core::frame_format::FrameFormat,
 ) -> Option<Vec<[f32; 3]>> {
-    preetham_frame(technique, camera, sky, size, format, |_| {})
+    preetham_frame(technique, inputs, size, format, |_| {})
 }

@@ -3,7 +3,8 @@
 
 use ocean_core::atmosphere::SkyLut;
 
-use crate::shaders::wgsl::{Vec3, clamp, max, min, vec3};
+use crate::envelope::{Cond, Real, choose, on_floor};
+use crate::shaders::wgsl::Vec3;
 
 /// `SKY_LUT_WIDTH`.
 pub const SKY_LUT_WIDTH: f32 = 32.0;
@@ -20,51 +21,66 @@ pub const MIE_PHASE_K: f32 = {
 };
 
 /// `sky_lut_texel(i, j, pr, pm)`.
-fn sky_lut_texel(lut: &SkyLut, i: f32, j: f32, pr: f32, pm: f32) -> Vec3 {
+fn sky_lut_texel<R: Real>(lut: &SkyLut, i: f32, j: f32, pr: R, pm: R) -> [R; 3] {
     let k = 2 * (j as usize * 32 + i as usize);
     let (r, m) = (lut.texels[k], lut.texels[k + 1]);
-    vec3(r[0], r[1], r[2]) * pr + vec3(m[0], m[1], m[2]) * pm
+    std::array::from_fn(|c| R::lit(r[c]) * pr + R::lit(m[c]) * pm)
 }
 
 /// `sky_lut_radiance(dir, sun)`.
 pub fn sky_lut_radiance(lut: &SkyLut, dir: Vec3, sun: Vec3) -> Vec3 {
-    let mu = dir.x * sun.x + dir.y * sun.y + dir.z * sun.z;
-    let pr = RAYLEIGH_PHASE_K * (mu * mu + 1.0);
-    let ds = [dir.x - sun.x, dir.y - sun.y, dir.z - sun.z];
-    let w = max(0.04 + MIE_G * ((ds[0] * ds[0] + ds[1] * ds[1]) + ds[2] * ds[2]), 1e-12);
-    let pm = MIE_PHASE_K * (mu * mu + 1.0) / (w * w.sqrt());
-    let dh = (dir.x * dir.x + dir.z * dir.z).sqrt();
-    let sh = (sun.x * sun.x + sun.z * sun.z).sqrt();
-    let mut a = 0.0;
-    if dh > 0.0 && sh > 0.0 {
-        let mx = dir.x / dh - sun.x / sh;
-        let mz = dir.z / dh - sun.z / sh;
-        let px = dir.x / dh + sun.x / sh;
-        let pz = dir.z / dh + sun.z / sh;
-        let m = (mx * mx + mz * mz).sqrt();
-        let p = (px * px + pz * pz).sqrt();
-        a = m / (m + p);
-    }
+    Vec3::from(sky_lut_radiance_r(lut, [dir.x, dir.y, dir.z], [sun.x, sun.y, sun.z]))
+}
+
+/// [`sky_lut_radiance`] over any [`Real`]: the branches on the horizontal lengths and on the
+/// hemisphere taken both ways where undecided, and the bilinear read over every cell the
+/// table coordinates may floor to.
+pub fn sky_lut_radiance_r<R: Real>(lut: &SkyLut, dir: [R; 3], sun: [R; 3]) -> [R; 3] {
+    let l = R::lit;
+    let (zero, half, one) = (l(0.0), l(0.5), l(1.0));
+    let sum = |t: &[R]| R::sum(t);
+    let mu = sum(&[dir[0] * sun[0], dir[1] * sun[1], dir[2] * sun[2]]);
+    let pr = l(RAYLEIGH_PHASE_K) * (mu * mu + one);
+    let ds = [dir[0] - sun[0], dir[1] - sun[1], dir[2] - sun[2]];
+    let w =
+        (l(0.04) + l(MIE_G) * sum(&[ds[0] * ds[0], ds[1] * ds[1], ds[2] * ds[2]])).max(l(1e-12));
+    let pm = l(MIE_PHASE_K) * (mu * mu + one) / (w * w.sqrt());
+    let dh = (dir[0] * dir[0] + dir[2] * dir[2]).sqrt();
+    let sh = (sun[0] * sun[0] + sun[2] * sun[2]).sqrt();
+    let a = choose(
+        zero.lt(dh).and(zero.lt(sh)),
+        || {
+            let mx = dir[0] / dh - sun[0] / sh;
+            let mz = dir[2] / dh - sun[2] / sh;
+            let px = dir[0] / dh + sun[0] / sh;
+            let pz = dir[2] / dh + sun[2] / sh;
+            let m = (mx * mx + mz * mz).sqrt();
+            let p = (px * px + pz * pz).sqrt();
+            m / (m + p)
+        },
+        || zero,
+    );
     let u = a.sqrt();
-    let y = dir.y.abs();
+    let y = dir[1].abs();
     let q = y / (y + dh);
-    let mut v = 0.5 - 0.5 * q.sqrt();
-    if dir.y >= 0.0 {
-        v = 0.5 + 0.5 * q.sqrt();
-    }
-    let x = clamp(u * (SKY_LUT_WIDTH - 1.0), 0.0, SKY_LUT_WIDTH - 1.0);
-    let z = clamp(v * (SKY_LUT_HEIGHT - 1.0), 0.0, SKY_LUT_HEIGHT - 1.0);
-    let i0 = x.floor();
-    let j0 = z.floor();
-    let i1 = min(i0 + 1.0, SKY_LUT_WIDTH - 1.0);
-    let j1 = min(j0 + 1.0, SKY_LUT_HEIGHT - 1.0);
-    let tx = x - i0;
-    let tz = z - j0;
-    let t00 = sky_lut_texel(lut, i0, j0, pr, pm);
-    let t10 = sky_lut_texel(lut, i1, j0, pr, pm);
-    let t01 = sky_lut_texel(lut, i0, j1, pr, pm);
-    let t11 = sky_lut_texel(lut, i1, j1, pr, pm);
-    let ab = t00 + (t10 - t00) * tx;
-    let cd = t01 + (t11 - t01) * tx;
-    ab + (cd - ab) * tz
+    let v = choose(zero.le(dir[1]), || half + half * q.sqrt(), || half - half * q.sqrt());
+    let (wm, hm) = (l(SKY_LUT_WIDTH - 1.0), l(SKY_LUT_HEIGHT - 1.0));
+    let x = (u * wm).clamp(zero, wm);
+    let z = (v * hm).clamp(zero, hm);
+    let full = [R::lit(f32::NAN); 3];
+    on_floor(x, full, |i0, tx| {
+        on_floor(z, full, |j0, tz| {
+            let i1 = (i0 + 1.0).min(SKY_LUT_WIDTH - 1.0);
+            let j1 = (j0 + 1.0).min(SKY_LUT_HEIGHT - 1.0);
+            let t00 = sky_lut_texel(lut, i0, j0, pr, pm);
+            let t10 = sky_lut_texel(lut, i1, j0, pr, pm);
+            let t01 = sky_lut_texel(lut, i0, j1, pr, pm);
+            let t11 = sky_lut_texel(lut, i1, j1, pr, pm);
+            std::array::from_fn(|c| {
+                let ab = t00[c] + (t10[c] - t00[c]) * tx;
+                let cd = t01[c] + (t11[c] - t01[c]) * tx;
+                ab + (cd - ab) * tz
+            })
+        })
+    })
 }
