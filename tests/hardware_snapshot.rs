@@ -12,8 +12,7 @@
 //! Each scene is also held to the envelope of any conformant GPU (docs/tolerances.md) as a user
 //! would: `ocean compare --against DIR --tolerance envelope`, which judges the picture against
 //! the `tonemap` envelope of the dump's own HDR frame, and the HDR frame's sky pixels (where the
-//! oracle draws no geometry, one pixel in from its edge) against the sky's envelope (Preetham
-//! or atmosphere). That verdict does not depend on the
+//! oracle draws no geometry, one pixel in from its edge) against the sky's envelope. That verdict does not depend on the
 //! oracle's frame, only on the judged passes' shaders: it is stale (ignored) when one of them
 //! differs from the snapshot's (`envelope_shaders_fnv64`); a scene whose picture's inputs are
 //! not all in the dump (pass bloom's chains) must show its picture as not judged, and its sky

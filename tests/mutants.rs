@@ -167,8 +167,7 @@ fn every_mutant_is_caught_with_the_exact_tolerance() {
 
 /// `ocean selftest --quick` on this adapter (lavapipe in CI): every reference scene and built-in
 /// system within the envelope, the whole bank planted, and every planted bug in a pass the
-/// envelope judges (tonemap, bloom, wave_mips, fresnel_table, the Preetham and atmosphere
-/// skies) caught; the summary line and the
+/// envelope judges (tonemap, bloom, wave_mips, fresnel_table, the three skies) caught; the summary line and the
 /// JSON agree.
 fn selftest_quick_judges_every_scene_and_catches_the_judged_passes_bugs() {
     let json = std::env::temp_dir().join(format!("ocean-selftest-{}.json", std::process::id()));

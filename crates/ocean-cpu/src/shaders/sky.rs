@@ -135,7 +135,7 @@ pub struct SkyInputs<'a> {
 }
 
 /// The techniques whose mirror runs over [`crate::envelope::Real`].
-pub const ENVELOPE_TECHNIQUES: [&str; 2] = ["preetham", "atmosphere"];
+pub const ENVELOPE_TECHNIQUES: [&str; 3] = ["preetham", "atmosphere", "preetham_clouds"];
 
 /// `fs_main` of a technique with an envelope over any [`crate::envelope::Real`] at every pixel
 /// of a `width × height` frame, stored in `format`; `each(i)` runs before pixel i (a
@@ -155,7 +155,7 @@ fn preetham_frame<R: crate::envelope::Real + Send>(
     if !ENVELOPE_TECHNIQUES.contains(&technique) {
         return None;
     }
-    let atmosphere = technique == "atmosphere";
+    let (atmosphere, clouds) = (technique == "atmosphere", technique == "preetham_clouds");
     let SkyInputs { camera, sky, lut } = inputs;
     let w = width as usize;
     Some(
@@ -169,10 +169,16 @@ fn preetham_frame<R: crate::envelope::Real + Send>(
                 let s = if atmosphere {
                     let sun = [0, 1, 2].map(|c| R::lit(sky.sun_direction[c]));
                     sky_lut_radiance_r(lut, dir, sun)
+                } else if clouds {
+                    preetham_clouds::sky_radiance_r(sky, dir)
                 } else {
                     preetham_radiance_r(sky, dir)
                 };
-                let d = preetham_sun_disc_r(sky, dir);
+                let d = if clouds {
+                    preetham_clouds::sun_disc_r(sky, dir)
+                } else {
+                    preetham_sun_disc_r(sky, dir)
+                };
                 std::array::from_fn(|c| (s[c] + d[c]).store(format))
             })
             .collect(),
