@@ -11,8 +11,9 @@
 //!   `scale` times the rules for the negative control): the envelope's soundness test without
 //!   hardware.
 //!
-//! Passes whose mirrors run over [`Real`]: `tonemap`, `bloom`, `wave_mips` and
-//! `fresnel_table` (with `shared/fresnel.wgsl`). The others have no envelope yet;
+//! Passes whose mirrors run over [`Real`]: `sky` (all three techniques, with the camera's
+//! view ray), `tonemap`, `bloom`, `wave_mips` and `fresnel_table` (with
+//! `shared/fresnel.wgsl`). The others have no envelope yet;
 //! `ocean compare --tolerance envelope` reports their resources as not judged.
 
 mod interval;
