@@ -57,6 +57,8 @@ const F32_MAX: f64 = f32::MAX as f64;
 const F32_MIN_NORMAL: f64 = f32::MIN_POSITIVE as f64;
 
 const TWO_POW_M21: f64 = 1.0 / (1u64 << 21) as f64;
+/// 2⁻⁵⁰: the f64 roundings of one operation and of its widening, relative to the magnitude.
+const F64_SLACK: f64 = 1.0 / (1u64 << 50) as f64;
 const TWO_POW_126: f64 = 8.507_059_173_023_462e37;
 
 /// 2^e for |e| < 1023, from the bits.
@@ -155,15 +157,25 @@ impl Iv {
         Some(0.5 * (self.hi - self.lo) / m)
     }
 
-    /// From exact bounds `[lo, hi]` (already rounded outward), widened by `ulps` f32 ULP of
-    /// the largest magnitude, then what f32 storage allows: overflow to ±∞ and flushed
-    /// subnormals.
+    /// From bounds `[lo, hi]` that one f64 operation rounded to nearest (each within 2⁻⁵³ of
+    /// its magnitude of the exact one), widened by `ulps` f32 ULP of the largest magnitude m,
+    /// then what f32 storage allows: overflow to ±∞ and flushed subnormals. The extra 2⁻⁵⁰·m
+    /// covers that rounding and the widening's own (each ≤ 2⁻⁵³ of m, or of m + the widening),
+    /// so no outward step is needed per operation.
+    #[inline]
     fn rounded(lo: f64, hi: f64, ulps: f64) -> Iv {
         if lo.is_nan() || hi.is_nan() {
             return Iv::FULL;
         }
-        let u = ulps * f32_ulp(lo.abs().max(hi.abs()));
-        Iv::stored((lo - u).next_down(), (hi + u).next_up())
+        let m = lo.abs().max(hi.abs());
+        if !m.is_finite() {
+            // An overflowed end: anything from f32's largest on that side to the infinity.
+            let lo = if lo == f64::INFINITY { F32_MAX } else { f64::NEG_INFINITY };
+            let hi = if hi == f64::NEG_INFINITY { -F32_MAX } else { f64::INFINITY };
+            return Iv::stored(lo, hi);
+        }
+        let u = ulps * f32_ulp(m) + m * F64_SLACK;
+        Iv::stored(lo - u, hi + u)
     }
 
     /// Bounds past f32's range may round to ±∞ (or, rounding toward 0, to ±f32::MAX);
@@ -254,9 +266,9 @@ pub(crate) fn half_subnormal(x: f64) -> bool {
     x != 0.0 && x.abs() < HALF_MIN_NORMAL
 }
 
-/// The four products' (or quotients') hull, rounded outward. `f` must be monotone in each
-/// argument on each sign-constant piece (× and ÷ are), so with a point operand, or both
-/// operands ≥ 0, two corners decide it.
+/// The four products' (or quotients') hull, each rounded to nearest in f64 (the caller's
+/// [`Iv::rounded`] covers that). `f` must be monotone in each argument on each sign-constant
+/// piece (× and ÷ are), so with a point operand two corners decide it.
 #[inline]
 fn corners(a: Iv, b: Iv, f: impl Fn(f64, f64) -> f64) -> (f64, f64) {
     let (x, y) = if b.lo == b.hi {
@@ -270,12 +282,12 @@ fn corners(a: Iv, b: Iv, f: impl Fn(f64, f64) -> f64) -> (f64, f64) {
         }
         let lo = c.iter().copied().fold(f64::INFINITY, f64::min);
         let hi = c.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        return (lo.next_down(), hi.next_up());
+        return (lo, hi);
     };
     if x.is_nan() || y.is_nan() {
         return (f64::NAN, f64::NAN);
     }
-    (x.min(y).next_down(), x.max(y).next_up())
+    (x.min(y), x.max(y))
 }
 
 impl Add for Iv {
@@ -284,7 +296,7 @@ impl Add for Iv {
         if self.full || b.full {
             return Iv::FULL;
         }
-        Iv::rounded((self.lo + b.lo).next_down(), (self.hi + b.hi).next_up(), 1.0)
+        Iv::rounded(self.lo + b.lo, self.hi + b.hi, 1.0)
     }
 }
 
@@ -294,7 +306,7 @@ impl Sub for Iv {
         if self.full || b.full {
             return Iv::FULL;
         }
-        Iv::rounded((self.lo - b.hi).next_down(), (self.hi - b.lo).next_up(), 1.0)
+        Iv::rounded(self.lo - b.hi, self.hi - b.lo, 1.0)
     }
 }
 
