@@ -210,15 +210,20 @@ impl Iv {
         Some(Iv::stored((lo - a).next_down().next_down(), (hi + a).next_up().next_up()))
     }
 
-    /// exp2 of the interval with the rule's allowance, 3 + 2|t| ULP at the interval's largest
-    /// |t| (an exp2 is never negative).
+    /// exp2 of the interval with the rule's allowance.
     fn exp2(self) -> Iv {
+        self.exponential(f64::exp2)
+    }
+
+    /// An increasing exponential `f` (exp2, exp) of the interval, each end widened by
+    /// 3 + 2|t| ULP of its value at the interval's largest |t| — the lower end's ULP taken one
+    /// binade up, which covers the staircase inside; never negative.
+    fn exponential(self, f: fn(f64) -> f64) -> Iv {
         if self.full {
             return Iv::FULL;
         }
         let ulps = exp2_ulps(self.magnitude());
-        let (lo, hi) = (self.lo.exp2(), self.hi.exp2());
-        // The lower end's ULP taken one binade up covers the staircase inside.
+        let (lo, hi) = (f(self.lo), f(self.hi));
         let lo = (lo - ulps * f32_ulp(2.0 * lo)).next_down().next_down().max(0.0);
         let hi = (hi + ulps * f32_ulp(hi)).next_up().next_up();
         Iv::stored(lo, hi)
@@ -466,17 +471,9 @@ impl Real for Iv {
             None
         }
     }
-    /// [e^lo, e^hi], each end widened by 3 + 2|x| ULP of its value at the interval's
-    /// largest |x| (the lower end's ULP a binade up).
+    /// [e^lo, e^hi] with 3 + 2|x| ULP (as exp2).
     fn exp(self) -> Iv {
-        if self.full {
-            return Iv::FULL;
-        }
-        let ulps = exp2_ulps(self.magnitude());
-        let (lo, hi) = (self.lo.exp(), self.hi.exp());
-        let lo = (lo - ulps * f32_ulp(2.0 * lo)).next_down().next_down().max(0.0);
-        let hi = (hi + ulps * f32_ulp(hi)).next_up().next_up();
-        Iv::stored(lo, hi)
+        self.exponential(f64::exp)
     }
     /// For y ≥ 0 atan2 is monotone in each argument on every box (decreasing in x; in y as
     /// the sign of x), so the corners bound it; 4096 ULP of the largest magnitude. A box that
