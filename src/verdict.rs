@@ -51,9 +51,9 @@ pub struct Verdict {
 }
 
 impl Verdict {
-    /// Whether everything judged is inside.
+    /// Whether something was judged, and everything judged is inside.
     pub fn passed(&self) -> bool {
-        self.failures.is_empty()
+        self.failures.is_empty() && !self.judged.is_empty()
     }
 }
 
@@ -65,6 +65,24 @@ impl Verdict {
 /// # Errors
 /// A resource of the wrong size, or uniforms the scene cannot make.
 pub fn envelope_verdict(
+    scene: &Scene,
+    plan: &FramePlan,
+    gpu: &GpuSide<'_>,
+    resources: &[ResourceId],
+) -> anyhow::Result<Verdict> {
+    let mut v = judge_passes(scene, plan, gpu, resources)?;
+    // Not judged is never passed: a frame of which nothing could be judged fails.
+    if v.judged.is_empty() {
+        v.failures.push(
+            "nothing judged: no pass of this frame has an envelope, or their inputs are missing"
+                .to_owned(),
+        );
+    }
+    Ok(v)
+}
+
+/// [`envelope_verdict`]'s passes, one by one.
+fn judge_passes(
     scene: &Scene,
     plan: &FramePlan,
     gpu: &GpuSide<'_>,

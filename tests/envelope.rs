@@ -141,9 +141,25 @@ fn undefined_operations_give_a_full_interval() {
     assert!((Iv::point(f32::INFINITY) * Iv::point(0.0)).full, "∞ · 0");
     // Overflow may round to ∞; a subnormal result may flush to 0.
     let big = Iv::point(f32::MAX) + Iv::point(f32::MAX);
-    assert!(big.contains(f32::INFINITY));
+    assert!(big.full);
     let tiny = Iv::point(1e-20) * Iv::point(1e-20);
     assert!(tiny.contains(0.0));
+    // Finite-math assumption: an infinity read, or a result that may overflow, is anything.
+    assert!(Iv::point(f32::INFINITY).full && (Iv::point(1e38) * Iv::point(10.0)).full);
+    // Subnormal inputs may be flushed; 1e-40 · 1e30 may be 0.
+    assert!((Iv::point(1e-40) * Iv::point(1e30)).contains(0.0));
+    // atan2 outside the rule's domain (y = 0; x within 2⁻¹²⁶ of 0) is undefined.
+    assert!(Iv::point(0.0).atan2(Iv::point(-1.0)).full);
+    assert!(Iv::point(1.0).atan2(Iv::new(-1e-39, 1e-39)).full);
+    assert!(!Iv::point(1.0).atan2(Iv::point(1.0)).full);
+    // A sum whose partials round up across a power of two: 0.5 + (0.5 − 2⁻²⁵) → 1, then
+    // 1 + 2⁻²⁶ → 1 + 2⁻²³ (each rounding up), far from the exact 1 − 2⁻²⁶.
+    let t = [0.5f32, 0.5 - 2f32.powi(-25), 2f32.powi(-26)];
+    assert!(Iv::sum(&t.map(Iv::point)).contains(1.0 + 2f32.powi(-23)));
+    // A subnormal partial sum flushed: 2e-38 − 1.5e-38 → 0, then + 1.5e-38.
+    assert!(Iv::sum(&[2e-38f32, -1.5e-38, 1.5e-38].map(Iv::point)).contains(1.5e-38));
+    // A point clamped to 1 stores 255 exactly.
+    assert_eq!(Iv::point(1.5).store_unorm8(), ocean_cpu::envelope::ByteRange { lo: 255, hi: 255 });
     // And a plain value is not full, nor wide.
     let one = Iv::point(1.0) + Iv::point(2.0);
     assert!(!one.full && one.contains(3.0) && !one.contains(3.001));

@@ -90,6 +90,10 @@ pub fn judge_picture(
     let mut codes = Vec::with_capacity(envelope.len() * 3);
     let mut rel = Vec::with_capacity(envelope.len() * 3);
     for (i, px) in envelope.iter().enumerate() {
+        // The shader writes alpha 1: every conformant store holds 255.
+        if rgba[4 * i + 3] != 255 {
+            outside += 1;
+        }
         for (c, (value, bytes)) in px.iter().enumerate() {
             let got = rgba[4 * i + c];
             codes.push(bytes.hi - bytes.lo);
@@ -130,9 +134,9 @@ fn quantile<T: Copy>(sorted: &[T], q: f64) -> Option<T> {
 }
 
 impl PictureVerdict {
-    /// No byte outside.
+    /// No byte outside (alpha included: 255), and something judged.
     pub fn passed(&self) -> bool {
-        self.outside == 0
+        self.outside == 0 && self.bytes > 0
     }
 
     /// One line for the terminal.
@@ -350,8 +354,9 @@ pub struct RegionVerdict {
     pub pixels: usize,
 }
 
-/// Judges `gpu` (`width` wide) by `envelope` where `region` is `Some(true)`; `Some(false)`
-/// counts a pixel as ambiguous, `None` leaves it out.
+/// Judges `gpu` (`width` wide) by `envelope` where `region` is `Some(true)`; where it is
+/// `Some(false)` (a pixel another conformant rasteriser may cover) the GPU's pixel is judged
+/// when it lies inside, and otherwise counted as ambiguous; `None` leaves a pixel out.
 ///
 /// # Panics
 /// If the three differ in length.
@@ -363,12 +368,22 @@ pub fn judge_region<const N: usize>(
     width: u32,
 ) -> RegionVerdict {
     assert_eq!(envelope.len(), region.len(), "{name}: region and envelope sizes differ");
+    assert_eq!(envelope.len(), gpu.len(), "{name}: envelope and resource sizes differ");
+    let inside = |e: &[Iv; N], g: &[f32; 4]| (0..N).all(|c| e[c].contains(g[c]));
+    let decided: Vec<Option<bool>> = region
+        .iter()
+        .zip(envelope.iter().zip(gpu))
+        .map(|(r, (e, g))| match r {
+            Some(false) if inside(e, g) => Some(true),
+            r => *r,
+        })
+        .collect();
     let masked: Vec<Option<[Iv; N]>> =
-        envelope.iter().zip(region).map(|(e, r)| (*r == Some(true)).then_some(*e)).collect();
+        envelope.iter().zip(&decided).map(|(e, r)| (*r == Some(true)).then_some(*e)).collect();
     RegionVerdict {
         inner: judge_floats(name, &masked, gpu, width),
-        judged: region.iter().filter(|r| **r == Some(true)).count(),
-        ambiguous: region.iter().filter(|r| **r == Some(false)).count(),
+        judged: decided.iter().filter(|r| **r == Some(true)).count(),
+        ambiguous: decided.iter().filter(|r| **r == Some(false)).count(),
         pixels: region.len(),
     }
 }

@@ -179,16 +179,29 @@ fn envelope_comparators_fail_one_step_past_the_envelope() {
         (1, Some(((1, 0), 1, 103)))
     );
 
-    // 100 pixels: 2 ambiguous pass, 3 fail.
+    // 100 pixels: a pixel next to geometry that holds the sky's value is judged; one that
+    // does not (the GPU covered it) is ambiguous: 2 pass, 3 fail.
     let env = vec![[e; 3]; 100];
-    let gpu = vec![[1.2f32; 4]; 100];
+    let mut gpu = vec![[1.2f32; 4]; 100];
+    for k in [0, 1, 3] {
+        gpu[k] = [5.0; 4];
+    }
     let mut region = vec![Some(true); 100];
     region[0] = Some(false);
     region[1] = Some(false);
     region[2] = None;
+    region[3] = None;
+    region[5] = Some(false);
+    let r = judge_region("hdr", &env, &region, &gpu, 10);
+    assert_eq!((r.judged, r.ambiguous), (96, 2), "{}", r.line());
     let r = judge_region("hdr", &env, &region, &gpu, 10);
     assert!(r.passed() && r.ambiguous_share() <= MAX_AMBIGUOUS_SHARE, "{}", r.line());
     region[3] = Some(false);
     let r = judge_region("hdr", &env, &region, &gpu, 10);
     assert!(!r.passed(), "3 % ambiguous passed: {}", r.line());
+    // A picture whose alpha is not 255 fails; an empty one is no pass.
+    let mut alpha = ok.clone();
+    alpha[3] = 254;
+    assert!(!judge_picture("ldr", &bytes, &alpha, &exact, 2).passed());
+    assert!(!judge_picture("ldr", &[], &[], &[], 2).passed(), "nothing judged");
 }

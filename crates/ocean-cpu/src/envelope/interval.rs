@@ -108,12 +108,18 @@ impl Iv {
     /// Any value, NaN included.
     pub const FULL: Iv = Iv { lo: f64::NEG_INFINITY, hi: f64::INFINITY, full: true };
 
-    /// The exact value `v` (a literal, a uniform, a texel read).
+    /// The value `v` as an operation reads it (a literal, a uniform, a texel): itself, or 0
+    /// for a subnormal (inputs may be flushed too); an infinity or a NaN is anything (WGSL's
+    /// finite-math assumption: an implementation may assume neither occurs).
     pub fn point(v: f32) -> Iv {
-        if v.is_nan() {
+        if !v.is_finite() {
             return Iv::FULL;
         }
-        Iv { lo: f64::from(v), hi: f64::from(v), full: false }
+        let v = f64::from(v);
+        if v != 0.0 && v.abs() < F32_MIN_NORMAL {
+            return Iv::new(v.min(0.0), v.max(0.0));
+        }
+        Iv { lo: v, hi: v, full: false }
     }
 
     /// [lo, hi] (lo ≤ hi).
@@ -168,26 +174,19 @@ impl Iv {
             return Iv::FULL;
         }
         let m = lo.abs().max(hi.abs());
-        if !m.is_finite() {
-            // An overflowed end: anything from f32's largest on that side to the infinity.
-            let lo = if lo == f64::INFINITY { F32_MAX } else { f64::NEG_INFINITY };
-            let hi = if hi == f64::NEG_INFINITY { -F32_MAX } else { f64::INFINITY };
-            return Iv::stored(lo, hi);
+        if m.is_nan() || m > F32_MAX {
+            // May overflow: under the finite-math assumption, anything.
+            return Iv::FULL;
         }
         let u = ulps * f32_ulp(m) + m * F64_SLACK;
         Iv::stored(lo - u, hi + u)
     }
 
-    /// Bounds past f32's range may round to ±∞ (or, rounding toward 0, to ±f32::MAX);
-    /// subnormals may flush to 0.
+    /// A result that may pass f32's range is anything (WGSL's finite-math assumption lets an
+    /// implementation assume no overflow, and no infinity after it); subnormals may flush to 0.
     fn stored(mut lo: f64, mut hi: f64) -> Iv {
-        lo = lo.min(F32_MAX);
-        hi = hi.max(-F32_MAX);
-        if hi > F32_MAX {
-            hi = f64::INFINITY;
-        }
-        if lo < -F32_MAX {
-            lo = f64::NEG_INFINITY;
+        if lo.is_nan() || hi.is_nan() || hi > F32_MAX || lo < -F32_MAX {
+            return Iv::FULL;
         }
         if lo > 0.0 && lo < F32_MIN_NORMAL {
             lo = 0.0;
@@ -394,10 +393,11 @@ impl Real for Iv {
         }
         Iv::new(lo, hi)
     }
-    /// The exact sum's interval widened by (n − 1) ULP of the sum of the terms' magnitudes:
-    /// every partial sum of any order of evaluation is no larger than that, so each of the
-    /// n − 1 roundings errs by at most one such ULP — the bound holds for every reassociation
-    /// and fusion.
+    /// The exact sum's interval widened by (n − 1) ULP of the sum of the terms' magnitudes
+    /// (raised by the roundings a computed partial sum may add to it): every partial sum of
+    /// any order of evaluation is no larger, so each of the n − 1 roundings errs by at most one
+    /// such ULP, plus 2⁻¹²⁶ for a flushed subnormal partial — the bound holds for every
+    /// reassociation and fusion.
     fn sum(terms: &[Iv]) -> Iv {
         if terms.iter().any(|t| t.full) {
             return Iv::FULL;
@@ -408,7 +408,13 @@ impl Real for Iv {
             hi = (hi + t.hi).next_up();
             mag = (mag + t.magnitude()).next_up();
         }
-        let u = (terms.len().saturating_sub(1)) as f64 * f32_ulp(mag);
+        // A computed partial sum may exceed the magnitudes' sum by its roundings (each under
+        // 2⁻²³ of it), so may round across a power of two, its ULP doubling there; or it may
+        // be flushed from the subnormal range: the ULP at the magnitude so raised, and 2⁻¹²⁶
+        // per addition.
+        let adds = terms.len().saturating_sub(1) as f64;
+        let raised = mag * (1.0 + (adds + 1.0) * 2.0 * f64::from(f32::EPSILON));
+        let u = adds * (f32_ulp(raised) + F32_MIN_NORMAL);
         if lo.is_nan() || hi.is_nan() {
             return Iv::FULL;
         }
@@ -475,11 +481,15 @@ impl Real for Iv {
     fn exp(self) -> Iv {
         self.exponential(f64::exp)
     }
-    /// For y ≥ 0 atan2 is monotone in each argument on every box (decreasing in x; in y as
-    /// the sign of x), so the corners bound it; 4096 ULP of the largest magnitude. A box that
-    /// reaches y < 0 or holds (0, 0) is full.
+    /// For y > 0 atan2 is monotone in each argument on every box (decreasing in x; in y as
+    /// the sign of x), so the corners bound it; 4096 ULP of the largest magnitude. Where the
+    /// rule does not hold (y not normal and positive, |x| reaching below 2⁻¹²⁶ or past 2¹²⁶)
+    /// the result is full.
     fn atan2(self, x: Iv) -> Iv {
-        if self.full || x.full || self.lo < 0.0 || (self.lo <= 0.0 && x.lo <= 0.0 && x.hi >= 0.0) {
+        // The 4096 ULP hold for |x| in [2⁻¹²⁶, 2¹²⁶] and a normal y; elsewhere undefined.
+        let x_tiny = x.lo < F32_MIN_NORMAL && x.hi > -F32_MIN_NORMAL;
+        if self.full || x.full || self.lo < F32_MIN_NORMAL || x_tiny || x.magnitude() > TWO_POW_126
+        {
             return Iv::FULL;
         }
         let c =
@@ -542,8 +552,9 @@ impl Real for Iv {
         let r_hi = (self.hi.clamp(0.0, 1.0) * 255.0).next_up();
         // An exactly integral r is stored exactly; the outward step above makes that
         // unreachable for non-point bounds, as it must: only a point is known integral.
-        let (lo, hi) = if self.lo == self.hi && (self.lo * 255.0).fract() == 0.0 {
-            let b = (self.lo.clamp(0.0, 1.0) * 255.0) as u8;
+        let (c_lo, c_hi) = (self.lo.clamp(0.0, 1.0), self.hi.clamp(0.0, 1.0));
+        let (lo, hi) = if c_lo == c_hi && (c_lo * 255.0).fract() == 0.0 {
+            let b = (c_lo * 255.0) as u8;
             (b, b)
         } else {
             (r_lo.floor().max(0.0) as u8, r_hi.ceil().min(255.0) as u8)

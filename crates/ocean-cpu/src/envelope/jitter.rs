@@ -86,29 +86,52 @@ fn toward(t: f64, exact: f64) -> f32 {
     }
 }
 
-/// An f32 operation with `ulps` ULP of allowance (1: rounding either way).
+/// An f32 operation with `ulps` ULP of allowance.
 fn rounded(exact: f64, ulps: f64) -> Jitter {
     within(exact, ulps * f32_ulp(exact))
+}
+
+/// Addition, subtraction, multiplication: one of the two f32 neighbours of the exact result
+/// (correct rounding either way; a representable result is itself), a subnormal one flushed
+/// half the time; past scale 1, the looser [`within`].
+fn neighbour(exact: f64) -> Jitter {
+    let (r, scale) = draw();
+    if scale > 1.0 || !exact.is_finite() {
+        return rounded(exact, 1.0);
+    }
+    let n = exact as f32;
+    let d = f64::from(n);
+    let v = if d == exact || r < 0.5 {
+        n
+    } else if d < exact {
+        n.next_up()
+    } else {
+        n.next_down()
+    };
+    if v != 0.0 && v.abs() < f32::MIN_POSITIVE && draw().0 < 0.5 {
+        return Jitter(0.0);
+    }
+    Jitter(v)
 }
 
 impl Add for Jitter {
     type Output = Jitter;
     fn add(self, b: Jitter) -> Jitter {
-        rounded(f64::from(self.0) + f64::from(b.0), 1.0)
+        neighbour(f64::from(self.0) + f64::from(b.0))
     }
 }
 
 impl Sub for Jitter {
     type Output = Jitter;
     fn sub(self, b: Jitter) -> Jitter {
-        rounded(f64::from(self.0) - f64::from(b.0), 1.0)
+        neighbour(f64::from(self.0) - f64::from(b.0))
     }
 }
 
 impl Mul for Jitter {
     type Output = Jitter;
     fn mul(self, b: Jitter) -> Jitter {
-        rounded(f64::from(self.0) * f64::from(b.0), 1.0)
+        neighbour(f64::from(self.0) * f64::from(b.0))
     }
 }
 
@@ -121,7 +144,11 @@ impl Div for Jitter {
 
 impl Real for Jitter {
     type Cond = bool;
+    /// A subnormal input is flushed half the time.
     fn lit(v: f32) -> Jitter {
+        if v != 0.0 && v.abs() < f32::MIN_POSITIVE && draw().0 < 0.5 {
+            return Jitter(0.0);
+        }
         Jitter(v)
     }
     fn max(self, b: Jitter) -> Jitter {
@@ -209,12 +236,22 @@ impl Real for Jitter {
         }
         Jitter(v as f32)
     }
-    /// The terms in a random order, each addition jittered.
+    /// The terms in a random order, summed left to right or as a balanced tree (at random),
+    /// each addition jittered.
     fn sum(terms: &[Jitter]) -> Jitter {
         let mut order: Vec<Jitter> = terms.to_vec();
         for i in (1..order.len()).rev() {
             let j = (draw().0 * (i + 1) as f64) as usize;
             order.swap(i, j.min(i));
+        }
+        if draw().0 < 0.5 {
+            while order.len() > 1 {
+                order = order
+                    .chunks(2)
+                    .map(|p| if p.len() == 2 { p[0] + p[1] } else { p[0] })
+                    .collect();
+            }
+            return order[0];
         }
         let mut s = order[0];
         for &t in &order[1..] {
