@@ -57,10 +57,12 @@ impl Verdict {
     }
 }
 
-/// The envelope's verdict on a frame as a GPU made it: pass `bloom`'s chains (each level
-/// from the GPU's own level before it) and the picture (against the `tonemap` envelope of the
-/// GPU's own HDR frame and bloom); `resources`, the frame's other float resources, whose passes
-/// have no envelope yet, are listed as not judged.
+/// The envelope's verdict on a frame as a GPU made it, each pass from the inputs the GPU
+/// itself read: `bloom`'s and `wave_mips`' chains (each level from the GPU's level before it),
+/// the uploaded `fresnel_filter` (bit for bit), the Fresnel tables, the HDR frame's sky pixels
+/// (where `oracle_hdr` says the sky shows) and the picture (against the `tonemap` envelope of
+/// the GPU's own HDR frame and bloom). The rest of `resources`, whose passes have no envelope
+/// yet, are listed as not judged; a frame of which nothing is judged fails.
 ///
 /// # Errors
 /// A resource of the wrong size, or uniforms the scene cannot make.
