@@ -192,15 +192,20 @@ fn judge_passes(
     };
     let bloom = match (plan.runs(Pass::Bloom), gpu.texels(ResourceId::BloomUp)) {
         (false, _) => None,
-        (true, Some(atlas)) => ocean_verify::envelope::bloom_level0(atlas, w, h),
+        (true, Some(atlas)) => {
+            let inputs = ocean_core::plan::BloomInputs::new(scene);
+            Some(ocean_cpu::shaders::bloom::level0(&bloom_chain(
+                &inputs,
+                (w, h),
+                "bloom_up",
+                atlas,
+            )?))
+        }
         (true, None) => {
             not_judged("pass bloom's output (bloom_up) is not in the frame", &mut v);
             return Ok(v);
         }
     };
-    if plan.runs(Pass::Bloom) && bloom.is_none() {
-        bail!("bloom_up is smaller than its level 0 for {w}x{h}");
-    }
     let envelope = ocean_cpu::shaders::tonemap::envelope_of(hdr, bloom.as_ref(), w, h, &tonemap);
     let no_bloom = ocean_cpu::sampler::Texture2D::new(1, 1, vec![[0.0; 4]]);
     let exact = ocean_cpu::shaders::tonemap::tonemap_to_rgba8_with_bloom(
@@ -306,6 +311,24 @@ fn wave_mips_verdict(
     Ok(ocean_verify::envelope::judge_floats(chain.name(), &env, atlas, w))
 }
 
+/// A GPU's bloom chain (its atlas, read back or from a dump) for a `w` × `h` frame, checked
+/// against the plan's chain size.
+fn bloom_chain(
+    inputs: &ocean_core::plan::BloomInputs,
+    (w, h): (u32, u32),
+    name: &str,
+    atlas: &[[f32; 4]],
+) -> anyhow::Result<ocean_cpu::mip::MipChain> {
+    let [bw, bh] = ocean_core::bloom::level_size(w, h, 0);
+    let levels = inputs.down.len() as u32;
+    let rows = ocean_cpu::mip::level_row(bh, levels);
+    if atlas.len() != bw as usize * rows as usize {
+        bail!("{name}: {} texels, the plan's chain {bw}x{rows}", atlas.len());
+    }
+    let atlas = ocean_cpu::sampler::Texture2D::new(bw, rows, atlas.to_vec());
+    Ok(ocean_cpu::mip::MipChain { width: bw, height: bh, levels, atlas })
+}
+
 /// Pass `bloom`'s chains against its envelope given the GPU's own inputs (each level from the
 /// GPU's level before it: ocean-cpu `bloom::envelope`).
 fn bloom_verdicts(
@@ -315,24 +338,11 @@ fn bloom_verdicts(
     down: &[[f32; 4]],
     up: &[[f32; 4]],
 ) -> anyhow::Result<Vec<ocean_verify::envelope::FloatVerdict>> {
-    use ocean_cpu::mip::MipChain;
     use ocean_cpu::sampler::Texture2D;
     let inputs = ocean_core::plan::BloomInputs::new(scene);
-    let [bw, bh] = ocean_core::bloom::level_size(w, h, 0);
-    let levels = inputs.down.len() as u32;
-    let rows = ocean_cpu::mip::level_row(bh, levels);
-    let chain = |name: &str, atlas: &[[f32; 4]]| -> anyhow::Result<MipChain> {
-        if atlas.len() != bw as usize * rows as usize {
-            bail!("{name}: {} texels, the plan's chain {bw}x{rows}", atlas.len());
-        }
-        Ok(MipChain {
-            width: bw,
-            height: bh,
-            levels,
-            atlas: Texture2D::new(bw, rows, atlas.to_vec()),
-        })
-    };
-    let (down, up) = (chain("bloom_down", down)?, chain("bloom_up", up)?);
+    let bw = ocean_core::bloom::level_size(w, h, 0)[0];
+    let down = bloom_chain(&inputs, (w, h), "bloom_down", down)?;
+    let up = bloom_chain(&inputs, (w, h), "bloom_up", up)?;
     let hdr = Texture2D::new(w, h, hdr.to_vec());
     let (down_env, up_env) = ocean_cpu::shaders::bloom::envelope(&hdr, &down, &up, &inputs);
     Ok(vec![

@@ -45,18 +45,16 @@ fn snapshot_dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("reference/hardware/h200")
 }
 
+/// 64-bit FNV-1a of a byte stream.
+fn fnv1a(bytes: impl IntoIterator<Item = u8>) -> u64 {
+    bytes
+        .into_iter()
+        .fold(0xcbf2_9ce4_8422_2325, |h, b| (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3))
+}
+
 /// 64-bit FNV-1a over the bits of a frame's texels.
 fn digest(texels: &[[f32; 4]]) -> u64 {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for t in texels {
-        for v in t {
-            for b in v.to_bits().to_le_bytes() {
-                h ^= u64::from(b);
-                h = h.wrapping_mul(0x0000_0100_0000_01b3);
-            }
-        }
-    }
-    h
+    fnv1a(texels.iter().flatten().flat_map(|v| v.to_bits().to_le_bytes()))
 }
 
 /// The oracle's frame of a dump's scene, as `ocean compare --against` renders it.
@@ -150,12 +148,7 @@ fn controls(o: &Oracle) -> Result<(), Failed> {
 
 /// 64-bit FNV-1a of a file's bytes.
 fn file_digest(path: &Path) -> u64 {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for b in std::fs::read(path).unwrap() {
-        h ^= u64::from(b);
-        h = h.wrapping_mul(0x0000_0100_0000_01b3);
-    }
-    h
+    fnv1a(std::fs::read(path).unwrap())
 }
 
 /// The shaders of the passes the envelope judges from the dump's own inputs whose bytes differ

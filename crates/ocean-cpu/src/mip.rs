@@ -53,24 +53,16 @@ impl MipChain {
     /// If a level has the wrong size or there is none.
     pub fn from_levels(levels: &[Texture2D]) -> Self {
         let (w, h) = (levels[0].width, levels[0].height);
-        let rows = level_row(h, levels.len() as u32);
-        let mut texels = vec![[0.0; 4]; w as usize * rows as usize];
         for (k, level) in levels.iter().enumerate() {
-            let k = k as u32;
-            assert_eq!([level.width, level.height], level_size(w, h, k), "level {k}");
-            let row = level_row(h, k) as usize;
-            for j in 0..level.height as usize {
-                let dst = (row + j) * w as usize;
-                let src = j * level.width as usize;
-                texels[dst..dst + level.width as usize]
-                    .copy_from_slice(&level.texels[src..src + level.width as usize]);
-            }
+            assert_eq!([level.width, level.height], level_size(w, h, k as u32), "level {k}");
         }
+        let texels: Vec<&[[f32; 4]]> = levels.iter().map(|l| &l.texels[..]).collect();
+        let rows = level_row(h, levels.len() as u32);
         Self {
             width: w,
             height: h,
             levels: levels.len() as u32,
-            atlas: Texture2D::new(w, rows, texels),
+            atlas: Texture2D::new(w, rows, pack_levels(w, h, &texels, [0.0; 4])),
         }
     }
 
@@ -92,6 +84,26 @@ impl MipChain {
             (0..h).flat_map(|j| (0..w).map(move |i| (i, j))).map(|(i, j)| self.texel(k, i, j));
         Texture2D::new(w, h, texels.collect())
     }
+}
+
+/// The atlas of a chain whose level 0 is `width` × `height`: `levels[k]` (row-major, level k's
+/// size) in level k's rows from column 0, `fill` in the rest of each row.
+///
+/// # Panics
+/// If a level holds fewer texels than its size.
+pub fn pack_levels<T: Copy>(width: u32, height: u32, levels: &[&[T]], fill: T) -> Vec<T> {
+    let rows = level_row(height, levels.len() as u32);
+    let mut atlas = vec![fill; width as usize * rows as usize];
+    for (k, level) in levels.iter().enumerate() {
+        let [w, h] = level_size(width, height, k as u32);
+        let row = level_row(height, k as u32) as usize;
+        for j in 0..h as usize {
+            let dst = (row + j) * width as usize;
+            atlas[dst..dst + w as usize]
+                .copy_from_slice(&level[j * w as usize..(j + 1) * w as usize]);
+        }
+    }
+    atlas
 }
 
 /// The bilinear sample of level `k` at `coords` (the sampler must filter linearly; a nearest

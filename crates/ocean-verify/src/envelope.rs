@@ -6,7 +6,6 @@
 
 use ocean_core::plan::ResourceId;
 use ocean_cpu::envelope::{ByteRange, Iv};
-use ocean_cpu::sampler::Texture2D;
 use serde_json::{Value, json};
 
 /// How `ocean compare` holds a GPU's resources.
@@ -326,14 +325,6 @@ pub fn not_judged(id: ResourceId) -> (String, Value) {
     let why = format!("pass {pass} has no envelope yet");
     let json = json!({"name": id.name(), "tolerance": "envelope", "judged": false, "why": why});
     (why, json)
-}
-
-/// The level 0 of a bloom up chain's atlas (`atlas_width` wide: level 0 is its first rows),
-/// for a `width × height` frame.
-pub fn bloom_level0(atlas: &[[f32; 4]], width: u32, height: u32) -> Option<Texture2D> {
-    let [w, h] = ocean_core::bloom::level_size(width, height, 0);
-    let n = w as usize * h as usize;
-    (atlas.len() >= n).then(|| Texture2D::new(w, h, atlas[..n].to_vec()))
 }
 
 /// The most of a screen resource that may be ambiguous (pixels whose coverage a conformant

@@ -57,6 +57,8 @@ const F32_MAX: f64 = f32::MAX as f64;
 const F32_MIN_NORMAL: f64 = f32::MIN_POSITIVE as f64;
 
 const TWO_POW_M21: f64 = 1.0 / (1u64 << 21) as f64;
+/// 2⁻¹⁰⁰: below this an interval is a 0 with its slack, for [`Iv::rel_half_width`].
+const TINY: f64 = 7.888_609_052_210_118e-31;
 /// 2⁻⁵⁰: the f64 roundings of one operation and of its widening, relative to the magnitude.
 const F64_SLACK: f64 = 1.0 / (1u64 << 50) as f64;
 const TWO_POW_126: f64 = 8.507_059_173_023_462e37;
@@ -150,14 +152,14 @@ impl Iv {
     }
 
     /// Half the width relative to the largest magnitude (∞ when full or unbounded); `None`
-    /// for an interval within f32's subnormal range (a 0 and its rounding slack, where a
+    /// for an interval within 2⁻¹⁰⁰ of 0 (a 0 and its rounding and flushing slack, where a
     /// relative width means nothing).
     pub fn rel_half_width(self) -> Option<f64> {
         if self.full {
             return Some(f64::INFINITY);
         }
         let m = self.magnitude();
-        if m < F32_MIN_NORMAL {
+        if m < TINY {
             return None;
         }
         Some(0.5 * (self.hi - self.lo) / m)

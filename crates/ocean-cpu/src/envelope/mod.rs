@@ -30,6 +30,19 @@ pub use jitter::{Jitter, JitterRules};
 /// padding.
 pub type AtlasEnvelope = Vec<Option<[Iv; 3]>>;
 
+/// A chain's envelope, level by level (level 0 `width` × `height`), packed as
+/// [`crate::mip::MipChain`] packs a chain's texels, `None` in the padding.
+pub fn atlas_of<const N: usize>(
+    width: u32,
+    height: u32,
+    levels: &[Vec<[Iv; N]>],
+) -> Vec<Option<[Iv; N]>> {
+    let some: Vec<Vec<Option<[Iv; N]>>> =
+        levels.iter().map(|l| l.iter().copied().map(Some).collect()).collect();
+    let refs: Vec<&[Option<[Iv; N]>]> = some.iter().map(|l| &l[..]).collect();
+    crate::mip::pack_levels(width, height, &refs, None)
+}
+
 /// A comparison's outcome: decided, or (for an envelope) either way.
 pub trait Cond: Copy {
     /// The outcome when it is decided.

@@ -197,23 +197,6 @@ fn level_r<R: Real + Send>(
         .collect()
 }
 
-/// A chain's atlas (`width` × rows, as [`MipChain`] packs it) holding `levels[k]` in level k's
-/// rows and `None` in the padding.
-fn atlas_of<T: Copy>(width: u32, height: u32, levels: &[Vec<T>]) -> Vec<Option<T>> {
-    let rows = crate::mip::level_row(height, levels.len() as u32);
-    let mut atlas = vec![None; width as usize * rows as usize];
-    for (k, level) in levels.iter().enumerate() {
-        let [w, h] = crate::mip::level_size(width, height, k as u32);
-        let row = crate::mip::level_row(height, k as u32) as usize;
-        for j in 0..h as usize {
-            for i in 0..w as usize {
-                atlas[(row + j) * width as usize + i] = Some(level[j * w as usize + i]);
-            }
-        }
-    }
-    atlas
-}
-
 /// The pass's envelope given what the GPU read: each level of the down chain from the GPU's
 /// own level above it (level 0 from `hdr`), each level of the up chain from the GPU's own
 /// down level and up level below it; the up chain's last level is a copy of the down chain's
@@ -248,7 +231,10 @@ pub fn envelope(
             upsample_r::<Iv>(id, &params, &detail, &coarse)
         });
     }
-    (atlas_of(down.width, down.height, &down_env), atlas_of(up.width, up.height, &up_env))
+    (
+        crate::envelope::atlas_of(down.width, down.height, &down_env),
+        crate::envelope::atlas_of(up.width, up.height, &up_env),
+    )
 }
 
 /// The pass as one random conformant GPU runs it (`rules`): (down, up) as [`dispatch`] returns

@@ -55,18 +55,7 @@ pub fn envelope(slopes: &Texture2D, chain: &MipChain) -> Vec<Option<[Iv; 4]>> {
         let params = WaveMipsUniforms::new([lw, lh], [src.width, src.height]);
         levels.push((0..lw * lh).map(|t| downsample_r([t % lw, t / lw], &params, &src)).collect());
     }
-    let rows = crate::mip::level_row(h, chain.levels);
-    let mut atlas = vec![None; w as usize * rows as usize];
-    for (k, level) in levels.iter().enumerate() {
-        let [lw, lh] = level_size(w, h, k as u32);
-        let row = crate::mip::level_row(h, k as u32) as usize;
-        for j in 0..lh as usize {
-            for i in 0..lw as usize {
-                atlas[(row + j) * w as usize + i] = Some(level[j * lw as usize + i]);
-            }
-        }
-    }
-    atlas
+    crate::envelope::atlas_of(w, h, &levels)
 }
 
 /// The chain as one random conformant GPU computes it (`rules`).
