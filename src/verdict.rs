@@ -107,6 +107,14 @@ fn judge_passes(
         }
         v.judged.extend(["bloom_down", "bloom_up"]);
     }
+    for (id, f) in waves_verdicts(scene, plan, gpu)? {
+        v.lines.push(format!("  [{:<14}] {}", "waves", f.line()));
+        if !f.passed() {
+            v.failures.push(f.line());
+        }
+        v.json.push(f.to_json());
+        v.judged.push(id.name());
+    }
     if plan.runs(Pass::WaveMips) {
         for (source, chain) in ResourceId::SLOPE_CHAINS {
             if let (Some(((w, h), src)), Some((_, atlas))) = (gpu.map(source), gpu.map(chain)) {
@@ -288,6 +296,52 @@ fn sky_verdict(
         return Ok(None);
     }
     Ok(Some(ocean_verify::envelope::judge_region("hdr (sky pixels)", &env, &region, hdr, w)))
+}
+
+/// Pass `waves`' three maps, those the frame holds, against the envelope of the spectrum,
+/// the FFT and the packing given the uploaded mode and twiddle tables (ocean-cpu
+/// `WavesMirror::envelope`). None where the frame's wave maps are not `waves.wgsl`'s (a cycle
+/// or a CPU synthesis: uploads).
+fn waves_verdicts(
+    scene: &Scene,
+    plan: &FramePlan,
+    gpu: &GpuSide<'_>,
+) -> anyhow::Result<Vec<(ResourceId, ocean_verify::envelope::FloatVerdict)>> {
+    use ocean_core::plan::WavesKernel;
+    if !plan.runs(Pass::Waves) || plan.runs(Pass::Cycle) || plan.waves_kernel != WavesKernel::Shader
+    {
+        return Ok(Vec::new());
+    }
+    let surface = scene.ocean.surface()?;
+    let sets = [
+        (
+            &surface.displacement,
+            [Some(ResourceId::Displacement), Some(ResourceId::DisplacementSlopes), None],
+        ),
+        (&surface.bump, [None, None, Some(ResourceId::Bump)]),
+    ];
+    let mut out = Vec::new();
+    for (modes, ids) in sets {
+        if ids.iter().flatten().all(|&id| gpu.map(id).is_none()) {
+            continue;
+        }
+        let mirror = ocean_cpu::shaders::waves::WavesMirror::new(modes)?;
+        let params = mirror.uniforms(scene.ocean.time_s, scene.ocean.choppiness)?;
+        let env = mirror.envelope(&params);
+        for (id, env) in ids.into_iter().zip(env) {
+            let Some((id, ((w, h), texels))) = id.and_then(|id| Some((id, gpu.map(id)?))) else {
+                continue;
+            };
+            let n = params.size;
+            if (w, h) != (n, n) {
+                bail!("{}: {w}x{h}, the plan's map {n}x{n}", id.name());
+            }
+            let env: Vec<Option<[ocean_cpu::envelope::Iv; 4]>> =
+                env.into_iter().map(Some).collect();
+            out.push((id, ocean_verify::envelope::judge_floats(id.name(), &env, texels, w)));
+        }
+    }
+    Ok(out)
 }
 
 /// One of pass `wave_mips`' chains against its envelope given the GPU's own slope map and

@@ -488,3 +488,116 @@ fn random_conformant_gpus_stay_inside_the_sky_envelope() {
     assert!(scenes >= 14, "{scenes} scenes with a sky that has an envelope");
     assert!(loose > 0, "a GPU twice as loose as the rules never left the sky's envelope");
 }
+
+/// Every reference scene's distinct ocean, both mode sets: the oracle's wave maps and 8
+/// random conformant GPUs' inside the `waves` pass's envelope (spectrum, 2·log2 N Stockham
+/// stages, pack). The negative control is per dispatch: the frame's envelope composes each
+/// stage's, and random roundings average out over an FFT's many terms where the envelope must
+/// hold their worst case, so a twice-as-loose GPU is caught where one dispatch is judged from
+/// the buffer it read (as the other passes' chains are).
+#[test]
+fn random_conformant_gpus_stay_inside_the_waves_envelope() {
+    use ocean_cpu::shaders::waves::{WaveTextures, WavesMirror};
+    use rayon::prelude::*;
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("reference/scenes");
+    let mut names: Vec<PathBuf> = std::fs::read_dir(&root)
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    names.sort();
+    let mut oceans: Vec<(PathBuf, ocean_core::scene::Ocean)> = Vec::new();
+    for path in names {
+        let ocean = ocean_core::scene::Scene::load(&path).unwrap().ocean;
+        if !oceans.iter().any(|(_, o)| *o == ocean) {
+            oceans.push((path, ocean));
+        }
+    }
+    let modes_checked_by_dispatch = |p: &Path| oceans.iter().take(4).any(|(q, _)| q == p);
+    let rel_of = |env: &[Vec<[Iv; 4]>; 3]| -> Vec<f64> {
+        env.iter().flatten().flat_map(|t| t.iter().filter_map(|c| c.rel_half_width())).collect()
+    };
+    let maps = |w: &WaveTextures| {
+        [&w.displacement, &w.displacement_slopes, &w.bump].map(|t| t.texels.clone())
+    };
+    let results: Vec<(usize, usize, usize, Vec<f64>)> = oceans
+        .par_iter()
+        .flat_map(|(path, ocean)| {
+            let surface = ocean.surface().unwrap();
+            [surface.displacement, surface.bump].into_par_iter().map(move |modes| {
+                let m = WavesMirror::new(&modes).unwrap();
+                let params = m.uniforms(ocean.time_s, ocean.choppiness).unwrap();
+                let env = m.envelope(&params);
+                let outside = |g: [Vec<[f32; 4]>; 3]| -> usize {
+                    env.iter()
+                        .zip(&g)
+                        .flat_map(|(e, g)| e.iter().zip(g))
+                        .map(|(e, g)| (0..4).filter(|&c| !e[c].contains(g[c])).count())
+                        .sum()
+                };
+                let exact = m.run(ocean.time_s, ocean.choppiness).unwrap();
+                assert_eq!(outside(maps(&exact)), 0, "{}: the oracle", path.display());
+                for seed in 0..8 {
+                    let j = m.jitter(&params, JitterRules { seed, scale: 1.0 });
+                    assert_eq!(outside(maps(&j)), 0, "{} seed {seed}", path.display());
+                }
+                // One dispatch at a time, each from the buffer the random GPU itself wrote (on a
+                // few oceans: the rules are the same everywhere).
+                if !modes_checked_by_dispatch(path) {
+                    return (8, 0, 0, rel_of(&env));
+                }
+                let mut buffer = Vec::new();
+                m.run_traced(&params, &mut |d, b| {
+                    if d == ocean_cpu::shaders::waves::Dispatch::Spectrum {
+                        buffer = b.to_vec();
+                    }
+                });
+                let (mut stage_in, mut stage_loose) = (0, 0);
+                let (mut conformant, mut loose) = (buffer.clone(), buffer);
+                for p in 0..m.fft_dispatches() {
+                    let outside = |env: &[[Iv; 2]], g: &[[f32; 2]]| -> usize {
+                        env.iter()
+                            .zip(g)
+                            .map(|(e, g)| (0..2).filter(|&c| !e[c].contains(g[c])).count())
+                            .sum()
+                    };
+                    let next = m.fft_dispatch_jitter(
+                        &params,
+                        p,
+                        &conformant,
+                        JitterRules { seed: p as u64, scale: 1.0 },
+                    );
+                    stage_in += outside(&m.fft_dispatch_envelope(&params, p, &conformant), &next);
+                    conformant = next;
+                    let next = m.fft_dispatch_jitter(
+                        &params,
+                        p,
+                        &loose,
+                        JitterRules { seed: 99, scale: 2.0 },
+                    );
+                    stage_loose += outside(&m.fft_dispatch_envelope(&params, p, &loose), &next);
+                    loose = next;
+                }
+                (8, stage_in, stage_loose, rel_of(&env))
+            })
+        })
+        .collect();
+    let runs: usize = results.iter().map(|r| r.0).sum();
+    let stage_in: usize = results.iter().map(|r| r.1).sum();
+    let stage_loose: usize = results.iter().map(|r| r.2).sum();
+    let mut rel: Vec<f64> = results.into_iter().flat_map(|r| r.3).collect();
+    rel.sort_by(f64::total_cmp);
+    let q = |p: f64| rel[((rel.len() - 1) as f64 * p) as usize];
+    println!(
+        "{runs} wave-map frames ({} oceans × 2 mode sets × 8 seeds) of random conformant GPUs: 0 outside; \
+         dispatch by dispatch: conformant {stage_in} outside, twice the rules {stage_loose} outside; \
+         relative half-width p50 {:.1e}, p99 {:.1e}",
+        oceans.len(),
+        q(0.5),
+        q(0.99)
+    );
+    assert!(oceans.len() >= 15, "{} distinct oceans", oceans.len());
+    assert_eq!(stage_in, 0, "a conformant dispatch left its envelope");
+    assert!(stage_loose > 0, "a GPU twice as loose as the rules never left a dispatch's envelope");
+}

@@ -12,8 +12,9 @@
 //! Each scene is also held to the envelope of any conformant GPU (docs/tolerances.md) as a user
 //! would: `ocean compare --against DIR --tolerance envelope`, which judges the picture against
 //! the `tonemap` envelope of the dump's own HDR frame, and the HDR frame's sky pixels (where the
-//! oracle draws no geometry, one pixel in from its edge) against the sky's envelope. That verdict does not depend on the
-//! oracle's frame, only on the judged passes' shaders: it is stale (ignored) when one of them
+//! oracle draws no geometry, one pixel in from its edge) against the sky's envelope, and the
+//! wave maps that two dumps keep (`calm`, `chiu_shallow`) against the `waves` pass's envelope.
+//! That verdict does not depend on the oracle's frame, only on the judged passes' shaders: it is stale (ignored) when one of them
 //! differs from the snapshot's (`envelope_shaders_fnv64`); a scene whose picture's inputs are
 //! not all in the dump (pass bloom's chains) must show its picture as not judged, and its sky
 //! judged.
@@ -217,6 +218,16 @@ fn envelope_scene(dir: &Path, lacks_bloom: bool) -> Result<(), Failed> {
     {
         return Err(format!("{name}: the sky's pixels were not judged inside: {sky}").into());
     }
+    // The wave maps, where the dump holds them: pass `waves` from the uploaded modes alone.
+    for map in ["displacement", "bump"] {
+        if !dir.join(format!("{map}.exr")).is_file() {
+            continue;
+        }
+        let entry = resources.iter().find(|r| r["name"] == map).ok_or("no wave-map entry")?;
+        if entry["passed"] != true || entry["outside"] != 0 {
+            return Err(format!("{name}: {map} was not judged inside: {entry}").into());
+        }
+    }
     let judged: Vec<&str> = resources
         .iter()
         .filter(|r| r["judged"] != false)
@@ -245,8 +256,10 @@ fn envelope_control() -> Result<(), Failed> {
         std::env::temp_dir().join(format!("ocean-h200-envelope-control-{}", std::process::id()));
     let dump = tmp.join("calm");
     std::fs::create_dir_all(&dump).unwrap();
-    for f in ["manifest.json", "hdr.exr"] {
-        std::fs::copy(src.join(f), dump.join(f)).unwrap();
+    for f in std::fs::read_dir(&src).unwrap().flatten().map(|e| e.file_name()) {
+        if f != "ldr.png" {
+            std::fs::copy(src.join(&f), dump.join(&f)).unwrap();
+        }
     }
     let mut ldr = image::open(src.join("ldr.png")).unwrap().to_rgba8();
     let p = ldr.get_pixel_mut(100, 100);

@@ -17,7 +17,7 @@
 //! The ULP of an interval is that of its largest magnitude: every value inside has a ULP no
 //! larger, so the widening covers each.
 
-use std::ops::{Add, Div, Mul, Sub};
+use std::ops::{Add, Div, Mul, Neg, Sub};
 
 use super::{Real, Tri};
 
@@ -324,6 +324,14 @@ impl Mul for Iv {
         }
         let (lo, hi) = corners(self, b, |x, y| x * y);
         Iv::rounded(lo, hi, 1.0)
+    }
+}
+
+/// Negation is exact (a sign flip).
+impl Neg for Iv {
+    type Output = Iv;
+    fn neg(self) -> Iv {
+        Iv { lo: -self.hi, hi: -self.lo, full: self.full }
     }
 }
 

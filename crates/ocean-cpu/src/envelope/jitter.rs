@@ -8,7 +8,7 @@
 //! frame is reproducible for a seed at any number of threads.
 
 use std::cell::Cell;
-use std::ops::{Add, Div, Mul, Sub};
+use std::ops::{Add, Div, Mul, Neg, Sub};
 
 use ocean_core::rng::{SplitMix64, mix64};
 
@@ -132,6 +132,14 @@ impl Mul for Jitter {
     type Output = Jitter;
     fn mul(self, b: Jitter) -> Jitter {
         neighbour(f64::from(self.0) * f64::from(b.0))
+    }
+}
+
+/// Negation is exact (a sign flip).
+impl Neg for Jitter {
+    type Output = Jitter;
+    fn neg(self) -> Jitter {
+        Jitter(-self.0)
     }
 }
 

@@ -19,7 +19,7 @@
 mod interval;
 mod jitter;
 
-use std::ops::{Add, Div, Mul, Sub};
+use std::ops::{Add, Div, Mul, Neg, Sub};
 
 use ocean_core::frame_format::FrameFormat;
 
@@ -94,7 +94,12 @@ impl Cond for Tri {
 /// The scalar a mirror computes with: WGSL's `f32` operations, each with the semantics of the
 /// implementing type (exact lavapipe f32, an interval, or a random conformant result).
 pub trait Real:
-    Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + Div<Output = Self>
+    Copy
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
 {
     /// What a comparison yields.
     type Cond: Cond;

@@ -17,10 +17,15 @@ use ocean_core::waves::uniforms::{
     fft_twiddles, wave_mode_table,
 };
 
+use crate::envelope::{Iv, Jitter, JitterRules, Real};
 use crate::sampler::Texture2D;
+use crate::shaders::shared::trig::cis_reduced_r;
 
 /// `vec2<f32>`: a complex number, x the real part.
 pub type Vec2 = [f32; 2];
+
+/// A complex number over any [`Real`], x the real part.
+pub type Cx<R> = [R; 2];
 
 /// `TURN_UNIT`: 2⁻²⁴.
 pub const TURN_UNIT: f32 = 5.960_464_5e-8;
@@ -43,16 +48,30 @@ pub fn mul_hi(a: u32, b: u32) -> u32 {
     p11 + (p01 >> 16) + (p10 >> 16) + (mid >> 16)
 }
 
-/// `phase_turns(rate, frequency)`: frac(f·t) in turns, in [−½, ½].
+/// The 24-bit turn count of `phase_turns`, read as signed turns: integer arithmetic and an
+/// exact scaling, so the same value on every implementation.
 #[inline]
-pub fn phase_turns(rate: [u32; 2], frequency: f32, params: &WavesUniforms) -> f32 {
+pub fn coarse_turns(rate: [u32; 2], params: &WavesUniforms) -> f32 {
     let ticks = params.time_ticks;
     let turns_fixed = mul_hi(rate[0], ticks[0])
         .wrapping_add(rate[1].wrapping_mul(ticks[0]))
         .wrapping_add(rate[0].wrapping_mul(ticks[1]));
-    let coarse = ((turns_fixed.wrapping_add(128) as i32) >> 8) as f32 * TURN_UNIT;
-    let c = coarse + frequency * params.time_remainder;
+    ((turns_fixed.wrapping_add(128) as i32) >> 8) as f32 * TURN_UNIT
+}
+
+/// `phase_turns(rate, frequency)`: frac(f·t) in turns, in [−½, ½].
+#[inline]
+pub fn phase_turns(rate: [u32; 2], frequency: f32, params: &WavesUniforms) -> f32 {
+    let c = coarse_turns(rate, params) + frequency * params.time_remainder;
     c - (c + 0.5).floor()
+}
+
+/// `cis_turns(phase_turns(rate, frequency))` over any [`Real`].
+#[inline]
+pub fn phase_cis<R: Real>(rate: [u32; 2], frequency: f32, params: &WavesUniforms) -> Cx<R> {
+    let l = R::lit;
+    let c = l(coarse_turns(rate, params)) + l(frequency) * l(params.time_remainder);
+    cis_reduced_r(c)
 }
 
 pub use super::shared::trig::{
@@ -61,40 +80,46 @@ pub use super::shared::trig::{
 
 /// `complex_mul(a, b)`.
 #[inline]
-pub fn complex_mul(a: Vec2, b: Vec2) -> Vec2 {
+pub fn complex_mul<R: Real>(a: Cx<R>, b: Cx<R>) -> Cx<R> {
     [a[0] * b[0] - a[1] * b[1], a[0] * b[1] + a[1] * b[0]]
 }
 
 /// `pack_pair(a, b)`: Â + iB̂.
 #[inline]
-pub fn pack_pair(a: Vec2, b: Vec2) -> Vec2 {
+pub fn pack_pair<R: Real>(a: Cx<R>, b: Cx<R>) -> Cx<R> {
     [a[0] - b[1], a[1] + b[0]]
 }
 
 #[inline]
-fn scale(v: Vec2, s: f32) -> Vec2 {
+fn scale<R: Real>(v: Cx<R>, s: R) -> Cx<R> {
     [v[0] * s, v[1] * s]
 }
 
 /// `spectrum(id)`: the four packed spectra of bin (id.x, id.y), written into `dst`.
-pub fn spectrum(id: [u32; 3], params: &WavesUniforms, modes: &[WaveModeData], dst: &mut [Vec2]) {
+pub fn spectrum<R: Real>(
+    id: [u32; 3],
+    params: &WavesUniforms,
+    modes: &[WaveModeData],
+    dst: &mut [Cx<R>],
+) {
     let n = params.size;
     if id[0] >= n || id[1] >= n {
         return;
     }
+    let l = R::lit;
     let bin = id[1] * n + id[0];
     let partner = ((n - id[1]) & (n - 1)) * n + ((n - id[0]) & (n - 1));
     let mode = modes[bin as usize];
-    let h0_minus = modes[partner as usize].h0;
-    let e = cis_turns(phase_turns(mode.phase_rate, mode.frequency, params));
-    let s = [mode.h0[0] + h0_minus[0], mode.h0[1] + h0_minus[1]];
-    let d = [mode.h0[0] - h0_minus[0], mode.h0[1] - h0_minus[1]];
+    let (h0, h0_minus) = (mode.h0.map(l), modes[partner as usize].h0.map(l));
+    let e: Cx<R> = phase_cis(mode.phase_rate, mode.frequency, params);
+    let s = [h0[0] + h0_minus[0], h0[1] + h0_minus[1]];
+    let d = [h0[0] - h0_minus[0], h0[1] - h0_minus[1]];
     let h = [s[0] * e[0] - s[1] * e[1], d[0] * e[1] + d[1] * e[0]];
 
-    let kx = mode.k[0];
-    let kz = mode.k[1];
-    let inv_k = mode.inv_k;
-    let lambda = params.lambda;
+    let kx = l(mode.k[0]);
+    let kz = l(mode.k[1]);
+    let inv_k = l(mode.inv_k);
+    let lambda = l(params.lambda);
     let i_h = [-h[1], h[0]];
     let minus_i_h = [h[1], -h[0]];
     let disp_x = scale(minus_i_h, lambda * kx * inv_k);
@@ -116,22 +141,22 @@ pub fn spectrum(id: [u32; 3], params: &WavesUniforms, modes: &[WaveModeData], ds
 /// `butterfly(base, stride, j)` of the stage in `fft_pass`.
 #[expect(clippy::too_many_arguments, reason = "the WGSL's bindings become parameters")]
 #[inline]
-pub fn butterfly(
+pub fn butterfly<R: Real>(
     base: u32,
     stride: u32,
     j: u32,
     params: &WavesUniforms,
     fft_pass: &FftPassUniforms,
     twiddles: &[Vec2],
-    src: &[Vec2],
-    dst: &mut [Vec2],
+    src: &[Cx<R>],
+    dst: &mut [Cx<R>],
 ) {
     let half = params.size / 2;
     let s = 1u32 << fft_pass.stage;
     let q = j & (s - 1);
     let a = src[(base + j * stride) as usize];
     let b = src[(base + (j + half) * stride) as usize];
-    let w = twiddles[(j - q) as usize];
+    let w = twiddles[(j - q) as usize].map(R::lit);
     let d = [a[0] - b[0], a[1] - b[1]];
     let out = 2 * j - q;
     dst[(base + out * stride) as usize] = [a[0] + b[0], a[1] + b[1]];
@@ -139,13 +164,13 @@ pub fn butterfly(
 }
 
 /// `fft_rows(id)`: id.x butterfly, id.y row, id.z array.
-pub fn fft_rows(
+pub fn fft_rows<R: Real>(
     id: [u32; 3],
     params: &WavesUniforms,
     fft_pass: &FftPassUniforms,
     twiddles: &[Vec2],
-    src: &[Vec2],
-    dst: &mut [Vec2],
+    src: &[Cx<R>],
+    dst: &mut [Cx<R>],
 ) {
     let n = params.size;
     if id[0] >= n / 2 || id[1] >= n || id[2] >= ARRAYS {
@@ -155,13 +180,13 @@ pub fn fft_rows(
 }
 
 /// `fft_columns(id)`: id.x butterfly, id.y column, id.z array.
-pub fn fft_columns(
+pub fn fft_columns<R: Real>(
     id: [u32; 3],
     params: &WavesUniforms,
     fft_pass: &FftPassUniforms,
     twiddles: &[Vec2],
-    src: &[Vec2],
-    dst: &mut [Vec2],
+    src: &[Cx<R>],
+    dst: &mut [Cx<R>],
 ) {
     let n = params.size;
     if id[0] >= n / 2 || id[1] >= n || id[2] >= ARRAYS {
@@ -234,11 +259,12 @@ pub fn fft_columns_shared(
 
 /// The three texels `pack(id)` stores: (displacement, displacement_slopes, bump), or `None`
 /// outside the map.
-pub fn pack(id: [u32; 3], params: &WavesUniforms, src: &[Vec2]) -> Option<[[f32; 4]; 3]> {
+pub fn pack<R: Real>(id: [u32; 3], params: &WavesUniforms, src: &[Cx<R>]) -> Option<[[R; 4]; 3]> {
     let n = params.size;
     if id[0] >= n || id[1] >= n {
         return None;
     }
+    let l = R::lit;
     let bin = (id[1] * n + id[0]) as usize;
     let plane = (n * n) as usize;
     let height_disp_x = src[bin];
@@ -246,14 +272,14 @@ pub fn pack(id: [u32; 3], params: &WavesUniforms, src: &[Vec2]) -> Option<[[f32;
     let slopes = src[2 * plane + bin];
     let disp_x_dx_disp_z_dz = src[3 * plane + bin];
     let height = height_disp_x[0];
-    let disp_x = if params.lambda == 0.0 { 0.0 } else { height_disp_x[1] };
+    let disp_x = if params.lambda == 0.0 { l(0.0) } else { height_disp_x[1] };
     let disp_z = disp_z_disp_x_dz[0];
     let disp_x_dz = disp_z_disp_x_dz[1];
-    let jacobian =
-        (1.0 + disp_x_dx_disp_z_dz[0]) * (1.0 + disp_x_dx_disp_z_dz[1]) - disp_x_dz * disp_x_dz;
+    let jacobian = (l(1.0) + disp_x_dx_disp_z_dz[0]) * (l(1.0) + disp_x_dx_disp_z_dz[1])
+        - disp_x_dz * disp_x_dz;
     Some([
         [disp_x, height, disp_z, jacobian],
-        [slopes[0], slopes[1], 0.0, 0.0],
+        [slopes[0], slopes[1], l(0.0), l(0.0)],
         [slopes[0], slopes[1], height, jacobian],
     ])
 }
@@ -352,50 +378,125 @@ impl WavesMirror {
         on_dispatch: &mut dyn FnMut(Dispatch, &[Vec2]),
     ) -> WaveTextures {
         let n = params.size;
+        let [displacement, displacement_slopes, bump] =
+            self.frame(params, on_dispatch).map(|t| Texture2D::new(n, n, t));
+        WaveTextures { displacement, displacement_slopes, bump }
+    }
+
+    /// The envelope of the three textures of a frame with `params` (displacement,
+    /// displacement_slopes, bump): every value a conformant GPU may store, given the uploaded
+    /// mode and twiddle tables (exact: no arithmetic made them on the GPU).
+    pub fn envelope(&self, params: &WavesUniforms) -> [Vec<[Iv; 4]>; 3] {
+        self.frame(params, &mut |_, _| {})
+    }
+
+    /// The three textures as one random conformant GPU (or, at `rules.scale` 2, one twice as
+    /// loose) computes them: the envelope's soundness test.
+    pub fn jitter(&self, params: &WavesUniforms, rules: JitterRules) -> WaveTextures {
+        Jitter::reseed(rules, 0);
+        let n = params.size;
+        let [displacement, displacement_slopes, bump] = self
+            .frame::<Jitter>(params, &mut |_, _| {})
+            .map(|t| Texture2D::new(n, n, t.into_iter().map(|v| v.map(|c| c.0)).collect()));
+        WaveTextures { displacement, displacement_slopes, bump }
+    }
+
+    /// FFT dispatch `p` of a frame (`fft_rows` or `fft_columns`, one stage) from `src` into
+    /// `dst`, over any [`Real`].
+    fn fft_dispatch<R: Real>(
+        &self,
+        params: &WavesUniforms,
+        p: usize,
+        src: &[Cx<R>],
+        dst: &mut [Cx<R>],
+    ) -> Dispatch {
+        let n = params.size;
+        let fft_pass = &self.passes[p];
+        let rows = (p as u32) < params.log2_size;
+        for z in 0..ARRAYS {
+            for y in 0..n {
+                for x in 0..n / 2 {
+                    let id = [x, y, z];
+                    if rows {
+                        fft_rows(id, params, fft_pass, &self.twiddles, src, dst);
+                    } else {
+                        fft_columns(id, params, fft_pass, &self.twiddles, src, dst);
+                    }
+                }
+            }
+        }
+        if rows { Dispatch::FftRows(fft_pass.stage) } else { Dispatch::FftColumns(fft_pass.stage) }
+    }
+
+    /// The FFT dispatches of a frame: 2·log2(N), rows then columns.
+    pub fn fft_dispatches(&self) -> usize {
+        self.passes.len()
+    }
+
+    /// The envelope of FFT dispatch `p` given its input `src` (what a GPU read): one stage's
+    /// butterflies, so a few ULP wide — the check that each dispatch's rules are not vacuous,
+    /// where the whole frame's envelope is their composition.
+    pub fn fft_dispatch_envelope(
+        &self,
+        params: &WavesUniforms,
+        p: usize,
+        src: &[Vec2],
+    ) -> Vec<Cx<Iv>> {
+        let src: Vec<Cx<Iv>> = src.iter().map(|v| v.map(Iv::point)).collect();
+        let mut dst = vec![[Iv::point(0.0); 2]; src.len()];
+        self.fft_dispatch(params, p, &src, &mut dst);
+        dst
+    }
+
+    /// FFT dispatch `p` from `src` as one random conformant GPU computes it (`rules.scale`
+    /// times the rules).
+    pub fn fft_dispatch_jitter(
+        &self,
+        params: &WavesUniforms,
+        p: usize,
+        src: &[Vec2],
+        rules: JitterRules,
+    ) -> Vec<Vec2> {
+        Jitter::reseed(rules, p as u64);
+        let src: Vec<Cx<Jitter>> = src.iter().map(|v| v.map(Jitter)).collect();
+        let mut dst = vec![[Jitter(0.0); 2]; src.len()];
+        self.fft_dispatch(params, p, &src, &mut dst);
+        dst.into_iter().map(|v| v.map(|c| c.0)).collect()
+    }
+
+    /// A frame's dispatches over any [`Real`]: the three textures' texels.
+    fn frame<R: Real>(
+        &self,
+        params: &WavesUniforms,
+        on_dispatch: &mut dyn FnMut(Dispatch, &[Cx<R>]),
+    ) -> [Vec<[R; 4]>; 3] {
+        let n = params.size;
         assert_eq!(n, self.resolution, "uniforms of another resolution");
         let len = (ARRAYS * n * n) as usize;
-        let mut ping = vec![[0.0f32; 2]; len];
-        let mut pong = vec![[0.0f32; 2]; len];
+        let zero = [R::lit(0.0); 2];
+        let mut ping = vec![zero; len];
+        let mut pong = vec![zero; len];
         for j in 0..n {
             for i in 0..n {
                 spectrum([i, j, 0], params, &self.modes, &mut ping);
             }
         }
         on_dispatch(Dispatch::Spectrum, &ping);
-        let stages = params.log2_size;
-        for (p, fft_pass) in self.passes.iter().enumerate() {
-            let rows = (p as u32) < stages;
-            for z in 0..ARRAYS {
-                for y in 0..n {
-                    for x in 0..n / 2 {
-                        let id = [x, y, z];
-                        if rows {
-                            fft_rows(id, params, fft_pass, &self.twiddles, &ping, &mut pong);
-                        } else {
-                            fft_columns(id, params, fft_pass, &self.twiddles, &ping, &mut pong);
-                        }
-                    }
-                }
-            }
+        for p in 0..self.passes.len() {
+            let which = self.fft_dispatch(params, p, &ping, &mut pong);
             std::mem::swap(&mut ping, &mut pong);
-            let which = if rows {
-                Dispatch::FftRows(fft_pass.stage)
-            } else {
-                Dispatch::FftColumns(fft_pass.stage)
-            };
             on_dispatch(which, &ping);
         }
         let mut texels = [Vec::new(), Vec::new(), Vec::new()];
         for j in 0..n {
             for i in 0..n {
-                let t = pack([i, j, 0], params, &ping).unwrap_or([[0.0; 4]; 3]);
+                let t = pack([i, j, 0], params, &ping).unwrap_or([[R::lit(0.0); 4]; 3]);
                 for (out, texel) in texels.iter_mut().zip(t) {
                     out.push(texel);
                 }
             }
         }
-        let [displacement, displacement_slopes, bump] = texels.map(|t| Texture2D::new(n, n, t));
-        WaveTextures { displacement, displacement_slopes, bump }
+        texels
     }
 }
 

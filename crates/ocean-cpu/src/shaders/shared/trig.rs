@@ -1,4 +1,7 @@
-//! Mirror of `shaders/shared/trig.wgsl`: (cos 2πp, sin 2πp) by + − × only.
+//! Mirror of `shaders/shared/trig.wgsl`: (cos 2πp, sin 2πp) by + − × only, over any
+//! [`Real`].
+
+use crate::envelope::{Real, on_floor};
 
 /// `TAU`: f32(2π).
 pub const TAU: f32 = 6.283_185_5;
@@ -26,15 +29,35 @@ pub const COS_C10: f32 = -2.755_732e-7;
 /// `[x, y]`.
 #[inline]
 pub fn cis_turns(p: f32) -> [f32; 2] {
-    let q = (p * 4.0 + 0.5).floor();
-    let x = (p - q * 0.25) * TAU;
-    let x2 = x * x;
-    let s = x + x * x2 * (SIN_C3 + x2 * (SIN_C5 + x2 * (SIN_C7 + x2 * SIN_C9)));
-    let c = 1.0 + x2 * (COS_C2 + x2 * (COS_C4 + x2 * (COS_C6 + x2 * (COS_C8 + x2 * COS_C10))));
-    match (q as i32 + 4) & 3 {
-        0 => [c, s],
-        1 => [-s, c],
-        2 => [-c, -s],
-        _ => [s, -c],
-    }
+    cis_turns_r(p)
+}
+
+/// [`cis_turns`] over any [`Real`]. The quadrant is where `floor` puts 4p + ½; where an
+/// interval straddles a quadrant's edge both quadrants are taken, and their union stays narrow
+/// because both evaluate the same angle there.
+#[inline]
+pub fn cis_turns_r<R: Real>(p: R) -> [R; 2] {
+    let l = R::lit;
+    on_floor(p * l(4.0) + l(0.5), [l(f32::NAN); 2], |q, _| {
+        let x = (p - l(q) * l(0.25)) * l(TAU);
+        let x2 = x * x;
+        let s = x + x * x2 * (l(SIN_C3) + x2 * (l(SIN_C5) + x2 * (l(SIN_C7) + x2 * l(SIN_C9))));
+        let c = l(1.0)
+            + x2 * (l(COS_C2)
+                + x2 * (l(COS_C4) + x2 * (l(COS_C6) + x2 * (l(COS_C8) + x2 * l(COS_C10)))));
+        match (q as i32 + 4) & 3 {
+            0 => [c, s],
+            1 => [-s, c],
+            2 => [-c, -s],
+            _ => [s, -c],
+        }
+    })
+}
+
+/// `cis_turns(p - floor(p + 0.5))`: the phase reduced to [−½, ½] turn first, as the WGSL
+/// writes it wherever a phase may leave that range. Over any [`Real`]: where an interval
+/// straddles a half turn, both reductions, united (the same angle, so still narrow).
+#[inline]
+pub fn cis_reduced_r<R: Real>(p: R) -> [R; 2] {
+    on_floor(p + R::lit(0.5), [R::lit(f32::NAN); 2], |k, _| cis_turns_r(p - R::lit(k)))
 }
