@@ -59,7 +59,8 @@ impl Verdict {
 
 /// The envelope's verdict on a frame as a GPU made it, each pass from the inputs the GPU
 /// itself read: `bloom`'s and `wave_mips`' chains (each level from the GPU's level before it),
-/// the uploaded `fresnel_filter` (bit for bit), the Fresnel tables, the HDR frame's sky pixels
+/// the `waves` pass's maps (from the uploaded modes), the foam field (from the GPU's
+/// displacement map), the uploaded `fresnel_filter` (bit for bit), the Fresnel tables, the HDR frame's sky pixels
 /// (where `oracle_hdr` says the sky shows) and the picture (against the `tonemap` envelope of
 /// the GPU's own HDR frame and bloom). The rest of `resources`, whose passes have no envelope
 /// yet, are listed as not judged; a frame of which nothing is judged fails.
@@ -114,6 +115,14 @@ fn judge_passes(
         }
         v.json.push(f.to_json());
         v.judged.push(id.name());
+    }
+    if let Some(f) = foam_verdict(scene, plan, gpu)? {
+        v.lines.push(format!("  [{:<14}] {}", "foam", f.line()));
+        if !f.passed() {
+            v.failures.push(f.line());
+        }
+        v.json.push(f.to_json());
+        v.judged.push(ResourceId::FoamField.name());
     }
     if plan.runs(Pass::WaveMips) {
         for (source, chain) in ResourceId::SLOPE_CHAINS {
@@ -342,6 +351,43 @@ fn waves_verdicts(
         }
     }
     Ok(out)
+}
+
+/// Pass `foam`'s field after a state's first frame (the warm-up and one step, from an empty
+/// field) against its envelope given the GPU's own displacement map (waves `fft`) or the
+/// waves' analytic Jacobian (`gerstner`). None where the frame has no field, or its J comes
+/// from a displacement map the frame does not hold.
+fn foam_verdict(
+    scene: &Scene,
+    plan: &FramePlan,
+    gpu: &GpuSide<'_>,
+) -> anyhow::Result<Option<ocean_verify::envelope::FloatVerdict>> {
+    use ocean_cpu::sampler::Texture2D;
+    let Some(((w, h), field)) = gpu.map(ResourceId::FoamField).filter(|_| plan.runs(Pass::Foam))
+    else {
+        return Ok(None);
+    };
+    let state = ocean_core::plan::FrameState::new(0.0);
+    let frame = ocean_core::plan::FrameInputs::new(scene, plan, &state)?;
+    let eye = [frame.camera.eye.x, frame.camera.eye.z];
+    let work = ocean_core::plan::FoamWork::new(scene, plan, &state, eye, frame.mesh.origin);
+    let n = work.grid.size;
+    if (w, h) != (n, n) {
+        bail!("foam_field: {w}x{h}, the plan's field {n}x{n}");
+    }
+    let reads_map =
+        work.steps.iter().any(|u| u.analytic == 0) && frame.uniforms.passes.waves != 0.0;
+    let displacement = match gpu.map(ResourceId::Displacement) {
+        Some(((dw, dh), t)) => Texture2D::new(dw, dh, t.to_vec()),
+        None if !reads_map => Texture2D::new(1, 1, vec![[0.0; 4]]),
+        None => return Ok(None),
+    };
+    let env: Vec<Option<[ocean_cpu::envelope::Iv; 1]>> =
+        ocean_cpu::shaders::foam::envelope(&work.steps, &frame.uniforms, &displacement)
+            .into_iter()
+            .map(|v| Some([v]))
+            .collect();
+    Ok(Some(ocean_verify::envelope::judge_floats("foam_field", &env, field, w)))
 }
 
 /// One of pass `wave_mips`' chains against its envelope given the GPU's own slope map and

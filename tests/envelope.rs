@@ -601,3 +601,80 @@ fn random_conformant_gpus_stay_inside_the_waves_envelope() {
     assert_eq!(stage_in, 0, "a conformant dispatch left its envelope");
     assert!(stage_loose > 0, "a GPU twice as loose as the rules never left a dispatch's envelope");
 }
+
+/// Pass `foam`'s field after a state's first frame (the warm-up and one step) for `fft` waves
+/// (`foam_storm`, J from the oracle's displacement map) and `gerstner` waves (`foam_gerstner`
+/// with foam `accumulated`, J analytic): the oracle's field and 8 random conformant GPUs'
+/// inside its envelope. The negative control is per step, each from the field the random GPU
+/// itself held (the field decays, so ninety steps' roundings average out where the envelope
+/// keeps their worst case).
+#[test]
+fn random_conformant_gpus_stay_inside_the_foam_envelope() {
+    use ocean_cpu::sampler::Texture2D;
+    use ocean_cpu::shaders::foam;
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("reference/scenes");
+    let storm = ocean_core::scene::Scene::load(&root.join("foam_storm.toml")).unwrap();
+    let mut gerstner = ocean_core::scene::Scene::load(&root.join("foam_gerstner.toml")).unwrap();
+    gerstner.techniques.foam = Some("accumulated".into());
+    let (mut runs, mut texels, mut loose) = (0, 0, 0);
+    for (name, scene) in [("foam_storm", storm), ("foam_gerstner (accumulated)", gerstner)] {
+        let plan = FramePlan::new(&scene, OutputKind::Ldr);
+        assert!(plan.runs(ocean_core::plan::Pass::Foam), "{name}: no foam pass");
+        let state = ocean_core::plan::FrameState::new(0.0);
+        let frame = ocean_core::plan::FrameInputs::new(&scene, &plan, &state).unwrap();
+        let eye = [frame.camera.eye.x, frame.camera.eye.z];
+        let work = ocean_core::plan::FoamWork::new(&scene, &plan, &state, eye, frame.mesh.origin);
+        let displacement = if work.steps[0].analytic == 0 {
+            let surface = scene.ocean.surface().unwrap();
+            ocean_cpu::shaders::waves::WavesMirror::new(&surface.displacement)
+                .unwrap()
+                .run(scene.ocean.time_s, scene.ocean.choppiness)
+                .unwrap()
+                .displacement
+        } else {
+            Texture2D::new(1, 1, vec![[0.0; 4]])
+        };
+        let u = &frame.uniforms;
+        let env = foam::envelope(&work.steps, u, &displacement);
+        let outside = |g: &[f32]| env.iter().zip(g).filter(|(e, g)| !e.contains(**g)).count();
+        let exact: Vec<f32> = foam::run_steps(&work.steps, u, &displacement);
+        assert_eq!(outside(&exact), 0, "{name}: the oracle");
+        assert!(exact.iter().filter(|&&f| f > 0.0).count() > exact.len() / 100, "{name}: no foam");
+        for seed in 0..8 {
+            let j = foam::jitter(&work.steps, u, &displacement, JitterRules { seed, scale: 1.0 });
+            assert_eq!(outside(&j), 0, "{name} seed {seed}");
+            runs += 1;
+        }
+        texels += exact.len();
+        // Step by step from the GPU's own field: a conformant step stays inside, a twice as
+        // loose one leaves.
+        let j_iv: Vec<Iv> = foam::jacobian_field(&work.steps[0], u, &displacement);
+        let j_exact: Vec<f32> = foam::jacobian_field(&work.steps[0], u, &displacement);
+        let mut field = vec![0.0f32; exact.len()];
+        for (k, step) in work.steps.iter().enumerate().take(12) {
+            let env: Vec<Iv> = foam::step_field(
+                step,
+                &j_iv,
+                &field.iter().map(|&v| Iv::point(v)).collect::<Vec<_>>(),
+            );
+            for (scale, seed) in [(1.0, k as u64), (2.0, 1000 + k as u64)] {
+                Jitter::reseed(JitterRules { seed, scale }, 0);
+                let src: Vec<Jitter> = field.iter().map(|&v| Jitter(v)).collect();
+                let jj: Vec<Jitter> = j_exact.iter().map(|&v| Jitter(v)).collect();
+                let next: Vec<f32> =
+                    foam::step_field(step, &jj, &src).into_iter().map(|v| v.0).collect();
+                let out = env.iter().zip(&next).filter(|(e, g)| !e.contains(**g)).count();
+                if scale == 1.0 {
+                    assert_eq!(out, 0, "{name} step {k}: a conformant step left its envelope");
+                    field = next;
+                } else {
+                    loose += out;
+                }
+            }
+        }
+    }
+    println!(
+        "{runs} foam fields ({texels} texels × 8 seeds) of random conformant GPUs: 0 outside; one step at a time, twice the rules: {loose} outside"
+    );
+    assert!(loose > 0, "a GPU twice as loose as the rules never left a foam step's envelope");
+}

@@ -13,7 +13,8 @@
 //! would: `ocean compare --against DIR --tolerance envelope`, which judges the picture against
 //! the `tonemap` envelope of the dump's own HDR frame, and the HDR frame's sky pixels (where the
 //! oracle draws no geometry, one pixel in from its edge) against the sky's envelope, and the
-//! wave maps that two dumps keep (`calm`, `chiu_shallow`) against the `waves` pass's envelope.
+//! wave maps that three dumps keep (`calm`, `chiu_shallow`, `foam_storm`) against the `waves`
+//! pass's envelope, and `foam_storm`'s foam field against the `foam` pass's.
 //! That verdict does not depend on the oracle's frame, only on the judged passes' shaders: it is stale (ignored) when one of them
 //! differs from the snapshot's (`envelope_shaders_fnv64`); a scene whose picture's inputs are
 //! not all in the dump (pass bloom's chains) must show its picture as not judged, and its sky
@@ -218,8 +219,9 @@ fn envelope_scene(dir: &Path, lacks_bloom: bool) -> Result<(), Failed> {
     {
         return Err(format!("{name}: the sky's pixels were not judged inside: {sky}").into());
     }
-    // The wave maps, where the dump holds them: pass `waves` from the uploaded modes alone.
-    for map in ["displacement", "bump"] {
+    // The wave maps, where the dump holds them (pass `waves`, from the uploaded modes alone),
+    // and the foam field (pass `foam`, from the dump's displacement map).
+    for map in ["displacement", "bump", "foam_field"] {
         if !dir.join(format!("{map}.exr")).is_file() {
             continue;
         }

@@ -12,8 +12,9 @@
 //!   hardware.
 //!
 //! Passes whose mirrors run over [`Real`]: `sky` (all three techniques, with the camera's
-//! view ray), `tonemap`, `bloom`, `wave_mips` and `fresnel_table` (with
-//! `shared/fresnel.wgsl`). The others have no envelope yet;
+//! view ray), `tonemap`, `bloom`, `waves` (with `shared/trig.wgsl`), `foam`'s field (with
+//! the Gerstner Jacobian), `wave_mips` and `fresnel_table` (with `shared/fresnel.wgsl`). The
+//! others have no envelope yet;
 //! `ocean compare --tolerance envelope` reports their resources as not judged.
 
 mod interval;

@@ -2,14 +2,21 @@
 
 use ocean_core::frame::FrameUniforms;
 
-use super::trig::{TAU, cis_turns};
+use super::trig::{TAU, cis_reduced_r};
+use crate::envelope::Real;
 use crate::shaders::wgsl::{Vec2, Vec4, clamp, vec2, vec4};
 
 /// `gerstner_cis(i, pos)`: wave i's (cos θ, sin θ).
 pub fn gerstner_cis(i: usize, pos: Vec2, frame: &FrameUniforms) -> [f32; 2] {
-    let a = frame.gerstner.waves[2 * i];
-    let p = (a[0] * pos.x + a[2]) + a[1] * pos.y;
-    cis_turns(p - (p + 0.5).floor())
+    gerstner_cis_r(i, [pos.x, pos.y], frame)
+}
+
+/// [`gerstner_cis`] over any [`Real`]: the phase `(a.x·x + a.z) + a.y·z` is a sum a GPU may
+/// reassociate.
+pub fn gerstner_cis_r<R: Real>(i: usize, pos: [R; 2], frame: &FrameUniforms) -> [R; 2] {
+    let a = frame.gerstner.waves[2 * i].map(R::lit);
+    let terms = [a[0] * pos[0], a[2], a[1] * pos[1]];
+    cis_reduced_r(R::sum_as_written(&terms, |t| (t[0] + t[1]) + t[2]))
 }
 
 /// `gerstner_displacement(pos)`.
@@ -53,17 +60,22 @@ pub fn gerstner_slopes(pos: Vec2, frame: &FrameUniforms) -> Vec2 {
 
 /// `gerstner_jacobian(pos)`: J = (1 + ∂Dx/∂x)(1 + ∂Dz/∂z) − (∂Dx/∂z)².
 pub fn gerstner_jacobian(pos: Vec2, frame: &FrameUniforms) -> f32 {
-    let mut dxx = 0.0;
-    let mut dzz = 0.0;
-    let mut dxz = 0.0;
+    gerstner_jacobian_r([pos.x, pos.y], frame)
+}
+
+/// [`gerstner_jacobian`] over any [`Real`] (the loop's sums in the WGSL's order: a loop over
+/// a uniform count is not a sum a compiler may reorder).
+pub fn gerstner_jacobian_r<R: Real>(pos: [R; 2], frame: &FrameUniforms) -> R {
+    let l = R::lit;
+    let (mut dxx, mut dzz, mut dxz) = (l(0.0), l(0.0), l(0.0));
     for i in 0..frame.gerstner.count as usize {
-        let sn = gerstner_cis(i, pos, frame)[1];
+        let sn = gerstner_cis_r(i, pos, frame)[1];
         let (a, b) = (frame.gerstner.waves[2 * i], frame.gerstner.waves[2 * i + 1]);
-        let kx = TAU * a[0];
-        let kz = TAU * a[1];
-        dxx -= (b[0] * kx) * sn;
-        dzz -= (b[1] * kz) * sn;
-        dxz -= (b[0] * kz) * sn;
+        let kx = l(TAU) * l(a[0]);
+        let kz = l(TAU) * l(a[1]);
+        dxx = dxx - (l(b[0]) * kx) * sn;
+        dzz = dzz - (l(b[1]) * kz) * sn;
+        dxz = dxz - (l(b[0]) * kz) * sn;
     }
-    (1.0 + dxx) * (1.0 + dzz) - dxz * dxz
+    (l(1.0) + dxx) * (l(1.0) + dzz) - dxz * dxz
 }
