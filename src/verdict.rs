@@ -60,7 +60,8 @@ impl Verdict {
 /// The envelope's verdict on a frame as a GPU made it, each pass from the inputs the GPU
 /// itself read: `bloom`'s and `wave_mips`' chains (each level from the GPU's level before it),
 /// the `waves` pass's maps (from the uploaded modes), the foam field (from the GPU's
-/// displacement map), the uploaded `fresnel_filter` (bit for bit), the Fresnel tables, the HDR frame's sky pixels
+/// displacement map), the shadow map (the rasteriser's envelope of the objects' triangles),
+/// the uploaded `fresnel_filter` (bit for bit), the Fresnel tables, the HDR frame's sky pixels
 /// (where `oracle_hdr` says the sky shows) and the picture (against the `tonemap` envelope of
 /// the GPU's own HDR frame and bloom). The rest of `resources`, whose passes have no envelope
 /// yet, are listed as not judged; a frame of which nothing is judged fails.
@@ -123,6 +124,19 @@ fn judge_passes(
         }
         v.json.push(f.to_json());
         v.judged.push(ResourceId::FoamField.name());
+    }
+    if let Some((f, ambiguous)) = shadow_verdict(scene, plan, gpu)? {
+        v.lines.push(format!(
+            "  [{:<14}] {} ({:.2} % of texels' coverage ambiguous)",
+            "shadow_map",
+            f.line(),
+            100.0 * ambiguous
+        ));
+        if !f.passed() {
+            v.failures.push(f.line());
+        }
+        v.json.push(f.to_json());
+        v.judged.push(ResourceId::ShadowMap.name());
     }
     if plan.runs(Pass::WaveMips) {
         for (source, chain) in ResourceId::SLOPE_CHAINS {
@@ -388,6 +402,37 @@ fn foam_verdict(
             .map(|v| Some([v]))
             .collect();
     Ok(Some(ocean_verify::envelope::judge_floats("foam_field", &env, field, w)))
+}
+
+/// Pass `shadow_map`'s depth map against the rasteriser's envelope of the objects' triangles
+/// (uploaded, so exact inputs) seen from the sun, and the share of texels whose coverage is
+/// ambiguous. None where the frame holds no shadow map.
+fn shadow_verdict(
+    scene: &Scene,
+    plan: &FramePlan,
+    gpu: &GpuSide<'_>,
+) -> anyhow::Result<Option<(ocean_verify::envelope::FloatVerdict, f64)>> {
+    let (Some(((w, h), texels)), Some(pass)) = (
+        gpu.map(ResourceId::ShadowMap),
+        plan.pass(Pass::ShadowMap).filter(|_| plan.runs(Pass::ShadowMap)),
+    ) else {
+        return Ok(None);
+    };
+    let frame =
+        ocean_core::plan::FrameInputs::new(scene, plan, &ocean_core::plan::FrameState::new(0.0))?;
+    let tris: Vec<[[f32; 3]; 3]> =
+        ocean_core::frame::pass_triangles(scene, &frame.poses, pass, frame.camera.eye)
+            .iter()
+            .map(|t| t.map(|v| v.position))
+            .collect();
+    let (env, ambiguous) = ocean_cpu::shaders::shadow::envelope(&tris, &frame.uniforms, [w, h]);
+    if env.len() != texels.len() {
+        bail!("shadow_map: {} texels, the map {w}x{h}", texels.len());
+    }
+    let share = ambiguous.iter().filter(|&&a| a).count() as f64 / ambiguous.len().max(1) as f64;
+    let env: Vec<Option<[ocean_cpu::envelope::Iv; 1]>> =
+        env.into_iter().map(|v| Some([v])).collect();
+    Ok(Some((ocean_verify::envelope::judge_floats("shadow_map", &env, texels, w), share)))
 }
 
 /// One of pass `wave_mips`' chains against its envelope given the GPU's own slope map and

@@ -678,3 +678,70 @@ fn random_conformant_gpus_stay_inside_the_foam_envelope() {
     );
     assert!(loose > 0, "a GPU twice as loose as the rules never left a foam step's envelope");
 }
+
+/// Pass `shadow_map` of every reference scene that draws one: the oracle's map (lavapipe's
+/// rasteriser, 8 sub-pixel bits) and 8 random conformant rasterisers' (4 sub-pixel bits, any
+/// rounding, any tie-break, the depth plane through the snapped or unsnapped vertices) inside
+/// the rasteriser's envelope; one twice as loose (snaps twice as far, twice the depth error)
+/// leaves it.
+#[test]
+fn random_conformant_rasterisers_stay_inside_the_shadow_map_envelope() {
+    use ocean_core::plan::Pass;
+    use ocean_cpu::shaders::shadow;
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("reference/scenes");
+    let mut names: Vec<PathBuf> = std::fs::read_dir(&root)
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    names.sort();
+    let (mut scenes, mut runs, mut loose, mut texels, mut ambiguous) = (0, 0, 0, 0, 0);
+    for path in names {
+        let mut scene = ocean_core::scene::Scene::load(&path).unwrap();
+        (scene.camera.width, scene.camera.height) = (64, 36);
+        let plan = FramePlan::new(&scene, OutputKind::Ldr);
+        let Some(pass) = plan.pass(Pass::ShadowMap).filter(|_| plan.runs(Pass::ShadowMap)) else {
+            continue;
+        };
+        let mut state = ocean_core::plan::FrameState::new(0.0);
+        let frame = ocean_core::plan::FrameInputs::new(&scene, &plan, &state).unwrap();
+        let tris: Vec<[[f32; 3]; 3]> =
+            ocean_core::frame::pass_triangles(&scene, &frame.poses, pass, frame.camera.eye)
+                .iter()
+                .map(|t| t.map(|v| v.position))
+                .collect();
+        let oracle = ocean_cpu::frame::render_frame(
+            &frame,
+            ocean_cpu::frame::Environment::Planned,
+            &mut state,
+            &mut |_| {},
+        )
+        .unwrap();
+        let (w, h, map) = oracle.map(ResourceId::ShadowMap).unwrap();
+        let (env, amb) = shadow::envelope(&tris, &frame.uniforms, [w, h]);
+        let outside = |g: &[f32]| env.iter().zip(g).filter(|(e, g)| !e.contains(**g)).count();
+        let exact: Vec<f32> = map.iter().map(|t| t[0]).collect();
+        assert_eq!(outside(&exact), 0, "{}: the oracle", path.display());
+        assert!(exact.iter().any(|&z| z < 1.0), "{}: nothing in the shadow map", path.display());
+        for seed in 0..8 {
+            let j =
+                shadow::jitter(&tris, &frame.uniforms, [w, h], JitterRules { seed, scale: 1.0 });
+            assert_eq!(outside(&j), 0, "{} seed {seed}", path.display());
+            runs += 1;
+        }
+        let j =
+            shadow::jitter(&tris, &frame.uniforms, [w, h], JitterRules { seed: 99, scale: 2.0 });
+        loose += outside(&j);
+        scenes += 1;
+        texels += env.len();
+        ambiguous += amb.iter().filter(|&&a| a).count();
+    }
+    println!(
+        "{runs} shadow maps ({scenes} scenes × 8 seeds) of random conformant rasterisers: 0 outside; \
+         twice the rules: {loose} outside; coverage ambiguous at {:.2} % of texels",
+        100.0 * ambiguous as f64 / texels.max(1) as f64
+    );
+    assert!(scenes >= 3, "{scenes} scenes draw a shadow map");
+    assert!(loose > 0, "a rasteriser twice as loose as the rules never left the envelope");
+}

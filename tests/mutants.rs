@@ -167,7 +167,8 @@ fn every_mutant_is_caught_with_the_exact_tolerance() {
 
 /// `ocean selftest --quick` on this adapter (lavapipe in CI): every reference scene and built-in
 /// system within the envelope, the whole bank planted, and every planted bug in a pass the
-/// envelope judges (tonemap, bloom, waves, wave_mips, fresnel_table, the three skies) caught; the summary line and the
+/// envelope judges (tonemap, bloom, waves, foam's field, the shadow map, wave_mips,
+/// fresnel_table, the three skies) caught; the summary line and the
 /// JSON agree.
 fn selftest_quick_judges_every_scene_and_catches_the_judged_passes_bugs() {
     let json = std::env::temp_dir().join(format!("ocean-selftest-{}.json", std::process::id()));
@@ -189,7 +190,7 @@ fn selftest_quick_judges_every_scene_and_catches_the_judged_passes_bugs() {
     assert_eq!(v["planted"], MUTANTS.len(), "the whole bank");
     let judged: Vec<&str> =
         v["judged"].as_array().unwrap().iter().map(|j| j.as_str().unwrap()).collect();
-    for pass_output in ["ldr", "bloom_up", "displacement", "bump"] {
+    for pass_output in ["ldr", "bloom_up", "displacement", "bump", "foam_field", "shadow_map"] {
         assert!(judged.contains(&pass_output), "{pass_output} not judged: {judged:?}");
     }
     for r in v["planted_results"].as_array().unwrap() {
@@ -202,6 +203,8 @@ fn selftest_quick_judges_every_scene_and_catches_the_judged_passes_bugs() {
             "fresnel_table.wgsl",
             "shared/fresnel.wgsl",
             "waves.wgsl",
+            "foam.wgsl",
+            "shadow.wgsl",
             "shared/preetham.wgsl",
             "sky/preetham_clouds.wgsl",
             "shared/sky_lut.wgsl",
