@@ -60,7 +60,8 @@ impl Verdict {
 /// The envelope's verdict on a frame as a GPU made it, each pass from the inputs the GPU
 /// itself read: `bloom`'s and `wave_mips`' chains (each level from the GPU's level before it),
 /// the `waves` pass's maps (from the uploaded modes), the foam field (from the GPU's
-/// displacement map), the shadow map (the rasteriser's envelope of the objects' triangles),
+/// displacement map), the shadow and reflection maps (the rasteriser's envelope of the
+/// objects' triangles),
 /// the uploaded `fresnel_filter` (bit for bit), the Fresnel tables, the HDR frame's sky pixels
 /// (where `oracle_hdr` says the sky shows) and the picture (against the `tonemap` envelope of
 /// the GPU's own HDR frame and bloom). The rest of `resources`, whose passes have no envelope
@@ -137,6 +138,19 @@ fn judge_passes(
         }
         v.json.push(f.to_json());
         v.judged.push(ResourceId::ShadowMap.name());
+    }
+    if let Some((f, ambiguous)) = reflection_verdict(scene, plan, gpu)? {
+        v.lines.push(format!(
+            "  [{:<14}] {} ({:.2} % of texels' coverage or discard ambiguous)",
+            "reflection_map",
+            f.line(),
+            100.0 * ambiguous
+        ));
+        if !f.passed() {
+            v.failures.push(f.line());
+        }
+        v.json.push(f.to_json());
+        v.judged.push(ResourceId::ReflectionMap.name());
     }
     if plan.runs(Pass::WaveMips) {
         for (source, chain) in ResourceId::SLOPE_CHAINS {
@@ -433,6 +447,44 @@ fn shadow_verdict(
     let env: Vec<Option<[ocean_cpu::envelope::Iv; 1]>> =
         env.into_iter().map(|v| Some([v])).collect();
     Ok(Some((ocean_verify::envelope::judge_floats("shadow_map", &env, texels, w), share)))
+}
+
+/// Pass `reflection_map`'s objects against the rasteriser's envelope of their mirrored
+/// triangles, each shaded from the hull of its vertices' varyings (ocean-cpu
+/// `objects::reflection_envelope`), and the share of texels whose coverage or discard is
+/// ambiguous. None where the frame holds no reflection map, or under shading `chiu` (its clip
+/// height is a texture lookup the envelope does not carry yet).
+fn reflection_verdict(
+    scene: &Scene,
+    plan: &FramePlan,
+    gpu: &GpuSide<'_>,
+) -> anyhow::Result<Option<(ocean_verify::envelope::FloatVerdict, f64)>> {
+    let id = ResourceId::ReflectionMap;
+    let (Some(((w, h), texels)), Some(pass), Some(r)) = (
+        gpu.map(id),
+        plan.pass(Pass::ReflectionMap).filter(|_| plan.runs(Pass::ReflectionMap)),
+        plan.resource(id),
+    ) else {
+        return Ok(None);
+    };
+    let frame =
+        ocean_core::plan::FrameInputs::new(scene, plan, &ocean_core::plan::FrameState::new(0.0))?;
+    let tris = ocean_core::frame::pass_triangles(scene, &frame.poses, pass, frame.camera.eye);
+    let Some((env, ambiguous)) = ocean_cpu::shaders::objects::reflection_envelope(
+        &tris,
+        &frame.uniforms,
+        [w, h],
+        r.format.storage(),
+        r.clear,
+    ) else {
+        return Ok(None);
+    };
+    if env.len() != texels.len() {
+        bail!("reflection_map: {} texels, the map {w}x{h}", texels.len());
+    }
+    let share = ambiguous.iter().filter(|&&a| a).count() as f64 / ambiguous.len().max(1) as f64;
+    let env: Vec<Option<[ocean_cpu::envelope::Iv; 4]>> = env.into_iter().map(Some).collect();
+    Ok(Some((ocean_verify::envelope::judge_floats("reflection_map", &env, texels, w), share)))
 }
 
 /// One of pass `wave_mips`' chains against its envelope given the GPU's own slope map and

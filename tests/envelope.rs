@@ -745,3 +745,107 @@ fn random_conformant_rasterisers_stay_inside_the_shadow_map_envelope() {
     assert!(scenes >= 3, "{scenes} scenes draw a shadow map");
     assert!(loose > 0, "a rasteriser twice as loose as the rules never left the envelope");
 }
+
+/// Pass `reflection_map` of every reference scene that draws one (shading other than `chiu`):
+/// the oracle's map and 8 random conformant GPUs' (the rasteriser's freedoms, and the
+/// varyings interpolated perspective-correctly with random roundings) inside the envelope;
+/// one twice as loose leaves it.
+#[test]
+fn random_conformant_gpus_stay_inside_the_reflection_map_envelope() {
+    use ocean_core::plan::Pass;
+    use ocean_cpu::shaders::objects;
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("reference/scenes");
+    let mut names: Vec<PathBuf> = std::fs::read_dir(&root)
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    names.sort();
+    let (mut scenes, mut runs, mut loose, mut texels, mut ambiguous, mut covered) =
+        (0, 0, 0, 0, 0, 0);
+    let mut rel = Vec::new();
+    for path in names {
+        let mut scene = ocean_core::scene::Scene::load(&path).unwrap();
+        (scene.camera.width, scene.camera.height) = (320, 180);
+        let plan = FramePlan::new(&scene, OutputKind::Ldr);
+        let Some(pass) = plan.pass(Pass::ReflectionMap).filter(|_| plan.runs(Pass::ReflectionMap))
+        else {
+            continue;
+        };
+        let r = plan.resource(ResourceId::ReflectionMap).unwrap().clone();
+        let mut state = ocean_core::plan::FrameState::new(0.0);
+        let frame = ocean_core::plan::FrameInputs::new(&scene, &plan, &state).unwrap();
+        let tris = ocean_core::frame::pass_triangles(&scene, &frame.poses, pass, frame.camera.eye);
+        let u = &frame.uniforms;
+        let Some((env, amb)) =
+            objects::reflection_envelope(&tris, u, r.size, r.format.storage(), r.clear)
+        else {
+            continue;
+        };
+        let oracle = ocean_cpu::frame::render_frame(
+            &frame,
+            ocean_cpu::frame::Environment::Planned,
+            &mut state,
+            &mut |_| {},
+        )
+        .unwrap();
+        let (_, _, map) = oracle.map(ResourceId::ReflectionMap).unwrap();
+        let outside = |g: &[[f32; 4]]| -> usize {
+            env.iter().zip(g).map(|(e, g)| (0..4).filter(|&c| !e[c].contains(g[c])).count()).sum()
+        };
+        assert_eq!(outside(map), 0, "{}: the oracle", path.display());
+        let drawn = map.iter().filter(|t| t[3] > 0.0).count();
+        assert!(drawn > 0, "{}: nothing in the reflection map", path.display());
+        for seed in 0..8 {
+            let rules = JitterRules { seed, scale: 1.0 };
+            let j =
+                objects::reflection_jitter(&tris, u, r.size, r.format.storage(), r.clear, rules);
+            for (i, (e, g)) in env.iter().zip(&j).enumerate() {
+                if (0..4).any(|c| !e[c].contains(g[c])) {
+                    eprintln!(
+                        "DBG {} seed {seed} texel {i} ({}, {}): {g:?} env {e:?} amb {} oracle {:?}",
+                        path.display(),
+                        i % r.size[0] as usize,
+                        i / r.size[0] as usize,
+                        amb[i],
+                        map[i]
+                    );
+                }
+            }
+            assert_eq!(outside(&j), 0, "{} seed {seed}", path.display());
+            runs += 1;
+        }
+        let rules = JitterRules { seed: 99, scale: 2.0 };
+        loose += outside(&objects::reflection_jitter(
+            &tris,
+            u,
+            r.size,
+            r.format.storage(),
+            r.clear,
+            rules,
+        ));
+        scenes += 1;
+        texels += env.len();
+        covered += drawn;
+        ambiguous += amb.iter().filter(|&&a| a).count();
+        rel.extend(
+            env.iter()
+                .zip(map)
+                .filter(|(_, m)| m[3] > 0.0)
+                .flat_map(|(e, _)| e[..3].iter().filter_map(|c| c.rel_half_width())),
+        );
+    }
+    rel.sort_by(f64::total_cmp);
+    let q =
+        |p: f64| rel.get(((rel.len().max(1) - 1) as f64 * p) as usize).copied().unwrap_or(f64::NAN);
+    println!(
+        "{runs} reflection maps ({scenes} scenes × 8 seeds) of random conformant GPUs: 0 outside; \
+         twice the rules: {loose} outside; {covered} texels drawn of {texels}, {ambiguous} ambiguous; \
+         colour rel half-width on drawn texels p50 {:.1e}, p99 {:.1e}",
+        q(0.5),
+        q(0.99)
+    );
+    assert!(scenes >= 3, "{scenes} scenes draw a reflection map the envelope judges");
+    assert!(loose > 0, "a GPU twice as loose as the rules never left the envelope");
+}

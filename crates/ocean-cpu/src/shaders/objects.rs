@@ -4,10 +4,12 @@
 use ocean_core::frame::{FrameUniforms, ObjectVertex};
 
 use super::shared::floor::{FloorMaps, sun_reaches};
-use super::shared::frame::{dot3, transform_point, unit};
+use super::shared::frame::{dot3, transform_point};
 use super::shared::optics::water_volume_colour;
 use super::water::WRAP_LINEAR;
 use super::wgsl::{Vec2, Vec3, Vec4, exp, max, sqrt, texture_sample_level, vec2, vec3};
+use crate::envelope::raster::{self, Shaded};
+use crate::envelope::{Iv, Jitter, JitterRules, Real, mat4_mul_vec4, normalize3};
 use crate::sampler::Texture2D;
 
 /// `VertexOut` of objects.wgsl (clip position and the varyings, in declaration order).
@@ -66,10 +68,19 @@ pub type MapFragmentEntry = fn(&VertexOut, &FrameUniforms, Maps<'_>) -> Option<[
 
 /// `shade(normal, color, sun)`: Lambert under the share `sun` of the sun plus the sky's ambient.
 fn shade(frame: &FrameUniforms, normal: Vec3, color: Vec3, sun: f32) -> Vec3 {
-    let n = unit(normal);
-    let cos_sun = max(dot3(n, frame.sun.direction.into()), 0.0) * (frame.sun.lit * sun);
-    let direct = Vec3::from(frame.sun.radiance) * (cos_sun * INV_PI);
-    color * (direct + Vec3::from(frame.ambient.sky))
+    let [n, c] = [normal, color].map(|v| [v.x, v.y, v.z]);
+    let [x, y, z] = shade_r(frame, n, c, sun);
+    vec3(x, y, z)
+}
+
+/// [`shade`] over any [`Real`].
+pub fn shade_r<R: Real>(frame: &FrameUniforms, normal: [R; 3], color: [R; 3], sun: R) -> [R; 3] {
+    let l = R::lit;
+    let n = normalize3(normal);
+    let cos_sun =
+        crate::envelope::dot3(n, frame.sun.direction.map(l)).max(l(0.0)) * (l(frame.sun.lit) * sun);
+    let s = cos_sun * l(INV_PI);
+    std::array::from_fn(|i| color[i] * (l(frame.sun.radiance[i]) * s + l(frame.ambient.sky[i])))
 }
 
 /// `vs_main`.
@@ -155,4 +166,127 @@ pub fn fs_refract(input: &VertexOut, frame: &FrameUniforms, maps: Maps<'_>) -> O
     let obj = shade(frame, input.normal, input.color, sun)
         * exp(-frame.water.extinction_per_m * max(-input.world_y, 0.0));
     Some((water_volume_colour(-input.world_y, frame) * fog + obj * (1.0 - fog)).extend(1.0).into())
+}
+
+/// What [`vs_reflect_r`] outputs: (clip position, normal, colour, world_y).
+pub type ReflectedVertex<R> = ([R; 4], [R; 3], [R; 3], R);
+
+/// [`vs_reflect`] over any [`Real`] (`rel` is only read by `clip_height` under shading
+/// `chiu`, which the envelope does not carry yet).
+pub fn vs_reflect_r<R: Real>(v: &ObjectVertex, frame: &FrameUniforms) -> ReflectedVertex<R> {
+    let l = R::lit;
+    let [x, y, z] = v.position.map(l);
+    let eye = l(frame.view.eye_height);
+    let mirrored = [x, -y - l(2.0) * eye, z];
+    let clip =
+        mat4_mul_vec4(&frame.view.view_proj, [mirrored[0], mirrored[1], mirrored[2], l(1.0)]);
+    let normal = [l(v.normal[0]), -l(v.normal[1]), l(v.normal[2])];
+    (clip, normal, v.color.map(l), y + eye)
+}
+
+/// The envelope of the reflection map a conformant GPU draws of `triangles` into a `size`
+/// map of `format`, cleared to `clear` (`vs_reflect`, `fs_reflect`, reversed-Z `Greater`):
+/// per texel its colour interval and whether its coverage is ambiguous. Each triangle's
+/// fragments are shaded from the varyings' envelope at each sample (the barycentrics' bounds). `None` under shading `chiu`,
+/// whose clip height is a texture lookup the envelope does not carry yet.
+pub fn reflection_envelope(
+    triangles: &[[ObjectVertex; 3]],
+    frame: &FrameUniforms,
+    size: [u32; 2],
+    format: ocean_core::frame_format::FrameFormat,
+    clear: [f32; 4],
+) -> Option<(Vec<[Iv; 4]>, Vec<bool>)> {
+    if frame.chiu.clip_waves != 0.0 {
+        return None;
+    }
+    let mut screen = Vec::with_capacity(triangles.len());
+    let mut owner = Vec::with_capacity(triangles.len());
+    let mut verts = Vec::with_capacity(triangles.len());
+    let full = || {
+        let n = (size[0] as usize) * (size[1] as usize);
+        (vec![[Iv::FULL; 4]; n], vec![true; n])
+    };
+    for t in triangles {
+        let v = t.each_ref().map(|v| vs_reflect_r::<Iv>(v, frame));
+        // Past the near or far plane: the clipper's polygon, each part with its vertices'
+        // barycentrics in the original. One it cannot bound: anything.
+        let Some(parts) = raster::clip_near_far(v.map(|(clip, ..)| clip)) else {
+            return Some(full());
+        };
+        for part in parts {
+            let s = part.map(|p| raster::to_screen(p.clip, size[0], size[1]));
+            let [Some(a), Some(b), Some(c)] = s else { return Some(full()) };
+            screen.push([a, b, c]);
+            owner.push((verts.len(), part.map(|p| (p.bary, p.bary_err))));
+        }
+        verts.push(v);
+    }
+    let shade = |k: usize, interp: &raster::Interp| {
+        let (t, bary) = owner[k];
+        let v = &verts[t];
+        // A part's vertices hold convex combinations of the original triangle's values.
+        let at = |f: &dyn Fn(usize) -> Iv| -> [Iv; 3] {
+            bary.map(|(b, err)| {
+                if err == 0.0 && b.iter().filter(|&&x| x != 0.0).count() == 1 {
+                    return f(b.iter().position(|&x| x != 0.0).unwrap_or(0));
+                }
+                let vals = [f(0), f(1), f(2)];
+                let x = Iv::sum(&[0, 1, 2].map(|j| vals[j] * Iv::new(b[j], b[j])));
+                let spread = vals.iter().map(|v| v.magnitude()).fold(0.0, f64::max);
+                let u = raster::VARYING_ULPS * crate::envelope::f32_ulp(x.magnitude())
+                    + 2.0 * err * spread;
+                if x.full { x } else { Iv::new(x.lo - u, x.hi + u) }
+            })
+        };
+        let mix = |f: &dyn Fn(usize) -> Iv| interp.varying(at(f));
+        let normal: [Iv; 3] = std::array::from_fn(|c| mix(&|j| v[j].1[c]));
+        let color: [Iv; 3] = std::array::from_fn(|c| mix(&|j| v[j].2[c]));
+        let world_y = mix(&|j| v[j].3);
+        // fs_reflect: discard below the plane (clip height 0); the mirrored normal lit.
+        let kept = if world_y.full {
+            None
+        } else if world_y.lo >= 0.0 {
+            Some(true)
+        } else if world_y.hi < 0.0 {
+            Some(false)
+        } else {
+            None
+        };
+        let n = [normal[0], -normal[1], normal[2]];
+        let [r, g, b] = shade_r(frame, n, color, Iv::lit(1.0));
+        Shaded { color: [r, g, b, Iv::lit(1.0)].map(|c| c.store(format)), kept }
+    };
+    Some(raster::color_pass_greater(&screen, size[0], size[1], clear, shade))
+}
+
+/// The reflection map as one random conformant GPU draws it (`rules.scale` times the rules),
+/// under the same conditions as [`reflection_envelope`].
+pub fn reflection_jitter(
+    triangles: &[[ObjectVertex; 3]],
+    frame: &FrameUniforms,
+    size: [u32; 2],
+    format: ocean_core::frame_format::FrameFormat,
+    clear: [f32; 4],
+    rules: JitterRules,
+) -> Vec<[f32; 4]> {
+    let verts: Vec<[ReflectedVertex<f32>; 3]> =
+        triangles.iter().map(|t| t.each_ref().map(|v| vs_reflect_r::<f32>(v, frame))).collect();
+    let clip: Vec<[[f32; 4]; 3]> = verts.iter().map(|t| t.map(|v| v.0)).collect();
+    raster::jitter_pass(&clip, size[0], size[1], true, clear, rules, |k, w, _| {
+        let t = &verts[k];
+        let mix = |f: &dyn Fn(usize) -> f32| -> Jitter {
+            Jitter(
+                (w[0] * f64::from(f(0)) + w[1] * f64::from(f(1)) + w[2] * f64::from(f(2))) as f32,
+            )
+        };
+        let world_y = mix(&|j| t[j].3);
+        if world_y.0 < 0.0 {
+            return None;
+        }
+        let normal: [Jitter; 3] = std::array::from_fn(|c| mix(&|j| t[j].1[c]));
+        let color: [Jitter; 3] = std::array::from_fn(|c| mix(&|j| t[j].2[c]));
+        let n = [normal[0], -normal[1], normal[2]];
+        let [r, g, b] = shade_r(frame, n, color, Jitter::lit(1.0));
+        Some([r, g, b, Jitter::lit(1.0)].map(|c| c.store(format).0))
+    })
 }

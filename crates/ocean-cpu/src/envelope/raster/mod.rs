@@ -1,0 +1,649 @@
+//! The rasteriser's envelope: which pixels a conformant GPU may cover with a triangle, and
+//! the depth it may give the sample there (docs/tolerances.md, "Rasterisation").
+//!
+//! What Vulkan leaves to the implementation, and how it is carried:
+//! - **Snapping.** Framebuffer coordinates are snapped to a grid of at least
+//!   [`MIN_SUBPIXEL_BITS`] sub-pixel bits, rounding either way: each vertex's x and y lie
+//!   within [`SNAP_PX`] of the viewport transform's result (itself an [`Iv`]).
+//! - **Coverage.** A sample is covered when it is inside all three edges; on an edge, the
+//!   tie-break rule decides. A sample is *certainly* covered when every edge function is
+//!   positive for every vertex position in the boxes, *possibly* when none is certainly
+//!   negative. A triangle whose area may be 0 is never certain.
+//! - **Depth.** z = Σ λₖ zₖ with the barycentrics λₖ = Eₖ / Σ E of the sample (from the
+//!   snapped or the unsnapped positions: the boxes hold both), within the hull of the
+//!   vertices' z; its evaluation in f32 (a plane equation anchored anywhere in the target) is
+//!   allowed [`DEPTH_ULPS`] ULP of the plane's largest term. Vulkan leaves the interpolation's
+//!   precision to the implementation: this is the one figure here that is an assumption, not
+//!   a rule (lavapipe's plane equation is three roundings).
+//! - **Clipping.** A fragment whose z may leave [0, 1] may be clipped: it is possible, never
+//!   certain.
+//!
+//! A depth-only pass with the `Less` test then leaves at each pixel the smallest z of the
+//! fragments that reached it, or the clear value: the pixel's value lies in
+//! [min(clear, lo of every possible fragment), min(clear, hi of every certain fragment)].
+
+mod jitter;
+
+pub use jitter::{jitter_depth_pass, jitter_pass};
+
+use super::{Iv, Real};
+
+/// Vulkan's minimum `subPixelPrecisionBits`.
+pub const MIN_SUBPIXEL_BITS: u32 = 4;
+
+/// How far a snapped coordinate may lie from the unsnapped one, px: one sub-pixel step at the
+/// minimum precision (the rounding direction is the implementation's).
+pub const SNAP_PX: f64 = 1.0 / (1u32 << MIN_SUBPIXEL_BITS) as f64;
+
+/// The f32 evaluation of the depth plane: ULP of its largest term.
+pub const DEPTH_ULPS: f64 = 4.0;
+
+/// A vertex after the viewport transform, as intervals: framebuffer x, y (px, y down) and z.
+#[derive(Clone, Copy, Debug)]
+pub struct ScreenIv {
+    /// Framebuffer x, px.
+    pub x: Iv,
+    /// Framebuffer y, px (down).
+    pub y: Iv,
+    /// Depth z/w.
+    pub z: Iv,
+    /// 1/w: the weight of the vertex's varyings in perspective-correct interpolation.
+    pub inv_w: Iv,
+}
+
+/// The perspective divide and wgpu's viewport transform (origin (0, H), extent (W, −H),
+/// depth [0, 1]) of a clip position over [`Iv`]: `None` where w may be ≤ 0 (the clipper's
+/// work, not carried here).
+pub fn to_screen(clip: [Iv; 4], width: u32, height: u32) -> Option<ScreenIv> {
+    if clip[3].lo <= 0.0 || clip[3].full {
+        return None;
+    }
+    let [x, y, z] = to_screen_r(clip, width, height);
+    Some(ScreenIv { x, y, z, inv_w: Iv::lit(1.0) / clip[3] })
+}
+
+/// [`to_screen`] over any [`Real`]: (x, y, z) in the framebuffer, unsnapped.
+pub fn to_screen_r<R: Real>(clip: [R; 4], width: u32, height: u32) -> [R; 3] {
+    let l = R::lit;
+    let (half_w, half_h) = (l(width as f32 * 0.5), l(height as f32 * 0.5));
+    let inv_w = l(1.0) / clip[3];
+    [(clip[0] * inv_w) * half_w + half_w, (clip[1] * inv_w) * -half_h + half_h, clip[2] * inv_w]
+}
+
+/// The clipper's own arithmetic (the implementation's), relative to a new vertex's
+/// magnitude: an assumption, generous against f32's few roundings.
+pub const CLIP_SLACK: f64 = 1.0 / (1u64 << 20) as f64;
+
+/// A vertex of a clipped triangle: its clip position, its barycentric coordinates in the
+/// original triangle (its varyings are the combination they name), and how far each of those
+/// may be off (the clipper's own crossing point).
+#[derive(Clone, Copy, Debug)]
+pub struct ClipVertex {
+    /// Clip position.
+    pub clip: [Iv; 4],
+    /// Barycentric coordinates in the original triangle.
+    pub bary: [f64; 3],
+    /// The largest error of `bary`'s components.
+    pub bary_err: f64,
+}
+
+/// The distances to the planes a triangle is clipped against for the envelope: near
+/// (z ≤ w) and far (z ≥ 0). The side planes need no clipping: a vertex beyond them still
+/// projects, with w > 0, and the target's bounds cut its coverage.
+pub(crate) fn plane_distances(v: &[f64; 4]) -> [f64; 2] {
+    [v[3] - v[2], v[2]]
+}
+
+/// A triangle of clip positions (intervals) as the rasteriser draws it after the near and
+/// far planes: itself where every vertex is inside both, else the fan of the polygon the
+/// clipper leaves, each new vertex on an edge from the midpoints, widened by the endpoints'
+/// half-widths, by how far their boxes may move the crossing, and by [`CLIP_SLACK`]. Also the
+/// barycentric coordinates of each vertex in the original triangle (the varyings of a new
+/// vertex are the convex combination they name). `None` where a vertex's side of a plane is
+/// undecided by its box or a vertex kept may have w ≤ 0 (the caller then cannot bound it).
+pub fn clip_near_far(tri: [[Iv; 4]; 3]) -> Option<Vec<[ClipVertex; 3]>> {
+    let mid = |v: &[Iv; 4]| v.map(|c| 0.5 * (c.lo + c.hi));
+    let half = |v: &[Iv; 4]| v.map(|c| 0.5 * (c.hi - c.lo));
+    let inside_sure = |v: &[Iv; 4]| {
+        let (lo, hi) = (v.map(|c| c.lo), v.map(|c| c.hi));
+        v[3].lo > 0.0 && lo[3] - hi[2] > 0.0 && lo[2] >= 0.0
+    };
+    let corner = |k: usize| {
+        let mut b = [0.0; 3];
+        b[k] = 1.0;
+        ClipVertex { clip: tri[k], bary: b, bary_err: 0.0 }
+    };
+    if tri.iter().all(inside_sure) {
+        return Some(vec![[corner(0), corner(1), corner(2)]]);
+    }
+    let mut poly: Vec<ClipVertex> = (0..3).map(corner).collect();
+    for p in 0..2 {
+        let mut out = Vec::new();
+        for i in 0..poly.len() {
+            let (a, b) = (&poly[i], &poly[(i + 1) % poly.len()]);
+            let (da, db) = (plane_distances(&mid(&a.clip))[p], plane_distances(&mid(&b.clip))[p]);
+            // A vertex whose box straddles the plane: the clipper's decision is undecided.
+            let spread = |v: &[Iv; 4]| half(v)[3] + half(v)[2];
+            if da.abs() <= spread(&a.clip) {
+                return None;
+            }
+            if da >= 0.0 {
+                out.push(*a);
+            }
+            if (da >= 0.0) != (db >= 0.0) {
+                let t = da / (da - db);
+                let dt = 2.0 * (spread(&a.clip) + spread(&b.clip)) / (da - db).abs() + CLIP_SLACK;
+                let (ma, mb, ha, hb) = (mid(&a.clip), mid(&b.clip), half(&a.clip), half(&b.clip));
+                let clip: [Iv; 4] = std::array::from_fn(|c| {
+                    let m = ma[c] + t * (mb[c] - ma[c]);
+                    let h = ha[c].max(hb[c])
+                        + (mb[c] - ma[c]).abs() * dt
+                        + (m.abs() + ma[c].abs().max(mb[c].abs())) * CLIP_SLACK;
+                    Iv::new(m - h, m + h)
+                });
+                let bary: [f64; 3] =
+                    std::array::from_fn(|k| a.bary[k] + t * (b.bary[k] - a.bary[k]));
+                // The clipper's own t may differ by dt: so may the weights.
+                let bary_err = a.bary_err.max(b.bary_err) + dt;
+                out.push(ClipVertex { clip, bary, bary_err });
+            }
+        }
+        poly = out;
+        if poly.len() < 3 {
+            return Some(Vec::new());
+        }
+    }
+    if poly.iter().any(|v| v.clip[3].lo <= 0.0) {
+        return None;
+    }
+    Some((1..poly.len() - 1).map(|i| [poly[0], poly[i], poly[i + 1]]).collect())
+}
+
+/// [lo, hi] in exact f64 arithmetic (the rasteriser's fixed point has no rounding to carry).
+#[derive(Clone, Copy, Debug)]
+struct Span(f64, f64);
+
+impl Span {
+    fn sub(self, o: Span) -> Span {
+        Span(self.0 - o.1, self.1 - o.0)
+    }
+    fn mul(self, o: Span) -> Span {
+        let c = [self.0 * o.0, self.0 * o.1, self.1 * o.0, self.1 * o.1];
+        Span(
+            c.iter().copied().fold(f64::INFINITY, f64::min),
+            c.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        )
+    }
+    fn widen(self, d: f64) -> Span {
+        Span(self.0 - d, self.1 + d)
+    }
+    fn of(v: Iv) -> Span {
+        Span(v.lo, v.hi)
+    }
+}
+
+/// A triangle set up for the envelope: its snapped vertex boxes and depth intervals.
+#[derive(Clone, Debug)]
+struct Setup {
+    x: [Span; 3],
+    y: [Span; 3],
+    z: [Iv; 3],
+    /// Twice the signed area: its sign decides the orientation where it is certain.
+    area: Span,
+    /// The pixel box the triangle may touch (inclusive).
+    bbox: [u32; 4],
+    /// The largest term of the depth plane anchored anywhere in the target:
+    /// max |z| + |∂z/∂x|·W + |∂z/∂y|·H (from the vertices' midpoints).
+    plane_magnitude: f64,
+    /// The depth plane of the vertices' midpoints and how far any plane through points of
+    /// the boxes may stray from it (`None`: too close to degenerate to bound; the hull).
+    plane: Option<Plane>,
+    /// The screen-space barycentrics as planes (1 at one vertex, 0 at the others).
+    bary: [Option<Plane>; 3],
+    /// The vertices' 1/w.
+    inv_w: [Iv; 3],
+    /// How far below 0 a covered sample's barycentrics may reach ([`extrapolation`]).
+    extrapolation: f64,
+}
+
+/// z(p) = z0 + g·(p − v0) through the midpoints, and the bound |Δz| ≤ k1·|p − v0| + k0 on
+/// any plane through points of the vertices' boxes (each coordinate within `h` of its
+/// midpoint, each z within `wz`): with M the 2×2 matrix of edge vectors, ΔM's entries within
+/// 2h (‖ΔM‖ ≤ 4h), r = ‖M⁻¹‖·‖ΔM‖ < ½, the perturbed gradient g' satisfies
+/// ‖g' − g‖ ≤ r‖g‖/(1 − r), so z'(p) − z(p) = (g' − g)·(p − v0) − g'·Δv0 + (the z's share,
+/// a convex combination of their errors: ≤ wz).
+#[derive(Clone, Copy, Debug)]
+struct Plane {
+    v0: [f64; 2],
+    z0: f64,
+    g: [f64; 2],
+    k1: f64,
+    k0: f64,
+}
+
+fn setup(v: &[ScreenIv; 3], width: u32, height: u32) -> Option<Setup> {
+    if v.iter().any(|v| v.x.full || v.y.full || v.z.full) {
+        return None;
+    }
+    let x = v.map(|v| Span::of(v.x).widen(SNAP_PX));
+    let y = v.map(|v| Span::of(v.y).widen(SNAP_PX));
+    let area = edge(x[0], y[0], x[1], y[1], x[2], y[2]);
+    let lo_x = x.iter().map(|s| s.0).fold(f64::INFINITY, f64::min);
+    let hi_x = x.iter().map(|s| s.1).fold(f64::NEG_INFINITY, f64::max);
+    let lo_y = y.iter().map(|s| s.0).fold(f64::INFINITY, f64::min);
+    let hi_y = y.iter().map(|s| s.1).fold(f64::NEG_INFINITY, f64::max);
+    // Pixel i's sample is at i + ½: the pixels whose centre may fall in [lo, hi].
+    let first = |lo: f64| (lo - 0.5).ceil().max(0.0);
+    let last = |hi: f64, n: u32| (hi - 0.5).floor().min(f64::from(n) - 1.0);
+    let (x0, x1, y0, y1) = (first(lo_x), last(hi_x, width), first(lo_y), last(hi_y, height));
+    if x0 > x1 || y0 > y1 {
+        return None;
+    }
+    let mid = |s: Span| 0.5 * (s.0 + s.1);
+    let (mx, my, mz) = (x.map(mid), y.map(mid), v.map(|v| 0.5 * (v.z.lo + v.z.hi)));
+    let a = (mx[1] - mx[0]) * (my[2] - my[0]) - (mx[2] - mx[0]) * (my[1] - my[0]);
+    let dzdx = ((mz[1] - mz[0]) * (my[2] - my[0]) - (mz[2] - mz[0]) * (my[1] - my[0])) / a;
+    let dzdy = ((mz[2] - mz[0]) * (mx[1] - mx[0]) - (mz[1] - mz[0]) * (mx[2] - mx[0])) / a;
+    let wz = v.iter().map(|v| 0.5 * (v.z.hi - v.z.lo)).fold(0.0, f64::max);
+    let z_max = v.iter().map(|v| v.z.magnitude()).fold(0.0, f64::max);
+    let h = x.iter().chain(&y).map(|s| 0.5 * (s.1 - s.0)).fold(0.0, f64::max);
+    let m_f = ((mx[1] - mx[0]).powi(2)
+        + (my[1] - my[0]).powi(2)
+        + (mx[2] - mx[0]).powi(2)
+        + (my[2] - my[0]).powi(2))
+    .sqrt();
+    // ‖M⁻¹‖ ≤ ‖M⁻¹‖_F = ‖M‖_F / |det M| for a 2×2 matrix; a little slack for f64's roundings.
+    let r = m_f / a.abs() * 4.0 * h * (1.0 + 1e-9);
+    let g_norm = dzdx.hypot(dzdy);
+    // Any plane through the boxes has |∂z/∂x| ≤ (|dzdx| + r‖g‖)/(1 − r) + (its z's share).
+    let plane_magnitude = if r < 0.5 {
+        z_max
+            + (dzdx.abs() + r * g_norm) / (1.0 - r) * f64::from(width)
+            + (dzdy.abs() + r * g_norm) / (1.0 - r) * f64::from(height)
+            + wz * 4.0 * m_f / a.abs() * f64::from(width.max(height))
+    } else {
+        f64::INFINITY
+    };
+    let plane_of = |vals: [f64; 3], w: f64| -> Option<Plane> {
+        let gx =
+            ((vals[1] - vals[0]) * (my[2] - my[0]) - (vals[2] - vals[0]) * (my[1] - my[0])) / a;
+        let gy =
+            ((vals[2] - vals[0]) * (mx[1] - mx[0]) - (vals[1] - vals[0]) * (mx[2] - mx[0])) / a;
+        let g_norm = gx.hypot(gy);
+        (r < 0.5 && a.is_finite() && g_norm.is_finite()).then(|| Plane {
+            v0: [mx[0], my[0]],
+            z0: vals[0],
+            g: [gx, gy],
+            k1: r * g_norm / (1.0 - r),
+            k0: g_norm / (1.0 - r) * h * std::f64::consts::SQRT_2 + w,
+        })
+    };
+    let plane = plane_of(mz, wz);
+    let bary = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]].map(|b| plane_of(b, 0.0));
+    Some(Setup {
+        x,
+        y,
+        z: v.map(|v| v.z),
+        area,
+        bbox: [x0 as u32, y0 as u32, x1 as u32, y1 as u32],
+        plane_magnitude: if plane_magnitude.is_finite() { plane_magnitude } else { f64::MAX },
+        plane,
+        bary,
+        inv_w: v.map(|v| v.inv_w),
+        extrapolation: extrapolation(v),
+    })
+}
+
+/// (b − a) × (p − a): positive with p to the right of a → b in a y-down frame for a
+/// clockwise-on-screen triangle; the sign convention only has to agree with `area`'s.
+fn edge(ax: Span, ay: Span, bx: Span, by: Span, px: Span, py: Span) -> Span {
+    // (b − a) × (p − a) = (b − a) × (p − b) exactly; over boxes each form is loosest far from
+    // its base vertex, so the two are intersected.
+    let from_a = bx.sub(ax).mul(py.sub(ay)).sub(by.sub(ay).mul(px.sub(ax)));
+    let from_b = bx.sub(ax).mul(py.sub(by)).sub(by.sub(ay).mul(px.sub(bx)));
+    Span(from_a.0.max(from_b.0), from_a.1.min(from_b.1))
+}
+
+/// What a triangle may do at one sample.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Cover {
+    /// Not covered by any conformant rasteriser.
+    No,
+    /// Covered by some, with the depth interval.
+    Possible(Iv),
+    /// Covered by every one, with the depth interval.
+    Certain(Iv),
+}
+
+fn cover(t: &Setup, px: f64, py: f64) -> Cover {
+    let (p, q) = (Span(px, px), Span(py, py));
+    let e = [
+        edge(t.x[1], t.y[1], t.x[2], t.y[2], p, q),
+        edge(t.x[2], t.y[2], t.x[0], t.y[0], p, q),
+        edge(t.x[0], t.y[0], t.x[1], t.y[1], p, q),
+    ];
+    // Inside for one orientation: all edge functions of that sign (0 on an edge: the
+    // tie-break's, so possible).
+    let may = |s: f64| e.iter().all(|e| (s * e.0).max(s * e.1) >= 0.0);
+    let sure = |s: f64| e.iter().all(|e| (s * e.0).min(s * e.1) > 0.0);
+    let area_sure = |s: f64| (s * t.area.0).min(s * t.area.1) > 0.0;
+    let possible = may(1.0) || may(-1.0);
+    if !possible {
+        return Cover::No;
+    }
+    let z = depth(t, px, py);
+    let z_inside = z.lo >= 0.0 && z.hi <= 1.0;
+    let z_may = z.hi >= 0.0 && z.lo <= 1.0;
+    if !z_may {
+        return Cover::No;
+    }
+    let certain = [1.0, -1.0].iter().any(|&s| area_sure(s) && sure(s)) && z_inside;
+    if certain { Cover::Certain(z) } else { Cover::Possible(z) }
+}
+
+/// How far below 0 the barycentrics of a covered sample may go. Coverage is decided on the
+/// snapped vertices, interpolation may use the unsnapped ones (lavapipe does): every point of
+/// the snapped triangle is a convex combination of the unsnapped vertices plus one of their
+/// snap offsets, so a covered sample lies within √2·[`SNAP_PX`] of the unsnapped triangle
+/// (whose vertices lie in boxes of half-width h), and its barycentrics there are at least
+/// −(√2·SNAP + 2h)/(a − 2h), a the smallest altitude (from the midpoints); ∞ for a triangle
+/// too thin for that to mean anything. From the snapped vertices they are ≥ 0.
+pub fn extrapolation(v: &[ScreenIv; 3]) -> f64 {
+    let mid = |i: Iv| 0.5 * (i.lo + i.hi);
+    let h = v.iter().flat_map(|v| [v.x, v.y]).map(|i| 0.5 * (i.hi - i.lo)).fold(0.0, f64::max);
+    let p = v.map(|v| [mid(v.x), mid(v.y)]);
+    let area2 = ((p[1][0] - p[0][0]) * (p[2][1] - p[0][1])
+        - (p[2][0] - p[0][0]) * (p[1][1] - p[0][1]))
+        .abs();
+    let longest = (0..3)
+        .map(|i| (p[(i + 1) % 3][0] - p[i][0]).hypot(p[(i + 1) % 3][1] - p[i][1]))
+        .fold(0.0, f64::max);
+    let altitude = area2 / longest;
+    if altitude.is_finite() && altitude > 8.0 * h {
+        (std::f64::consts::SQRT_2 * SNAP_PX + 2.0 * h) / (altitude - 2.0 * h) * (1.0 + 1e-9)
+    } else {
+        f64::INFINITY
+    }
+}
+
+/// [lo, hi] of three values, widened for barycentrics down to −`e` (Σλ = 1): the convex
+/// hull grows by at most 2e·(hi − lo) on each side; an unbounded `e` gives anything.
+pub fn extrapolated_hull(lo: f64, hi: f64, e: f64) -> (f64, f64) {
+    if e.is_infinite() {
+        return (f64::NEG_INFINITY, f64::INFINITY);
+    }
+    let d = 2.0 * e * (hi - lo);
+    (lo - d, hi + d)
+}
+
+/// How far a conformant GPU's interpolated varying may stray from the exact interpolation of
+/// its vertices' values, in ULP of the largest: Vulkan leaves the interpolation's precision to
+/// the implementation, so this is an assumption, like [`DEPTH_ULPS`].
+pub const VARYING_ULPS: f64 = 4.0;
+
+/// The perspective-correct interpolation a conformant GPU may apply at a covered sample:
+/// the screen-space barycentrics λ₁, λ₂ within their planes' bounds and no lower than
+/// −[`extrapolation`] (λ₀ = 1 − λ₁ − λ₂), weighted by the vertices' 1/w.
+#[derive(Clone, Copy, Debug)]
+pub struct Interp {
+    l1: (f64, f64),
+    l2: (f64, f64),
+    q: [f64; 3],
+    /// The largest relative half-width of the 1/w's.
+    q_rel: f64,
+}
+
+impl Interp {
+    /// The values a varying whose vertices hold `v` may take: the interpolation is a
+    /// linear-fractional function of (λ₁, λ₂), so over their box its extremes lie at the
+    /// corners; widened by the vertices' own half-widths, by what the 1/w's uncertainty can
+    /// shift, and by [`VARYING_ULPS`].
+    pub fn varying(&self, v: [Iv; 3]) -> Iv {
+        if v.iter().any(|v| v.full) || !self.l1.0.is_finite() || !self.l2.0.is_finite() {
+            return Iv::FULL;
+        }
+        let m = v.map(|v| 0.5 * (v.lo + v.hi));
+        let hw = v.iter().map(|v| 0.5 * (v.hi - v.lo)).fold(0.0, f64::max);
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for a in [self.l1.0, self.l1.1] {
+            for b in [self.l2.0, self.l2.1] {
+                let w = [(1.0 - a - b) * self.q[0], a * self.q[1], b * self.q[2]];
+                let den = w[0] + w[1] + w[2];
+                if den <= 0.0 || !den.is_finite() {
+                    return Iv::FULL;
+                }
+                let x = (w[0] * m[0] + w[1] * m[1] + w[2] * m[2]) / den;
+                lo = lo.min(x);
+                hi = hi.max(x);
+            }
+        }
+        let range = m.iter().fold(f64::NEG_INFINITY, |a, &b| a.max(b))
+            - m.iter().fold(f64::INFINITY, |a, &b| a.min(b));
+        let big = lo.abs().max(hi.abs()) + hw;
+        // Each weight's share moves by at most 2·q_rel/(1 − q_rel) of the total when the 1/w's
+        // move within their intervals; the extrapolated weights' sum of magnitudes is < 3.
+        let q_shift = 3.0 * range * 2.0 * self.q_rel / (1.0 - self.q_rel).max(1e-3);
+        let slack = hw + q_shift + VARYING_ULPS * super::f32_ulp(big) + big * 1e-12;
+        if !slack.is_finite() {
+            return Iv::FULL;
+        }
+        Iv::new(lo - slack, hi + slack)
+    }
+}
+
+/// The interpolation a conformant GPU may apply at a covered sample of `t` ([`Interp`]).
+fn barycentrics(t: &Setup, px: f64, py: f64) -> Interp {
+    let e = t.extrapolation;
+    let lam = |k: usize| {
+        let (mut lo, mut hi) = (-e, 1.0 + e);
+        if let Some(p) = t.bary[k] {
+            let (dx, dy) = (px - p.v0[0], py - p.v0[1]);
+            let v = p.z0 + p.g[0] * dx + p.g[1] * dy;
+            let d = p.k1 * dx.hypot(dy) + p.k0;
+            let d = d + (v.abs() + d) * 1e-12;
+            lo = lo.max(v - d);
+            hi = hi.min(v + d);
+        }
+        if lo <= hi { (lo, hi) } else { (-e, 1.0 + e) }
+    };
+    let q = t.inv_w.map(|q| 0.5 * (q.lo + q.hi));
+    let q_rel =
+        t.inv_w
+            .iter()
+            .map(|q| {
+                if q.lo > 0.0 { 0.5 * (q.hi - q.lo) / (0.5 * (q.lo + q.hi)) } else { f64::INFINITY }
+            })
+            .fold(0.0, f64::max);
+    if q_rel.is_nan() || q_rel >= 0.5 {
+        return Interp {
+            l1: (f64::NEG_INFINITY, f64::INFINITY),
+            l2: (f64::NEG_INFINITY, f64::INFINITY),
+            q,
+            q_rel,
+        };
+    }
+    Interp { l1: lam(1), l2: lam(2), q, q_rel }
+}
+
+/// The sample's depth: on the plane through the vertices' boxes (within [`Plane`]'s bound),
+/// inside the hull of the vertices' z widened for the barycentrics' [`extrapolation`], plus
+/// the plane's f32 evaluation allowance.
+fn depth(t: &Setup, px: f64, py: f64) -> Iv {
+    let (hull_lo, hull_hi) = extrapolated_hull(
+        t.z.iter().map(|z| z.lo).fold(f64::INFINITY, f64::min),
+        t.z.iter().map(|z| z.hi).fold(f64::NEG_INFINITY, f64::max),
+        t.extrapolation,
+    );
+    let (mut lo, mut hi) = (hull_lo, hull_hi);
+    if let Some(p) = t.plane {
+        let (dx, dy) = (px - p.v0[0], py - p.v0[1]);
+        let z = p.z0 + p.g[0] * dx + p.g[1] * dy;
+        let d = p.k1 * dx.hypot(dy) + p.k0;
+        let d = d + (z.abs() + d) * 1e-12;
+        lo = lo.max(z - d);
+        hi = hi.min(z + d);
+    }
+    // The plane's f32 evaluation: ULP of its largest term (a near-degenerate plane's terms
+    // are large, and so is its allowance).
+    let slack = DEPTH_ULPS * super::f32_ulp(t.plane_magnitude.min(1e30));
+    let (lo, hi) = if lo <= hi { (lo, hi) } else { (hull_lo, hull_hi) };
+    Iv::new(lo - slack, hi + slack)
+}
+
+/// Every sample a triangle may cover, triangle by triangle in submission order:
+/// `visit(pixel index, triangle index, what it may do there)` (never with [`Cover::No`]).
+pub fn fragments(
+    tris: &[[ScreenIv; 3]],
+    width: u32,
+    height: u32,
+    mut visit: impl FnMut(usize, usize, Cover, &dyn Fn() -> Interp),
+) {
+    for (k, t) in tris.iter().enumerate() {
+        let Some(t) = setup(t, width, height) else { continue };
+        let [x0, y0, x1, y1] = t.bbox;
+        for py in y0..=y1 {
+            for px in x0..=x1 {
+                let (sx, sy) = (f64::from(px) + 0.5, f64::from(py) + 0.5);
+                let c = cover(&t, sx, sy);
+                if c != Cover::No {
+                    let bary = || barycentrics(&t, sx, sy);
+                    visit(py as usize * width as usize + px as usize, k, c, &bary);
+                }
+            }
+        }
+    }
+}
+
+/// The envelope of a depth-only pass with the `Less` test (no culling): per pixel, the
+/// interval its value lies in, and whether its coverage is ambiguous (some triangle may or
+/// may not cover it).
+pub fn depth_pass(
+    tris: &[[ScreenIv; 3]],
+    width: u32,
+    height: u32,
+    clear: f32,
+) -> (Vec<Iv>, Vec<bool>) {
+    let n = (width as usize) * (height as usize);
+    let clear = f64::from(clear);
+    let mut lo = vec![clear; n];
+    let mut hi = vec![clear; n];
+    let mut ambiguous = vec![false; n];
+    fragments(tris, width, height, |i, _, c, _| match c {
+        Cover::No => {}
+        Cover::Possible(z) => {
+            lo[i] = lo[i].min(z.lo);
+            ambiguous[i] = true;
+        }
+        Cover::Certain(z) => {
+            lo[i] = lo[i].min(z.lo);
+            hi[i] = hi[i].min(z.hi);
+        }
+    });
+    let env = lo.iter().zip(&hi).map(|(&l, &h)| Iv::new(l.min(h), h)).collect();
+    (env, ambiguous)
+}
+
+/// What a fragment writes in a colour pass: the stored colour, and whether the fragment
+/// shader keeps it (`Some(true)`), discards it (`Some(false)`) or may do either (`None`).
+#[derive(Clone, Copy, Debug)]
+pub struct Shaded {
+    /// The colour as the target stores it.
+    pub color: [Iv; 4],
+    /// Whether the fragment survives the shader's `discard`.
+    pub kept: Option<bool>,
+}
+
+/// The envelope of a colour pass with reversed-Z (`Greater`, depth cleared to 0) and no
+/// blending: per texel the hull of every colour that may win the depth test (a fragment that
+/// may cover the texel, may be kept, and may lie nearer than every fragment certain to be
+/// there), with `clear` where no fragment is certain; and whether its coverage is ambiguous.
+/// `shade(triangle, interpolation)` is the fragment shader's envelope at a sample.
+pub fn color_pass_greater(
+    tris: &[[ScreenIv; 3]],
+    width: u32,
+    height: u32,
+    clear: [f32; 4],
+    shade: impl Fn(usize, &Interp) -> Shaded,
+) -> (Vec<[Iv; 4]>, Vec<bool>) {
+    let n = (width as usize) * (height as usize);
+    // The nearest depth a fragment certain to be drawn there guarantees (−∞: none).
+    let mut sure = vec![f64::NEG_INFINITY; n];
+    fragments(tris, width, height, |i, k, c, bary| {
+        if let Cover::Certain(z) = c
+            && z.lo > sure[i]
+            && z.lo > 0.0
+            && shade(k, &bary()).kept == Some(true)
+        {
+            sure[i] = z.lo;
+        }
+    });
+    let mut env: Vec<Option<[Iv; 4]>> = vec![None; n];
+    let mut ambiguous = vec![false; n];
+    fragments(tris, width, height, |i, k, c, bary| {
+        let (z, certain) = match c {
+            Cover::No => return,
+            Cover::Possible(z) => (z, false),
+            Cover::Certain(z) => (z, true),
+        };
+        if z.hi <= 0.0 || z.hi < sure[i] {
+            return;
+        }
+        let f = shade(k, &bary());
+        if f.kept == Some(false) {
+            return;
+        }
+        ambiguous[i] |= !certain || f.kept.is_none();
+        env[i] = Some(match env[i] {
+            None => f.color,
+            Some(e) => std::array::from_fn(|c| e[c].hull(f.color[c])),
+        });
+    });
+    let clear = clear.map(Iv::point);
+    let env = env
+        .into_iter()
+        .zip(&sure)
+        .map(|(e, &s)| match (e, s > f64::NEG_INFINITY) {
+            (None, _) => clear,
+            (Some(e), true) => e,
+            (Some(e), false) => std::array::from_fn(|c| e[c].hull(clear[c])),
+        })
+        .collect();
+    (env, ambiguous)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn v(x: f64, y: f64, z: f64) -> ScreenIv {
+        let p = |a: f64| Iv::point(a as f32);
+        ScreenIv { x: p(x), y: p(y), z: p(z), inv_w: p(1.0) }
+    }
+
+    /// A large triangle: its interior certain, its outside not covered, a band along its
+    /// edges possible, and the depth at an interior sample close to the plane's.
+    #[test]
+    fn a_triangle_is_certain_inside_possible_at_its_edges() {
+        let t = setup(&[v(1.0, 1.0, 0.2), v(30.0, 2.0, 0.4), v(5.0, 28.0, 0.6)], 32, 32).unwrap();
+        assert!(matches!(cover(&t, 8.5, 8.5), Cover::Certain(_)));
+        assert_eq!(cover(&t, 30.5, 30.5), Cover::No);
+        // On the edge from (1, 1) to (30, 2), well inside in x.
+        let y_edge = 1.0 + (15.5 - 1.0) / 29.0;
+        assert!(matches!(cover(&t, 15.5, y_edge + 0.01), Cover::Possible(_)));
+        let Cover::Certain(z) = cover(&t, 10.5, 10.5) else { panic!() };
+        assert!(z.lo > 0.2 && z.hi < 0.6 && z.hi - z.lo < 0.02, "{z:?}");
+    }
+
+    /// A depth-only pass of two overlapping triangles keeps the nearer where both certainly
+    /// cover, and the clear value outside.
+    #[test]
+    fn the_nearer_triangle_wins() {
+        let far = [v(0.0, 0.0, 0.8), v(16.0, 0.0, 0.8), v(0.0, 16.0, 0.8)];
+        let near = [v(0.0, 0.0, 0.3), v(16.0, 0.0, 0.3), v(0.0, 16.0, 0.3)];
+        let (env, amb) = depth_pass(&[far, near], 16, 16, 1.0);
+        let at = |x: usize, y: usize| env[y * 16 + x];
+        assert!(at(3, 3).contains(0.3) && !at(3, 3).contains(0.8));
+        assert!(at(15, 15).contains(1.0) && !at(15, 15).contains(0.3));
+        assert!(!amb[3 * 16 + 3] && amb.iter().any(|&a| a));
+    }
+}
