@@ -73,7 +73,8 @@ fn shade(frame: &FrameUniforms, normal: Vec3, color: Vec3, sun: f32) -> Vec3 {
     vec3(x, y, z)
 }
 
-/// [`shade`] over any [`Real`].
+/// `shade(normal, color, sun)` over any [`Real`]: Lambert under the share `sun` of the sun
+/// plus the sky's ambient.
 pub fn shade_r<R: Real>(frame: &FrameUniforms, normal: [R; 3], color: [R; 3], sun: R) -> [R; 3] {
     let l = R::lit;
     let n = normalize3(normal);
