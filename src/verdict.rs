@@ -55,6 +55,22 @@ impl Verdict {
     pub fn passed(&self) -> bool {
         self.failures.is_empty() && !self.judged.is_empty()
     }
+
+    /// Records pass `pass`'s verdict on resource `name` (`note` appended to its line).
+    fn record(
+        &mut self,
+        pass: &str,
+        name: &'static str,
+        f: &ocean_verify::envelope::FloatVerdict,
+        note: &str,
+    ) {
+        self.lines.push(format!("  [{pass:<14}] {}{note}", f.line()));
+        if !f.passed() {
+            self.failures.push(f.line());
+        }
+        self.json.push(f.to_json());
+        self.judged.push(name);
+    }
 }
 
 /// The envelope's verdict on a frame as a GPU made it, each pass from the inputs the GPU
@@ -111,46 +127,19 @@ fn judge_passes(
         v.judged.extend(["bloom_down", "bloom_up"]);
     }
     for (id, f) in waves_verdicts(scene, plan, gpu)? {
-        v.lines.push(format!("  [{:<14}] {}", "waves", f.line()));
-        if !f.passed() {
-            v.failures.push(f.line());
-        }
-        v.json.push(f.to_json());
-        v.judged.push(id.name());
+        v.record("waves", id.name(), &f, "");
     }
     if let Some(f) = foam_verdict(scene, plan, gpu)? {
-        v.lines.push(format!("  [{:<14}] {}", "foam", f.line()));
-        if !f.passed() {
-            v.failures.push(f.line());
-        }
-        v.json.push(f.to_json());
-        v.judged.push(ResourceId::FoamField.name());
+        v.record("foam", ResourceId::FoamField.name(), &f, "");
     }
     if let Some((f, ambiguous)) = shadow_verdict(scene, plan, gpu)? {
-        v.lines.push(format!(
-            "  [{:<14}] {} ({:.2} % of texels' coverage ambiguous)",
-            "shadow_map",
-            f.line(),
-            100.0 * ambiguous
-        ));
-        if !f.passed() {
-            v.failures.push(f.line());
-        }
-        v.json.push(f.to_json());
-        v.judged.push(ResourceId::ShadowMap.name());
+        let note = format!(" ({:.2} % of texels' coverage ambiguous)", 100.0 * ambiguous);
+        v.record("shadow_map", ResourceId::ShadowMap.name(), &f, &note);
     }
     if let Some((f, ambiguous)) = reflection_verdict(scene, plan, gpu)? {
-        v.lines.push(format!(
-            "  [{:<14}] {} ({:.2} % of texels' coverage or discard ambiguous)",
-            "reflection_map",
-            f.line(),
-            100.0 * ambiguous
-        ));
-        if !f.passed() {
-            v.failures.push(f.line());
-        }
-        v.json.push(f.to_json());
-        v.judged.push(ResourceId::ReflectionMap.name());
+        let note =
+            format!(" ({:.2} % of texels' coverage or discard ambiguous)", 100.0 * ambiguous);
+        v.record("reflection_map", ResourceId::ReflectionMap.name(), &f, &note);
     }
     if plan.runs(Pass::WaveMips) {
         for (source, chain) in ResourceId::SLOPE_CHAINS {

@@ -15,6 +15,19 @@ use ocean_cpu::envelope::{Iv, Jitter, JitterRules, Real};
 use ocean_cpu::shaders::tonemap;
 
 /// Operands over many binades, both signs, and the edges (0, subnormals).
+/// The reference scenes' files, sorted.
+fn reference_scenes() -> Vec<PathBuf> {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("reference/scenes");
+    let mut names: Vec<PathBuf> = std::fs::read_dir(&root)
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    names.sort();
+    names
+}
+
 fn operands(n: usize, seed: u64) -> Vec<f32> {
     let mut g = SplitMix64::new(seed);
     let mut v = vec![0.0, -0.0, 1.0, f32::MIN_POSITIVE, 1e-40, 0.0031308, 65504.0];
@@ -435,16 +448,8 @@ fn random_conformant_gpus_stay_inside_the_fresnel_table_envelope() {
 #[test]
 fn random_conformant_gpus_stay_inside_the_sky_envelope() {
     use ocean_cpu::shaders::sky;
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("reference/scenes");
     let (mut runs, mut loose, mut scenes) = (0, 0, 0);
-    let mut names: Vec<PathBuf> = std::fs::read_dir(&root)
-        .unwrap()
-        .flatten()
-        .map(|e| e.path())
-        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
-        .collect();
-    names.sort();
-    for path in names {
+    for path in reference_scenes() {
         let mut scene = ocean_core::scene::Scene::load(&path).unwrap();
         (scene.camera.width, scene.camera.height) = (96, 54);
         let plan = FramePlan::new(&scene, OutputKind::Ldr);
@@ -499,14 +504,7 @@ fn random_conformant_gpus_stay_inside_the_sky_envelope() {
 fn random_conformant_gpus_stay_inside_the_waves_envelope() {
     use ocean_cpu::shaders::waves::{WaveTextures, WavesMirror};
     use rayon::prelude::*;
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("reference/scenes");
-    let mut names: Vec<PathBuf> = std::fs::read_dir(&root)
-        .unwrap()
-        .flatten()
-        .map(|e| e.path())
-        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
-        .collect();
-    names.sort();
+    let names = reference_scenes();
     let mut oceans: Vec<(PathBuf, ocean_core::scene::Ocean)> = Vec::new();
     for path in names {
         let ocean = ocean_core::scene::Scene::load(&path).unwrap().ocean;
@@ -688,14 +686,7 @@ fn random_conformant_gpus_stay_inside_the_foam_envelope() {
 fn random_conformant_rasterisers_stay_inside_the_shadow_map_envelope() {
     use ocean_core::plan::Pass;
     use ocean_cpu::shaders::shadow;
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("reference/scenes");
-    let mut names: Vec<PathBuf> = std::fs::read_dir(&root)
-        .unwrap()
-        .flatten()
-        .map(|e| e.path())
-        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
-        .collect();
-    names.sort();
+    let names = reference_scenes();
     let (mut scenes, mut runs, mut loose, mut texels, mut ambiguous) = (0, 0, 0, 0, 0);
     for path in names {
         let mut scene = ocean_core::scene::Scene::load(&path).unwrap();
@@ -754,14 +745,7 @@ fn random_conformant_rasterisers_stay_inside_the_shadow_map_envelope() {
 fn random_conformant_gpus_stay_inside_the_reflection_map_envelope() {
     use ocean_core::plan::Pass;
     use ocean_cpu::shaders::objects;
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("reference/scenes");
-    let mut names: Vec<PathBuf> = std::fs::read_dir(&root)
-        .unwrap()
-        .flatten()
-        .map(|e| e.path())
-        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
-        .collect();
-    names.sort();
+    let names = reference_scenes();
     let (mut scenes, mut runs, mut loose, mut texels, mut ambiguous, mut covered) =
         (0, 0, 0, 0, 0, 0);
     let mut rel = Vec::new();

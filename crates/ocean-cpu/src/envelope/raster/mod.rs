@@ -221,6 +221,18 @@ struct Plane {
     k0: f64,
 }
 
+impl Plane {
+    /// [lo, hi] of any plane through the boxes at sample (px, py) (with a little slack for
+    /// f64's own roundings).
+    fn at(&self, px: f64, py: f64) -> (f64, f64) {
+        let (dx, dy) = (px - self.v0[0], py - self.v0[1]);
+        let v = self.z0 + self.g[0] * dx + self.g[1] * dy;
+        let d = self.k1 * dx.hypot(dy) + self.k0;
+        let d = d + (v.abs() + d) * 1e-12;
+        (v - d, v + d)
+    }
+}
+
 fn setup(v: &[ScreenIv; 3], width: u32, height: u32) -> Option<Setup> {
     if v.iter().any(|v| v.x.full || v.y.full || v.z.full) {
         return None;
@@ -437,12 +449,9 @@ fn barycentrics(t: &Setup, px: f64, py: f64) -> Interp {
     let lam = |k: usize| {
         let (mut lo, mut hi) = (-e, 1.0 + e);
         if let Some(p) = t.bary[k] {
-            let (dx, dy) = (px - p.v0[0], py - p.v0[1]);
-            let v = p.z0 + p.g[0] * dx + p.g[1] * dy;
-            let d = p.k1 * dx.hypot(dy) + p.k0;
-            let d = d + (v.abs() + d) * 1e-12;
-            lo = lo.max(v - d);
-            hi = hi.min(v + d);
+            let (l, h) = p.at(px, py);
+            lo = lo.max(l);
+            hi = hi.min(h);
         }
         if lo <= hi { (lo, hi) } else { (-e, 1.0 + e) }
     };
@@ -476,12 +485,9 @@ fn depth(t: &Setup, px: f64, py: f64) -> Iv {
     );
     let (mut lo, mut hi) = (hull_lo, hull_hi);
     if let Some(p) = t.plane {
-        let (dx, dy) = (px - p.v0[0], py - p.v0[1]);
-        let z = p.z0 + p.g[0] * dx + p.g[1] * dy;
-        let d = p.k1 * dx.hypot(dy) + p.k0;
-        let d = d + (z.abs() + d) * 1e-12;
-        lo = lo.max(z - d);
-        hi = hi.min(z + d);
+        let (l, h) = p.at(px, py);
+        lo = lo.max(l);
+        hi = hi.min(h);
     }
     // The plane's f32 evaluation: ULP of its largest term (a near-degenerate plane's terms
     // are large, and so is its allowance).
