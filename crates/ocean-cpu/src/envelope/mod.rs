@@ -51,6 +51,8 @@ pub trait Cond: Copy {
     fn decided(self) -> Option<bool>;
     /// `self && o`.
     fn and(self, o: Self) -> Self;
+    /// `self || o`.
+    fn or(self, o: Self) -> Self;
 }
 
 impl Cond for bool {
@@ -61,6 +63,10 @@ impl Cond for bool {
     #[inline]
     fn and(self, o: bool) -> bool {
         self && o
+    }
+    #[inline]
+    fn or(self, o: bool) -> bool {
+        self || o
     }
 }
 
@@ -88,6 +94,13 @@ impl Cond for Tri {
         match (self, o) {
             (Tri::False, _) | (_, Tri::False) => Tri::False,
             (Tri::True, Tri::True) => Tri::True,
+            _ => Tri::Either,
+        }
+    }
+    fn or(self, o: Tri) -> Tri {
+        match (self, o) {
+            (Tri::True, _) | (_, Tri::True) => Tri::True,
+            (Tri::False, Tri::False) => Tri::False,
             _ => Tri::Either,
         }
     }

@@ -4,23 +4,34 @@ pub use super::fresnel::fresnel_exact;
 
 use ocean_core::frame::FrameUniforms;
 
-use crate::shaders::wgsl::{Vec3, clamp, ldexp, max, vec3};
+use crate::envelope::{Real, on_floor};
+use crate::shaders::wgsl::{Vec3, ldexp, vec3};
 
 /// `EXP_MIN`: `exp_arith`'s arguments are clamped to [EXP_MIN, 0].
 pub const EXP_MIN: f32 = -80.0;
 
 /// `exp_arith(x)`: e^x for x ≤ 0 by + − × only (the WGSL's).
 pub fn exp_arith(x: f32) -> f32 {
-    let z = clamp(x, EXP_MIN, 0.0) * std::f32::consts::LOG2_E;
-    let n = (z + 0.5).floor();
-    let y = (z - n) * std::f32::consts::LN_2;
-    let p = 1.0
-        + y * (1.0
-            + y * (0.5
-                + y * (0.166_666_67
-                    + y * (0.041_666_668
-                        + y * (0.008_333_334 + y * (0.001_388_888_9 + y * 0.000_198_412_7))))));
-    p * ldexp(1.0, n as i32)
+    exp_arith_r(x)
+}
+
+/// [`exp_arith`] over any [`Real`]: where an interval puts z + ½ across an integer, both
+/// n's results, united (the same value on either side).
+pub fn exp_arith_r<R: Real>(x: R) -> R {
+    let l = R::lit;
+    let z = x.clamp(l(EXP_MIN), l(0.0)) * l(std::f32::consts::LOG2_E);
+    let [e] = on_floor(z + l(0.5), [l(f32::NAN)], |n, _| {
+        let y = (z - l(n)) * l(std::f32::consts::LN_2);
+        let p = l(1.0)
+            + y * (l(1.0)
+                + y * (l(0.5)
+                    + y * (l(0.166_666_67)
+                        + y * (l(0.041_666_668)
+                            + y * (l(0.008_333_334)
+                                + y * (l(0.001_388_888_9) + y * l(0.000_198_412_7)))))));
+        [p * l(ldexp(1.0, n as i32))]
+    });
+    e
 }
 
 /// `EQ8_LN_R`: ln 0.30.
@@ -32,17 +43,32 @@ pub const EQ8_LN_B: f32 = -0.462_035_46;
 
 /// `downwelling()`: the radiance of a white Lambertian surface facing up.
 pub fn downwelling(frame: &FrameUniforms) -> Vec3 {
-    let cos_sun = max(frame.sun.direction[1], 0.0) * frame.sun.lit;
-    Vec3::from(frame.sun.radiance) * (cos_sun * std::f32::consts::FRAC_1_PI)
-        + Vec3::from(frame.ambient.sky)
+    let [x, y, z] = downwelling_r::<f32>(frame);
+    vec3(x, y, z)
+}
+
+/// [`downwelling`] over any [`Real`].
+pub fn downwelling_r<R: Real>(frame: &FrameUniforms) -> [R; 3] {
+    let l = R::lit;
+    let cos_sun = l(frame.sun.direction[1]).max(l(0.0)) * l(frame.sun.lit);
+    let s = cos_sun * l(std::f32::consts::FRAC_1_PI);
+    std::array::from_fn(|i| l(frame.sun.radiance[i]) * s + l(frame.ambient.sky[i]))
 }
 
 /// `water_volume_colour(depth)`.
 pub fn water_volume_colour(depth: f32, frame: &FrameUniforms) -> Vec3 {
+    let [x, y, z] = water_volume_colour_r(depth, frame);
+    vec3(x, y, z)
+}
+
+/// [`water_volume_colour`] over any [`Real`].
+pub fn water_volume_colour_r<R: Real>(depth: R, frame: &FrameUniforms) -> [R; 3] {
+    let l = R::lit;
     if frame.water.volume_model == 0.0 {
-        return Vec3::from(frame.water.color);
+        return frame.water.color.map(l);
     }
-    let k = frame.water.kd_per_m * max(depth, 0.0);
-    downwelling(frame)
-        * vec3(exp_arith(k * EQ8_LN_R), exp_arith(k * EQ8_LN_G), exp_arith(k * EQ8_LN_B))
+    let k = l(frame.water.kd_per_m) * depth.max(l(0.0));
+    let d = downwelling_r::<R>(frame);
+    let ln = [EQ8_LN_R, EQ8_LN_G, EQ8_LN_B];
+    std::array::from_fn(|i| d[i] * exp_arith_r(k * l(ln[i])))
 }
