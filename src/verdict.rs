@@ -6,6 +6,7 @@
 use anyhow::bail;
 use ocean_core::plan::{FramePlan, Pass, ResourceId};
 use ocean_core::scene::Scene;
+use ocean_cpu::shaders::objects::ObjectMap;
 use serde_json::{Value, json};
 
 /// A float frame as read back: (width, height) and its texels.
@@ -136,10 +137,12 @@ fn judge_passes(
         let note = format!(" ({:.2} % of texels' coverage ambiguous)", 100.0 * ambiguous);
         v.record("shadow_map", ResourceId::ShadowMap.name(), &f, &note);
     }
-    if let Some((f, ambiguous)) = reflection_verdict(scene, plan, gpu)? {
-        let note =
-            format!(" ({:.2} % of texels' coverage or discard ambiguous)", 100.0 * ambiguous);
-        v.record("reflection_map", ResourceId::ReflectionMap.name(), &f, &note);
+    for map in [ObjectMap::Reflection, ObjectMap::Refraction] {
+        if let Some((id, f, ambiguous)) = map_verdict(scene, plan, gpu, map)? {
+            let note =
+                format!(" ({:.2} % of texels' coverage or discard ambiguous)", 100.0 * ambiguous);
+            v.record(id.name(), id.name(), &f, &note);
+        }
     }
     if plan.runs(Pass::WaveMips) {
         for (source, chain) in ResourceId::SLOPE_CHAINS {
@@ -407,30 +410,43 @@ fn foam_verdict(
     Ok(Some(ocean_verify::envelope::judge_floats("foam_field", &env, field, w)))
 }
 
-/// Pass `shadow_map`'s depth map against the rasteriser's envelope of the objects' triangles
-/// (uploaded, so exact inputs) seen from the sun, and the share of texels whose coverage is
-/// ambiguous. None where the frame holds no shadow map.
-fn shadow_verdict(
+/// The rasteriser's envelope of pass `shadow_map` (the objects' triangles, uploaded, seen
+/// from the sun): the map's size, each texel's interval and whether its coverage is
+/// ambiguous. None where the plan draws no shadow map.
+fn shadow_envelope(
     scene: &Scene,
     plan: &FramePlan,
-    gpu: &GpuSide<'_>,
-) -> anyhow::Result<Option<(ocean_verify::envelope::FloatVerdict, f64)>> {
-    let (Some(((w, h), texels)), Some(pass)) = (
-        gpu.map(ResourceId::ShadowMap),
-        plan.pass(Pass::ShadowMap).filter(|_| plan.runs(Pass::ShadowMap)),
-    ) else {
-        return Ok(None);
-    };
-    let frame =
-        ocean_core::plan::FrameInputs::new(scene, plan, &ocean_core::plan::FrameState::new(0.0))?;
+    frame: &ocean_core::plan::FrameInputs<'_>,
+) -> Option<([u32; 2], Vec<ocean_cpu::envelope::Iv>, Vec<bool>)> {
+    let pass = plan.pass(Pass::ShadowMap).filter(|_| plan.runs(Pass::ShadowMap))?;
+    let size = plan.resource(ResourceId::ShadowMap)?.size;
     let tris: Vec<[[f32; 3]; 3]> =
         ocean_core::frame::pass_triangles(scene, &frame.poses, pass, frame.camera.eye)
             .iter()
             .map(|t| t.map(|v| v.position))
             .collect();
-    let (env, ambiguous) = ocean_cpu::shaders::shadow::envelope(&tris, &frame.uniforms, [w, h]);
+    let (env, ambiguous) = ocean_cpu::shaders::shadow::envelope(&tris, &frame.uniforms, size);
+    Some((size, env, ambiguous))
+}
+
+/// Pass `shadow_map`'s depth map against [`shadow_envelope`], and the share of texels whose
+/// coverage is ambiguous. None where the frame holds no shadow map.
+fn shadow_verdict(
+    scene: &Scene,
+    plan: &FramePlan,
+    gpu: &GpuSide<'_>,
+) -> anyhow::Result<Option<(ocean_verify::envelope::FloatVerdict, f64)>> {
+    let Some(((w, _), texels)) = gpu.map(ResourceId::ShadowMap) else { return Ok(None) };
+    let frame =
+        ocean_core::plan::FrameInputs::new(scene, plan, &ocean_core::plan::FrameState::new(0.0))?;
+    let Some((_, env, ambiguous)) = shadow_envelope(scene, plan, &frame) else {
+        return Ok(None);
+    };
     if env.len() != texels.len() {
-        bail!("shadow_map: {} texels, the map {w}x{h}", texels.len());
+        bail!("shadow_map: {} texels, the plan's map {}", texels.len(), env.len());
+    }
+    if env.iter().all(|c| c.full) {
+        return Ok(None);
     }
     let share = ambiguous.iter().filter(|&&a| a).count() as f64 / ambiguous.len().max(1) as f64;
     let env: Vec<Option<[ocean_cpu::envelope::Iv; 1]>> =
@@ -438,42 +454,62 @@ fn shadow_verdict(
     Ok(Some((ocean_verify::envelope::judge_floats("shadow_map", &env, texels, w), share)))
 }
 
-/// Pass `reflection_map`'s objects against the rasteriser's envelope of their mirrored
-/// triangles, each shaded from the hull of its vertices' varyings (ocean-cpu
-/// `objects::reflection_envelope`), and the share of texels whose coverage or discard is
-/// ambiguous. None where the frame holds no reflection map, or under shading `chiu` (its clip
-/// height is a texture lookup the envelope does not carry yet).
-fn reflection_verdict(
+/// One of pass `objects`' maps (reflection or refraction) against the rasteriser's envelope
+/// of the objects' triangles, each fragment shaded from its varyings' envelope (ocean-cpu
+/// `objects::map_envelope`); the shadow map it reads is the GPU's own where the frame holds
+/// it, else its envelope. Also the share of texels whose coverage or discard is ambiguous.
+/// None where the frame holds no such map, or the envelope does not carry its shading yet
+/// (shading `chiu`'s clip height, the floor's relief march).
+fn map_verdict(
     scene: &Scene,
     plan: &FramePlan,
     gpu: &GpuSide<'_>,
-) -> anyhow::Result<Option<(ocean_verify::envelope::FloatVerdict, f64)>> {
-    let id = ResourceId::ReflectionMap;
-    let (Some(((w, h), texels)), Some(pass), Some(r)) = (
-        gpu.map(id),
-        plan.pass(Pass::ReflectionMap).filter(|_| plan.runs(Pass::ReflectionMap)),
-        plan.resource(id),
-    ) else {
+    map: ocean_cpu::shaders::objects::ObjectMap,
+) -> anyhow::Result<Option<(ResourceId, ocean_verify::envelope::FloatVerdict, f64)>> {
+    use ocean_cpu::envelope::Iv;
+    use ocean_cpu::shaders::objects::ObjectMap;
+    let (id, pass) = match map {
+        ObjectMap::Reflection => (ResourceId::ReflectionMap, Pass::ReflectionMap),
+        ObjectMap::Refraction => (ResourceId::RefractionMap, Pass::RefractionMap),
+    };
+    let (Some(((w, h), texels)), Some(planned), Some(r)) =
+        (gpu.map(id), plan.pass(pass).filter(|_| plan.runs(pass)), plan.resource(id))
+    else {
         return Ok(None);
     };
     let frame =
         ocean_core::plan::FrameInputs::new(scene, plan, &ocean_core::plan::FrameState::new(0.0))?;
-    let tris = ocean_core::frame::pass_triangles(scene, &frame.poses, pass, frame.camera.eye);
-    let Some((env, ambiguous)) = ocean_cpu::shaders::objects::reflection_envelope(
+    let tris = ocean_core::frame::pass_triangles(scene, &frame.poses, planned, frame.camera.eye);
+    let (dims, shadow) =
+        match (gpu.map(ResourceId::ShadowMap), shadow_envelope(scene, plan, &frame)) {
+            (Some(((sw, sh), t)), _) => ([sw, sh], t.iter().map(|t| Iv::point(t[0])).collect()),
+            (None, Some((size, env, _))) => (size, env),
+            (None, None) => ([1, 1], vec![Iv::point(1.0)]),
+        };
+    let occluder = |x: u32, y: u32| shadow[y as usize * dims[0] as usize + x as usize];
+    let Some((env, ambiguous)) = ocean_cpu::shaders::objects::map_envelope(
+        map,
         &tris,
         &frame.uniforms,
         [w, h],
         r.format.storage(),
         r.clear,
+        dims,
+        &occluder,
     ) else {
         return Ok(None);
     };
     if env.len() != texels.len() {
-        bail!("reflection_map: {} texels, the map {w}x{h}", texels.len());
+        bail!("{}: {} texels, the map {w}x{h}", id.name(), texels.len());
+    }
+    // An envelope that is anything everywhere (a vertex the clipper's bounds cannot place)
+    // judges nothing: not judged, never passed.
+    if env.iter().all(|t| t.iter().all(|c| c.full)) {
+        return Ok(None);
     }
     let share = ambiguous.iter().filter(|&&a| a).count() as f64 / ambiguous.len().max(1) as f64;
-    let env: Vec<Option<[ocean_cpu::envelope::Iv; 4]>> = env.into_iter().map(Some).collect();
-    Ok(Some((ocean_verify::envelope::judge_floats("reflection_map", &env, texels, w), share)))
+    let env: Vec<Option<[Iv; 4]>> = env.into_iter().map(Some).collect();
+    Ok(Some((id, ocean_verify::envelope::judge_floats(id.name(), &env, texels, w), share)))
 }
 
 /// One of pass `wave_mips`' chains against its envelope given the GPU's own slope map and

@@ -737,99 +737,99 @@ fn random_conformant_rasterisers_stay_inside_the_shadow_map_envelope() {
     assert!(loose > 0, "a rasteriser twice as loose as the rules never left the envelope");
 }
 
-/// Pass `reflection_map` of every reference scene that draws one (shading other than `chiu`):
-/// the oracle's map and 8 random conformant GPUs' (the rasteriser's freedoms, and the
-/// varyings interpolated perspective-correctly with random roundings) inside the envelope;
-/// one twice as loose leaves it.
+/// Pass `objects`' reflection and refraction maps of every reference scene that draws one
+/// the envelope carries (not under shading `chiu`, nor the refraction map over a floor with
+/// relief shadows), at 320×180: the oracle's map and 8 random conformant GPUs' (the
+/// rasteriser's freedoms, the clipper's, perspective-correct interpolation from either vertex
+/// set, random roundings in the fragment shader) inside the envelope; one twice as loose
+/// leaves it. Both read the oracle's shadow map.
 #[test]
-fn random_conformant_gpus_stay_inside_the_reflection_map_envelope() {
+fn random_conformant_gpus_stay_inside_the_object_maps_envelope() {
     use ocean_core::plan::Pass;
-    use ocean_cpu::shaders::objects;
-    let names = reference_scenes();
-    let (mut scenes, mut runs, mut loose, mut texels, mut ambiguous, mut covered) =
-        (0, 0, 0, 0, 0, 0);
+    use ocean_cpu::shaders::objects::{self, ObjectMap};
+    let (mut runs, mut loose, mut texels, mut ambiguous, mut covered) = (0, 0, 0, 0, 0);
     let mut rel = Vec::new();
-    for path in names {
+    let mut kinds = [0; 2];
+    for path in reference_scenes() {
         let mut scene = ocean_core::scene::Scene::load(&path).unwrap();
         (scene.camera.width, scene.camera.height) = (320, 180);
         let plan = FramePlan::new(&scene, OutputKind::Ldr);
-        let Some(pass) = plan.pass(Pass::ReflectionMap).filter(|_| plan.runs(Pass::ReflectionMap))
-        else {
-            continue;
-        };
-        let r = plan.resource(ResourceId::ReflectionMap).unwrap().clone();
         let mut state = ocean_core::plan::FrameState::new(0.0);
         let frame = ocean_core::plan::FrameInputs::new(&scene, &plan, &state).unwrap();
-        let tris = ocean_core::frame::pass_triangles(&scene, &frame.poses, pass, frame.camera.eye);
-        let u = &frame.uniforms;
-        let Some((env, amb)) =
-            objects::reflection_envelope(&tris, u, r.size, r.format.storage(), r.clear)
-        else {
-            continue;
-        };
-        let oracle = ocean_cpu::frame::render_frame(
-            &frame,
-            ocean_cpu::frame::Environment::Planned,
-            &mut state,
-            &mut |_| {},
-        )
-        .unwrap();
-        let (_, _, map) = oracle.map(ResourceId::ReflectionMap).unwrap();
-        let outside = |g: &[[f32; 4]]| -> usize {
-            env.iter().zip(g).map(|(e, g)| (0..4).filter(|&c| !e[c].contains(g[c])).count()).sum()
-        };
-        assert_eq!(outside(map), 0, "{}: the oracle", path.display());
-        let drawn = map.iter().filter(|t| t[3] > 0.0).count();
-        assert!(drawn > 0, "{}: nothing in the reflection map", path.display());
-        for seed in 0..8 {
-            let rules = JitterRules { seed, scale: 1.0 };
-            let j =
-                objects::reflection_jitter(&tris, u, r.size, r.format.storage(), r.clear, rules);
-            for (i, (e, g)) in env.iter().zip(&j).enumerate() {
-                if (0..4).any(|c| !e[c].contains(g[c])) {
-                    eprintln!(
-                        "DBG {} seed {seed} texel {i} ({}, {}): {g:?} env {e:?} amb {} oracle {:?}",
-                        path.display(),
-                        i % r.size[0] as usize,
-                        i / r.size[0] as usize,
-                        amb[i],
-                        map[i]
-                    );
-                }
+        let u = frame.uniforms;
+        let mut oracle = None;
+        for (kind, map, pass, id) in [
+            (0, ObjectMap::Reflection, Pass::ReflectionMap, ResourceId::ReflectionMap),
+            (1, ObjectMap::Refraction, Pass::RefractionMap, ResourceId::RefractionMap),
+        ] {
+            let Some(planned) = plan.pass(pass).filter(|_| plan.runs(pass)) else { continue };
+            let r = plan.resource(id).unwrap().clone();
+            let o = oracle.get_or_insert_with(|| {
+                ocean_cpu::frame::render_frame(
+                    &frame,
+                    ocean_cpu::frame::Environment::Planned,
+                    &mut state,
+                    &mut |_| {},
+                )
+                .unwrap()
+            });
+            let (sw, sh, shadow) = o.map(ResourceId::ShadowMap).unwrap_or((1, 1, &[[1.0; 4]]));
+            let dims = [sw, sh];
+            let occ = |x: u32, y: u32| shadow[y as usize * sw as usize + x as usize][0];
+            let occ_iv = |x: u32, y: u32| Iv::point(occ(x, y));
+            let tris =
+                ocean_core::frame::pass_triangles(&scene, &frame.poses, planned, frame.camera.eye);
+            let format = r.format.storage();
+            let Some((env, amb)) =
+                objects::map_envelope(map, &tris, &u, r.size, format, r.clear, dims, &occ_iv)
+            else {
+                continue;
+            };
+            let (_, _, exact) = o.map(id).unwrap();
+            let outside = |g: &[[f32; 4]]| -> usize {
+                env.iter()
+                    .zip(g)
+                    .map(|(e, g)| (0..4).filter(|&c| !e[c].contains(g[c])).count())
+                    .sum()
+            };
+            assert_eq!(outside(exact), 0, "{} {map:?}: the oracle", path.display());
+            let drawn = exact.iter().filter(|t| t[3] > 0.0).count();
+            assert!(drawn > 0, "{} {map:?}: nothing drawn", path.display());
+            for seed in 0..8 {
+                let rules = JitterRules { seed, scale: 1.0 };
+                let j =
+                    objects::map_jitter(map, &tris, &u, r.size, format, r.clear, dims, &occ, rules);
+                assert_eq!(outside(&j), 0, "{} {map:?} seed {seed}", path.display());
+                runs += 1;
             }
-            assert_eq!(outside(&j), 0, "{} seed {seed}", path.display());
-            runs += 1;
+            let rules = JitterRules { seed: 99, scale: 2.0 };
+            loose += outside(&objects::map_jitter(
+                map, &tris, &u, r.size, format, r.clear, dims, &occ, rules,
+            ));
+            kinds[kind] += 1;
+            texels += env.len();
+            covered += drawn;
+            ambiguous += amb.iter().filter(|&&a| a).count();
+            rel.extend(
+                env.iter()
+                    .zip(exact)
+                    .filter(|(_, m)| m[3] > 0.0)
+                    .flat_map(|(e, _)| e[..3].iter().filter_map(|c| c.rel_half_width())),
+            );
         }
-        let rules = JitterRules { seed: 99, scale: 2.0 };
-        loose += outside(&objects::reflection_jitter(
-            &tris,
-            u,
-            r.size,
-            r.format.storage(),
-            r.clear,
-            rules,
-        ));
-        scenes += 1;
-        texels += env.len();
-        covered += drawn;
-        ambiguous += amb.iter().filter(|&&a| a).count();
-        rel.extend(
-            env.iter()
-                .zip(map)
-                .filter(|(_, m)| m[3] > 0.0)
-                .flat_map(|(e, _)| e[..3].iter().filter_map(|c| c.rel_half_width())),
-        );
     }
     rel.sort_by(f64::total_cmp);
     let q =
         |p: f64| rel.get(((rel.len().max(1) - 1) as f64 * p) as usize).copied().unwrap_or(f64::NAN);
     println!(
-        "{runs} reflection maps ({scenes} scenes × 8 seeds) of random conformant GPUs: 0 outside; \
+        "{runs} object maps ({} reflection, {} refraction × 8 seeds) of random conformant GPUs: 0 outside; \
          twice the rules: {loose} outside; {covered} texels drawn of {texels}, {ambiguous} ambiguous; \
          colour rel half-width on drawn texels p50 {:.1e}, p99 {:.1e}",
+        kinds[0],
+        kinds[1],
         q(0.5),
         q(0.99)
     );
-    assert!(scenes >= 3, "{scenes} scenes draw a reflection map the envelope judges");
+    assert!(kinds[0] >= 3 && kinds[1] >= 3, "{kinds:?} maps the envelope judges");
     assert!(loose > 0, "a GPU twice as loose as the rules never left the envelope");
 }

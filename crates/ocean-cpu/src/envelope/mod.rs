@@ -13,9 +13,10 @@
 //!
 //! Passes whose mirrors run over [`Real`]: `sky` (all three techniques, with the camera's
 //! view ray), `tonemap`, `bloom`, `waves` (with `shared/trig.wgsl`), `foam`'s field (with
-//! the Gerstner Jacobian), `wave_mips`, `fresnel_table` (with `shared/fresnel.wgsl`) and
-//! `shadow_map` and `objects`' reflection map (with the rasteriser's envelope, [`raster`]). The others have no envelope yet;
-//! `ocean compare --tolerance envelope` reports their resources as not judged.
+//! the Gerstner Jacobian), `wave_mips`, `fresnel_table` (with `shared/fresnel.wgsl`), and
+//! with the rasteriser's envelope ([`raster`]) `shadow_map` and `objects`' reflection and
+//! refraction maps. The others have no envelope yet; `ocean compare --tolerance envelope`
+//! reports their resources as not judged.
 
 mod interval;
 mod jitter;

@@ -4,12 +4,13 @@
 use ocean_core::frame::{FrameUniforms, ObjectVertex};
 
 use super::shared::floor::{FloorMaps, sun_reaches};
-use super::shared::frame::{dot3, transform_point};
-use super::shared::optics::water_volume_colour;
+use super::shared::frame::transform_point;
+use super::shared::optics::water_volume_colour_r;
+use super::shared::shadow::sun_visibility_r;
 use super::water::WRAP_LINEAR;
-use super::wgsl::{Vec2, Vec3, Vec4, exp, max, sqrt, texture_sample_level, vec2, vec3};
+use super::wgsl::{Vec2, Vec3, Vec4, texture_sample_level, vec2, vec3};
 use crate::envelope::raster::{self, Shaded};
-use crate::envelope::{Iv, Jitter, JitterRules, Real, mat4_mul_vec4, normalize3};
+use crate::envelope::{Cond, Iv, Jitter, JitterRules, Real, choose, mat4_mul_vec4, normalize3};
 use crate::sampler::Texture2D;
 
 /// `VertexOut` of objects.wgsl (clip position and the varyings, in declaration order).
@@ -157,24 +158,82 @@ pub fn fs_refract(input: &VertexOut, frame: &FrameUniforms, maps: Maps<'_>) -> O
     if input.world_y > clip_height(input.rel, frame, maps.displacement) {
         return None;
     }
-    let depth_below = max(-(input.rel.y + frame.view.eye_height), 0.0);
-    let height_above = max(frame.view.eye_height, 0.0);
-    let dist = sqrt(dot3(input.rel, input.rel));
-    let d = dist * (depth_below / (depth_below + height_above));
-    let fog = 1.0 - exp(-frame.water.extinction_per_m * d);
-    let at = vec3(input.rel.x, input.world_y - frame.view.eye_height, input.rel.z);
-    let sun = sun_reaches(at, input.world_y, frame, maps.floor);
-    let obj = shade(frame, input.normal, input.color, sun)
-        * exp(-frame.water.extinction_per_m * max(-input.world_y, 0.0));
-    Some((water_volume_colour(-input.world_y, frame) * fog + obj * (1.0 - fog)).extend(1.0).into())
+    let v = |v: Vec3| [v.x, v.y, v.z];
+    let sun = |at: [f32; 3], world_y: f32| {
+        sun_reaches(vec3(at[0], at[1], at[2]), world_y, frame, maps.floor)
+    };
+    let varyings = (v(input.normal), v(input.color), v(input.rel), input.world_y);
+    Some(refract_colour_r(varyings, frame, &sun))
 }
 
-/// What [`vs_reflect_r`] outputs: (clip position, normal, colour, world_y).
-pub type ReflectedVertex<R> = ([R; 4], [R; 3], [R; 3], R);
+/// A fragment's varyings over any [`Real`]: (normal, colour, rel, world_y).
+pub type Varyings<R> = ([R; 3], [R; 3], [R; 3], R);
 
-/// [`vs_reflect`] over any [`Real`] (`rel` is only read by `clip_height` under shading
-/// `chiu`, which the envelope does not carry yet).
-pub fn vs_reflect_r<R: Real>(v: &ObjectVertex, frame: &FrameUniforms) -> ReflectedVertex<R> {
+/// `fs_refract`'s colour after its `discard` (eq. 4: the object fogged by the water between
+/// it and the eye) over any [`Real`]; `sun_at(at, world_y)` is `sun_reaches`.
+pub fn refract_colour_r<R: Real>(
+    (normal, color, rel, world_y): Varyings<R>,
+    frame: &FrameUniforms,
+    sun_at: &dyn Fn([R; 3], R) -> R,
+) -> [R; 4] {
+    let l = R::lit;
+    let eye = l(frame.view.eye_height);
+    let ext = l(frame.water.extinction_per_m);
+    let depth_below = (-(rel[1] + eye)).max(l(0.0));
+    let height_above = eye.max(l(0.0));
+    let dist = crate::envelope::dot3(rel, rel).sqrt();
+    let d = dist * (depth_below / (depth_below + height_above));
+    let fog = l(1.0) - (-ext * d).exp();
+    let sun = sun_at([rel[0], world_y - eye, rel[2]], world_y);
+    let lit = shade_r(frame, normal, color, sun);
+    let atten = (-ext * (-world_y).max(l(0.0))).exp();
+    let water = water_volume_colour_r(-world_y, frame);
+    let [r, g, b]: [R; 3] =
+        std::array::from_fn(|i| water[i] * fog + (lit[i] * atten) * (l(1.0) - fog));
+    [r, g, b, l(1.0)]
+}
+
+/// Whether `relief_sun` marches the floor's relief (a texture lookup per step).
+fn relief_marched(frame: &FrameUniforms) -> bool {
+    frame.terrain.floor[3] != 0.0 && frame.terrain.sun_under[3] != 0.0
+}
+
+/// `sun_reaches(rel, world_y)` over any [`Real`] where the floor casts no relief shadow
+/// (`terrain.floor.w` or `sun_under.w` 0: `relief_sun` is 1); the shadow map read by
+/// `occluder`. `None` where the relief would be marched (a texture lookup per step, which the
+/// envelope does not carry yet).
+pub fn sun_reaches_flat_r<R: Real>(
+    rel: [R; 3],
+    world_y: R,
+    frame: &FrameUniforms,
+    dims: [u32; 2],
+    occluder: &dyn Fn(u32, u32) -> R,
+) -> Option<R> {
+    let l = R::lit;
+    let t = frame.terrain.sun_under;
+    if relief_marched(frame) {
+        return None;
+    }
+    if t[1] <= 0.0 {
+        return Some(l(1.0));
+    }
+    Some(choose(
+        l(0.0).le(world_y),
+        || l(1.0),
+        || {
+            let k = -world_y / l(t[1]);
+            let surface: [R; 3] = std::array::from_fn(|i| rel[i] + l(t[i]) * k);
+            sun_visibility_r(surface, frame, dims, occluder)
+        },
+    ))
+}
+
+/// What the stage's vertex entry points output, over any [`Real`]: the clip position and the
+/// varyings.
+pub type ObjectOut<R> = ([R; 4], Varyings<R>);
+
+/// [`vs_reflect`] over any [`Real`].
+pub fn vs_reflect_r<R: Real>(v: &ObjectVertex, frame: &FrameUniforms) -> ObjectOut<R> {
     let l = R::lit;
     let [x, y, z] = v.position.map(l);
     let eye = l(frame.view.eye_height);
@@ -182,24 +241,83 @@ pub fn vs_reflect_r<R: Real>(v: &ObjectVertex, frame: &FrameUniforms) -> Reflect
     let clip =
         mat4_mul_vec4(&frame.view.view_proj, [mirrored[0], mirrored[1], mirrored[2], l(1.0)]);
     let normal = [l(v.normal[0]), -l(v.normal[1]), l(v.normal[2])];
-    (clip, normal, v.color.map(l), y + eye)
+    (clip, (normal, v.color.map(l), mirrored, y + eye))
 }
 
-/// The envelope of the reflection map a conformant GPU draws of `triangles` into a `size`
-/// map of `format`, cleared to `clear` (`vs_reflect`, `fs_reflect`, reversed-Z `Greater`):
-/// per texel its colour interval and whether its coverage is ambiguous. Each triangle's
-/// fragments are shaded from the varyings' envelope at each sample (the barycentrics' bounds). `None` under shading `chiu`,
-/// whose clip height is a texture lookup the envelope does not carry yet.
-pub fn reflection_envelope(
+/// [`vs_refract`] over any [`Real`].
+pub fn vs_refract_r<R: Real>(v: &ObjectVertex, frame: &FrameUniforms) -> ObjectOut<R> {
+    let l = R::lit;
+    let [x, y, z] = v.position.map(l);
+    let eye = l(frame.view.eye_height);
+    let world_y = y + eye;
+    let scaled = [x, world_y * l(frame.water.inv_eta) - eye, z];
+    let clip = mat4_mul_vec4(&frame.view.view_proj, [scaled[0], scaled[1], scaled[2], l(1.0)]);
+    (clip, (v.normal.map(l), v.color.map(l), scaled, world_y))
+}
+
+/// Which of the stage's two maps.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ObjectMap {
+    /// `vs_reflect` / `fs_reflect`.
+    Reflection,
+    /// `vs_refract` / `fs_refract`.
+    Refraction,
+}
+
+/// A map's fragment shader over any [`Real`] after interpolation: whether it discards, and
+/// the colour (under a clip height of 0: every shading but `chiu`). `None` where it needs what
+/// the envelope does not carry yet (the floor's relief march).
+fn map_fragment<R: Real>(
+    map: ObjectMap,
+    v: Varyings<R>,
+    frame: &FrameUniforms,
+    dims: [u32; 2],
+    occluder: &dyn Fn(u32, u32) -> R,
+) -> Option<(R::Cond, [R; 4])> {
+    let l = R::lit;
+    let (normal, color, _, world_y) = v;
+    Some(match map {
+        ObjectMap::Reflection => {
+            // The mirrored normal lit by the mirrored sun is the original normal lit by the sun.
+            let n = [normal[0], -normal[1], normal[2]];
+            let [r, g, b] = shade_r(frame, n, color, l(1.0));
+            (world_y.lt(l(0.0)), [r, g, b, l(1.0)])
+        }
+        ObjectMap::Refraction => {
+            sun_reaches_flat_r(v.2, world_y, frame, dims, occluder)?;
+            let sun = |at: [R; 3], wy: R| {
+                sun_reaches_flat_r(at, wy, frame, dims, occluder).unwrap_or(l(1.0))
+            };
+            (l(0.0).lt(world_y), refract_colour_r(v, frame, &sun))
+        }
+    })
+}
+
+/// The envelope of one of the stage's maps a conformant GPU draws of `triangles` into a
+/// `size` map of `format`, cleared to `clear` (reversed-Z `Greater`): per texel its colour
+/// interval and whether its coverage or discard is ambiguous. Each fragment is shaded from
+/// its varyings' envelope at the sample; the shadow map read through `occluder` (`dims`
+/// texels: the GPU's own map, or its envelope). `None` under shading `chiu` (the clip height
+/// is a texture lookup) and for the refraction map over a floor with relief shadows (a
+/// march of lookups): the envelope does not carry those yet.
+#[expect(clippy::too_many_arguments, reason = "a pass's inputs, written out")]
+pub fn map_envelope(
+    map: ObjectMap,
     triangles: &[[ObjectVertex; 3]],
     frame: &FrameUniforms,
     size: [u32; 2],
     format: ocean_core::frame_format::FrameFormat,
     clear: [f32; 4],
+    dims: [u32; 2],
+    occluder: &dyn Fn(u32, u32) -> Iv,
 ) -> Option<(Vec<[Iv; 4]>, Vec<bool>)> {
-    if frame.chiu.clip_waves != 0.0 {
+    if frame.chiu.clip_waves != 0.0 || (map == ObjectMap::Refraction && relief_marched(frame)) {
         return None;
     }
+    let vs = match map {
+        ObjectMap::Reflection => vs_reflect_r::<Iv>,
+        ObjectMap::Refraction => vs_refract_r::<Iv>,
+    };
     let mut screen = Vec::with_capacity(triangles.len());
     let mut owner = Vec::with_capacity(triangles.len());
     let mut verts = Vec::with_capacity(triangles.len());
@@ -208,10 +326,10 @@ pub fn reflection_envelope(
         (vec![[Iv::FULL; 4]; n], vec![true; n])
     };
     for t in triangles {
-        let v = t.each_ref().map(|v| vs_reflect_r::<Iv>(v, frame));
+        let v = t.each_ref().map(|v| vs(v, frame));
         // Past the near or far plane: the clipper's polygon, each part with its vertices'
         // barycentrics in the original. One it cannot bound: anything.
-        let Some(parts) = raster::clip_near_far(v.map(|(clip, ..)| clip)) else {
+        let Some(parts) = raster::clip_near_far(v.map(|(clip, _)| clip)) else {
             return Some(full());
         };
         for part in parts {
@@ -220,7 +338,7 @@ pub fn reflection_envelope(
             screen.push([a, b, c]);
             owner.push((verts.len(), part.map(|p| (p.bary, p.bary_err))));
         }
-        verts.push(v);
+        verts.push(v.map(|(_, var)| var));
     }
     let shade = |k: usize, interp: &raster::Interp| {
         let (t, bary) = owner[k];
@@ -240,54 +358,68 @@ pub fn reflection_envelope(
             })
         };
         let mix = |f: &dyn Fn(usize) -> Iv| interp.varying(at(f));
-        let normal: [Iv; 3] = std::array::from_fn(|c| mix(&|j| v[j].1[c]));
-        let color: [Iv; 3] = std::array::from_fn(|c| mix(&|j| v[j].2[c]));
-        let world_y = mix(&|j| v[j].3);
-        // fs_reflect: discard below the plane (clip height 0); the mirrored normal lit.
-        let kept = if world_y.full {
-            None
-        } else if world_y.lo >= 0.0 {
-            Some(true)
-        } else if world_y.hi < 0.0 {
-            Some(false)
-        } else {
-            None
-        };
-        let n = [normal[0], -normal[1], normal[2]];
-        let [r, g, b] = shade_r(frame, n, color, Iv::lit(1.0));
-        Shaded { color: [r, g, b, Iv::lit(1.0)].map(|c| c.store(format)), kept }
+        let var: Varyings<Iv> = (
+            std::array::from_fn(|c| mix(&|j| v[j].0[c])),
+            std::array::from_fn(|c| mix(&|j| v[j].1[c])),
+            std::array::from_fn(|c| mix(&|j| v[j].2[c])),
+            mix(&|j| v[j].3),
+        );
+        let (discard, color) = map_fragment(map, var, frame, dims, occluder)
+            .unwrap_or((crate::envelope::Tri::Either, [Iv::FULL; 4]));
+        let kept = discard.decided().map(|d| !d);
+        Shaded { color: color.map(|c| c.store(format)), kept }
     };
     Some(raster::color_pass_greater(&screen, size[0], size[1], clear, shade))
 }
 
-/// The reflection map as one random conformant GPU draws it (`rules.scale` times the rules),
-/// under the same conditions as [`reflection_envelope`].
-pub fn reflection_jitter(
+/// One of the stage's maps as one random conformant GPU draws it (`rules.scale` times the
+/// rules), under the same conditions as [`map_envelope`]; the shadow map read through
+/// `occluder`.
+#[expect(clippy::too_many_arguments, reason = "a pass's inputs, written out")]
+pub fn map_jitter(
+    map: ObjectMap,
     triangles: &[[ObjectVertex; 3]],
     frame: &FrameUniforms,
     size: [u32; 2],
     format: ocean_core::frame_format::FrameFormat,
     clear: [f32; 4],
+    dims: [u32; 2],
+    occluder: &dyn Fn(u32, u32) -> f32,
     rules: JitterRules,
 ) -> Vec<[f32; 4]> {
-    let verts: Vec<[ReflectedVertex<f32>; 3]> =
-        triangles.iter().map(|t| t.each_ref().map(|v| vs_reflect_r::<f32>(v, frame))).collect();
+    let vs = match map {
+        ObjectMap::Reflection => vs_reflect_r::<Jitter>,
+        ObjectMap::Refraction => vs_refract_r::<Jitter>,
+    };
+    // The vertex shader with random roundings too.
+    let verts: Vec<[ObjectOut<f32>; 3]> = triangles
+        .iter()
+        .enumerate()
+        .map(|(k, t)| {
+            Jitter::reseed(rules, (k as u64) << 32 | 0xffff_ffff);
+            t.each_ref().map(|v| {
+                let (clip, (n, c, r, y)) = vs(v, frame);
+                let f = |a: [Jitter; 3]| a.map(|x| x.0);
+                (clip.map(|x| x.0), (f(n), f(c), f(r), y.0))
+            })
+        })
+        .collect();
     let clip: Vec<[[f32; 4]; 3]> = verts.iter().map(|t| t.map(|v| v.0)).collect();
+    let occ = |x: u32, y: u32| Jitter(occluder(x, y));
     raster::jitter_pass(&clip, size[0], size[1], true, clear, rules, |k, w, _| {
         let t = &verts[k];
+        // The interpolation with random roundings: Σ wₖ·vₖ in f32 operations.
         let mix = |f: &dyn Fn(usize) -> f32| -> Jitter {
-            Jitter(
-                (w[0] * f64::from(f(0)) + w[1] * f64::from(f(1)) + w[2] * f64::from(f(2))) as f32,
-            )
+            let t = [0, 1, 2].map(|j| Jitter(w[j] as f32) * Jitter(f(j)));
+            Jitter::sum(&t)
         };
-        let world_y = mix(&|j| t[j].3);
-        if world_y.0 < 0.0 {
-            return None;
-        }
-        let normal: [Jitter; 3] = std::array::from_fn(|c| mix(&|j| t[j].1[c]));
-        let color: [Jitter; 3] = std::array::from_fn(|c| mix(&|j| t[j].2[c]));
-        let n = [normal[0], -normal[1], normal[2]];
-        let [r, g, b] = shade_r(frame, n, color, Jitter::lit(1.0));
-        Some([r, g, b, Jitter::lit(1.0)].map(|c| c.store(format).0))
+        let var: Varyings<Jitter> = (
+            std::array::from_fn(|c| mix(&|j| t[j].1.0[c])),
+            std::array::from_fn(|c| mix(&|j| t[j].1.1[c])),
+            std::array::from_fn(|c| mix(&|j| t[j].1.2[c])),
+            mix(&|j| t[j].1.3),
+        );
+        let (discard, color) = map_fragment(map, var, frame, dims, &occ)?;
+        (!discard).then(|| color.map(|c| c.store(format).0))
     })
 }

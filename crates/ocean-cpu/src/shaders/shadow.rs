@@ -5,7 +5,7 @@ use ocean_core::frame::FrameUniforms;
 use super::shared::frame::transform_point;
 use super::wgsl::{Vec4, vec4};
 use crate::envelope::raster::{self, ScreenIv};
-use crate::envelope::{Iv, JitterRules, Real, mat4_mul_vec4};
+use crate::envelope::{Iv, Jitter, JitterRules, Real, mat4_mul_vec4};
 
 /// `vs_main(position)`: the clip position in the sun's orthographic view (`position` and
 /// the result are the rasterizer's arrays).
@@ -33,22 +33,24 @@ pub fn envelope(
     frame: &FrameUniforms,
     size: [u32; 2],
 ) -> (Vec<Iv>, Vec<bool>) {
-    let screen: Option<Vec<[ScreenIv; 3]>> = triangles
-        .iter()
-        .map(|t| {
-            let v = t.map(|p| raster::to_screen(vs_main_r::<Iv>(p, frame), size[0], size[1]));
-            Some([v[0]?, v[1]?, v[2]?])
-        })
-        .collect();
-    match screen {
-        Some(screen) => raster::depth_pass(&screen, size[0], size[1], 1.0),
-        // A vertex whose w may be ≤ 0 needs the clipper, which the envelope does not carry
-        // (the sun's view is orthographic, w = 1): anything, everywhere.
-        None => {
-            let n = (size[0] as usize) * (size[1] as usize);
-            (vec![Iv::FULL; n], vec![true; n])
+    let mut screen: Vec<[ScreenIv; 3]> = Vec::with_capacity(triangles.len());
+    let n = (size[0] as usize) * (size[1] as usize);
+    for t in triangles {
+        // Past the near or far plane (not today: the sun's view is fitted around the casters
+        // with a margin), the clipper's parts; one it cannot bound, or a vertex whose w may be
+        // ≤ 0: anything, everywhere.
+        let Some(parts) = raster::clip_near_far(t.map(|p| vs_main_r::<Iv>(p, frame))) else {
+            return (vec![Iv::FULL; n], vec![true; n]);
+        };
+        for part in parts {
+            let v = part.map(|p| raster::to_screen(p.clip, size[0], size[1]));
+            let [Some(a), Some(b), Some(c)] = v else {
+                return (vec![Iv::FULL; n], vec![true; n]);
+            };
+            screen.push([a, b, c]);
         }
     }
+    raster::depth_pass(&screen, size[0], size[1], 1.0)
 }
 
 /// The shadow map as one random conformant GPU draws it (`rules.scale` times the rules).
@@ -58,6 +60,14 @@ pub fn jitter(
     size: [u32; 2],
     rules: JitterRules,
 ) -> Vec<f32> {
-    let clip: Vec<[[f32; 4]; 3]> = triangles.iter().map(|t| t.map(|p| vs_main(p, frame))).collect();
+    // The vertex shader with random roundings too (a row of the matrix may be reassociated).
+    let clip: Vec<[[f32; 4]; 3]> = triangles
+        .iter()
+        .enumerate()
+        .map(|(k, t)| {
+            Jitter::reseed(rules, (k as u64) << 32 | 0xffff_ffff);
+            t.map(|p| vs_main_r::<Jitter>(p, frame).map(|c| c.0))
+        })
+        .collect();
     raster::jitter_depth_pass(&clip, size[0], size[1], 1.0, rules)
 }

@@ -290,7 +290,10 @@ fn setup(v: &[ScreenIv; 3], width: u32, height: u32) -> Option<Setup> {
             k0: g_norm / (1.0 - r) * h * std::f64::consts::SQRT_2 + w,
         })
     };
-    let plane = plane_of(mz, wz);
+    // The z's share: their errors weighted by barycentrics that may dip to −e.
+    let extrapolation = extrapolation(v);
+    let z_share = if wz == 0.0 { 0.0 } else { wz * (1.0 + 4.0 * extrapolation) };
+    let plane = plane_of(mz, z_share);
     let bary = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]].map(|b| plane_of(b, 0.0));
     Some(Setup {
         x,
@@ -302,7 +305,7 @@ fn setup(v: &[ScreenIv; 3], width: u32, height: u32) -> Option<Setup> {
         plane,
         bary,
         inv_w: v.map(|v| v.inv_w),
-        extrapolation: extrapolation(v),
+        extrapolation,
     })
 }
 
@@ -313,7 +316,11 @@ fn edge(ax: Span, ay: Span, bx: Span, by: Span, px: Span, py: Span) -> Span {
     // its base vertex, so the two are intersected.
     let from_a = bx.sub(ax).mul(py.sub(ay)).sub(by.sub(ay).mul(px.sub(ax)));
     let from_b = bx.sub(ax).mul(py.sub(by)).sub(by.sub(ay).mul(px.sub(bx)));
-    Span(from_a.0.max(from_b.0), from_a.1.min(from_b.1))
+    let e = Span(from_a.0.max(from_b.0), from_a.1.min(from_b.1));
+    // f64 rounds these to nearest: widened outward by far more than its error.
+    let mag = |s: Span| s.0.abs().max(s.1.abs());
+    let terms = mag(bx.sub(ax)) * mag(py.sub(ay)) + mag(by.sub(ay)) * mag(px.sub(ax));
+    e.widen((terms + mag(e)) * 1e-12)
 }
 
 /// What a triangle may do at one sample.
@@ -355,11 +362,12 @@ fn cover(t: &Setup, px: f64, py: f64) -> Cover {
 
 /// How far below 0 the barycentrics of a covered sample may go. Coverage is decided on the
 /// snapped vertices, interpolation may use the unsnapped ones (lavapipe does): every point of
-/// the snapped triangle is a convex combination of the unsnapped vertices plus one of their
-/// snap offsets, so a covered sample lies within √2·[`SNAP_PX`] of the unsnapped triangle
-/// (whose vertices lie in boxes of half-width h), and its barycentrics there are at least
-/// −(√2·SNAP + 2h)/(a − 2h), a the smallest altitude (from the midpoints); ∞ for a triangle
-/// too thin for that to mean anything. From the snapped vertices they are ≥ 0.
+/// the snapped triangle is a convex combination of the GPU's unsnapped vertices plus one of
+/// their snap offsets, so a covered sample lies within √2·[`SNAP_PX`] of the GPU's unsnapped
+/// triangle. Its vertices lie in boxes of half-width h around the midpoints, each moved by at
+/// most √2·h, which shrinks the smallest altitude a by at most 5√2·h; so the barycentrics
+/// are at least −√2·SNAP/(a − 5√2·h). ∞ for a triangle too thin for that to mean anything
+/// (a ≤ 8√2·h). From the snapped vertices they are ≥ 0.
 pub fn extrapolation(v: &[ScreenIv; 3]) -> f64 {
     let mid = |i: Iv| 0.5 * (i.lo + i.hi);
     let h = v.iter().flat_map(|v| [v.x, v.y]).map(|i| 0.5 * (i.hi - i.lo)).fold(0.0, f64::max);
@@ -371,8 +379,9 @@ pub fn extrapolation(v: &[ScreenIv; 3]) -> f64 {
         .map(|i| (p[(i + 1) % 3][0] - p[i][0]).hypot(p[(i + 1) % 3][1] - p[i][1]))
         .fold(0.0, f64::max);
     let altitude = area2 / longest;
-    if altitude.is_finite() && altitude > 8.0 * h {
-        (std::f64::consts::SQRT_2 * SNAP_PX + 2.0 * h) / (altitude - 2.0 * h) * (1.0 + 1e-9)
+    let s2 = std::f64::consts::SQRT_2;
+    if altitude.is_finite() && altitude > 8.0 * s2 * h {
+        s2 * SNAP_PX / (altitude - 5.0 * s2 * h) * (1.0 + 1e-9)
     } else {
         f64::INFINITY
     }
@@ -395,48 +404,47 @@ pub const VARYING_ULPS: f64 = 4.0;
 
 /// The perspective-correct interpolation a conformant GPU may apply at a covered sample:
 /// the screen-space barycentrics λ₁, λ₂ within their planes' bounds and no lower than
-/// −[`extrapolation`] (λ₀ = 1 − λ₁ − λ₂), weighted by the vertices' 1/w.
+/// −[`extrapolation`] (λ₀ = 1 − λ₁ − λ₂), weighted by the vertices' 1/w (intervals).
 #[derive(Clone, Copy, Debug)]
 pub struct Interp {
     l1: (f64, f64),
     l2: (f64, f64),
-    q: [f64; 3],
-    /// The largest relative half-width of the 1/w's.
-    q_rel: f64,
+    q: [(f64, f64); 3],
 }
 
 impl Interp {
-    /// The values a varying whose vertices hold `v` may take: the interpolation is a
-    /// linear-fractional function of (λ₁, λ₂), so over their box its extremes lie at the
-    /// corners; widened by the vertices' own half-widths, by what the 1/w's uncertainty can
-    /// shift, and by [`VARYING_ULPS`].
+    /// The values a varying whose vertices hold `v` may take. The share of vertex k,
+    /// λₖqₖ/Σλⱼqⱼ, is linear-fractional along each of λ₁, λ₂, q₀, q₁, q₂ with the others
+    /// fixed, hence monotone along each while the denominator (multilinear, so extreme at
+    /// the corners) stays positive; so the interpolation of fixed values is extreme at one
+    /// of the 32 corners of their box, and the values' own errors add at most Σ|shares|
+    /// times their half-width there. Plus [`VARYING_ULPS`] of the sum of the terms'
+    /// magnitudes for the interpolation's arithmetic.
     pub fn varying(&self, v: [Iv; 3]) -> Iv {
         if v.iter().any(|v| v.full) || !self.l1.0.is_finite() || !self.l2.0.is_finite() {
             return Iv::FULL;
         }
         let m = v.map(|v| 0.5 * (v.lo + v.hi));
         let hw = v.iter().map(|v| 0.5 * (v.hi - v.lo)).fold(0.0, f64::max);
-        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-        for a in [self.l1.0, self.l1.1] {
-            for b in [self.l2.0, self.l2.1] {
-                let w = [(1.0 - a - b) * self.q[0], a * self.q[1], b * self.q[2]];
-                let den = w[0] + w[1] + w[2];
-                if den <= 0.0 || !den.is_finite() {
-                    return Iv::FULL;
-                }
-                let x = (w[0] * m[0] + w[1] * m[1] + w[2] * m[2]) / den;
-                lo = lo.min(x);
-                hi = hi.max(x);
+        let (mut lo, mut hi, mut terms) = (f64::INFINITY, f64::NEG_INFINITY, 0.0f64);
+        for corner in 0..32u32 {
+            let pick = |bit: u32, r: (f64, f64)| if corner >> bit & 1 == 0 { r.0 } else { r.1 };
+            let (a, b) = (pick(0, self.l1), pick(1, self.l2));
+            let q = [pick(2, self.q[0]), pick(3, self.q[1]), pick(4, self.q[2])];
+            let w = [(1.0 - a - b) * q[0], a * q[1], b * q[2]];
+            let den = w[0] + w[1] + w[2];
+            if den <= 0.0 || !den.is_finite() {
+                return Iv::FULL;
             }
+            let share = w.map(|w| w / den);
+            let x = share[0] * m[0] + share[1] * m[1] + share[2] * m[2];
+            let spread = share.iter().map(|s| s.abs()).sum::<f64>();
+            lo = lo.min(x - spread * hw);
+            hi = hi.max(x + spread * hw);
+            terms = terms.max(spread * (m.iter().fold(0.0f64, |t, v| t.max(v.abs())) + hw));
         }
-        let range = m.iter().fold(f64::NEG_INFINITY, |a, &b| a.max(b))
-            - m.iter().fold(f64::INFINITY, |a, &b| a.min(b));
-        let big = lo.abs().max(hi.abs()) + hw;
-        // Each weight's share moves by at most 2·q_rel/(1 − q_rel) of the total when the 1/w's
-        // move within their intervals; the extrapolated weights' sum of magnitudes is < 3.
-        let q_shift = 3.0 * range * 2.0 * self.q_rel / (1.0 - self.q_rel).max(1e-3);
-        let slack = hw + q_shift + VARYING_ULPS * super::f32_ulp(big) + big * 1e-12;
-        if !slack.is_finite() {
+        let slack = VARYING_ULPS * super::f32_ulp(terms) + terms * 1e-12;
+        if !slack.is_finite() || !lo.is_finite() || !hi.is_finite() {
             return Iv::FULL;
         }
         Iv::new(lo - slack, hi + slack)
@@ -455,23 +463,11 @@ fn barycentrics(t: &Setup, px: f64, py: f64) -> Interp {
         }
         if lo <= hi { (lo, hi) } else { (-e, 1.0 + e) }
     };
-    let q = t.inv_w.map(|q| 0.5 * (q.lo + q.hi));
-    let q_rel =
-        t.inv_w
-            .iter()
-            .map(|q| {
-                if q.lo > 0.0 { 0.5 * (q.hi - q.lo) / (0.5 * (q.lo + q.hi)) } else { f64::INFINITY }
-            })
-            .fold(0.0, f64::max);
-    if q_rel.is_nan() || q_rel >= 0.5 {
-        return Interp {
-            l1: (f64::NEG_INFINITY, f64::INFINITY),
-            l2: (f64::NEG_INFINITY, f64::INFINITY),
-            q,
-            q_rel,
-        };
+    if t.inv_w.iter().any(|q| q.full || q.lo <= 0.0) {
+        let any = (f64::NEG_INFINITY, f64::INFINITY);
+        return Interp { l1: any, l2: any, q: [(1.0, 1.0); 3] };
     }
-    Interp { l1: lam(1), l2: lam(2), q, q_rel }
+    Interp { l1: lam(1), l2: lam(2), q: t.inv_w.map(|q| (q.lo, q.hi)) }
 }
 
 /// The sample's depth: on the plane through the vertices' boxes (within [`Plane`]'s bound),
@@ -498,12 +494,18 @@ fn depth(t: &Setup, px: f64, py: f64) -> Iv {
 
 /// Every sample a triangle may cover, triangle by triangle in submission order:
 /// `visit(pixel index, triangle index, what it may do there)` (never with [`Cover::No`]).
+/// False (and nothing visited) where a vertex may be anything: the pass is then unbounded.
 pub fn fragments(
     tris: &[[ScreenIv; 3]],
     width: u32,
     height: u32,
     mut visit: impl FnMut(usize, usize, Cover, &dyn Fn() -> Interp),
-) {
+) -> bool {
+    // A vertex that may be anything (an infinite or NaN input, an overflow): the triangle
+    // may cover anything, which no per-sample bound can say.
+    if tris.iter().flatten().any(|v| v.x.full || v.y.full || v.z.full) {
+        return false;
+    }
     for (k, t) in tris.iter().enumerate() {
         let Some(t) = setup(t, width, height) else { continue };
         let [x0, y0, x1, y1] = t.bbox;
@@ -518,6 +520,7 @@ pub fn fragments(
             }
         }
     }
+    true
 }
 
 /// The envelope of a depth-only pass with the `Less` test (no culling): per pixel, the
@@ -534,7 +537,7 @@ pub fn depth_pass(
     let mut lo = vec![clear; n];
     let mut hi = vec![clear; n];
     let mut ambiguous = vec![false; n];
-    fragments(tris, width, height, |i, _, c, _| match c {
+    let bounded = fragments(tris, width, height, |i, _, c, _| match c {
         Cover::No => {}
         Cover::Possible(z) => {
             lo[i] = lo[i].min(z.lo);
@@ -545,6 +548,9 @@ pub fn depth_pass(
             hi[i] = hi[i].min(z.hi);
         }
     });
+    if !bounded {
+        return (vec![Iv::FULL; n], vec![true; n]);
+    }
     let env = lo.iter().zip(&hi).map(|(&l, &h)| Iv::new(l.min(h), h)).collect();
     (env, ambiguous)
 }
@@ -574,7 +580,7 @@ pub fn color_pass_greater(
     let n = (width as usize) * (height as usize);
     // The nearest depth a fragment certain to be drawn there guarantees (−∞: none).
     let mut sure = vec![f64::NEG_INFINITY; n];
-    fragments(tris, width, height, |i, k, c, bary| {
+    let bounded = fragments(tris, width, height, |i, k, c, bary| {
         if let Cover::Certain(z) = c
             && z.lo > sure[i]
             && z.lo > 0.0
@@ -583,6 +589,9 @@ pub fn color_pass_greater(
             sure[i] = z.lo;
         }
     });
+    if !bounded {
+        return (vec![[Iv::FULL; 4]; n], vec![true; n]);
+    }
     let mut env: Vec<Option<[Iv; 4]>> = vec![None; n];
     let mut ambiguous = vec![false; n];
     fragments(tris, width, height, |i, k, c, bary| {

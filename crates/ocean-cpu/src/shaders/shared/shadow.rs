@@ -36,8 +36,10 @@ pub fn sun_visibility_r<R: Real>(
         || l(1.0),
         || {
             let (w, h) = (dims[0] as f32, dims[1] as f32);
-            let [lit] = on_floor(u * l(w), [l(f32::NAN)], |fx, _| {
-                on_floor(v * l(h), [l(f32::NAN)], |fy, _| {
+            // Past two texels a side, whichever the GPU reads: lit or not.
+            let either = l(0.0).hull(l(1.0));
+            let [lit] = on_floor(u * l(w), [either], |fx, _| {
+                on_floor(v * l(h), [either], |fy, _| {
                     // u < 1 can still round to u·size = size: clamp to the last texel.
                     let tx = (fx.max(0.0) as u32).min(dims[0] - 1);
                     let ty = (fy.max(0.0) as u32).min(dims[1] - 1);
