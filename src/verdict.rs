@@ -458,8 +458,9 @@ fn shadow_verdict(
 /// of the objects' triangles, each fragment shaded from its varyings' envelope (ocean-cpu
 /// `objects::map_envelope`); the shadow map it reads is the GPU's own where the frame holds
 /// it, else its envelope. Also the share of texels whose coverage or discard is ambiguous.
-/// None where the frame holds no such map, or the envelope does not carry its shading yet
-/// (shading `chiu`'s clip height, the floor's relief march).
+/// None where the frame holds no such map, where shading `chiu` clips at a displacement map
+/// the frame does not hold, or where the envelope does not carry its shading yet (the
+/// floor's relief march).
 fn map_verdict(
     scene: &Scene,
     plan: &FramePlan,
@@ -487,16 +488,25 @@ fn map_verdict(
             (None, None) => ([1, 1], vec![Iv::point(1.0)]),
         };
     let occluder = |x: u32, y: u32| shadow[y as usize * dims[0] as usize + x as usize];
-    let Some((env, ambiguous)) = ocean_cpu::shaders::objects::map_envelope(
-        map,
-        &tris,
-        &frame.uniforms,
-        [w, h],
-        r.format.storage(),
-        r.clear,
-        dims,
-        &occluder,
-    ) else {
+    // Shading `chiu` clips at the wave height under the point: the GPU's own displacement map.
+    let displacement = match gpu.map(ResourceId::Displacement) {
+        Some(((dw, dh), t)) => ocean_cpu::sampler::Texture2D::new(dw, dh, t.to_vec()),
+        None if frame.uniforms.chiu.clip_waves == 0.0 => {
+            ocean_cpu::sampler::Texture2D::new(1, 1, vec![[0.0; 4]])
+        }
+        None => return Ok(None),
+    };
+    let inputs = ocean_cpu::shaders::objects::MapInputs {
+        frame: &frame.uniforms,
+        size: [w, h],
+        format: r.format.storage(),
+        clear: r.clear,
+        shadow_dims: dims,
+        occluder: &occluder,
+        displacement: &displacement,
+    };
+    let Some((env, ambiguous)) = ocean_cpu::shaders::objects::map_envelope(map, &tris, &inputs)
+    else {
         return Ok(None);
     };
     if env.len() != texels.len() {

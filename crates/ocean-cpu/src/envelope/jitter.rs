@@ -43,8 +43,9 @@ impl Jitter {
     }
 }
 
-/// The next draw in [0, 1) and the scale.
-fn draw() -> (f64, f64) {
+/// The next draw in [0, 1) and the scale (for the other random conformant pieces: the
+/// texture filter's weights).
+pub(crate) fn draw() -> (f64, f64) {
     let (s, scale) = STATE.get();
     let s = s.wrapping_add(0x9e37_79b9_7f4a_7c15);
     STATE.set((s, scale));

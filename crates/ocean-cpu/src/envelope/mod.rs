@@ -18,6 +18,7 @@
 //! refraction maps. The others have no envelope yet; `ocean compare --tolerance envelope`
 //! reports their resources as not judged.
 
+pub mod filter;
 mod interval;
 mod jitter;
 pub mod raster;

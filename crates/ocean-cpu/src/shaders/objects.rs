@@ -8,7 +8,7 @@ use super::shared::frame::transform_point;
 use super::shared::optics::water_volume_colour_r;
 use super::shared::shadow::sun_visibility_r;
 use super::water::WRAP_LINEAR;
-use super::wgsl::{Vec2, Vec3, Vec4, texture_sample_level, vec2, vec3};
+use super::wgsl::{Vec3, Vec4, texture_sample_level, vec3};
 use crate::envelope::raster::{self, Shaded};
 use crate::envelope::{Cond, Iv, Jitter, JitterRules, Real, choose, mat4_mul_vec4, normalize3};
 use crate::sampler::Texture2D;
@@ -119,14 +119,29 @@ pub fn vs_reflect(v: &ObjectVertex, frame: &FrameUniforms) -> VertexOut {
 /// `clip_height(rel)`: where the maps clip the objects (the wave height under the point for
 /// shading `chiu`, else 0); `displacement` is binding 1.
 pub fn clip_height(rel: Vec3, frame: &FrameUniforms, displacement: &Texture2D) -> f32 {
+    let sample =
+        |uv: [f32; 2]| texture_sample_level(displacement, &WRAP_LINEAR, uv.into(), 0.0).into();
+    clip_height_r([rel.x, rel.y, rel.z], frame, &sample)
+}
+
+/// [`clip_height`] over any [`Real`], `sample` the displacement map's `textureSampleLevel`
+/// (wrapping, linear, level 0).
+pub fn clip_height_r<R: Real>(
+    rel: [R; 3],
+    frame: &FrameUniforms,
+    sample: &dyn Fn([R; 2]) -> [R; 4],
+) -> R {
+    let l = R::lit;
     if frame.chiu.clip_waves == 0.0 {
-        return 0.0;
+        return l(0.0);
     }
     let t = &frame.tiling;
-    let pos = vec2(rel.x, rel.z) - Vec2::from(t.mesh_offset);
-    let uv = (pos + Vec2::from(t.displacement_origin)) * t.inv_displacement_size
-        + t.displacement_half_texel;
-    texture_sample_level(displacement, &WRAP_LINEAR, uv, 0.0).y * frame.passes.waves
+    let pos = [rel[0] - l(t.mesh_offset[0]), rel[2] - l(t.mesh_offset[1])];
+    let uv: [R; 2] = std::array::from_fn(|i| {
+        (pos[i] + l(t.displacement_origin[i])) * l(t.inv_displacement_size)
+            + l(t.displacement_half_texel)
+    });
+    sample(uv)[1] * l(frame.passes.waves)
 }
 
 /// `fs_reflect`; `None` is `discard`.
@@ -264,56 +279,71 @@ pub enum ObjectMap {
     Refraction,
 }
 
+/// What one of the stage's maps reads besides its triangles, for a scalar `R`.
+pub struct MapInputs<'a, R> {
+    /// The frame's uniforms.
+    pub frame: &'a FrameUniforms,
+    /// The map's size.
+    pub size: [u32; 2],
+    /// The map's format.
+    pub format: ocean_core::frame_format::FrameFormat,
+    /// Its clear colour.
+    pub clear: [f32; 4],
+    /// The shadow map's size (binding 3).
+    pub shadow_dims: [u32; 2],
+    /// The shadow map's texel (x, y): the GPU's own, or for an envelope the interval its map
+    /// may hold there.
+    pub occluder: &'a dyn Fn(u32, u32) -> R,
+    /// The displacement map (binding 1), read by shading `chiu`'s clip height.
+    pub displacement: &'a Texture2D,
+}
+
 /// A map's fragment shader over any [`Real`] after interpolation: whether it discards, and
-/// the colour (under a clip height of 0: every shading but `chiu`). `None` where it needs what
-/// the envelope does not carry yet (the floor's relief march).
+/// the colour; `sample` is the displacement map's `textureSampleLevel`. `None` where it needs
+/// what the envelope does not carry yet (the floor's relief march).
 fn map_fragment<R: Real>(
     map: ObjectMap,
     v: Varyings<R>,
-    frame: &FrameUniforms,
-    dims: [u32; 2],
-    occluder: &dyn Fn(u32, u32) -> R,
+    m: &MapInputs<'_, R>,
+    sample: &dyn Fn([R; 2]) -> [R; 4],
 ) -> Option<(R::Cond, [R; 4])> {
     let l = R::lit;
-    let (normal, color, _, world_y) = v;
+    let (frame, dims, occluder) = (m.frame, m.shadow_dims, m.occluder);
+    let (normal, color, rel, world_y) = v;
+    let clip = clip_height_r(rel, frame, sample);
     Some(match map {
         ObjectMap::Reflection => {
             // The mirrored normal lit by the mirrored sun is the original normal lit by the sun.
             let n = [normal[0], -normal[1], normal[2]];
             let [r, g, b] = shade_r(frame, n, color, l(1.0));
-            (world_y.lt(l(0.0)), [r, g, b, l(1.0)])
+            (world_y.lt(clip), [r, g, b, l(1.0)])
         }
         ObjectMap::Refraction => {
-            sun_reaches_flat_r(v.2, world_y, frame, dims, occluder)?;
+            sun_reaches_flat_r(rel, world_y, frame, dims, occluder)?;
             let sun = |at: [R; 3], wy: R| {
                 sun_reaches_flat_r(at, wy, frame, dims, occluder).unwrap_or(l(1.0))
             };
-            (l(0.0).lt(world_y), refract_colour_r(v, frame, &sun))
+            (clip.lt(world_y), refract_colour_r(v, frame, &sun))
         }
     })
 }
 
-/// The envelope of one of the stage's maps a conformant GPU draws of `triangles` into a
-/// `size` map of `format`, cleared to `clear` (reversed-Z `Greater`): per texel its colour
-/// interval and whether its coverage or discard is ambiguous. Each fragment is shaded from
-/// its varyings' envelope at the sample; the shadow map read through `occluder` (`dims`
-/// texels: the GPU's own map, or its envelope). `None` under shading `chiu` (the clip height
-/// is a texture lookup) and for the refraction map over a floor with relief shadows (a
-/// march of lookups): the envelope does not carry those yet.
-#[expect(clippy::too_many_arguments, reason = "a pass's inputs, written out")]
+/// The envelope of one of the stage's maps a conformant GPU draws of `triangles`
+/// (reversed-Z `Greater`): per texel its colour interval and whether its coverage or discard
+/// is ambiguous. Each fragment is shaded from its varyings' envelope at the sample, the
+/// displacement map filtered by the filter's envelope. `None` for the refraction map over a
+/// floor with relief shadows (a march of lookups the envelope does not carry yet).
 pub fn map_envelope(
     map: ObjectMap,
     triangles: &[[ObjectVertex; 3]],
-    frame: &FrameUniforms,
-    size: [u32; 2],
-    format: ocean_core::frame_format::FrameFormat,
-    clear: [f32; 4],
-    dims: [u32; 2],
-    occluder: &dyn Fn(u32, u32) -> Iv,
+    m: &MapInputs<'_, Iv>,
 ) -> Option<(Vec<[Iv; 4]>, Vec<bool>)> {
-    if frame.chiu.clip_waves != 0.0 || (map == ObjectMap::Refraction && relief_marched(frame)) {
+    let (frame, size, format, clear) = (m.frame, m.size, m.format, m.clear);
+    if map == ObjectMap::Refraction && relief_marched(frame) {
         return None;
     }
+    let sample =
+        |uv: [Iv; 2]| crate::envelope::filter::sample_level0(m.displacement, &WRAP_LINEAR, uv);
     let vs = match map {
         ObjectMap::Reflection => vs_reflect_r::<Iv>,
         ObjectMap::Refraction => vs_refract_r::<Iv>,
@@ -364,7 +394,7 @@ pub fn map_envelope(
             std::array::from_fn(|c| mix(&|j| v[j].2[c])),
             mix(&|j| v[j].3),
         );
-        let (discard, color) = map_fragment(map, var, frame, dims, occluder)
+        let (discard, color) = map_fragment(map, var, m, &sample)
             .unwrap_or((crate::envelope::Tri::Either, [Iv::FULL; 4]));
         let kept = discard.decided().map(|d| !d);
         Shaded { color: color.map(|c| c.store(format)), kept }
@@ -373,20 +403,14 @@ pub fn map_envelope(
 }
 
 /// One of the stage's maps as one random conformant GPU draws it (`rules.scale` times the
-/// rules), under the same conditions as [`map_envelope`]; the shadow map read through
-/// `occluder`.
-#[expect(clippy::too_many_arguments, reason = "a pass's inputs, written out")]
+/// rules), under the same conditions as [`map_envelope`].
 pub fn map_jitter(
     map: ObjectMap,
     triangles: &[[ObjectVertex; 3]],
-    frame: &FrameUniforms,
-    size: [u32; 2],
-    format: ocean_core::frame_format::FrameFormat,
-    clear: [f32; 4],
-    dims: [u32; 2],
-    occluder: &dyn Fn(u32, u32) -> f32,
+    m: &MapInputs<'_, f32>,
     rules: JitterRules,
 ) -> Vec<[f32; 4]> {
+    let (frame, size, format, clear) = (m.frame, m.size, m.format, m.clear);
     let vs = match map {
         ObjectMap::Reflection => vs_reflect_r::<Jitter>,
         ObjectMap::Refraction => vs_refract_r::<Jitter>,
@@ -405,7 +429,19 @@ pub fn map_jitter(
         })
         .collect();
     let clip: Vec<[[f32; 4]; 3]> = verts.iter().map(|t| t.map(|v| v.0)).collect();
-    let occ = |x: u32, y: u32| Jitter(occluder(x, y));
+    let occ = |x: u32, y: u32| Jitter((m.occluder)(x, y));
+    let mj = MapInputs {
+        frame,
+        size,
+        format,
+        clear,
+        shadow_dims: m.shadow_dims,
+        occluder: &occ,
+        displacement: m.displacement,
+    };
+    let sample = |uv: [Jitter; 2]| {
+        crate::envelope::filter::sample_level0_jitter(m.displacement, &WRAP_LINEAR, uv)
+    };
     raster::jitter_pass(&clip, size[0], size[1], true, clear, rules, |k, w, _| {
         let t = &verts[k];
         // The interpolation with random roundings: Σ wₖ·vₖ in f32 operations.
@@ -419,7 +455,7 @@ pub fn map_jitter(
             std::array::from_fn(|c| mix(&|j| t[j].1.2[c])),
             mix(&|j| t[j].1.3),
         );
-        let (discard, color) = map_fragment(map, var, frame, dims, &occ)?;
+        let (discard, color) = map_fragment(map, var, &mj, &sample)?;
         (!discard).then(|| color.map(|c| c.store(format).0))
     })
 }
