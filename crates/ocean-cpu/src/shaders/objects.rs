@@ -3,14 +3,13 @@
 
 use ocean_core::frame::{FrameUniforms, ObjectVertex};
 
-use super::shared::floor::{FloorMaps, sun_reaches};
+use super::shared::floor::{FloorMaps, sun_reaches, sun_reaches_r};
 use super::shared::frame::transform_point;
 use super::shared::optics::water_volume_colour_r;
-use super::shared::shadow::sun_visibility_r;
 use super::water::WRAP_LINEAR;
 use super::wgsl::{Vec3, Vec4, texture_sample_level, vec3};
 use crate::envelope::raster::{self, Shaded};
-use crate::envelope::{Cond, Iv, Jitter, JitterRules, Real, choose, mat4_mul_vec4, normalize3};
+use crate::envelope::{Cond, Iv, Jitter, JitterRules, Real, mat4_mul_vec4, normalize3};
 use crate::sampler::Texture2D;
 
 /// `VertexOut` of objects.wgsl (clip position and the varyings, in declaration order).
@@ -224,23 +223,8 @@ pub fn sun_reaches_flat_r<R: Real>(
     dims: [u32; 2],
     occluder: &dyn Fn(u32, u32) -> R,
 ) -> Option<R> {
-    let l = R::lit;
-    let t = frame.terrain.sun_under;
-    if relief_marched(frame) {
-        return None;
-    }
-    if t[1] <= 0.0 {
-        return Some(l(1.0));
-    }
-    Some(choose(
-        l(0.0).le(world_y),
-        || l(1.0),
-        || {
-            let k = -world_y / l(t[1]);
-            let surface: [R; 3] = std::array::from_fn(|i| rel[i] + l(t[i]) * k);
-            sun_visibility_r(surface, frame, dims, occluder)
-        },
-    ))
+    (!relief_marched(frame))
+        .then(|| sun_reaches_r(rel, world_y, frame, dims, occluder, &|_| R::lit(1.0)))
 }
 
 /// What the stage's vertex entry points output, over any [`Real`]: the clip position and the

@@ -3,7 +3,8 @@
 
 use ocean_core::frame::FrameUniforms;
 
-use super::shadow::sun_visibility;
+use super::shadow::sun_visibility_r;
+use crate::envelope::{Real, choose};
 use crate::sampler::Texture2D;
 use crate::shaders::water::CLAMP_LINEAR;
 use crate::shaders::wgsl::{Vec3, clamp, max, sqrt, texture_sample_level, vec2, vec3};
@@ -70,10 +71,40 @@ pub fn relief_sun(rel: Vec3, frame: &FrameUniforms, floor_map: &Texture2D) -> f3
 
 /// `sun_reaches(rel, world_y)`.
 pub fn sun_reaches(rel: Vec3, world_y: f32, frame: &FrameUniforms, maps: FloorMaps<'_>) -> f32 {
+    let map = maps.shadow_map;
+    let relief = |r: [f32; 3]| relief_sun(vec3(r[0], r[1], r[2]), frame, maps.floor_map);
+    sun_reaches_r(
+        [rel.x, rel.y, rel.z],
+        world_y,
+        frame,
+        [map.width, map.height],
+        &|x, y| map.texel(x, y)[0],
+        &relief,
+    )
+}
+
+/// [`sun_reaches`] over any [`Real`]: the shadow map `dims` texels, its texel read by
+/// `occluder`; `relief` is `relief_sun`.
+pub fn sun_reaches_r<R: Real>(
+    rel: [R; 3],
+    world_y: R,
+    frame: &FrameUniforms,
+    dims: [u32; 2],
+    occluder: &dyn Fn(u32, u32) -> R,
+    relief: &dyn Fn([R; 3]) -> R,
+) -> R {
+    let l = R::lit;
     let t = frame.terrain.sun_under;
-    if world_y >= 0.0 || t[1] <= 0.0 {
-        return 1.0;
+    if t[1] <= 0.0 {
+        return l(1.0);
     }
-    let surface = rel + vec3(t[0], t[1], t[2]) * (-world_y / t[1]);
-    sun_visibility(surface, frame, maps.shadow_map) * relief_sun(rel, frame, maps.floor_map)
+    choose(
+        l(0.0).le(world_y),
+        || l(1.0),
+        || {
+            let k = -world_y / l(t[1]);
+            let surface: [R; 3] = std::array::from_fn(|i| rel[i] + l(t[i]) * k);
+            sun_visibility_r(surface, frame, dims, occluder) * relief(rel)
+        },
+    )
 }
