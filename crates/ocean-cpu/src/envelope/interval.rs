@@ -166,10 +166,10 @@ impl Iv {
     }
 
     /// From bounds `[lo, hi]` that one f64 operation rounded to nearest (each within 2⁻⁵³ of
-    /// its magnitude of the exact one), widened by `ulps` f32 ULP of the largest magnitude m,
-    /// then what f32 storage allows: overflow to ±∞ and flushed subnormals. The extra 2⁻⁵⁰·m
-    /// covers that rounding and the widening's own (each ≤ 2⁻⁵³ of m, or of m + the widening),
-    /// so no outward step is needed per operation.
+    /// its magnitude of the exact one), each end widened by `ulps` f32 ULP at twice its own
+    /// magnitude, then what f32 storage allows: overflow to ±∞ and flushed subnormals. The
+    /// extra 2⁻⁵⁰ of each end's magnitude covers that rounding and the widening's own, so no
+    /// outward step is needed per operation.
     #[inline]
     fn rounded(lo: f64, hi: f64, ulps: f64) -> Iv {
         if lo.is_nan() || hi.is_nan() {
@@ -180,8 +180,25 @@ impl Iv {
             // May overflow: under the finite-math assumption, anything.
             return Iv::FULL;
         }
-        let u = ulps * f32_ulp(m) + m * F64_SLACK;
-        Iv::stored(lo - u, hi + u)
+        // Each end by the ULP at its own magnitude, so a wide interval's small end is not
+        // widened by the large end's ULP. Moving inward from an end whose magnitude grows
+        // (lo > 0, hi < 0), a result past the next power of two B has ULPs twice as large:
+        // it is at least B − ulps·ulp(B) from the end's side, which may reach further.
+        let l = {
+            let w = lo - ulps * f32_ulp(lo);
+            let b = if lo > 0.0 { pow2_above(lo) } else { f64::INFINITY };
+            if hi >= b { w.min(b - ulps * f32_ulp(b)) } else { w }
+        } - lo.abs() * F64_SLACK;
+        let h = {
+            let w = hi + ulps * f32_ulp(hi);
+            let b = if hi < 0.0 { -pow2_above(-hi) } else { f64::NEG_INFINITY };
+            if lo <= b { w.max(b + ulps * f32_ulp(b)) } else { w }
+        } + hi.abs() * F64_SLACK;
+        // No rounding changes a result's sign: a value whose every exact result is ≥ 0 stays
+        // ≥ 0 (so the square root of a product of squares is defined), likewise ≤ 0.
+        let l = if lo >= 0.0 { l.max(0.0) } else { l };
+        let h = if hi <= 0.0 { h.min(0.0) } else { h };
+        Iv::stored(l, h)
     }
 
     /// A result that may pass f32's range is anything (WGSL's finite-math assumption lets an
@@ -233,6 +250,12 @@ impl Iv {
 
 const HALF_MAX: f64 = 65504.0;
 const HALF_MIN_NORMAL: f64 = 6.103_515_625e-5; // 2⁻¹⁴
+
+/// The least power of two above `x` > 0 (where f32's ULP doubles).
+fn pow2_above(x: f64) -> f64 {
+    let e = ((x.to_bits() >> 52) & 0x7ff) as i32 - 1023;
+    pow2(e + 1)
+}
 
 /// The spacing of binary16 values at magnitude `a` < 65536.
 fn half_spacing(a: f64) -> f64 {
@@ -445,6 +468,10 @@ impl Real for Iv {
         if self.full || self.lo < 0.0 {
             return Iv::FULL;
         }
+        if self.hi == 0.0 {
+            // inversesqrt(0) = ∞ and 1/∞ = 0.
+            return Iv::new(0.0, 0.0);
+        }
         let normal = (self.hi >= F32_MIN_NORMAL).then(|| {
             let lo = self.lo.max(F32_MIN_NORMAL);
             let inv =
@@ -473,6 +500,67 @@ impl Real for Iv {
     }
     /// The fraction over each cell is `x − k` on the part of the interval in [k, k + 1),
     /// with the subtraction's rounding (exact for nearby values, but the rules allow one ULP).
+    fn sq(self) -> Iv {
+        if self.full {
+            return Iv::FULL;
+        }
+        let (a, b) = (self.lo.abs(), self.hi.abs());
+        let lo = if self.lo <= 0.0 && self.hi >= 0.0 { 0.0 } else { a.min(b) * a.min(b) };
+        Iv::rounded(lo, a.max(b) * a.max(b), 1.0)
+    }
+    const INTERVAL: bool = true;
+    fn least(self) -> f64 {
+        if self.full { f64::NEG_INFINITY } else { self.lo }
+    }
+    fn within(self, lo: f64, hi: f64) -> Iv {
+        // Anything stays anything: it may stand for an overflow, which the bounds know
+        // nothing of.
+        if self.full {
+            return self;
+        }
+        let (l, h) = (self.lo.max(lo), self.hi.min(hi));
+        if l <= h { Iv::new(l, h) } else { self }
+    }
+    fn at_least(self, lo: f64) -> Iv {
+        if self.full || self.hi < lo {
+            return self;
+        }
+        Iv::new(self.lo.max(lo), self.hi)
+    }
+    fn frexp_cases(self) -> Option<[Option<(i32, Iv)>; 2]> {
+        if self.full
+            || self.lo.is_nan()
+            || self.lo < f64::from(f32::MIN_POSITIVE)
+            || !self.hi.is_finite()
+        {
+            return None;
+        }
+        let binade = |v: f64| v.log2().floor() as i32 + 1;
+        // log2's rounding may misplace an exact power of two: settle it on the fraction.
+        let fix = |v: f64, e: i32| {
+            let f = v / 2f64.powi(e);
+            if f >= 1.0 {
+                e + 1
+            } else if f < 0.5 {
+                e - 1
+            } else {
+                e
+            }
+        };
+        let (e0, e1) = (fix(self.lo, binade(self.lo)), fix(self.hi, binade(self.hi)));
+        let case = |e: i32, lo: f64, hi: f64| {
+            let s = 2f64.powi(e);
+            (e, Iv::new(lo / s, hi / s))
+        };
+        if e0 == e1 {
+            Some([Some(case(e0, self.lo, self.hi)), None])
+        } else if e1 == e0 + 1 {
+            let edge = 2f64.powi(e0);
+            Some([Some(case(e0, self.lo, edge.next_down())), Some(case(e1, edge, self.hi))])
+        } else {
+            None
+        }
+    }
     fn floor_cases(self) -> Option<[Option<(f32, Iv)>; 2]> {
         if self.full || !self.lo.is_finite() || !self.hi.is_finite() {
             return None;

@@ -69,6 +69,10 @@ fn within(exact: f64, allowance: f64) -> Jitter {
         exact + (4.0 * r - 3.0) * a
     };
     let mut v = toward(t, exact);
+    // No rounding changes a result's sign.
+    if (exact >= 0.0) != (v >= 0.0) || (exact <= 0.0) != (v <= 0.0) {
+        v = 0.0;
+    }
     if v != 0.0 && v.abs() < f32::MIN_POSITIVE && draw().0 < 0.5 {
         v = 0.0;
     }
@@ -195,6 +199,13 @@ impl Real for Jitter {
     }
     fn abs(self) -> Jitter {
         Jitter(self.0.abs())
+    }
+    fn least(self) -> f64 {
+        f64::from(self.0)
+    }
+    fn frexp_cases(self) -> Option<[Option<(i32, Jitter)>; 2]> {
+        let (f, e) = crate::shaders::wgsl::frexp(self.0);
+        Some([Some((e, Jitter(f))), None])
     }
     fn floor_cases(self) -> Option<[Option<(f32, Jitter)>; 2]> {
         let k = self.0.floor();

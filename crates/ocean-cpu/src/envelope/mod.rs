@@ -14,9 +14,10 @@
 //! Passes whose mirrors run over [`Real`]: `sky` (all three techniques, with the camera's
 //! view ray), `tonemap`, `bloom`, `waves` (with `shared/trig.wgsl`), `foam`'s field (with
 //! the Gerstner Jacobian), `wave_mips`, `fresnel_table` (with `shared/fresnel.wgsl`), and
-//! with the rasteriser's envelope ([`raster`]) `shadow_map` and `objects`' reflection and
-//! refraction maps. The others have no envelope yet; `ocean compare --tolerance envelope`
-//! reports their resources as not judged.
+//! with the rasteriser's envelope ([`raster`]) `shadow_map`, `objects`' reflection and
+//! refraction maps and `water` (its configurations `shaders::water::real::carried` names, at
+//! the device's [`Precision`]). The others have no envelope yet; `ocean compare --tolerance
+//! envelope` reports their resources as not judged.
 
 pub mod filter;
 mod interval;
@@ -29,6 +30,62 @@ use ocean_core::frame_format::FrameFormat;
 
 pub use interval::{ByteRange, Iv, f32_ulp};
 pub use jitter::{Jitter, JitterRules};
+
+/// What a device guarantees where Vulkan leaves the precision to the implementation: its
+/// `subPixelPrecisionBits`, `subTexelPrecisionBits` and `mipmapPrecisionBits` (each at least
+/// 4). The rasteriser's snap, the filter's weights and the blend between mip levels lie
+/// within one step of these grids.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Precision {
+    /// Sub-pixel bits of the rasteriser's snap.
+    pub subpixel_bits: u32,
+    /// Sub-texel bits of the bilinear weights.
+    pub subtexel_bits: u32,
+    /// Bits of the blend between two mip levels.
+    pub mipmap_bits: u32,
+}
+
+impl Precision {
+    /// Vulkan's minimum limits: what any conformant device guarantees.
+    pub const VULKAN_MINIMUM: Precision =
+        Precision { subpixel_bits: 4, subtexel_bits: 4, mipmap_bits: 4 };
+    /// Vulkan's Roadmap 2022 profile (docs/tolerances.md): 8 sub-pixel, 8 sub-texel and 6
+    /// mipmap bits.
+    pub const ROADMAP_2022: Precision =
+        Precision { subpixel_bits: 8, subtexel_bits: 8, mipmap_bits: 6 };
+    /// Mesa's lavapipe (llvmpipe): 8 sub-pixel and 8 sub-texel bits, 4 mipmap bits
+    /// (`lvp_device.c`).
+    pub const LAVAPIPE: Precision =
+        Precision { subpixel_bits: 8, subtexel_bits: 8, mipmap_bits: 4 };
+
+    /// The figures of an adapter this project knows (its name and PCI vendor id), with the
+    /// reason: lavapipe's from Mesa's source, NVIDIA's drivers the Roadmap 2022 profile (which
+    /// they support); Vulkan's minimum for any other (wgpu does not expose the limits).
+    pub fn of_adapter(name: &str, vendor: u32) -> (Precision, &'static str) {
+        if name.contains("llvmpipe") || name.contains("lavapipe") {
+            (Precision::LAVAPIPE, "lavapipe's limits (Mesa's lvp_device.c)")
+        } else if vendor == 0x10de {
+            (Precision::ROADMAP_2022, "NVIDIA: Vulkan's Roadmap 2022 profile")
+        } else {
+            (Precision::VULKAN_MINIMUM, "Vulkan's minimum limits (adapter not known)")
+        }
+    }
+
+    /// How far a snapped vertex may lie from its transformed position, px.
+    pub fn snap_px(self) -> f64 {
+        1.0 / f64::from(1u32 << self.subpixel_bits)
+    }
+
+    /// How far a bilinear weight may lie from the exact fraction.
+    pub fn weight_step(self) -> f64 {
+        1.0 / f64::from(1u32 << self.subtexel_bits)
+    }
+
+    /// How far the blend between two levels may lie from the LOD's fraction.
+    pub fn mip_step(self) -> f64 {
+        1.0 / f64::from(1u32 << self.mipmap_bits)
+    }
+}
 
 /// A chain's envelope in [`crate::mip::MipChain`]'s atlas layout: RGB per texel, `None` in the
 /// padding.
@@ -111,7 +168,8 @@ impl Cond for Tri {
 /// The scalar a mirror computes with: WGSL's `f32` operations, each with the semantics of the
 /// implementing type (exact lavapipe f32, an interval, or a random conformant result).
 pub trait Real:
-    Copy
+    std::fmt::Debug
+    + Copy
     + Add<Output = Self>
     + Sub<Output = Self>
     + Mul<Output = Self>
@@ -141,6 +199,11 @@ pub trait Real:
     /// over the values that floor there: one for a decided scalar, up to two for an interval
     /// across an integer; `None` past two (the caller's result is then anything).
     fn floor_cases(self) -> Option<[Option<(f32, Self)>; 2]>;
+    /// WGSL `frexp(e)` for a normal e > 0, as cases: (exponent, fraction in [½, 1)), one for a
+    /// decided scalar, up to two for an interval across a power of two (each with the
+    /// fraction over the values in its binade; exact, frexp has no rounding); `None` past two
+    /// or for a value that may be ≤ 0 or not finite.
+    fn frexp_cases(self) -> Option<[Option<(i32, Self)>; 2]>;
     /// WGSL `exp(e)` (Vulkan: 3 + 2|e| ULP).
     fn exp(self) -> Self;
     /// WGSL `atan2(y, x)` with `self` = y ≥ 0 (Vulkan: 4096 ULP).
@@ -153,6 +216,32 @@ pub trait Real:
     fn lt(self, b: Self) -> Self::Cond;
     /// `a == b`.
     fn eq(self, b: Self) -> Self::Cond;
+    /// `self * self`, written so (an interval knows both factors are one value: never
+    /// negative).
+    #[inline]
+    fn sq(self) -> Self {
+        self * self
+    }
+    /// Whether the type bounds values (an interval) rather than computing one.
+    const INTERVAL: bool = false;
+    /// The least value it may hold (−∞ for an interval that may be anything).
+    fn least(self) -> f64;
+    /// The greatest value it may hold (+∞ for an interval that may be anything).
+    fn most(self) -> f64 {
+        -(-self).least()
+    }
+    /// What is known of the value beyond its own arithmetic: it lies in [lo, hi] (an
+    /// interval is cut to it; a scalar already is).
+    #[inline]
+    fn within(self, _lo: f64, _hi: f64) -> Self {
+        self
+    }
+    /// What a branch knows of its condition: the value is at least `lo` there (an interval is
+    /// cut to it; a scalar, which took the branch, already is).
+    #[inline]
+    fn at_least(self, _lo: f64) -> Self {
+        self
+    }
     /// The smallest value holding both (an interval's hull; for a decided scalar, never
     /// needed: `self`).
     fn hull(self, b: Self) -> Self;
@@ -229,6 +318,15 @@ impl Real for f32 {
     fn floor_cases(self) -> Option<[Option<(f32, Self)>; 2]> {
         let k = self.floor();
         Some([Some((k, self - k)), None])
+    }
+    #[inline]
+    fn least(self) -> f64 {
+        f64::from(self)
+    }
+    #[inline]
+    fn frexp_cases(self) -> Option<[Option<(i32, Self)>; 2]> {
+        let (f, e) = crate::shaders::wgsl::frexp(self);
+        Some([Some((e, f)), None])
     }
     #[inline]
     fn atan2(self, x: Self) -> Self {

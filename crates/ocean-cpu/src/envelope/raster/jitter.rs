@@ -36,6 +36,23 @@ pub fn jitter_pass(
     rules: JitterRules,
     mut fragment: impl FnMut(usize, [f64; 3], f32) -> Option<[f32; 4]>,
 ) -> Vec<[f32; 4]> {
+    let bits = MIN_SUBPIXEL_BITS;
+    jitter_pass_at(tris, width, height, greater, clear, rules, bits, |_, k, w, z| fragment(k, w, z))
+}
+
+/// [`jitter_pass`] whose `fragment(pixel, triangle, barycentrics, depth)` is also told the
+/// pixel (its index in the target), on a device of `subpixel_bits`.
+#[allow(clippy::too_many_arguments, reason = "jitter_pass's, and the device's snap")]
+pub fn jitter_pass_at(
+    tris: &[[[f32; 4]; 3]],
+    width: u32,
+    height: u32,
+    greater: bool,
+    clear: [f32; 4],
+    rules: JitterRules,
+    subpixel_bits: u32,
+    mut fragment: impl FnMut(usize, usize, [f64; 3], f32) -> Option<[f32; 4]>,
+) -> Vec<[f32; 4]> {
     use ocean_core::rng::SplitMix64;
     let mut g = SplitMix64::new(rules.seed ^ 0x005e_ed0f_da7a);
     let mut unit = move || (g.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
@@ -82,26 +99,56 @@ pub fn jitter_pass(
             drawn.push((k, tri.map(|(v, _)| v.map(|c| c as f32)), tri.map(|(_, b)| b)));
         }
     }
+    // A vertex's viewport transform and snap are a function of the vertex (a GPU transforms
+    // and snaps the same clip position alike in every triangle that shares it, which is what
+    // keeps a mesh's shared edges watertight): their draws come from a hash of its bits.
+    let hash = |v: &[f32; 4], salt: u64| {
+        let mut h = rules.seed ^ salt.wrapping_mul(0x9e37_79b9_7f4a_7c15);
+        for c in v {
+            h = ocean_core::rng::mix64(h ^ u64::from(c.to_bits()));
+        }
+        h
+    };
+    let coin = |h: u64| (h >> 11) as f64 / (1u64 << 53) as f64;
     for (s_index, &(k, t, bary)) in drawn.iter().enumerate() {
+        let raw: [[f64; 3]; 3] = t.map(|v| {
+            Jitter::reseed(rules, hash(&v, 1));
+            to_screen_r(v.map(Jitter), width, height).map(|c| f64::from(c.0))
+        });
         Jitter::reseed(rules, s_index as u64);
-        let raw: [[f64; 3]; 3] =
-            t.map(|v| to_screen_r(v.map(Jitter), width, height).map(|c| f64::from(c.0)));
         let inv_w = t.map(|v| 1.0 / f64::from(v[3]));
-        let grid = f64::from(1u32 << MIN_SUBPIXEL_BITS);
-        let mut snap = |c: f64| {
-            let s = if unit() < 0.5 { (c * grid).floor() } else { (c * grid).ceil() };
-            let extra =
-                if rules.scale > 1.0 { (unit() * 2.0 - 1.0) * (rules.scale - 1.0) } else { 0.0 };
+        let grid = f64::from(1u32 << subpixel_bits);
+        let snap = |c: f64, h: u64| {
+            let s = if coin(h) < 0.5 { (c * grid).floor() } else { (c * grid).ceil() };
+            let r = coin(ocean_core::rng::mix64(h));
+            let extra = if rules.scale > 1.0 { (r * 2.0 - 1.0) * (rules.scale - 1.0) } else { 0.0 };
             (s + extra.round()) / grid
         };
-        let snapped: [[f64; 3]; 3] = raw.map(|v| [snap(v[0]), snap(v[1]), v[2]]);
+        let snapped: [[f64; 3]; 3] = std::array::from_fn(|i| {
+            let v = raw[i];
+            [snap(v[0], hash(&t[i], 2)), snap(v[1], hash(&t[i], 3)), v[2]]
+        });
         let area = (snapped[1][0] - snapped[0][0]) * (snapped[2][1] - snapped[0][1])
             - (snapped[2][0] - snapped[0][0]) * (snapped[1][1] - snapped[0][1]);
         if area == 0.0 {
             continue;
         }
         let sign = area.signum();
-        let ties = [unit() < 0.5, unit() < 0.5, unit() < 0.5];
+        // The tie-break is a rule of the edge (as top-left is): a sample on an edge two
+        // triangles share goes to exactly one of them. Edge e runs from vertex e + 1 to
+        // e + 2, in the direction that makes the triangle counter-clockwise after `sign`.
+        let ties: [bool; 3] = std::array::from_fn(|e| {
+            let (mut p, mut q) = (snapped[(e + 1) % 3], snapped[(e + 2) % 3]);
+            if sign < 0.0 {
+                std::mem::swap(&mut p, &mut q);
+            }
+            let key = |v: [f64; 3]| (v[0].to_bits(), v[1].to_bits());
+            let (a, b) = if key(p) < key(q) { (p, q) } else { (q, p) };
+            let h = [a[0], a[1], b[0], b[1]]
+                .iter()
+                .fold(rules.seed ^ 0x7e_ed9e, |h, c| ocean_core::rng::mix64(h ^ c.to_bits()));
+            (key(p) < key(q)) != (h & 1 == 1)
+        });
         // The depth plane and the barycentrics through the snapped or the unsnapped vertices.
         let plane_of = if unit() < 0.5 { snapped } else { raw };
         let [a, b, c] = plane_of;
@@ -163,7 +210,7 @@ pub fn jitter_pass(
                 let sum = pw[0] + pw[1] + pw[2];
                 let pw = pw.map(|v| v / sum);
                 let weights = std::array::from_fn(|j| (0..3).map(|v| pw[v] * bary[v][j]).sum());
-                let Some(color) = fragment(k, weights, stored) else { continue };
+                let Some(color) = fragment(i, k, weights, stored) else { continue };
                 depth[i] = f64::from(stored);
                 out[i] = color;
             }

@@ -23,8 +23,10 @@
 //! [min(clear, lo of every possible fragment), min(clear, hi of every certain fragment)].
 
 mod jitter;
+mod mesh;
 
-pub use jitter::{jitter_depth_pass, jitter_pass};
+pub use jitter::{jitter_depth_pass, jitter_pass, jitter_pass_at};
+pub use mesh::{MeshTri, color_pass_mesh};
 
 use super::{Iv, Real};
 
@@ -102,6 +104,27 @@ pub(crate) fn plane_distances(v: &[f64; 4]) -> [f64; 2] {
 /// vertex are the convex combination they name). `None` where a vertex's side of a plane is
 /// undecided by its box or a vertex kept may have w ≤ 0 (the caller then cannot bound it).
 pub fn clip_near_far(tri: [[Iv; 4]; 3]) -> Option<Vec<[ClipVertex; 3]>> {
+    clip_near_far_deciding(tri, None)
+}
+
+/// [`clip_near_far`] where a vertex's side of a plane is undecided by its box: the pieces of
+/// both decisions (the clipper keeps it, or cuts it off), each possible, none certain — the
+/// GPU's polygon is one of the two. `None` only where a vertex kept may have w ≤ 0.
+pub fn clip_near_far_either(tri: [[Iv; 4]; 3]) -> Option<(Vec<[ClipVertex; 3]>, bool)> {
+    if let Some(p) = clip_near_far_deciding(tri, None) {
+        return Some((p, true));
+    }
+    let mut both = clip_near_far_deciding(tri, Some(true))?;
+    both.extend(clip_near_far_deciding(tri, Some(false))?);
+    Some((both, false))
+}
+
+/// [`clip_near_far`], an undecided vertex kept (`Some(true)`), cut (`Some(false)`) or the
+/// whole undecided (`None`).
+fn clip_near_far_deciding(
+    tri: [[Iv; 4]; 3],
+    undecided: Option<bool>,
+) -> Option<Vec<[ClipVertex; 3]>> {
     let mid = |v: &[Iv; 4]| v.map(|c| 0.5 * (c.lo + c.hi));
     let half = |v: &[Iv; 4]| v.map(|c| 0.5 * (c.hi - c.lo));
     let inside_sure = |v: &[Iv; 4]| {
@@ -124,13 +147,14 @@ pub fn clip_near_far(tri: [[Iv; 4]; 3]) -> Option<Vec<[ClipVertex; 3]>> {
             let (da, db) = (plane_distances(&mid(&a.clip))[p], plane_distances(&mid(&b.clip))[p]);
             // A vertex whose box straddles the plane: the clipper's decision is undecided.
             let spread = |v: &[Iv; 4]| half(v)[3] + half(v)[2];
-            if da.abs() <= spread(&a.clip) {
-                return None;
-            }
-            if da >= 0.0 {
+            let side = |d: f64, v: &ClipVertex| {
+                if d.abs() <= spread(&v.clip) { undecided } else { Some(d >= 0.0) }
+            };
+            let (Some(ka), Some(kb)) = (side(da, a), side(db, b)) else { return None };
+            if ka {
                 out.push(*a);
             }
-            if (da >= 0.0) != (db >= 0.0) {
+            if ka != kb {
                 let t = da / (da - db);
                 let dt = 2.0 * (spread(&a.clip) + spread(&b.clip)) / (da - db).abs() + CLIP_SLACK;
                 let (ma, mb, ha, hb) = (mid(&a.clip), mid(&b.clip), half(&a.clip), half(&b.clip));
@@ -157,6 +181,20 @@ pub fn clip_near_far(tri: [[Iv; 4]; 3]) -> Option<Vec<[ClipVertex; 3]>> {
         return None;
     }
     Some((1..poly.len() - 1).map(|i| [poly[0], poly[i], poly[i + 1]]).collect())
+}
+
+/// The value at a vertex of a clipper's piece whose varyings' values at the original
+/// triangle's vertices are `vals`: the combination its barycentrics `bary` name (each within
+/// `err`), plus [`VARYING_ULPS`] for its arithmetic; a vertex of the original triangle
+/// (`err` 0, one barycentric 1) is its own value.
+pub fn part_value(vals: [Iv; 3], bary: [f64; 3], err: f64) -> Iv {
+    if err == 0.0 && bary.iter().filter(|&&x| x != 0.0).count() == 1 {
+        return vals[bary.iter().position(|&x| x != 0.0).unwrap_or(0)];
+    }
+    let x = Iv::sum(&[0, 1, 2].map(|j| vals[j] * Iv::new(bary[j], bary[j])));
+    let spread = vals.iter().map(|v| v.magnitude()).fold(0.0, f64::max);
+    let u = VARYING_ULPS * super::f32_ulp(x.magnitude()) + 2.0 * err * spread;
+    if x.full { x } else { Iv::new(x.lo - u, x.hi + u) }
 }
 
 /// [lo, hi] in exact f64 arithmetic (the rasteriser's fixed point has no rounding to carry).
@@ -233,12 +271,12 @@ impl Plane {
     }
 }
 
-fn setup(v: &[ScreenIv; 3], width: u32, height: u32) -> Option<Setup> {
+fn setup(v: &[ScreenIv; 3], width: u32, height: u32, snap: f64) -> Option<Setup> {
     if v.iter().any(|v| v.x.full || v.y.full || v.z.full) {
         return None;
     }
-    let x = v.map(|v| Span::of(v.x).widen(SNAP_PX));
-    let y = v.map(|v| Span::of(v.y).widen(SNAP_PX));
+    let x = v.map(|v| Span::of(v.x).widen(snap));
+    let y = v.map(|v| Span::of(v.y).widen(snap));
     let area = edge(x[0], y[0], x[1], y[1], x[2], y[2]);
     let lo_x = x.iter().map(|s| s.0).fold(f64::INFINITY, f64::min);
     let hi_x = x.iter().map(|s| s.1).fold(f64::NEG_INFINITY, f64::max);
@@ -291,7 +329,7 @@ fn setup(v: &[ScreenIv; 3], width: u32, height: u32) -> Option<Setup> {
         })
     };
     // The z's share: their errors weighted by barycentrics that may dip to −e.
-    let extrapolation = extrapolation(v);
+    let extrapolation = extrapolation_with(v, snap);
     let z_share = if wz == 0.0 { 0.0 } else { wz * (1.0 + 4.0 * extrapolation) };
     let plane = plane_of(mz, z_share);
     let bary = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]].map(|b| plane_of(b, 0.0));
@@ -369,6 +407,11 @@ fn cover(t: &Setup, px: f64, py: f64) -> Cover {
 /// are at least −√2·SNAP/(a − 5√2·h). ∞ for a triangle too thin for that to mean anything
 /// (a ≤ 8√2·h). From the snapped vertices they are ≥ 0.
 pub fn extrapolation(v: &[ScreenIv; 3]) -> f64 {
+    extrapolation_with(v, SNAP_PX)
+}
+
+/// [`extrapolation`] for a snap of `snap` px.
+pub fn extrapolation_with(v: &[ScreenIv; 3], snap: f64) -> f64 {
     let mid = |i: Iv| 0.5 * (i.lo + i.hi);
     let h = v.iter().flat_map(|v| [v.x, v.y]).map(|i| 0.5 * (i.hi - i.lo)).fold(0.0, f64::max);
     let p = v.map(|v| [mid(v.x), mid(v.y)]);
@@ -381,7 +424,7 @@ pub fn extrapolation(v: &[ScreenIv; 3]) -> f64 {
     let altitude = area2 / longest;
     let s2 = std::f64::consts::SQRT_2;
     if altitude.is_finite() && altitude > 8.0 * s2 * h {
-        s2 * SNAP_PX / (altitude - 5.0 * s2 * h) * (1.0 + 1e-9)
+        s2 * snap / (altitude - 5.0 * s2 * h) * (1.0 + 1e-9)
     } else {
         f64::INFINITY
     }
@@ -507,7 +550,7 @@ pub fn fragments(
         return false;
     }
     for (k, t) in tris.iter().enumerate() {
-        let Some(t) = setup(t, width, height) else { continue };
+        let Some(t) = setup(t, width, height, SNAP_PX) else { continue };
         let [x0, y0, x1, y1] = t.bbox;
         for py in y0..=y1 {
             for px in x0..=x1 {
@@ -639,7 +682,8 @@ mod tests {
     /// edges possible, and the depth at an interior sample close to the plane's.
     #[test]
     fn a_triangle_is_certain_inside_possible_at_its_edges() {
-        let t = setup(&[v(1.0, 1.0, 0.2), v(30.0, 2.0, 0.4), v(5.0, 28.0, 0.6)], 32, 32).unwrap();
+        let t = setup(&[v(1.0, 1.0, 0.2), v(30.0, 2.0, 0.4), v(5.0, 28.0, 0.6)], 32, 32, SNAP_PX)
+            .unwrap();
         assert!(matches!(cover(&t, 8.5, 8.5), Cover::Certain(_)));
         assert_eq!(cover(&t, 30.5, 30.5), Cover::No);
         // On the edge from (1, 1) to (30, 2), well inside in x.
