@@ -149,6 +149,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                     .collect(),
                 ldr: gpu.ldr.as_deref(),
                 oracle_hdr: Some(&renders.cpu.buffers.hdr.color),
+                precision: ocean::verdict::precision_of(&check.adapter.name, &check.adapter.vendor),
             };
             let v = envelope_verdict(&scene, plan, &side, &ran)?;
             for l in &v.lines {
@@ -429,6 +430,12 @@ fn against_envelope(
         maps: read.iter().map(|(id, (size, t))| (*id, (*size, &t[..]))).collect(),
         ldr: ldr.as_deref(),
         oracle_hdr: oracle.as_ref().map(|r| &r.buffers.hdr.color[..]),
+        precision: manifest.adapter.as_ref().map_or(ocean::verdict::precision_of("", ""), |a| {
+            ocean::verdict::precision_of(
+                a["name"].as_str().unwrap_or(""),
+                a["vendor"].as_str().unwrap_or(""),
+            )
+        }),
     };
     let v = envelope_verdict(scene, plan, &side, &held)?;
     for l in &v.lines {

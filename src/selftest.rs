@@ -47,6 +47,10 @@ fn judge(renderer: &mut Renderer, scene: &Scene) -> anyhow::Result<Verdict> {
             .collect(),
         ldr: frame.ldr.as_deref(),
         oracle_hdr: Some(&oracle.buffers.hdr.color),
+        precision: ocean::verdict::precision_of(
+            &renderer.adapter().name,
+            &renderer.adapter().vendor,
+        ),
     };
     envelope_verdict(scene, &frame.plan, &side, &ocean::dump::dumped(&frame.plan))
 }

@@ -14,7 +14,7 @@ pub type FrameRef<'a> = ((u32, u32), &'a [[f32; 4]]);
 
 /// What a GPU made of a frame: its float resources as read back (or read from a dump), and
 /// its 8-bit picture.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub struct GpuSide<'a> {
     /// The float resources the frame holds.
     pub maps: Vec<(ResourceId, FrameRef<'a>)>,
@@ -23,6 +23,27 @@ pub struct GpuSide<'a> {
     /// The oracle's final HDR frame of the same scene, if at hand: where it still holds the
     /// exact sky pass, the GPU's `hdr` is judged against the sky's envelope.
     pub oracle_hdr: Option<&'a [[f32; 4]]>,
+    /// The precision the adapter guarantees (its snap, filter weights and level blend), and
+    /// where the figures come from ([`precision_of`]).
+    pub precision: (ocean_cpu::envelope::Precision, &'static str),
+}
+
+/// The precision of an adapter by its name and PCI vendor id as written in a report or a
+/// manifest ("0x10de"): [`ocean_cpu::envelope::Precision::of_adapter`].
+pub fn precision_of(name: &str, vendor: &str) -> (ocean_cpu::envelope::Precision, &'static str) {
+    let id = u32::from_str_radix(vendor.trim_start_matches("0x"), 16).unwrap_or(0);
+    ocean_cpu::envelope::Precision::of_adapter(name, id)
+}
+
+impl Default for GpuSide<'_> {
+    fn default() -> Self {
+        Self {
+            maps: Vec::new(),
+            ldr: None,
+            oracle_hdr: None,
+            precision: (ocean_cpu::envelope::Precision::VULKAN_MINIMUM, "Vulkan's minimum limits"),
+        }
+    }
 }
 
 impl<'a> GpuSide<'a> {
@@ -207,6 +228,37 @@ fn judge_passes(
         v.json.push(f.to_json());
         v.judged.push("hdr (sky)");
     }
+    match water_verdict(scene, plan, gpu)? {
+        Ok((f, open, took, widths)) => {
+            let fmt = |x: Option<f64>| x.map_or("-".to_owned(), |x| format!("{x:.1e}"));
+            let note = format!(
+                " ({} water pixels, rel half-width p50 {} / p99 {}; {:.2} % open to the sky at \
+                 the mesh's edges; {}; envelope {took:.1?})",
+                widths.pixels,
+                fmt(widths.p50),
+                fmt(widths.p99),
+                100.0 * open,
+                gpu.precision.1
+            );
+            v.lines.push(format!("  [{:<14}] {}{note}", "water", f.line()));
+            if !f.passed() {
+                v.failures.push(f.line());
+            }
+            let mut j = f.to_json();
+            j["water_pixels"] = json!(widths.pixels);
+            j["water_rel_half_width_p50"] = json!(widths.p50);
+            j["water_rel_half_width_p99"] = json!(widths.p99);
+            j["open_share"] = json!(open);
+            j["precision"] = json!(gpu.precision.1);
+            v.json.push(j);
+            v.judged.push("hdr");
+        }
+        Err(why) => {
+            v.lines.push(format!("  [{:<14}] {:<20} not judged: {why}", "water", "hdr (water)"));
+            v.json.push(json!({"name": "hdr (water)", "tolerance": "envelope", "judged": false, "why": why}));
+            v.not_judged.push("hdr (water)");
+        }
+    }
     for &id in resources.iter().filter(|id| !v.judged.contains(&id.name())) {
         let pass = id.writer().map_or("", |p| p.name());
         let (why, entry) = ocean_verify::envelope::not_judged(id);
@@ -260,6 +312,116 @@ fn judge_passes(
     v.json.push(verdict.to_json());
     v.judged.push("ldr");
     Ok(v)
+}
+
+/// The water pass's envelope where the water shows: how many pixels, and the relative
+/// half-width of their channels at p50 and p99 (`None`: no pixel).
+struct WaterWidths {
+    pixels: usize,
+    p50: Option<f64>,
+    p99: Option<f64>,
+}
+
+/// The HDR frame's water pixels against the water pass's envelope (ocean-cpu
+/// `shaders::water::envelope`), given the GPU's own input maps and the sky pass's envelope
+/// behind it: every pixel the objects cannot reach (they have no envelope in the main view
+/// yet). `Err(why)` where it is not judged: a configuration the envelope does not carry, a
+/// pass after the water that draws into the frame, a missing input.
+#[allow(clippy::type_complexity, reason = "a verdict, its open share, cost and widths, or why not")]
+fn water_verdict(
+    scene: &Scene,
+    plan: &FramePlan,
+    gpu: &GpuSide<'_>,
+) -> anyhow::Result<
+    Result<(ocean_verify::envelope::RegionVerdict, f64, std::time::Duration, WaterWidths), String>,
+> {
+    use ocean_core::plan::Stage;
+    use ocean_cpu::envelope::Iv;
+    use ocean_cpu::shaders::{sky, water};
+    if !plan.runs(Pass::Water) {
+        return Ok(Err("no water pass".into()));
+    }
+    let Some(((w, h), hdr)) = gpu.map(ResourceId::Hdr) else {
+        return Ok(Err("the GPU's HDR frame is missing".into()));
+    };
+    if plan.runs(Pass::Spray) {
+        return Ok(Err("spray draws over the water (its pass has no envelope yet)".into()));
+    }
+    let technique = plan.techniques.of(Stage::Sky).name;
+    if !sky::ENVELOPE_TECHNIQUES.contains(&technique) {
+        return Ok(Err(format!("sky `{technique}` has no envelope")));
+    }
+    let frame =
+        ocean_core::plan::FrameInputs::new(scene, plan, &ocean_core::plan::FrameState::new(0.0))?;
+    let u = &frame.uniforms;
+    let t = &plan.techniques;
+    if let Some(why) = water::real::carried(u, t.of(Stage::Shading).name, t.of(Stage::Foam).name) {
+        return Ok(Err(why.into()));
+    }
+    let get = |id: ResourceId| gpu.map(id).map(|((w, h), t)| (w, h, t));
+    let runs = |id: ResourceId| id.writer().is_some_and(|p| plan.runs(p));
+    let owned = match water::envelope::OwnedTextures::from_resources(
+        get,
+        plan.runs(Pass::WaveMips),
+        runs,
+    ) {
+        Ok(o) => o,
+        Err(name) => return Ok(Err(format!("its input {name} is not in the frame"))),
+    };
+    let format = plan.frame_format;
+    let pass = water::envelope::WaterPass {
+        frame: u,
+        sky: &frame.environment,
+        lut: &frame.sky_lut,
+        sky_technique: technique,
+        textures: owned.textures(),
+        vertices: &frame.mesh.vertices,
+        indices: &frame.mesh.indices,
+        size: [w, h],
+        format,
+        precision: gpu.precision.0,
+    };
+    let inputs = sky::SkyInputs {
+        camera: &frame.camera_uniforms,
+        sky: &frame.environment,
+        lut: &frame.sky_lut,
+    };
+    let Some(sky_env) = sky::envelope(technique, inputs, (w, h), format) else {
+        return Ok(Err(format!("sky `{technique}` has no envelope")));
+    };
+    let background: Vec<[Iv; 4]> =
+        sky_env.into_iter().map(|c| [c[0], c[1], c[2], Iv::point(1.0)]).collect();
+    if hdr.len() != background.len() {
+        bail!("hdr: {} texels, the frame {w}x{h}", hdr.len());
+    }
+    let started = std::time::Instant::now();
+    let (env, open) = water::envelope::envelope(&pass, &background);
+    let took = started.elapsed();
+    let reach = match plan.pass(Pass::Objects).filter(|_| plan.runs(Pass::Objects)) {
+        Some(p) => {
+            let tris = ocean_core::frame::pass_triangles(scene, &frame.poses, p, frame.camera.eye);
+            ocean_cpu::shaders::objects::screen_reach(&tris, u, w, h)
+        }
+        None => vec![false; env.len()],
+    };
+    let region: Vec<Option<bool>> = reach.iter().map(|&r| (!r).then_some(true)).collect();
+    let judged = reach.iter().filter(|r| !**r).count();
+    if judged == 0 {
+        return Ok(Err("the objects may reach every pixel (they have no envelope yet)".into()));
+    }
+    let open_share =
+        open.iter().zip(&reach).filter(|(o, r)| **o && !**r).count() as f64 / judged as f64;
+    let f = ocean_verify::envelope::judge_region("hdr (water pixels)", &env, &region, hdr, w);
+    // The widths where the water shows (the envelope is not the sky's alone).
+    let mut rel: Vec<f64> = (0..env.len())
+        .filter(|&i| !reach[i])
+        .filter(|&i| (0..3).any(|c| env[i][c] != background[i][c]))
+        .flat_map(|i| env[i][..3].iter().filter_map(|c| c.rel_half_width()).collect::<Vec<_>>())
+        .collect();
+    rel.sort_by(f64::total_cmp);
+    let q = |p: f64| rel.get(((rel.len().max(1) - 1) as f64 * p) as usize).copied();
+    let widths = WaterWidths { pixels: rel.len() / 3, p50: q(0.5), p99: q(0.99) };
+    Ok(Ok((f, open_share, took, widths)))
 }
 
 /// The HDR frame's sky pixels against the sky pass's envelope: the pixels where the oracle's

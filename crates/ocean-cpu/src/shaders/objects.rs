@@ -359,17 +359,7 @@ pub fn map_envelope(
         let v = &verts[t];
         // A part's vertices hold convex combinations of the original triangle's values.
         let at = |f: &dyn Fn(usize) -> Iv| -> [Iv; 3] {
-            bary.map(|(b, err)| {
-                if err == 0.0 && b.iter().filter(|&&x| x != 0.0).count() == 1 {
-                    return f(b.iter().position(|&x| x != 0.0).unwrap_or(0));
-                }
-                let vals = [f(0), f(1), f(2)];
-                let x = Iv::sum(&[0, 1, 2].map(|j| vals[j] * Iv::new(b[j], b[j])));
-                let spread = vals.iter().map(|v| v.magnitude()).fold(0.0, f64::max);
-                let u = raster::VARYING_ULPS * crate::envelope::f32_ulp(x.magnitude())
-                    + 2.0 * err * spread;
-                if x.full { x } else { Iv::new(x.lo - u, x.hi + u) }
-            })
+            bary.map(|(b, err)| raster::part_value([f(0), f(1), f(2)], b, err))
         };
         let mix = |f: &dyn Fn(usize) -> Iv| interp.varying(at(f));
         let var: Varyings<Iv> = (
@@ -442,4 +432,66 @@ pub fn map_jitter(
         let (discard, color) = map_fragment(map, var, &mj, &sample)?;
         (!discard).then(|| color.map(|c| c.store(format).0))
     })
+}
+
+/// The pixels of a `width` × `height` view that the objects' `triangles` may touch in the
+/// main view (`vs_main`): the screen box of what is left of each triangle in front of the
+/// near plane, widened by two pixels for any conformant vertex arithmetic and snapping. What the water pass's verdict leaves out (the objects in the main view have no
+/// envelope yet).
+pub fn screen_reach(
+    triangles: &[[ObjectVertex; 3]],
+    frame: &FrameUniforms,
+    width: u32,
+    height: u32,
+) -> Vec<bool> {
+    let n = (width as usize) * (height as usize);
+    let mut reach = vec![false; n];
+    for t in triangles {
+        let clip = t.each_ref().map(|v| {
+            let c = vs_main(v, frame).clip;
+            [c.x, c.y, c.z, c.w].map(f64::from)
+        });
+        // The polygon left of it in front of the near plane (z ≤ w, with a margin): what
+        // the rasteriser draws of it lies inside its screen box.
+        let mut poly: Vec<[f64; 4]> = clip.to_vec();
+        let d = |v: &[f64; 4]| v[3] - v[2] - 1e-6 * v[3].abs().max(1e-6);
+        let mut out = Vec::new();
+        for i in 0..poly.len() {
+            let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
+            if d(&a) >= 0.0 {
+                out.push(a);
+            }
+            if (d(&a) >= 0.0) != (d(&b) >= 0.0) {
+                let t = d(&a) / (d(&a) - d(&b));
+                out.push(std::array::from_fn(|c| a[c] + t * (b[c] - a[c])));
+            }
+        }
+        poly = out;
+        if poly.is_empty() {
+            continue;
+        }
+        if poly.iter().any(|c| c[3] <= 1e-9) {
+            return vec![true; n];
+        }
+        let s: Vec<[f64; 2]> = poly
+            .iter()
+            .map(|c| {
+                let (x, y) = (c[0] / c[3], c[1] / c[3]);
+                [(x + 1.0) * 0.5 * f64::from(width), (1.0 - y) * 0.5 * f64::from(height)]
+            })
+            .collect();
+        let lo = |k: usize| s.iter().map(|p| p[k]).fold(f64::INFINITY, f64::min) - 2.0;
+        let hi = |k: usize| s.iter().map(|p| p[k]).fold(f64::NEG_INFINITY, f64::max) + 2.0;
+        let (x0, x1) = (lo(0).floor().max(0.0), hi(0).ceil().min(f64::from(width) - 1.0));
+        let (y0, y1) = (lo(1).floor().max(0.0), hi(1).ceil().min(f64::from(height) - 1.0));
+        if x0 > x1 || y0 > y1 {
+            continue;
+        }
+        for y in y0 as usize..=y1 as usize {
+            for x in x0 as usize..=x1 as usize {
+                reach[y * width as usize + x] = true;
+            }
+        }
+    }
+    reach
 }

@@ -137,6 +137,27 @@ pub struct SkyInputs<'a> {
 /// The techniques whose mirror runs over [`crate::envelope::Real`].
 pub const ENVELOPE_TECHNIQUES: [&str; 3] = ["preetham", "atmosphere", "preetham_clouds"];
 
+/// The water's `sky_radiance(sky, dir)` of a technique with an envelope over any
+/// [`crate::envelope::Real`] (the sky pass's radiance without its sun disc); `preetham` for a
+/// name not in [`ENVELOPE_TECHNIQUES`].
+pub fn sky_radiance_r<R: crate::envelope::Real>(
+    technique: &str,
+    sky: &SkyUniforms,
+    lut: &SkyLut,
+    dir: [R; 3],
+) -> [R; 3] {
+    use crate::shaders::shared::preetham::preetham_radiance_r;
+    use crate::shaders::shared::sky_lut::sky_lut_radiance_r;
+    match technique {
+        "atmosphere" => {
+            let s = sky.sun_direction;
+            sky_lut_radiance_r(lut, dir, [R::lit(s[0]), R::lit(s[1]), R::lit(s[2])])
+        }
+        "preetham_clouds" => preetham_clouds::sky_radiance_r(sky, dir),
+        _ => preetham_radiance_r(sky, dir),
+    }
+}
+
 /// `fs_main` of a technique with an envelope over any [`crate::envelope::Real`] at every pixel
 /// of a `width × height` frame, stored in `format`; `each(i)` runs before pixel i (a
 /// [`crate::envelope::Jitter`] reseeds there). `None` for a technique without an envelope yet.

@@ -4,6 +4,8 @@
 use ocean_core::frame::FrameUniforms;
 
 mod clipmap;
+pub mod envelope;
+pub mod real;
 pub use clipmap::vs_clipmap;
 
 use super::shared::coastal::{coastal_shore, coastal_wave};
@@ -13,7 +15,7 @@ use super::shared::frame::{dot3, transform_point, unit};
 use super::shared::gerstner::{gerstner_cis, gerstner_displacement, gerstner_jacobian};
 use super::shared::trig::TAU;
 use super::wgsl::{
-    Vec2, Vec3, Vec4, abs, clamp, frexp, ldexp, max, sqrt, texture_sample_level, vec2, vec3, vec4,
+    Vec2, Vec3, Vec4, abs, clamp, ldexp, max, sqrt, texture_sample_level, vec2, vec3, vec4,
 };
 use crate::mip::{MipChain, texture_sample_level_mip};
 use crate::sampler::{AddressMode, FilterMode, Sampler, Texture2D};
@@ -307,20 +309,7 @@ pub fn multi_scale_taps(pos: Vec2, fp: &Footprint, h: Vec2, b: &Bindings<'_>) ->
 
 /// `pow_int(x, n)`: x^n by binary exponentiation, multiplications in the WGSL's order.
 pub fn pow_int(x: f32, n: u32) -> f32 {
-    let mut result = 1.0;
-    let mut base = x;
-    let mut e = n;
-    loop {
-        if e & 1 == 1 {
-            result *= base;
-        }
-        e >>= 1;
-        if e == 0 {
-            break;
-        }
-        base *= base;
-    }
-    result
+    real::pow_int(x, n)
 }
 
 /// `sun_visibility(rel)` (shared/shadow.wgsl) with this stage's `shadow_map`.
@@ -330,9 +319,7 @@ pub fn sun_visibility(rel: Vec3, b: &Bindings<'_>) -> f32 {
 
 /// `lod_log2(x)`.
 pub fn lod_log2(x: f32) -> f32 {
-    let (fract, exp) = frexp(x);
-    let m = fract * 2.0 - 1.0;
-    (exp - 1) as f32 + m * (1.442_544_9 + m * (-0.718_145_2 + m * 0.275_600_3))
+    real::lod_log2(x)
 }
 
 /// `Footprint`: where the pixel's taps on the slope maps lie.
@@ -459,13 +446,7 @@ pub use super::shared::optics::{EXP_MIN, exp_arith};
 
 /// `normal_cdf(a)`: Φ(a) by Abramowitz & Stegun 7.1.26 (|error| < 1.5e-7).
 pub fn normal_cdf(a: f32) -> f32 {
-    let x = abs(a) * std::f32::consts::FRAC_1_SQRT_2;
-    let t = 1.0 / (1.0 + 0.327_591_1 * x);
-    let poly = ((((1.061_405_4 * t - 1.453_152) * t + 1.421_413_8) * t - 0.284_496_74) * t
-        + 0.254_829_6)
-        * t;
-    let erf = 1.0 - poly * exp_arith(-(x * x));
-    if a < 0.0 { 0.5 - 0.5 * erf } else { 0.5 + 0.5 * erf }
+    real::normal_cdf(a)
 }
 
 /// `VISIBLE_A_MIN`: below this standardised mean the facets' weights are clamped.
@@ -493,10 +474,7 @@ pub fn visible_slopes(mu: f32, var_geo: f32, vy: f32, vh: f32) -> Vec2 {
 
 /// `subtexel(lod)`: the share of level 0's E\[s²\] − E\[s\]² a footprint of LOD `lod` < 0 holds.
 pub fn subtexel(lod: f32) -> f32 {
-    if lod >= 0.0 {
-        return 1.0;
-    }
-    exp_arith(lod * (2.0 * std::f32::consts::LN_2))
+    real::subtexel(lod)
 }
 
 /// `gerstner_filtered_slopes(pos, fp, weight)`.
@@ -666,9 +644,7 @@ pub const SQRT2: f32 = std::f32::consts::SQRT_2;
 
 /// `grazing_square_axis(a, b)`.
 pub fn grazing_square_axis(a: f32, b: f32) -> f32 {
-    let plus = (SQRT2 + a - b) * (SQRT2 + a + b);
-    let minus = (SQRT2 - a - b) * (SQRT2 - a + b);
-    0.5 * (sqrt(max(plus, 0.0)) - sqrt(max(minus, 0.0)))
+    real::grazing_square_axis(a, b)
 }
 
 /// `bumped_view(view, n)`: the view vector's horizontal part bumped by the normal's
