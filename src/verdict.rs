@@ -355,9 +355,13 @@ fn water_verdict(
         ocean_core::plan::FrameInputs::new(scene, plan, &ocean_core::plan::FrameState::new(0.0))?;
     let u = &frame.uniforms;
     let t = &plan.techniques;
-    if let Some(why) = water::real::carried(u, t.of(Stage::Shading).name, t.of(Stage::Foam).name) {
+    let shading_name = t.of(Stage::Shading).name;
+    if let Some(why) = water::real::carried(u, shading_name, t.of(Stage::Foam).name) {
         return Ok(Err(why.into()));
     }
+    let Some(shading) = water::real::Shading::of(shading_name) else {
+        return Ok(Err(format!("shading `{shading_name}` has no envelope")));
+    };
     let get = |id: ResourceId| gpu.map(id).map(|((w, h), t)| (w, h, t));
     let runs = |id: ResourceId| id.writer().is_some_and(|p| plan.runs(p));
     let owned = match water::envelope::OwnedTextures::from_resources(
@@ -380,6 +384,7 @@ fn water_verdict(
         size: [w, h],
         format,
         precision: gpu.precision.0,
+        shading,
     };
     let inputs = sky::SkyInputs {
         camera: &frame.camera_uniforms,

@@ -927,6 +927,10 @@ fn random_conformant_gpus_stay_inside_the_water_envelope() {
             size: [w, h],
             format,
             precision: ocean_cpu::envelope::Precision::LAVAPIPE,
+            shading: ocean_cpu::shaders::water::real::Shading::of(
+                plan.techniques.of(Stage::Shading).name,
+            )
+            .unwrap(),
         };
         // The generic mirror at f32 against the exact one.
         let t = owned.textures();
@@ -947,7 +951,10 @@ fn random_conformant_gpus_stay_inside_the_water_envelope() {
             floor_map: t.fresnel_filter,
             foam_field: t.fresnel_filter,
             sky_radiance: &sky_fn,
-            shade_above: ocean_cpu::shaders::shading::hu::shade_above,
+            shade_above: ocean_cpu::shaders::shading::shade_above(
+                plan.techniques.of(Stage::Shading).name,
+            )
+            .unwrap(),
             foam_coverage: ocean_cpu::shaders::foam::none::foam_coverage,
         };
         let grid = u.grid.vertex_count() > 0;

@@ -38,7 +38,7 @@ pub fn cis_turns(p: f32) -> [f32; 2] {
 #[inline]
 pub fn cis_turns_r<R: Real>(p: R) -> [R; 2] {
     let l = R::lit;
-    on_floor(p * l(4.0) + l(0.5), [l(f32::NAN); 2], |q, _| {
+    on_floor(p * l(4.0) + l(0.5), unknown_quadrant(p), |q, _| {
         let x = (p - l(q) * l(0.25)) * l(TAU);
         let x2 = x * x;
         let s = x + x * x2 * (l(SIN_C3) + x2 * (l(SIN_C5) + x2 * (l(SIN_C7) + x2 * l(SIN_C9))));
@@ -59,5 +59,23 @@ pub fn cis_turns_r<R: Real>(p: R) -> [R; 2] {
 /// straddles a half turn, both reductions, united (the same angle, so still narrow).
 #[inline]
 pub fn cis_reduced_r<R: Real>(p: R) -> [R; 2] {
-    on_floor(p + R::lit(0.5), [R::lit(f32::NAN); 2], |k, _| cis_turns_r(p - R::lit(k)))
+    on_floor(p + R::lit(0.5), unknown_quadrant(p), |k, _| cis_turns_r(p - R::lit(k)))
+}
+
+/// What `cis_turns` gives where the bounds cannot tell which quarter turn (or which whole
+/// turn) the GPU reduces `p` by, past the two cells `on_floor` follows: whichever it takes,
+/// the reduced angle is within an eighth of a turn of 0 (plus the rounding of 4p, under 2⁻⁵
+/// of a quarter turn for |p| < 2¹⁶), where both polynomials stay within [−1, 1] but for
+/// their own roundings; so each component lies in [−1.0001, 1.0001]. Anything for a larger
+/// or unbounded p.
+fn unknown_quadrant<R: Real>(p: R) -> [R; 2] {
+    let l = R::lit;
+    let limit = 65536.0;
+    // A scalar never gets here (one cell): the test compiles away for it.
+    if R::INTERVAL && p.least() > -limit && p.most() < limit {
+        let b = l(-1.0001).hull(l(1.0001));
+        [b, b]
+    } else {
+        [l(f32::NAN); 2]
+    }
 }

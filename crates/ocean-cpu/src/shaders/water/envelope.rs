@@ -63,6 +63,8 @@ pub struct WaterPass<'a> {
     pub format: FrameFormat,
     /// The device's precision (its snap, filter weights and level blend).
     pub precision: Precision,
+    /// The shading technique.
+    pub shading: real::Shading,
 }
 
 /// `textureSampleLevel` as each scalar type samples (level 0 of a texture, a chain at an
@@ -148,6 +150,7 @@ fn with_inputs<R: Real + Sampling<R> + Send + Sync, T>(
     let occluder = move |x: u32, y: u32| texel(map.texel(x, y)[0]);
     f(&Inputs {
         frame: p.frame,
+        shading: p.shading,
         sample: &sampler,
         spread_floor: &floor,
         sky: &sky_fn,

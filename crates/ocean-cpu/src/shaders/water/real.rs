@@ -1,6 +1,7 @@
 //! `shaders/water.wgsl` over any [`Real`], for the techniques the envelope carries
-//! ([`carried`]): waves `fft` on one scale, surfaces `hu_patches` and `projected_grid`, far
-//! fields `none`, `mip` and `variance`, shading `hu`, foam `none`, no terrain damping. At `f32`
+//! ([`carried`]): waves `fft` on one scale and `gerstner`, surfaces `hu_patches` and
+//! `projected_grid`, far fields `none`, `mip` and `variance`, shadings `hu` and `ggx` (with its
+//! detail map), foam `none`, no terrain damping. At `f32`
 //! it is the exact mirror's arithmetic, operation for operation (a test holds the two to the
 //! bit); over [`crate::envelope::Iv`] the envelope's, over [`crate::envelope::Jitter`] one
 //! random conformant GPU's.
@@ -14,8 +15,11 @@
 use ocean_core::frame::FrameUniforms;
 
 use crate::envelope::{Cond, Real, choose, choose_n, dot3, mat4_mul_vec4};
+use crate::shaders::shared::fresnel::fresnel_exact_r;
+use crate::shaders::shared::gerstner::gerstner_cis_r;
 use crate::shaders::shared::optics::exp_arith_r;
 use crate::shaders::shared::shadow::sun_visibility_r;
+use crate::shaders::shared::trig::{TAU, cis_reduced_r};
 
 /// A texture the stage reads, as [`Inputs::sample`] names it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -38,10 +42,32 @@ pub enum Tex {
     FresnelFilter,
 }
 
+/// The shading techniques the envelope carries (`technique/shading`'s `shade_above`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Shading {
+    /// Seed 000's eq. 3 (`shading/hu.wgsl`).
+    Hu,
+    /// Seed 002's Cook–Torrance BRDF with GGX (`shading/ggx.wgsl`).
+    Ggx,
+}
+
+impl Shading {
+    /// The technique named `name`, if the envelope carries it.
+    pub fn of(name: &str) -> Option<Shading> {
+        match name {
+            "hu" => Some(Shading::Hu),
+            "ggx" => Some(Shading::Ggx),
+            _ => None,
+        }
+    }
+}
+
 /// What the stage reads, over a [`Real`].
 pub struct Inputs<'a, R> {
     /// The frame's uniforms.
     pub frame: &'a FrameUniforms,
+    /// The shading technique.
+    pub shading: Shading,
     /// `textureSampleLevel(texture, sampler, uv, lod)` with the texture's sampler.
     pub sample: &'a (dyn Fn(Tex, [R; 2], R) -> [R; 4] + Sync),
     /// For a slope chain's sample, the least t₂ − t₀² and t₃ − t₁² (E\[s²\] − E\[s\]² per
@@ -60,17 +86,17 @@ pub struct Inputs<'a, R> {
 /// frame whose techniques are `shading` and `foam` and whose surface draws `clipmap` vertices
 /// or not.
 pub fn carried(frame: &FrameUniforms, shading: &str, foam: &str) -> Option<&'static str> {
-    if shading != "hu" {
-        return Some("the water pass's envelope carries shading `hu` only");
+    if Shading::of(shading).is_none() {
+        return Some("the water pass's envelope carries shadings `hu` and `ggx` only");
     }
     if foam != "none" || frame.foam.mode != 0.0 {
         return Some("the water pass's envelope carries foam `none` only");
     }
-    if frame.coastal.shape[0] > 0.0 || frame.gerstner.count > 0.0 {
-        return Some("the water pass's envelope carries waves `fft` only");
+    if frame.coastal.shape[0] > 0.0 {
+        return Some("the water pass's envelope carries waves `fft` and `gerstner` only");
     }
-    if frame.scales.count > 0.0 || frame.detail.count > 0.0 {
-        return Some("the water pass's envelope carries one wave scale, no detail map");
+    if frame.scales.count > 0.0 {
+        return Some("the water pass's envelope carries one wave scale (not eq. 1's scales)");
     }
     if frame.terrain.top[2] != 0.0 || frame.terrain.top[3] != 0.0 {
         return Some("the water pass's envelope does not carry the terrain's wave damping");
@@ -102,8 +128,13 @@ pub fn water_vertex<R: Real>(
         [0, 1].map(|c| (pos[c] + l(t.bump_origin[c])) * l(t.inv_bump_size) + l(t.bump_half_texel));
     // shore_weight is 1 without the terrain's damping (what `carried` asks).
     let weight = mesh_weight * l(1.0);
-    let s = (inp.sample)(Tex::Displacement, uv_d, l(0.0));
-    let d = s.map(|c| c * (weight * l(f.passes.waves)));
+    let d = if f.gerstner.count > 0.0 {
+        // Waves `gerstner`: the sum of the waves at the vertex, no maps to fetch.
+        gerstner_displacement(pos, f).map(|c| c * weight)
+    } else {
+        let s = (inp.sample)(Tex::Displacement, uv_d, l(0.0));
+        s.map(|c| c * (weight * l(f.passes.waves)))
+    };
     let plane = [0, 1].map(|c| pos[c] + l(t.mesh_offset[c]));
     let rel = [plane[0] + d[0], d[1] - l(f.view.eye_height), plane[1] + d[2]];
     let clip = mat4_mul_vec4(&f.view.view_proj, [rel[0], rel[1], rel[2], l(1.0)]);
@@ -344,10 +375,104 @@ pub fn subtexel<R: Real>(lod: R) -> R {
     choose(l(0.0).le(lod), || l(1.0), || exp_arith_r(lod * l(2.0 * std::f32::consts::LN_2)))
 }
 
-/// `wave_slopes(in, fp)` under waves `fft` on one scale: (s_x, s_z, variance).
+/// `gerstner_displacement(pos)`.
+fn gerstner_displacement<R: Real>(pos: [R; 2], frame: &FrameUniforms) -> [R; 4] {
+    let l = R::lit;
+    let mut d = [l(0.0); 4];
+    for i in 0..frame.gerstner.count as usize {
+        let cs = gerstner_cis_r(i, pos, frame);
+        let (a, b) = (frame.gerstner.waves[2 * i], frame.gerstner.waves[2 * i + 1]);
+        let w = [l(b[0]) * cs[0], l(a[3]) * cs[1], l(b[1]) * cs[0], l(0.0)];
+        d = std::array::from_fn(|c| d[c] + w[c]);
+    }
+    d
+}
+
+/// The damping g = e^{−½((k·h)σ_long)² − ½((k·h⊥)σ_short)²} of a wave of wave vector
+/// (kx, kz) over the footprint, and its share ½(1 − g⁴) + c²(g⁴ − g²) of the variance the
+/// average removes (far field `variance`; 0 otherwise): the Gerstner waves' and the detail
+/// map's common step.
+fn damped<R: Real>(k: [R; 2], c: R, h: [R; 2], sigma: [R; 2], variance: bool) -> (R, R) {
+    let l = R::lit;
+    let k_long = (k[0] * h[0] + k[1] * h[1]) * sigma[0];
+    let k_short = (k[1] * h[0] - k[0] * h[1]) * sigma[1];
+    let g = exp_arith_r(l(-0.5) * (k_long.sq() + k_short.sq()));
+    if !variance {
+        return (g, l(0.0));
+    }
+    let g2 = g.sq();
+    (g, l(0.5) * (l(1.0) - g2.sq()) + c.sq() * (g2.sq() - g2))
+}
+
+/// `gerstner_filtered_slopes(pos, fp, weight)`.
+fn gerstner_filtered_slopes<R: Real>(
+    pos: [R; 2],
+    fp: &Footprint<R>,
+    weight: R,
+    frame: &FrameUniforms,
+) -> [R; 3] {
+    let l = R::lit;
+    let short = fp.dist * l(frame.far.pixel_angle);
+    let sigma = [l(0.5) * short / fp.vy.max(l(1e-4)), l(0.5) * short];
+    let mut s = [l(0.0); 2];
+    let mut variance = l(0.0);
+    for i in 0..frame.gerstner.count as usize {
+        let (a, b) = (frame.gerstner.waves[2 * i], frame.gerstner.waves[2 * i + 1]);
+        let c = gerstner_cis_r(i, pos, frame)[0];
+        let k = [l(TAU) * l(a[0]), l(TAU) * l(a[1])];
+        let (g, v) = damped(k, c, fp.h, sigma, frame.far.mode == 2.0);
+        let cg = c * g;
+        s = [s[0] + l(b[2]) * cg, s[1] + l(b[3]) * cg];
+        if frame.far.mode == 2.0 {
+            variance = variance + l(0.5) * (l(b[2]).sq() + l(b[3]).sq()) * v;
+        }
+    }
+    [s[0] * weight, s[1] * weight, variance * weight.sq()]
+}
+
+/// `detail_slopes(pos, h, sigma_long, sigma_short)` (shared/detail.wgsl): shading `ggx`'s
+/// detail normal map.
+fn detail_slopes<R: Real>(pos: [R; 2], h: [R; 2], sigma: [R; 2], frame: &FrameUniforms) -> [R; 3] {
+    let l = R::lit;
+    let mut s = [l(0.0); 2];
+    let mut variance = l(0.0);
+    for w in &frame.detail.waves[..frame.detail.count as usize] {
+        let terms = [l(w[0]) * pos[0], l(w[2]), l(w[1]) * pos[1]];
+        let p = R::sum_as_written(&terms, |t| (t[0] + t[1]) + t[2]);
+        let c = cis_reduced_r(p)[0];
+        let k = [l(TAU) * l(w[0]), l(TAU) * l(w[1])];
+        let (g, v) = damped(k, c, h, sigma, frame.far.mode == 2.0);
+        let a = l(w[3]) * (c * g);
+        s = [s[0] + l(w[0]) * a, s[1] + l(w[1]) * a];
+        if frame.far.mode == 2.0 {
+            variance = variance + l(0.5) * l(w[3]).sq() * (l(w[0]).sq() + l(w[1]).sq()) * v;
+        }
+    }
+    [s[0], s[1], variance]
+}
+
+/// `filtered_slopes(in)`: the waves' slopes plus shading `ggx`'s detail map over the same
+/// footprint.
+fn filtered_slopes<R: Real>(v: &Varyings<R>, fp: &Footprint<R>, inp: &Inputs<'_, R>) -> [R; 3] {
+    let l = R::lit;
+    let s = wave_slopes(v, fp, inp);
+    let frame = inp.frame;
+    if frame.detail.count <= 0.0 {
+        return s;
+    }
+    let short = fp.dist * l(frame.far.pixel_angle);
+    let sigma = [l(0.5) * short / fp.vy.max(l(1e-4)), l(0.5) * short];
+    let d = detail_slopes([v[8], v[9]], fp.h, sigma, frame);
+    [s[0] + d[0], s[1] + d[1], s[2] + d[2]]
+}
+
+/// `wave_slopes(in, fp)` under waves `fft` on one scale or `gerstner`: (s_x, s_z, variance).
 fn wave_slopes<R: Real>(v: &Varyings<R>, fp: &Footprint<R>, inp: &Inputs<'_, R>) -> [R; 3] {
     let l = R::lit;
     let frame = inp.frame;
+    if frame.gerstner.count > 0.0 {
+        return gerstner_filtered_slopes([v[8], v[9]], fp, v[7], frame);
+    }
     let t = &frame.tiling;
     let rel_y = v[1];
     let (uv_d, uv_b, weight) = ([v[3], v[4]], [v[5], v[6]], v[7]);
@@ -592,6 +717,101 @@ fn shade_above_hu<R: Real>(
     })
 }
 
+/// `ggx_lambda(c, alpha2)`: Smith's Λ for GGX.
+fn ggx_lambda<R: Real>(c: R, alpha2: R) -> R {
+    let l = R::lit;
+    let c2 = c.sq();
+    let tan2 = (l(1.0) - c2) / c2;
+    l(0.5) * ((l(1.0) + alpha2 * tan2).sqrt() - l(1.0))
+}
+
+/// `ggx_fresnel(c)`: eq. 2, or Schlick's.
+fn ggx_fresnel<R: Real>(c: R, frame: &FrameUniforms) -> R {
+    let l = R::lit;
+    if frame.ggx.schlick_fresnel > 0.5 {
+        let m = l(1.0) - c.clamp(l(0.0), l(1.0));
+        let m2 = m.sq();
+        let m5 = m2.sq() * m;
+        let f0 = l(frame.ggx.f0);
+        return (f0 + m5) - f0 * m5;
+    }
+    fresnel_exact_r(c, l(frame.water.eta))
+}
+
+/// `ggx_geometry(nl, nv, alpha2)`.
+fn ggx_geometry<R: Real>(nl: R, nv: R, alpha2: R, frame: &FrameUniforms) -> R {
+    let l = R::lit;
+    if frame.ggx.schlick_geometry > 0.5 {
+        let k = l(0.5) * alpha2.sqrt();
+        return (nl / (nl * (l(1.0) - k) + k)) * (nv / (nv * (l(1.0) - k) + k));
+    }
+    l(1.0) / ((ggx_lambda(nl, alpha2) + ggx_lambda(nv, alpha2)) + l(1.0))
+}
+
+/// `ggx_brdf(n, view, l, nl, nv, alpha2)`.
+fn ggx_brdf<R: Real>(
+    n: [R; 3],
+    view: [R; 3],
+    sun: [R; 3],
+    (nl, nv, alpha2): (R, R, R),
+    frame: &FrameUniforms,
+) -> R {
+    let l = R::lit;
+    let h = unit(std::array::from_fn(|c| sun[c] + view[c]));
+    let nh = dot3(n, h).max(l(0.0));
+    let vh = dot3(view, h).max(l(0.0));
+    let c = [n[1] * h[2] - n[2] * h[1], n[2] * h[0] - n[0] * h[2], n[0] * h[1] - n[1] * h[0]];
+    let d_den = R::sum(&[c[0].sq(), c[1].sq(), c[2].sq()]) + nh.sq() * alpha2;
+    let d = alpha2 / (d_den.sq() * l(std::f32::consts::PI));
+    ggx_fresnel(vh, frame) * ggx_geometry(nl, nv, alpha2, frame) * d / (l(4.0) * nl * nv)
+}
+
+/// Shading `ggx`'s `shade_above(in, p)`.
+fn shade_above_ggx<R: Real>(
+    rel: [R; 3],
+    slopes: [R; 3],
+    n: [R; 3],
+    view: [R; 3],
+    screen: [R; 2],
+    inp: &Inputs<'_, R>,
+) -> [R; 3] {
+    let l = R::lit;
+    let frame = inp.frame;
+    let alpha2 = l(frame.ggx.alpha) * l(frame.ggx.alpha) + l(2.0) * slopes[2];
+    let vn = dot3(view, n);
+    let nv = vn.max(l(1e-4));
+    let f_env = ggx_fresnel(nv, frame);
+    let sky_r = sky_reflected(view, n, inp);
+    let shifted = |k: f32| [screen[0] + n[0] * l(k), screen[1] + n[2] * l(k)];
+    let refl = (inp.sample)(Tex::ReflectionMap, shifted(frame.hu.reflection_distortion), l(0.0));
+    let a_refl = refl[3] * l(frame.passes.reflection_map);
+    let c_reflect: [R; 3] =
+        std::array::from_fn(|c| sky_r[c] * (l(1.0) - a_refl) + refl[c] * a_refl);
+    let refr = (inp.sample)(Tex::RefractionMap, shifted(frame.hu.refraction_distortion), l(0.0));
+    let a_refr = refr[3] * l(frame.passes.refraction_map);
+    let c_refract: [R; 3] =
+        std::array::from_fn(|c| l(frame.water.color[c]) * (l(1.0) - a_refr) + refr[c] * a_refr);
+    let sd = frame.sun.direction;
+    let sun = [l(sd[0]), l(sd[1]), l(sd[2])];
+    let nl = dot3(n, sun);
+    let c_sun = if frame.sun.lit > 0.0 {
+        choose_n(
+            l(0.0).lt(nl),
+            || {
+                let nl = nl.at_least(LEAST_POSITIVE);
+                let f = ggx_brdf(n, view, sun, (nl, nv, alpha2), frame);
+                let vis = sun_visibility_r(rel, frame, inp.shadow_dims, inp.occluder);
+                let k = f * nl * vis;
+                std::array::from_fn(|c| l(frame.sun.radiance[c]) * k)
+            },
+            || [l(0.0); 3],
+        )
+    } else {
+        [l(0.0); 3]
+    };
+    std::array::from_fn(|c| c_reflect[c] * f_env + c_refract[c] * (l(1.0) - f_env) + c_sun[c])
+}
+
 /// `fs_main(in)` at the pixel whose centre is `frag` (x + ½, y + ½): the colour it writes
 /// (before the target's storage), the union over the footprint's cases.
 pub fn fs_main<R: Real>(frag: [f32; 2], v: &Varyings<R>, inp: &Inputs<'_, R>) -> [R; 4] {
@@ -619,7 +839,7 @@ fn fragment<R: Real>(
     let l = R::lit;
     let frame = inp.frame;
     let rel = [v[0], v[1], v[2]];
-    let slopes = wave_slopes(v, fp, inp);
+    let slopes = filtered_slopes(v, fp, inp);
     let n = unit([-slopes[0], l(1.0), -slopes[1]]);
     let view = unit(rel.map(|c| -c));
     let u_bumped = [view[0] - n[0], view[2] - n[2]];
@@ -628,7 +848,10 @@ fn fragment<R: Real>(
     let c = choose_n(
         l(0.0).le(view[1]),
         // Foam `none`: foam_over of no cover is the shading itself.
-        || shade_above_hu(rel, slopes, n, view, u_bumped, screen, inp),
+        || match inp.shading {
+            Shading::Hu => shade_above_hu(rel, slopes, n, view, u_bumped, screen, inp),
+            Shading::Ggx => shade_above_ggx(rel, slopes, n, view, screen, inp),
+        },
         || {
             let st = fresnel_st(u_bumped, frame);
             let f = (inp.sample)(Tex::FresnelBelow, st, l(0.0))[3];
