@@ -168,7 +168,7 @@ fn every_mutant_is_caught_with_the_exact_tolerance() {
 /// `ocean selftest --quick` on this adapter (lavapipe in CI): every reference scene and built-in
 /// system within the envelope, the whole bank planted, and every planted bug in a pass the
 /// envelope judges (tonemap, bloom, waves, foam's field, the shadow map, wave_mips,
-/// fresnel_table, the three skies, shading `hu`'s water) caught; the summary line and the
+/// fresnel_table, the three skies, shadings `hu`' and `ggx`'s water) caught; the summary line and the
 /// JSON agree.
 fn selftest_quick_judges_every_scene_and_catches_the_judged_passes_bugs() {
     let json = std::env::temp_dir().join(format!("ocean-selftest-{}.json", std::process::id()));
@@ -210,9 +210,11 @@ fn selftest_quick_judges_every_scene_and_catches_the_judged_passes_bugs() {
             "shared/preetham.wgsl",
             "sky/preetham_clouds.wgsl",
             "shared/sky_lut.wgsl",
-            // The water pass under shading `hu` (calm): a swapped channel is caught; the far
-            // field's 1 % bugs in water.wgsl stay inside the water's wide envelope (docs).
+            // The water pass under shadings `hu` and `ggx`: a swapped channel, an unnormalised
+            // half vector and a flipped Fresnel branch are caught; the far field's 1 % bugs in
+            // water.wgsl stay inside the water's wide envelope (docs/tolerances.md).
             "shading/hu.wgsl",
+            "shading/ggx.wgsl",
         ];
         if judged_files.contains(&file) {
             assert_eq!(r["caught"], true, "a bug in a judged pass was missed: {r}");

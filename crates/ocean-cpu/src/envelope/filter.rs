@@ -72,25 +72,31 @@ fn bilinear(
     fetch: &dyn Fn(u32, u32) -> [f32; 4],
 ) -> [Iv; 4] {
     let mut out: [(f64, f64); 4] = [(f64::INFINITY, f64::NEG_INFINITY); 4];
+    let mut texels: [(f64, f64); 4] = [(f64::INFINITY, f64::NEG_INFINITY); 4];
     let mut big = 0.0f64;
-    let spanned_out = corners(w, h, s, uv, p, fetch, &mut |r, m| {
+    let spanned_out = corners(w, h, s, uv, p, fetch, &mut |r, m, t| {
         big = big.max(m);
         for c in 0..4 {
             out[c] = (out[c].0.min(r[c]), out[c].1.max(r[c]));
+            texels[c] = (texels[c].0.min(t[c].0), texels[c].1.max(t[c].1));
         }
     });
     if let Some(v) = spanned_out {
         return v;
     }
     let slack = FILTER_ULPS * super::f32_ulp(big) + big * 1e-12;
-    out.map(|(lo, hi)| if lo <= hi { signed(lo - slack, hi + slack, lo, hi) } else { Iv::FULL })
+    std::array::from_fn(|c| {
+        let (lo, hi) = out[c];
+        if lo <= hi { signed(lo - slack, hi + slack, texels[c]) } else { Iv::FULL }
+    })
 }
 
-/// [lo − slack, hi + slack] as `[l, h]`, kept on the side of 0 that every blend is on (a
-/// blend of texels of one sign with weights ≥ 0 keeps it; no rounding flips it).
-fn signed(l: f64, h: f64, lo: f64, hi: f64) -> Iv {
-    let l = if lo >= 0.0 { l.max(0.0) } else { l };
-    let h = if hi <= 0.0 { h.min(0.0) } else { h };
+/// [l, h], kept on the side of 0 that every texel blended is on (a blend of texels of one
+/// sign with weights ≥ 0 keeps it, and no rounding flips it); `texels` is their (least,
+/// greatest).
+fn signed(l: f64, h: f64, texels: (f64, f64)) -> Iv {
+    let l = if texels.0 >= 0.0 { l.max(0.0) } else { l };
+    let h = if texels.1 <= 0.0 { h.min(0.0) } else { h };
     Iv::new(l, h)
 }
 
@@ -104,7 +110,7 @@ fn corners(
     uv: [Iv; 2],
     p: Precision,
     fetch: &dyn Fn(u32, u32) -> [f32; 4],
-    visit: &mut dyn FnMut([f64; 4], f64),
+    visit: &mut dyn FnMut([f64; 4], f64, [(f64, f64); 4]),
 ) -> Option<[Iv; 4]> {
     let l = Iv::lit;
     let x = uv[0] * l(w as f32) - l(0.5);
@@ -117,7 +123,18 @@ fn corners(
     for &(i, a) in &cx {
         for &(j, b) in &cy {
             let tx = [fetch(i, j), fetch(i + 1, j), fetch(i, j + 1), fetch(i + 1, j + 1)];
+            // A texel that is not a finite number (the GPU's own map may hold one): anything.
+            if tx.iter().flatten().any(|v| !v.is_finite()) {
+                return Some([Iv::FULL; 4]);
+            }
             let big = tx.iter().flatten().fold(0.0f64, |m, v| m.max(f64::from(*v).abs()));
+            let range: [(f64, f64); 4] = std::array::from_fn(|c| {
+                let v = tx.map(|t| f64::from(t[c]));
+                (
+                    v.iter().copied().fold(f64::INFINITY, f64::min),
+                    v.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+                )
+            });
             for alpha in [a.0, a.1] {
                 for beta in [b.0, b.1] {
                     let r = std::array::from_fn(|c| {
@@ -126,7 +143,7 @@ fn corners(
                         let bottom = v[2] + alpha * (v[3] - v[2]);
                         top + beta * (bottom - top)
                     });
-                    visit(r, big);
+                    visit(r, big, range);
                 }
             }
         }
@@ -153,6 +170,9 @@ fn spanned(w: u32, h: u32, x: Iv, y: Iv, fetch: &dyn Fn(i64, i64) -> [f32; 4]) -
     for j in j0..=j1 {
         for i in i0..=i1 {
             let t = fetch(i, j);
+            if t.iter().any(|v| !v.is_finite()) {
+                return [Iv::FULL; 4];
+            }
             for c in 0..4 {
                 out[c] = (out[c].0.min(f64::from(t[c])), out[c].1.max(f64::from(t[c])));
             }
@@ -218,7 +238,8 @@ pub fn sample_mip(chain: &MipChain, s: &Sampler, uv: [Iv; 2], lod: Iv, p: Precis
             let ends = [f_lo, f_hi].map(|f| (a.lo + f * (b.lo - a.lo), a.hi + f * (b.hi - a.hi)));
             let (l, h) = (ends[0].0.min(ends[1].0), ends[0].1.max(ends[1].1));
             let slack = FILTER_ULPS * super::f32_ulp(a.magnitude().max(b.magnitude()));
-            signed(l - slack, h + slack, l, h)
+            // Both levels' blends on one side of 0: so is theirs.
+            signed(l - slack, h + slack, (a.lo.min(b.lo), a.hi.max(b.hi)))
         }));
     }
     out.unwrap_or([Iv::FULL; 4])
@@ -251,7 +272,7 @@ pub fn spread_floor(chain: &MipChain, s: &Sampler, uv: [Iv; 2], lod: Iv, p: Prec
         let [w, h] = chain.size(k);
         let mut v = Vec::new();
         let mut big = 0.0f64;
-        let out = corners(w, h, s, uv, p, &|i, j| chain.texel(k, i, j), &mut |r, m| {
+        let out = corners(w, h, s, uv, p, &|i, j| chain.texel(k, i, j), &mut |r, m, _| {
             v.push(r);
             big = big.max(m);
         });
@@ -458,5 +479,30 @@ mod tests {
             n += 4;
         }
         assert!(loose > 0, "a filter twice as loose never left: {loose} of {n}");
+    }
+
+    /// Texels of both signs whose exact blend is a hair above 0: a GPU rounding the lerp down
+    /// lands below 0, and the envelope must not cut it away (the sign is kept only where
+    /// every texel blended has it).
+    #[test]
+    fn a_blend_of_texels_of_both_signs_keeps_its_rounding_below_zero() {
+        let t = Texture2D::new(
+            2,
+            1,
+            vec![[-0.626_672_7, 0.0, 0.0, 0.0], [0.217_686_31, 0.0, 0.0, 0.0]],
+        );
+        let s = Sampler {
+            address_mode_u: AddressMode::ClampToEdge,
+            address_mode_v: AddressMode::ClampToEdge,
+            filter: FilterMode::Linear,
+        };
+        // The weight box is [190, 192]/256; at 190/256 the exact blend is +6.9e-9.
+        let u = (191.0 / 256.0 + 0.5) / 2.0;
+        let env = sample_level0_p(&t, &s, [Iv::point(u), Iv::point(0.5)], Precision::LAVAPIPE);
+        assert!(env[0].contains(-5.96e-8), "{:?}", env[0]);
+        // Texels of one sign keep it.
+        let t = Texture2D::new(2, 1, vec![[0.25, 0.0, 0.0, 0.0], [1e-30, 0.0, 0.0, 0.0]]);
+        let env = sample_level0_p(&t, &s, [Iv::point(0.75), Iv::point(0.5)], Precision::LAVAPIPE);
+        assert!(env[0].lo >= 0.0, "{:?}", env[0]);
     }
 }

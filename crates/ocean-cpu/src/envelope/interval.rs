@@ -251,6 +251,12 @@ impl Iv {
 const HALF_MAX: f64 = 65504.0;
 const HALF_MIN_NORMAL: f64 = 6.103_515_625e-5; // 2⁻¹⁴
 
+/// A lower bound a refinement leaves: a positive subnormal one is 0 (a GPU may flush the
+/// value it stands for).
+fn unflushed(lo: f64) -> f64 {
+    if lo > 0.0 && lo < F32_MIN_NORMAL { 0.0 } else { lo }
+}
+
 /// The least power of two above `x` > 0 (where f32's ULP doubles).
 fn pow2_above(x: f64) -> f64 {
     let e = ((x.to_bits() >> 52) & 0x7ff) as i32 - 1023;
@@ -518,14 +524,14 @@ impl Real for Iv {
         if self.full {
             return self;
         }
-        let (l, h) = (self.lo.max(lo), self.hi.min(hi));
+        let (l, h) = (unflushed(self.lo.max(lo)), self.hi.min(hi));
         if l <= h { Iv::new(l, h) } else { self }
     }
     fn at_least(self, lo: f64) -> Iv {
         if self.full || self.hi < lo {
             return self;
         }
-        Iv::new(self.lo.max(lo), self.hi)
+        Iv::new(unflushed(self.lo.max(lo)), self.hi)
     }
     fn frexp_cases(self) -> Option<[Option<(i32, Iv)>; 2]> {
         if self.full

@@ -451,10 +451,10 @@ pub fn screen_reach(
             let c = vs_main(v, frame).clip;
             [c.x, c.y, c.z, c.w].map(f64::from)
         });
-        // The polygon left of it in front of the near plane (z ≤ w, with a margin): what
-        // the rasteriser draws of it lies inside its screen box.
+        // The polygon left of it in front of the near plane (z ≤ w, with a margin that keeps
+        // a little more than the rasteriser may draw): inside its screen box.
         let mut poly: Vec<[f64; 4]> = clip.to_vec();
-        let d = |v: &[f64; 4]| v[3] - v[2] - 1e-6 * v[3].abs().max(1e-6);
+        let d = |v: &[f64; 4]| v[3] - v[2] + 1e-6 * v[3].abs().max(1e-6);
         let mut out = Vec::new();
         for i in 0..poly.len() {
             let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);

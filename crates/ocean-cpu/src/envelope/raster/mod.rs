@@ -185,7 +185,7 @@ fn clip_near_far_deciding(
 
 /// The value at a vertex of a clipper's piece whose varyings' values at the original
 /// triangle's vertices are `vals`: the combination its barycentrics `bary` name (each within
-/// `err`), plus [`VARYING_ULPS`] for its arithmetic; a vertex of the original triangle
+/// `err`, so their sum of changes within 3·err), plus [`VARYING_ULPS`] for its arithmetic; a vertex of the original triangle
 /// (`err` 0, one barycentric 1) is its own value.
 pub fn part_value(vals: [Iv; 3], bary: [f64; 3], err: f64) -> Iv {
     if err == 0.0 && bary.iter().filter(|&&x| x != 0.0).count() == 1 {
@@ -193,7 +193,9 @@ pub fn part_value(vals: [Iv; 3], bary: [f64; 3], err: f64) -> Iv {
     }
     let x = Iv::sum(&[0, 1, 2].map(|j| vals[j] * Iv::new(bary[j], bary[j])));
     let spread = vals.iter().map(|v| v.magnitude()).fold(0.0, f64::max);
-    let u = VARYING_ULPS * super::f32_ulp(x.magnitude()) + 2.0 * err * spread;
+    // Each barycentric within err: Σ|Δbary| ≤ 3·err (a forced clipping's may lie outside the
+    // triangle, where the tighter 2·err does not hold).
+    let u = VARYING_ULPS * super::f32_ulp(x.magnitude()) + 3.0 * err * spread;
     if x.full { x } else { Iv::new(x.lo - u, x.hi + u) }
 }
 

@@ -612,7 +612,8 @@ fn sky_filtered<R: Real>(view: [R; 3], slopes: [R; 3], variance: R, inp: &Inputs
     let mut sum_fl = [l(0.0); 3];
     let mut sum_f = l(0.0);
     let mut skies = [[l(0.0); 3]; 4];
-    for (i, slot) in skies.iter_mut().enumerate() {
+    let mut fs = [l(0.0); 4];
+    for (i, (slot, f_slot)) in skies.iter_mut().zip(fs.iter_mut()).enumerate() {
         let mut o = [l(0.0); 2];
         match i {
             0 => o[0] = sigma,
@@ -625,12 +626,14 @@ fn sky_filtered<R: Real>(view: [R; 3], slopes: [R; 3], variance: R, inp: &Inputs
         let fi = (inp.sample)(Tex::FresnelAbove, st, l(0.0))[3];
         let sky = sky_reflected(view, ni, inp);
         *slot = sky;
+        *f_slot = fi;
         sum_fl = std::array::from_fn(|c| sum_fl[c] + sky[c] * fi);
         sum_f = sum_f + fi;
     }
     let den = sum_f.max(l(1e-30));
     let out = sum_fl.map(|c| c / den);
-    if !R::INTERVAL || sum_f.least() <= 0.0 {
+    // The premise: every weight ≥ 0, and the divisor Σfᵢ itself (not its floor 1e-30).
+    if !R::INTERVAL || fs.iter().any(|f| f.least() < 0.0) || sum_f.least() < f64::from(1e-30f32) {
         return out;
     }
     // Σ fᵢLᵢ / Σ fᵢ with every fᵢ > 0 is a convex combination of the Lᵢ: between the least
