@@ -669,6 +669,29 @@ pub fn pow_int<R: Real>(x: R, n: u32) -> R {
 /// The least positive f32 (a subnormal): what a positive value is at least.
 const LEAST_POSITIVE: f64 = 1.401_298_464_324_817e-45;
 
+/// The reflection and refraction maps as shadings `hu` and `ggx` blend them (§5.2): each
+/// looked up at the screen position shifted by the bumped normal's horizontal part `d` times
+/// its distortion, over the sky `sky_r` and over the water's colour by its coverage:
+/// (C_reflect, C_refract).
+fn screen_maps<R: Real>(
+    sky_r: [R; 3],
+    d: [R; 2],
+    screen: [R; 2],
+    inp: &Inputs<'_, R>,
+) -> ([R; 3], [R; 3]) {
+    let l = R::lit;
+    let frame = inp.frame;
+    let shifted = |k: f32| [screen[0] + d[0] * l(k), screen[1] + d[1] * l(k)];
+    let refl = (inp.sample)(Tex::ReflectionMap, shifted(frame.hu.reflection_distortion), l(0.0));
+    let a_refl = refl[3] * l(frame.passes.reflection_map);
+    let c_reflect = std::array::from_fn(|c| sky_r[c] * (l(1.0) - a_refl) + refl[c] * a_refl);
+    let refr = (inp.sample)(Tex::RefractionMap, shifted(frame.hu.refraction_distortion), l(0.0));
+    let a_refr = refr[3] * l(frame.passes.refraction_map);
+    let c_refract =
+        std::array::from_fn(|c| l(frame.water.color[c]) * (l(1.0) - a_refr) + refr[c] * a_refr);
+    (c_reflect, c_refract)
+}
+
 /// Shading `hu`'s `shade_above(in, p)`.
 fn shade_above_hu<R: Real>(
     rel: [R; 3],
@@ -693,15 +716,7 @@ fn shade_above_hu<R: Real>(
         || sky_filtered(view, slopes, vpos, inp),
         || sky_reflected(view, n, inp),
     );
-    let shifted = |k: f32| [screen[0] + du * l(k), screen[1] + dv * l(k)];
-    let refl = (inp.sample)(Tex::ReflectionMap, shifted(frame.hu.reflection_distortion), l(0.0));
-    let a_refl = refl[3] * l(frame.passes.reflection_map);
-    let c_reflect: [R; 3] =
-        std::array::from_fn(|c| sky_r[c] * (l(1.0) - a_refl) + refl[c] * a_refl);
-    let refr = (inp.sample)(Tex::RefractionMap, shifted(frame.hu.refraction_distortion), l(0.0));
-    let a_refr = refr[3] * l(frame.passes.refraction_map);
-    let c_refract: [R; 3] =
-        std::array::from_fn(|c| l(frame.water.color[c]) * (l(1.0) - a_refr) + refr[c] * a_refr);
+    let (c_reflect, c_refract) = screen_maps(sky_r, [du, dv], screen, inp);
     let vb = [fres[0], fres[2], fres[1]];
     let sd = frame.sun.direction;
     let r_sun = [-l(sd[0]), l(sd[1]), -l(sd[2])];
@@ -785,15 +800,7 @@ fn shade_above_ggx<R: Real>(
     let nv = vn.max(l(1e-4));
     let f_env = ggx_fresnel(nv, frame);
     let sky_r = sky_reflected(view, n, inp);
-    let shifted = |k: f32| [screen[0] + n[0] * l(k), screen[1] + n[2] * l(k)];
-    let refl = (inp.sample)(Tex::ReflectionMap, shifted(frame.hu.reflection_distortion), l(0.0));
-    let a_refl = refl[3] * l(frame.passes.reflection_map);
-    let c_reflect: [R; 3] =
-        std::array::from_fn(|c| sky_r[c] * (l(1.0) - a_refl) + refl[c] * a_refl);
-    let refr = (inp.sample)(Tex::RefractionMap, shifted(frame.hu.refraction_distortion), l(0.0));
-    let a_refr = refr[3] * l(frame.passes.refraction_map);
-    let c_refract: [R; 3] =
-        std::array::from_fn(|c| l(frame.water.color[c]) * (l(1.0) - a_refr) + refr[c] * a_refr);
+    let (c_reflect, c_refract) = screen_maps(sky_r, [n[0], n[2]], screen, inp);
     let sd = frame.sun.direction;
     let sun = [l(sd[0]), l(sd[1]), l(sd[2])];
     let nl = dot3(n, sun);
