@@ -19,9 +19,6 @@ use crate::sampler::{Sampler, Texture2D};
 /// Vulkan's minimum `subTexelPrecisionBits`.
 pub const MIN_SUBTEXEL_BITS: u32 = 4;
 
-/// How far a weight may lie from the exact fraction.
-pub const WEIGHT_STEP: f64 = 1.0 / (1u32 << MIN_SUBTEXEL_BITS) as f64;
-
 /// The blend's arithmetic: ULP of the largest texel magnitude.
 pub const FILTER_ULPS: f64 = 4.0;
 
@@ -188,16 +185,13 @@ fn spanned(w: u32, h: u32, x: Iv, y: Iv, fetch: &dyn Fn(i64, i64) -> [f32; 4]) -
 /// the fraction of the LOD, rounding either way.
 pub const MIN_MIPMAP_BITS: u32 = 4;
 
-/// How far the blend between two levels may lie from the LOD's exact fraction.
-pub const MIP_STEP: f64 = 1.0 / (1u32 << MIN_MIPMAP_BITS) as f64;
-
 /// The most levels an interval LOD is followed into (beyond: anything).
 pub const MAX_LEVELS: usize = 3;
 
 /// The envelope of `textureSampleLevel(chain, s, uv, lod)` with linear filtering within and
 /// between levels (the texels exact, as [`sample_level0`]'s). The LOD λ is clamped to
 /// [0, levels − 1]; each level d that ⌊λ⌋ may be is blended with d + 1 by a weight within
-/// [`MIP_STEP`] of λ − d there (a bilinear envelope of each level, the blend linear in the
+/// one step of the device's `mipmapPrecisionBits` ([`Precision::mip_step`]) of λ − d there (a bilinear envelope of each level, the blend linear in the
 /// weight so extreme at its ends), plus [`FILTER_ULPS`] of the blend's arithmetic.
 pub fn sample_mip(chain: &MipChain, s: &Sampler, uv: [Iv; 2], lod: Iv, p: Precision) -> [Iv; 4] {
     if lod.full || !lod.lo.is_finite() || !lod.hi.is_finite() {

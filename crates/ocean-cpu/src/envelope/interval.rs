@@ -527,12 +527,6 @@ impl Real for Iv {
         let (l, h) = (unflushed(self.lo.max(lo)), self.hi.min(hi));
         if l <= h { Iv::new(l, h) } else { self }
     }
-    fn at_least(self, lo: f64) -> Iv {
-        if self.full || self.hi < lo {
-            return self;
-        }
-        Iv::new(unflushed(self.lo.max(lo)), self.hi)
-    }
     fn frexp_cases(self) -> Option<[Option<(i32, Iv)>; 2]> {
         if self.full
             || self.lo.is_nan()

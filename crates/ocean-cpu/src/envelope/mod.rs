@@ -47,8 +47,11 @@ pub struct Precision {
 
 impl Precision {
     /// Vulkan's minimum limits: what any conformant device guarantees.
-    pub const VULKAN_MINIMUM: Precision =
-        Precision { subpixel_bits: 4, subtexel_bits: 4, mipmap_bits: 4 };
+    pub const VULKAN_MINIMUM: Precision = Precision {
+        subpixel_bits: raster::MIN_SUBPIXEL_BITS,
+        subtexel_bits: filter::MIN_SUBTEXEL_BITS,
+        mipmap_bits: filter::MIN_MIPMAP_BITS,
+    };
     /// Vulkan's Roadmap 2022 profile (docs/tolerances.md): 8 sub-pixel, 8 sub-texel and 6
     /// mipmap bits.
     pub const ROADMAP_2022: Precision =
@@ -239,8 +242,8 @@ pub trait Real:
     /// What a branch knows of its condition: the value is at least `lo` there (an interval is
     /// cut to it; a scalar, which took the branch, already is).
     #[inline]
-    fn at_least(self, _lo: f64) -> Self {
-        self
+    fn at_least(self, lo: f64) -> Self {
+        self.within(lo, f64::INFINITY)
     }
     /// The smallest value holding both (an interval's hull; for a decided scalar, never
     /// needed: `self`).

@@ -171,12 +171,11 @@ fn preetham_frame<R: crate::envelope::Real + Send>(
     use rayon::prelude::*;
 
     use crate::shaders::shared::camera::view_ray_r;
-    use crate::shaders::shared::preetham::{preetham_radiance_r, preetham_sun_disc_r};
-    use crate::shaders::shared::sky_lut::sky_lut_radiance_r;
+    use crate::shaders::shared::preetham::preetham_sun_disc_r;
     if !ENVELOPE_TECHNIQUES.contains(&technique) {
         return None;
     }
-    let (atmosphere, clouds) = (technique == "atmosphere", technique == "preetham_clouds");
+    let clouds = technique == "preetham_clouds";
     let SkyInputs { camera, sky, lut } = inputs;
     let w = width as usize;
     Some(
@@ -187,14 +186,7 @@ fn preetham_frame<R: crate::envelope::Real + Send>(
                 each(i);
                 let p = [R::lit((i % w) as f32 + 0.5), R::lit((i / w) as f32 + 0.5)];
                 let dir = view_ray_r(camera, p);
-                let s = if atmosphere {
-                    let sun = [0, 1, 2].map(|c| R::lit(sky.sun_direction[c]));
-                    sky_lut_radiance_r(lut, dir, sun)
-                } else if clouds {
-                    preetham_clouds::sky_radiance_r(sky, dir)
-                } else {
-                    preetham_radiance_r(sky, dir)
-                };
+                let s = sky_radiance_r(technique, sky, lut, dir);
                 let d = if clouds {
                     preetham_clouds::sun_disc_r(sky, dir)
                 } else {
