@@ -362,12 +362,18 @@ fn water_verdict(
     let Some(shading) = water::real::Shading::of(shading_name) else {
         return Ok(Err(format!("shading `{shading_name}` has no envelope")));
     };
+    let foam_name = t.of(Stage::Foam).name;
+    let Some(foam) = water::real::Foam::of(foam_name) else {
+        return Ok(Err(format!("foam `{foam_name}` has no envelope")));
+    };
+    let (fw, fh, floor) = ocean_core::terrain::relief_texels(scene.terrain.as_ref());
     let get = |id: ResourceId| gpu.map(id).map(|((w, h), t)| (w, h, t));
     let runs = |id: ResourceId| id.writer().is_some_and(|p| plan.runs(p));
     let owned = match water::envelope::OwnedTextures::from_resources(
         get,
         plan.runs(Pass::WaveMips),
         runs,
+        ocean_cpu::sampler::Texture2D::new(fw, fh, floor),
     ) {
         Ok(o) => o,
         Err(name) => return Ok(Err(format!("its input {name} is not in the frame"))),
@@ -385,6 +391,7 @@ fn water_verdict(
         format,
         precision: gpu.precision.0,
         shading,
+        foam,
     };
     let inputs = sky::SkyInputs {
         camera: &frame.camera_uniforms,

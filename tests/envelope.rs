@@ -914,6 +914,10 @@ fn random_conformant_gpus_stay_inside_the_water_envelope() {
             |id| o.map(id),
             plan.runs(Pass::WaveMips),
             |id| o.map(id).is_some(),
+            {
+                let (fw, fh, t) = ocean_core::terrain::relief_texels(scene.terrain.as_ref());
+                ocean_cpu::sampler::Texture2D::new(fw, fh, t)
+            },
         )
         .unwrap();
         let pass = we::WaterPass {
@@ -931,6 +935,8 @@ fn random_conformant_gpus_stay_inside_the_water_envelope() {
                 plan.techniques.of(Stage::Shading).name,
             )
             .unwrap(),
+            foam: ocean_cpu::shaders::water::real::Foam::of(plan.techniques.of(Stage::Foam).name)
+                .unwrap(),
         };
         // The generic mirror at f32 against the exact one.
         let t = owned.textures();
@@ -948,25 +954,39 @@ fn random_conformant_gpus_stay_inside_the_water_envelope() {
             refraction_map: t.refraction_map,
             shadow_map: t.shadow_map,
             fresnel_filter: t.fresnel_filter,
-            floor_map: t.fresnel_filter,
-            foam_field: t.fresnel_filter,
+            floor_map: t.floor_map,
+            foam_field: t.foam_field,
             sky_radiance: &sky_fn,
             shade_above: ocean_cpu::shaders::shading::shade_above(
                 plan.techniques.of(Stage::Shading).name,
             )
             .unwrap(),
-            foam_coverage: ocean_cpu::shaders::foam::none::foam_coverage,
+            foam_coverage: ocean_cpu::shaders::foam::foam_coverage(
+                plan.techniques.of(Stage::Foam).name,
+            )
+            .unwrap(),
         };
         let grid = u.grid.vertex_count() > 0;
-        let count = if grid {
+        let clipmap = u.clip.vertex_count() as usize;
+        let count = if clipmap > 0 {
+            clipmap
+        } else if grid {
             (u.grid.cols as usize + 1) * (u.grid.rows as usize + 1)
         } else {
             frame.mesh.vertices.len()
         };
         let mut checked = 0;
         for id in (0..count).step_by((count / 3000).max(1)) {
-            let (clip, v) = we::exact_vertex(&pass, id);
-            let exact = if grid {
+            // A clipmap's vertex index k names its lattice point's id.
+            let point = if clipmap > 0 {
+                water::real::clipmap::point_id(id as u32, &u) as usize
+            } else {
+                id
+            };
+            let (clip, v) = we::exact_vertex(&pass, point);
+            let exact = if clipmap > 0 {
+                water::vs_clipmap(id as u32, &bindings)
+            } else if grid {
                 // Lattice point (i, j): corner 0 of quad (i, j), or the last row/column's.
                 let cols = u.grid.cols as u32;
                 let (i, j) = (id as u32 % (cols + 1), id as u32 / (cols + 1));

@@ -54,7 +54,7 @@ impl ByteRange {
 }
 
 const F32_MAX: f64 = f32::MAX as f64;
-const F32_MIN_NORMAL: f64 = f32::MIN_POSITIVE as f64;
+pub(crate) const F32_MIN_NORMAL: f64 = f32::MIN_POSITIVE as f64;
 
 const TWO_POW_M21: f64 = 1.0 / (1u64 << 21) as f64;
 /// 2⁻¹⁰⁰: below this an interval is a 0 with its slack, for [`Iv::rel_half_width`].
@@ -579,22 +579,30 @@ impl Real for Iv {
     fn exp(self) -> Iv {
         self.exponential(f64::exp)
     }
-    /// For y > 0 atan2 is monotone in each argument on every box (decreasing in x; in y as
-    /// the sign of x), so the corners bound it; 4096 ULP of the largest magnitude. Where the
-    /// rule does not hold (y not normal and positive, |x| reaching below 2⁻¹²⁶ or past 2¹²⁶)
-    /// the result is full.
+    /// For y ≥ 0 atan2 is monotone in each argument on every box that keeps x on one side
+    /// of 0 (decreasing in x; in y as the sign of x), so the corners bound it; 4096 ULP of the
+    /// largest magnitude. A y that may be 0 or subnormal counts as 0 there (atan2(0, x) is
+    /// defined for x ≠ 0). Where the rule does not hold (y possibly negative or never normal,
+    /// |x| reaching below 2⁻¹²⁶ or past 2¹²⁶) the result is full.
     fn atan2(self, x: Iv) -> Iv {
         // The 4096 ULP hold for |x| in [2⁻¹²⁶, 2¹²⁶] and a normal y; elsewhere undefined.
         let x_tiny = x.lo < F32_MIN_NORMAL && x.hi > -F32_MIN_NORMAL;
-        if self.full || x.full || self.lo < F32_MIN_NORMAL || x_tiny || x.magnitude() > TWO_POW_126
+        if self.full || x.full || self.hi < F32_MIN_NORMAL || x_tiny || x.magnitude() > TWO_POW_126
         {
             return Iv::FULL;
         }
-        let c =
-            [self.lo.atan2(x.lo), self.lo.atan2(x.hi), self.hi.atan2(x.lo), self.hi.atan2(x.hi)];
+        if self.lo < 0.0 {
+            return Iv::FULL;
+        }
+        // A y that may be 0 or subnormal (flushed to 0) with x away from 0: atan2(0, x) is 0
+        // or π (defined: only atan2(0, 0) is not), and the rule's ULP at a result near 0 are
+        // subnormal, so 2⁻¹²⁶ covers them below.
+        let y_lo = if self.lo < F32_MIN_NORMAL { 0.0 } else { self.lo };
+        let c = [y_lo.atan2(x.lo), y_lo.atan2(x.hi), self.hi.atan2(x.lo), self.hi.atan2(x.hi)];
         let lo = c.iter().copied().fold(f64::INFINITY, f64::min).next_down();
         let hi = c.iter().copied().fold(f64::NEG_INFINITY, f64::max).next_up();
-        Iv::rounded(lo, hi, ATAN_ULPS)
+        let r = Iv::rounded(lo, hi, ATAN_ULPS);
+        if y_lo == 0.0 && !r.full { Iv::new(r.lo - F32_MIN_NORMAL, r.hi) } else { r }
     }
     fn lt(self, b: Iv) -> Tri {
         if self.full || b.full {

@@ -19,6 +19,8 @@
 //! the device's [`Precision`]). The others have no envelope yet; `ocean compare --tolerance
 //! envelope` reports their resources as not judged.
 
+mod affine;
+pub mod affine_filter;
 pub mod filter;
 mod interval;
 mod jitter;
@@ -28,6 +30,7 @@ use std::ops::{Add, Div, Mul, Neg, Sub};
 
 use ocean_core::frame_format::FrameFormat;
 
+pub use affine::Af;
 pub use interval::{ByteRange, Iv, f32_ulp};
 pub use jitter::{Jitter, JitterRules};
 
@@ -397,7 +400,7 @@ pub fn choose_n<R: Real, const N: usize>(
 }
 
 /// `f(floor(x), x − floor(x))` for a lookup indexed by `floor(x)`: where an interval spans an
-/// integer, both cells' results, united; past two cells, `full` (anything).
+/// integer, every cell's result, united; past [`FLOOR_CELLS`] cells, `full` (anything).
 #[inline]
 pub fn on_floor<R: Real, const N: usize>(
     x: R,
@@ -410,9 +413,31 @@ pub fn on_floor<R: Real, const N: usize>(
             let (a, b) = (f(k0, t0), f(k1, t1));
             std::array::from_fn(|i| a[i].hull(b[i]))
         }
-        _ => full,
+        _ => {
+            // Past two cells (an interval only): every cell up to FLOOR_CELLS, united, each
+            // with the fraction x − k cut to the cell's [0, 1].
+            let (lo, hi) = (x.least().floor(), x.most().floor());
+            if !(lo.is_finite() && hi.is_finite()) || hi - lo >= FLOOR_CELLS {
+                return full;
+            }
+            let mut out: Option<[R; N]> = None;
+            let mut k = lo;
+            while k <= hi {
+                let t = (x - R::lit(k as f32)).within(0.0, 1.0);
+                let v = f(k as f32, t);
+                out = Some(match out {
+                    None => v,
+                    Some(o) => std::array::from_fn(|i| o[i].hull(v[i])),
+                });
+                k += 1.0;
+            }
+            out.unwrap_or(full)
+        }
     }
 }
+
+/// How many cells [`on_floor`] follows an interval into (beyond: `full`).
+const FLOOR_CELLS: f64 = 12.0;
 
 /// `dot(a, b)` = (a.x b.x + a.y b.y) + a.z b.z in the exact frame; a GPU may reassociate it.
 #[inline]

@@ -107,6 +107,21 @@ pub fn clip_near_far(tri: [[Iv; 4]; 3]) -> Option<Vec<[ClipVertex; 3]>> {
     clip_near_far_deciding(tri, None)
 }
 
+/// Whether every point of the triangle lies outside one side plane of the clip volume
+/// (x > w, x < −w, y > w or y < −w at all three vertices, for every value of their boxes):
+/// the convex combinations do too, so no rasteriser draws any of it, whatever the near
+/// plane does to it.
+pub fn outside_a_side(tri: [[Iv; 4]; 3]) -> bool {
+    if tri.iter().flatten().any(|c| c.full) {
+        return false;
+    }
+    let beyond = |f: &dyn Fn(&[Iv; 4]) -> f64| tri.iter().all(|v| f(v) > 0.0);
+    beyond(&|v| v[0].lo - v[3].hi)
+        || beyond(&|v| -v[0].hi - v[3].hi)
+        || beyond(&|v| v[1].lo - v[3].hi)
+        || beyond(&|v| -v[1].hi - v[3].hi)
+}
+
 /// [`clip_near_far`] where a vertex's side of a plane is undecided by its box: the pieces of
 /// both decisions (the clipper keeps it, or cuts it off), each possible, none certain — the
 /// GPU's polygon is one of the two. `None` only where a vertex kept may have w ≤ 0.

@@ -3,8 +3,8 @@
 use ocean_core::frame::FrameUniforms;
 
 use super::trig::{TAU, cis_reduced_r};
-use crate::envelope::Real;
-use crate::shaders::wgsl::{Vec2, Vec4, clamp, vec2, vec4};
+use crate::envelope::{Real, choose_n};
+use crate::shaders::wgsl::{Vec2, Vec4, vec2, vec4};
 
 /// `gerstner_cis(i, pos)`: wave i's (cos θ, sin θ).
 pub fn gerstner_cis(i: usize, pos: Vec2, frame: &FrameUniforms) -> [f32; 2] {
@@ -33,16 +33,34 @@ pub fn gerstner_displacement(pos: Vec2, frame: &FrameUniforms) -> Vec4 {
 /// `gerstner_displacement_filtered(pos, spacing)`: each wave times
 /// g = clamp(2 − 8·spacing/λ, 0, 1).
 pub fn gerstner_displacement_filtered(pos: Vec2, spacing: f32, frame: &FrameUniforms) -> Vec4 {
-    let mut d = vec4(0.0, 0.0, 0.0, 0.0);
+    let [x, y, z, w] = gerstner_displacement_filtered_r([pos.x, pos.y], spacing, frame);
+    vec4(x, y, z, w)
+}
+
+/// [`gerstner_displacement_filtered`] over any [`Real`] (a wave whose g may or may not be
+/// positive: both, united).
+pub fn gerstner_displacement_filtered_r<R: Real>(
+    pos: [R; 2],
+    spacing: R,
+    frame: &FrameUniforms,
+) -> [R; 4] {
+    let l = R::lit;
+    let mut d = [l(0.0); 4];
     for i in 0..frame.gerstner.count as usize {
         let a = frame.gerstner.waves[2 * i];
-        let g = clamp(2.0 - 8.0 * (spacing * (a[0] * a[0] + a[1] * a[1]).sqrt()), 0.0, 1.0);
-        if g > 0.0 {
-            let [c, s] = gerstner_cis(i, pos, frame);
-            let cs = [c * g, s * g];
-            let b = frame.gerstner.waves[2 * i + 1];
-            d = d + vec4(b[0] * cs[0], a[3] * cs[1], b[1] * cs[0], 0.0);
-        }
+        let k = (l(a[0]) * l(a[0]) + l(a[1]) * l(a[1])).sqrt();
+        let g = (l(2.0) - l(8.0) * (spacing * k)).clamp(l(0.0), l(1.0));
+        d = choose_n(
+            l(0.0).lt(g),
+            || {
+                let [c, s] = gerstner_cis_r(i, pos, frame);
+                let cs = [c * g, s * g];
+                let b = frame.gerstner.waves[2 * i + 1];
+                let w = [l(b[0]) * cs[0], l(a[3]) * cs[1], l(b[1]) * cs[0], l(0.0)];
+                std::array::from_fn(|c| d[c] + w[c])
+            },
+            || d,
+        );
     }
     d
 }

@@ -67,7 +67,23 @@ pub fn sky_lut_radiance_r<R: Real>(lut: &SkyLut, dir: [R; 3], sun: [R; 3]) -> [R
     let (wm, hm) = (l(SKY_LUT_WIDTH - 1.0), l(SKY_LUT_HEIGHT - 1.0));
     let x = (u * wm).clamp(zero, wm);
     let z = (v * hm).clamp(zero, hm);
-    let full = [R::lit(f32::NAN); 3];
+    // Past on_floor's cells: a blend by weights in [0, 1] of texels r·pr + m·pm, each channel
+    // of r and m at least 0 and at most the table's greatest (the blend's roundings, a few ULP,
+    // in 2⁻²⁰ of it).
+    let most = |k: usize| {
+        std::array::from_fn::<f32, 3, _>(|c| {
+            lut.texels.iter().skip(k).step_by(2).fold(0.0f32, |m, t| m.max(t[c]))
+        })
+    };
+    let (r_max, m_max) = (most(0), most(1));
+    let negative = lut.texels.iter().flatten().any(|v| v.is_nan() || *v < 0.0);
+    let full: [R; 3] = std::array::from_fn(|c| {
+        if negative {
+            return l(f32::NAN);
+        }
+        let top = (l(r_max[c]) * pr + l(m_max[c]) * pm) * l(1.0 + 1.0 / 1_048_576.0);
+        l(0.0).hull(top)
+    });
     on_floor(x, full, |i0, tx| {
         on_floor(z, full, |j0, tz| {
             let i1 = (i0 + 1.0).min(SKY_LUT_WIDTH - 1.0);

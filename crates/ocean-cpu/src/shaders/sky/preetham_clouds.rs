@@ -9,11 +9,13 @@ use crate::envelope::{Real, choose, on_floor};
 use crate::shaders::shared::preetham::{SkyUniforms, preetham_radiance_r, preetham_sun_disc_r};
 use crate::shaders::wgsl::Vec3;
 
-/// `cloud_value_noise(x, z, octave)`: the lattice cell is where `floor` puts x and z (both
-/// cells, united, where an interval crosses a lattice line — the noise is continuous there).
+/// `cloud_value_noise(x, z, octave)`: the lattice cell is where `floor` puts x and z (every
+/// cell, united, where an interval crosses lattice lines — the noise is continuous there);
+/// past [`on_floor`]'s cells, a blend of hashes in [0, 1) by weights in [0, 1] (a few
+/// roundings past it at most).
 pub fn cloud_value_noise_r<R: Real>(x: R, z: R, octave: u32) -> R {
     let l = R::lit;
-    let full = [l(f32::NAN)];
+    let full = [l(-1e-6).hull(l(1.0 + 1e-6))];
     let [v] = on_floor(x, full, |fx, tx| {
         on_floor(z, full, |fz, tz| {
             let (i, j) = (fx as i32, fz as i32);

@@ -12,7 +12,7 @@ use ocean_core::geometry::WaterVertex;
 use super::real::{self, Inputs, Tex, Varyings};
 use super::{CLAMP_LINEAR, WRAP_LINEAR};
 use crate::envelope::raster::{self, MeshTri};
-use crate::envelope::{Iv, Jitter, JitterRules, Precision, Real, filter};
+use crate::envelope::{Af, Iv, Jitter, JitterRules, Precision, Real, filter};
 use crate::mip::MipChain;
 use crate::sampler::{Sampler, Texture2D};
 use crate::shaders::shared::preetham::SkyUniforms;
@@ -38,6 +38,10 @@ pub struct WaterTextures<'a> {
     pub fresnel_filter: &'a Texture2D,
     /// Binding 8.
     pub shadow_map: &'a Texture2D,
+    /// Binding 12, the sea floor's relief (`ocean_core::terrain::relief_texels`).
+    pub floor_map: &'a Texture2D,
+    /// Binding 13, foam `accumulated`'s field (one zero texel under the other foams).
+    pub foam_field: &'a Texture2D,
 }
 
 /// One water pass: the frame, the environment, the maps, the mesh and the target.
@@ -65,6 +69,8 @@ pub struct WaterPass<'a> {
     pub precision: Precision,
     /// The shading technique.
     pub shading: real::Shading,
+    /// The foam technique.
+    pub foam: real::Foam,
 }
 
 /// `textureSampleLevel` as each scalar type samples (level 0 of a texture, a chain at an
@@ -99,6 +105,18 @@ impl Sampling<Iv> for Iv {
     }
 }
 
+impl Sampling<Af> for Af {
+    fn level0(t: &Texture2D, s: &Sampler, uv: [Af; 2], p: Precision) -> [Af; 4] {
+        crate::envelope::affine_filter::sample_level0(t, s, uv, p)
+    }
+    fn mip(c: &MipChain, s: &Sampler, uv: [Af; 2], lod: Af, p: Precision) -> [Af; 4] {
+        crate::envelope::affine_filter::sample_mip(c, s, uv, lod, p)
+    }
+    fn spread_floor(c: &MipChain, s: &Sampler, uv: [Af; 2], lod: Af, p: Precision) -> [f64; 2] {
+        filter::spread_floor(c, s, uv.map(Af::to_iv), lod.to_iv(), p)
+    }
+}
+
 impl Sampling<Jitter> for Jitter {
     fn level0(t: &Texture2D, s: &Sampler, uv: [Jitter; 2], p: Precision) -> [Jitter; 4] {
         filter::sample_level0_jitter_p(t, s, uv, p)
@@ -125,6 +143,8 @@ fn sample<R: Real + Sampling<R>>(
         Tex::ReflectionMap => R::level0(t.reflection_map, &CLAMP_LINEAR, uv, p),
         Tex::RefractionMap => R::level0(t.refraction_map, &CLAMP_LINEAR, uv, p),
         Tex::FresnelFilter => R::level0(t.fresnel_filter, &CLAMP_LINEAR, uv, p),
+        Tex::FloorMap => R::level0(t.floor_map, &CLAMP_LINEAR, uv, p),
+        Tex::FoamField => R::level0(t.foam_field, &WRAP_LINEAR, uv, p),
     }
 }
 
@@ -151,6 +171,7 @@ fn with_inputs<R: Real + Sampling<R> + Send + Sync, T>(
     f(&Inputs {
         frame: p.frame,
         shading: p.shading,
+        foam: p.foam,
         sample: &sampler,
         spread_floor: &floor,
         sky: &sky_fn,
@@ -175,6 +196,19 @@ where
     R: Send,
 {
     use rayon::prelude::*;
+    let clip = p.frame.clip.vertex_count();
+    if clip > 0 {
+        // Surface `clipmap`: six vertex indices a quad, each vertex computed from its lattice
+        // point alone (one id each); a hole's quads collapse to a point and draw nothing.
+        let f = p.frame;
+        let ids = f.clip.levels as u32 * real::clipmap::points_per_level(f);
+        let verts = (0..ids as usize).into_par_iter().map(&vertex).collect();
+        let tris = (0..clip / 3)
+            .map(|t| [0, 1, 2].map(|c| real::clipmap::point_id(3 * t + c, f)))
+            .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
+            .collect();
+        return (verts, tris);
+    }
     let g = &p.frame.grid;
     if g.vertex_count() > 0 {
         // The vertex-index draw's vertices are the lattice points (i, j), one id each.
@@ -198,6 +232,9 @@ where
 
 /// Vertex `id` of the pass over `R`.
 fn vertex<R: Real>(p: &WaterPass<'_>, inp: &Inputs<'_, R>, id: usize) -> ([R; 4], Varyings<R>) {
+    if p.frame.clip.vertex_count() > 0 {
+        return real::clipmap::vertex(id as u32, inp);
+    }
     let g = &p.frame.grid;
     if g.vertex_count() > 0 {
         let cols = g.cols as u32 + 1;
@@ -214,39 +251,50 @@ fn vertex<R: Real>(p: &WaterPass<'_>, inp: &Inputs<'_, R>, id: usize) -> ([R; 4]
 pub fn envelope(p: &WaterPass<'_>, background: &[[Iv; 4]]) -> (Vec<[Iv; 4]>, Vec<bool>) {
     let [w, h] = p.size;
     with_inputs(p, Iv::point, |inp| {
-        let (verts, tris) = mesh(p, |id| vertex(p, inp, id));
-        let mut screen: Vec<MeshTri> = Vec::with_capacity(tris.len());
-        // Per drawn piece: its triangle, and its vertices' barycentrics in it.
-        let mut owner: Vec<Piece> = Vec::with_capacity(tris.len());
-        for (t, ids) in tris.iter().enumerate() {
-            let clip = ids.map(|i| verts[i as usize].0);
-            let Some((parts, drawn)) = raster::clip_near_far_either(clip) else {
-                let n = (w as usize) * (h as usize);
-                return (vec![[Iv::FULL; 4]; n], vec![true; n]);
-            };
-            let whole = drawn && parts.len() == 1 && parts[0].iter().all(|v| v.bary_err == 0.0);
-            for part in parts {
-                let s = part.map(|v| raster::to_screen(v.clip, w, h));
-                let [Some(a), Some(b), Some(c)] = s else {
+        with_inputs(p, Af::lit, |inp_af| {
+            let (verts, tris) = mesh(p, |id| vertex(p, inp, id));
+            let mut screen: Vec<MeshTri> = Vec::with_capacity(tris.len());
+            // Per drawn piece: its triangle, and its vertices' barycentrics in it.
+            let mut owner: Vec<Piece> = Vec::with_capacity(tris.len());
+            for (t, ids) in tris.iter().enumerate() {
+                let clip = ids.map(|i| verts[i as usize].0);
+                if raster::outside_a_side(clip) {
+                    continue;
+                }
+                let Some((parts, drawn)) = raster::clip_near_far_either(clip) else {
                     let n = (w as usize) * (h as usize);
                     return (vec![[Iv::FULL; 4]; n], vec![true; n]);
                 };
-                screen.push(MeshTri { screen: [a, b, c], ids: whole.then_some(*ids), drawn });
-                owner.push((t, part.map(|v| (v.bary, v.bary_err))));
+                let whole = drawn && parts.len() == 1 && parts[0].iter().all(|v| v.bary_err == 0.0);
+                for part in parts {
+                    let s = part.map(|v| raster::to_screen(v.clip, w, h));
+                    let [Some(a), Some(b), Some(c)] = s else {
+                        let n = (w as usize) * (h as usize);
+                        return (vec![[Iv::FULL; 4]; n], vec![true; n]);
+                    };
+                    screen.push(MeshTri { screen: [a, b, c], ids: whole.then_some(*ids), drawn });
+                    owner.push((t, part.map(|v| (v.bary, v.bary_err))));
+                }
             }
-        }
-        let shade = |k: usize, pixel: usize, interp: &raster::Interp| -> [Iv; 4] {
-            let (t, bary) = owner[k];
-            let ids = tris[t];
-            let v: Varyings<Iv> = std::array::from_fn(|c| {
-                let vals = ids.map(|i| verts[i as usize].1[c]);
-                interp.varying(bary.map(|(b, err)| raster::part_value(vals, b, err)))
-            });
-            let frag = [(pixel % w as usize) as f32 + 0.5, (pixel / w as usize) as f32 + 0.5];
-            real::fs_main(frag, &v, inp).map(|c| c.store(p.format))
-        };
-        raster::color_pass_mesh(&screen, w, h, background, p.precision.snap_px(), shade)
+            let shade = |k: usize, pixel: usize, interp: &raster::Interp| -> [Iv; 4] {
+                let (t, bary) = owner[k];
+                let ids = tris[t];
+                let v: Varyings<Iv> = std::array::from_fn(|c| {
+                    let vals = ids.map(|i| verts[i as usize].1[c]);
+                    interp.varying(bary.map(|(b, err)| raster::part_value(vals, b, err)))
+                });
+                let frag = [(pixel % w as usize) as f32 + 0.5, (pixel / w as usize) as f32 + 0.5];
+                fragment_envelope(frag, &v, inp_af).map(|c| c.store(p.format))
+            };
+            raster::color_pass_mesh(&screen, w, h, background, p.precision.snap_px(), shade)
+        })
     })
+}
+
+/// The fragment shader's envelope from its varyings' intervals, in affine arithmetic (each
+/// varying an input of its own: [`Af`]).
+fn fragment_envelope(frag: [f32; 2], v: &Varyings<Iv>, inp: &Inputs<'_, Af>) -> [Iv; 4] {
+    real::fs_main(frag, &v.map(Af::input), inp).map(Af::to_iv)
 }
 
 /// The water pass over `background` (the HDR frame before it) as one random conformant GPU
@@ -292,7 +340,8 @@ pub fn exact_fragment(p: &WaterPass<'_>, frag: [f32; 2], v: &Varyings<f32>) -> [
     with_inputs(p, |x| x, |inp| real::fs_main(frag, v, inp))
 }
 
-/// Vertex `id` over `f32` (the lattice point id of a projected grid, else the mesh's vertex).
+/// Vertex `id` over `f32` (the lattice point id of a projected grid or a clipmap
+/// (`real::clipmap::point_id`), else the mesh's vertex).
 pub fn exact_vertex(p: &WaterPass<'_>, id: usize) -> ([f32; 4], Varyings<f32>) {
     with_inputs(p, |x| x, |inp| vertex(p, inp, id))
 }
@@ -309,6 +358,8 @@ pub struct OwnedTextures {
     refraction_map: Texture2D,
     fresnel_filter: Texture2D,
     shadow_map: Texture2D,
+    floor_map: Texture2D,
+    foam_field: Texture2D,
 }
 
 /// A resource's texels: (width, height, texels).
@@ -317,7 +368,8 @@ pub type Resource<'a> = (u32, u32, &'a [[f32; 4]]);
 impl OwnedTextures {
     /// The maps from `get(resource)`, the slope maps as chains where `wave_mips` ran (its
     /// atlas under the chain's id); a map whose pass did not run is the zero texel both back
-    /// ends bind. `Err(name)` for a map the pass reads that `get` lacks.
+    /// ends bind; `floor_map` is the scene's relief (not a frame's resource). `Err(name)` for a
+    /// map the pass reads that `get` lacks.
     ///
     /// # Errors
     /// The name of a missing map.
@@ -325,6 +377,7 @@ impl OwnedTextures {
         get: impl Fn(ocean_core::plan::ResourceId) -> Option<Resource<'a>>,
         wave_mips: bool,
         runs: impl Fn(ocean_core::plan::ResourceId) -> bool,
+        floor_map: Texture2D,
     ) -> Result<Self, &'static str> {
         use ocean_core::plan::ResourceId as Id;
         let need = |id: Id| -> Result<Texture2D, &'static str> {
@@ -361,6 +414,8 @@ impl OwnedTextures {
             refraction_map: maybe(Id::RefractionMap)?,
             fresnel_filter: maybe(Id::FresnelFilter)?,
             shadow_map: maybe(Id::ShadowMap)?,
+            floor_map,
+            foam_field: maybe(Id::FoamField)?,
         })
     }
 
@@ -376,6 +431,8 @@ impl OwnedTextures {
             refraction_map: &self.refraction_map,
             fresnel_filter: &self.fresnel_filter,
             shadow_map: &self.shadow_map,
+            floor_map: &self.floor_map,
+            foam_field: &self.foam_field,
         }
     }
 }
@@ -383,7 +440,7 @@ impl OwnedTextures {
 /// The fragment shader's envelope at `frag` from the varyings' envelope `v` (a probe for
 /// tests and tools).
 pub fn envelope_fragment(p: &WaterPass<'_>, frag: [f32; 2], v: &Varyings<Iv>) -> [Iv; 4] {
-    with_inputs(p, Iv::point, |inp| real::fs_main(frag, v, inp))
+    with_inputs(p, Af::lit, |inp| fragment_envelope(frag, v, inp))
 }
 
 /// The fragment shader at `frag` from the varyings `v` as one random conformant GPU computes

@@ -12,13 +12,18 @@
 //! condition says of a value is kept ([`Real::at_least`]): the filtered BRDF's variance is
 //! positive there, and the visible facets' spread is at least 10⁻⁴ of their mean.
 
+pub mod clipmap;
+mod floor;
+mod foam;
+mod shading;
+
+pub use foam::Foam;
+
 use ocean_core::frame::FrameUniforms;
 
 use crate::envelope::{Cond, Real, choose, choose_n, dot3, mat4_mul_vec4};
-use crate::shaders::shared::fresnel::fresnel_exact_r;
 use crate::shaders::shared::gerstner::gerstner_cis_r;
 use crate::shaders::shared::optics::exp_arith_r;
-use crate::shaders::shared::shadow::sun_visibility_r;
 use crate::shaders::shared::trig::{TAU, cis_reduced_r};
 
 /// A texture the stage reads, as [`Inputs::sample`] names it.
@@ -40,6 +45,10 @@ pub enum Tex {
     RefractionMap,
     /// Binding 11, clamp.
     FresnelFilter,
+    /// `floor_map` (binding 12), clamp.
+    FloorMap,
+    /// Binding 13 (foam `accumulated`'s field), repeat.
+    FoamField,
 }
 
 /// The shading techniques the envelope carries (`technique/shading`'s `shade_above`).
@@ -49,6 +58,8 @@ pub enum Shading {
     Hu,
     /// Seed 002's Cook–Torrance BRDF with GGX (`shading/ggx.wgsl`).
     Ggx,
+    /// Seed 001's eqs. 2–8 (`shading/chiu.wgsl`).
+    Chiu,
 }
 
 impl Shading {
@@ -57,6 +68,7 @@ impl Shading {
         match name {
             "hu" => Some(Shading::Hu),
             "ggx" => Some(Shading::Ggx),
+            "chiu" => Some(Shading::Chiu),
             _ => None,
         }
     }
@@ -68,6 +80,8 @@ pub struct Inputs<'a, R> {
     pub frame: &'a FrameUniforms,
     /// The shading technique.
     pub shading: Shading,
+    /// The foam technique.
+    pub foam: Foam,
     /// `textureSampleLevel(texture, sampler, uv, lod)` with the texture's sampler.
     pub sample: &'a (dyn Fn(Tex, [R; 2], R) -> [R; 4] + Sync),
     /// For a slope chain's sample, the least t₂ − t₀² and t₃ − t₁² (E\[s²\] − E\[s\]² per
@@ -87,22 +101,19 @@ pub struct Inputs<'a, R> {
 /// or not.
 pub fn carried(frame: &FrameUniforms, shading: &str, foam: &str) -> Option<&'static str> {
     if Shading::of(shading).is_none() {
-        return Some("the water pass's envelope carries shadings `hu` and `ggx` only");
+        return Some("the water pass's envelope carries shadings `hu`, `ggx` and `chiu` only");
     }
-    if foam != "none" || frame.foam.mode != 0.0 {
-        return Some("the water pass's envelope carries foam `none` only");
+    if Foam::of(foam).is_none() {
+        return Some("the water pass's envelope does not carry this foam technique");
     }
     if frame.coastal.shape[0] > 0.0 {
         return Some("the water pass's envelope carries waves `fft` and `gerstner` only");
     }
-    if frame.scales.count > 0.0 {
-        return Some("the water pass's envelope carries one wave scale (not eq. 1's scales)");
-    }
-    if frame.terrain.top[2] != 0.0 || frame.terrain.top[3] != 0.0 {
-        return Some("the water pass's envelope does not carry the terrain's wave damping");
-    }
-    if frame.clip.vertex_count() > 0 || frame.grid.shore > 0.0 {
-        return Some("the water pass's envelope carries surfaces `hu_patches`, `projected_grid`");
+    if frame.grid.shore > 0.0 {
+        return Some(
+            "the water pass's envelope carries surfaces `hu_patches`, `projected_grid` and \
+             `clipmap`",
+        );
     }
     None
 }
@@ -119,6 +130,27 @@ pub fn water_vertex<R: Real>(
 ) -> ([R; 4], Varyings<R>) {
     let l = R::lit;
     let f = inp.frame;
+    let uv = map_uvs(pos, f);
+    let off = f.tiling.mesh_offset;
+    let plane = [pos[0] + l(off[0]), pos[1] + l(off[1])];
+    let weight = mesh_weight * floor::shore_weight(plane[0], plane[1], f.terrain.top[2], inp);
+    let d = if f.gerstner.count > 0.0 {
+        // Waves `gerstner`: the sum of the waves at the vertex, no maps to fetch.
+        gerstner_displacement(pos, f).map(|c| c * weight)
+    } else {
+        let s = if f.scales.count > 0.0 {
+            multi_scale_displacement(pos, inp)
+        } else {
+            (inp.sample)(Tex::Displacement, uv[0], l(0.0))
+        };
+        s.map(|c| c * (weight * l(f.passes.waves)))
+    };
+    displaced_vertex(pos, d, uv, weight, f)
+}
+
+/// `map_uvs(pos)`: the displacement and bump maps' (u, v) at `pos`.
+fn map_uvs<R: Real>(pos: [R; 2], f: &FrameUniforms) -> [[R; 2]; 2] {
+    let l = R::lit;
     let t = &f.tiling;
     let uv_d = [0, 1].map(|c| {
         (pos[c] + l(t.displacement_origin[c])) * l(t.inv_displacement_size)
@@ -126,16 +158,21 @@ pub fn water_vertex<R: Real>(
     });
     let uv_b =
         [0, 1].map(|c| (pos[c] + l(t.bump_origin[c])) * l(t.inv_bump_size) + l(t.bump_half_texel));
-    // shore_weight is 1 without the terrain's damping (what `carried` asks).
-    let weight = mesh_weight * l(1.0);
-    let d = if f.gerstner.count > 0.0 {
-        // Waves `gerstner`: the sum of the waves at the vertex, no maps to fetch.
-        gerstner_displacement(pos, f).map(|c| c * weight)
-    } else {
-        let s = (inp.sample)(Tex::Displacement, uv_d, l(0.0));
-        s.map(|c| c * (weight * l(f.passes.waves)))
-    };
-    let plane = [0, 1].map(|c| pos[c] + l(t.mesh_offset[c]));
+    [uv_d, uv_b]
+}
+
+/// `displaced_vertex(pos, d, uv, weight)`: the vertex at `pos` moved by `d`, its clip position
+/// and varyings.
+fn displaced_vertex<R: Real>(
+    pos: [R; 2],
+    d: [R; 4],
+    [uv_d, uv_b]: [[R; 2]; 2],
+    weight: R,
+    f: &FrameUniforms,
+) -> ([R; 4], Varyings<R>) {
+    let l = R::lit;
+    let off = f.tiling.mesh_offset;
+    let plane = [pos[0] + l(off[0]), pos[1] + l(off[1])];
     let rel = [plane[0] + d[0], d[1] - l(f.view.eye_height), plane[1] + d[2]];
     let clip = mat4_mul_vec4(&f.view.view_proj, [rel[0], rel[1], rel[2], l(1.0)]);
     (clip, [rel[0], rel[1], rel[2], uv_d[0], uv_d[1], uv_b[0], uv_b[1], weight, pos[0], pos[1]])
@@ -294,6 +331,56 @@ fn sample_footprint<R: Real>(
     let k = taps_log2 as usize;
     let inv = l(crate::shaders::wgsl::ldexp(1.0, -(taps_log2 as i32)));
     (partial[k].map(|c| c * inv), sq_partial[k] * inv, floor)
+}
+
+/// `multi_scale_displacement(pos)`: eq. 1's Σ_i a_i·D at the scales' points.
+fn multi_scale_displacement<R: Real>(pos: [R; 2], inp: &Inputs<'_, R>) -> [R; 4] {
+    let l = R::lit;
+    let m = &inp.frame.scales;
+    let mut sum = [l(0.0); 4];
+    for i in 0..m.count as usize {
+        let uv = scale_uv(pos, i, inp.frame);
+        let t = (inp.sample)(Tex::Displacement, uv, l(0.0));
+        sum = std::array::from_fn(|c| sum[c] + t[c] * l(m.weight[i]));
+    }
+    sum
+}
+
+/// Scale `i`'s point in the displacement map (`multi_scale_*`'s `uv`).
+fn scale_uv<R: Real>(pos: [R; 2], i: usize, frame: &FrameUniforms) -> [R; 2] {
+    let l = R::lit;
+    let m = &frame.scales;
+    let origin = [m.origin_x[i], m.origin_z[i]];
+    [0, 1].map(|c| {
+        (pos[c] + l(origin[c])) * l(m.inv_size[i]) + l(frame.tiling.displacement_half_texel)
+    })
+}
+
+/// `multi_scale_taps(pos, fp, h)`: the slope chain's taps summed over eq. 1's scales. Its
+/// spread has cross terms between the scales, so no floor is known for it (−∞).
+fn multi_scale_taps<R: Real>(
+    pos: [R; 2],
+    fp: &Footprint<R>,
+    h: [R; 2],
+    inp: &Inputs<'_, R>,
+) -> ([R; 4], R, [f64; 2]) {
+    let l = R::lit;
+    let frame = inp.frame;
+    let m = &frame.scales;
+    let mut mean = [l(0.0); 4];
+    let mut along_sq = l(0.0);
+    for i in 0..m.count as usize {
+        let uv = scale_uv(pos, i, frame);
+        let step = fp.step.map(|c| c * l(m.inv_size[i]));
+        let lod = fp.lods[0] + l(m.lod_offset[i]);
+        let (t, t_sq, _) =
+            sample_footprint(inp, Tex::DisplacementSlopes, uv, step, lod, fp.taps_log2, h);
+        let c = l(m.weight[i]) * (l(m.inv_size[i]) / l(frame.tiling.inv_displacement_size));
+        let c2 = c * c;
+        mean = [mean[0] + t[0] * c, mean[1] + t[1] * c, mean[2] + t[2] * c2, mean[3] + t[3] * c2];
+        along_sq = along_sq + t_sq * c2;
+    }
+    (mean, along_sq, [f64::NEG_INFINITY; 2])
 }
 
 /// `normal_cdf(a)`.
@@ -477,12 +564,17 @@ fn wave_slopes<R: Real>(v: &Varyings<R>, fp: &Footprint<R>, inp: &Inputs<'_, R>)
     let rel_y = v[1];
     let (uv_d, uv_b, weight) = ([v[3], v[4]], [v[5], v[6]], v[7]);
     let wd = weight * l(frame.passes.waves);
-    let wb = l(frame.passes.waves) * l(1.0);
+    let plane = [0, 1].map(|c| v[8 + c] + l(t.mesh_offset[c]));
+    let wb =
+        l(frame.passes.waves) * floor::shore_weight(plane[0], plane[1], frame.terrain.top[3], inp);
     let h = fp.h;
     let sd_uv = fp.step.map(|c| c * l(t.inv_displacement_size));
     let sb_uv = fp.step.map(|c| c * l(t.inv_bump_size));
-    let (d, along_sq, d_floor) =
-        sample_footprint(inp, Tex::DisplacementSlopes, uv_d, sd_uv, fp.lods[0], fp.taps_log2, h);
+    let (d, along_sq, d_floor) = if frame.scales.count > 0.0 {
+        multi_scale_taps([v[8], v[9]], fp, h, inp)
+    } else {
+        sample_footprint(inp, Tex::DisplacementSlopes, uv_d, sd_uv, fp.lods[0], fp.taps_log2, h)
+    };
     let (b, _, b_floor) =
         sample_footprint(inp, Tex::Bump, uv_b, sb_uv, fp.lods[1], fp.taps_log2, h);
     let sd = [d[0] * wd, d[1] * wd];
@@ -669,159 +761,6 @@ pub fn pow_int<R: Real>(x: R, n: u32) -> R {
 /// The least positive f32 (a subnormal): what a positive value is at least.
 const LEAST_POSITIVE: f64 = 1.401_298_464_324_817e-45;
 
-/// The reflection and refraction maps as shadings `hu` and `ggx` blend them (§5.2): each
-/// looked up at the screen position shifted by the bumped normal's horizontal part `d` times
-/// its distortion, over the sky `sky_r` and over the water's colour by its coverage:
-/// (C_reflect, C_refract).
-fn screen_maps<R: Real>(
-    sky_r: [R; 3],
-    d: [R; 2],
-    screen: [R; 2],
-    inp: &Inputs<'_, R>,
-) -> ([R; 3], [R; 3]) {
-    let l = R::lit;
-    let frame = inp.frame;
-    let shifted = |k: f32| [screen[0] + d[0] * l(k), screen[1] + d[1] * l(k)];
-    let refl = (inp.sample)(Tex::ReflectionMap, shifted(frame.hu.reflection_distortion), l(0.0));
-    let a_refl = refl[3] * l(frame.passes.reflection_map);
-    let c_reflect = std::array::from_fn(|c| sky_r[c] * (l(1.0) - a_refl) + refl[c] * a_refl);
-    let refr = (inp.sample)(Tex::RefractionMap, shifted(frame.hu.refraction_distortion), l(0.0));
-    let a_refr = refr[3] * l(frame.passes.refraction_map);
-    let c_refract =
-        std::array::from_fn(|c| l(frame.water.color[c]) * (l(1.0) - a_refr) + refr[c] * a_refr);
-    (c_reflect, c_refract)
-}
-
-/// Shading `hu`'s `shade_above(in, p)`.
-fn shade_above_hu<R: Real>(
-    rel: [R; 3],
-    slopes: [R; 3],
-    n: [R; 3],
-    view: [R; 3],
-    u_bumped: [R; 2],
-    screen: [R; 2],
-    inp: &Inputs<'_, R>,
-) -> [R; 3] {
-    let l = R::lit;
-    let frame = inp.frame;
-    let variance = slopes[2];
-    let filtered = l(0.0).lt(variance);
-    let vpos = variance.at_least(LEAST_POSITIVE);
-    let (du, dv) = (n[0], n[2]);
-    let st = fresnel_st(u_bumped, frame);
-    let fres = (inp.sample)(Tex::FresnelAbove, st, l(0.0));
-    let f = choose(filtered, || fresnel_filtered(u_bumped, vpos, inp), || fres[3]);
-    let sky_r = choose_n(
-        filtered,
-        || sky_filtered(view, slopes, vpos, inp),
-        || sky_reflected(view, n, inp),
-    );
-    let (c_reflect, c_refract) = screen_maps(sky_r, [du, dv], screen, inp);
-    let vb = [fres[0], fres[2], fres[1]];
-    let sd = frame.sun.direction;
-    let r_sun = [-l(sd[0]), l(sd[1]), -l(sd[2])];
-    let cos_spec = dot3(vb, r_sun).max(l(0.0));
-    let lobe = choose(
-        filtered,
-        || sun_lobe_filtered(u_bumped, vpos, frame),
-        || pow_int(cos_spec, frame.hu.phong_exponent as u32),
-    );
-    let spec_scale = lobe * l(frame.sun.lit);
-    let shadow = sun_visibility_r(rel, frame, inp.shadow_dims, inp.occluder);
-    std::array::from_fn(|c| {
-        c_reflect[c] * f
-            + c_refract[c] * (l(1.0) - f)
-            + l(frame.sun.radiance[c]) * spec_scale * shadow
-    })
-}
-
-/// `ggx_lambda(c, alpha2)`: Smith's Λ for GGX.
-fn ggx_lambda<R: Real>(c: R, alpha2: R) -> R {
-    let l = R::lit;
-    let c2 = c.sq();
-    let tan2 = (l(1.0) - c2) / c2;
-    l(0.5) * ((l(1.0) + alpha2 * tan2).sqrt() - l(1.0))
-}
-
-/// `ggx_fresnel(c)`: eq. 2, or Schlick's.
-fn ggx_fresnel<R: Real>(c: R, frame: &FrameUniforms) -> R {
-    let l = R::lit;
-    if frame.ggx.schlick_fresnel > 0.5 {
-        let m = l(1.0) - c.clamp(l(0.0), l(1.0));
-        let m2 = m.sq();
-        let m5 = m2.sq() * m;
-        let f0 = l(frame.ggx.f0);
-        return (f0 + m5) - f0 * m5;
-    }
-    fresnel_exact_r(c, l(frame.water.eta))
-}
-
-/// `ggx_geometry(nl, nv, alpha2)`.
-fn ggx_geometry<R: Real>(nl: R, nv: R, alpha2: R, frame: &FrameUniforms) -> R {
-    let l = R::lit;
-    if frame.ggx.schlick_geometry > 0.5 {
-        let k = l(0.5) * alpha2.sqrt();
-        return (nl / (nl * (l(1.0) - k) + k)) * (nv / (nv * (l(1.0) - k) + k));
-    }
-    l(1.0) / ((ggx_lambda(nl, alpha2) + ggx_lambda(nv, alpha2)) + l(1.0))
-}
-
-/// `ggx_brdf(n, view, l, nl, nv, alpha2)`.
-fn ggx_brdf<R: Real>(
-    n: [R; 3],
-    view: [R; 3],
-    sun: [R; 3],
-    (nl, nv, alpha2): (R, R, R),
-    frame: &FrameUniforms,
-) -> R {
-    let l = R::lit;
-    let h = unit(std::array::from_fn(|c| sun[c] + view[c]));
-    let nh = dot3(n, h).max(l(0.0));
-    let vh = dot3(view, h).max(l(0.0));
-    let c = [n[1] * h[2] - n[2] * h[1], n[2] * h[0] - n[0] * h[2], n[0] * h[1] - n[1] * h[0]];
-    let d_den = R::sum(&[c[0].sq(), c[1].sq(), c[2].sq()]) + nh.sq() * alpha2;
-    let d = alpha2 / (d_den.sq() * l(std::f32::consts::PI));
-    ggx_fresnel(vh, frame) * ggx_geometry(nl, nv, alpha2, frame) * d / (l(4.0) * nl * nv)
-}
-
-/// Shading `ggx`'s `shade_above(in, p)`.
-fn shade_above_ggx<R: Real>(
-    rel: [R; 3],
-    slopes: [R; 3],
-    n: [R; 3],
-    view: [R; 3],
-    screen: [R; 2],
-    inp: &Inputs<'_, R>,
-) -> [R; 3] {
-    let l = R::lit;
-    let frame = inp.frame;
-    let alpha2 = l(frame.ggx.alpha) * l(frame.ggx.alpha) + l(2.0) * slopes[2];
-    let vn = dot3(view, n);
-    let nv = vn.max(l(1e-4));
-    let f_env = ggx_fresnel(nv, frame);
-    let sky_r = sky_reflected(view, n, inp);
-    let (c_reflect, c_refract) = screen_maps(sky_r, [n[0], n[2]], screen, inp);
-    let sd = frame.sun.direction;
-    let sun = [l(sd[0]), l(sd[1]), l(sd[2])];
-    let nl = dot3(n, sun);
-    let c_sun = if frame.sun.lit > 0.0 {
-        choose_n(
-            l(0.0).lt(nl),
-            || {
-                let nl = nl.at_least(LEAST_POSITIVE);
-                let f = ggx_brdf(n, view, sun, (nl, nv, alpha2), frame);
-                let vis = sun_visibility_r(rel, frame, inp.shadow_dims, inp.occluder);
-                let k = f * nl * vis;
-                std::array::from_fn(|c| l(frame.sun.radiance[c]) * k)
-            },
-            || [l(0.0); 3],
-        )
-    } else {
-        [l(0.0); 3]
-    };
-    std::array::from_fn(|c| c_reflect[c] * f_env + c_refract[c] * (l(1.0) - f_env) + c_sun[c])
-}
-
 /// `fs_main(in)` at the pixel whose centre is `frag` (x + ½, y + ½): the colour it writes
 /// (before the target's storage), the union over the footprint's cases.
 pub fn fs_main<R: Real>(frag: [f32; 2], v: &Varyings<R>, inp: &Inputs<'_, R>) -> [R; 4] {
@@ -857,10 +796,17 @@ fn fragment<R: Real>(
     let screen = [l(frag[0]) * l(ivs[0]), l(frag[1]) * l(ivs[1])];
     let c = choose_n(
         l(0.0).le(view[1]),
-        // Foam `none`: foam_over of no cover is the shading itself.
-        || match inp.shading {
-            Shading::Hu => shade_above_hu(rel, slopes, n, view, u_bumped, screen, inp),
-            Shading::Ggx => shade_above_ggx(rel, slopes, n, view, screen, inp),
+        || {
+            let c = match inp.shading {
+                Shading::Hu => shading::shade_above_hu(rel, slopes, n, view, u_bumped, screen, inp),
+                Shading::Ggx => shading::shade_above_ggx(rel, slopes, n, view, screen, inp),
+                Shading::Chiu => {
+                    let depth = floor::floor_depth(rel, inp);
+                    shading::shade_above_chiu(rel, n, view, screen, depth, inp)
+                }
+            };
+            let cover = foam::coverage(v, slopes, inp);
+            foam::over(c, cover, n, rel, inp)
         },
         || {
             let st = fresnel_st(u_bumped, frame);
