@@ -150,6 +150,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 ldr: gpu.ldr.as_deref(),
                 oracle_hdr: Some(&renders.cpu.buffers.hdr.color),
                 precision: ocean::verdict::precision_of(&check.adapter.name, &check.adapter.vendor),
+                first_failure: false,
+                water_every: 1,
             };
             let v = envelope_verdict(&scene, plan, &side, &ran)?;
             for l in &v.lines {
@@ -436,6 +438,8 @@ fn against_envelope(
                 a["vendor"].as_str().unwrap_or(""),
             )
         }),
+        first_failure: false,
+        water_every: 1,
     };
     let v = envelope_verdict(scene, plan, &side, &held)?;
     for l in &v.lines {

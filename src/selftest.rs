@@ -35,7 +35,12 @@ pub struct Args {
 }
 
 /// One frame on the adapter, judged by the envelope.
-fn judge(renderer: &mut Renderer, scene: &Scene) -> anyhow::Result<Verdict> {
+fn judge(
+    renderer: &mut Renderer,
+    scene: &Scene,
+    first_failure: bool,
+    quick: bool,
+) -> anyhow::Result<Verdict> {
     let plan = FramePlan::new(scene, OutputKind::Ldr);
     let frame = renderer.run(scene, &plan)?;
     // The oracle's frame tells which pixels hold the sky (a small frame: cheap).
@@ -51,6 +56,8 @@ fn judge(renderer: &mut Renderer, scene: &Scene) -> anyhow::Result<Verdict> {
             &renderer.adapter().name,
             &renderer.adapter().vendor,
         ),
+        first_failure,
+        water_every: if quick { 2 } else { 1 },
     };
     envelope_verdict(scene, &frame.plan, &side, &ocean::dump::dumped(&frame.plan))
 }
@@ -112,7 +119,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     let mut outside = Vec::new();
     for (name, scene) in scenes(&args.scenes, size)? {
         ocean::scene_arg::revalidate(&scene, "--size")?;
-        let v = judge(&mut renderer, &scene).with_context(|| name.clone())?;
+        let v = judge(&mut renderer, &scene, false, args.quick).with_context(|| name.clone())?;
         total += 1;
         judged_names.extend(v.judged.iter().copied());
         unjudged.extend(v.not_judged.iter().copied());
@@ -160,7 +167,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 return Err(e);
             }
         };
-        let v = judge(&mut mutated, &scene);
+        let v = judge(&mut mutated, &scene, true, args.quick);
         let exact_caught = if exact {
             let c = ocean_verify::cross_check::check_scene(&mut mutated, m.name, &scene);
             Some(c.map(|(c, _)| !c.failures().is_empty()))

@@ -26,6 +26,12 @@ pub struct GpuSide<'a> {
     /// The precision the adapter guarantees (its snap, filter weights and level blend), and
     /// where the figures come from ([`precision_of`]).
     pub precision: (ocean_cpu::envelope::Precision, &'static str),
+    /// Whether a failure already found ends the verdict before the water pass's envelope (the
+    /// costliest): for a planted bug, where one failure is the answer.
+    pub first_failure: bool,
+    /// The water pass's envelope on every `water_every`-th pixel along each axis (1: all; 2
+    /// for a quick verdict: a quarter of the cost).
+    pub water_every: u32,
 }
 
 /// The precision of an adapter by its name and PCI vendor id as written in a report or a
@@ -42,6 +48,8 @@ impl Default for GpuSide<'_> {
             ldr: None,
             oracle_hdr: None,
             precision: (ocean_cpu::envelope::Precision::VULKAN_MINIMUM, "Vulkan's minimum limits"),
+            first_failure: false,
+            water_every: 1,
         }
     }
 }
@@ -228,6 +236,10 @@ fn judge_passes(
         v.json.push(f.to_json());
         v.judged.push("hdr (sky)");
     }
+    if gpu.first_failure && !v.failures.is_empty() {
+        v.not_judged.push("hdr (water)");
+        return Ok(v);
+    }
     match water_verdict(scene, plan, gpu)? {
         Ok((f, open, took, widths)) => {
             let fmt = |x: Option<f64>| x.map_or("-".to_owned(), |x| format!("{x:.1e}"));
@@ -392,6 +404,7 @@ fn water_verdict(
         precision: gpu.precision.0,
         shading,
         foam,
+        every: gpu.water_every.max(1),
     };
     let inputs = sky::SkyInputs {
         camera: &frame.camera_uniforms,
@@ -416,6 +429,11 @@ fn water_verdict(
         }
         None => vec![false; env.len()],
     };
+    // The pixels judged: those the objects cannot reach, on the quick verdict's lattice.
+    let every = gpu.water_every.max(1) as usize;
+    let on =
+        |i: usize| (i % w as usize).is_multiple_of(every) && (i / w as usize).is_multiple_of(every);
+    let reach: Vec<bool> = reach.iter().enumerate().map(|(i, &r)| r || !on(i)).collect();
     let region: Vec<Option<bool>> = reach.iter().map(|&r| (!r).then_some(true)).collect();
     let judged = reach.iter().filter(|r| !**r).count();
     if judged == 0 {

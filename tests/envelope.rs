@@ -937,6 +937,7 @@ fn random_conformant_gpus_stay_inside_the_water_envelope() {
             .unwrap(),
             foam: ocean_cpu::shaders::water::real::Foam::of(plan.techniques.of(Stage::Foam).name)
                 .unwrap(),
+            every: 1,
         };
         // The generic mirror at f32 against the exact one.
         let t = owned.textures();
