@@ -32,10 +32,11 @@ fn cells(x: Iv, step: f64) -> Option<Vec<(i64, (f64, f64))>> {
     if x.full || !x.lo.is_finite() || !x.hi.is_finite() {
         return None;
     }
-    let (k0, k1) = (x.lo.floor() as i64, x.hi.floor() as i64);
-    if k1 - k0 + 1 > MAX_CELLS {
+    // In f64: far coordinates saturate i64, and their difference would overflow.
+    if x.hi.floor() - x.lo.floor() + 1.0 > MAX_CELLS as f64 {
         return None;
     }
+    let (k0, k1) = (x.lo.floor() as i64, x.hi.floor() as i64);
     Some(
         (k0..=k1)
             .map(|k| {
@@ -156,9 +157,12 @@ fn spanned(w: u32, h: u32, x: Iv, y: Iv, fetch: &dyn Fn(i64, i64) -> [f32; 4]) -
         if v.full || !v.lo.is_finite() || !v.hi.is_finite() {
             return None;
         }
-        let (lo, hi) = (v.lo.floor() as i64, v.hi.floor() as i64 + 1);
-        // Past one period every texel of the axis is reached (repeat or clamp alike).
-        Some(if hi - lo >= i64::from(n) { (0, i64::from(n) - 1) } else { (lo, hi) })
+        // Past one period every texel of the axis is reached (repeat or clamp alike); in f64,
+        // as far coordinates saturate i64.
+        if v.hi.floor() + 1.0 - v.lo.floor() >= f64::from(n) {
+            return Some((0, i64::from(n) - 1));
+        }
+        Some((v.lo.floor() as i64, v.hi.floor() as i64 + 1))
     };
     let (Some((i0, i1)), Some((j0, j1))) = (range(x, w), range(y, h)) else {
         return [Iv::FULL; 4];
@@ -400,6 +404,33 @@ mod tests {
         let mut g = ocean_core::rng::SplitMix64::new(7);
         let mut f = || (g.next_u64() >> 40) as f32 / (1u64 << 24) as f32 * 4.0 - 2.0;
         Texture2D::new(8, 5, (0..40).map(|_| [f(), f(), f(), f()]).collect())
+    }
+
+    /// Coordinates far past i64's range (a far vertex's uv under a projected grid's horizon):
+    /// the hull of every texel, not an overflow; with the span inside a period, still bounded.
+    #[test]
+    fn far_coordinates_give_every_texel_not_an_overflow() {
+        let t = texture();
+        let s = Sampler {
+            address_mode_u: AddressMode::Repeat,
+            address_mode_v: AddressMode::ClampToEdge,
+            filter: FilterMode::Linear,
+        };
+        let (lo, hi) =
+            t.texels.iter().flatten().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+                (a.min(f64::from(*v)), b.max(f64::from(*v)))
+            });
+        for uv in
+            [[Iv::new(-1e30, 1e30), Iv::new(0.2, 0.3)], [Iv::new(1e25, 2e25), Iv::new(-3e28, 5.0)]]
+        {
+            let v = sample_level0_p(&t, &s, uv, Precision::LAVAPIPE);
+            for c in v {
+                assert!(
+                    !c.full && c.lo >= lo - 1e-5 && c.hi <= hi + 1e-5,
+                    "{c:?} past [{lo}, {hi}]"
+                );
+            }
+        }
     }
 
     /// Random coordinates on a random texture, both address modes: the exact sampler and 8

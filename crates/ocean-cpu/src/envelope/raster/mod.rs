@@ -710,6 +710,19 @@ mod tests {
         assert!(z.lo > 0.2 && z.hi < 0.6 && z.hi - z.lo < 0.02, "{z:?}");
     }
 
+    /// Beyond one side plane at every vertex for every value of the boxes: culled; a vertex
+    /// whose box reaches inside, or vertices beyond different planes: kept.
+    #[test]
+    fn a_triangle_beyond_one_side_plane_is_culled() {
+        let v = |x: f64, y: f64, w: f64| {
+            [Iv::new(x, x + 0.1), Iv::new(y, y), Iv::point(0.05), Iv::new(w, w)]
+        };
+        assert!(outside_a_side([v(5.0, 0.0, 2.0), v(9.0, 1.0, 3.0), v(37096.0, -34.0, -628.0)]));
+        assert!(outside_a_side([v(0.0, -5.0, 2.0), v(1.0, -9.0, 3.0), v(0.5, -700.0, -628.0)]));
+        assert!(!outside_a_side([v(1.95, 0.0, 2.0), v(9.0, 1.0, 3.0), v(8.0, 0.0, 1.0)]));
+        assert!(!outside_a_side([v(5.0, 0.0, 2.0), v(-9.0, 1.0, 3.0), v(8.0, 0.0, 1.0)]));
+    }
+
     /// A depth-only pass of two overlapping triangles keeps the nearer where both certainly
     /// cover, and the clear value outside.
     #[test]

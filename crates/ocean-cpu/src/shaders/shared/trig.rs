@@ -56,10 +56,20 @@ pub fn cis_turns_r<R: Real>(p: R) -> [R; 2] {
 
 /// `cis_turns(p - floor(p + 0.5))`: the phase reduced to [−½, ½] turn first, as the WGSL
 /// writes it wherever a phase may leave that range. Over any [`Real`]: where an interval
-/// straddles a half turn, both reductions, united (the same angle, so still narrow).
+/// straddles a half turn, every reduction, united (the same angle, so still narrow). Past the
+/// cells `on_floor` follows, any finite p still reduces to within [−1, ½] turn (p − k is exact
+/// for the k so near p; past 2²³, p + ½ may round up a whole turn), where both polynomials stay
+/// within [−1.0001, 1.0001].
 #[inline]
 pub fn cis_reduced_r<R: Real>(p: R) -> [R; 2] {
-    on_floor(p + R::lit(0.5), unknown_quadrant(p), |k, _| cis_turns_r(p - R::lit(k)))
+    let l = R::lit;
+    let reduced = if p.least().is_finite() && p.most().is_finite() {
+        let b = l(-1.0001).hull(l(1.0001));
+        [b, b]
+    } else {
+        [l(f32::NAN); 2]
+    };
+    on_floor(p + l(0.5), reduced, |k, _| cis_turns_r(p - l(k)))
 }
 
 /// What `cis_turns` gives where the bounds cannot tell which quarter turn (or which whole

@@ -13,6 +13,7 @@
 //! positive there, and the visible facets' spread is at least 10⁻⁴ of their mean.
 
 pub mod clipmap;
+mod coastal;
 mod floor;
 mod foam;
 mod shading;
@@ -60,6 +61,8 @@ pub enum Shading {
     Ggx,
     /// Seed 001's eqs. 2–8 (`shading/chiu.wgsl`).
     Chiu,
+    /// Seed 004's Blinn–Phong, Fresnel and dull colour (`shading/coastal.wgsl`).
+    Coastal,
 }
 
 impl Shading {
@@ -69,6 +72,7 @@ impl Shading {
             "hu" => Some(Shading::Hu),
             "ggx" => Some(Shading::Ggx),
             "chiu" => Some(Shading::Chiu),
+            "coastal" => Some(Shading::Coastal),
             _ => None,
         }
     }
@@ -101,19 +105,13 @@ pub struct Inputs<'a, R> {
 /// or not.
 pub fn carried(frame: &FrameUniforms, shading: &str, foam: &str) -> Option<&'static str> {
     if Shading::of(shading).is_none() {
-        return Some("the water pass's envelope carries shadings `hu`, `ggx` and `chiu` only");
+        return Some("the water pass's envelope does not carry this shading technique");
     }
     if Foam::of(foam).is_none() {
         return Some("the water pass's envelope does not carry this foam technique");
     }
-    if frame.coastal.shape[0] > 0.0 {
-        return Some("the water pass's envelope carries waves `fft` and `gerstner` only");
-    }
-    if frame.grid.shore > 0.0 {
-        return Some(
-            "the water pass's envelope carries surfaces `hu_patches`, `projected_grid` and \
-             `clipmap`",
-        );
+    if frame.coastal.shape[0] > 0.0 && frame.clip.vertex_count() > 0 {
+        return Some("the water pass's envelope does not carry waves `coastal` on a clipmap");
     }
     None
 }
@@ -134,6 +132,13 @@ pub fn water_vertex<R: Real>(
     let off = f.tiling.mesh_offset;
     let plane = [pos[0] + l(off[0]), pos[1] + l(off[1])];
     let weight = mesh_weight * floor::shore_weight(plane[0], plane[1], f.terrain.top[2], inp);
+    if f.coastal.shape[0] > 0.0 {
+        // Waves `coastal`: their height at the vertex, faded to the screen grids' spacing.
+        let sp = coastal::grid_spacing(pos, f);
+        let z = l(0.0);
+        let h = coastal::wave(pos, [sp[0], sp[1]], [z, z], [sp[2], sp[3]], inp)[0] * weight;
+        return displaced_vertex(pos, [z, h, z, z], uv, weight, f);
+    }
     let d = if f.gerstner.count > 0.0 {
         // Waves `gerstner`: the sum of the waves at the vertex, no maps to fetch.
         gerstner_displacement(pos, f).map(|c| c * weight)
@@ -184,6 +189,10 @@ fn displaced_vertex<R: Real>(
 pub fn grid_vertex<R: Real>(i: u32, j: u32, inp: &Inputs<'_, R>) -> ([R; 4], Varyings<R>) {
     let l = R::lit;
     let g = &inp.frame.grid;
+    if g.shore > 0.0 {
+        // Surface `shore_grid`: rows at growing distances ahead of the eye.
+        return water_vertex(coastal::shore_point(i, j, inp.frame), l(1.0), inp);
+    }
     let u = l(i as f32) / l(g.cols);
     let v = l(j as f32) / l(g.rows);
     let c = g.corners;
@@ -557,6 +566,14 @@ fn filtered_slopes<R: Real>(v: &Varyings<R>, fp: &Footprint<R>, inp: &Inputs<'_,
 fn wave_slopes<R: Real>(v: &Varyings<R>, fp: &Footprint<R>, inp: &Inputs<'_, R>) -> [R; 3] {
     let l = R::lit;
     let frame = inp.frame;
+    if frame.coastal.shape[0] > 0.0 {
+        // Waves `coastal`: their own slopes over the footprint (no variance from them).
+        let short = fp.dist * l(frame.far.pixel_angle);
+        let sigma = [l(0.5) * short / fp.vy.max(l(1e-4)), l(0.5) * short];
+        let z = l(0.0);
+        let w = coastal::wave([v[8], v[9]], fp.h, sigma, [z, z], inp);
+        return [w[1] * v[7], w[2] * v[7], z];
+    }
     if frame.gerstner.count > 0.0 {
         return gerstner_filtered_slopes([v[8], v[9]], fp, v[7], frame);
     }
@@ -797,6 +814,13 @@ fn fragment<R: Real>(
     let c = choose_n(
         l(0.0).le(view[1]),
         || {
+            let pos = [v[8], v[9]];
+            let coastal = if frame.coastal.shape[0] > 0.0 {
+                let short = fp.dist * l(frame.far.pixel_angle);
+                coastal::shore(pos, fp.h, [short / fp.vy.max(l(1e-4)), short], inp)
+            } else {
+                [l(0.0), l(0.0), l(1.0)]
+            };
             let c = match inp.shading {
                 Shading::Hu => shading::shade_above_hu(rel, slopes, n, view, u_bumped, screen, inp),
                 Shading::Ggx => shading::shade_above_ggx(rel, slopes, n, view, screen, inp),
@@ -804,8 +828,15 @@ fn fragment<R: Real>(
                     let depth = floor::floor_depth(rel, inp);
                     shading::shade_above_chiu(rel, n, view, screen, depth, inp)
                 }
+                Shading::Coastal => {
+                    let p = shading::Point { n, view, u_bumped, screen, coastal };
+                    shading::shade_above_coastal(rel, &p, inp)
+                }
             };
-            let cover = foam::coverage(v, slopes, inp);
+            let mut cover = foam::coverage(v, slopes, inp);
+            if frame.coastal.shape[0] > 0.0 && frame.foam.mode > 0.0 {
+                cover = foam::shore_cover(cover, coastal[1], pos, frame);
+            }
             foam::over(c, cover, n, rel, inp)
         },
         || {

@@ -89,6 +89,10 @@ fn surface_jacobian<R: Real>(v: &Varyings<R>, inp: &Inputs<'_, R>) -> R {
     let l = R::lit;
     let frame = inp.frame;
     let weight = v[7];
+    // Waves `coastal` move the surface vertically only.
+    if frame.coastal.shape[0] > 0.0 {
+        return l(1.0);
+    }
     if frame.gerstner.count > 0.0 {
         return l(1.0) + (gerstner_jacobian_r([v[8], v[9]], frame) - l(1.0)) * weight;
     }
@@ -132,6 +136,11 @@ pub(super) fn coverage<R: Real>(v: &Varyings<R>, slopes: [R; 3], inp: &Inputs<'_
         }
     };
     mix(t, texture_at(pos, frame), frame)
+}
+
+/// The shore's foam of waves `coastal` over `cover`: max(cover, foam_mix(t, texture)).
+pub(super) fn shore_cover<R: Real>(cover: R, t: R, pos: [R; 2], frame: &FrameUniforms) -> R {
+    cover.max(mix(t, texture_at(pos, frame), frame))
 }
 
 /// `foam_over(c, cover, n, rel)`: the water's colour `c` with the foam over it, lit as the

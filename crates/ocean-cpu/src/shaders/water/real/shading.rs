@@ -10,6 +10,7 @@ use super::{
 };
 use crate::envelope::{Real, choose, choose_n, dot3, mat4_mul_vec4, on_floor};
 use crate::shaders::shading::chiu::CHIU_MAX_EXPONENT;
+use crate::shaders::shading::coastal::COASTAL_INV_PI;
 use crate::shaders::shared::fresnel::fresnel_exact_r;
 use crate::shaders::shared::optics::water_volume_colour_r;
 use crate::shaders::shared::shadow::sun_visibility_r;
@@ -222,5 +223,64 @@ pub(super) fn shade_above_chiu<R: Real>(
             c_sky[c] * (l(1.0) - a_refl) + refl[c] * a_refl + l(frame.sun.radiance[c]) * lobe;
         let c_refract = volume[c] * (l(1.0) - a_refr) + refr[c] * a_refr;
         c_reflect * f + c_refract * (l(1.0) - f)
+    })
+}
+
+/// What shading `coastal` reads of `SurfacePoint`.
+pub(super) struct Point<R> {
+    /// The bumped unit normal.
+    pub n: [R; 3],
+    /// The unit vector to the eye.
+    pub view: [R; 3],
+    /// The bumped view vector's horizontal part.
+    pub u_bumped: [R; 2],
+    /// The fragment's normalised screen position.
+    pub screen: [R; 2],
+    /// `coastal_shore`'s (φ in turns, foam turbulence, share resolved).
+    pub coastal: [R; 3],
+}
+
+/// Shading `coastal`'s `shade_above(in, p)` (seed 004).
+pub(super) fn shade_above_coastal<R: Real>(
+    rel: [R; 3],
+    p: &Point<R>,
+    inp: &Inputs<'_, R>,
+) -> [R; 3] {
+    let l = R::lit;
+    let frame = inp.frame;
+    let s = &frame.coastal_shading;
+    let (n, view) = (p.n, p.view);
+    let cos_v = dot3(view, n).max(l(0.0));
+    let f = if s.schlick > 0.0 {
+        let m = l(1.0) - cos_v;
+        let m2 = m * m;
+        l(s.f0) + (l(1.0) - l(s.f0)) * (m2 * m2 * m)
+    } else {
+        (inp.sample)(Tex::FresnelAbove, fresnel_st(p.u_bumped, frame), l(0.0))[3]
+    };
+    let r: [R; 3] = std::array::from_fn(|c| n[c] * (l(2.0) * cos_v) - view[c]);
+    let sky_r = (inp.sky)(unit([r[0] + l(0.0), r[1].max(l(0.0)) + l(1e-6), r[2] + l(0.0)]));
+    let at = [p.screen[0] - n[0] * l(s.distortion), p.screen[1] - n[2] * l(s.distortion)];
+    let refl = (inp.sample)(Tex::ReflectionMap, at, l(0.0));
+    let a_refl = refl[3] * l(frame.passes.reflection_map);
+    let refr = (inp.sample)(Tex::RefractionMap, at, l(0.0));
+    let a_refr = refr[3] * l(frame.passes.refraction_map);
+    let sd = frame.sun.direction.map(l);
+    let shadow = sun_visibility_r(rel, frame, inp.shadow_dims, inp.occluder) * l(frame.sun.lit);
+    let half = unit([sd[0] + view[0], sd[1] + view[1], sd[2] + view[2]]);
+    let lobe = pow_int(dot3(n, half).max(l(0.0)), s.shininess as u32);
+    let q = l(2.0) * p.coastal[0];
+    let q2 = q * q;
+    let q4 = q2 * q2;
+    let q4 = choose(p.coastal[2].lt(l(1.0)), || l(0.2) + (q4 - l(0.2)) * p.coastal[2], || q4);
+    let d = (l(s.dull_factor) * (l(1.0) + q4)).clamp(l(0.0), l(1.0));
+    let lit = dot3(n, sd).max(l(0.0)) * shadow * l(COASTAL_INV_PI);
+    std::array::from_fn(|c| {
+        let c_reflect = sky_r[c] * (l(1.0) - a_refl) + refl[c] * a_refl;
+        let c_refract = l(frame.water.color[c]) * (l(1.0) - a_refr) + refr[c] * a_refr;
+        let light = l(frame.ambient.sky[c]) + l(frame.sun.radiance[c]) * lit;
+        let col = (c_reflect * f + c_refract * (l(1.0) - f)) * (l(1.0) - d)
+            + l(s.dull_color[c]) * light * d;
+        col + l(frame.sun.radiance[c]) * (lobe * shadow)
     })
 }
