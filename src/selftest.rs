@@ -57,7 +57,7 @@ fn judge(
             &renderer.adapter().vendor,
         ),
         first_failure,
-        water_every: if quick { 2 } else { 1 },
+        water_every: if quick { 3 } else { 1 },
     };
     envelope_verdict(scene, &frame.plan, &side, &ocean::dump::dumped(&frame.plan))
 }

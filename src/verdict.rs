@@ -29,8 +29,8 @@ pub struct GpuSide<'a> {
     /// Whether a failure already found ends the verdict before the water pass's envelope (the
     /// costliest): for a planted bug, where one failure is the answer.
     pub first_failure: bool,
-    /// The water pass's envelope on every `water_every`-th pixel along each axis (1: all; 2
-    /// for a quick verdict: a quarter of the cost).
+    /// The water pass's envelope on every `water_every`-th pixel along each axis (1: all; 3
+    /// for a quick verdict: a ninth of the cost).
     pub water_every: u32,
 }
 
