@@ -400,7 +400,7 @@ pub fn choose_n<R: Real, const N: usize>(
 }
 
 /// `f(floor(x), x − floor(x))` for a lookup indexed by `floor(x)`: where an interval spans an
-/// integer, every cell's result, united; past [`FLOOR_CELLS`] cells, `full` (anything).
+/// integer, every cell's result, united; past 12 cells, `full` (anything).
 #[inline]
 pub fn on_floor<R: Real, const N: usize>(
     x: R,
