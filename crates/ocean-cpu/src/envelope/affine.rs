@@ -167,8 +167,10 @@ impl Af {
         }
         match self.form {
             Some(f) => {
-                let r = f.radius();
-                let (lo, hi) = ((f.c - r).max(self.iv.lo), (f.c + r).min(self.iv.hi));
+                // The radius sums up to 13 terms in f64: an outward margin for their roundings.
+                let r = f.radius() * (1.0 + 1e-14);
+                let (lo, hi) =
+                    ((f.c - r).next_down().max(self.iv.lo), (f.c + r).next_up().min(self.iv.hi));
                 if lo <= hi { Iv::new(lo, hi) } else { self.iv }
             }
             None => self.iv,
@@ -214,7 +216,8 @@ impl Af {
         let a = alpha(lo, hi);
         let (g_lo, g_hi) = (f(lo) - a * lo, f(hi) - a * hi);
         let inner = x;
-        let allowance = (f(inner.lo) - iv.lo).max(iv.hi - f(inner.hi)).max(0.0);
+        // What the interval result leaves around f's exact range, and a flushed subnormal.
+        let allowance = (f(inner.lo) - iv.lo).max(iv.hi - f(inner.hi)).max(0.0) + F32_MIN_NORMAL;
         let zeta = 0.5 * (g_lo + g_hi);
         // f64's own roundings of f and of the differences.
         let f64_err = (f(lo).abs() + (a * lo).abs() + f(hi).abs() + (a * hi).abs()) * F64_REL;

@@ -400,7 +400,8 @@ pub fn choose_n<R: Real, const N: usize>(
 }
 
 /// `f(floor(x), x − floor(x))` for a lookup indexed by `floor(x)`: where an interval spans an
-/// integer, every cell's result, united; past 12 cells, `full` (anything).
+/// integer, every cell's result, united; past 12 cells, `full` (what the caller knows of
+/// the lookup for a finite x); anything where x may not be finite.
 #[inline]
 pub fn on_floor<R: Real, const N: usize>(
     x: R,
@@ -417,7 +418,12 @@ pub fn on_floor<R: Real, const N: usize>(
             // Past two cells (an interval only): every cell up to FLOOR_CELLS, united, each
             // with the fraction x − k cut to the cell's [0, 1].
             let (lo, hi) = (x.least().floor(), x.most().floor());
-            if !(lo.is_finite() && hi.is_finite()) || hi - lo >= FLOOR_CELLS {
+            // An x that may be anything (an overflow, a NaN): so may the lookup, whatever the
+            // caller's bound for a finite x says.
+            if !(lo.is_finite() && hi.is_finite()) {
+                return [R::lit(f32::NAN); N];
+            }
+            if hi - lo >= FLOOR_CELLS {
                 return full;
             }
             let mut out: Option<[R; N]> = None;

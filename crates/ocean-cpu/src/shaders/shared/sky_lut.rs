@@ -68,8 +68,9 @@ pub fn sky_lut_radiance_r<R: Real>(lut: &SkyLut, dir: [R; 3], sun: [R; 3]) -> [R
     let x = (u * wm).clamp(zero, wm);
     let z = (v * hm).clamp(zero, hm);
     // Past on_floor's cells: a blend by weights in [0, 1] of texels r·pr + m·pm, each channel
-    // of r and m at least 0 and at most the table's greatest (the blend's roundings, a few ULP,
-    // in 2⁻²⁰ of it).
+    // of r and m at least 0 and at most the table's greatest (the blend's roundings, about
+    // 0.75·2⁻²⁰ of it, in the factor 1 + 2⁻²⁰). The weights are finite on every GPU: dh is 0
+    // (the branch skipped, a = 0) or at least 2⁻⁷⁵, so a is.
     let most = |k: usize| {
         std::array::from_fn::<f32, 3, _>(|c| {
             lut.texels.iter().skip(k).step_by(2).fold(0.0f32, |m, t| m.max(t[c]))

@@ -57,13 +57,16 @@ pub fn cis_turns_r<R: Real>(p: R) -> [R; 2] {
 /// `cis_turns(p - floor(p + 0.5))`: the phase reduced to [−½, ½] turn first, as the WGSL
 /// writes it wherever a phase may leave that range. Over any [`Real`]: where an interval
 /// straddles a half turn, every reduction, united (the same angle, so still narrow). Past the
-/// cells `on_floor` follows, any finite p still reduces to within [−1, ½] turn (p − k is exact
-/// for the k so near p; past 2²³, p + ½ may round up a whole turn), where both polynomials stay
-/// within [−1.0001, 1.0001].
+/// cells `on_floor` follows, a p below 2⁴⁶ in magnitude still reduces to 0 or −ulp(p) turn
+/// (within [−1, ½] below 2²⁴; p − k is exact for the k so near p, and p + ½ may round up a
+/// whole ULP), which `cis_turns` reduces again to within a quarter turn, where both
+/// polynomials stay within [−1.0001, 1.0001]. Past 2⁴⁶ the second reduction may leave |x| ≥ π
+/// (cos's polynomial reaches −1.0018 at π): anything.
 #[inline]
 pub fn cis_reduced_r<R: Real>(p: R) -> [R; 2] {
     let l = R::lit;
-    let reduced = if p.least().is_finite() && p.most().is_finite() {
+    let limit = 7.036_874_417_766_4e13; // 2⁴⁶
+    let reduced = if p.least() > -limit && p.most() < limit {
         let b = l(-1.0001).hull(l(1.0001));
         [b, b]
     } else {
@@ -87,5 +90,34 @@ fn unknown_quadrant<R: Real>(p: R) -> [R; 2] {
         [b, b]
     } else {
         [l(f32::NAN); 2]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::envelope::{Iv, Jitter, JitterRules};
+
+    /// A phase interval too wide to follow cell by cell: below 2⁴⁶ bounded by ±1.0001, and
+    /// every f32 and random conformant result there inside; past it anything (where the
+    /// second reduction may leave |x| ≥ π).
+    #[test]
+    fn a_wide_reduced_phase_is_bounded_below_two_to_the_46() {
+        for (lo, hi) in [(1.0e6, 2.0e6), (3.0e12, 9.0e12), (1.6e7, 1.7e7)] {
+            let e = cis_reduced_r(Iv::new(lo, hi));
+            assert!(e.iter().all(|c| !c.full && c.lo >= -1.000_11 && c.hi <= 1.000_11), "{e:?}");
+            for k in 0..=64u32 {
+                let p = (lo + (hi - lo) * f64::from(k) / 64.0) as f32;
+                let exact = cis_reduced_r(p);
+                assert!((0..2).all(|c| e[c].contains(exact[c])), "{p}: {exact:?} not in {e:?}");
+                for seed in 0..4 {
+                    Jitter::reseed(JitterRules { seed, scale: 1.0 }, u64::from(k));
+                    let j = cis_reduced_r(Jitter(p));
+                    assert!((0..2).all(|c| e[c].contains(j[c].0)), "{p}: {j:?} not in {e:?}");
+                }
+            }
+        }
+        let far = cis_reduced_r(Iv::new(1.5e14, 3.0e14));
+        assert!(far.iter().all(|c| c.full), "{far:?}");
     }
 }

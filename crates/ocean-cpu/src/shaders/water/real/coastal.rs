@@ -77,10 +77,18 @@ fn radial<R: Real>(pos: [R; 2], inp: &Inputs<'_, R>) -> Radial<R> {
         let shoaled = (q[0] + u * (q[1] + u * q[2])).max(l(0.0));
         let amp = choose(cap.lt(shoaled), || cap, || shoaled);
         let t = -(phi + l(c.time[0]));
-        // Past on_floor's cells: a phase reduced to [−½, ½] turn, whose cis the polynomials keep
-        // within [−1, 1] but for their roundings.
-        let unit_ish = l(-1.0001).hull(l(1.0001));
-        let any = [l(-0.5).hull(l(0.5)), unit_ish, unit_ish];
+        // Past on_floor's cells: t − floor(t + ½) within [−½, ½] but for one ULP of t + ½ (it
+        // may round up), for |t| < 2²²; its cis within the polynomials' [−1, 1] but for their
+        // roundings. Anything past that (the reduction may leave −1 turn, or −ulp(t)).
+        let m = t.least().abs().max(t.most().abs());
+        let any = if m < 4_194_304.0 {
+            let d = f64::from(f32::EPSILON) * 2.0 * (2.0 * m + 1.0);
+            let unit_ish = l(-1.0001).hull(l(1.0001));
+            let (lo, hi) = (((-0.5 - d) as f32).next_down(), ((0.5 + d) as f32).next_up());
+            [l(lo).hull(l(hi)), unit_ish, unit_ish]
+        } else {
+            [l(f32::NAN); 3]
+        };
         let [turns, c0, c1] = on_floor(t + l(0.5), any, |n, _| {
             let turns = t - l(n);
             let [c0, c1] = cis_turns_r(turns);
