@@ -6,6 +6,8 @@
 //!   before; monomorphised, so no slower);
 //! - [`Iv`]: the envelope — each operation's result widened by the error the Vulkan and WGSL
 //!   precision rules allow it, so the interval holds every conformant result;
+//! - [`Af`]: the same envelope in affine arithmetic, an interval cut by a form that keeps the
+//!   correlations intervals drop (the water's fragment shader and its texture reads);
 //! - [`Jitter`]: one conformant implementation drawn at random (each rounding, each
 //!   transcendental's error, each rounding of the 8-bit store chosen within the rules, or
 //!   `scale` times the rules for the negative control): the envelope's soundness test without

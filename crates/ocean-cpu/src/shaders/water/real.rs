@@ -1,10 +1,11 @@
 //! `shaders/water.wgsl` over any [`Real`], for the techniques the envelope carries
-//! ([`carried`]): waves `fft` on one scale and `gerstner`, surfaces `hu_patches` and
-//! `projected_grid`, far fields `none`, `mip` and `variance`, shadings `hu` and `ggx` (with its
-//! detail map), foam `none`, no terrain damping. At `f32`
+//! ([`carried`]): waves `fft` (with eq. 1's scales), `gerstner` and `coastal`; surfaces
+//! `hu_patches`, `projected_grid`, `shore_grid` and `clipmap` (not under waves `coastal`); far
+//! fields `none`, `mip` and `variance`; shadings `hu`, `ggx` (with its detail map), `chiu` and
+//! `coastal` (`real::shading`); every foam (`real::foam`); the terrain's wave damping. At `f32`
 //! it is the exact mirror's arithmetic, operation for operation (a test holds the two to the
-//! bit); over [`crate::envelope::Iv`] the envelope's, over [`crate::envelope::Jitter`] one
-//! random conformant GPU's.
+//! bit); over [`crate::envelope::Iv`] or [`crate::envelope::Af`] the envelope's, over
+//! [`crate::envelope::Jitter`] one random conformant GPU's.
 //!
 //! Every texture read goes through [`Inputs::sample`] (the envelope reads the GPU's own
 //! inputs through the filter's envelope), the environment through [`Inputs::sky`]. A
