@@ -13,18 +13,10 @@ pub fn vs_clipmap(k: u32, b: &Bindings<'_>) -> VertexOut {
     let frame = b.frame;
     let c = &frame.clip;
     let n = c.cells as u32;
-    let per_level = 6 * n * n;
-    let level = (k / per_level) as usize;
-    let quad = (k % per_level) / 6;
-    let corner = (k % 6) as usize;
-    let di = [0i32, 1, 1, 0, 1, 0];
-    let dj = [0i32, 0, 1, 0, 1, 1];
+    // The lattice point is integer arithmetic, one function for both mirrors.
+    let (level, i, j) = super::real::clipmap::lattice(k, frame);
     let lv = c.level[level];
-    let qi = (quad % n) as i32;
-    let qj = (quad / n) as i32;
     let half = (n / 2) as i32;
-    let in_hole = qi >= lv[2] && qi < lv[2] + half && qj >= lv[3] && qj < lv[3] + half;
-    let (i, j) = if in_hole { (qi, qj) } else { (qi + di[corner], qj + dj[corner]) };
     let e = c.eye[level];
     let step = e[2] as i32;
     let dist = ((i - half) as f32 - e[0]).abs().max(((j - half) as f32 - e[1]).abs());

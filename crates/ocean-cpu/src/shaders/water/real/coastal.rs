@@ -6,7 +6,7 @@
 
 use ocean_core::frame::FrameUniforms;
 
-use super::{Inputs, floor};
+use super::{Inputs, LEAST_POSITIVE, floor};
 use crate::envelope::{Cond, Real, choose, choose_n, on_floor};
 use crate::shaders::shared::coastal::{COASTAL_EDGE_M, COASTAL_FILM_M, COASTAL_SEGMENTS};
 use crate::shaders::shared::optics::exp_arith_r;
@@ -26,13 +26,13 @@ struct Radial<R> {
 }
 
 impl<R: Real> Radial<R> {
-    fn pack(&self) -> [R; 11] {
+    fn pack(&self) -> [R; 10] {
         let [d0, d1] = self.d;
         let [c0, c1] = self.cs;
-        [d0, d1, self.r, self.dphi, self.floor_y, self.shoaled, self.amp, self.turns, c0, c1, d0]
+        [d0, d1, self.r, self.dphi, self.floor_y, self.shoaled, self.amp, self.turns, c0, c1]
     }
 
-    fn unpack(v: [R; 11]) -> Self {
+    fn unpack(v: [R; 10]) -> Self {
         Radial {
             d: [v[0], v[1]],
             r: v[2],
@@ -63,7 +63,7 @@ fn radial<R: Real>(pos: [R; 2], inp: &Inputs<'_, R>) -> Radial<R> {
     let depth = (-floor_y).max(l(0.0));
     let d = [pos[0] - l(c.center[0]), pos[1] - l(c.center[1])];
     let r = (d[0] * d[0] + d[1] * d[1]).sqrt();
-    let full = [l(f32::NAN); 11];
+    let full = [l(f32::NAN); 10];
     // min(u32(x), last) = floor(min(x, last)) for x ≥ 0: past the table, its last segment.
     let last = (COASTAL_SEGMENTS - 1) as f32;
     let v = on_floor((r * l(c.center[2])).min(l(last)), full, |k, _| {
@@ -144,7 +144,7 @@ pub(super) fn wave<R: Real>(
     let [h, g0, g1] = choose_n(
         l(0.0).lt(w.r),
         || {
-            let r = w.r.at_least(f64::from(f32::from_bits(1)));
+            let r = w.r.at_least(LEAST_POSITIVE);
             let kr = l(TAU) * l(c.swash[3]) * w.dphi / r;
             let k = dh / r * filter(kr * w.d[0], kr * w.d[1], h_dir, sigma);
             let g = [w.d[0] * k, w.d[1] * k];
@@ -195,7 +195,7 @@ pub(super) fn shore<R: Real>(
     let resolved = choose(
         l(0.0).lt(w.r),
         || {
-            let f = w.dphi / w.r.at_least(f64::from(f32::from_bits(1)));
+            let f = w.dphi / w.r.at_least(LEAST_POSITIVE);
             fade(f * w.d[0], f * w.d[1], h, spacing)
         },
         || l(1.0),
@@ -203,7 +203,7 @@ pub(super) fn shore<R: Real>(
     let breaking = choose(
         l(0.0).lt(w.shoaled),
         || {
-            let s = w.shoaled.at_least(f64::from(f32::from_bits(1)));
+            let s = w.shoaled.at_least(LEAST_POSITIVE);
             (l(1.0) - l(c.time[1]) * (-w.floor_y).max(l(0.0)) / s).clamp(l(0.0), l(1.0))
         },
         || l(0.0),
@@ -211,7 +211,7 @@ pub(super) fn shore<R: Real>(
     let crest = choose(
         l(0.0).lt(w.amp),
         || {
-            let a = w.amp.at_least(f64::from(f32::from_bits(1)));
+            let a = w.amp.at_least(LEAST_POSITIVE);
             shape(&w, frame)[0].clamp(l(0.0), a) / a
         },
         || l(0.0),
