@@ -149,9 +149,11 @@ impl Af {
         Af { iv, form: Some(f) }
     }
 
-    /// A value known only to lie in `iv`, through no noise symbol.
+    /// The result of an operation carried by its interval alone: one value in `iv` wherever it
+    /// is used, so a fresh noise symbol of its own ([`Af::input`]): what is computed from it
+    /// twice stays correlated (the gamma of a sky's three Perez functions).
     fn interval(iv: Iv) -> Af {
-        Af { iv, form: None }
+        Af::input(iv)
     }
 
     /// The value with its interval replaced by `iv`, which another sound rule gives for the
@@ -195,12 +197,16 @@ impl Af {
         ulps * f32_ulp(2.0 * iv.magnitude()) + F32_MIN_NORMAL
     }
 
-    /// `iv` with `form` when both are finite; the interval alone otherwise.
+    /// `iv` with `form` when both are finite; else a fresh symbol over `iv` ([`Af::interval`]),
+    /// or the interval alone where it is unbounded.
     fn with(iv: Iv, form: Option<Form>) -> Af {
         if iv.full {
-            return Af::interval(iv);
+            return Af { iv, form: None };
         }
-        Af { iv, form: form.filter(|f| f.c.is_finite() && f.radius().is_finite()) }
+        match form.filter(|f| f.c.is_finite() && f.radius().is_finite()) {
+            Some(f) => Af { iv, form: Some(f) },
+            None => Af::input(iv),
+        }
     }
 
     /// An increasing function of the value `f` with the interval's result `iv`, by the
