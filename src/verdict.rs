@@ -336,9 +336,10 @@ struct WaterWidths {
 
 /// The HDR frame's water pixels against the water pass's envelope (ocean-cpu
 /// `shaders::water::envelope`), given the GPU's own input maps and the sky pass's envelope
-/// behind it: every pixel the objects cannot reach (they have no envelope in the main view
-/// yet). `Err(why)` where it is not judged: a configuration the envelope does not carry, a
-/// pass after the water that draws into the frame, a missing input.
+/// behind it: every pixel where no object may show (none lands there, or the water is
+/// certainly drawn nearer: ocean-cpu `objects::depth_reach`). `Err(why)` where it is not
+/// judged: a configuration the envelope does not carry, a pass after the water that draws
+/// into the frame, a missing input.
 #[allow(clippy::type_complexity, reason = "a verdict, its open share, cost and widths, or why not")]
 fn water_verdict(
     scene: &Scene,
@@ -420,24 +421,29 @@ fn water_verdict(
         bail!("hdr: {} texels, the frame {w}x{h}", hdr.len());
     }
     let started = std::time::Instant::now();
-    let (env, open) = water::envelope::envelope(&pass, &background);
+    let water::envelope::MeshEnvelope { color: env, open, nearest } =
+        water::envelope::envelope(&pass, &background);
     let took = started.elapsed();
-    let reach = match plan.pass(Pass::Objects).filter(|_| plan.runs(Pass::Objects)) {
+    let objects = match plan.pass(Pass::Objects).filter(|_| plan.runs(Pass::Objects)) {
         Some(p) => {
             let tris = ocean_core::frame::pass_triangles(scene, &frame.poses, p, frame.camera.eye);
-            ocean_cpu::shaders::objects::screen_reach(&tris, u, w, h)
+            ocean_cpu::shaders::objects::depth_reach(&tris, u, w, h)
         }
-        None => vec![false; env.len()],
+        None => vec![f64::NEG_INFINITY; env.len()],
     };
-    // The pixels judged: those the objects cannot reach, on the quick verdict's lattice.
+    // The pixels judged: those where no object's fragment may win against the water (none
+    // lands, or the water is certainly drawn nearer), on the quick verdict's lattice.
     let every = gpu.water_every.max(1) as usize;
     let on =
         |i: usize| (i % w as usize).is_multiple_of(every) && (i / w as usize).is_multiple_of(every);
-    let reach: Vec<bool> = reach.iter().enumerate().map(|(i, &r)| r || !on(i)).collect();
+    let reach: Vec<bool> =
+        (0..env.len()).map(|i| objects_may_show(objects[i], nearest[i]) || !on(i)).collect();
     let region: Vec<Option<bool>> = reach.iter().map(|&r| (!r).then_some(true)).collect();
     let judged = reach.iter().filter(|r| !**r).count();
     if judged == 0 {
-        return Ok(Err("the objects may reach every pixel (they have no envelope yet)".into()));
+        let why = "an object may show at every pixel (the objects' colour has no envelope in the \
+                   main view yet)";
+        return Ok(Err(why.into()));
     }
     let open_share =
         open.iter().zip(&reach).filter(|(o, r)| **o && !**r).count() as f64 / judged as f64;
@@ -452,6 +458,13 @@ fn water_verdict(
     let q = |p: f64| rel.get(((rel.len().max(1) - 1) as f64 * p) as usize).copied();
     let widths = WaterWidths { pixels: rel.len() / 3, p50: q(0.5), p99: q(0.99) };
     Ok(Ok((f, open_share, took, widths)))
+}
+
+/// Whether an object's fragment may be what a pixel shows after the water pass: one may land
+/// there (`objects`, the nearest depth any may have; −∞: none) and the water's certain
+/// fragments (`water`, the depth they guarantee; −∞: none certain) do not lie nearer.
+fn objects_may_show(objects: f64, water: f64) -> bool {
+    objects > f64::NEG_INFINITY && objects >= water
 }
 
 /// The HDR frame's sky pixels against the sky pass's envelope: the pixels where the oracle's

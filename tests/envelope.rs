@@ -885,8 +885,54 @@ fn water_scenes(size: (u32, u32)) -> Vec<(String, ocean_core::scene::Scene, Fram
 /// The water pass: its mirror over `Real` at f32 is the exact mirror bit for bit (every
 /// vertex, and fragments at the vertices and between them); the oracle's HDR frame and 8
 /// random conformant GPUs' water passes stay inside its envelope on every reference scene it
-/// carries (the pixels the objects may reach left out: they have no envelope yet); a GPU twice
-/// as loose as the rules leaves it.
+/// carries (the pixels where an object may show left out: an object may land there and the
+/// water is not certainly nearer); a GPU twice as loose as the rules leaves it.
+/// Random conformant GPUs draw the objects of the main view (`vs_main`) no nearer than
+/// `objects::depth_reach` bounds them (`near`), which the water verdict trusts where the
+/// water is certainly nearer. Returns how many of their depths a bound 1 % nearer would
+/// leave (the caller's negative control: the bound is the depth, not a blanket; a scene of
+/// small triangles may have none, whose depth planes' f32 allowance is large).
+fn object_depths_within(
+    tris: &[[ocean_core::frame::ObjectVertex; 3]],
+    u: &ocean_core::frame::FrameUniforms,
+    (w, h): (u32, u32),
+    near: &[f64],
+    name: &str,
+) -> usize {
+    use ocean_cpu::shaders::objects;
+    let mut tighter = 0;
+    for seed in 0..4 {
+        let rules = JitterRules { seed, scale: 1.0 };
+        let clip: Vec<[[f32; 4]; 3]> = tris
+            .iter()
+            .enumerate()
+            .map(|(k, t)| {
+                Jitter::reseed(rules, (k as u64) << 32 | 0xffff_ffff);
+                t.each_ref().map(|v| objects::vs_main_r::<Jitter>(v, u).0.map(|x| x.0))
+            })
+            .collect();
+        let depth = ocean_cpu::envelope::raster::jitter_pass(
+            &clip,
+            w,
+            h,
+            true,
+            [0.0; 4],
+            rules,
+            |_, _, z| Some([z, 0.0, 0.0, 0.0]),
+        );
+        for (i, d) in depth.iter().enumerate().filter(|(_, d)| d[0] > 0.0) {
+            let z = f64::from(d[0]);
+            assert!(
+                z <= near[i],
+                "{name} seed {seed}: an object's depth {z} at {i}, bound {}",
+                near[i]
+            );
+            tighter += usize::from(z > near[i] - 1e-2 * near[i].abs());
+        }
+    }
+    tighter
+}
+
 #[test]
 fn random_conformant_gpus_stay_inside_the_water_envelope() {
     use ocean_core::plan::{Pass, Stage};
@@ -895,6 +941,7 @@ fn random_conformant_gpus_stay_inside_the_water_envelope() {
     let (w, h) = (160u32, 90u32);
     let scenes = water_scenes((w, h));
     let (mut runs, mut loose, mut judged, mut open, mut water_px) = (0, 0, 0usize, 0usize, 0usize);
+    let mut objects_tight = 0;
     let mut rel = Vec::new();
     let mut names = Vec::new();
     for (name, scene, plan) in &scenes {
@@ -1045,13 +1092,22 @@ fn random_conformant_gpus_stay_inside_the_water_envelope() {
             .map(|c| [c[0], c[1], c[2], Iv::point(1.0)])
             .collect();
         let started = std::time::Instant::now();
-        let (env, amb) = we::envelope(&pass, &bg_env);
+        let we::MeshEnvelope { color: env, open: amb, nearest } = we::envelope(&pass, &bg_env);
         let took = started.elapsed();
         let objects = plan
             .pass(Pass::Objects)
             .filter(|_| plan.runs(Pass::Objects))
             .map(|p| ocean_core::frame::pass_triangles(scene, &frame.poses, p, frame.camera.eye));
-        let reach = objects.map_or(vec![false; env.len()], |t| objects::screen_reach(&t, &u, w, h));
+        // The pixels where an object may show: it may land there, and the water is not
+        // certainly drawn nearer. Every random GPU's objects stay within their depth bound.
+        let near = objects
+            .as_ref()
+            .map_or(vec![f64::NEG_INFINITY; env.len()], |t| objects::depth_reach(t, &u, w, h));
+        if let Some(t) = &objects {
+            objects_tight += object_depths_within(t, &u, (w, h), &near, name);
+        }
+        let reach: Vec<bool> =
+            near.iter().zip(&nearest).map(|(&o, &n)| o > f64::NEG_INFINITY && o >= n).collect();
         let outside = |g: &[[f32; 4]]| -> usize {
             env.iter()
                 .zip(g)
@@ -1134,4 +1190,5 @@ fn random_conformant_gpus_stay_inside_the_water_envelope() {
     );
     assert!(runs > 0 && water_px > 0, "no water pass judged");
     assert!(loose > 0, "a GPU twice as loose as the rules never left the water envelope");
+    assert!(objects_tight > 0, "the objects' depth bound is 1 % loose or more at every pixel");
 }

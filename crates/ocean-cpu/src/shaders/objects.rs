@@ -231,6 +231,14 @@ pub fn sun_reaches_flat_r<R: Real>(
 /// varyings.
 pub type ObjectOut<R> = ([R; 4], Varyings<R>);
 
+/// [`vs_main`] over any [`Real`].
+pub fn vs_main_r<R: Real>(v: &ObjectVertex, frame: &FrameUniforms) -> ObjectOut<R> {
+    let l = R::lit;
+    let [x, y, z] = v.position.map(l);
+    let clip = mat4_mul_vec4(&frame.view.view_proj, [x, y, z, l(1.0)]);
+    (clip, (v.normal.map(l), v.color.map(l), [x, y, z], y + l(frame.view.eye_height)))
+}
+
 /// [`vs_reflect`] over any [`Real`].
 pub fn vs_reflect_r<R: Real>(v: &ObjectVertex, frame: &FrameUniforms) -> ObjectOut<R> {
     let l = R::lit;
@@ -434,64 +442,49 @@ pub fn map_jitter(
     })
 }
 
-/// The pixels of a `width` × `height` view that the objects' `triangles` may touch in the
-/// main view (`vs_main`): the screen box of what is left of each triangle in front of the
-/// near plane, widened by two pixels for any conformant vertex arithmetic and snapping. What the water pass's verdict leaves out (the objects in the main view have no
-/// envelope yet).
-pub fn screen_reach(
+/// Per pixel of a `width` × `height` view, the nearest depth (reversed Z: the largest z) that
+/// any conformant GPU may give a fragment of the objects' `triangles` in the main view
+/// (`vs_main`): −∞ where none may land. Each vertex's clip position is carried as an
+/// interval ([`vs_main_r`]), clipped and rasterised by the rasteriser's envelope at the
+/// coarsest snap, so coverage and depth are bounds, not estimates. +∞ everywhere where a
+/// vertex cannot be bounded (w possibly ≤ 0 after the clipper).
+///
+/// The water pass draws after the objects with the `Greater` test: where its certain
+/// fragment lies nearer than this bound, the objects cannot show, and the water's verdict
+/// judges the pixel although an object's triangle covers it.
+pub fn depth_reach(
     triangles: &[[ObjectVertex; 3]],
     frame: &FrameUniforms,
     width: u32,
     height: u32,
-) -> Vec<bool> {
+) -> Vec<f64> {
     let n = (width as usize) * (height as usize);
-    let mut reach = vec![false; n];
+    let mut screen: Vec<[raster::ScreenIv; 3]> = Vec::with_capacity(triangles.len());
     for t in triangles {
-        let clip = t.each_ref().map(|v| {
-            let c = vs_main(v, frame).clip;
-            [c.x, c.y, c.z, c.w].map(f64::from)
-        });
-        // The polygon left of it in front of the near plane (z ≤ w, with a margin that keeps
-        // a little more than the rasteriser may draw): inside its screen box.
-        let mut poly: Vec<[f64; 4]> = clip.to_vec();
-        let d = |v: &[f64; 4]| v[3] - v[2] + 1e-6 * v[3].abs().max(1e-6);
-        let mut out = Vec::new();
-        for i in 0..poly.len() {
-            let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
-            if d(&a) >= 0.0 {
-                out.push(a);
-            }
-            if (d(&a) >= 0.0) != (d(&b) >= 0.0) {
-                let t = d(&a) / (d(&a) - d(&b));
-                out.push(std::array::from_fn(|c| a[c] + t * (b[c] - a[c])));
-            }
-        }
-        poly = out;
-        if poly.is_empty() {
+        let clip = t.each_ref().map(|v| vs_main_r::<Iv>(v, frame).0);
+        if raster::outside_a_side(clip) {
             continue;
         }
-        if poly.iter().any(|c| c[3] <= 1e-9) {
-            return vec![true; n];
-        }
-        let s: Vec<[f64; 2]> = poly
-            .iter()
-            .map(|c| {
-                let (x, y) = (c[0] / c[3], c[1] / c[3]);
-                [(x + 1.0) * 0.5 * f64::from(width), (1.0 - y) * 0.5 * f64::from(height)]
-            })
-            .collect();
-        let lo = |k: usize| s.iter().map(|p| p[k]).fold(f64::INFINITY, f64::min) - 2.0;
-        let hi = |k: usize| s.iter().map(|p| p[k]).fold(f64::NEG_INFINITY, f64::max) + 2.0;
-        let (x0, x1) = (lo(0).floor().max(0.0), hi(0).ceil().min(f64::from(width) - 1.0));
-        let (y0, y1) = (lo(1).floor().max(0.0), hi(1).ceil().min(f64::from(height) - 1.0));
-        if x0 > x1 || y0 > y1 {
-            continue;
-        }
-        for y in y0 as usize..=y1 as usize {
-            for x in x0 as usize..=x1 as usize {
-                reach[y * width as usize + x] = true;
-            }
+        let Some((parts, _)) = raster::clip_near_far_either(clip) else {
+            return vec![f64::INFINITY; n];
+        };
+        for part in parts {
+            let [Some(a), Some(b), Some(c)] =
+                part.map(|p| raster::to_screen(p.clip, width, height))
+            else {
+                return vec![f64::INFINITY; n];
+            };
+            screen.push([a, b, c]);
         }
     }
-    reach
+    let mut near = vec![f64::NEG_INFINITY; n];
+    let bounded = raster::fragments(&screen, width, height, |i, _, c, _| {
+        if let raster::Cover::Possible(z) | raster::Cover::Certain(z) = c {
+            near[i] = near[i].max(z.hi);
+        }
+    });
+    if !bounded {
+        return vec![f64::INFINITY; n];
+    }
+    near
 }

@@ -11,6 +11,29 @@ use rayon::prelude::*;
 use super::{Cover, Interp, ScreenIv, Setup, Span, barycentrics, edge, setup};
 use crate::envelope::Iv;
 
+/// What [`color_pass_mesh`] leaves in its target.
+#[derive(Clone, Debug)]
+pub struct MeshEnvelope {
+    /// Per texel, the interval of the colour any conformant GPU leaves there.
+    pub color: Vec<[Iv; 4]>,
+    /// Whether the mesh's coverage of the texel is ambiguous (the background may show).
+    pub open: Vec<bool>,
+    /// The depth (reversed Z) that a fragment certainly drawn at the texel guarantees: the
+    /// stored depth is at least this after the pass (−∞: no fragment is certain there).
+    pub nearest: Vec<f64>,
+}
+
+impl MeshEnvelope {
+    /// A target of `n` texels of which nothing is known.
+    pub fn anything(n: usize) -> Self {
+        Self {
+            color: vec![[Iv::FULL; 4]; n],
+            open: vec![true; n],
+            nearest: vec![f64::NEG_INFINITY; n],
+        }
+    }
+}
+
 /// A triangle of the mesh on screen, with the mesh's vertex ids (`None` for a piece the
 /// clipper made, whose edges are the clipper's own).
 #[derive(Clone, Copy, Debug)]
@@ -57,10 +80,10 @@ pub fn color_pass_mesh(
     background: &[[Iv; 4]],
     snap: f64,
     shade: impl Fn(usize, usize, &Interp) -> [Iv; 4] + Sync,
-) -> (Vec<[Iv; 4]>, Vec<bool>) {
+) -> MeshEnvelope {
     let n = (width as usize) * (height as usize);
     if tris.iter().flat_map(|t| t.screen).any(|v| v.x.full || v.y.full || v.z.full) {
-        return (vec![[Iv::FULL; 4]; n], vec![true; n]);
+        return MeshEnvelope::anything(n);
     }
     let setups: Vec<Option<Setup>> =
         tris.iter().map(|t| setup(&t.screen, width, height, snap)).collect();
@@ -147,5 +170,5 @@ pub fn color_pass_mesh(
             }
         })
         .collect();
-    (env, open)
+    MeshEnvelope { color: env, open, nearest: sure }
 }

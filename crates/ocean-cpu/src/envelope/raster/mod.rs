@@ -26,7 +26,7 @@ mod jitter;
 mod mesh;
 
 pub use jitter::{jitter_depth_pass, jitter_pass, jitter_pass_at};
-pub use mesh::{MeshTri, color_pass_mesh};
+pub use mesh::{MeshEnvelope, MeshTri, color_pass_mesh};
 
 use super::{Iv, Real};
 
@@ -259,6 +259,9 @@ struct Setup {
     inv_w: [Iv; 3],
     /// How far below 0 a covered sample's barycentrics may reach ([`extrapolation`]).
     extrapolation: f64,
+    /// Per vertex, the largest gradient terms of its barycentric's plane anchored anywhere in
+    /// the target (∞: no plane bounds it): what a varying's plane equation scales with.
+    anchor: [f64; 3],
 }
 
 /// z(p) = z0 + g·(p − v0) through the midpoints, and the bound |Δz| ≤ k1·|p − v0| + k0 on
@@ -350,6 +353,14 @@ fn setup(v: &[ScreenIv; 3], width: u32, height: u32, snap: f64) -> Option<Setup>
     let z_share = if wz == 0.0 { 0.0 } else { wz * (1.0 + 4.0 * extrapolation) };
     let plane = plane_of(mz, z_share);
     let bary = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]].map(|b| plane_of(b, 0.0));
+    // Any plane through the boxes has a gradient within k1 of the midpoints' (per component,
+    // as ‖·‖ bounds each); the value's own term is the sample's (`barycentrics`).
+    let anchor = bary.map(|b| match b {
+        Some(b) => {
+            (b.g[0].abs() + b.k1) * f64::from(width) + (b.g[1].abs() + b.k1) * f64::from(height)
+        }
+        None => f64::INFINITY,
+    });
     Some(Setup {
         x,
         y,
@@ -361,6 +372,7 @@ fn setup(v: &[ScreenIv; 3], width: u32, height: u32, snap: f64) -> Option<Setup>
         bary,
         inv_w: v.map(|v| v.inv_w),
         extrapolation,
+        anchor,
     })
 }
 
@@ -470,6 +482,10 @@ pub struct Interp {
     l1: (f64, f64),
     l2: (f64, f64),
     q: [(f64, f64); 3],
+    /// Σₖ of the gradient terms of λₖ's plane anchored anywhere in the target ([`Setup`]).
+    grad: f64,
+    /// Σₖ |λₖ| at the sample.
+    lam_sum: f64,
 }
 
 impl Interp {
@@ -479,7 +495,8 @@ impl Interp {
     /// the corners) stays positive; so the interpolation of fixed values is extreme at one
     /// of the 32 corners of their box, and the values' own errors add at most Σ|shares|
     /// times their half-width there. Plus [`VARYING_ULPS`] of the sum of the terms'
-    /// magnitudes for the interpolation's arithmetic.
+    /// magnitudes for the interpolation's arithmetic, and of the largest terms of the planes
+    /// a GPU may interpolate by (anchored anywhere in the target).
     pub fn varying(&self, v: [Iv; 3]) -> Iv {
         if v.iter().any(|v| v.full) || !self.l1.0.is_finite() || !self.l2.0.is_finite() {
             return Iv::FULL;
@@ -487,6 +504,7 @@ impl Interp {
         let m = v.map(|v| 0.5 * (v.lo + v.hi));
         let hw = v.iter().map(|v| 0.5 * (v.hi - v.lo)).fold(0.0, f64::max);
         let (mut lo, mut hi, mut terms) = (f64::INFINITY, f64::NEG_INFINITY, 0.0f64);
+        let mut den_min = f64::INFINITY;
         for corner in 0..32u32 {
             let pick = |bit: u32, r: (f64, f64)| if corner >> bit & 1 == 0 { r.0 } else { r.1 };
             let (a, b) = (pick(0, self.l1), pick(1, self.l2));
@@ -496,6 +514,7 @@ impl Interp {
             if den <= 0.0 || !den.is_finite() {
                 return Iv::FULL;
             }
+            den_min = den_min.min(den);
             let share = w.map(|w| w / den);
             let x = share[0] * m[0] + share[1] * m[1] + share[2] * m[2];
             let spread = share.iter().map(|s| s.abs()).sum::<f64>();
@@ -503,7 +522,31 @@ impl Interp {
             hi = hi.max(x + spread * hw);
             terms = terms.max(spread * (m.iter().fold(0.0f64, |t, v| t.max(v.abs())) + hw));
         }
-        let slack = VARYING_ULPS * super::f32_ulp(terms) + terms * 1e-12;
+        // A GPU may interpolate by plane equations anchored anywhere in the target (lavapipe
+        // evaluates a·q and q as a0 + x·∂/∂x + y·∂/∂y, then their quotient): each plane's f32
+        // evaluation is allowed VARYING_ULPS of its largest term, which for a small triangle
+        // far from the anchor is far larger than the value.
+        let vmag = m.iter().fold(0.0f64, |t, v| t.max(v.abs())) + hw;
+        // A plane through values pₖ at the vertices has the gradient Σ(pₖ − c)∇λₖ for any c
+        // (Σ∇λₖ = 0): at most half their spread times the λ planes' gradient terms; its own
+        // value at the sample at most Σ|λₖ| times the largest |pₖ|.
+        let term = |p: [(f64, f64); 3]| {
+            let lo = p.iter().map(|p| p.0).fold(f64::INFINITY, f64::min);
+            let hi = p.iter().map(|p| p.1).fold(f64::NEG_INFINITY, f64::max);
+            let spread = if hi > lo { 0.5 * (hi - lo) * self.grad } else { 0.0 };
+            spread + self.lam_sum * lo.abs().max(hi.abs())
+        };
+        let aq: [(f64, f64); 3] = std::array::from_fn(|k| {
+            let c = [m[k] - hw, m[k] + hw].map(|a| [a * self.q[k].0, a * self.q[k].1]);
+            let c = c.as_flattened();
+            (
+                c.iter().copied().fold(f64::INFINITY, f64::min),
+                c.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+            )
+        });
+        let (tn, td) = (term(aq), term(self.q));
+        let planes = VARYING_ULPS * (super::f32_ulp(tn) + vmag * super::f32_ulp(td)) / den_min;
+        let slack = VARYING_ULPS * super::f32_ulp(terms) + terms * 1e-12 + planes;
         if !slack.is_finite() || !lo.is_finite() || !hi.is_finite() {
             return Iv::FULL;
         }
@@ -525,9 +568,15 @@ fn barycentrics(t: &Setup, px: f64, py: f64) -> Interp {
     };
     if t.inv_w.iter().any(|q| q.full || q.lo <= 0.0) {
         let any = (f64::NEG_INFINITY, f64::INFINITY);
-        return Interp { l1: any, l2: any, q: [(1.0, 1.0); 3] };
+        let (grad, lam_sum) = (f64::INFINITY, f64::INFINITY);
+        return Interp { l1: any, l2: any, q: [(1.0, 1.0); 3], grad, lam_sum };
     }
-    Interp { l1: lam(1), l2: lam(2), q: t.inv_w.map(|q| (q.lo, q.hi)) }
+    let (l1, l2) = (lam(1), lam(2));
+    // Σ|λₖ| at the sample, λ₀ = 1 − λ₁ − λ₂.
+    let l0 = (1.0 - l1.1 - l2.1, 1.0 - l1.0 - l2.0);
+    let big = |r: (f64, f64)| r.0.abs().max(r.1.abs());
+    let lam_sum = big(l0) + big(l1) + big(l2);
+    Interp { l1, l2, q: t.inv_w.map(|q| (q.lo, q.hi)), grad: t.anchor.iter().sum(), lam_sum }
 }
 
 /// The sample's depth: on the plane through the vertices' boxes (within [`Plane`]'s bound),
@@ -734,5 +783,71 @@ mod tests {
         assert!(at(3, 3).contains(0.3) && !at(3, 3).contains(0.8));
         assert!(at(15, 15).contains(1.0) && !at(15, 15).contains(0.3));
         assert!(!amb[3 * 16 + 3] && amb.iter().any(|&a| a));
+    }
+
+    /// A varying interpolated as lavapipe does, by f32 plane equations of a·q and q anchored
+    /// at the target's origin and their quotient, at every sample of a small triangle far
+    /// from the origin: inside [`Interp::varying`]; and farther from the exact interpolation
+    /// than [`VARYING_ULPS`] of the value alone somewhere (the negative control: the old
+    /// bound, which a boat's triangle in the 256×144 reflection map of `coastal_island` left
+    /// on lavapipe).
+    #[test]
+    fn plane_equations_anchored_far_away_stay_inside_the_varying_bound() {
+        let (w, h) = (256u32, 144u32);
+        let p = [[249.3, 136.2], [253.1, 137.9], [250.0, 141.7]];
+        let q = [0.02f32, 0.03, 0.045];
+        let a = [0.866f32, 0.8662, 0.8658];
+        let tri: [ScreenIv; 3] = std::array::from_fn(|k| ScreenIv {
+            x: Iv::point(p[k][0] as f32),
+            y: Iv::point(p[k][1] as f32),
+            z: Iv::point(0.001),
+            inv_w: Iv::point(q[k]),
+        });
+        let t = setup(&tri, w, h, SNAP_PX).unwrap();
+        // The plane through f32 values at the vertices, anchored at (0, 0), in f32.
+        let plane = |v: [f32; 3]| {
+            let [x, y] = [0, 1].map(|c| p.map(|p| p[c] as f32));
+            let (e1x, e1y, e2x, e2y) = (x[1] - x[0], y[1] - y[0], x[2] - x[0], y[2] - y[0]);
+            let det = e1x * e2y - e2x * e1y;
+            let (d1, d2) = (v[1] - v[0], v[2] - v[0]);
+            let dx = (d1 * e2y - d2 * e1y) / det;
+            let dy = (d2 * e1x - d1 * e2x) / det;
+            let a0 = v[0] - dx * x[0] - dy * y[0];
+            move |px: f32, py: f32| a0 + dx * px + dy * py
+        };
+        let (num, den) = (plane(std::array::from_fn(|k| a[k] * q[k])), plane(q));
+        let (mut samples, mut past_old) = (0, 0);
+        let mut worst = 0.0f64;
+        for py in 135..143 {
+            for px in 248..255 {
+                let (sx, sy) = (f64::from(px) + 0.5, f64::from(py) + 0.5);
+                if cover(&t, sx, sy) == Cover::No {
+                    continue;
+                }
+                let got = num(sx as f32, sy as f32) / den(sx as f32, sy as f32);
+                let bound = barycentrics(&t, sx, sy).varying(a.map(Iv::point));
+                assert!(bound.contains(got), "{got} at ({px}, {py}) outside {bound:?}");
+                samples += 1;
+                // The exact interpolation (perspective-correct) in f64.
+                let exact = {
+                    let e = |i: usize, j: usize| (p[j][0] - p[i][0], p[j][1] - p[i][1]);
+                    let cross = |a: (f64, f64), b: (f64, f64)| a.0 * b.1 - a.1 * b.0;
+                    let area = cross(e(0, 1), e(0, 2));
+                    let at = |i: usize| (sx - p[i][0], sy - p[i][1]);
+                    let b1 = cross(at(0), e(0, 2)) / -area;
+                    let b2 = cross(e(0, 1), at(0)) / area;
+                    let b = [1.0 - b1 - b2, b1, b2];
+                    let wq: Vec<f64> = (0..3).map(|k| b[k] * f64::from(q[k])).collect();
+                    (0..3).map(|k| wq[k] * f64::from(a[k])).sum::<f64>() / wq.iter().sum::<f64>()
+                };
+                let old = VARYING_ULPS * super::super::f32_ulp(0.8662);
+                worst = worst.max((f64::from(got) - exact).abs() / super::super::f32_ulp(exact));
+                past_old += usize::from((f64::from(got) - exact).abs() > old);
+            }
+        }
+        assert!(
+            samples > 0 && past_old > 0,
+            "{samples} samples, {past_old} past the old bound (worst {worst:.1} ULP)"
+        );
     }
 }

@@ -11,6 +11,7 @@ use ocean_core::geometry::WaterVertex;
 
 use super::real::{self, Inputs, Tex, Varyings};
 use super::{CLAMP_LINEAR, WRAP_LINEAR};
+pub use crate::envelope::raster::MeshEnvelope;
 use crate::envelope::raster::{self, MeshTri};
 use crate::envelope::{Af, Iv, Jitter, JitterRules, Precision, Real, filter};
 use crate::mip::MipChain;
@@ -248,10 +249,10 @@ fn vertex<R: Real>(p: &WaterPass<'_>, inp: &Inputs<'_, R>, id: usize) -> ([R; 4]
 }
 
 /// The water pass's envelope over `background` (the HDR frame before it, as intervals): per
-/// texel the interval of what any conformant GPU leaves there, and whether the mesh's
-/// coverage of it is ambiguous (the background may show). The pass must be one that
-/// [`real::carried`] accepts.
-pub fn envelope(p: &WaterPass<'_>, background: &[[Iv; 4]]) -> (Vec<[Iv; 4]>, Vec<bool>) {
+/// texel the interval of what any conformant GPU leaves there, whether the mesh's coverage
+/// of it is ambiguous (the background may show), and the depth its certain fragments
+/// guarantee. The pass must be one that [`real::carried`] accepts.
+pub fn envelope(p: &WaterPass<'_>, background: &[[Iv; 4]]) -> raster::MeshEnvelope {
     let [w, h] = p.size;
     with_inputs(p, Iv::point, |inp| {
         with_inputs(p, Af::lit, |inp_af| {
@@ -265,15 +266,13 @@ pub fn envelope(p: &WaterPass<'_>, background: &[[Iv; 4]]) -> (Vec<[Iv; 4]>, Vec
                     continue;
                 }
                 let Some((parts, drawn)) = raster::clip_near_far_either(clip) else {
-                    let n = (w as usize) * (h as usize);
-                    return (vec![[Iv::FULL; 4]; n], vec![true; n]);
+                    return raster::MeshEnvelope::anything((w as usize) * (h as usize));
                 };
                 let whole = drawn && parts.len() == 1 && parts[0].iter().all(|v| v.bary_err == 0.0);
                 for part in parts {
                     let s = part.map(|v| raster::to_screen(v.clip, w, h));
                     let [Some(a), Some(b), Some(c)] = s else {
-                        let n = (w as usize) * (h as usize);
-                        return (vec![[Iv::FULL; 4]; n], vec![true; n]);
+                        return raster::MeshEnvelope::anything((w as usize) * (h as usize));
                     };
                     screen.push(MeshTri { screen: [a, b, c], ids: whole.then_some(*ids), drawn });
                     owner.push((t, part.map(|v| (v.bary, v.bary_err))));
