@@ -395,3 +395,119 @@ pub fn compare_image(cpu: &[u8], gpu: &[u8], width: u32, height: u32) -> ImageSt
         flip_map: error.to_vec(),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn buffer(n: usize, seed: u32) -> Vec<[f32; 4]> {
+        (0..n)
+            .map(|i| {
+                let x = (i as f32 + 1.0) * 0.37 + seed as f32;
+                [x.sin(), x.cos() * 1e3, 1e-8 * x, 0.5 + 0.25 * x.sin()]
+            })
+            .collect()
+    }
+
+    /// A buffer against itself and against values moved within the allowance passes; one value
+    /// moved just past it fails, and is named as the worst (the negative control).
+    #[test]
+    fn float_values_within_the_allowance_pass_and_one_past_it_fails() {
+        let cpu = buffer(64, 0);
+        assert!(compare_float("x", true, ((8, 8), &cpu), ((8, 8), &cpu)).passed());
+        let near: Vec<[f32; 4]> =
+            cpu.iter().map(|t| t.map(|v| (f64::from(v) + 0.9 * allowance(v)) as f32)).collect();
+        let s = compare_float("x", true, ((8, 8), &cpu), ((8, 8), &near));
+        assert!(s.passed() && s.max_abs > 0.0, "{}", s.line());
+        let mut far = cpu.clone();
+        far[19][1] = (f64::from(cpu[19][1]) + 1.5 * allowance(cpu[19][1])) as f32;
+        let s = compare_float("x", true, ((8, 8), &cpu), ((8, 8), &far));
+        assert!(!s.passed() && s.beyond == 1, "{}", s.line());
+        let w = s.worst.unwrap();
+        assert_eq!((w.x, w.y, w.channel), (3, 2, 1));
+    }
+
+    /// Near 0 the absolute floor holds: 1e-7 apart passes, 1e-5 apart fails.
+    #[test]
+    fn near_zero_the_absolute_floor_decides() {
+        let cpu = vec![[0.0f32; 4]; 4];
+        let mut gpu = cpu.clone();
+        gpu[2][0] = 1e-7;
+        assert!(compare_float("z", true, ((2, 2), &cpu), ((2, 2), &gpu)).passed());
+        gpu[2][0] = 1e-5;
+        assert!(!compare_float("z", true, ((2, 2), &cpu), ((2, 2), &gpu)).passed());
+    }
+
+    /// A NaN on one side only fails; on both sides it is equal; different sizes fail.
+    #[test]
+    fn a_nan_on_one_side_and_different_sizes_fail() {
+        let cpu = buffer(4, 1);
+        let mut gpu = cpu.clone();
+        gpu[0][3] = f32::NAN;
+        assert!(!compare_float("n", true, ((2, 2), &cpu), ((2, 2), &gpu)).passed());
+        let both = gpu.clone();
+        assert!(compare_float("n", true, ((2, 2), &both), ((2, 2), &gpu)).passed());
+        assert!(!compare_float("n", true, ((2, 2), &cpu), ((4, 1), &cpu)).passed());
+    }
+
+    /// `rgba16float` allows one binary16 step at the value; two steps fail.
+    #[test]
+    fn a_half_float_buffer_allows_one_step() {
+        let cpu = vec![[1.0f32; 4]; 1];
+        let step = FrameFormat::Rgba16Float.step(1.0);
+        let one = vec![[1.0 + step, 1.0, 1.0, 1.0]];
+        let two = vec![[1.0 + 2.0 * step, 1.0, 1.0, 1.0]];
+        let f = FrameFormat::Rgba16Float;
+        assert!(compare_float_in("h", true, ((1, 1), &cpu), ((1, 1), &one), f).passed());
+        assert!(!compare_float_in("h", true, ((1, 1), &cpu), ((1, 1), &two), f).passed());
+        assert!(!compare_float("h", true, ((1, 1), &cpu), ((1, 1), &one)).passed());
+    }
+
+    fn picture(w: u32, h: u32) -> Vec<u8> {
+        (0..w * h)
+            .flat_map(|i| {
+                let (x, y) = (i % w, i / w);
+                [(x * 7 % 256) as u8, (y * 5 % 256) as u8, ((x + y) * 3 % 256) as u8, 255]
+            })
+            .collect()
+    }
+
+    /// A picture against itself passes both rows; one channel off by 1 everywhere still
+    /// passes the software row; a block of wrong colour fails it, and a grey wash fails the
+    /// hardware row too (the negative controls).
+    #[test]
+    fn pictures_pass_within_one_code_and_fail_with_a_visible_error() {
+        let (w, h) = (48, 32);
+        let cpu = picture(w, h);
+        let same = compare_image(&cpu, &cpu, w, h);
+        assert!(same.failures(&ImageLimits::SOFTWARE).is_empty());
+        assert!(same.failures(&ImageLimits::HARDWARE).is_empty());
+        assert_eq!((same.max_diff, same.within_1), (0, 1.0));
+        let off: Vec<u8> =
+            cpu.iter().enumerate().map(|(i, &b)| if i % 4 == 1 { b ^ 1 } else { b }).collect();
+        let s = compare_image(&cpu, &off, w, h);
+        assert!(
+            s.failures(&ImageLimits::SOFTWARE).is_empty(),
+            "{}",
+            s.line(&ImageLimits::SOFTWARE)
+        );
+        assert_eq!((s.max_diff, s.histogram[1]), (1, u64::from(w * h)));
+        let mut block = cpu.clone();
+        for y in 0..8 {
+            for x in 0..8 {
+                let i = 4 * (y * w + x) as usize;
+                block[i..i + 3].copy_from_slice(&[255, 0, 255]);
+            }
+        }
+        let s = compare_image(&cpu, &block, w, h);
+        assert!(!s.failures(&ImageLimits::SOFTWARE).is_empty());
+        let grey: Vec<u8> =
+            cpu.iter().enumerate().map(|(i, &b)| if i % 4 == 3 { b } else { b / 2 + 64 }).collect();
+        let s = compare_image(&cpu, &grey, w, h);
+        assert!(
+            !s.failures(&ImageLimits::HARDWARE).is_empty(),
+            "{}",
+            s.line(&ImageLimits::HARDWARE)
+        );
+    }
+}

@@ -421,3 +421,82 @@ impl RegionVerdict {
         j
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn iv(lo: f64, hi: f64) -> Iv {
+        Iv::new(lo, hi)
+    }
+
+    /// Values inside their intervals pass; one just past its interval fails and is the worst;
+    /// a NaN fails; an envelope with nothing judged fails (nothing was checked).
+    #[test]
+    fn floats_inside_pass_and_one_outside_fails() {
+        let env: Vec<Option<[Iv; 2]>> = (0..6)
+            .map(|i| (i != 4).then(|| [iv(0.0, 1.0), iv(f64::from(i), f64::from(i) + 0.5)]))
+            .collect();
+        let mut gpu: Vec<[f32; 4]> = (0..6).map(|i| [0.5, i as f32 + 0.25, 9.0, 9.0]).collect();
+        gpu[4] = [7.0; 4]; // not judged: anything
+        let v = judge_floats("f", &env, &gpu, 3);
+        assert!(v.passed() && v.values == 10, "{}", v.line());
+        gpu[5][1] = 5.5f32.next_up();
+        let v = judge_floats("f", &env, &gpu, 3);
+        assert!(!v.passed() && v.outside == 1, "{}", v.line());
+        let w = v.worst.unwrap();
+        assert_eq!((w.texel, w.channel), ((2, 1), 1));
+        gpu[5][1] = 5.25;
+        gpu[0][0] = f32::NAN;
+        assert!(!judge_floats("f", &env, &gpu, 3).passed());
+        let none: Vec<Option<[Iv; 2]>> = vec![None; 6];
+        assert!(!judge_floats("f", &none, &gpu, 3).passed());
+    }
+
+    /// A region: pixels outside it are not judged, ambiguous pixels inside their envelope count
+    /// as judged, ambiguous ones outside it count against the 2 % share.
+    #[test]
+    fn a_region_judges_its_pixels_and_counts_the_ambiguous() {
+        let n = 100;
+        let env = vec![[iv(0.0, 1.0)]; n];
+        let mut gpu = vec![[0.5f32, 0.0, 0.0, 0.0]; n];
+        let mut region = vec![Some(true); n];
+        region[0] = None;
+        gpu[0][0] = 5.0; // outside, but not in the region
+        assert!(judge_region("r", &env, &region, &gpu, 10).passed());
+        gpu[1][0] = 1.5;
+        assert!(!judge_region("r", &env, &region, &gpu, 10).passed());
+        gpu[1][0] = 0.5;
+        region[2] = Some(false);
+        region[3] = Some(false);
+        gpu[2][0] = 2.0;
+        let v = judge_region("r", &env, &region, &gpu, 10);
+        assert!(v.passed() && v.ambiguous == 1, "{}", v.line());
+        for r in region.iter_mut().skip(10).take(3) {
+            *r = Some(false);
+        }
+        for g in gpu.iter_mut().skip(10).take(3) {
+            g[0] = 2.0;
+        }
+        let v = judge_region("r", &env, &region, &gpu, 10);
+        assert!(!v.passed() && v.inner.passed() && v.ambiguous == 4, "{}", v.line());
+    }
+
+    /// A picture's bytes inside their ranges pass; a byte one code out fails, as does an alpha
+    /// other than 255.
+    #[test]
+    fn picture_bytes_inside_pass_and_one_code_out_fails() {
+        let range = ByteRange { lo: 10, hi: 12 };
+        let env = vec![[(iv(0.04, 0.05), range); 3]; 4];
+        let mut rgba = [11u8, 10, 12, 255].repeat(4);
+        let exact = rgba.clone();
+        assert!(judge_picture("ldr", &env, &rgba, &exact, 2).passed());
+        rgba[6] = 13;
+        let v = judge_picture("ldr", &env, &rgba, &exact, 2);
+        assert!(!v.passed() && v.outside == 1);
+        assert_eq!(v.worst.map(|w| (w.pixel, w.channel, w.got)), Some(((1, 0), 2, 13)));
+        rgba[6] = 12;
+        rgba[15] = 254;
+        assert!(!judge_picture("ldr", &env, &rgba, &exact, 2).passed());
+    }
+}
