@@ -257,14 +257,30 @@ pub const SYSTEMS: &[SystemInfo] = &[
     },
 ];
 
+// The rows of `SYSTEMS` are in `System::ALL`'s order, which `System::info` indexes by: checked
+// when the crate compiles.
+const _: () = {
+    let mut i = 0;
+    while i < System::ALL.len() {
+        assert!(SYSTEMS[i].system as usize == System::ALL[i] as usize, "SYSTEMS out of order");
+        i += 1;
+    }
+};
+
 impl System {
     /// Every system, in the table's order.
     pub const ALL: [System; 4] = [System::Hu, System::Chiu, System::Welch, System::Coastal];
 
     /// The system's row.
     pub fn info(self) -> &'static SystemInfo {
-        // Every variant has a row; a missing one is caught by the tests of this module.
-        SYSTEMS.iter().find(|s| s.system == self).unwrap_or(&SYSTEMS[0])
+        // An exhaustive match: a new system fails to compile until it has its row (the rows'
+        // order is checked when the crate compiles, below `SYSTEMS`).
+        &SYSTEMS[match self {
+            System::Hu => 0,
+            System::Chiu => 1,
+            System::Welch => 2,
+            System::Coastal => 3,
+        }]
     }
 
     /// Its name.
@@ -405,8 +421,16 @@ impl Techniques {
     pub fn of_system(system: System) -> Self {
         let row = system.info();
         let chosen = std::array::from_fn(|i| {
-            // The table's tests check that every name in a system's row exists.
-            technique(Stage::ALL[i], row.techniques[i]).unwrap_or(&TECHNIQUES[0])
+            // A static table, not input: every name of a row is checked by this module's
+            // tests, and a wrong one fails loudly here rather than choosing another technique.
+            technique(Stage::ALL[i], row.techniques[i]).unwrap_or_else(|| {
+                panic!(
+                    "system {}'s {} `{}` is not a technique",
+                    row.name,
+                    Stage::ALL[i].name(),
+                    row.techniques[i]
+                )
+            })
         });
         Self { system, chosen, overridden: [false; 8] }
     }
