@@ -7,9 +7,12 @@
 //!
 //! Every `Af` also carries the [`Iv`] that interval arithmetic gives for the same
 //! operations, and its value is the intersection of the two: never wider than the interval
-//! envelope, and sound because each is. Operations without an affine rule here (`pow`,
-//! `atan2`, `round`, a `max` the bounds cannot decide, the union of two branches) keep the
-//! interval alone, and the affine form starts again from the next input.
+//! envelope, and sound because each is. An operation without an affine rule here (`pow`,
+//! `atan2`, `round`, a `max` the bounds cannot decide, the union of two branches) gives its
+//! interval as a fresh noise symbol: one value wherever it is used, correlated with itself
+//! though not with its inputs. That relies on the mirror computing a value once where the WGSL
+//! does (the random GPUs follow the mirror's dataflow and cannot check it), and on symbols
+//! never crossing threads (the counter is per thread: one fragment is shaded on one thread).
 
 use std::cell::Cell;
 use std::ops::{Add, Div, Mul, Neg, Sub};
@@ -89,25 +92,39 @@ impl Form {
     }
 
     /// Keeps the [`TERMS`] largest coefficients (in id order), the rest added to the error.
+    /// `ids` holds at most 2·[`TERMS`] (a combination of two forms).
     fn fold(c: f64, ids: &[u32], co: &[f64], mut e: f64) -> Form {
         let mut out = Form::constant(c, 0.0);
-        if ids.len() <= TERMS {
-            out.ids[..ids.len()].copy_from_slice(ids);
-            out.co[..ids.len()].copy_from_slice(co);
-            out.n = ids.len();
+        let k = ids.len();
+        if k <= TERMS {
+            out.ids[..k].copy_from_slice(ids);
+            out.co[..k].copy_from_slice(co);
+            out.n = k;
         } else {
-            let mut order: Vec<usize> = (0..ids.len()).collect();
-            order.sort_by(|&x, &y| co[y].abs().total_cmp(&co[x].abs()));
-            let mut keep = order[..TERMS].to_vec();
-            keep.sort_unstable();
-            for &k in &order[TERMS..] {
-                e += co[k].abs();
+            // The TERMS-th largest magnitude, found on the stack (this runs per operation).
+            let mut mags = [0f64; 2 * TERMS];
+            for (m, a) in mags.iter_mut().zip(co) {
+                *m = a.abs();
             }
-            for (s, &k) in keep.iter().enumerate() {
-                out.ids[s] = ids[k];
-                out.co[s] = co[k];
+            let mut sorted = mags;
+            let (_, &mut threshold, _) =
+                sorted[..k].select_nth_unstable_by(k - TERMS, f64::total_cmp);
+            let mut ties = TERMS - mags[..k].iter().filter(|&&m| m > threshold).count();
+            let mut n = 0;
+            for i in 0..k {
+                let keep = mags[i] > threshold || (mags[i] == threshold && ties > 0);
+                if keep {
+                    if mags[i] == threshold {
+                        ties -= 1;
+                    }
+                    out.ids[n] = ids[i];
+                    out.co[n] = co[i];
+                    n += 1;
+                } else {
+                    e += mags[i];
+                }
             }
-            out.n = TERMS;
+            out.n = n;
         }
         out.e = e;
         out

@@ -355,10 +355,12 @@ fn setup(v: &[ScreenIv; 3], width: u32, height: u32, snap: f64) -> Option<Setup>
     let bary = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]].map(|b| plane_of(b, 0.0));
     // Any plane through the boxes has a gradient within k1 of the midpoints' (per component,
     // as ‖·‖ bounds each); the value's own term is the sample's (`barycentrics`).
+    // The lever arm: the target, or a vertex beyond it (lavapipe's a0 = v0 − x0·∂/∂x − y0·∂/∂y
+    // rounds at |x0·∂/∂x| for a vertex in the guard band).
+    let reach = |m: [f64; 3], n: u32| m.iter().fold(f64::from(n), |r, v| r.max(v.abs() + h));
+    let (arm_x, arm_y) = (reach(mx, width), reach(my, height));
     let anchor = bary.map(|b| match b {
-        Some(b) => {
-            (b.g[0].abs() + b.k1) * f64::from(width) + (b.g[1].abs() + b.k1) * f64::from(height)
-        }
+        Some(b) => (b.g[0].abs() + b.k1) * arm_x + (b.g[1].abs() + b.k1) * arm_y,
         None => f64::INFINITY,
     });
     Some(Setup {
@@ -526,7 +528,8 @@ impl Interp {
         // evaluates a·q and q as a0 + x·∂/∂x + y·∂/∂y, then their quotient): each plane's f32
         // evaluation is allowed VARYING_ULPS of its largest term, which for a small triangle
         // far from the anchor is far larger than the value.
-        let vmag = m.iter().fold(0.0f64, |t, v| t.max(v.abs())) + hw;
+        // |v| at most Σ|shares|·(max|m| + hw) (a share is negative past an edge).
+        let vmag = terms;
         // A plane through values pₖ at the vertices has the gradient Σ(pₖ − c)∇λₖ for any c
         // (Σ∇λₖ = 0): at most half their spread times the λ planes' gradient terms; its own
         // value at the sample at most Σ|λₖ| times the largest |pₖ|.
@@ -545,7 +548,13 @@ impl Interp {
             )
         });
         let (tn, td) = (term(aq), term(self.q));
-        let planes = VARYING_ULPS * (super::f32_ulp(tn) + vmag * super::f32_ulp(td)) / den_min;
+        // (N + εN)/(D + εD) − N/D = (εN − v·εD)/(D + εD), with D ≥ den_min.
+        let den_err = VARYING_ULPS * super::f32_ulp(td);
+        if den_min - den_err <= 0.0 {
+            return Iv::FULL;
+        }
+        let planes =
+            VARYING_ULPS * (super::f32_ulp(tn) + vmag * super::f32_ulp(td)) / (den_min - den_err);
         let slack = VARYING_ULPS * super::f32_ulp(terms) + terms * 1e-12 + planes;
         if !slack.is_finite() || !lo.is_finite() || !hi.is_finite() {
             return Iv::FULL;
@@ -787,67 +796,51 @@ mod tests {
 
     /// A varying interpolated as lavapipe does, by f32 plane equations of a·q and q anchored
     /// at the target's origin and their quotient, at every sample of a small triangle far
-    /// from the origin: inside [`Interp::varying`]; and farther from the exact interpolation
-    /// than [`VARYING_ULPS`] of the value alone somewhere (the negative control: the old
-    /// bound, which a boat's triangle in the 256×144 reflection map of `coastal_island` left
-    /// on lavapipe).
+    /// from the origin (a 4096² target, lavapipe's 1/256-px snap): inside
+    /// [`Interp::varying`]; and outside the bound without the planes' allowance somewhere (the
+    /// negative control: the old bound, which a boat's triangle in the 256×144 reflection map
+    /// of `coastal_island` left on lavapipe).
     #[test]
     fn plane_equations_anchored_far_away_stay_inside_the_varying_bound() {
-        let (w, h) = (256u32, 144u32);
-        let p = [[249.3, 136.2], [253.1, 137.9], [250.0, 141.7]];
+        let (w, h) = (4096u32, 4096u32);
+        let p = [[4000.25f32, 3990.125], [4004.125, 3991.875], [4001.0, 3995.75]];
         let q = [0.02f32, 0.03, 0.045];
         let a = [0.866f32, 0.8662, 0.8658];
         let tri: [ScreenIv; 3] = std::array::from_fn(|k| ScreenIv {
-            x: Iv::point(p[k][0] as f32),
-            y: Iv::point(p[k][1] as f32),
+            x: Iv::point(p[k][0]),
+            y: Iv::point(p[k][1]),
             z: Iv::point(0.001),
             inv_w: Iv::point(q[k]),
         });
-        let t = setup(&tri, w, h, SNAP_PX).unwrap();
+        let t = setup(&tri, w, h, 1.0 / 256.0).unwrap();
         // The plane through f32 values at the vertices, anchored at (0, 0), in f32.
         let plane = |v: [f32; 3]| {
-            let [x, y] = [0, 1].map(|c| p.map(|p| p[c] as f32));
-            let (e1x, e1y, e2x, e2y) = (x[1] - x[0], y[1] - y[0], x[2] - x[0], y[2] - y[0]);
+            let (e1x, e1y) = (p[1][0] - p[0][0], p[1][1] - p[0][1]);
+            let (e2x, e2y) = (p[2][0] - p[0][0], p[2][1] - p[0][1]);
             let det = e1x * e2y - e2x * e1y;
             let (d1, d2) = (v[1] - v[0], v[2] - v[0]);
             let dx = (d1 * e2y - d2 * e1y) / det;
             let dy = (d2 * e1x - d1 * e2x) / det;
-            let a0 = v[0] - dx * x[0] - dy * y[0];
+            let a0 = v[0] - dx * p[0][0] - dy * p[0][1];
             move |px: f32, py: f32| a0 + dx * px + dy * py
         };
         let (num, den) = (plane(std::array::from_fn(|k| a[k] * q[k])), plane(q));
         let (mut samples, mut past_old) = (0, 0);
-        let mut worst = 0.0f64;
-        for py in 135..143 {
-            for px in 248..255 {
+        for py in 3988..3998 {
+            for px in 3998..4006 {
                 let (sx, sy) = (f64::from(px) + 0.5, f64::from(py) + 0.5);
                 if cover(&t, sx, sy) == Cover::No {
                     continue;
                 }
                 let got = num(sx as f32, sy as f32) / den(sx as f32, sy as f32);
-                let bound = barycentrics(&t, sx, sy).varying(a.map(Iv::point));
+                let interp = barycentrics(&t, sx, sy);
+                let bound = interp.varying(a.map(Iv::point));
                 assert!(bound.contains(got), "{got} at ({px}, {py}) outside {bound:?}");
+                let old = Interp { grad: 0.0, lam_sum: 0.0, ..interp }.varying(a.map(Iv::point));
+                past_old += usize::from(!old.contains(got));
                 samples += 1;
-                // The exact interpolation (perspective-correct) in f64.
-                let exact = {
-                    let e = |i: usize, j: usize| (p[j][0] - p[i][0], p[j][1] - p[i][1]);
-                    let cross = |a: (f64, f64), b: (f64, f64)| a.0 * b.1 - a.1 * b.0;
-                    let area = cross(e(0, 1), e(0, 2));
-                    let at = |i: usize| (sx - p[i][0], sy - p[i][1]);
-                    let b1 = cross(at(0), e(0, 2)) / -area;
-                    let b2 = cross(e(0, 1), at(0)) / area;
-                    let b = [1.0 - b1 - b2, b1, b2];
-                    let wq: Vec<f64> = (0..3).map(|k| b[k] * f64::from(q[k])).collect();
-                    (0..3).map(|k| wq[k] * f64::from(a[k])).sum::<f64>() / wq.iter().sum::<f64>()
-                };
-                let old = VARYING_ULPS * super::super::f32_ulp(0.8662);
-                worst = worst.max((f64::from(got) - exact).abs() / super::super::f32_ulp(exact));
-                past_old += usize::from((f64::from(got) - exact).abs() > old);
             }
         }
-        assert!(
-            samples > 0 && past_old > 0,
-            "{samples} samples, {past_old} past the old bound (worst {worst:.1} ULP)"
-        );
+        assert!(samples > 4 && past_old > 0, "{samples} samples, {past_old} past the old bound");
     }
 }
