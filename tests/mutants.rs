@@ -167,8 +167,9 @@ fn every_mutant_is_caught_with_the_exact_tolerance() {
 
 /// `ocean selftest --quick` on this adapter (lavapipe in CI): every reference scene and built-in
 /// system within the envelope, the whole bank planted, and every planted bug in a pass the
-/// envelope judges (tonemap, bloom, waves, foam's field, the shadow map, wave_mips,
-/// fresnel_table, the three skies, shadings `hu`' and `ggx`'s water) caught; the summary line and the
+/// envelope judges (tonemap, bloom, waves, foam's field, the shadow and reflection maps,
+/// wave_mips, fresnel_table, the three skies, the water of shadings `hu`, `ggx` and `coastal`,
+/// of Gerstner's and the coastal waves, of foam `jacobian`) caught; the summary line and the
 /// JSON agree.
 fn selftest_quick_judges_every_scene_and_catches_the_judged_passes_bugs() {
     let json = std::env::temp_dir().join(format!("ocean-selftest-{}.json", std::process::id()));
@@ -215,6 +216,15 @@ fn selftest_quick_judges_every_scene_and_catches_the_judged_passes_bugs() {
             // water.wgsl stay inside the water's wide envelope (docs/tolerances.md).
             "shading/hu.wgsl",
             "shading/ggx.wgsl",
+            // Shading and waves `coastal`, judged where the water is certainly nearer than the
+            // island and the boat; Gerstner's phase and foam `jacobian` over analytic waves;
+            // the objects' reflection map and the shadow test.
+            "shading/coastal.wgsl",
+            "shared/coastal.wgsl",
+            "shared/gerstner.wgsl",
+            "foam/jacobian.wgsl",
+            "objects.wgsl",
+            "shared/shadow.wgsl",
         ];
         if judged_files.contains(&file) {
             assert_eq!(r["caught"], true, "a bug in a judged pass was missed: {r}");
