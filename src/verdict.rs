@@ -436,8 +436,9 @@ fn water_verdict(
     let every = gpu.water_every.max(1) as usize;
     let on =
         |i: usize| (i % w as usize).is_multiple_of(every) && (i / w as usize).is_multiple_of(every);
-    let reach: Vec<bool> =
-        (0..env.len()).map(|i| objects_may_show(objects[i], nearest[i]) || !on(i)).collect();
+    let reach: Vec<bool> = (0..env.len())
+        .map(|i| ocean_cpu::shaders::objects::may_show(objects[i], nearest[i]) || !on(i))
+        .collect();
     let region: Vec<Option<bool>> = reach.iter().map(|&r| (!r).then_some(true)).collect();
     let judged = reach.iter().filter(|r| !**r).count();
     if judged == 0 {
@@ -458,13 +459,6 @@ fn water_verdict(
     let q = |p: f64| rel.get(((rel.len().max(1) - 1) as f64 * p) as usize).copied();
     let widths = WaterWidths { pixels: rel.len() / 3, p50: q(0.5), p99: q(0.99) };
     Ok(Ok((f, open_share, took, widths)))
-}
-
-/// Whether an object's fragment may be what a pixel shows after the water pass: one may land
-/// there (`objects`, the nearest depth any may have; −∞: none) and the water's certain
-/// fragments (`water`, the depth they guarantee; −∞: none certain) do not lie nearer.
-fn objects_may_show(objects: f64, water: f64) -> bool {
-    objects > f64::NEG_INFINITY && objects >= water
 }
 
 /// The HDR frame's sky pixels against the sky pass's envelope: the pixels where the oracle's

@@ -1107,7 +1107,7 @@ fn random_conformant_gpus_stay_inside_the_water_envelope() {
             objects_tight += object_depths_within(t, &u, (w, h), &near, name);
         }
         let reach: Vec<bool> =
-            near.iter().zip(&nearest).map(|(&o, &n)| o > f64::NEG_INFINITY && o >= n).collect();
+            near.iter().zip(&nearest).map(|(&o, &n)| objects::may_show(o, n)).collect();
         let outside = |g: &[[f32; 4]]| -> usize {
             env.iter()
                 .zip(g)

@@ -442,6 +442,14 @@ pub fn map_jitter(
     })
 }
 
+/// Whether an object's fragment may be what a pixel shows after the water pass: one may land
+/// there (`objects`, the nearest depth any may have, [`depth_reach`]; −∞: none) and the
+/// water's certain fragments (`water`, the depth they guarantee; −∞: none certain) do not lie
+/// nearer.
+pub fn may_show(objects: f64, water: f64) -> bool {
+    objects > f64::NEG_INFINITY && objects >= water
+}
+
 /// Per pixel of a `width` × `height` view, the nearest depth (reversed Z: the largest z) that
 /// any conformant GPU may give a fragment of the objects' `triangles` in the main view
 /// (`vs_main`): −∞ where none may land. Each vertex's clip position is carried as an
