@@ -337,7 +337,7 @@ struct Footprint {
 
 fn footprint(rel: vec3<f32>) -> Footprint {
     var fp: Footprint;
-    if (frame.far.mode == 0.0) {
+    if (frame.far.mode == FAR_NONE) {
         fp.lods = vec2<f32>(0.0, 0.0);
         fp.taps_log2 = 0.0;
         fp.step = vec2<f32>(0.0, 0.0);
@@ -527,7 +527,7 @@ fn wave_slopes(in: VertexOut, fp: Footprint) -> vec3<f32> {
     let sb = b.xy * wb;
     var s = vec2<f32>(sd.x + sb.x, sd.y + sb.y);
     var variance = 0.0;
-    if (frame.far.mode == 2.0) {
+    if (frame.far.mode == FAR_VARIANCE) {
         let vd = (max(d.z - d.x * d.x, 0.0) + max(d.w - d.y * d.y, 0.0)) * subtexel(fp.lods.x);
         let vb = (max(b.z - b.x * b.x, 0.0) + max(b.w - b.y * b.y, 0.0)) * subtexel(fp.lods.y);
         variance = 0.5 * (vd * (wd * wd) + vb * (wb * wb));
@@ -568,7 +568,7 @@ fn gerstner_filtered_slopes(pos: vec2<f32>, fp: Footprint, weight: f32) -> vec3<
         let k_short = (kz * fp.h.x - kx * fp.h.y) * sigma_short;
         let g = exp_arith(-0.5 * (k_long * k_long + k_short * k_short));
         s = s + vec2<f32>(b.z, b.w) * (c * g);
-        if (frame.far.mode == 2.0) {
+        if (frame.far.mode == FAR_VARIANCE) {
             let g2 = g * g;
             let v = 0.5 * (1.0 - g2 * g2) + c * c * (g2 * g2 - g2);
             variance = variance + 0.5 * (b.z * b.z + b.w * b.w) * v;
@@ -752,7 +752,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
         var cover = foam_coverage(in, p);
         // The shore's foam (waves `coastal`) through the foam stage's texture, wherever a
         // foam technique is chosen.
-        if (frame.coastal.shape.x > 0.0 && frame.foam.mode > 0.0) {
+        if (frame.coastal.shape.x > 0.0 && frame.foam.mode != FOAM_NONE) {
             cover = max(cover, foam_mix(coastal.y, foam_texture_at(in.pos)));
         }
         return vec4<f32>(foam_over(c, cover, n, in.rel), 1.0);

@@ -1,7 +1,7 @@
 //! `ocean render --frames`: which frames a run renders and where each one goes.
 //!
 //! An animation is frames `A..B` of a scene at `F` frames per second: frame n shows the sea at
-//! `t₀ + n/F` (t₀ the scene's `ocean.time_s`) through [`ocean_core::plan::FrameState`], which
+//! `t₀ + n/F` (t₀ the scene's `ocean.time_s`) through [`ocean_core::graph::FrameState`], which
 //! always starts at frame 0, so frame n is a pure function of (scene, F, n): a range that
 //! starts later, a shard or a resumed run replays what earlier frames leave behind (foam
 //! `accumulated`'s field, the spray's pool) without drawing them, and gets the same frame bit

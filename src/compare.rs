@@ -421,17 +421,12 @@ fn against_envelope(
         bail!("{}: hdr is {hw}x{hh}, the frame {w}x{h}", dir.display());
     }
     let ldr = dumped_picture(dir, w, h)?;
-    // The oracle's frame says which pixels hold the sky, where the sky pass has an envelope.
-    let sky = plan.techniques.of(ocean_core::plan::Stage::Sky).name;
-    let oracle = if ocean_cpu::shaders::sky::ENVELOPE_TECHNIQUES.contains(&sky) {
-        Some(ocean_cpu::render_scene(scene, ocean_core::plan::OutputKind::Ldr, &mut |_| {})?)
-    } else {
-        None
-    };
+    // The oracle's frame says which pixels hold the sky.
+    let oracle = ocean_cpu::render_scene(scene, ocean_core::plan::OutputKind::Ldr, &mut |_| {})?;
     let side = GpuSide {
         maps: read.iter().map(|(id, (size, t))| (*id, (*size, &t[..]))).collect(),
         ldr: ldr.as_deref(),
-        oracle_hdr: oracle.as_ref().map(|r| &r.buffers.hdr.color[..]),
+        oracle_hdr: Some(&oracle.buffers.hdr.color[..]),
         precision: manifest.adapter.as_ref().map_or(ocean::verdict::precision_of("", ""), |a| {
             ocean::verdict::precision_of(
                 a["name"].as_str().unwrap_or(""),

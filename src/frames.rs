@@ -6,7 +6,8 @@ use std::time::Instant;
 
 use anyhow::{Context, bail, ensure};
 use indicatif::{ProgressBar, ProgressStyle};
-use ocean_core::plan::{FramePlan, FrameState, OutputKind};
+use ocean_core::graph::FrameState;
+use ocean_core::plan::{FramePlan, OutputKind};
 use ocean_core::scene::Scene;
 use ocean_gpu::FrameMap;
 

@@ -197,7 +197,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 let mut out = scene.clone();
                 (out.camera.width, out.camera.height) = (w, h);
                 let glow = FramePlan::new(&out, OutputKind::Ldr).runs(Pass::Bloom).then(|| {
-                    let inputs = ocean_core::plan::BloomInputs::new(&out);
+                    let inputs = ocean_core::graph::BloomInputs::new(&out);
                     t.bloom_scale = inputs.scale(&out);
                     let frame = ocean_cpu::sampler::Texture2D::new(w, h, hdr.clone());
                     ocean_cpu::shaders::bloom::level0(

@@ -278,7 +278,7 @@ fn judge_passes(
         v.json.push(entry);
         v.not_judged.push(id.name());
     }
-    let Some(tonemap) = ocean_core::plan::tonemap_uniforms(scene, plan)? else {
+    let Some(tonemap) = ocean_core::graph::tonemap_uniforms(scene, plan)? else {
         return Ok(v);
     };
     let not_judged = |why: &str, v: &mut Verdict| {
@@ -294,7 +294,7 @@ fn judge_passes(
     let bloom = match (plan.runs(Pass::Bloom), gpu.texels(ResourceId::BloomUp)) {
         (false, _) => None,
         (true, Some(atlas)) => {
-            let inputs = ocean_core::plan::BloomInputs::new(scene);
+            let inputs = ocean_core::graph::BloomInputs::new(scene);
             Some(ocean_cpu::shaders::bloom::level0(&bloom_chain(
                 &inputs,
                 (w, h),
@@ -348,7 +348,6 @@ fn water_verdict(
 ) -> anyhow::Result<
     Result<(ocean_verify::envelope::RegionVerdict, f64, std::time::Duration, WaterWidths), String>,
 > {
-    use ocean_core::plan::Stage;
     use ocean_cpu::envelope::Iv;
     use ocean_cpu::shaders::{sky, water};
     if !plan.runs(Pass::Water) {
@@ -360,25 +359,13 @@ fn water_verdict(
     if plan.runs(Pass::Spray) {
         return Ok(Err("spray draws over the water (its pass has no envelope yet)".into()));
     }
-    let technique = plan.techniques.of(Stage::Sky).name;
-    if !sky::ENVELOPE_TECHNIQUES.contains(&technique) {
-        return Ok(Err(format!("sky `{technique}` has no envelope")));
-    }
+    let technique = plan.techniques.sky();
     let frame =
-        ocean_core::plan::FrameInputs::new(scene, plan, &ocean_core::plan::FrameState::new(0.0))?;
+        ocean_core::graph::FrameInputs::new(scene, plan, &ocean_core::graph::FrameState::new(0.0))?;
     let u = &frame.uniforms;
-    let t = &plan.techniques;
-    let shading_name = t.of(Stage::Shading).name;
-    if let Some(why) = water::real::carried(u, shading_name, t.of(Stage::Foam).name) {
+    if let Some(why) = water::real::carried(u) {
         return Ok(Err(why.into()));
     }
-    let Some(shading) = water::real::Shading::of(shading_name) else {
-        return Ok(Err(format!("shading `{shading_name}` has no envelope")));
-    };
-    let foam_name = t.of(Stage::Foam).name;
-    let Some(foam) = water::real::Foam::of(foam_name) else {
-        return Ok(Err(format!("foam `{foam_name}` has no envelope")));
-    };
     let (fw, fh, floor) = ocean_core::terrain::relief_texels(scene.terrain.as_ref());
     let get = |id: ResourceId| gpu.map(id).map(|((w, h), t)| (w, h, t));
     let runs = |id: ResourceId| id.writer().is_some_and(|p| plan.runs(p));
@@ -403,8 +390,8 @@ fn water_verdict(
         size: [w, h],
         format,
         precision: gpu.precision.0,
-        shading,
-        foam,
+        shading: plan.techniques.shading(),
+        foam: plan.techniques.foam(),
         every: gpu.water_every.max(1),
     };
     let inputs = sky::SkyInputs {
@@ -412,9 +399,7 @@ fn water_verdict(
         sky: &frame.environment,
         lut: &frame.sky_lut,
     };
-    let Some(sky_env) = sky::envelope(technique, inputs, (w, h), format) else {
-        return Ok(Err(format!("sky `{technique}` has no envelope")));
-    };
+    let sky_env = sky::envelope(technique, inputs, (w, h), format);
     let background: Vec<[Iv; 4]> =
         sky_env.into_iter().map(|c| [c[0], c[1], c[2], Iv::point(1.0)]).collect();
     if hdr.len() != background.len() {
@@ -474,25 +459,18 @@ fn sky_verdict(
     oracle: &[[f32; 4]],
 ) -> anyhow::Result<Option<ocean_verify::envelope::RegionVerdict>> {
     use ocean_cpu::shaders::sky;
-    let technique = plan.techniques.of(ocean_core::plan::Stage::Sky).name;
-    if !sky::ENVELOPE_TECHNIQUES.contains(&technique) {
-        return Ok(None);
-    }
+    let technique = plan.techniques.sky();
     // The sky's uniforms and table as the frame hands them to both back ends.
     let frame =
-        ocean_core::plan::FrameInputs::new(scene, plan, &ocean_core::plan::FrameState::new(0.0))?;
+        ocean_core::graph::FrameInputs::new(scene, plan, &ocean_core::graph::FrameState::new(0.0))?;
     let inputs = sky::SkyInputs {
         camera: &frame.camera_uniforms,
         sky: &frame.environment,
         lut: &frame.sky_lut,
     };
     let format = plan.frame_format;
-    let (Some(env), Some(exact)) = (
-        sky::envelope(technique, inputs, (w, h), format),
-        sky::exact(technique, inputs, (w, h), format),
-    ) else {
-        return Ok(None);
-    };
+    let env = sky::envelope(technique, inputs, (w, h), format);
+    let exact = sky::exact(technique, inputs, (w, h), format);
     if hdr.len() != env.len() || oracle.len() != env.len() {
         bail!("hdr: {} texels, the frame {w}x{h}", hdr.len());
     }
@@ -586,10 +564,10 @@ fn foam_verdict(
     else {
         return Ok(None);
     };
-    let state = ocean_core::plan::FrameState::new(0.0);
-    let frame = ocean_core::plan::FrameInputs::new(scene, plan, &state)?;
+    let state = ocean_core::graph::FrameState::new(0.0);
+    let frame = ocean_core::graph::FrameInputs::new(scene, plan, &state)?;
     let eye = [frame.camera.eye.x, frame.camera.eye.z];
-    let work = ocean_core::plan::FoamWork::new(scene, plan, &state, eye, frame.mesh.origin);
+    let work = ocean_core::graph::FoamWork::new(scene, plan, &state, eye, frame.mesh.origin);
     let n = work.grid.size;
     if (w, h) != (n, n) {
         bail!("foam_field: {w}x{h}, the plan's field {n}x{n}");
@@ -615,7 +593,7 @@ fn foam_verdict(
 fn shadow_envelope(
     scene: &Scene,
     plan: &FramePlan,
-    frame: &ocean_core::plan::FrameInputs<'_>,
+    frame: &ocean_core::graph::FrameInputs<'_>,
 ) -> Option<([u32; 2], Vec<ocean_cpu::envelope::Iv>, Vec<bool>)> {
     let pass = plan.pass(Pass::ShadowMap).filter(|_| plan.runs(Pass::ShadowMap))?;
     let size = plan.resource(ResourceId::ShadowMap)?.size;
@@ -637,7 +615,7 @@ fn shadow_verdict(
 ) -> anyhow::Result<Option<(ocean_verify::envelope::FloatVerdict, f64)>> {
     let Some(((w, _), texels)) = gpu.map(ResourceId::ShadowMap) else { return Ok(None) };
     let frame =
-        ocean_core::plan::FrameInputs::new(scene, plan, &ocean_core::plan::FrameState::new(0.0))?;
+        ocean_core::graph::FrameInputs::new(scene, plan, &ocean_core::graph::FrameState::new(0.0))?;
     let Some((_, env, ambiguous)) = shadow_envelope(scene, plan, &frame) else {
         return Ok(None);
     };
@@ -678,7 +656,7 @@ fn map_verdict(
         return Ok(None);
     };
     let frame =
-        ocean_core::plan::FrameInputs::new(scene, plan, &ocean_core::plan::FrameState::new(0.0))?;
+        ocean_core::graph::FrameInputs::new(scene, plan, &ocean_core::graph::FrameState::new(0.0))?;
     let tris = ocean_core::frame::pass_triangles(scene, &frame.poses, planned, frame.camera.eye);
     let (dims, shadow) =
         match (gpu.map(ResourceId::ShadowMap), shadow_envelope(scene, plan, &frame)) {
@@ -745,7 +723,7 @@ fn wave_mips_verdict(
 /// A GPU's bloom chain (its atlas, read back or from a dump) for a `w` × `h` frame, checked
 /// against the plan's chain size.
 fn bloom_chain(
-    inputs: &ocean_core::plan::BloomInputs,
+    inputs: &ocean_core::graph::BloomInputs,
     (w, h): (u32, u32),
     name: &str,
     atlas: &[[f32; 4]],
@@ -770,7 +748,7 @@ fn bloom_verdicts(
     up: &[[f32; 4]],
 ) -> anyhow::Result<Vec<ocean_verify::envelope::FloatVerdict>> {
     use ocean_cpu::sampler::Texture2D;
-    let inputs = ocean_core::plan::BloomInputs::new(scene);
+    let inputs = ocean_core::graph::BloomInputs::new(scene);
     let bw = ocean_core::bloom::level_size(w, h, 0)[0];
     let down = bloom_chain(&inputs, (w, h), "bloom_down", down)?;
     let up = bloom_chain(&inputs, (w, h), "bloom_up", up)?;

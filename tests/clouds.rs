@@ -168,8 +168,8 @@ fn the_sky_is_eq4_and_the_sun_is_dimmed_behind_a_cloud() {
                 intensity = 5.0\n[clouds]\ncoverage = 1.0\n";
     let scene = Scene::from_toml(text, SceneSource::Text).expect("scene");
     let plan = ocean_core::plan::FramePlan::new(&scene, ocean_core::plan::OutputKind::Hdr);
-    let state = ocean_core::plan::FrameState::default();
-    let inputs = ocean_core::plan::FrameInputs::new(&scene, &plan, &state).expect("inputs");
+    let state = ocean_core::graph::FrameState::default();
+    let inputs = ocean_core::graph::FrameInputs::new(&scene, &plan, &state).expect("inputs");
     let sky = &inputs.environment;
     let mut rng = Rng(9);
     for _ in 0..1000 {
@@ -188,7 +188,7 @@ fn the_sky_is_eq4_and_the_sun_is_dimmed_behind_a_cloud() {
     // Overcast: the sun's light on the sea is (1 − α) of the clear scene's, here nearly none.
     let clear_scene =
         Scene { clouds: Clouds { coverage: 0.0, ..Clouds::default() }, ..scene.clone() };
-    let clear = ocean_core::plan::FrameInputs::new(&clear_scene, &plan, &state).expect("inputs");
+    let clear = ocean_core::graph::FrameInputs::new(&clear_scene, &plan, &state).expect("inputs");
     let (dim, full) = (inputs.uniforms.sun.radiance[0], clear.uniforms.sun.radiance[0]);
     println!("sun behind overcast: {dim} of {full}");
     assert!(dim < 0.05 * full, "{dim} vs {full}");
@@ -197,7 +197,7 @@ fn the_sky_is_eq4_and_the_sun_is_dimmed_behind_a_cloud() {
         &Scene { techniques: Default::default(), ..scene.clone() },
         ocean_core::plan::OutputKind::Hdr,
     );
-    let plain = ocean_core::plan::FrameInputs::new(&scene, &preetham, &state).expect("inputs");
+    let plain = ocean_core::graph::FrameInputs::new(&scene, &preetham, &state).expect("inputs");
     let undimmed = plain.uniforms.sun.radiance[0];
     assert!(undimmed >= clear.uniforms.sun.radiance[0] && undimmed > 20.0 * dim, "{undimmed}");
 }

@@ -207,7 +207,7 @@ fn dumped(dir: &Path) -> Dumped {
     let none = ocean::scene_arg::SystemArg { system: None };
     let scene = manifest.scene("manifest.json", None, &none).unwrap();
     let plan = FramePlan::new(&scene, OutputKind::Ldr);
-    let t = ocean_core::plan::tonemap_uniforms(&scene, &plan).unwrap().unwrap();
+    let t = ocean_core::graph::tonemap_uniforms(&scene, &plan).unwrap().unwrap();
     let ((w, h), hdr) = ocean::dump::read(dir, ResourceId::Hdr).unwrap();
     let ldr = image::open(dir.join("ldr.png")).unwrap().to_rgba8().into_raw();
     Dumped {
@@ -303,7 +303,7 @@ fn the_h200_pictures_are_inside_the_tonemap_envelope_and_an_exposure_error_is_no
 }
 
 /// A bloom scene's frame: the H200's HDR frame and the scene's bloom inputs.
-fn bloom_frames() -> Vec<(String, ocean_cpu::sampler::Texture2D, ocean_core::plan::BloomInputs)> {
+fn bloom_frames() -> Vec<(String, ocean_cpu::sampler::Texture2D, ocean_core::graph::BloomInputs)> {
     snapshot()
         .into_iter()
         .filter_map(|dir| {
@@ -314,7 +314,7 @@ fn bloom_frames() -> Vec<(String, ocean_cpu::sampler::Texture2D, ocean_core::pla
             plan.runs(ocean_core::plan::Pass::Bloom).then(|| {
                 let ((w, h), hdr) = ocean::dump::read(&dir, ResourceId::Hdr).unwrap();
                 let name = dir.file_name().unwrap().to_string_lossy().into_owned();
-                let inputs = ocean_core::plan::BloomInputs::new(&scene);
+                let inputs = ocean_core::graph::BloomInputs::new(&scene);
                 (name, ocean_cpu::sampler::Texture2D::new(w, h, hdr), inputs)
             })
         })
@@ -453,11 +453,11 @@ fn random_conformant_gpus_stay_inside_the_sky_envelope() {
         let mut scene = ocean_core::scene::Scene::load(&path).unwrap();
         (scene.camera.width, scene.camera.height) = (96, 54);
         let plan = FramePlan::new(&scene, OutputKind::Ldr);
-        let technique = plan.techniques.of(ocean_core::plan::Stage::Sky).name;
-        let frame = ocean_core::plan::FrameInputs::new(
+        let technique = plan.techniques.sky();
+        let frame = ocean_core::graph::FrameInputs::new(
             &scene,
             &plan,
-            &ocean_core::plan::FrameState::new(0.0),
+            &ocean_core::graph::FrameState::new(0.0),
         )
         .unwrap();
         let inputs = sky::SkyInputs {
@@ -466,9 +466,7 @@ fn random_conformant_gpus_stay_inside_the_sky_envelope() {
             lut: &frame.sky_lut,
         };
         let size = (96, 54);
-        let Some(env) = sky::envelope(technique, inputs, size, plan.frame_format) else {
-            continue;
-        };
+        let env = sky::envelope(technique, inputs, size, plan.frame_format);
         scenes += 1;
         let outside = |v: &[[f32; 3]]| {
             env.iter()
@@ -476,16 +474,16 @@ fn random_conformant_gpus_stay_inside_the_sky_envelope() {
                 .map(|(e, g)| (0..3).filter(|&c| !e[c].contains(g[c])).count())
                 .sum::<usize>()
         };
-        let exact = sky::exact(technique, inputs, size, plan.frame_format).unwrap();
+        let exact = sky::exact(technique, inputs, size, plan.frame_format);
         assert_eq!(outside(&exact), 0, "{}: the oracle", path.display());
         for seed in 0..8 {
             let rules = JitterRules { seed, scale: 1.0 };
-            let j = sky::jitter(technique, inputs, size, plan.frame_format, rules).unwrap();
+            let j = sky::jitter(technique, inputs, size, plan.frame_format, rules);
             assert_eq!(outside(&j), 0, "{} seed {seed}", path.display());
             runs += 1;
         }
         let rules = JitterRules { seed: 99, scale: 2.0 };
-        loose += outside(&sky::jitter(technique, inputs, size, plan.frame_format, rules).unwrap());
+        loose += outside(&sky::jitter(technique, inputs, size, plan.frame_format, rules));
     }
     println!(
         "{runs} skies ({scenes} scenes, all three techniques) of random conformant GPUs: 0 outside; twice the rules: {loose} outside"
@@ -618,10 +616,10 @@ fn random_conformant_gpus_stay_inside_the_foam_envelope() {
     for (name, scene) in [("foam_storm", storm), ("foam_gerstner (accumulated)", gerstner)] {
         let plan = FramePlan::new(&scene, OutputKind::Ldr);
         assert!(plan.runs(ocean_core::plan::Pass::Foam), "{name}: no foam pass");
-        let state = ocean_core::plan::FrameState::new(0.0);
-        let frame = ocean_core::plan::FrameInputs::new(&scene, &plan, &state).unwrap();
+        let state = ocean_core::graph::FrameState::new(0.0);
+        let frame = ocean_core::graph::FrameInputs::new(&scene, &plan, &state).unwrap();
         let eye = [frame.camera.eye.x, frame.camera.eye.z];
-        let work = ocean_core::plan::FoamWork::new(&scene, &plan, &state, eye, frame.mesh.origin);
+        let work = ocean_core::graph::FoamWork::new(&scene, &plan, &state, eye, frame.mesh.origin);
         let displacement = if work.steps[0].analytic == 0 {
             let surface = scene.ocean.surface().unwrap();
             ocean_cpu::shaders::waves::WavesMirror::new(&surface.displacement)
@@ -695,8 +693,8 @@ fn random_conformant_rasterisers_stay_inside_the_shadow_map_envelope() {
         let Some(pass) = plan.pass(Pass::ShadowMap).filter(|_| plan.runs(Pass::ShadowMap)) else {
             continue;
         };
-        let mut state = ocean_core::plan::FrameState::new(0.0);
-        let frame = ocean_core::plan::FrameInputs::new(&scene, &plan, &state).unwrap();
+        let mut state = ocean_core::graph::FrameState::new(0.0);
+        let frame = ocean_core::graph::FrameInputs::new(&scene, &plan, &state).unwrap();
         let tris: Vec<[[f32; 3]; 3]> =
             ocean_core::frame::pass_triangles(&scene, &frame.poses, pass, frame.camera.eye)
                 .iter()
@@ -754,8 +752,8 @@ fn random_conformant_gpus_stay_inside_the_object_maps_envelope() {
         let mut scene = ocean_core::scene::Scene::load(&path).unwrap();
         (scene.camera.width, scene.camera.height) = (320, 180);
         let plan = FramePlan::new(&scene, OutputKind::Ldr);
-        let mut state = ocean_core::plan::FrameState::new(0.0);
-        let frame = ocean_core::plan::FrameInputs::new(&scene, &plan, &state).unwrap();
+        let mut state = ocean_core::graph::FrameState::new(0.0);
+        let frame = ocean_core::graph::FrameInputs::new(&scene, &plan, &state).unwrap();
         let u = frame.uniforms;
         let mut oracle = None;
         for (kind, map, pass, id) in [
@@ -855,25 +853,17 @@ fn random_conformant_gpus_stay_inside_the_object_maps_envelope() {
 /// The water pass's configurations the envelope carries, among the reference scenes at
 /// `size`: (name, scene, plan).
 fn water_scenes(size: (u32, u32)) -> Vec<(String, ocean_core::scene::Scene, FramePlan)> {
-    use ocean_core::plan::{Pass, Stage};
+    use ocean_core::plan::Pass;
     let mut out = Vec::new();
     for path in reference_scenes() {
         let name = path.file_stem().unwrap().to_string_lossy().into_owned();
         let mut scene = ocean_core::scene::Scene::load(&path).unwrap();
         (scene.camera.width, scene.camera.height) = size;
         let plan = FramePlan::new(&scene, OutputKind::Ldr);
-        let state = ocean_core::plan::FrameState::new(0.0);
-        let frame = ocean_core::plan::FrameInputs::new(&scene, &plan, &state).unwrap();
-        let t = &plan.techniques;
-        let sky = t.of(Stage::Sky).name;
+        let state = ocean_core::graph::FrameState::new(0.0);
+        let frame = ocean_core::graph::FrameInputs::new(&scene, &plan, &state).unwrap();
         if plan.runs(Pass::Spray)
-            || !ocean_cpu::shaders::sky::ENVELOPE_TECHNIQUES.contains(&sky)
-            || ocean_cpu::shaders::water::real::carried(
-                &frame.uniforms,
-                t.of(Stage::Shading).name,
-                t.of(Stage::Foam).name,
-            )
-            .is_some()
+            || ocean_cpu::shaders::water::real::carried(&frame.uniforms).is_some()
         {
             continue;
         }
@@ -935,7 +925,7 @@ fn object_depths_within(
 
 #[test]
 fn random_conformant_gpus_stay_inside_the_water_envelope() {
-    use ocean_core::plan::{Pass, Stage};
+    use ocean_core::plan::Pass;
     use ocean_cpu::shaders::water::{self, envelope as we};
     use ocean_cpu::shaders::{objects, sky};
     let (w, h) = (160u32, 90u32);
@@ -945,10 +935,10 @@ fn random_conformant_gpus_stay_inside_the_water_envelope() {
     let mut rel = Vec::new();
     let mut names = Vec::new();
     for (name, scene, plan) in &scenes {
-        let mut state = ocean_core::plan::FrameState::new(0.0);
-        let frame = ocean_core::plan::FrameInputs::new(scene, plan, &state).unwrap();
+        let mut state = ocean_core::graph::FrameState::new(0.0);
+        let frame = ocean_core::graph::FrameInputs::new(scene, plan, &state).unwrap();
         let u = frame.uniforms;
-        let tech = plan.techniques.of(Stage::Sky).name;
+        let tech = plan.techniques.sky();
         let format = plan.frame_format;
         let o = ocean_cpu::frame::render_frame(
             &frame,
@@ -978,17 +968,13 @@ fn random_conformant_gpus_stay_inside_the_water_envelope() {
             size: [w, h],
             format,
             precision: ocean_cpu::envelope::Precision::LAVAPIPE,
-            shading: ocean_cpu::shaders::water::real::Shading::of(
-                plan.techniques.of(Stage::Shading).name,
-            )
-            .unwrap(),
-            foam: ocean_cpu::shaders::water::real::Foam::of(plan.techniques.of(Stage::Foam).name)
-                .unwrap(),
+            shading: plan.techniques.shading(),
+            foam: plan.techniques.foam(),
             every: 1,
         };
         // The generic mirror at f32 against the exact one.
         let t = owned.textures();
-        let radiance = sky::environment_radiance(tech).unwrap();
+        let radiance = sky::environment_radiance(tech);
         let (env_u, lut) = (&frame.environment, &*frame.sky_lut);
         let sky_fn = move |d: [f32; 3]| radiance(env_u, lut, d);
         let bindings = water::Bindings {
@@ -1005,14 +991,8 @@ fn random_conformant_gpus_stay_inside_the_water_envelope() {
             floor_map: t.floor_map,
             foam_field: t.foam_field,
             sky_radiance: &sky_fn,
-            shade_above: ocean_cpu::shaders::shading::shade_above(
-                plan.techniques.of(Stage::Shading).name,
-            )
-            .unwrap(),
-            foam_coverage: ocean_cpu::shaders::foam::foam_coverage(
-                plan.techniques.of(Stage::Foam).name,
-            )
-            .unwrap(),
+            shade_above: ocean_cpu::shaders::shading::shade_above(plan.techniques.shading()),
+            foam_coverage: ocean_cpu::shaders::foam::foam_coverage(plan.techniques.foam()),
         };
         let grid = u.grid.vertex_count() > 0;
         let clipmap = u.clip.vertex_count() as usize;
@@ -1087,7 +1067,6 @@ fn random_conformant_gpus_stay_inside_the_water_envelope() {
             lut: &frame.sky_lut,
         };
         let bg_env: Vec<[Iv; 4]> = sky::envelope(tech, inputs, (w, h), format)
-            .unwrap()
             .into_iter()
             .map(|c| [c[0], c[1], c[2], Iv::point(1.0)])
             .collect();
@@ -1122,7 +1101,7 @@ fn random_conformant_gpus_stay_inside_the_water_envelope() {
         let mut spread = vec![[(f32::INFINITY, f32::NEG_INFINITY); 3]; env.len()];
         for seed in 0..8 {
             let rules = JitterRules { seed, scale: 1.0 };
-            let bg = sky::jitter(tech, inputs, (w, h), format, rules).unwrap();
+            let bg = sky::jitter(tech, inputs, (w, h), format, rules);
             let bg: Vec<[f32; 4]> = bg.into_iter().map(|c| [c[0], c[1], c[2], 1.0]).collect();
             let j = we::jitter(&pass, &bg, rules);
             assert_eq!(outside(&j), 0, "{name} seed {seed}");
@@ -1134,7 +1113,7 @@ fn random_conformant_gpus_stay_inside_the_water_envelope() {
             runs += 1;
         }
         let rules = JitterRules { seed: 99, scale: 2.0 };
-        let bg = sky::jitter(tech, inputs, (w, h), format, rules).unwrap();
+        let bg = sky::jitter(tech, inputs, (w, h), format, rules);
         let bg: Vec<[f32; 4]> = bg.into_iter().map(|c| [c[0], c[1], c[2], 1.0]).collect();
         loose += outside(&we::jitter(&pass, &bg, rules));
         let water: Vec<usize> = (0..env.len())

@@ -17,7 +17,8 @@ use std::path::PathBuf;
 
 use ocean_core::foam::{FoamBlock, heuristic_turbulence, jacobian_turbulence};
 use ocean_core::frame::FrameUniforms;
-use ocean_core::plan::{FramePlan, FrameState, OutputKind, ResourceId};
+use ocean_core::graph::FrameState;
+use ocean_core::plan::{Foam, FramePlan, OutputKind, ResourceId, Waves};
 use ocean_core::rng::SplitMix64;
 use ocean_core::scene::{Scene, SceneSource};
 use ocean_core::waves::gerstner::GerstnerBlock;
@@ -46,7 +47,7 @@ fn maps(scene: &Scene) -> WaveMaps<f32> {
 /// the shaders write out).
 fn mean_turbulence(scene: &Scene) -> (f64, f64) {
     let m = maps(scene);
-    let foam = FoamBlock::new(scene, "jacobian", "fft", [0.0, 0.0]);
+    let foam = FoamBlock::new(scene, Foam::Jacobian, Waves::Fft, [0.0, 0.0]);
     let n = m.jacobian.len() as f64;
     let (mut j_sum, mut h_sum) = (0.0, 0.0);
     for i in 0..m.jacobian.len() {
@@ -104,7 +105,7 @@ fn turbulence_rises_with_wind_and_with_choppiness() {
             s.gerstner.choppiness = c;
             let d = s.ocean.dispersion().unwrap();
             let waves = s.gerstner.at(0.0, &d, s.ocean.wind_direction_deg);
-            let foam = FoamBlock::new(&s, "jacobian", "gerstner", [0.0, 0.0]);
+            let foam = FoamBlock::new(&s, Foam::Jacobian, Waves::Gerstner, [0.0, 0.0]);
             let mut sum = 0.0;
             for i in 0..100 {
                 for j in 0..100 {

@@ -5,7 +5,8 @@
 #[path = "support/cli.rs"]
 mod ocean_cli;
 
-use ocean_core::plan::{FramePlan, FrameState, OutputKind, Pass, ResourceId, Stage, System};
+use ocean_core::graph::FrameState;
+use ocean_core::plan::{FramePlan, OutputKind, Pass, ResourceId, Stage, System};
 use ocean_core::scene::{Scene, SceneError, SceneSource};
 
 #[path = "support/random_scene.rs"]

@@ -149,7 +149,8 @@ impl Lcg {
 fn rasterizer_matches_lavapipe_bit_for_bit() {
     use ocean_cpu::raster::{BlendMode, CompareFunction, RasterState, RenderTarget, Vertex, draw};
     use ocean_gpu::common::{Load, begin_render_pass, primitive, replace_target};
-    use ocean_gpu::texture::{GpuTexture, MAP_FORMAT, Readbacks, TexelData};
+    use ocean_gpu::readback::{Readbacks, TexelData};
+    use ocean_gpu::texture::{GpuTexture, MAP_FORMAT};
     use wgpu::util::DeviceExt;
 
     let renderer = renderer();
@@ -270,7 +271,8 @@ fn rasterizer_matches_lavapipe_bit_for_bit() {
 fn trilinear_sampling_matches_lavapipe_bit_for_bit() {
     use ocean_cpu::mip::{MipChain, level_count, level_size, texture_sample_level_mip};
     use ocean_cpu::sampler::{AddressMode, FilterMode, Sampler, Texture2D};
-    use ocean_gpu::texture::{GpuTexture, MAP_FORMAT, Readbacks, TexelData, map_usage};
+    use ocean_gpu::readback::{Readbacks, TexelData};
+    use ocean_gpu::texture::{GpuTexture, MAP_FORMAT, map_usage};
 
     let renderer = renderer();
     let gpu = renderer.gpu();
@@ -418,7 +420,8 @@ fn trilinear_sampling_matches_lavapipe_bit_for_bit() {
 fn wave_mips_match_the_cpu_mirror_bit_for_bit() {
     use ocean_cpu::sampler::Texture2D;
     use ocean_cpu::shaders::wave_mips;
-    use ocean_gpu::texture::{GpuTexture, MAP_FORMAT, Readbacks, TexelData};
+    use ocean_gpu::readback::{Readbacks, TexelData};
+    use ocean_gpu::texture::{GpuTexture, MAP_FORMAT};
     use ocean_gpu::wave_mips::{GpuMipChain, WaveMipsStage};
 
     let renderer = renderer();
@@ -563,7 +566,8 @@ fn a_new_sea_on_a_running_renderer_equals_a_fresh_renderer() {
 /// threshold takes the chains beyond the float tolerance although both HDR frames are within
 /// it — why the cross-check feeds the same frame.
 fn bloom_chains_are_compared_on_the_same_input_and_can_fail() {
-    use ocean_core::plan::{BloomInputs, FramePlan, OutputKind};
+    use ocean_core::graph::BloomInputs;
+    use ocean_core::plan::{FramePlan, OutputKind};
     use ocean_cpu::sampler::Texture2D;
     use ocean_cpu::shaders::bloom;
     let mut renderer = renderer();

@@ -19,7 +19,8 @@ mod random_scene;
 
 use std::path::PathBuf;
 
-use ocean_core::plan::{FramePlan, FrameState, OutputKind, Pass, ResourceId};
+use ocean_core::graph::FrameState;
+use ocean_core::plan::{FramePlan, OutputKind, Pass, ResourceId};
 use ocean_core::scene::{Scene, SceneSource};
 use ocean_gpu::{Readback, Renderer, WaveSynthesis};
 use ocean_verify::compare::{compare_float, compare_image};

@@ -18,7 +18,8 @@
 #[path = "support/gpu_harness.rs"]
 mod gpu_harness;
 
-use ocean_core::plan::{FramePlan, FrameState, OutputKind, Pass, SYSTEMS, System};
+use ocean_core::graph::FrameState;
+use ocean_core::plan::{FramePlan, OutputKind, Pass, SYSTEMS, System};
 use ocean_core::scene::Scene;
 use ocean_gpu::created::{ObjectCounts, created};
 use ocean_gpu::{Readback, Renderer};

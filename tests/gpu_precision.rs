@@ -210,12 +210,12 @@ fn gpu_store(gpu: &ocean_gpu::Gpu, texels: &[[f32; 4]], render: bool) -> Vec<[f3
         pass.set_bind_group(0, &group, &[]);
         pass.dispatch_workgroups(WIDTH / 8, height.div_ceil(8), 1);
     }
-    let mut readbacks: ocean_gpu::texture::Readbacks<()> = Default::default();
+    let mut readbacks: ocean_gpu::readback::Readbacks<()> = Default::default();
     readbacks.copy_texture(d, &mut encoder, (), "precision", &texture, format);
     gpu.queue.submit([encoder.finish()]);
     let back = readbacks.finish(gpu).unwrap_or_else(|e| panic!("read-back: {e}"));
     match back.into_iter().next() {
-        Some(((), ocean_gpu::texture::TexelData::Float(m))) => m.texels,
+        Some(((), ocean_gpu::readback::TexelData::Float(m))) => m.texels,
         _ => panic!("no float read-back"),
     }
 }

@@ -11,7 +11,8 @@ mod gpu_harness;
 
 use std::path::PathBuf;
 
-use ocean_core::plan::{FramePlan, FrameState, OutputKind};
+use ocean_core::graph::FrameState;
+use ocean_core::plan::{FramePlan, OutputKind};
 use ocean_core::scene::{Scene, SceneSource};
 use ocean_core::spray::{Emitter, Particle, SprayUniforms};
 use ocean_cpu::sampler::Texture2D;

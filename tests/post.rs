@@ -246,7 +246,8 @@ fn post_keys_are_parsed_validated_and_named_in_errors() {
 // Post technique `bloom` (ocean_core::bloom): the pyramid's energy, its symmetry, what it
 // leaves alone, on the CPU mirror (the GPU's chains are held to it by the cross-check).
 
-use ocean_core::plan::{BloomInputs, FramePlan, OutputKind, Pass, ResourceId};
+use ocean_core::graph::BloomInputs;
+use ocean_core::plan::{FramePlan, OutputKind, Pass, ResourceId};
 use ocean_cpu::sampler::Texture2D;
 use ocean_cpu::shaders::bloom;
 

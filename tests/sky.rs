@@ -20,7 +20,7 @@ fn render_sky(
     camera: &ocean_core::camera_uniforms::CameraUniforms,
     sky: &ocean_core::sky::SkyUniforms,
 ) {
-    let t = ocean_cpu::shaders::sky::technique("preetham").expect("preetham");
+    let t = ocean_cpu::shaders::sky::technique(ocean_core::plan::Sky::Preetham);
     let lut: ocean_core::atmosphere::SkyLut = bytemuck::Zeroable::zeroed();
     ocean_cpu::shaders::sky::render_sky(target, camera, sky, &lut, &t);
 }
@@ -244,7 +244,7 @@ fn finite_and_non_negative_everywhere() {
                     "f32 T={t} el={el}"
                 );
             }
-            let t = ocean_cpu::shaders::sky::technique("preetham").expect("preetham");
+            let t = ocean_cpu::shaders::sky::technique(ocean_core::plan::Sky::Preetham);
             let lut: ocean_core::atmosphere::SkyLut = bytemuck::Zeroable::zeroed();
             let px = fs_main(
                 &VertexOut { position: [0.5, 0.5, 0.0, 1.0].into() },

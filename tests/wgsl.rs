@@ -280,6 +280,13 @@ fn rust_consts() -> Vec<(&'static str, f64)> {
     use ocean_cpu::shaders::{water, waves};
     vec![
         ("SHADOW_BIAS", f64::from(shadow::SHADOW_BIAS)),
+        ("FAR_NONE", f64::from(ocean_core::far_field::FAR_NONE)),
+        ("FAR_MIP", f64::from(ocean_core::far_field::FAR_MIP)),
+        ("FAR_VARIANCE", f64::from(ocean_core::far_field::FAR_VARIANCE)),
+        ("FOAM_NONE", f64::from(ocean_core::foam::FOAM_NONE)),
+        ("FOAM_HEURISTIC", f64::from(ocean_core::foam::FOAM_HEURISTIC)),
+        ("FOAM_JACOBIAN", f64::from(ocean_core::foam::FOAM_JACOBIAN)),
+        ("FOAM_ACCUMULATED", f64::from(ocean_core::foam::FOAM_ACCUMULATED)),
         ("RELIEF_SHADOW_BIAS", f64::from(floor::RELIEF_SHADOW_BIAS)),
         ("COASTAL_SEGMENTS", f64::from(ocean_cpu::shaders::shared::coastal::COASTAL_SEGMENTS)),
         ("COASTAL_FILM_M", f64::from(ocean_cpu::shaders::shared::coastal::COASTAL_FILM_M)),
@@ -356,7 +363,7 @@ fn composed_modules() -> Vec<(String, naga::Module)> {
     let mut out: Vec<_> = STAGES.iter().map(|s| (s.name.to_owned(), module(s.name))).collect();
     for t in TECHNIQUE_FILES {
         for (name, m) in modules_with(t) {
-            out.push((format!("{name} with {}/{}", t.stage, t.technique), m));
+            out.push((format!("{name} with {}/{}", t.technique.stage, t.technique.name), m));
         }
     }
     out
@@ -364,11 +371,11 @@ fn composed_modules() -> Vec<(String, naga::Module)> {
 
 /// The stages that import `technique/<t.stage>`, assembled with technique `t`.
 fn modules_with(t: &registry::TechniqueFile) -> Vec<(String, naga::Module)> {
-    let chosen =
-        Techniques::with_overrides(System::Hu, [(t.stage, t.technique)]).unwrap_or_else(|e| {
+    let chosen = Techniques::with_overrides(System::Hu, [(t.technique.stage, t.technique.name)])
+        .unwrap_or_else(|e| {
             panic!("{}: {e}", t.file);
         });
-    let import = format!("// #import technique/{}", t.stage);
+    let import = format!("// #import technique/{}", t.technique.stage);
     STAGES
         .iter()
         .filter(|s| s.source.contains(&import))
@@ -413,11 +420,11 @@ fn every_technique_file_implements_its_stages_interface() {
         // Each stage that imports the technique's stage, assembled with it, validates; the
         // interface is defined by the technique's own file.
         let stages = modules_with(t);
-        assert!(!stages.is_empty(), "{}: no stage imports technique/{}", t.file, t.stage);
+        assert!(!stages.is_empty(), "{}: no stage imports technique/{}", t.file, t.technique.stage);
         for name in t.interface {
             let own = t.source.contains(&format!("fn {name}("))
                 || t.source.contains(&format!("struct {name} "));
-            assert!(own, "{}: the {} interface needs `{name}`", t.file, t.stage);
+            assert!(own, "{}: the {} interface needs `{name}`", t.file, t.technique.stage);
             for (stage, m) in &stages {
                 let found = m.functions.iter().any(|(_, f)| f.name.as_deref() == Some(name))
                     || m.types.iter().any(|(_, ty)| ty.name.as_deref() == Some(name));
@@ -453,7 +460,11 @@ fn the_registry_names_no_missing_piece_and_a_fake_entry_is_caught() {
     let mut stages = STAGES.to_vec();
     stages.push(fake);
     let fake_tech = registry::TechniqueFile {
-        technique: "no_such_sky",
+        technique: &ocean_core::plan::TechniqueInfo {
+            stage: ocean_core::plan::Stage::Sky,
+            name: "no_such_sky",
+            source: "a technique added to the registry without its files",
+        },
         file: "sky/no_such_sky.wgsl",
         cpu_mirror: "crates/ocean-cpu/src/shaders/sky/no_such_sky.rs",
         ..TECHNIQUE_FILES[0]
@@ -471,10 +482,10 @@ fn the_registry_names_no_missing_piece_and_a_fake_entry_is_caught() {
     ] {
         assert!(missing.contains(want), "wanted `{want}` in:\n{missing}");
     }
-    // An available sky technique with no file is caught too.
+    // A sky technique of the table with no file is caught too.
     let missing = registry::missing_pieces(&root(), STAGES, SHARED, &[]).join("\n");
     assert!(
-        missing.contains("technique sky/preetham: available but not in the registry"),
+        missing.contains("technique sky/preetham: in the table but not in the registry"),
         "{missing}"
     );
 }

@@ -25,7 +25,7 @@ fn detail_slopes(pos: vec2<f32>, h: vec2<f32>, sigma_long: f32, sigma_short: f32
         let k_short = (kz * h.x - kx * h.y) * sigma_short;
         let g = exp_arith(-0.5 * (k_long * k_long + k_short * k_short));
         s = s + vec2<f32>(w.x, w.y) * (w.w * (c * g));
-        if (frame.far.mode == 2.0) {
+        if (frame.far.mode == FAR_VARIANCE) {
             let g2 = g * g;
             let v = 0.5 * (1.0 - g2 * g2) + c * c * (g2 * g2 - g2);
             variance = variance + 0.5 * (w.w * w.w) * (w.x * w.x + w.y * w.y) * v;

@@ -59,6 +59,11 @@ struct AmbientBlock {
     pad: f32,
 }
 
+// `FarFieldBlock::mode`: the far-field technique (ocean-core far_field::FAR_NONE, …).
+const FAR_NONE: f32 = 0.0;
+const FAR_MIP: f32 = 1.0;
+const FAR_VARIANCE: f32 = 2.0;
+
 struct FarFieldBlock {
     mode: f32,
     lod_bias: f32,
@@ -203,8 +208,13 @@ struct DetailBlock {
     waves: array<vec4<f32>, 32>,
 }
 
-// Stage `foam` (ocean-core foam::FoamBlock): mode 0 none, 1 heuristic, 2 jacobian,
-// 3 accumulated.
+// `FoamBlock::mode`: the foam technique (ocean-core foam::FOAM_NONE, …).
+const FOAM_NONE: f32 = 0.0;
+const FOAM_HEURISTIC: f32 = 1.0;
+const FOAM_JACOBIAN: f32 = 2.0;
+const FOAM_ACCUMULATED: f32 = 3.0;
+
+// Stage `foam` (ocean-core foam::FoamBlock).
 struct FoamBlock {
     mode: f32,
     intensity: f32,

@@ -12,7 +12,7 @@ use std::fmt::Write as _;
 
 use anyhow::Context;
 use ocean_core::camera::Camera;
-use ocean_core::plan::{FramePlan, OutputKind, SYSTEMS, Stage, System, TECHNIQUES};
+use ocean_core::plan::{FramePlan, OutputKind, SYSTEMS, Stage, System};
 use ocean_core::scene::Scene;
 use ocean_core::supersample::{band_error, box_filter, sea_bands};
 
@@ -130,9 +130,9 @@ impl Systems {
     }
 }
 
-/// Systems the section shows: those available.
+/// Systems the section shows: all of them.
 pub(super) fn systems() -> impl Iterator<Item = System> {
-    SYSTEMS.iter().map(|s| s.system).filter(|s| s.available())
+    SYSTEMS.iter().map(|s| s.system)
 }
 
 /// Progress steps of [`measure`].
@@ -222,16 +222,13 @@ pub(super) fn measure(ctx: &Ctx) -> anyhow::Result<Systems> {
 /// (system, stage, technique, source).
 pub(super) fn unique_techniques() -> Vec<(&'static str, &'static str, &'static str, &'static str)> {
     let mut out = Vec::new();
-    for info in SYSTEMS.iter().filter(|s| s.system.available()) {
-        for (k, stage) in Stage::ALL.iter().enumerate() {
-            let t = info.techniques[k];
-            let shared = SYSTEMS.iter().any(|o| o.system != info.system && o.techniques[k] == t);
+    for info in SYSTEMS {
+        for stage in Stage::ALL {
+            let t = info.techniques.of(stage);
+            let shared =
+                SYSTEMS.iter().any(|o| o.system != info.system && o.techniques.of(stage) == t);
             if !shared {
-                let source = TECHNIQUES
-                    .iter()
-                    .find(|x| x.stage == *stage && x.name == t)
-                    .map_or("", |x| x.source);
-                out.push((info.name, stage.name(), t, source));
+                out.push((info.name, stage.name(), t.name, t.source));
             }
         }
     }

@@ -13,12 +13,13 @@ use std::sync::{Arc, Mutex, mpsc};
 use std::time::{Duration, Instant};
 
 use anyhow::{Context, anyhow, bail};
-use ocean_core::plan::{FramePlan, FrameState, OutputKind};
+use ocean_core::graph::FrameState;
+use ocean_core::plan::{FramePlan, OutputKind};
 use ocean_core::scene::{Ocean, Scene};
 use ocean_core::waves::OceanSurface;
 use ocean_gpu::frame::wave_key;
 use ocean_gpu::present::PresentStage;
-use ocean_gpu::texture::{Readbacks, TexelData};
+use ocean_gpu::readback::{Readbacks, TexelData};
 use ocean_gpu::timing::PendingTimings;
 use ocean_gpu::{Gpu, Readback, Renderer, WaveSynthesis};
 use winit::application::ApplicationHandler;

@@ -13,7 +13,6 @@
 
 use glam::{DMat4, DVec3, DVec4};
 
-use crate::scene;
 use crate::{Error, Result};
 
 /// Near-plane distance, m. Small enough for a camera 0.5 m above the crests; with reversed-Z
@@ -41,17 +40,6 @@ pub struct Camera {
 }
 
 impl Camera {
-    /// The camera of a scene (validated: eye ≠ look_at, fov in (0°, 180°)).
-    pub fn from_scene(c: &scene::Camera) -> Result<Self> {
-        Self::look_at(
-            DVec3::from_array(c.position),
-            DVec3::from_array(c.look_at),
-            c.fov_y_deg.to_radians(),
-            c.width,
-            c.height,
-        )
-    }
-
     /// A camera at `eye` looking at `target`.
     pub fn look_at(eye: DVec3, target: DVec3, fov_y: f64, width: u32, height: u32) -> Result<Self> {
         let d = target - eye;
@@ -160,21 +148,6 @@ impl Camera {
         let forward = -r.row(2).normalize();
         let eye = -(r.transpose() * view.w_axis.truncate());
         Ok(Self { eye, forward, right, up, fov_y, width, height })
-    }
-
-    /// `base` (exposure and the rest) with this camera's eye, a point 1 m ahead, field of
-    /// view and image size: the scene camera a plan is made for. Its roll, if any, is not in
-    /// a scene camera; frames drawn with this camera itself keep it
-    /// ([`crate::plan::FrameInputs::with_camera`]).
-    pub fn to_scene(&self, base: &scene::Camera) -> scene::Camera {
-        scene::Camera {
-            position: self.eye.to_array(),
-            look_at: (self.eye + self.forward).to_array(),
-            fov_y_deg: self.fov_y.to_degrees(),
-            width: self.width,
-            height: self.height,
-            ..base.clone()
-        }
     }
 
     /// The angle a pixel spans at the image's centre, rad: 2 tan(fov_y/2) / height.
@@ -296,7 +269,7 @@ mod tests {
                 }
                 assert!((got.fov_y - want.fov_y).abs() < 1e-12);
                 // Its scene camera is the same camera again.
-                let base = scene::Camera::default();
+                let base = crate::scene::Camera::default();
                 let again = Camera::from_scene(&got.to_scene(&base)).unwrap();
                 assert!((again.forward - want.forward).length() < 1e-12);
                 assert_eq!((again.width, again.height), (320, 180));

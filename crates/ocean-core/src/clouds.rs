@@ -17,6 +17,8 @@
 //! sun's irradiance over π plus the clear sky's ambient): the objects' lighting. The sun's
 //! light on the sea and the objects is dimmed by the cloud in front of the sun (1 − α there).
 
+use serde::{Deserialize, Serialize};
+
 /// The noise lattice's period, cells (a power of two: the octaves' lattices, 2^o as fine,
 /// share it).
 pub const CLOUD_PERIOD: u32 = 256;
@@ -141,7 +143,7 @@ pub fn cloud_alpha(origin: [f32; 4], mean: f32, dir: [f32; 3]) -> f32 {
 /// less the wind's drift (the clouds move with the wind), in cells reduced modulo the period
 /// (f64, so a far eye keeps its digits; the time modulo 10⁹ s), with the seed's offset; the
 /// layer's height above the eye in cells; the threshold of the coverage.
-pub fn cloud_origin(clouds: &crate::scene::Clouds, eye: [f64; 3], time_s: f64) -> [f32; 4] {
+pub fn cloud_origin(clouds: &Clouds, eye: [f64; 3], time_s: f64) -> [f32; 4] {
     let period = f64::from(CLOUD_PERIOD);
     // A seed moves the lattice by whole cells (a different sky, the same statistics).
     let (sx, sz) = (f64::from(clouds.seed % 251) * 37.0, f64::from(clouds.seed % 241) * 53.0);
@@ -154,4 +156,37 @@ pub fn cloud_origin(clouds: &crate::scene::Clouds, eye: [f64; 3], time_s: f64) -
         ((clouds.altitude_m - eye[1]) / clouds.scale_m) as f32,
         cloud_threshold(clouds.coverage as f32),
     ]
+}
+
+/// The `[clouds]` table: the cloud layer of sky technique `preetham_clouds` (seed 001 eq. 4;
+/// the model is `crate::clouds`'). Deterministic: the sky is a function of the scene and the
+/// time.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Clouds {
+    /// 0 a clear sky, 1 an overcast one.
+    pub coverage: f64,
+    /// Height of the layer above the sea, m.
+    pub altitude_m: f64,
+    /// Side of a cell of the noise's coarsest octave, m (clouds are about this wide).
+    pub scale_m: f64,
+    /// The layer's drift (x, z), m/s.
+    pub wind: [f64; 2],
+    /// The clouds' albedo: their colour is this times the light on a white surface.
+    pub albedo: f64,
+    /// Which sky of these statistics.
+    pub seed: u32,
+}
+
+impl Default for Clouds {
+    fn default() -> Self {
+        Self {
+            coverage: 0.5,
+            altitude_m: 2000.0,
+            scale_m: 1500.0,
+            wind: [8.0, 2.0],
+            albedo: 0.8,
+            seed: 1,
+        }
+    }
 }

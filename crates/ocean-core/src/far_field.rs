@@ -38,36 +38,22 @@ use rayon::prelude::*;
 
 use crate::fresnel::fresnel_exact;
 
-/// Which far-field technique a frame runs (the plan's `far_field` technique).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum FarField {
-    /// Level 0, bilinear.
-    #[default]
-    None,
-    /// Mip chains, trilinear at the footprint's LOD.
-    Mip,
-    /// Mip chains and the unresolved slope variance in the BRDF.
-    Variance,
-}
+pub use crate::stage::FarField;
+
+/// `FarFieldBlock::mode` of far field `none` (WGSL `FAR_NONE`, shared/frame.wgsl).
+pub const FAR_NONE: f32 = 0.0;
+/// `FarFieldBlock::mode` of far field `mip` (WGSL `FAR_MIP`).
+pub const FAR_MIP: f32 = 1.0;
+/// `FarFieldBlock::mode` of far field `variance` (WGSL `FAR_VARIANCE`).
+pub const FAR_VARIANCE: f32 = 2.0;
 
 impl FarField {
-    /// The technique called `name` (the technique table's names).
-    pub fn from_name(name: &str) -> Option<Self> {
-        match name {
-            "none" => Some(Self::None),
-            "mip" => Some(Self::Mip),
-            "variance" => Some(Self::Variance),
-            _ => None,
-        }
-    }
-
     /// The value of `FarFieldBlock::mode` that selects it in the water shader.
     pub fn code(self) -> f32 {
         match self {
-            Self::None => 0.0,
-            Self::Mip => 1.0,
-            Self::Variance => 2.0,
+            Self::None => FAR_NONE,
+            Self::Mip => FAR_MIP,
+            Self::Variance => FAR_VARIANCE,
         }
     }
 }

@@ -25,7 +25,7 @@
 //!   dimension (dh/dx' = h'(x)/(1 + D'(x))).
 //! - `jacobian`: t = clamp((threshold − J)/softness, 0, 1): foam where the horizontal
 //!   displacement compresses (J < 1) or folds (J < 0) the surface (Tessendorf 2001 §4.4).
-//! - `accumulated`: a field f carried across frames in [`crate::plan::FrameState`], one fixed
+//! - `accumulated`: a field f carried across frames in [`crate::graph::FrameState`], one fixed
 //!   step of `[foam] step_s` per frame ([`accumulate_step`]):
 //!   f ← min(f·e^(−Δt/τ) + g·Δt·clamp((threshold − J)/softness, 0, 1), 1), from f = 0;
 //!   t = f. Under waves `fft` the field lives on the displacement map's own texel grid
@@ -46,8 +46,6 @@
 
 use bytemuck::{Pod, Zeroable};
 
-use crate::scene::Scene;
-
 /// The noise lattice's period, cells (a power of two).
 pub const FOAM_NOISE_PERIOD: u32 = 256;
 
@@ -60,13 +58,32 @@ pub const FOAM_INV_PI: f32 = std::f32::consts::FRAC_1_PI;
 /// The smallest J the heuristic's slope divides by (a fold, J ≤ 0, is as steep as this).
 pub const FOAM_MIN_JACOBIAN: f32 = 0.1;
 
-/// The foam technique's number in [`FoamBlock::mode`].
-pub fn mode_of(technique: &str) -> f32 {
-    match technique {
-        "heuristic" => 1.0,
-        "jacobian" => 2.0,
-        "accumulated" => 3.0,
-        _ => 0.0,
+/// [`FoamBlock::mode`] of foam `none` (WGSL `FOAM_NONE`, shared/frame.wgsl).
+pub const FOAM_NONE: f32 = 0.0;
+/// [`FoamBlock::mode`] of foam `heuristic` (WGSL `FOAM_HEURISTIC`).
+pub const FOAM_HEURISTIC: f32 = 1.0;
+/// [`FoamBlock::mode`] of foam `jacobian` (WGSL `FOAM_JACOBIAN`).
+pub const FOAM_JACOBIAN: f32 = 2.0;
+/// [`FoamBlock::mode`] of foam `accumulated` (WGSL `FOAM_ACCUMULATED`).
+pub const FOAM_ACCUMULATED: f32 = 3.0;
+
+impl crate::stage::Foam {
+    /// The technique's number in [`FoamBlock::mode`] (the water shader's branch).
+    pub fn code(self) -> f32 {
+        use crate::stage::Foam;
+        match self {
+            Foam::None => FOAM_NONE,
+            Foam::Heuristic => FOAM_HEURISTIC,
+            Foam::Jacobian => FOAM_JACOBIAN,
+            Foam::Accumulated => FOAM_ACCUMULATED,
+        }
+    }
+
+    /// The technique whose [`FoamBlock::mode`] is `code` (tools that rerun the water pass
+    /// from a frame's uniforms), if any.
+    pub fn from_code(code: f32) -> Option<Self> {
+        use crate::stage::{Foam, StageTechnique};
+        Foam::ALL.iter().copied().find(|f| f.code() == code)
     }
 }
 
@@ -129,16 +146,6 @@ pub struct FieldGrid {
 }
 
 impl FieldGrid {
-    /// The field of a scene whose waves technique is `waves`.
-    pub fn of(scene: &Scene, waves: &str) -> Self {
-        if crate::plan::waves_per_vertex(waves) {
-            Self { size: scene.foam.grid, cell_m: scene.foam.cell_m, windowed: true }
-        } else {
-            let n = scene.ocean.resolution;
-            Self { size: n, cell_m: scene.ocean.patch_size_m / f64::from(n), windowed: false }
-        }
-    }
-
     /// The side of the field, m.
     pub fn side_m(&self) -> f64 {
         self.cell_m * f64::from(self.size)
@@ -151,50 +158,6 @@ impl FieldGrid {
             return [0, 0];
         }
         eye.map(|e| (e / self.cell_m).floor() as i64 - i64::from(self.size / 2))
-    }
-}
-
-impl FoamBlock {
-    /// The block of a validated scene's frame under foam technique `technique` and waves
-    /// technique `waves`, for a mesh whose reference point is world (x, z) `mesh_origin`.
-    pub fn new(scene: &Scene, technique: &str, waves: &str, mesh_origin: [f64; 2]) -> Self {
-        let f = &scene.foam;
-        // The texture lies on axes along and across the wind, so the reference point is
-        // turned onto them (in f64) before each coordinate is reduced modulo its period.
-        let noise_period = f.texture_scale_m * f64::from(FOAM_NOISE_PERIOD);
-        let (sin_w, cos_w) = scene.ocean.wind_direction_deg.to_radians().sin_cos();
-        let along = mesh_origin[0] * cos_w + mesh_origin[1] * sin_w;
-        let across = mesh_origin[1] * cos_w - mesh_origin[0] * sin_w;
-        let grid = FieldGrid::of(scene, waves);
-        let side = grid.side_m();
-        // The fade ends 0.45 of the side from the eye, where the window's nearest edge
-        // is at least 0.5 − 1/size sides away; it starts at 0.35.
-        let (window_outer, inv_window_band) =
-            if grid.windowed { (0.45 * side, 1.0 / (0.1 * side)) } else { (0.0, 0.0) };
-        FoamBlock {
-            mode: mode_of(technique),
-            intensity: f.coverage as f32,
-            threshold: f.threshold as f32,
-            inv_softness: (1.0 / f.softness) as f32,
-            color: f.color.map(|c| c as f32),
-            inv_crest_height: (1.0 / f.crest_height_m) as f32,
-            noise_origin: [
-                along.rem_euclid(noise_period * FOAM_STREAK) as f32,
-                across.rem_euclid(noise_period) as f32,
-            ],
-            inv_noise_cell: (1.0 / f.texture_scale_m) as f32,
-            inv_crest_slope: (1.0 / f.crest_slope) as f32,
-            field_origin: mesh_origin.map(|c| c.rem_euclid(side) as f32),
-            inv_field_size: (1.0 / side) as f32,
-            field_half_texel: (0.5 / f64::from(grid.size)) as f32,
-            window_outer: window_outer as f32,
-            inv_window_band: inv_window_band as f32,
-            seed: f.seed,
-            inv_noise_cell_along: (1.0 / (f.texture_scale_m * FOAM_STREAK)) as f32,
-            wind: [cos_w as f32, sin_w as f32],
-            pad0: 0.0,
-            pad1: 0.0,
-        }
     }
 }
 
@@ -292,41 +255,6 @@ pub struct FoamStepUniforms {
     pub pad0: f32,
 }
 
-impl FoamStepUniforms {
-    /// One step of a validated scene's field `grid` with the window starting at lattice
-    /// index `start` (previous step: `prev`), for a mesh whose reference point is world
-    /// (x, z) `mesh_origin`.
-    pub fn new(
-        scene: &Scene,
-        grid: &FieldGrid,
-        start: [i64; 2],
-        prev: [i64; 2],
-        mesh_origin: [f64; 2],
-    ) -> Self {
-        let f = &scene.foam;
-        let n = i64::from(grid.size);
-        let m = |v: i64| v.rem_euclid(n) as u32;
-        let shift = |a: usize| (start[a] - prev[a]).clamp(-n, n) as i32;
-        Self {
-            size: grid.size,
-            analytic: u32::from(grid.windowed),
-            start: [m(start[0]), m(start[1])],
-            start_prev: [m(prev[0]), m(prev[1])],
-            shift: [shift(0), shift(1)],
-            start_rel: [
-                (start[0] as f64 * grid.cell_m - mesh_origin[0]) as f32,
-                (start[1] as f64 * grid.cell_m - mesh_origin[1]) as f32,
-            ],
-            cell_m: grid.cell_m as f32,
-            decay: (-f.step_s / f.decay_s).exp() as f32,
-            growth: (f.growth_per_s * f.step_s) as f32,
-            threshold: f.threshold as f32,
-            inv_softness: (1.0 / f.softness) as f32,
-            pad0: 0.0,
-        }
-    }
-}
-
 /// One texel's step: `f` the field's value, `j` the Jacobian there, `fresh` whether the
 /// texel's lattice point entered the window this step.
 pub fn accumulate_step(f: f32, j: f32, fresh: bool, u: &FoamStepUniforms) -> f32 {
@@ -352,6 +280,7 @@ pub fn texel_offset(i: u32, axis: usize, u: &FoamStepUniforms) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::Scene;
 
     #[test]
     fn the_hash_is_uniform_enough_and_the_noise_stays_in_range() {

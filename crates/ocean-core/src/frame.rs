@@ -6,6 +6,7 @@
 //! coordinates that reach f32 are the eye's height and the eye's position modulo each wave
 //! patch (reduced in f64), which is what tiling the maps needs.
 
+use crate::stage::{Shading, Surface, Waves};
 use bytemuck::{Pod, Zeroable};
 use glam::{DMat4, DVec3, DVec4};
 
@@ -18,6 +19,12 @@ pub use crate::terrain::{TerrainBlock, terrain_triangles};
 use crate::waves::WaveMaps;
 
 mod boat;
+mod foam;
+
+pub use crate::geometry::ProjectedGridBlock;
+pub use crate::objects::{ObjectVertex, SPHERE_BANDS, SPHERE_SEGMENTS};
+pub use crate::scene::coastal_sea;
+use crate::scene::finite_time;
 
 pub use boat::{
     BOW_SHARE, HULL_TRIANGLES, ObjectPoses, SETTLE_STEPS, hull_bounds, hull_faces, hull_triangles,
@@ -33,12 +40,7 @@ pub const SUN_SPECULAR_EXPONENT: f32 = 400.0;
 pub const REFLECTION_DISTORTION: f32 = 0.04;
 /// The same for the refraction map.
 pub const REFRACTION_DISTORTION: f32 = 0.03;
-/// Default of `water.extinction_per_m`: diffuse extinction coefficient K of clear ocean water, 1/m (Jerlov type II, ~0.1 /m at
-/// 500 nm); used by eq. 4's fog-from-depth and the water-volume colour.
-pub const WATER_EXTINCTION_PER_M: f64 = 0.12;
-/// Default of `water.color`: colour of deep water seen from above (linear RGB radiance at sun intensity 1), the
-/// C_deep_water of eq. 4.
-pub const DEEP_WATER_COLOR: [f64; 3] = [0.004, 0.016, 0.028];
+pub use crate::scene::{DEEP_WATER_COLOR, MAX_SCALES, WATER_EXTINCTION_PER_M};
 
 /// The view from the eye (every stage that draws in the main view or its maps).
 #[repr(C)]
@@ -152,9 +154,6 @@ pub struct GgxShadingBlock {
     /// Schlick's F0 = ((η − 1)/(η + 1))², formed in f64.
     pub f0: f32,
 }
-
-/// The most scales of eq. 1 ([`MultiScaleBlock`]).
-pub const MAX_SCALES: usize = 4;
 
 /// Eq. 1 of seed 001 (shading `chiu`): the surface Σ_i a_i·D(x/s_i) of the displacement map
 /// D, per scale i (up to [`MAX_SCALES`]; unused ones have weight 0): 1/(L·s_i), a_i, the
@@ -409,60 +408,23 @@ pub struct FrameUniforms {
     pub coastal_shading: crate::waves::coastal::CoastalShadingBlock,
 }
 
-/// Surface `projected_grid` ([`crate::geometry::ProjectedGrid`]): the grid's corners and size.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-pub struct ProjectedGridBlock {
-    /// The corners (u, v) = (0, 0), (1, 0), (0, 1), (1, 1) on the sea plane, homogeneous and
-    /// relative to the eye ((p − eye)·w, w).
-    pub corners: [[f32; 4]; 4],
-    /// Quads across (u); 0 when the view holds no sea or the surface is another technique.
-    pub cols: f32,
-    /// Quads along v.
-    pub rows: f32,
-    /// 1: surface `shore_grid`, whose parameters the corners hold
-    /// ([`crate::geometry::shore_grid::block`]); 0: the projected grid.
-    pub shore: f32,
-    /// The angle between grid lines, rad (`cell_px` pixels): a vertex's spacing across the
-    /// view is this times its distance (waves `coastal` fade what it cannot hold).
-    pub cell_angle: f32,
-}
-
-impl ProjectedGridBlock {
-    /// The margin of the wave bound over the sea's significant wave height: the crests and
-    /// the horizontal (choppy) displacement stay within 3·H_s of the plane but for a chance of
-    /// about e^(−18) per wave (Rayleigh crests, P(a > x) = e^(−2x²/H_s²)).
-    pub const BOUND_OVER_HS: f64 = 3.0;
-
-    /// The block of a `width` × `height` view through `camera` over a sea whose waves stay
-    /// within `wave_bound` = (vertical, horizontal) m of their undisplaced point (the plan's
-    /// `wave_bound_m`, [`Self::BOUND_OVER_HS`] times H_s, and that times the choppiness),
-    /// `cell_px` pixels between grid lines (at most 4096 quads a side).
-    pub fn new(camera: &crate::camera::Camera, wave_bound: [f64; 2], cell_px: f64) -> Self {
-        let Some(grid) = crate::geometry::ProjectedGrid::new(camera, wave_bound[0], wave_bound[1])
-        else {
-            return Self::zeroed();
-        };
-        let (cols, rows) = Self::quads(camera.width, camera.height, cell_px);
-        Self {
-            corners: grid.corners.map(|c| c.as_vec4().to_array()),
-            cols: cols as f32,
-            rows: rows as f32,
-            shore: 0.0,
-            cell_angle: (cell_px * camera.pixel_angle()) as f32,
-        }
-    }
-
-    /// The grid's quads across and along for a `width` × `height` image, `cell_px` pixels
-    /// between lines: ⌈width/cell⌉ × ⌈height/cell⌉, each from 1 to 4096.
-    pub fn quads(width: u32, height: u32, cell_px: f64) -> (u32, u32) {
-        let q = |px: u32| (f64::from(px) / cell_px).ceil().clamp(1.0, 4096.0) as u32;
-        (q(width), q(height))
-    }
-
-    /// Vertices the water pass draws (a triangle list, six per quad).
-    pub fn vertex_count(&self) -> u32 {
-        6 * self.cols as u32 * self.rows as u32
+// The clipmap a frame draws: here, where the scene and the plan are known, so the clipmap's
+// geometry depends on neither.
+impl crate::geometry::Clipmap {
+    /// The clipmap of a frame of `plan` seen through `camera`, if its surface is `clipmap`.
+    pub fn of_frame(
+        scene: &crate::scene::Scene,
+        camera: &crate::camera::Camera,
+        plan: &crate::plan::FramePlan,
+    ) -> Option<crate::Result<Self>> {
+        (plan.techniques.surface() == Surface::Clipmap).then(|| {
+            Self::new(
+                [camera.eye.x, camera.eye.z],
+                camera.eye.y,
+                scene.quality.clipmap_cell_m,
+                scene.quality.clipmap_cells,
+            )
+        })
     }
 }
 
@@ -527,24 +489,6 @@ impl WaveMipsUniforms {
         Self { width: dst[0], height: dst[1], src_width: src[0], src_height: src[1] }
     }
 }
-
-/// Vertex of the objects' meshes (WGSL `ObjectVertex`): camera-relative position, unit normal,
-/// linear albedo.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-pub struct ObjectVertex {
-    /// Position − eye, m.
-    pub position: [f32; 3],
-    /// Unit normal.
-    pub normal: [f32; 3],
-    /// Linear RGB albedo.
-    pub color: [f32; 3],
-}
-
-/// Tessellation of a sphere: latitude bands × longitude segments.
-pub const SPHERE_BANDS: u32 = 24;
-/// Longitude segments of a sphere.
-pub const SPHERE_SEGMENTS: u32 = 48;
 
 /// Triangles (three vertices each) of every object, camera-relative, counter-clockwise seen
 /// from outside; boats at their entries in `poses` (indexed as `objects`), else at rest.
@@ -672,10 +616,10 @@ pub fn pass_floor_triangles(
 /// patch's side (its longest wave). `None` under waves `coastal` (its own shoaling).
 pub fn damped_wavelengths(scene: &Scene, plan: &FramePlan) -> Option<[f64; 2]> {
     let o = &scene.ocean;
-    match plan.techniques.of(crate::plan::Stage::Waves).name {
-        "coastal" => None,
-        "gerstner" => Some([scene.gerstner.median_wavelength_m; 2]),
-        _ => {
+    match plan.techniques.waves() {
+        Waves::Coastal => None,
+        Waves::Gerstner => Some([scene.gerstner.median_wavelength_m; 2]),
+        Waves::Fft => {
             let g = o.dispersion().map_or(9.81, |d| d.gravity);
             let peak = o
                 .wave_spectrum()
@@ -691,7 +635,7 @@ pub fn damped_wavelengths(scene: &Scene, plan: &FramePlan) -> Option<[f64; 2]> {
 /// How high the sand is wet, m above the sea plane: the coastal waves' run-up (ocean-core
 /// waves::coastal, "The shore zones"); 0 (no wet band) under the other waves techniques.
 pub fn wet_top_m(scene: &Scene) -> f64 {
-    if scene.techniques().of(crate::plan::Stage::Waves).name != "coastal" {
+    if scene.techniques().waves() != Waves::Coastal {
         return 0.0;
     }
     // The run-up does not depend on the time: any finite one.
@@ -789,7 +733,7 @@ impl FrameUniforms {
         let shadow = sun_view_proj(&scene.objects, poses, eye, sun_dir).unwrap_or(DMat4::IDENTITY);
         let flag = |p: Pass| if plan.runs(p) { 1.0 } else { 0.0 };
         let eta = scene.water.ior as f32;
-        let shading = plan.techniques.of(crate::plan::Stage::Shading).name;
+        let shading = plan.techniques.shading();
         FrameUniforms {
             view: ViewBlock {
                 view_proj: to_cols_f32(camera.view_proj()),
@@ -829,7 +773,7 @@ impl FrameUniforms {
                 extinction_per_m: scene.water.extinction_per_m as f32,
                 eta,
                 inv_eta: 1.0 / eta,
-                volume_model: if shading == "chiu" { 1.0 } else { 0.0 },
+                volume_model: if shading == Shading::Chiu { 1.0 } else { 0.0 },
                 kd_per_m: scene.chiu.kd_per_m as f32,
             },
             hu: HuShadingBlock {
@@ -848,10 +792,7 @@ impl FrameUniforms {
             },
             ambient: AmbientBlock { sky: [0.0; 3], pad: 0.0 },
             far: FarFieldBlock::new(
-                crate::far_field::FarField::from_name(
-                    plan.techniques.of(crate::plan::Stage::FarField).name,
-                )
-                .unwrap_or_default(),
+                plan.techniques.far_field(),
                 camera.fov_y,
                 camera.height,
                 (o.resolution, l_d),
@@ -859,21 +800,21 @@ impl FrameUniforms {
             )
             .with_sun(sun_dir.normalize_or_zero().y, f64::from(SUN_SPECULAR_EXPONENT))
             .with_mesh(scene.quality.lod_split_threshold, l_d / f64::from(o.resolution.max(1))),
-            grid: if plan.techniques.of(crate::plan::Stage::Surface).name == "projected_grid" {
-                ProjectedGridBlock::new(
+            grid: match plan.techniques.surface() {
+                Surface::ProjectedGrid => ProjectedGridBlock::new(
                     camera,
                     plan.wave_bound_m,
                     scene.quality.projected_grid_cell_px,
-                )
-            } else if plan.techniques.of(crate::plan::Stage::Surface).name == "shore_grid" {
-                crate::geometry::shore_grid::block(camera, scene.quality.projected_grid_cell_px)
-            } else {
-                ProjectedGridBlock::zeroed()
+                ),
+                Surface::ShoreGrid => {
+                    crate::geometry::shore_grid::block(camera, scene.quality.projected_grid_cell_px)
+                }
+                Surface::HuPatches | Surface::Clipmap => ProjectedGridBlock::zeroed(),
             },
             chiu: ChiuShadingBlock {
                 zeta_m: scene.chiu.zeta_m as f32,
                 shininess_per_m: scene.chiu.shininess_per_m as f32,
-                clip_waves: if shading == "chiu" { 1.0 } else { 0.0 },
+                clip_waves: if shading == Shading::Chiu { 1.0 } else { 0.0 },
                 pad1: 0.0,
             },
             terrain: TerrainBlock::new(
@@ -884,13 +825,13 @@ impl FrameUniforms {
                 scene.water.ior,
                 damped_wavelengths(scene, plan),
             ),
-            scales: if shading == "chiu" {
+            scales: if shading == Shading::Chiu {
                 MultiScaleBlock::new(&scene.chiu.scales, l_d, mesh_origin)
             } else {
                 MultiScaleBlock::zeroed()
             },
-            gerstner: match (plan.techniques.of(crate::plan::Stage::Waves).name, o.dispersion()) {
-                ("gerstner", Ok(d)) => crate::waves::gerstner::GerstnerBlock::new(
+            gerstner: match (plan.techniques.waves(), o.dispersion()) {
+                (Waves::Gerstner, Ok(d)) => crate::waves::gerstner::GerstnerBlock::new(
                     &scene.gerstner.at(o.time_s, &d, o.wind_direction_deg),
                     mesh_origin,
                 ),
@@ -918,7 +859,7 @@ impl FrameUniforms {
                 ),
                 _ => Zeroable::zeroed(),
             },
-            detail: if shading == "ggx" && scene.ggx.detail_strength > 0.0 {
+            detail: if shading == Shading::Ggx && scene.ggx.detail_strength > 0.0 {
                 crate::detail::DetailBlock::new(
                     &crate::detail::detail_waves(
                         scene.ggx.detail_wavelength_m,
@@ -934,14 +875,14 @@ impl FrameUniforms {
             },
             foam: crate::foam::FoamBlock::new(
                 scene,
-                plan.techniques.of(crate::plan::Stage::Foam).name,
-                plan.techniques.of(crate::plan::Stage::Waves).name,
+                plan.techniques.foam(),
+                plan.techniques.waves(),
                 mesh_origin,
             ),
-            coastal: match plan.techniques.of(crate::plan::Stage::Waves).name {
-                "coastal" => coastal_sea(scene, o.time_s)
+            coastal: match plan.techniques.waves() {
+                Waves::Coastal => coastal_sea(scene, o.time_s)
                     .map_or_else(|_| Zeroable::zeroed(), |sea| sea.block(mesh_origin)),
-                _ => Zeroable::zeroed(),
+                Waves::Fft | Waves::Gerstner => Zeroable::zeroed(),
             },
             coastal_shading: crate::waves::coastal::CoastalShadingBlock::new(
                 &scene.coastal,
@@ -949,35 +890,6 @@ impl FrameUniforms {
             ),
         }
     }
-}
-
-/// Waves technique `coastal`'s sea of `scene` at time `t` (s): its `[coastal]` waves over its
-/// `[terrain]` (or the open sea's depth of `[chiu]` without one, as the shaders' floor).
-///
-/// # Errors
-/// The scene's dispersion cannot be built, or a non-finite time.
-pub fn coastal_sea(scene: &Scene, t: f64) -> crate::Result<crate::waves::coastal::CoastalSea> {
-    finite_time(t)?;
-    Ok(crate::waves::coastal::CoastalSea::new(
-        &scene.coastal,
-        scene.terrain.as_ref(),
-        scene.chiu.open_sea_depth_m,
-        &scene.ocean.dispersion()?,
-        t,
-    ))
-}
-
-/// `t` if finite: the waves summed per vertex take any finite time (their phases are reduced
-/// in f64), and nothing else.
-fn finite_time(t: f64) -> crate::Result<f64> {
-    if t.is_finite() {
-        return Ok(t);
-    }
-    Err(crate::Error::InvalidParameter {
-        name: "time",
-        value: t,
-        reason: "the waves' time must be finite".into(),
-    })
 }
 
 /// The height query of a frame of `plan` at time `t` (s): under waves `fft` the displacement
@@ -1019,15 +931,13 @@ impl<'a> SurfaceSource<'a> {
     /// The scene's spectrum, modes or dispersion cannot be built.
     pub fn new(scene: &'a Scene, plan: &FramePlan) -> crate::Result<Self> {
         let o = &scene.ocean;
-        let sea = if plan.techniques.of(crate::plan::Stage::Waves).name == "gerstner" {
-            Sea::Gerstner(o.dispersion()?)
-        } else if plan.techniques.of(crate::plan::Stage::Waves).name == "coastal" {
-            Sea::Coastal(Box::new(coastal_sea(scene, o.time_s)?))
-        } else {
-            Sea::Fft {
+        let sea = match plan.techniques.waves() {
+            Waves::Gerstner => Sea::Gerstner(o.dispersion()?),
+            Waves::Coastal => Sea::Coastal(Box::new(coastal_sea(scene, o.time_s)?)),
+            Waves::Fft => Sea::Fft {
                 modes: o.displacement_modes()?,
-                chiu: plan.techniques.of(crate::plan::Stage::Shading).name == "chiu",
-            }
+                chiu: plan.techniques.shading() == Shading::Chiu,
+            },
         };
         Ok(Self { scene, sea, damped_m: damped_wavelengths(scene, plan).map(|l| l[0]) })
     }

@@ -32,13 +32,13 @@ pub mod shore_grid;
 
 pub use clipmap::{CLIPMAP_CELLS_RANGE, Clipmap, ClipmapBlock, MAX_CLIPMAP_LEVELS};
 pub use far::{FarPatch, PlacedFarPatch, visible_half_angle};
-pub use mesh::{MeshSummary, WaterMesh};
+pub use mesh::{MeshSummary, ObjectVertex, WaterMesh};
 pub use near::NearPatch;
 pub use params::{
     DEFAULT_NEAR_SIZE_M, MAX_HEIGHT_M, MAX_NEAR_LEVELS, PatchParams, STITCH_CLEARANCE,
     stitch_radius, wave_reach_m,
 };
-pub use projected::{HORIZON_DISTANCE_H, ProjectedGrid};
+pub use projected::{HORIZON_DISTANCE_H, ProjectedGrid, ProjectedGridBlock};
 
 use crate::Result;
 use params::invalid;

@@ -22,7 +22,20 @@ use std::f64::consts::PI;
 
 use glam::DVec3;
 
+use serde::{Deserialize, Serialize};
+
 use crate::fresnel::{fresnel_exact, fresnel_schlick};
+
+/// The Fresnel term of shading `ggx`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum GgxFresnel {
+    /// Eq. 2 of seed 000.
+    #[default]
+    Exact,
+    /// Schlick's approximation, F0 = ((η − 1)/(η + 1))².
+    Schlick,
+}
 
 /// The least α: below it D is a spike no f64 quadrature or f32 shader resolves (a mirror).
 pub const MIN_ALPHA: f64 = 1e-3;

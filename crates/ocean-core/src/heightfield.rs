@@ -20,7 +20,7 @@ pub fn channels(scene: &Scene) -> crate::Result<(usize, Channels)> {
     use crate::waves::{SurfaceSample, Synthesizer, WaveMaps};
     let ocean = &scene.ocean;
     let plan = crate::plan::FramePlan::new(scene, crate::plan::OutputKind::Hdr);
-    if crate::plan::waves_per_vertex(plan.techniques.of(crate::plan::Stage::Waves).name) {
+    if plan.techniques.waves().per_vertex() {
         let n = ocean.resolution as usize;
         let sea = crate::frame::surface_query(scene, &plan, ocean.time_s)?;
         let step = ocean.patch_size_m / n as f64;

@@ -11,7 +11,7 @@ use std::io::Read;
 use std::path::Path;
 use std::sync::atomic::{AtomicU64, Ordering};
 
-/// The budget set by [`set_decode_budget`]; 0 = [`crate::plan::memory::default_limit`].
+/// The budget set by [`set_decode_budget`]; 0 = [`crate::sizes::default_limit`].
 static DECODE_BUDGET: AtomicU64 = AtomicU64::new(0);
 
 /// Sets the most memory that decoding one input image may take (the command line's
@@ -24,7 +24,7 @@ pub fn set_decode_budget(bytes: u64) {
 /// frame's default limit (three quarters of the machine's memory).
 pub fn decode_budget() -> u64 {
     match DECODE_BUDGET.load(Ordering::Relaxed) {
-        0 => crate::plan::memory::default_limit(),
+        0 => crate::sizes::default_limit(),
         b => b,
     }
 }
@@ -79,7 +79,7 @@ pub fn read_bounded(path: &Path, max_bytes: u64) -> Result<Vec<u8>, String> {
         format!(
             "{}: larger than {} ({} bytes), the most this file may hold",
             path.display(),
-            crate::plan::memory::bytes(max_bytes),
+            crate::sizes::bytes(max_bytes),
             max_bytes
         )
     };
@@ -136,8 +136,8 @@ pub fn check_image_size(
             "{}: decoding its {width}×{height} texels needs about {}, more than the memory \
              limit of {} (--memory-limit)",
             path.display(),
-            crate::plan::memory::bytes(need),
-            crate::plan::memory::bytes(budget)
+            crate::sizes::bytes(need),
+            crate::sizes::bytes(budget)
         ));
     }
     Ok(())

@@ -193,10 +193,8 @@ pub struct SharedFile {
 /// A technique's file: the functions of its stage's interface.
 #[derive(Clone, Copy, Debug)]
 pub struct TechniqueFile {
-    /// The technique stage.
-    pub stage: TechniqueStage,
     /// The technique.
-    pub technique: &'static str,
+    pub technique: &'static crate::stage::TechniqueInfo,
     /// Its path below `shaders/`.
     pub file: &'static str,
     /// Its text.
@@ -743,8 +741,7 @@ const FOAM_INTERFACE: &[&str] = &["foam_coverage"];
 /// Every technique file.
 pub const TECHNIQUE_FILES: &[TechniqueFile] = &[
     TechniqueFile {
-        stage: TechniqueStage::Sky,
-        technique: "preetham",
+        technique: crate::stage::Sky::Preetham.row(),
         file: "sky/preetham.wgsl",
         source: include_str!("../../../shaders/sky/preetham.wgsl"),
         interface: SKY_INTERFACE,
@@ -752,8 +749,7 @@ pub const TECHNIQUE_FILES: &[TechniqueFile] = &[
         cpu_mirror: "crates/ocean-cpu/src/shaders/sky/preetham.rs",
     },
     TechniqueFile {
-        stage: TechniqueStage::Sky,
-        technique: "preetham_clouds",
+        technique: crate::stage::Sky::PreethamClouds.row(),
         file: "sky/preetham_clouds.wgsl",
         source: include_str!("../../../shaders/sky/preetham_clouds.wgsl"),
         interface: SKY_INTERFACE,
@@ -761,8 +757,7 @@ pub const TECHNIQUE_FILES: &[TechniqueFile] = &[
         cpu_mirror: "crates/ocean-cpu/src/shaders/sky/preetham_clouds.rs",
     },
     TechniqueFile {
-        stage: TechniqueStage::Sky,
-        technique: "atmosphere",
+        technique: crate::stage::Sky::Atmosphere.row(),
         file: "sky/atmosphere.wgsl",
         source: include_str!("../../../shaders/sky/atmosphere.wgsl"),
         interface: SKY_INTERFACE,
@@ -770,8 +765,7 @@ pub const TECHNIQUE_FILES: &[TechniqueFile] = &[
         cpu_mirror: "crates/ocean-cpu/src/shaders/sky/atmosphere.rs",
     },
     TechniqueFile {
-        stage: TechniqueStage::Shading,
-        technique: "hu",
+        technique: crate::stage::Shading::Hu.row(),
         file: "shading/hu.wgsl",
         source: include_str!("../../../shaders/shading/hu.wgsl"),
         interface: SHADING_INTERFACE,
@@ -779,8 +773,7 @@ pub const TECHNIQUE_FILES: &[TechniqueFile] = &[
         cpu_mirror: "crates/ocean-cpu/src/shaders/shading/hu.rs",
     },
     TechniqueFile {
-        stage: TechniqueStage::Shading,
-        technique: "chiu",
+        technique: crate::stage::Shading::Chiu.row(),
         file: "shading/chiu.wgsl",
         source: include_str!("../../../shaders/shading/chiu.wgsl"),
         interface: SHADING_INTERFACE,
@@ -788,8 +781,7 @@ pub const TECHNIQUE_FILES: &[TechniqueFile] = &[
         cpu_mirror: "crates/ocean-cpu/src/shaders/shading/chiu.rs",
     },
     TechniqueFile {
-        stage: TechniqueStage::Shading,
-        technique: "ggx",
+        technique: crate::stage::Shading::Ggx.row(),
         file: "shading/ggx.wgsl",
         source: include_str!("../../../shaders/shading/ggx.wgsl"),
         interface: SHADING_INTERFACE,
@@ -797,8 +789,7 @@ pub const TECHNIQUE_FILES: &[TechniqueFile] = &[
         cpu_mirror: "crates/ocean-cpu/src/shaders/shading/ggx.rs",
     },
     TechniqueFile {
-        stage: TechniqueStage::Shading,
-        technique: "coastal",
+        technique: crate::stage::Shading::Coastal.row(),
         file: "shading/coastal.wgsl",
         source: include_str!("../../../shaders/shading/coastal.wgsl"),
         interface: SHADING_INTERFACE,
@@ -806,8 +797,7 @@ pub const TECHNIQUE_FILES: &[TechniqueFile] = &[
         cpu_mirror: "crates/ocean-cpu/src/shaders/shading/coastal.rs",
     },
     TechniqueFile {
-        stage: TechniqueStage::Foam,
-        technique: "none",
+        technique: crate::stage::Foam::None.row(),
         file: "foam/none.wgsl",
         source: include_str!("../../../shaders/foam/none.wgsl"),
         interface: FOAM_INTERFACE,
@@ -815,8 +805,7 @@ pub const TECHNIQUE_FILES: &[TechniqueFile] = &[
         cpu_mirror: "crates/ocean-cpu/src/shaders/foam/none.rs",
     },
     TechniqueFile {
-        stage: TechniqueStage::Foam,
-        technique: "heuristic",
+        technique: crate::stage::Foam::Heuristic.row(),
         file: "foam/heuristic.wgsl",
         source: include_str!("../../../shaders/foam/heuristic.wgsl"),
         interface: FOAM_INTERFACE,
@@ -824,8 +813,7 @@ pub const TECHNIQUE_FILES: &[TechniqueFile] = &[
         cpu_mirror: "crates/ocean-cpu/src/shaders/foam/heuristic.rs",
     },
     TechniqueFile {
-        stage: TechniqueStage::Foam,
-        technique: "jacobian",
+        technique: crate::stage::Foam::Jacobian.row(),
         file: "foam/jacobian.wgsl",
         source: include_str!("../../../shaders/foam/jacobian.wgsl"),
         interface: FOAM_INTERFACE,
@@ -833,8 +821,7 @@ pub const TECHNIQUE_FILES: &[TechniqueFile] = &[
         cpu_mirror: "crates/ocean-cpu/src/shaders/foam/jacobian.rs",
     },
     TechniqueFile {
-        stage: TechniqueStage::Foam,
-        technique: "accumulated",
+        technique: crate::stage::Foam::Accumulated.row(),
         file: "foam/accumulated.wgsl",
         source: include_str!("../../../shaders/foam/accumulated.wgsl"),
         interface: FOAM_INTERFACE,
@@ -853,8 +840,8 @@ pub fn stage(name: &str) -> Option<&'static StageEntry> {
 }
 
 /// The file of technique `technique` of `stage`, when it has one.
-pub fn technique_file(stage: TechniqueStage, technique: &str) -> Option<&'static TechniqueFile> {
-    TECHNIQUE_FILES.iter().find(|t| t.stage == stage && t.technique == technique)
+pub fn technique_file(technique: &crate::stage::TechniqueInfo) -> Option<&'static TechniqueFile> {
+    TECHNIQUE_FILES.iter().find(|t| t.technique == technique)
 }
 
 /// What the repository at `root` lacks for the given tables: each stage's WGSL, CPU mirror
@@ -883,17 +870,16 @@ pub fn missing_pieces(
         need(format!("shared file `{}`: its CPU mirror", f.file), f.cpu_mirror);
     }
     for t in techniques {
-        let name = format!("technique {}/{}", t.stage, t.technique);
+        let name = format!("technique {}/{}", t.technique.stage, t.technique.name);
         need(format!("{name}: its WGSL"), &format!("shaders/{}", t.file));
         need(format!("{name}: its CPU mirror"), t.cpu_mirror);
     }
-    // A stage whose technique is composed into WGSL needs a file for every technique that is
-    // available.
+    // A stage whose technique is composed into WGSL needs a file for every technique.
     for stage in [TechniqueStage::Sky, TechniqueStage::Shading, TechniqueStage::Foam] {
-        for t in stage.techniques().filter(|t| t.available) {
-            if !techniques.iter().any(|f| f.stage == stage && f.technique == t.name) {
+        for t in stage.techniques() {
+            if !techniques.iter().any(|f| f.technique == t) {
                 out.push(format!(
-                    "technique {stage}/{}: available but not in the registry's technique files",
+                    "technique {stage}/{}: in the table but not in the registry's technique files",
                     t.name
                 ));
             }

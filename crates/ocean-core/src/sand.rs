@@ -156,3 +156,6 @@ mod tests {
         }
     }
 }
+
+/// Wet sand's albedo over dry sand's.
+pub const WET_SAND_DARKENING: f64 = 0.55;

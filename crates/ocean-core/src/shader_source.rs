@@ -140,7 +140,7 @@ fn technique_path(stage: &str, name: &str, techniques: &Techniques) -> Result<St
         .find(|s| s.name() == name)
         .ok_or_else(|| err(format!("`// #import technique/{name}`: no such technique stage")))?;
     let t = techniques.of(which);
-    crate::registry::technique_file(which, t.name)
+    crate::registry::technique_file(t)
         .map(|f| f.file.to_owned())
         .ok_or_else(|| err(format!("technique {which}/{} has no WGSL", t.name)))
 }
@@ -212,13 +212,15 @@ mod tests {
         assert!(err.contains("unknown file `shared/missing.wgsl`"), "{err}");
         let err = resolve_text("// #import technique/clouds\n").unwrap_err().to_string();
         assert!(err.contains("no such technique stage"), "{err}");
-        // A technique that is listed but has no WGSL (not built yet) is refused by name.
-        let t = Techniques::of_system(System::Hu).with_unbuilt(Stage::Shading, true);
+        // A stage whose techniques have no WGSL file of their own is refused by name.
+        let t = Techniques::of_system(System::Hu);
         let mut out = String::new();
-        let text = "// #import technique/shading\n";
         let err =
-            resolve("test", text, &t, &mut vec![], &mut vec![], &mut out).unwrap_err().to_string();
-        assert!(err.contains("shading/unbuilt has no WGSL"), "{err}");
+            resolve("test", "// #import technique/waves\n", &t, &mut vec![], &mut vec![], &mut out)
+                .unwrap_err()
+                .to_string();
+        assert!(err.contains("waves/fft has no WGSL"), "{err}");
+        let text = "// #import technique/shading\n";
         // Control: the built technique of the same stage resolves.
         let t = Techniques::with_overrides(System::Hu, [(Stage::Shading, "coastal")]).unwrap();
         resolve("test", text, &t, &mut vec![], &mut vec![], &mut String::new()).unwrap();

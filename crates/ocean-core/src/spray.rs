@@ -30,7 +30,8 @@ use std::sync::Arc;
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 
-use crate::scene::{Object, Scene, Shape};
+use crate::objects::{Object, Shape};
+use serde::{Deserialize, Serialize};
 
 /// Standard gravity, m/s².
 pub const GRAVITY: f32 = 9.81;
@@ -105,7 +106,7 @@ pub struct SprayUniforms {
 #[derive(Clone, Debug, PartialEq)]
 pub struct PoolKey {
     /// The scene's spray.
-    pub spray: crate::scene::Spray,
+    pub spray: Spray,
     /// The emitters (shared with the plan that found them).
     pub emitters: Arc<Vec<Emitter>>,
 }
@@ -148,11 +149,10 @@ pub fn spray_random(seed: u32, i: u32, step: u32, k: u32) -> f32 {
 
 /// The spray's origin (world x, z): the multiple of the displacement patch nearest the
 /// objects' centroid.
-pub fn spray_origin(scene: &Scene) -> [f64; 2] {
-    let n = scene.objects.len().max(1) as f64;
-    let (sx, sz) =
-        scene.objects.iter().fold((0.0, 0.0), |(x, z), o| (x + o.center[0], z + o.center[2]));
-    let l = scene.ocean.patch_size_m;
+pub fn spray_origin(objects: &[Object], patch_size_m: f64) -> [f64; 2] {
+    let n = objects.len().max(1) as f64;
+    let (sx, sz) = objects.iter().fold((0.0, 0.0), |(x, z), o| (x + o.center[0], z + o.center[2]));
+    let l = patch_size_m;
     [(sx / n / l).round() * l, (sz / n / l).round() * l]
 }
 
@@ -168,7 +168,7 @@ fn surface_points(o: &Object, bound: f64) -> Vec<(DVec3, DVec3)> {
     let c = DVec3::from_array(o.center);
     match o.shape() {
         Some(Shape::Sphere { radius }) => {
-            let (bands, segs) = (crate::frame::SPHERE_BANDS, crate::frame::SPHERE_SEGMENTS);
+            let (bands, segs) = (crate::objects::SPHERE_BANDS, crate::objects::SPHERE_SEGMENTS);
             let mut out = Vec::new();
             for b in 1..bands {
                 for s in 0..segs {
@@ -213,10 +213,10 @@ fn surface_points(o: &Object, bound: f64) -> Vec<(DVec3, DVec3)> {
         Some(Shape::Boat { size, .. }) => {
             // The hull's sides at its resting pose: the plan, and so its emitters, knows no
             // time, and a boat's start point and draft are where it rides on average.
-            let Some(pose) = crate::frame::resting_pose(o) else { return Vec::new() };
+            let Some(pose) = crate::objects::resting_pose(o) else { return Vec::new() };
             let m = pose.model_matrix();
             let mut out = Vec::new();
-            for (n, q) in crate::frame::hull_faces(size) {
+            for (n, q) in crate::objects::hull_faces(size) {
                 if n.y != 0.0 {
                     continue;
                 }
@@ -243,10 +243,9 @@ fn surface_points(o: &Object, bound: f64) -> Vec<(DVec3, DVec3)> {
 /// The emitters of a scene whose waves stay within `bound` m of the plane: the objects'
 /// surface points with |y| ≤ bound, at most [`MAX_EMITTERS`] (every k-th kept), relative to
 /// the spray's origin, in the objects' order.
-pub fn emitters(scene: &Scene, bound: f64) -> Vec<Emitter> {
-    let origin = spray_origin(scene);
-    let mut all: Vec<Emitter> = scene
-        .objects
+pub fn emitters(objects: &[Object], patch_size_m: f64, bound: f64) -> Vec<Emitter> {
+    let origin = spray_origin(objects, patch_size_m);
+    let mut all: Vec<Emitter> = objects
         .iter()
         .flat_map(|o| surface_points(o, bound))
         .filter(|(p, _)| p.y.abs() <= bound)
@@ -265,43 +264,6 @@ pub fn emitters(scene: &Scene, bound: f64) -> Vec<Emitter> {
     all
 }
 
-/// The uniforms of step `step` of the scene's spray seen by `camera`.
-pub fn spray_uniforms(
-    scene: &Scene,
-    camera: &crate::camera::Camera,
-    waves: bool,
-    emitters: u32,
-    step: u64,
-) -> SprayUniforms {
-    let s = &scene.spray;
-    let eye = camera.eye;
-    let forward = (DVec3::from_array(scene.camera.look_at) - eye).normalize_or_zero();
-    let right = forward.cross(DVec3::Y).try_normalize().unwrap_or(DVec3::X);
-    let up = right.cross(forward).normalize_or_zero();
-    let v4 = |v: DVec3| [v.x as f32, v.y as f32, v.z as f32, 0.0];
-    let origin = spray_origin(scene);
-    let o = &scene.ocean;
-    SprayUniforms {
-        step: step as u32,
-        count: s.particles,
-        emitters,
-        seed: (o.seed as u32) ^ 0x5eed_0001,
-        dt: s.step_s as f32,
-        gravity: GRAVITY,
-        speed: s.speed as f32,
-        lifetime: s.lifetime_s as f32,
-        emit_chance: s.emit_chance as f32,
-        inv_patch: (1.0 / o.patch_size_m) as f32,
-        half_texel: (0.5 / f64::from(o.resolution)) as f32,
-        waves: if waves { 1.0 } else { 0.0 },
-        origin_rel: [(origin[0] - eye.x) as f32, (-eye.y) as f32, (origin[1] - eye.z) as f32, 0.0],
-        sprite: [(0.5 * s.size_m) as f32, s.intensity as f32, 0.0, 0.0],
-        color: [s.color[0] as f32, s.color[1] as f32, s.color[2] as f32, 0.0],
-        right: v4(right),
-        up: v4(up),
-    }
-}
-
 /// What pass `spray` does in one frame, the same for both back ends: the emitters, the
 /// uniforms of each of its steps (from step `first`), and the draw's uniforms (after them).
 #[derive(Clone, Debug)]
@@ -317,29 +279,49 @@ pub struct SprayFrame {
 }
 
 impl SprayFrame {
-    /// The pass of a frame of `plan` seen by `camera` running `steps` steps from `first`; the
-    /// emitters are the plan's ([`crate::plan::FramePlan::spray_emitters`], found once).
-    pub fn new(
-        scene: &Scene,
-        plan: &crate::plan::FramePlan,
-        camera: &crate::camera::Camera,
-        first: u64,
-        steps: u64,
-    ) -> Self {
-        let emitters = Arc::clone(&plan.spray_emitters);
-        let waves = plan.runs(crate::plan::Pass::Waves);
-        let n = emitters.len() as u32;
-        let at = |k| spray_uniforms(scene, camera, waves, n, k);
-        Self {
-            key: PoolKey { spray: scene.spray.clone(), emitters },
-            first,
-            steps: (first..first + steps).map(at).collect(),
-            draw: at(first + steps),
-        }
-    }
-
     /// Whether a pool made for `key` that has run `steps` steps goes on into this frame.
     pub fn continues(&self, key: &PoolKey, steps: u64) -> bool {
         *key == self.key && steps == self.first
+    }
+}
+
+/// The `[spray]` table: spray technique `particles` (seed 001 §3.4; the model is
+/// `crate::spray`'s).
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Spray {
+    /// Particle slots.
+    pub particles: u32,
+    /// Chance per step that a free slot whose emitter is under the water is launched.
+    pub emit_chance: f64,
+    /// Launch speed, m/s.
+    pub speed: f64,
+    /// A particle's lifetime, s.
+    pub lifetime_s: f64,
+    /// The fixed time step, s (one per frame).
+    pub step_s: f64,
+    /// Steps run before a state's first frame (a still frame shows steady spray).
+    pub warmup_steps: u32,
+    /// A sprite's side, m.
+    pub size_m: f64,
+    /// Radiance of a sprite's centre (additive).
+    pub intensity: f64,
+    /// The sprites' colour, linear RGB.
+    pub color: [f64; 3],
+}
+
+impl Default for Spray {
+    fn default() -> Self {
+        Self {
+            particles: 8192,
+            emit_chance: 0.05,
+            speed: 4.0,
+            lifetime_s: 1.5,
+            step_s: 1.0 / 30.0,
+            warmup_steps: 90,
+            size_m: 0.15,
+            intensity: 0.25,
+            color: [0.9, 0.95, 1.0],
+        }
     }
 }

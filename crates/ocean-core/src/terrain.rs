@@ -11,14 +11,15 @@
 //! square it is the edge's (clamp to edge), which is how both back ends sample the map.
 
 use std::fmt;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 
-use crate::frame::ObjectVertex;
-use crate::scene::{Terrain, TerrainKind};
+use crate::geometry::ObjectVertex;
+
+use serde::{Deserialize, Serialize};
 
 /// The largest relief map side, texels (a 16384² f32 RGBA texture is 4 GiB).
 pub const MAX_RELIEF_SIDE: u32 = 8192;
@@ -440,14 +441,14 @@ fn make_terrain_triangles(grid: &FloorGrid, t: &Terrain, eye: DVec3) -> Vec<[Obj
 }
 
 /// The albedo of sand `color` at height `y` (m above the sea plane) under a wet band up to
-/// `wet_top_m`: × [`crate::waves::coastal::WET_SAND_DARKENING`] up to ¾ of the band, rising
+/// `wet_top_m`: × [`crate::sand::WET_SAND_DARKENING`] up to ¾ of the band, rising
 /// linearly to dry at its top; `color` itself without a band (`wet_top_m` ≤ 0).
 pub fn wet_sand_color(color: [f64; 3], y: f64, wet_top_m: f64) -> [f64; 3] {
     if wet_top_m.is_nan() || wet_top_m <= 0.0 {
         return color;
     }
     let wet = ((wet_top_m - y) / (0.25 * wet_top_m)).clamp(0.0, 1.0);
-    let k = 1.0 - wet * (1.0 - crate::waves::coastal::WET_SAND_DARKENING);
+    let k = 1.0 - wet * (1.0 - crate::sand::WET_SAND_DARKENING);
     color.map(|c| c * k)
 }
 
@@ -552,4 +553,91 @@ pub fn relief_texels(terrain: Option<&Terrain>) -> (u32, u32, Vec<[f32; 4]>) {
 pub fn load_relief(path: &Path, base: &Path, range: [f64; 2]) -> Result<Arc<Relief>, String> {
     let full = if path.is_absolute() { path.to_owned() } else { base.join(path) };
     Relief::load(&full, range).map(Arc::new)
+}
+
+/// What a sea floor is (`kind = "plane"`, `"island"` or `"heightmap"`). A sloping beach is a
+/// `plane` with a `slope`: the waterline runs where it reaches the sea plane.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum TerrainKind {
+    /// A flat or sloping plane: `depth_m` below the sea plane at `center`, rising by `slope`
+    /// metres per metre towards `slope_direction_deg`.
+    #[default]
+    Plane,
+    /// The plane plus a relief read from `heightmap` (a 16-bit grayscale PNG or an EXR) over
+    /// the square of side `extent_m`, its samples mapped onto `height_range_m`.
+    Heightmap,
+    /// A round island about `center` rising from the plane (`crate::terrain::island_height`
+    /// has the profile): `island_height_m` above the sea at its top, the waterline at
+    /// `island_radius_m` (on a flat floor), sloping into the water by `shore_slope` down to
+    /// the floor `depth_m` deep. Drawn through a relief made from the profile at load.
+    Island,
+}
+
+/// The `[terrain]` table: the sea floor (docs/design.md; [`crate::terrain`] has its geometry).
+/// Drawn as a square of side `extent_m` about `center` in the main view, the refraction map
+/// and the reflection map; its depth under each point of the sea is eq. 8's y (shading
+/// `chiu`), the plane's (and the relief's edge) also beyond the drawn square.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Terrain {
+    /// What the floor is.
+    pub kind: TerrainKind,
+    /// Depth of the floor's plane below the sea plane at `center`, m (negative: above).
+    pub depth_m: f64,
+    /// (x, z) of the floor's reference point and the centre of the drawn square, m.
+    pub center: [f64; 2],
+    /// Rise of the plane per metre along `slope_direction_deg` (0: flat).
+    pub slope: f64,
+    /// The direction in which the plane rises, degrees from +x towards +z.
+    pub slope_direction_deg: f64,
+    /// Side of the drawn square (and of the heightmap), m.
+    pub extent_m: f64,
+    /// Linear RGB albedo; by default dry beach sand from a measured spectrum
+    /// ([`crate::sand::DRY_SAND_ALBEDO`]).
+    pub color: [f64; 3],
+    /// `kind = "heightmap"`: the file, relative to the scene file's folder (to the working
+    /// folder for scene text).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub heightmap: Option<PathBuf>,
+    /// The relief's height at sample 0 and at sample 1 (65535 in a PNG), m, added to the plane.
+    pub height_range_m: [f64; 2],
+    /// `kind = "island"`: the waterline's radius on a flat floor, m.
+    pub island_radius_m: f64,
+    /// `kind = "island"`: the island's top above the sea plane, m.
+    pub island_height_m: f64,
+    /// `kind = "island"`: the fall of the shore per metre at the waterline and below it,
+    /// down to the floor.
+    pub shore_slope: f64,
+    /// Waves `fft` and `gerstner` near the shore: r in w = clamp(h/(r·λ), 0, 1), the share of
+    /// the waves kept over h m of water, λ the sea's representative wavelength (the spectral
+    /// peak's or the Gerstner median's for the displacement, the bump patch for the bump map).
+    /// 0.5 is Crest's "a wave feels the floor below half its wavelength"; 0 (the default)
+    /// leaves them undamped. Waves `coastal` shoal and break by their own rules.
+    pub wave_damping: f64,
+    /// The relief read from `heightmap`, or made from the island's profile, when the scene
+    /// was loaded (or by [`Terrain::prepare`]).
+    #[serde(skip)]
+    pub relief: Option<std::sync::Arc<crate::terrain::Relief>>,
+}
+
+impl Default for Terrain {
+    fn default() -> Self {
+        Self {
+            kind: TerrainKind::Plane,
+            depth_m: 10.0,
+            center: [0.0, 0.0],
+            slope: 0.0,
+            slope_direction_deg: 0.0,
+            extent_m: 400.0,
+            color: crate::sand::DRY_SAND_ALBEDO,
+            heightmap: None,
+            height_range_m: [0.0, 1.0],
+            island_radius_m: 60.0,
+            island_height_m: 12.0,
+            shore_slope: 0.08,
+            wave_damping: 0.0,
+            relief: None,
+        }
+    }
 }

@@ -171,12 +171,7 @@ impl TonemapUniforms {
     ///
     /// # Errors
     /// As [`Self::new`]; [`Error::InvalidParameter`] for a vignette outside [0, 1].
-    pub fn for_image(
-        exposure: f64,
-        post: &crate::scene::Post,
-        width: u32,
-        height: u32,
-    ) -> Result<Self> {
+    pub fn for_image(exposure: f64, post: &Post, width: u32, height: u32) -> Result<Self> {
         if !(0.0..=1.0).contains(&post.vignette) {
             return Err(Error::InvalidParameter {
                 name: "vignette",
@@ -206,4 +201,41 @@ impl TonemapUniforms {
         bloom_scale: 0.0,
         pad1: 0.0,
     };
+}
+
+/// The `[post]` table: what the final pass does to the HDR frame besides the exposure
+/// (`ocean_core::tonemap` says how, in order).
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Post {
+    /// The tonemap's curve: `aces` (Narkowicz's fit, the default) or `hable` (Uncharted 2).
+    pub curve: crate::tonemap::Curve,
+    /// The vignette's strength s ∈ [0, 1]: each pixel × (1 − s·r²), r = 0 at the centre and
+    /// 1 at the corner. 0 (the default): no vignette.
+    pub vignette: f64,
+    /// Post `bloom`: the bright pass keeps what exceeds this, in exposed units (1 ≈ white).
+    pub bloom_threshold: f64,
+    /// Post `bloom`: the blurred bright pass is added to the frame × this (0: the pass is
+    /// left out).
+    pub bloom_strength: f64,
+    /// Post `bloom`: levels of the blur pyramid (each twice as wide as the one before), at
+    /// most as many as the frame's half size has.
+    pub bloom_levels: u32,
+    /// The format of the frame's colour buffers (`rgba32float` or `rgba16float`,
+    /// `crate::frame_format`); left out, the system's (`welch`: `rgba16float`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub frame_format: Option<crate::frame_format::FrameFormat>,
+}
+
+impl Default for Post {
+    fn default() -> Self {
+        Self {
+            curve: crate::tonemap::Curve::Aces,
+            vignette: 0.0,
+            bloom_threshold: 1.0,
+            bloom_strength: 0.1,
+            bloom_levels: 5,
+            frame_format: None,
+        }
+    }
 }

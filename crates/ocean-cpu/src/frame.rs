@@ -1,6 +1,6 @@
 //! The CPU back end of the frame graph: [`CpuBackend`] executes one planned pass at a time
 //! with the shader mirrors and the rasterizer, at the sizes the plan gives
-//! (`ocean_core::plan::run_frame` walks the passes), keeping every intermediate map for the
+//! (`ocean_core::graph::run_frame` walks the passes), keeping every intermediate map for the
 //! tests and the GPU cross-check.
 
 use std::time::Duration;
@@ -10,10 +10,8 @@ use ocean_core::frame::{
     FrameUniforms, FresnelTableUniforms, ObjectVertex, bump_texels, displacement_slope_texels,
     displacement_texels, pass_triangles,
 };
-use ocean_core::plan::{
-    Backend, FoamField, FoamWork, Format, FrameInputs, FramePlan, FrameState, Pass, PlannedPass,
-    ResourceId, Stage, WavesKernel, run_frame,
-};
+use ocean_core::graph::{Backend, FoamField, FoamWork, FrameInputs, FrameState, run_frame};
+use ocean_core::plan::{Format, FramePlan, Pass, PlannedPass, ResourceId, WavesKernel};
 use ocean_core::scene::Scene;
 use ocean_core::spray::{SprayFrame, SprayState};
 use ocean_core::waves::{Synthesizer, WaveMaps};
@@ -34,8 +32,8 @@ pub const FRESNEL_TABLE_SIZE: u32 = ocean_core::scene::DEFAULT_FRESNEL_TABLE_SIZ
 /// Side of the sun's shadow map (the plan's).
 pub const SHADOW_MAP_SIZE: u32 = ocean_core::plan::SHADOW_MAP_SIZE;
 
-/// The water mesh of a view (ocean-core's [`ocean_core::plan::DrawMesh`]).
-pub type WaterMesh = ocean_core::plan::DrawMesh;
+/// The water mesh of a view (ocean-core's [`ocean_core::graph::DrawMesh`]).
+pub type WaterMesh = ocean_core::graph::DrawMesh;
 
 /// Errors of the CPU renderer.
 #[derive(Debug, thiserror::Error)]
@@ -528,27 +526,10 @@ impl<'e> CpuBackend<'e> {
     fn water_pass(&mut self, frame: &FrameInputs<'_>) -> Result<(), Error> {
         self.ensure_floor(frame.scene);
         let env = frame.environment;
-        let technique = frame.plan.techniques.of(Stage::Sky).name;
-        let radiance = sky::environment_radiance(technique).ok_or_else(|| {
-            Error::Core(ocean_core::Error::ShaderSource {
-                stage: "sky".into(),
-                reason: format!("sky technique `{technique}` has no CPU mirror"),
-            })
-        })?;
-        let shading = frame.plan.techniques.of(Stage::Shading).name;
-        let shade_above = crate::shaders::shading::shade_above(shading).ok_or_else(|| {
-            Error::Core(ocean_core::Error::ShaderSource {
-                stage: "water".into(),
-                reason: format!("shading technique `{shading}` has no CPU mirror"),
-            })
-        })?;
-        let foam = frame.plan.techniques.of(Stage::Foam).name;
-        let foam_coverage = crate::shaders::foam::foam_coverage(foam).ok_or_else(|| {
-            Error::Core(ocean_core::Error::ShaderSource {
-                stage: "water".into(),
-                reason: format!("foam technique `{foam}` has no CPU mirror"),
-            })
-        })?;
+        let t = &frame.plan.techniques;
+        let radiance = sky::environment_radiance(t.sky());
+        let shade_above = crate::shaders::shading::shade_above(t.shading());
+        let foam_coverage = crate::shaders::foam::foam_coverage(t.foam());
         let lut = &*frame.sky_lut;
         let planned_sky = move |d: [f32; 3]| radiance(&env, lut, d);
         let sky_radiance: &(dyn Fn([f32; 3]) -> [f32; 3] + Sync) = match self.environment {
@@ -617,13 +598,7 @@ impl Backend for CpuBackend<'_> {
         let hdr = self.hdr(frame.plan);
         match environment {
             Environment::Planned => {
-                let name = frame.plan.techniques.of(Stage::Sky).name;
-                let technique = sky::technique(name).ok_or_else(|| {
-                    Error::Core(ocean_core::Error::ShaderSource {
-                        stage: "sky".into(),
-                        reason: format!("sky technique `{name}` has no CPU mirror"),
-                    })
-                })?;
+                let technique = sky::technique(frame.plan.techniques.sky());
                 let (camera, sky) = (&frame.camera_uniforms, &frame.environment);
                 sky::render_sky(hdr, camera, sky, &frame.sky_lut, &technique);
             }

@@ -14,6 +14,7 @@
 //!   order of operations.
 
 pub mod envelope;
+pub mod float;
 pub mod frame;
 pub mod mip;
 pub mod raster;

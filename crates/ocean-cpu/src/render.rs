@@ -1,7 +1,8 @@
 //! The CPU renderer's entry points: a scene in, the frame's maps and picture out, through the
 //! frame graph ([`crate::frame::render_frame`]).
 
-use ocean_core::plan::{FrameInputs, FramePlan, FrameState, OutputKind, Pass};
+use ocean_core::graph::{FrameInputs, FrameState};
+use ocean_core::plan::{FramePlan, OutputKind, Pass};
 use ocean_core::scene::Scene;
 
 use crate::frame::{Environment, Error, FrameBuffers, render_frame};

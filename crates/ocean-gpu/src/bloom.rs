@@ -7,7 +7,7 @@
 
 use crate::created::Counted;
 use ocean_core::frame_format::FrameFormat;
-use ocean_core::plan::BloomInputs;
+use ocean_core::graph::BloomInputs;
 
 use crate::common::{entry, label, pipeline_layout, shader_module};
 use crate::device::Error;

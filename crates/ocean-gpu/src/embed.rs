@@ -80,7 +80,8 @@
 use glam::DMat4;
 use ocean_core::camera::Camera;
 use ocean_core::composite::CompositeUniforms;
-use ocean_core::plan::{FramePlan, FrameState, OutputKind};
+use ocean_core::graph::FrameState;
+use ocean_core::plan::{FramePlan, OutputKind};
 use ocean_core::scene::Scene;
 
 use crate::composite::CompositeStage;

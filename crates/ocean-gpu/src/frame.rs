@@ -1,6 +1,6 @@
 //! The GPU back end of the frame graph: [`GpuBackend`] records one planned pass at a time
 //! into one command encoder, with the textures at the sizes and formats of the plan's
-//! resource table (`ocean_core::plan::run_frame` walks the passes, as it does for the CPU
+//! resource table (`ocean_core::graph::run_frame` walks the passes, as it does for the CPU
 //! oracle), and [`Renderer`] submits the frame and reads back every map for the cross-check.
 //!
 //! | pass | target (clear) | depth (clear, test) |
@@ -28,10 +28,8 @@ use ocean_core::frame::{
     FrameUniforms, FresnelTableUniforms, ObjectVertex, bump_texels, displacement_slope_texels,
     displacement_texels, pass_floor_triangles, pass_object_triangles,
 };
-use ocean_core::plan::{
-    Backend, FoamWork, Format, FrameInputs, FramePlan, FrameState, Pass, PlannedPass, ResourceId,
-    WavesKernel, run_frame,
-};
+use ocean_core::graph::{Backend, FoamWork, FrameInputs, FrameState, run_frame};
+use ocean_core::plan::{Format, FramePlan, Pass, PlannedPass, ResourceId, WavesKernel};
 use ocean_core::scene::{Ocean, Scene};
 use ocean_core::terrain::{Relief, relief_texels};
 use ocean_core::waves::OceanSurface;
@@ -45,12 +43,13 @@ use crate::objects::{
     ObjectsEntry, ObjectsStage, VertexChunk, labelled_vertex_chunks, vertex_chunks,
 };
 use crate::pool::FramePool;
+use crate::readback::{FloatMap, Readbacks, TexelData};
 use crate::shadow::ShadowStage;
 use crate::sky::SkyStage;
 use crate::spray::{GpuSpray, SprayStage};
 use crate::texture::{
-    DEPTH_FORMAT, FloatMap, GpuTexture, LDR_FORMAT, MAP_FORMAT, Readbacks, SHADOW_FORMAT,
-    TexelData, depth_usage, map_usage, target_usage,
+    DEPTH_FORMAT, GpuTexture, LDR_FORMAT, MAP_FORMAT, SHADOW_FORMAT, depth_usage, map_usage,
+    target_usage,
 };
 use crate::timing::{PassTimer, PendingTimings, TimerPool};
 use crate::tonemap::TonemapStage;
@@ -1068,39 +1067,12 @@ impl Renderer {
         state: &FrameState,
         camera: Option<ocean_core::camera::Camera>,
     ) -> Result<FrameInputs<'a>, Error> {
-        // The far field is a uniform of the water pipeline (every technique is in its WGSL),
-        // not a composed file; the surface is its vertex entry point (`vs_main` draws the
-        // mesh of `hu_patches`, `vs_projected_grid` the grid of `projected_grid`, `vs_clipmap`
-        // the levels of `clipmap`); the spray is
-        // a pass of its own stage, run or skipped by the plan, and so are the waves of `fft`
-        // (waves `gerstner` are summed by the water pipeline itself); the sky's
-        // and the shading's files are composed into the `sky` and `water` stages, assembled
-        // again for the plan's choice. Any other stage's technique must be the one built.
-        use ocean_core::plan::Stage;
-        let in_water_pipeline = |s: Stage, name: &str| {
-            s == Stage::FarField
-                || (s == Stage::Surface && matches!(name, "hu_patches" | "projected_grid" | "shore_grid" | "clipmap"))
-                // Pass `spray` runs stage `spray`'s pipelines or is skipped.
-                || (s == Stage::Spray && matches!(name, "none" | "particles"))
-                // Waves `fft` run stage `waves`; `gerstner` is a uniform branch of `water`.
-                || (s == Stage::Waves && matches!(name, "fft" | "gerstner" | "coastal"))
-                // Foam `accumulated` adds pass `foam` of its own stage; every foam technique's
-                // file is composed into `water` (above).
-                // Post `bloom` is a pass of its own stage, run or skipped by the plan; the
-                // tonemap pipeline binds its result or a zero texture.
-                || (s == Stage::Post && matches!(name, "tonemap" | "bloom"))
-        };
-        if let Some((stage, t)) = plan.techniques.iter().find(|(s, t)| {
-            !crate::common::COMPOSED.contains(s)
-                && !in_water_pipeline(*s, t.name)
-                && self.built.of(*s) != *t
-        }) {
-            return Err(Error::Unavailable(format!(
-                "the GPU pipelines are built for {stage} technique `{}`, the plan asks for `{}`",
-                self.built.of(stage).name,
-                t.name
-            )));
-        }
+        // Only the composed stages (`common::COMPOSED`: sky, shading, foam) change the WGSL
+        // of the sky and water pipelines, which are assembled again for the plan's choice.
+        // Every technique of every other stage is in the pipelines as built: the far field and
+        // the waves `gerstner`/`coastal` are uniform branches of `water`, the surfaces its
+        // vertex entry points, and waves `fft`, spray, foam `accumulated` and bloom passes of
+        // their own stages that the plan runs or skips.
         let format = plan.frame_format;
         if format != self.built_format
             || crate::common::COMPOSED.iter().any(|s| plan.techniques.of(*s) != self.built.of(*s))

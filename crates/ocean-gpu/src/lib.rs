@@ -41,6 +41,7 @@ pub mod fresnel_table;
 pub mod objects;
 pub mod pool;
 pub mod present;
+pub mod readback;
 pub mod shadow;
 pub mod sky;
 pub mod spray;
@@ -57,5 +58,5 @@ pub use embed::EmbeddedOcean;
 pub use frame::{FrameMap, GpuFrame, Readback, Renderer};
 /// The glam the embedding API's [`embed::CameraView`] takes its matrices in.
 pub use glam;
-pub use texture::FloatMap;
+pub use readback::FloatMap;
 pub use wave_maps::{WaveMapSource, WaveSynthesis};

@@ -21,8 +21,8 @@ use std::num::NonZeroU64;
 use std::sync::{Arc, Mutex};
 
 use crate::created::Counted;
+use crate::texture::GpuMipChain;
 use crate::texture::GpuTexture;
-use crate::wave_mips::GpuMipChain;
 
 /// Frames a render target, depth buffer or mip chain is kept after the last frame that asked
 /// for it: a resize lets the old sizes go two frames later.
@@ -311,7 +311,7 @@ impl FramePool {
     }
 
     /// A readback buffer of exactly `size` bytes (`COPY_DST | MAP_READ`): the one this request
-    /// got in earlier frames, which their reads unmapped ([`crate::texture::Readbacks`] lets
+    /// got in earlier frames, which their reads unmapped ([`crate::readback::Readbacks`] lets
     /// every staging buffer go, [`Self::drop_staging`], when a read fails), else a new one.
     pub fn staging(&self, label: &str, size: u64) -> wgpu::Buffer {
         let usage = wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ;

@@ -1,4 +1,4 @@
-//! Textures of the frame and their readback.
+//! Textures of the frame: their formats, the plain texture and the mip chain.
 //!
 //! Formats (docs/design.md, "Determinism contract"): every intermediate map is `Rgba32Float`, which
 //! lavapipe filters with full-float weights, as the CPU's sampler does, but for the frame's
@@ -6,16 +6,12 @@
 //! f32; `ocean_core::frame_format` says how a value is stored); the shadow map is
 //! `R32Float` (the shadow stage writes depth to red; read back as (r, 0, 0, 0), the CPU's
 //! layout); the 8-bit output is `Rgba8Unorm`; depth is `Depth32Float`.
-//!
-//! Readback: `copy_texture_to_buffer` needs rows padded to
-//! `wgpu::COPY_BYTES_PER_ROW_ALIGNMENT` (256 bytes); [`Readbacks`] records the copies of a
-//! frame into its command encoder, maps every buffer after the one submission and strips the
-//! padding.
+//! Reading them back is [`crate::readback`]'s.
 
 use crate::created::{Counted, CountedView};
-use std::sync::{Arc, Mutex};
 
-use crate::device::{Error, Gpu};
+use crate::device::Gpu;
+use ocean_core::far_field::{mip_level_count, mip_level_row, mip_level_size};
 
 /// Format of the wave maps, Fresnel tables, foam field, and of the frame's colour buffers
 /// (reflection/refraction maps, HDR frame, bloom chains) under frame format `rgba32float`.
@@ -149,237 +145,99 @@ pub fn map_usage() -> wgpu::TextureUsages {
         | wgpu::TextureUsages::COPY_SRC
 }
 
-/// An `Rgba32Float` map read back from the GPU: the layout of ocean-cpu's `Texture2D`
-/// (row-major, texel (i, j) at `j · width + i`, row 0 at the top).
-#[derive(Clone, Debug, PartialEq)]
-pub struct FloatMap {
-    /// Width, texels.
+/// An `Rgba32Float` texture (post `bloom`'s: the frame's format) with a mip chain and a view
+/// of each level.
+#[derive(Clone)]
+pub struct GpuMipChain {
+    /// The texture.
+    pub texture: wgpu::Texture,
+    /// A view of every level (what the water pass samples).
+    pub view: wgpu::TextureView,
+    /// One view per level.
+    pub levels: Vec<wgpu::TextureView>,
+    /// Width of level 0.
     pub width: u32,
-    /// Height, texels.
+    /// Height of level 0.
     pub height: u32,
-    /// `width · height` texels.
-    pub texels: Vec<[f32; 4]>,
+    /// Its texel format.
+    pub format: wgpu::TextureFormat,
 }
 
-/// What a readback holds.
-#[derive(Clone, Debug, PartialEq)]
-pub enum TexelData {
-    /// A float texture (`R32Float` as (r, 0, 0, 0)).
-    Float(FloatMap),
-    /// `Rgba8Unorm` bytes, 4 per pixel, row-major.
-    Rgba8(Vec<u8>),
-}
-
-/// One texture copy waiting for its buffer to be mapped.
-struct Pending<K> {
-    key: K,
-    label: String,
-    buffer: wgpu::Buffer,
-    width: u32,
-    height: u32,
-    bytes_per_texel: u32,
-    padded_row: u32,
-    format: wgpu::TextureFormat,
-}
-
-/// Where a buffer's `map_async` leaves its result: `None` until the device is polled after
-/// the GPU finished with the buffer.
-pub(crate) type MapState = Arc<Mutex<Option<Result<(), wgpu::BufferAsyncError>>>>;
-
-/// Starts mapping `slice` for reading; the result arrives in the returned state.
-pub(crate) fn map_for_reading(slice: wgpu::BufferSlice<'_>) -> MapState {
-    let state: MapState = Arc::new(Mutex::new(None));
-    let slot = Arc::clone(&state);
-    slice.map_async(wgpu::MapMode::Read, move |r| {
-        if let Ok(mut s) = slot.lock() {
-            *s = Some(r);
-        }
-    });
-    state
-}
-
-/// The texture copies of one submission.
-pub struct Readbacks<K> {
-    pending: Vec<Pending<K>>,
-    kept: Option<crate::pool::FramePool>,
-}
-
-impl<K> Default for Readbacks<K> {
-    fn default() -> Self {
-        Self { pending: Vec::new(), kept: None }
-    }
-}
-
-impl<K: Copy> Readbacks<K> {
-    /// Copies whose staging buffers come from `kept` (a renderer's frames: the same buffers
-    /// frame after frame) instead of being made for this submission.
-    pub fn kept(kept: &crate::pool::FramePool) -> Self {
-        Self { pending: Vec::new(), kept: Some(kept.clone()) }
+impl GpuMipChain {
+    /// A chain of `width` × `height` at level 0.
+    pub fn new(device: &wgpu::Device, label: &str, width: u32, height: u32) -> Self {
+        Self::with_levels(device, label, width, height, mip_level_count(width, height))
     }
 
-    /// Records a copy of `texture` (of `format`: [`MAP_FORMAT`], [`HALF_FORMAT`],
-    /// [`SHADOW_FORMAT`] or [`LDR_FORMAT`]) into `encoder`, to be read back under `key`.
-    ///
-    /// # Panics
-    /// On another format (a bug in the caller).
-    pub fn copy(
-        &mut self,
+    /// A chain of `width` × `height` at level 0 with `count` levels (post `bloom`'s chains
+    /// stop where the plan says).
+    pub fn with_levels(
         device: &wgpu::Device,
-        encoder: &mut wgpu::CommandEncoder,
-        key: K,
         label: &str,
-        texture: &GpuTexture,
-        format: wgpu::TextureFormat,
-    ) {
-        self.copy_texture(device, encoder, key, label, &texture.texture, format);
+        width: u32,
+        height: u32,
+        count: u32,
+    ) -> Self {
+        Self::with_format(device, label, width, height, count, MAP_FORMAT)
     }
 
-    /// [`Self::copy`] of any texture with `COPY_SRC`, e.g. a window's surface texture;
-    /// `Bgra8Unorm` texels are also accepted and come back as RGBA bytes.
-    ///
-    /// # Panics
-    /// On a format without a readback (a bug in the caller).
-    pub fn copy_texture(
-        &mut self,
+    /// [`Self::with_levels`] in `format` (post `bloom`'s chains are in the frame's format).
+    pub fn with_format(
         device: &wgpu::Device,
-        encoder: &mut wgpu::CommandEncoder,
-        key: K,
         label: &str,
-        texture: &wgpu::Texture,
+        width: u32,
+        height: u32,
+        count: u32,
         format: wgpu::TextureFormat,
-    ) {
-        let bytes_per_texel = match format {
-            MAP_FORMAT => 16,
-            HALF_FORMAT => 8,
-            SHADOW_FORMAT | LDR_FORMAT | wgpu::TextureFormat::Bgra8Unorm => 4,
-            other => panic!("no readback for {other:?}"),
-        };
-        let (width, height) = (texture.width(), texture.height());
-        let row = width * bytes_per_texel;
-        let padded_row =
-            row.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
-        let buffer_label = format!("ocean.readback.{label}");
-        let size = u64::from(padded_row) * u64::from(height);
-        let buffer = match &self.kept {
-            Some(kept) => kept.staging(&buffer_label, size),
-            None => device.new_buffer(&wgpu::BufferDescriptor {
-                label: Some(&buffer_label),
-                size,
-                usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-                mapped_at_creation: false,
-            }),
-        };
-        encoder.copy_texture_to_buffer(
-            texture.as_image_copy(),
-            wgpu::TexelCopyBufferInfo {
-                buffer: &buffer,
-                layout: wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(padded_row),
-                    rows_per_image: Some(height),
-                },
-            },
-            wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
-        );
-        self.pending.push(Pending {
-            key,
-            label: label.to_owned(),
-            buffer,
-            width,
-            height,
-            bytes_per_texel,
-            padded_row,
+    ) -> Self {
+        let texture = device.new_texture(&wgpu::TextureDescriptor {
+            label: Some(label),
+            size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
+            mip_level_count: count,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
             format,
+            usage: map_usage(),
+            view_formats: &[],
         });
+        let view = texture.new_view(&wgpu::TextureViewDescriptor::default());
+        let levels = (0..count)
+            .map(|k| {
+                texture.new_view(&wgpu::TextureViewDescriptor {
+                    base_mip_level: k,
+                    mip_level_count: Some(1),
+                    ..Default::default()
+                })
+            })
+            .collect();
+        Self { texture, view, levels, width, height, format }
     }
 
-    /// Maps every buffer (after the encoder that holds the copies was submitted) and returns
-    /// the texels, in the order of the copies.
-    ///
-    /// # Errors
-    /// [`Error::Readback`] if a buffer cannot be mapped.
-    pub fn finish(self, gpu: &Gpu) -> Result<Vec<(K, TexelData)>, Error> {
-        let Self { pending, kept } = self;
-        let read = Self::read(pending, gpu);
-        if read.is_err()
-            && let Some(kept) = kept
-        {
-            // A failed read may leave a buffer mapped: the next frame gets new ones.
-            kept.drop_staging();
+    /// Records copies of every level into one atlas texture laid out as
+    /// `ocean_core::far_field::mip_level_row` says (the read-back and the cross-check).
+    pub fn pack(&self, device: &wgpu::Device, encoder: &mut wgpu::CommandEncoder) -> GpuTexture {
+        let count = self.levels.len() as u32;
+        let rows = mip_level_row(self.height, count);
+        let atlas =
+            GpuTexture::new(device, "ocean.mip_atlas", self.width, rows, self.format, map_usage());
+        for k in 0..count {
+            let [w, h] = mip_level_size(self.width, self.height, k);
+            encoder.copy_texture_to_texture(
+                wgpu::TexelCopyTextureInfo {
+                    texture: &self.texture,
+                    mip_level: k,
+                    origin: wgpu::Origin3d::ZERO,
+                    aspect: wgpu::TextureAspect::All,
+                },
+                wgpu::TexelCopyTextureInfo {
+                    texture: &atlas.texture,
+                    mip_level: 0,
+                    origin: wgpu::Origin3d { x: 0, y: mip_level_row(self.height, k), z: 0 },
+                    aspect: wgpu::TextureAspect::All,
+                },
+                wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+            );
         }
-        read
-    }
-
-    fn read(pending: Vec<Pending<K>>, gpu: &Gpu) -> Result<Vec<(K, TexelData)>, Error> {
-        if pending.is_empty() {
-            // Nothing to read: no reason to wait for the GPU.
-            return Ok(Vec::new());
-        }
-        let results: Vec<MapState> =
-            pending.iter().map(|p| map_for_reading(p.buffer.slice(..))).collect();
-        gpu.wait()?;
-        let mut out = Vec::with_capacity(pending.len());
-        for (p, slot) in pending.into_iter().zip(results) {
-            let fail = |message: String| Error::Readback { what: p.label.clone(), message };
-            let status = slot.lock().map_err(|_| fail("poisoned lock".into()))?.take();
-            match status {
-                Some(Ok(())) => {}
-                Some(Err(e)) => return Err(fail(e.to_string())),
-                None => return Err(fail("the buffer was not mapped after the wait".into())),
-            }
-            let data = {
-                let view =
-                    p.buffer.slice(..).get_mapped_range().map_err(|e| fail(e.to_string()))?;
-                let row = (p.width * p.bytes_per_texel) as usize;
-                let rows = (0..p.height as usize)
-                    .map(|y| &view[y * p.padded_row as usize..y * p.padded_row as usize + row]);
-                match p.format {
-                    LDR_FORMAT => TexelData::Rgba8(rows.flatten().copied().collect()),
-                    wgpu::TextureFormat::Bgra8Unorm => TexelData::Rgba8(
-                        rows.flat_map(|r| r.chunks_exact(4))
-                            .flat_map(|c| [c[2], c[1], c[0], c[3]])
-                            .collect(),
-                    ),
-                    SHADOW_FORMAT => {
-                        let texels = rows
-                            .flat_map(|r| r.chunks_exact(4))
-                            .map(|c| [f32::from_le_bytes([c[0], c[1], c[2], c[3]]), 0.0, 0.0, 0.0])
-                            .collect();
-                        TexelData::Float(FloatMap { width: p.width, height: p.height, texels })
-                    }
-                    HALF_FORMAT => {
-                        // binary16 → f32 is exact: the values the texture holds.
-                        let texels = rows
-                            .flat_map(|r| r.chunks_exact(8))
-                            .map(|c| {
-                                std::array::from_fn(|k| {
-                                    half::f16::from_le_bytes([c[2 * k], c[2 * k + 1]]).to_f32()
-                                })
-                            })
-                            .collect();
-                        TexelData::Float(FloatMap { width: p.width, height: p.height, texels })
-                    }
-                    _ => {
-                        let texels = rows
-                            .flat_map(|r| r.chunks_exact(16))
-                            .map(|c| {
-                                std::array::from_fn(|k| {
-                                    f32::from_le_bytes([
-                                        c[4 * k],
-                                        c[4 * k + 1],
-                                        c[4 * k + 2],
-                                        c[4 * k + 3],
-                                    ])
-                                })
-                            })
-                            .collect();
-                        TexelData::Float(FloatMap { width: p.width, height: p.height, texels })
-                    }
-                }
-            };
-            p.buffer.unmap();
-            out.push((p.key, data));
-        }
-        Ok(out)
+        atlas
     }
 }

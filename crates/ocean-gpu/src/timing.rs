@@ -10,7 +10,7 @@ use std::time::Duration;
 use ocean_core::plan::Pass;
 
 use crate::device::{Error, Gpu};
-use crate::texture::{MapState, map_for_reading};
+use crate::readback::{MapState, map_for_reading};
 
 /// Most GPU passes a frame can time (9 plan passes, the Fresnel stage twice).
 const MAX_GPU_PASSES: u32 = 16;

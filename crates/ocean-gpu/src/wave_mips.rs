@@ -3,113 +3,17 @@
 //! level after), each reading the level below through a one-level view and writing its own
 //! through another. CPU mirror: `ocean-cpu/src/shaders/wave_mips.rs`.
 
-use crate::created::{Counted, CountedView};
-use ocean_core::far_field::{mip_level_count, mip_level_row, mip_level_size};
+use crate::created::Counted;
+use ocean_core::far_field::mip_level_size;
 use ocean_core::frame::WaveMipsUniforms;
 
 use crate::common::{entry, label, pipeline_layout, shader_module};
 use crate::device::Error;
-use crate::texture::{GpuTexture, MAP_FORMAT, map_usage};
+pub use crate::texture::GpuMipChain;
+use crate::texture::GpuTexture;
 
 /// `@workgroup_size(8, 8, 1)` of the WGSL.
 pub const WORKGROUP_SIZE: u32 = 8;
-
-/// An `Rgba32Float` texture (post `bloom`'s: the frame's format) with a mip chain and a view
-/// of each level.
-#[derive(Clone)]
-pub struct GpuMipChain {
-    /// The texture.
-    pub texture: wgpu::Texture,
-    /// A view of every level (what the water pass samples).
-    pub view: wgpu::TextureView,
-    /// One view per level.
-    pub levels: Vec<wgpu::TextureView>,
-    /// Width of level 0.
-    pub width: u32,
-    /// Height of level 0.
-    pub height: u32,
-    /// Its texel format.
-    pub format: wgpu::TextureFormat,
-}
-
-impl GpuMipChain {
-    /// A chain of `width` × `height` at level 0.
-    pub fn new(device: &wgpu::Device, label: &str, width: u32, height: u32) -> Self {
-        Self::with_levels(device, label, width, height, mip_level_count(width, height))
-    }
-
-    /// A chain of `width` × `height` at level 0 with `count` levels (post `bloom`'s chains
-    /// stop where the plan says).
-    pub fn with_levels(
-        device: &wgpu::Device,
-        label: &str,
-        width: u32,
-        height: u32,
-        count: u32,
-    ) -> Self {
-        Self::with_format(device, label, width, height, count, MAP_FORMAT)
-    }
-
-    /// [`Self::with_levels`] in `format` (post `bloom`'s chains are in the frame's format).
-    pub fn with_format(
-        device: &wgpu::Device,
-        label: &str,
-        width: u32,
-        height: u32,
-        count: u32,
-        format: wgpu::TextureFormat,
-    ) -> Self {
-        let texture = device.new_texture(&wgpu::TextureDescriptor {
-            label: Some(label),
-            size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
-            mip_level_count: count,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage: map_usage(),
-            view_formats: &[],
-        });
-        let view = texture.new_view(&wgpu::TextureViewDescriptor::default());
-        let levels = (0..count)
-            .map(|k| {
-                texture.new_view(&wgpu::TextureViewDescriptor {
-                    base_mip_level: k,
-                    mip_level_count: Some(1),
-                    ..Default::default()
-                })
-            })
-            .collect();
-        Self { texture, view, levels, width, height, format }
-    }
-
-    /// Records copies of every level into one atlas texture laid out as
-    /// `ocean_core::far_field::mip_level_row` says (the read-back and the cross-check).
-    pub fn pack(&self, device: &wgpu::Device, encoder: &mut wgpu::CommandEncoder) -> GpuTexture {
-        let count = self.levels.len() as u32;
-        let rows = mip_level_row(self.height, count);
-        let atlas =
-            GpuTexture::new(device, "ocean.mip_atlas", self.width, rows, self.format, map_usage());
-        for k in 0..count {
-            let [w, h] = mip_level_size(self.width, self.height, k);
-            encoder.copy_texture_to_texture(
-                wgpu::TexelCopyTextureInfo {
-                    texture: &self.texture,
-                    mip_level: k,
-                    origin: wgpu::Origin3d::ZERO,
-                    aspect: wgpu::TextureAspect::All,
-                },
-                wgpu::TexelCopyTextureInfo {
-                    texture: &atlas.texture,
-                    mip_level: 0,
-                    origin: wgpu::Origin3d { x: 0, y: mip_level_row(self.height, k), z: 0 },
-                    aspect: wgpu::TextureAspect::All,
-                },
-                wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
-            );
-        }
-        atlas
-    }
-}
 
 /// The stage's two pipelines and their bindings: group 0, binding 0 = `WaveMipsUniforms`,
 /// 1 = the level read, 2 = the level written (storage).

@@ -146,7 +146,7 @@ pub fn check_plan(
     // is compared. The picture still compares the two frames end to end.
     let same_input_bloom = match (plan.runs(Pass::Bloom), gpu.map(ResourceId::Hdr)) {
         (true, Some(hdr)) => {
-            let inputs = ocean_core::plan::BloomInputs::new(scene);
+            let inputs = ocean_core::graph::BloomInputs::new(scene);
             let frame =
                 ocean_cpu::sampler::Texture2D::new(hdr.width, hdr.height, hdr.texels.clone());
             Some(ocean_cpu::shaders::bloom::dispatch(&frame, &inputs))

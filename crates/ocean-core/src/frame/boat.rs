@@ -25,13 +25,17 @@
 //! Every step is plain f64 arithmetic in a fixed order on one thread (boats are settled in
 //! parallel, each on its own), so the pose is bit-identical on every run and thread count.
 
-use glam::{DMat4, DVec3};
+use glam::DVec3;
 use rayon::prelude::*;
 
 use super::SurfaceSource;
 use crate::floating::{Boat, BoatParams, BoatPose, MAX_PHASE_PER_SUBSTEP, WaterHeight};
+use crate::objects::start;
+pub use crate::objects::{
+    BOW_SHARE, HULL_TRIANGLES, hull_bounds, hull_faces, hull_triangles, resting_pose,
+};
 use crate::plan::FramePlan;
-use crate::scene::{Object, Scene, Shape};
+use crate::scene::{Object, Scene};
 
 /// Sub-steps of a boat's settle run: W = SETTLE_STEPS · 0.2/ω ≈ 4.1 heave periods 2π/ω
 /// (3.5 s for the default 6 m launch). Measured against a run 6 times longer (768 steps), the
@@ -44,13 +48,6 @@ use crate::scene::{Object, Scene, Shape};
 /// queries a sub-step at ~1 ms each; docs/coastal.md, "A boat in a scene").
 pub const SETTLE_STEPS: usize = 128;
 
-/// The bow's share of the hull's length: the last 30 % narrows from the full beam to a
-/// point on the centre line.
-pub const BOW_SHARE: f64 = 0.3;
-
-/// Triangles of one hull: the deck and the keel (pentagons, 3 each) and five sides (2 each).
-pub const HULL_TRIANGLES: u32 = 16;
-
 /// The settle window W of a boat, s: [`SETTLE_STEPS`] of its longest sub-step.
 pub fn settle_window_s(params: &BoatParams) -> f64 {
     SETTLE_STEPS as f64 * params.max_substep_s()
@@ -60,26 +57,6 @@ pub fn settle_window_s(params: &BoatParams) -> f64 {
 /// boat.
 pub fn settle_periods() -> f64 {
     SETTLE_STEPS as f64 * MAX_PHASE_PER_SUBSTEP / std::f64::consts::TAU
-}
-
-/// Where a boat starts: its start point's (x, z) and its heading as [`BoatPose`]'s yaw.
-fn start(o: &Object) -> Option<(BoatParams, f64, f64, f64)> {
-    match o.shape()? {
-        Shape::Boat { heading_deg, .. } => {
-            // heading_deg turns from +x towards +z, clockwise seen from above; yaw turns the
-            // bow to port, anticlockwise: the same angle with the other sign.
-            Some((o.boat_params()?, o.center[0], o.center[2], -heading_deg.to_radians()))
-        }
-        _ => None,
-    }
-}
-
-/// A boat at rest on still water at y = 0: level, its keel at its draft, at its start point
-/// and heading. What the planner, which knows no time, takes for its place (the spray's
-/// emitters), and what a boat is drawn at when no pose is given.
-pub fn resting_pose(o: &Object) -> Option<BoatPose> {
-    let (p, x, z, yaw) = start(o)?;
-    Some(BoatPose::from_angles(DVec3::new(x, -p.still_water_draft_m(), z), yaw, 0.0, 0.0))
 }
 
 /// The pose of boat `o` at time `t` on the sea of `sea` (module doc).
@@ -129,7 +106,7 @@ pub fn settle(
 
 /// Where each object of a scene is in one frame: the settled pose of every boat
 /// ([`settled_pose`]), nothing for the other kinds (they stand where the scene puts them).
-/// Made once per frame (`crate::plan::FrameInputs`) and read by every object pass.
+/// Made once per frame (`crate::graph::FrameInputs`) and read by every object pass.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct ObjectPoses {
     poses: Vec<Option<BoatPose>>,
@@ -176,80 +153,4 @@ impl ObjectPoses {
     pub fn of(&self, index: usize, o: &Object) -> Option<BoatPose> {
         self.get(index).copied().or_else(|| resting_pose(o))
     }
-}
-
-/// The hull's outline seen from above, body frame (x forward, z starboard) on the keel
-/// plane: stern port, stern starboard, starboard shoulder, bow, port shoulder.
-fn outline(length_m: f64, beam_m: f64) -> [DVec3; 5] {
-    let (hl, hb) = (0.5 * length_m, 0.5 * beam_m);
-    let shoulder = hl - BOW_SHARE * length_m;
-    [
-        DVec3::new(-hl, 0.0, -hb),
-        DVec3::new(-hl, 0.0, hb),
-        DVec3::new(shoulder, 0.0, hb),
-        DVec3::new(hl, 0.0, 0.0),
-        DVec3::new(shoulder, 0.0, -hb),
-    ]
-}
-
-/// The hull's faces in the body frame ([`BoatPose`]'s: origin the keel's centre, x forward,
-/// y up, z starboard): each a convex polygon counter-clockwise seen from outside, with its
-/// outward normal. A prism: the outline (a box with a pointed bow, [`BOW_SHARE`]) extruded
-/// from the keel plane y = 0 up to the deck at the hull depth. Its volume is
-/// B·H·(L − BOW_SHARE·L/2).
-pub fn hull_faces(size: [f64; 3]) -> Vec<(DVec3, Vec<DVec3>)> {
-    let [length, depth, beam] = size;
-    let keel = outline(length, beam);
-    let up = DVec3::new(0.0, depth, 0.0);
-    let deck: Vec<DVec3> = keel.iter().map(|&p| p + up).collect();
-    let mut faces = vec![(DVec3::Y, deck), (DVec3::NEG_Y, keel.to_vec())];
-    for i in 0..keel.len() {
-        let (a, b) = (keel[i], keel[(i + 1) % keel.len()]);
-        let edge = b - a;
-        // The outline's centroid is inside and the polygon convex: the outward normal is the
-        // edge's horizontal perpendicular that points away from it.
-        let mut n = DVec3::new(edge.z, 0.0, -edge.x).normalize();
-        if n.dot(a) < 0.0 {
-            n = -n;
-        }
-        faces.push((n, vec![a, b, b + up, a + up]));
-    }
-    // Wind each face counter-clockwise seen from outside (Newell's normal along the outward).
-    for (n, poly) in &mut faces {
-        let newell = (0..poly.len())
-            .map(|i| poly[i].cross(poly[(i + 1) % poly.len()]))
-            .fold(DVec3::ZERO, |s, c| s + c);
-        if newell.dot(*n) < 0.0 {
-            poly.reverse();
-        }
-    }
-    faces
-}
-
-/// The hull's triangles in the world at `pose`: each face fanned from its first corner, the
-/// corners through [`BoatPose::model_matrix`], the normals through its rotation.
-pub fn hull_triangles(size: [f64; 3], pose: &BoatPose) -> Vec<([DVec3; 3], DVec3)> {
-    let m: DMat4 = pose.model_matrix();
-    let mut tris = Vec::new();
-    for (n, poly) in hull_faces(size) {
-        let n = m.transform_vector3(n);
-        let w: Vec<DVec3> = poly.iter().map(|&p| m.transform_point3(p)).collect();
-        for i in 1..w.len() - 1 {
-            tris.push(([w[0], w[i], w[i + 1]], n));
-        }
-    }
-    tris
-}
-
-/// The world box of a hull at `pose` (its ten corners'), m.
-pub fn hull_bounds(size: [f64; 3], pose: &BoatPose) -> (DVec3, DVec3) {
-    let m = pose.model_matrix();
-    let up = DVec3::new(0.0, size[1], 0.0);
-    outline(size[0], size[2])
-        .iter()
-        .flat_map(|&p| [p, p + up])
-        .map(|p| m.transform_point3(p))
-        .fold((DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)), |(lo, hi), p| {
-            (lo.min(p), hi.max(p))
-        })
 }

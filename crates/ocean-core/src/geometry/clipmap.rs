@@ -115,22 +115,6 @@ impl Clipmap {
         Ok(Self { cells, cell_m, origin, centres, holes, eye_in_cells })
     }
 
-    /// The clipmap of a frame of `plan` seen through `camera`, if its surface is `clipmap`.
-    pub fn of_frame(
-        scene: &crate::scene::Scene,
-        camera: &crate::camera::Camera,
-        plan: &crate::plan::FramePlan,
-    ) -> Option<Result<Self>> {
-        (plan.techniques.of(crate::plan::Stage::Surface).name == "clipmap").then(|| {
-            Self::new(
-                [camera.eye.x, camera.eye.z],
-                camera.eye.y,
-                scene.quality.clipmap_cell_m,
-                scene.quality.clipmap_cells,
-            )
-        })
-    }
-
     /// Levels that reach `HORIZON_DISTANCE_H`·clearance (clearance at least
     /// [`crate::geometry::PatchParams`]' default minimum height), at most
     /// [`MAX_CLIPMAP_LEVELS`].

@@ -28,6 +28,8 @@ use super::far::{FarPatch, PlacedFarPatch};
 use super::near::NearPatch;
 use super::params::{PatchParams, STITCH_CLEARANCE, invalid, stitch_radius};
 use super::{WaterVertex, effective_height};
+use bytemuck::{Pod, Zeroable};
+
 use crate::Result;
 
 /// The water mesh of one frame.
@@ -401,4 +403,17 @@ mod tests {
         // And no radius works when a ring step plus the corner angle reach 90°.
         assert!(stitch_radius(256.0, [0.0, 0.0], 4).is_none());
     }
+}
+
+/// Vertex of the objects' meshes (WGSL `ObjectVertex`): camera-relative position, unit normal,
+/// linear albedo.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct ObjectVertex {
+    /// Position − eye, m.
+    pub position: [f32; 3],
+    /// Unit normal.
+    pub normal: [f32; 3],
+    /// Linear RGB albedo.
+    pub color: [f32; 3],
 }

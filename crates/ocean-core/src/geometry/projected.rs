@@ -29,6 +29,7 @@
 //! homogeneous form interpolate bilinearly to every vertex exactly, and the horizon (w → 0)
 //! stays finite because the range ends below it.
 
+use bytemuck::{Pod, Zeroable};
 use glam::{DVec3, DVec4};
 
 use crate::camera::Camera;
@@ -171,5 +172,61 @@ impl ProjectedGrid {
         let [c00, c10, c01, c11] = self.corners;
         let h = (c00 * (1.0 - u) + c10 * u) * (1.0 - v) + (c01 * (1.0 - u) + c11 * u) * v;
         h.truncate() / h.w
+    }
+}
+
+/// Surface `projected_grid` ([`ProjectedGrid`]): the grid's corners and size.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct ProjectedGridBlock {
+    /// The corners (u, v) = (0, 0), (1, 0), (0, 1), (1, 1) on the sea plane, homogeneous and
+    /// relative to the eye ((p − eye)·w, w).
+    pub corners: [[f32; 4]; 4],
+    /// Quads across (u); 0 when the view holds no sea or the surface is another technique.
+    pub cols: f32,
+    /// Quads along v.
+    pub rows: f32,
+    /// 1: surface `shore_grid`, whose parameters the corners hold
+    /// ([`crate::geometry::shore_grid::block`]); 0: the projected grid.
+    pub shore: f32,
+    /// The angle between grid lines, rad (`cell_px` pixels): a vertex's spacing across the
+    /// view is this times its distance (waves `coastal` fade what it cannot hold).
+    pub cell_angle: f32,
+}
+
+impl ProjectedGridBlock {
+    /// The margin of the wave bound over the sea's significant wave height: the crests and
+    /// the horizontal (choppy) displacement stay within 3·H_s of the plane but for a chance of
+    /// about e^(−18) per wave (Rayleigh crests, P(a > x) = e^(−2x²/H_s²)).
+    pub const BOUND_OVER_HS: f64 = 3.0;
+
+    /// The block of a `width` × `height` view through `camera` over a sea whose waves stay
+    /// within `wave_bound` = (vertical, horizontal) m of their undisplaced point (the plan's
+    /// `wave_bound_m`, [`Self::BOUND_OVER_HS`] times H_s, and that times the choppiness),
+    /// `cell_px` pixels between grid lines (at most 4096 quads a side).
+    pub fn new(camera: &crate::camera::Camera, wave_bound: [f64; 2], cell_px: f64) -> Self {
+        let Some(grid) = ProjectedGrid::new(camera, wave_bound[0], wave_bound[1]) else {
+            return Self::zeroed();
+        };
+        let (cols, rows) = Self::quads(camera.width, camera.height, cell_px);
+        Self {
+            corners: grid.corners.map(|c| c.as_vec4().to_array()),
+            cols: cols as f32,
+            rows: rows as f32,
+            shore: 0.0,
+            cell_angle: (cell_px * camera.pixel_angle()) as f32,
+        }
+    }
+
+    /// The grid's quads across and along for a `width` × `height` image, `cell_px` pixels
+    /// between lines: ⌈width/cell⌉ × ⌈height/cell⌉, each from 1 to 4096.
+    pub fn quads(width: u32, height: u32, cell_px: f64) -> (u32, u32) {
+        let q = |px: u32| (f64::from(px) / cell_px).ceil().clamp(1.0, 4096.0) as u32;
+        (q(width), q(height))
+    }
+
+    /// Vertices the water pass draws (a triangle list, six per quad).
+    pub fn vertex_count(&self) -> u32 {
+        6 * self.cols as u32 * self.rows as u32
     }
 }

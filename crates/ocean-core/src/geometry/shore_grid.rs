@@ -21,8 +21,8 @@
 //! screen-space grids of ⌈w/cell⌉ × ⌈h/cell⌉ quads, and the back ends draw either the same way.
 //! Like the seed's, the grid moves with the camera, so the waves slide through its vertices.
 
+use super::ProjectedGridBlock;
 use crate::camera::Camera;
-use crate::frame::ProjectedGridBlock;
 
 /// The farthest row, m, for a camera of pixel angle `pixel_angle` at `height` above the plane:
 /// where the plane is half a pixel below the horizon, within [100 m, 10⁵ m].

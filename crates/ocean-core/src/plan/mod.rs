@@ -34,10 +34,11 @@
 //! stay: they are what the picture shows, not work saved); the tests render both plans and
 //! compare the bits.
 
-mod graph;
 pub mod memory;
 mod resource;
-mod technique;
+mod rules;
+mod spray;
+pub use spray::spray_uniforms;
 
 use crate::tables::TextureMapping;
 use std::fmt;
@@ -49,16 +50,12 @@ use crate::camera::{Camera, NEAR_PLANE_M};
 use crate::geometry::WaterMesh;
 use crate::scene::{Object, Scene, Shape};
 
-pub use graph::{
-    Backend, BloomInputs, DrawMesh, FoamField, FoamWork, FrameInputs, FrameState, run_frame,
-    tonemap_uniforms,
+pub use crate::technique::{
+    Choice, FarField, Foam, Post, SYSTEMS, Shading, Sky, Spray, Stage, StageTechnique, Surface,
+    System, SystemInfo, TechniqueError, TechniqueInfo, Techniques, Waves, all_techniques,
+    known_systems, technique,
 };
-
 pub use resource::{Format, Resource, ResourceId, SHADOW_MAP_SIZE};
-pub use technique::{
-    SYSTEMS, Stage, System, SystemInfo, TECHNIQUES, TechniqueError, TechniqueInfo, Techniques,
-    known_systems, technique, waves_per_vertex,
-};
 
 /// A pass of the frame, named as in docs/design.md (the name of its stage, or of the map an
 /// object pass fills, or of the work it stands for: `cycle`, `far_patch`).
@@ -319,7 +316,7 @@ impl PassObjects {
 
 /// The frame graph: the system and the technique per stage, the resources with their
 /// formats and sizes, the ordered passes, the ones left out, and what each object pass
-/// draws. Both back ends run it through [`run_frame`].
+/// draws. Both back ends run it through [`crate::graph::run_frame`].
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct FramePlan {
     /// The system the techniques start from.
@@ -458,23 +455,16 @@ fn footprint_inside_near_patch(scene: &Scene, camera: &Camera) -> Option<([f64; 
     inside.then_some((bbox, [c[0], c[1], half]))
 }
 
-/// How a plan is built: the number of frames it is for, and whether the pruning rules apply.
-#[derive(Clone, Copy, Debug)]
-struct Options {
-    frames: u64,
-    prune: bool,
-}
-
 impl FramePlan {
     /// The plan of one frame of a validated scene: every rule applied.
     pub fn new(scene: &Scene, output: OutputKind) -> Self {
-        Self::build(scene, output, Options { frames: 1, prune: true })
+        Self::build(scene, output, rules::Options { frames: 1, prune: true })
     }
 
     /// The plan of each of `frames` frames of an animation of the scene: as [`Self::new`],
     /// and a looping sea precomputes its cycle when more than one frame is asked for.
     pub fn for_frames(scene: &Scene, output: OutputKind, frames: u64) -> Self {
-        Self::build(scene, output, Options { frames, prune: true })
+        Self::build(scene, output, rules::Options { frames, prune: true })
     }
 
     /// The plan with every pruning rule turned off: every pass the scene can use runs (the
@@ -483,470 +473,7 @@ impl FramePlan {
     /// shadow maps, below it for the refraction map). Its picture is the reference that the
     /// pruned plan's must equal bit for bit (the cycle's only at its frame instants).
     pub fn full(scene: &Scene, output: OutputKind) -> Self {
-        Self::build(scene, output, Options { frames: u64::MAX, prune: false })
-    }
-
-    fn build(scene: &Scene, output: OutputKind, opt: Options) -> Self {
-        let camera = Camera::from_scene(&scene.camera).ok();
-        let objs = &scene.objects;
-        let above: Vec<usize> = (0..objs.len()).filter(|&i| y_range(&objs[i]).1 > 0.0).collect();
-        let below: Vec<usize> = (0..objs.len()).filter(|&i| y_range(&objs[i]).0 < 0.0).collect();
-        // Per-pass culling: (kept, culled names).
-        let cull = |list: &[usize], image: &dyn Fn(DVec3, DVec3) -> (DVec3, DVec3)| {
-            let mut kept = Vec::new();
-            let mut culled = Vec::new();
-            for &i in list {
-                let outside = |c: &Camera| {
-                    bounds(&objs[i]).is_some_and(|(lo, hi)| {
-                        let (lo, hi) = image(lo, hi);
-                        outside_view(c, lo, hi)
-                    })
-                };
-                match &camera {
-                    Some(c) if opt.prune && outside(c) => culled.push(object_name(i, &objs[i])),
-                    _ => kept.push(i),
-                }
-            }
-            (kept, culled)
-        };
-        let all: Vec<usize> = (0..objs.len()).collect();
-        let (in_view, culled_view) = cull(&all, &|lo, hi| (lo, hi));
-        // The reflection map draws the mirror image y → −y.
-        let (mirrored, culled_mirror) =
-            cull(&above, &|lo, hi| (DVec3::new(lo.x, -hi.y, lo.z), DVec3::new(hi.x, -lo.y, hi.z)));
-        // The refraction map draws the objects with y scaled by 1/η (vs_refract).
-        let inv_eta = 1.0 / scene.water.ior;
-        let (refracted, culled_refract) = cull(&below, &|lo, hi| {
-            (DVec3::new(lo.x, lo.y * inv_eta, lo.z), DVec3::new(hi.x, hi.y * inv_eta, hi.z))
-        });
-        let list_of = |names: &[String]| names.join(", ");
-
-        let sun_up = scene.sun.as_ref().is_some_and(|s| s.direction[1] > 0.0 && s.intensity > 0.0);
-        let waves_on = scene.ocean.wind_speed > 0.0 || !opt.prune;
-        let looping = scene.ocean.loop_period_s > 0.0;
-        let far_hidden = camera
-            .as_ref()
-            .filter(|_| opt.prune)
-            .and_then(|c| footprint_inside_near_patch(scene, c));
-        let techniques = scene.techniques();
-        let waves_kernel = WavesKernel::for_ocean(&scene.ocean);
-        // Waves `gerstner` and `coastal` are summed per vertex in the water pass: no maps.
-        let waves_name = techniques.of(Stage::Waves).name;
-        let gerstner = technique::waves_per_vertex(waves_name);
-        let gerstner_reason = || {
-            if waves_name == "coastal" {
-                return format!(
-                    "waves = coastal: radial waves + {} correction wave(s) summed per vertex and \
-                     per fragment in the water pass, no maps",
-                    scene.coastal.corrections.len()
-                );
-            }
-            format!(
-                "waves = gerstner: {} wave(s) summed per vertex and per fragment in the water \
-                 pass, no maps",
-                scene.gerstner.wave_count()
-            )
-        };
-        let mut plan = FramePlan {
-            system: techniques.system,
-            techniques,
-            waves_kernel,
-            resources: Vec::new(),
-            passes: Vec::new(),
-            skipped: Vec::new(),
-            frame_format: scene.frame_format(),
-            fresnel_table_size: scene.quality.fresnel_table_size,
-            fresnel_mapping: TextureMapping::Grazing,
-            reflection_map_size: [scene.camera.width, scene.camera.height].map(|side| {
-                ((f64::from(side) * scene.quality.reflection_map_scale).round() as u32).max(1)
-            }),
-            wave_bound_m: if waves_name == "coastal" {
-                // Vertical only; a scene whose dispersion fails validation has no sea.
-                let v = crate::frame::coastal_sea(scene, scene.ocean.time_s)
-                    .map_or(0.0, |s| s.bound_m());
-                [v, 0.0]
-            } else if gerstner {
-                let (v, h) = scene.gerstner.bounds();
-                [v, h]
-            } else if techniques.of(Stage::Surface).name == "projected_grid"
-                || techniques.of(Stage::Spray).name == "particles"
-            {
-                // A validated scene's spectrum exists; without one the sea is flat.
-                let hs = scene.ocean.wave_spectrum().map_or(0.0, |s| s.significant_wave_height());
-                let a = crate::frame::ProjectedGridBlock::BOUND_OVER_HS * hs;
-                [a, a * scene.ocean.choppiness]
-            } else {
-                [0.0; 2]
-            },
-            spray_emitters: std::sync::Arc::default(),
-        };
-        if techniques.of(Stage::Spray).name == "particles" {
-            plan.spray_emitters =
-                std::sync::Arc::new(crate::spray::emitters(scene, plan.wave_bound_m[0]));
-        }
-        let full = "full plan: every pass the scene can use";
-        let mut objects = PassObjects::default();
-        for pass in Pass::ALL {
-            let (run, reason) = match pass {
-                Pass::Cycle | Pass::Waves | Pass::WaveMips if gerstner => {
-                    (false, gerstner_reason())
-                }
-                Pass::Cycle => match (looping, waves_on, opt.frames) {
-                    (false, _, _) => {
-                        (false, "loop_period_s = 0: the sea does not loop, nothing to cycle".into())
-                    }
-                    (true, false, _) => (false, "no wind: the sea is flat".into()),
-                    (true, true, 0..=1) => (
-                        false,
-                        "a single frame: synthesised at its time, no cyclic precompute".into(),
-                    ),
-                    (true, true, n) if opt.prune => (
-                        true,
-                        format!(
-                            "{n} frames of a {} s loop: its maps precomputed once, played cyclically",
-                            scene.ocean.loop_period_s
-                        ),
-                    ),
-                    (true, true, _) => (true, full.into()),
-                },
-                Pass::Waves => {
-                    let how = match (looping && opt.frames > 1 && waves_on, waves_kernel) {
-                        (true, _) => "the cycle's maps",
-                        (false, WavesKernel::Shader) => {
-                            "waves.wgsl (GPU FFT; its CPU mirror on the oracle)"
-                        }
-                        (false, WavesKernel::Synthesis) if looping => {
-                            "ocean-core's FFT synthesis (a looping sea: as its cycle)"
-                        }
-                        (false, WavesKernel::Synthesis) => {
-                            "ocean-core's FFT synthesis (a side that is not a power of two)"
-                        }
-                    };
-                    if scene.ocean.wind_speed > 0.0 {
-                        (true, format!("wind {} m/s: {how}", scene.ocean.wind_speed))
-                    } else if !opt.prune {
-                        (true, full.into())
-                    } else {
-                        (false, "no wind: the sea is flat".to_string())
-                    }
-                }
-                Pass::WaveMips => {
-                    let far = techniques.of(Stage::FarField).name;
-                    if far == "none" {
-                        (false, "far_field = none: the slope maps are sampled at level 0".into())
-                    } else if !waves_on {
-                        (false, "no wind: the sea is flat, nothing to filter".into())
-                    } else {
-                        (
-                            true,
-                            format!(
-                                "far_field = {far}: mip chains of the slope maps with their \
-                                 second moments ({0}², {1}²), sampled at the footprint's LOD",
-                                scene.ocean.resolution, scene.ocean.bump_resolution
-                            ),
-                        )
-                    }
-                }
-                Pass::FresnelTable => (
-                    true,
-                    format!(
-                        "the water pass looks F up in it ({0}×{0}, {1} mapping)",
-                        scene.quality.fresnel_table_size,
-                        TextureMapping::Grazing.name()
-                    ),
-                ),
-                Pass::ShadowMap => {
-                    objects.shadow_map = above.clone();
-                    match (sun_up || !opt.prune, above.len()) {
-                        (false, _) => {
-                            (false, "no sun above the horizon: no specular to shadow".into())
-                        }
-                        (true, 0) => (false, "no object above the water casts a shadow".into()),
-                        (true, n) if opt.prune => (
-                            true,
-                            format!("{n} object(s) above the water under the sun (in view or not)"),
-                        ),
-                        (true, _) => (true, full.into()),
-                    }
-                }
-                Pass::ReflectionMap => {
-                    objects.reflection_map = mirrored.clone();
-                    let size = plan.reflection_map_size;
-                    match (above.len(), mirrored.len()) {
-                        (0, _) if opt.prune => {
-                            (false, "no object above the water: the sky alone is reflected".into())
-                        }
-                        (_, 0) if opt.prune => (
-                            false,
-                            format!(
-                                "every mirror image is outside the view ({}): the sky alone is \
-                                 reflected",
-                                list_of(&culled_mirror)
-                            ),
-                        ),
-                        (n, k) => (
-                            true,
-                            if !opt.prune {
-                                format!("{full} ({}×{})", size[0], size[1])
-                            } else if culled_mirror.is_empty() {
-                                format!("{n} object(s) above the water ({}×{})", size[0], size[1])
-                            } else {
-                                format!(
-                                    "{k} of {n} object(s) above the water ({}×{}); culled, mirror \
-                                     image outside the view: {}",
-                                    size[0],
-                                    size[1],
-                                    list_of(&culled_mirror)
-                                )
-                            },
-                        ),
-                    }
-                }
-                Pass::RefractionMap => {
-                    objects.refraction_map = refracted.clone();
-                    match (below.len(), refracted.len()) {
-                        (0, _) if opt.prune => {
-                            (false, "nothing under the water: the water volume colour alone".into())
-                        }
-                        (_, 0) if opt.prune => (
-                            false,
-                            format!(
-                                "every refracted image is outside the view ({}): the water \
-                                 volume colour alone",
-                                list_of(&culled_refract)
-                            ),
-                        ),
-                        (_, _) if !opt.prune => (true, full.into()),
-                        (n, k) if culled_refract.is_empty() => {
-                            debug_assert_eq!(n, k);
-                            (true, format!("{n} object(s) under the water"))
-                        }
-                        (n, k) => (
-                            true,
-                            format!(
-                                "{k} of {n} object(s) under the water; culled, refracted image \
-                                 outside the view: {}",
-                                list_of(&culled_refract)
-                            ),
-                        ),
-                    }
-                }
-                Pass::Sky => {
-                    if scene.camera.position[1] < 0.0 {
-                        (
-                            false,
-                            "camera under the water: the water volume fills the background".into(),
-                        )
-                    } else {
-                        (true, "the background".into())
-                    }
-                }
-                Pass::Objects => {
-                    objects.objects = in_view.clone();
-                    match (objs.len(), in_view.len()) {
-                        (0, _) if opt.prune => (false, "the scene has no objects".into()),
-                        (_, 0) if opt.prune => (
-                            false,
-                            format!("every object is outside the view ({})", list_of(&culled_view)),
-                        ),
-                        (_, _) if !opt.prune => (true, full.into()),
-                        (n, _) if culled_view.is_empty() => (true, format!("{n} object(s)")),
-                        (n, k) => (
-                            true,
-                            format!(
-                                "{k} of {n} object(s); culled, outside the view: {}",
-                                list_of(&culled_view)
-                            ),
-                        ),
-                    }
-                }
-                Pass::FarPatch if techniques.of(Stage::Surface).name != "hu_patches" => (
-                    false,
-                    format!(
-                        "surface {} has no far patch: its grid reaches the horizon",
-                        techniques.of(Stage::Surface).name
-                    ),
-                ),
-                Pass::FarPatch => match far_hidden {
-                    Some((b, sq)) => (
-                        false,
-                        format!(
-                            "the view meets the sea in x ∈ [{:.1}, {:.1}], z ∈ [{:.1}, {:.1}] m, \
-                             inside the near patch ({:.0} m square about ({:.1}, {:.1})): the far \
-                             patch would be clipped whole",
-                            b[0],
-                            b[2],
-                            b[1],
-                            b[3],
-                            2.0 * sq[2],
-                            sq[0],
-                            sq[1]
-                        ),
-                    ),
-                    None if opt.prune => (true, "the view reaches beyond the near patch".into()),
-                    None => (true, full.into()),
-                },
-                Pass::Water
-                    if matches!(
-                        techniques.of(Stage::Surface).name,
-                        "projected_grid" | "shore_grid"
-                    ) =>
-                {
-                    // Both screen-space grids: ⌈w/cell⌉ × ⌈h/cell⌉ quads, one vertex-index draw.
-                    let (cols, rows) = crate::frame::ProjectedGridBlock::quads(
-                        scene.camera.width,
-                        scene.camera.height,
-                        scene.quality.projected_grid_cell_px,
-                    );
-                    let grid = if techniques.of(Stage::Surface).name == "shore_grid" {
-                        format!(
-                            "the shore grid of {cols}×{rows} quads ahead of the eye (rows of \
-                             equal screen height, seed 004)"
-                        )
-                    } else {
-                        format!("a projected grid of {cols}×{rows} quads from the vertex index")
-                    };
-                    let shading = techniques.of(Stage::Shading).name;
-                    (true, format!("the sea surface, shading {shading}, on {grid}"))
-                }
-                Pass::Water if techniques.of(Stage::Surface).name == "clipmap" => {
-                    let q = &scene.quality;
-                    let levels = crate::geometry::Clipmap::levels_for(
-                        scene.camera.position[1],
-                        q.clipmap_cell_m,
-                        q.clipmap_cells,
-                    );
-                    (
-                        true,
-                        format!(
-                            "the sea surface, shading {}, on a clipmap of {levels} levels of \
-                             {n}×{n} quads ({} m to {} m) from the vertex index",
-                            techniques.of(Stage::Shading).name,
-                            q.clipmap_cell_m,
-                            q.clipmap_cell_m * (1u64 << (levels - 1)) as f64,
-                            n = q.clipmap_cells,
-                        ),
-                    )
-                }
-                Pass::Water => (
-                    true,
-                    format!("the sea surface, shading {}", techniques.of(Stage::Shading).name),
-                ),
-                Pass::Spray => {
-                    let t = techniques.of(Stage::Spray).name;
-                    if t != "particles" {
-                        (false, format!("spray = {t}"))
-                    } else {
-                        let n = plan.spray_emitters.len();
-                        if n == 0 && opt.prune {
-                            (
-                                false,
-                                "no object surface lies between the waves' lower and upper \
-                                 bounds: nothing emits spray"
-                                    .into(),
-                            )
-                        } else {
-                            (
-                                true,
-                                format!(
-                                    "{} particles from {n} emitter(s) on the objects in the \
-                                     waves' band, one {:.4} s step a frame ({} before the first), \
-                                     drawn as additive sprites",
-                                    scene.spray.particles,
-                                    scene.spray.step_s,
-                                    scene.spray.warmup_steps
-                                ),
-                            )
-                        }
-                    }
-                }
-                Pass::Foam => {
-                    let t = techniques.of(Stage::Foam).name;
-                    if t != "accumulated" {
-                        (false, format!("foam = {t}: the water pass draws it, no state"))
-                    } else {
-                        let g = crate::foam::FieldGrid::of(scene, techniques.of(Stage::Waves).name);
-                        let on = if g.windowed {
-                            format!(
-                                "a {0}×{0} lattice of {1} m around the camera",
-                                g.size, g.cell_m
-                            )
-                        } else {
-                            format!("the displacement map's {0}×{0} grid", g.size)
-                        };
-                        (
-                            true,
-                            format!(
-                                "foam = accumulated: grows where J < {}, decays over {} s, on {on}; \
-                                 one {:.4} s step a frame ({} before the first)",
-                                scene.foam.threshold,
-                                scene.foam.decay_s,
-                                scene.foam.step_s,
-                                scene.foam.warmup_steps
-                            ),
-                        )
-                    }
-                }
-                Pass::Bloom => {
-                    let post = &scene.post;
-                    let [w, h] = [scene.camera.width, scene.camera.height];
-                    let levels = crate::bloom::level_count(w, h, post.bloom_levels);
-                    let base = crate::bloom::base_size(w, h);
-                    match (techniques.of(Stage::Post).name, output) {
-                        ("bloom", OutputKind::Hdr) => (
-                            false,
-                            "EXR output keeps linear HDR (the tonemap composites the bloom)".into(),
-                        ),
-                        ("bloom", OutputKind::Ldr) if post.bloom_strength > 0.0 || !opt.prune => (
-                            true,
-                            format!(
-                                "post = bloom: light above {} (exposed) blurred over {levels} \
-                                 level(s) from {}×{}, added × {} before the tonemap",
-                                post.bloom_threshold, base[0], base[1], post.bloom_strength
-                            ),
-                        ),
-                        ("bloom", OutputKind::Ldr) => {
-                            (false, "bloom_strength = 0: the bloom adds nothing".into())
-                        }
-                        (t, _) => (false, format!("post = {t}")),
-                    }
-                }
-                Pass::Tonemap => match output {
-                    OutputKind::Ldr => (true, "8-bit sRGB output".into()),
-                    OutputKind::Hdr => (false, "EXR output keeps linear HDR".into()),
-                },
-            };
-            // The sea floor: in the main view, in the refraction map where it lies under the
-            // water and in the reflection map where it rises above it (never culled).
-            let terrain = scene.terrain.as_ref().is_some_and(|t| {
-                let (lo, hi) = t.y_range();
-                match pass {
-                    Pass::Objects => true,
-                    Pass::RefractionMap => lo < 0.0,
-                    Pass::ReflectionMap => hi > 0.0,
-                    _ => false,
-                }
-            });
-            let (run, reason) = match (terrain, run) {
-                (false, _) => (run, reason),
-                (true, false) => (true, floor_reason(scene)),
-                (true, true) => (true, format!("{reason}; and {}", floor_reason(scene))),
-            };
-            let planned = PlannedPass {
-                name: pass,
-                reason,
-                stage: pass.stage(),
-                technique: pass.stage().map(|s| techniques.of(s).name),
-                shader: pass.shader(),
-                reads: pass.reads(),
-                writes: pass.writes(),
-                objects: objects.of(pass).to_vec(),
-                terrain,
-            };
-            if run { plan.passes.push(planned) } else { plan.skipped.push(planned) }
-        }
-        plan.resources = plan.size_resources(scene);
-        plan
+        Self::build(scene, output, rules::Options { frames: u64::MAX, prune: false })
     }
 
     /// The resource table: each texture at the size its writer makes it, or 1×1 where the
@@ -981,8 +508,7 @@ impl FramePlan {
                     (frame, crate::bloom::base_size(viewport[0], viewport[1]))
                 }
                 ResourceId::FoamField => (Format::Rgba32Float, {
-                    let g =
-                        crate::foam::FieldGrid::of(scene, self.techniques.of(Stage::Waves).name);
+                    let g = crate::foam::FieldGrid::of(scene, self.techniques.waves());
                     [g.size; 2]
                 }),
                 ResourceId::Ldr => (Format::Rgba8Unorm, viewport),
@@ -1001,7 +527,7 @@ impl FramePlan {
             // Only the `variance` technique reads the filtered Fresnel table.
             let is_written = written(id)
                 && (id != ResourceId::FresnelFilter
-                    || self.techniques.of(Stage::FarField).name == "variance");
+                    || self.techniques.far_field() == FarField::Variance);
             if id == ResourceId::Ldr && !is_written {
                 continue;
             }
@@ -1073,7 +599,7 @@ impl FramePlan {
         self.passes.iter().any(|p| p.name == pass)
     }
 
-    /// Whether a frame leaves state the next one continues ([`FrameState`]'s foam field of
+    /// Whether a frame leaves state the next one continues ([`crate::graph::FrameState`]'s foam field of
     /// foam `accumulated`, or the spray's particle pool), so that frame n of an animation
     /// depends on the frames before it.
     pub fn carries_state(&self) -> bool {
@@ -1083,7 +609,7 @@ impl FramePlan {
     /// The plan of a frame an animation steps but does not draw (a frame of another shard, or
     /// one already on disk): only the passes whose work outlives the frame — `cycle`, `waves`
     /// (the displacement the foam and the spray step on), `foam`, `spray` — in their order.
-    /// Running it in place of a frame leaves [`FrameState`] as the whole frame would.
+    /// Running it in place of a frame leaves [`crate::graph::FrameState`] as the whole frame would.
     pub fn advance_only(&self) -> FramePlan {
         let mut plan = self.clone();
         plan.passes
@@ -1124,7 +650,7 @@ impl FramePlan {
         if let Some(clipmap) = crate::geometry::Clipmap::of_frame(scene, camera, self) {
             return Ok(index_drawn(clipmap?.origin));
         }
-        if matches!(self.techniques.of(Stage::Surface).name, "projected_grid" | "shore_grid") {
+        if self.techniques.surface().camera_grid() {
             let cell = |x: f64| (x / g).round() * g;
             return Ok(index_drawn([cell(camera.eye.x), cell(camera.eye.z)]));
         }

@@ -65,3 +65,16 @@ impl Default for Foam {
         }
     }
 }
+
+// The field a scene chooses: here, above the foam model, which then knows no scene.
+impl crate::foam::FieldGrid {
+    /// The field of a scene whose waves technique is `waves`.
+    pub fn of(scene: &super::Scene, waves: crate::stage::Waves) -> Self {
+        if waves.per_vertex() {
+            Self { size: scene.foam.grid, cell_m: scene.foam.cell_m, windowed: true }
+        } else {
+            let n = scene.ocean.resolution;
+            Self { size: n, cell_m: scene.ocean.patch_size_m / f64::from(n), windowed: false }
+        }
+    }
+}

@@ -2,6 +2,8 @@
 
 use serde::{Deserialize, Serialize};
 
+pub use crate::ggx::GgxFresnel;
+
 /// The `[ggx]` table: shading technique `ggx` (seed 002's Cook–Torrance BRDF with the GGX
 /// distribution; the f64 model is [`crate::ggx`]).
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
@@ -37,17 +39,6 @@ impl Default for Ggx {
             detail_speed_m_s: 0.4,
         }
     }
-}
-
-/// The Fresnel term of shading `ggx`.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum GgxFresnel {
-    /// Eq. 2 of seed 000.
-    #[default]
-    Exact,
-    /// Schlick's approximation, F0 = ((η − 1)/(η + 1))².
-    Schlick,
 }
 
 /// The geometry term of shading `ggx`.

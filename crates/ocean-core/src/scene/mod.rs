@@ -19,11 +19,20 @@ use crate::waves::{ModeParams, OceanParams, OceanSurface, WaveModes};
 mod foam;
 mod ggx;
 mod locate;
+mod sea;
 mod validate;
+mod view;
 
+pub use crate::clouds::Clouds;
+pub use crate::objects::{Object, ObjectKind, Shape};
+pub use crate::spray::Spray;
+pub use crate::terrain::{Terrain, TerrainKind};
+pub use crate::tonemap::Post;
 pub use foam::Foam;
 pub use ggx::{Ggx, GgxFresnel, GgxGeometry};
 use locate::{key_at_offset, key_of_line, key_position, line_column};
+pub use sea::coastal_sea;
+pub(crate) use sea::finite_time;
 pub use validate::{
     LIMITS, Limit, MAX_COLOUR, MAX_COORDINATE_M, MAX_SUN_INTENSITY, MIN_LENGTH_M, limit,
 };
@@ -87,7 +96,7 @@ pub enum SceneError {
 pub struct Scene {
     /// The seed paper's system whose techniques the frame uses (`hu`, the default; see
     /// `plan::SYSTEMS`).
-    pub system: crate::plan::System,
+    pub system: crate::technique::System,
     /// Per-stage overrides of the system's techniques.
     pub techniques: TechniqueOverrides,
     /// The sea: spectrum, grid, time.
@@ -155,8 +164,8 @@ pub struct TechniqueOverrides {
 
 impl TechniqueOverrides {
     /// The (stage, name) pairs that are set, in stage order.
-    pub fn iter(&self) -> impl Iterator<Item = (crate::plan::Stage, &str)> {
-        use crate::plan::Stage;
+    pub fn iter(&self) -> impl Iterator<Item = (crate::technique::Stage, &str)> {
+        use crate::technique::Stage;
         [
             (Stage::Waves, &self.waves),
             (Stage::Surface, &self.surface),
@@ -449,11 +458,7 @@ pub struct Water {
 
 impl Default for Water {
     fn default() -> Self {
-        Self {
-            ior: 1.333,
-            color: crate::frame::DEEP_WATER_COLOR,
-            extinction_per_m: crate::frame::WATER_EXTINCTION_PER_M,
-        }
+        Self { ior: 1.333, color: DEEP_WATER_COLOR, extinction_per_m: WATER_EXTINCTION_PER_M }
     }
 }
 
@@ -495,302 +500,15 @@ impl Default for Chiu {
     }
 }
 
-/// The `[post]` table: what the final pass does to the HDR frame besides the exposure
-/// (`ocean_core::tonemap` says how, in order).
-#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct Post {
-    /// The tonemap's curve: `aces` (Narkowicz's fit, the default) or `hable` (Uncharted 2).
-    pub curve: crate::tonemap::Curve,
-    /// The vignette's strength s ∈ [0, 1]: each pixel × (1 − s·r²), r = 0 at the centre and
-    /// 1 at the corner. 0 (the default): no vignette.
-    pub vignette: f64,
-    /// Post `bloom`: the bright pass keeps what exceeds this, in exposed units (1 ≈ white).
-    pub bloom_threshold: f64,
-    /// Post `bloom`: the blurred bright pass is added to the frame × this (0: the pass is
-    /// left out).
-    pub bloom_strength: f64,
-    /// Post `bloom`: levels of the blur pyramid (each twice as wide as the one before), at
-    /// most as many as the frame's half size has.
-    pub bloom_levels: u32,
-    /// The format of the frame's colour buffers (`rgba32float` or `rgba16float`,
-    /// `crate::frame_format`); left out, the system's (`welch`: `rgba16float`).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub frame_format: Option<crate::frame_format::FrameFormat>,
-}
+/// Default of `water.extinction_per_m`: diffuse extinction coefficient K of clear ocean water, 1/m (Jerlov type II, ~0.1 /m at
+/// 500 nm); used by eq. 4's fog-from-depth and the water-volume colour.
+pub const WATER_EXTINCTION_PER_M: f64 = 0.12;
+/// Default of `water.color`: colour of deep water seen from above (linear RGB radiance at sun intensity 1), the
+/// C_deep_water of eq. 4.
+pub const DEEP_WATER_COLOR: [f64; 3] = [0.004, 0.016, 0.028];
 
-impl Default for Post {
-    fn default() -> Self {
-        Self {
-            curve: crate::tonemap::Curve::Aces,
-            vignette: 0.0,
-            bloom_threshold: 1.0,
-            bloom_strength: 0.1,
-            bloom_levels: 5,
-            frame_format: None,
-        }
-    }
-}
-
-/// The `[clouds]` table: the cloud layer of sky technique `preetham_clouds` (seed 001 eq. 4;
-/// the model is `crate::clouds`'). Deterministic: the sky is a function of the scene and the
-/// time.
-#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct Clouds {
-    /// 0 a clear sky, 1 an overcast one.
-    pub coverage: f64,
-    /// Height of the layer above the sea, m.
-    pub altitude_m: f64,
-    /// Side of a cell of the noise's coarsest octave, m (clouds are about this wide).
-    pub scale_m: f64,
-    /// The layer's drift (x, z), m/s.
-    pub wind: [f64; 2],
-    /// The clouds' albedo: their colour is this times the light on a white surface.
-    pub albedo: f64,
-    /// Which sky of these statistics.
-    pub seed: u32,
-}
-
-impl Default for Clouds {
-    fn default() -> Self {
-        Self {
-            coverage: 0.5,
-            altitude_m: 2000.0,
-            scale_m: 1500.0,
-            wind: [8.0, 2.0],
-            albedo: 0.8,
-            seed: 1,
-        }
-    }
-}
-
-/// The `[spray]` table: spray technique `particles` (seed 001 §3.4; the model is
-/// `crate::spray`'s).
-#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct Spray {
-    /// Particle slots.
-    pub particles: u32,
-    /// Chance per step that a free slot whose emitter is under the water is launched.
-    pub emit_chance: f64,
-    /// Launch speed, m/s.
-    pub speed: f64,
-    /// A particle's lifetime, s.
-    pub lifetime_s: f64,
-    /// The fixed time step, s (one per frame).
-    pub step_s: f64,
-    /// Steps run before a state's first frame (a still frame shows steady spray).
-    pub warmup_steps: u32,
-    /// A sprite's side, m.
-    pub size_m: f64,
-    /// Radiance of a sprite's centre (additive).
-    pub intensity: f64,
-    /// The sprites' colour, linear RGB.
-    pub color: [f64; 3],
-}
-
-impl Default for Spray {
-    fn default() -> Self {
-        Self {
-            particles: 8192,
-            emit_chance: 0.05,
-            speed: 4.0,
-            lifetime_s: 1.5,
-            step_s: 1.0 / 30.0,
-            warmup_steps: 90,
-            size_m: 0.15,
-            intensity: 0.25,
-            color: [0.9, 0.95, 1.0],
-        }
-    }
-}
-
-/// What a sea floor is (`kind = "plane"`, `"island"` or `"heightmap"`). A sloping beach is a
-/// `plane` with a `slope`: the waterline runs where it reaches the sea plane.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum TerrainKind {
-    /// A flat or sloping plane: `depth_m` below the sea plane at `center`, rising by `slope`
-    /// metres per metre towards `slope_direction_deg`.
-    #[default]
-    Plane,
-    /// The plane plus a relief read from `heightmap` (a 16-bit grayscale PNG or an EXR) over
-    /// the square of side `extent_m`, its samples mapped onto `height_range_m`.
-    Heightmap,
-    /// A round island about `center` rising from the plane (`crate::terrain::island_height`
-    /// has the profile): `island_height_m` above the sea at its top, the waterline at
-    /// `island_radius_m` (on a flat floor), sloping into the water by `shore_slope` down to
-    /// the floor `depth_m` deep. Drawn through a relief made from the profile at load.
-    Island,
-}
-
-/// The `[terrain]` table: the sea floor (docs/design.md; [`crate::terrain`] has its geometry).
-/// Drawn as a square of side `extent_m` about `center` in the main view, the refraction map
-/// and the reflection map; its depth under each point of the sea is eq. 8's y (shading
-/// `chiu`), the plane's (and the relief's edge) also beyond the drawn square.
-#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct Terrain {
-    /// What the floor is.
-    pub kind: TerrainKind,
-    /// Depth of the floor's plane below the sea plane at `center`, m (negative: above).
-    pub depth_m: f64,
-    /// (x, z) of the floor's reference point and the centre of the drawn square, m.
-    pub center: [f64; 2],
-    /// Rise of the plane per metre along `slope_direction_deg` (0: flat).
-    pub slope: f64,
-    /// The direction in which the plane rises, degrees from +x towards +z.
-    pub slope_direction_deg: f64,
-    /// Side of the drawn square (and of the heightmap), m.
-    pub extent_m: f64,
-    /// Linear RGB albedo; by default dry beach sand from a measured spectrum
-    /// ([`crate::sand::DRY_SAND_ALBEDO`]).
-    pub color: [f64; 3],
-    /// `kind = "heightmap"`: the file, relative to the scene file's folder (to the working
-    /// folder for scene text).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub heightmap: Option<PathBuf>,
-    /// The relief's height at sample 0 and at sample 1 (65535 in a PNG), m, added to the plane.
-    pub height_range_m: [f64; 2],
-    /// `kind = "island"`: the waterline's radius on a flat floor, m.
-    pub island_radius_m: f64,
-    /// `kind = "island"`: the island's top above the sea plane, m.
-    pub island_height_m: f64,
-    /// `kind = "island"`: the fall of the shore per metre at the waterline and below it,
-    /// down to the floor.
-    pub shore_slope: f64,
-    /// Waves `fft` and `gerstner` near the shore: r in w = clamp(h/(r·λ), 0, 1), the share of
-    /// the waves kept over h m of water, λ the sea's representative wavelength (the spectral
-    /// peak's or the Gerstner median's for the displacement, the bump patch for the bump map).
-    /// 0.5 is Crest's "a wave feels the floor below half its wavelength"; 0 (the default)
-    /// leaves them undamped. Waves `coastal` shoal and break by their own rules.
-    pub wave_damping: f64,
-    /// The relief read from `heightmap`, or made from the island's profile, when the scene
-    /// was loaded (or by [`Terrain::prepare`]).
-    #[serde(skip)]
-    pub relief: Option<std::sync::Arc<crate::terrain::Relief>>,
-}
-
-impl Default for Terrain {
-    fn default() -> Self {
-        Self {
-            kind: TerrainKind::Plane,
-            depth_m: 10.0,
-            center: [0.0, 0.0],
-            slope: 0.0,
-            slope_direction_deg: 0.0,
-            extent_m: 400.0,
-            color: crate::sand::DRY_SAND_ALBEDO,
-            heightmap: None,
-            height_range_m: [0.0, 1.0],
-            island_radius_m: 60.0,
-            island_height_m: 12.0,
-            shore_slope: 0.08,
-            wave_damping: 0.0,
-            relief: None,
-        }
-    }
-}
-
-/// What an object is (`kind = "sphere"`, `"box"` or `"boat"`; meshes may come).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum ObjectKind {
-    /// A sphere: needs `radius`.
-    Sphere,
-    /// An axis-aligned box: needs `size`.
-    Box,
-    /// A boat floating on the waves (`crate::floating`): needs `size` (length, hull depth,
-    /// beam), takes `heading_deg` and `mass_kg`.
-    Boat,
-}
-
-/// An `[[objects]]` entry. A flat table rather than a serde-tagged enum: serde buffers a
-/// tagged enum's fields and loses their positions, and a user's error must name the line.
-/// [`Scene::validate`] checks that each kind has exactly the keys it needs; [`Object::shape`]
-/// gives the typed view.
-#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
-#[serde(deny_unknown_fields)]
-pub struct Object {
-    /// What the object is.
-    pub kind: ObjectKind,
-    /// Centre, m. A boat's is where it starts, (x, z); its y is not used: a boat floats at its
-    /// draft below the water there (`crate::frame::ObjectPoses`).
-    pub center: [f64; 3],
-    /// Radius, m (spheres).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub radius: Option<f64>,
-    /// Edge lengths, m (boxes: along x, y, z; boats: length, hull depth keel to deck, beam).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub size: Option<[f64; 3]>,
-    /// A boat's heading when it starts, degrees from +x towards +z (as the waves' directions):
-    /// its bow's direction. Default 0.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub heading_deg: Option<f64>,
-    /// A boat's mass, kg; below its hull's full displacement ρ·L·B·H or it sinks (a refused
-    /// scene). Default: the launch's loading, [`crate::floating::LAUNCH_LOADING`] of it.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub mass_kg: Option<f64>,
-    /// Linear RGB albedo.
-    #[serde(default = "default_object_color")]
-    pub color: [f64; 3],
-}
-
-/// The typed shape of a validated [`Object`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Shape {
-    /// A sphere of this radius, m.
-    Sphere {
-        /// Radius, m.
-        radius: f64,
-    },
-    /// An axis-aligned box with these edge lengths, m.
-    Box {
-        /// Edge lengths, m.
-        size: [f64; 3],
-    },
-    /// A boat: its hull and its start.
-    Boat {
-        /// Length, hull depth (keel to deck) and beam, m.
-        size: [f64; 3],
-        /// The bow's direction at the start, degrees from +x towards +z.
-        heading_deg: f64,
-        /// Mass, kg (`None`: the launch's loading).
-        mass_kg: Option<f64>,
-    },
-}
-
-impl Object {
-    /// The shape, or `None` if the object lacks its kind's key (a scene that passed
-    /// [`Scene::validate`] never does).
-    pub fn shape(&self) -> Option<Shape> {
-        match self.kind {
-            ObjectKind::Sphere => self.radius.map(|radius| Shape::Sphere { radius }),
-            ObjectKind::Box => self.size.map(|size| Shape::Box { size }),
-            ObjectKind::Boat => self.size.map(|size| Shape::Boat {
-                size,
-                heading_deg: self.heading_deg.unwrap_or(0.0),
-                mass_kg: self.mass_kg,
-            }),
-        }
-    }
-
-    /// A boat's build ([`crate::floating::BoatParams::launch`] of its size and mass), `None`
-    /// for the other kinds.
-    pub fn boat_params(&self) -> Option<crate::floating::BoatParams> {
-        match self.shape()? {
-            Shape::Boat { size: [length, depth, beam], mass_kg, .. } => {
-                Some(crate::floating::BoatParams::launch(length, depth, beam, mass_kg))
-            }
-            _ => None,
-        }
-    }
-}
-
-fn default_object_color() -> [f64; 3] {
-    [0.5, 0.5, 0.5]
-}
+/// The most scales of eq. 1 (`[[chiu.scales]]`; the uniforms' `MultiScaleBlock` holds this many).
+pub const MAX_SCALES: usize = 4;
 
 /// The largest grid a scene may ask for: 4096² complex f64 fields are ~2 GiB of scratch,
 /// the most a 24 GiB machine should be asked to hold with room for the rest.
@@ -820,8 +538,8 @@ impl Scene {
 
     /// The built-in scene of `system`: the default scene, or for `coastal` its island
     /// ([`COASTAL_SCENE_TOML`]).
-    pub fn builtin_for(system: crate::plan::System) -> Self {
-        if system != crate::plan::System::Coastal {
+    pub fn builtin_for(system: crate::technique::System) -> Self {
+        if system != crate::technique::System::Coastal {
             return Self::builtin();
         }
         match Self::from_toml(COASTAL_SCENE_TOML, SceneSource::BuiltIn) {
@@ -896,9 +614,9 @@ impl Scene {
 
     /// The technique of every stage: the system's, with `[techniques]` applied (the
     /// system's own where an override is invalid; [`Self::validate`] refuses those).
-    pub fn techniques(&self) -> crate::plan::Techniques {
-        crate::plan::Techniques::with_overrides(self.system, self.techniques.iter())
-            .unwrap_or_else(|_| crate::plan::Techniques::of_system(self.system))
+    pub fn techniques(&self) -> crate::technique::Techniques {
+        crate::technique::Techniques::with_overrides(self.system, self.techniques.iter())
+            .unwrap_or_else(|_| crate::technique::Techniques::of_system(self.system))
     }
 
     /// The format of the frame's colour buffers: `[post] frame_format`, else the system's.
@@ -911,7 +629,7 @@ impl Scene {
     /// # Errors
     /// As [`Self::validate`], when the system (or an override on top of it) cannot be
     /// rendered.
-    pub fn with_system(mut self, system: crate::plan::System) -> Result<Self, SceneError> {
+    pub fn with_system(mut self, system: crate::technique::System) -> Result<Self, SceneError> {
         self.system = system;
         if let Err((key, message)) = self.validate() {
             return Err(SceneError::Invalid {

@@ -480,14 +480,10 @@ impl Scene {
         check("chiu.kd_per_m", &[ch.kd_per_m])?;
         check("chiu.open_sea_depth_m", &[ch.open_sea_depth_m])?;
         check("chiu.scales", &ch.scales)?;
-        if !(1..=crate::frame::MAX_SCALES).contains(&ch.scales.len()) {
+        if !(1..=super::MAX_SCALES).contains(&ch.scales.len()) {
             return Err((
                 "chiu.scales".into(),
-                format!(
-                    "eq. 1 takes one to {} scales, got {}",
-                    crate::frame::MAX_SCALES,
-                    ch.scales.len()
-                ),
+                format!("eq. 1 takes one to {} scales, got {}", super::MAX_SCALES, ch.scales.len()),
             ));
         }
         let cl = &self.clouds;
@@ -537,7 +533,7 @@ impl Scene {
     }
 
     fn check_techniques(&self) -> Result<(), Refusal> {
-        use crate::plan::{TechniqueError, Techniques};
+        use crate::technique::{TechniqueError, Techniques};
         let techniques = Techniques::with_overrides(self.system, self.techniques.iter()).map_err(
             |e| match &e {
                 TechniqueError::UnknownTechnique { stage, .. } => {
@@ -548,9 +544,6 @@ impl Scene {
         )?;
         techniques.check().map_err(|e| {
             let key = match &e {
-                TechniqueError::NotAvailable { stage, .. } if techniques.is_overridden(*stage) => {
-                    format!("techniques.{stage}")
-                }
                 TechniqueError::Incompatible { stage_a, stage_b, .. } => {
                     let key = if techniques.is_overridden(*stage_b) { stage_b } else { stage_a };
                     format!("techniques.{key}")

@@ -104,8 +104,7 @@ pub const SWASH_FILM_M: f64 = 0.03;
 pub const SWASH_EDGE_M: f64 = 0.08;
 /// The largest Iribarren number Hunt's run-up R = ξ·A is taken at.
 pub const MAX_IRIBARREN: f64 = 2.5;
-/// Wet sand's albedo over dry sand's.
-pub const WET_SAND_DARKENING: f64 = 0.55;
+pub use crate::sand::WET_SAND_DARKENING;
 
 /// A `[[coastal.corrections]]` entry: one of the seed's four correction waves.
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
@@ -139,7 +138,7 @@ pub struct Coastal {
     pub corrections: Vec<CorrectionWave>,
     /// Shading `coastal`: the Fresnel term, `schlick` (the seed's cheap approximation, the
     /// default) or `exact` (eq. 2 of seed 000, from the Fresnel texture).
-    pub fresnel: crate::scene::GgxFresnel,
+    pub fresnel: crate::ggx::GgxFresnel,
     /// Shading `coastal`: the Blinn–Phong exponent of the sun's highlight (the seed's 30).
     pub shininess: u32,
     /// Shading `coastal`: the seed's `xDullFactor`, the dull colour's share at the crests.
@@ -171,7 +170,7 @@ impl Default for Coastal {
                 wave(203.0, 3.7, 0.025),
                 wave(291.0, 2.9, 0.02),
             ],
-            fresnel: crate::scene::GgxFresnel::Schlick,
+            fresnel: crate::ggx::GgxFresnel::Schlick,
             shininess: 30,
             dull_factor: 0.2,
             dull_color: [0.1, 0.25, 0.5],
@@ -233,7 +232,7 @@ pub struct CoastalSea {
 /// The floor under the sea: the terrain, or the open sea's depth without one.
 #[derive(Clone, Debug)]
 enum Floor {
-    Terrain(Box<crate::scene::Terrain>),
+    Terrain(Box<crate::terrain::Terrain>),
     Open(f64),
 }
 
@@ -259,7 +258,7 @@ impl CoastalSea {
     /// under `gravity`, with the radial waves' ω from the scene's `dispersion`.
     pub fn new(
         coastal: &Coastal,
-        terrain: Option<&crate::scene::Terrain>,
+        terrain: Option<&crate::terrain::Terrain>,
         open_depth_m: f64,
         dispersion: &crate::dispersion::Dispersion,
         t: f64,
@@ -288,7 +287,7 @@ impl CoastalSea {
             reach,
             open_depth_m,
             terrain: terrain
-                .map(|t| (crate::scene::Terrain { relief: None, ..t.clone() }, t.relief.clone())),
+                .map(|t| (crate::terrain::Terrain { relief: None, ..t.clone() }, t.relief.clone())),
         };
         let nodes = cached_profile(key, || profile_nodes(&floor, center, step, omega, g));
         let k_prev = nodes.last().map_or(0.0, |n| wavenumber(omega, g, n[1]));
@@ -559,7 +558,7 @@ struct ProfileKey {
     center: [f64; 2],
     reach: f64,
     open_depth_m: f64,
-    terrain: Option<(crate::scene::Terrain, Option<Arc<crate::terrain::Relief>>)>,
+    terrain: Option<(crate::terrain::Terrain, Option<Arc<crate::terrain::Relief>>)>,
 }
 
 impl PartialEq for ProfileKey {
@@ -680,7 +679,7 @@ impl CoastalShadingBlock {
             dull_factor: c.dull_factor as f32,
             shininess: c.shininess as f32,
             distortion: c.distortion as f32,
-            schlick: f32::from(u8::from(c.fresnel == crate::scene::GgxFresnel::Schlick)),
+            schlick: f32::from(u8::from(c.fresnel == crate::ggx::GgxFresnel::Schlick)),
             f0: (((eta - 1.0) / (eta + 1.0)).powi(2)) as f32,
         }
     }

@@ -359,7 +359,7 @@ pub enum WaveSurface {
         /// The undamped sea.
         inner: Box<WaveSurface>,
         /// The floor.
-        terrain: Box<crate::scene::Terrain>,
+        terrain: Box<crate::terrain::Terrain>,
         /// 1/(r·λ), 1/m.
         inv: f64,
     },

@@ -204,7 +204,7 @@ impl Real for Jitter {
         f64::from(self.0)
     }
     fn frexp_cases(self) -> Option<[Option<(i32, Jitter)>; 2]> {
-        let (f, e) = crate::shaders::wgsl::frexp(self.0);
+        let (f, e) = crate::float::frexp(self.0);
         Some([Some((e, Jitter(f))), None])
     }
     fn floor_cases(self) -> Option<[Option<(f32, Jitter)>; 2]> {

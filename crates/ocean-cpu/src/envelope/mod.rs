@@ -333,7 +333,7 @@ impl Real for f32 {
     }
     #[inline]
     fn frexp_cases(self) -> Option<[Option<(i32, Self)>; 2]> {
-        let (f, e) = crate::shaders::wgsl::frexp(self);
+        let (f, e) = crate::float::frexp(self);
         Some([Some((e, f)), None])
     }
     #[inline]

@@ -3,7 +3,7 @@
 
 use ocean_core::bloom::{BloomUniforms, DOWN_WEIGHTS};
 use ocean_core::frame_format::FrameFormat;
-use ocean_core::plan::BloomInputs;
+use ocean_core::graph::BloomInputs;
 use rayon::prelude::*;
 
 use crate::envelope::{AtlasEnvelope, Iv, Jitter, JitterRules, Real, zip3};

@@ -123,14 +123,14 @@ pub fn jitter(
 /// A foam technique's `foam_coverage(in, p)`.
 pub type FoamCoverage = fn(&VertexOut, &SurfacePoint, &Bindings<'_>) -> f32;
 
-/// The CPU mirror of foam technique `technique`'s `foam_coverage`, if it has one.
-pub fn foam_coverage(technique: &str) -> Option<FoamCoverage> {
+/// The CPU mirror of foam technique `technique`'s `foam_coverage`.
+pub fn foam_coverage(technique: ocean_core::plan::Foam) -> FoamCoverage {
+    use ocean_core::plan::Foam;
     match technique {
-        "none" => Some(none::foam_coverage),
-        "heuristic" => Some(heuristic::foam_coverage),
-        "jacobian" => Some(jacobian::foam_coverage),
-        "accumulated" => Some(accumulated::foam_coverage),
-        _ => None,
+        Foam::None => none::foam_coverage,
+        Foam::Heuristic => heuristic::foam_coverage,
+        Foam::Jacobian => jacobian::foam_coverage,
+        Foam::Accumulated => accumulated::foam_coverage,
     }
 }
 

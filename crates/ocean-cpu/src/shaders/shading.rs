@@ -8,17 +8,17 @@ pub mod hu;
 
 use super::water::{Bindings, SurfacePoint, VertexOut};
 use super::wgsl::Vec3;
+use ocean_core::plan::Shading;
 
 /// A shading technique's `shade_above(in, p)`: the radiance of the water seen from above.
 pub type ShadeAbove = fn(&VertexOut, &SurfacePoint, &Bindings<'_>) -> Vec3;
 
-/// The CPU mirror of shading technique `technique`'s `shade_above`, if it has one.
-pub fn shade_above(technique: &str) -> Option<ShadeAbove> {
+/// The CPU mirror of shading technique `technique`'s `shade_above`.
+pub fn shade_above(technique: Shading) -> ShadeAbove {
     match technique {
-        "hu" => Some(hu::shade_above),
-        "chiu" => Some(chiu::shade_above),
-        "ggx" => Some(ggx::shade_above),
-        "coastal" => Some(coastal::shade_above),
-        _ => None,
+        Shading::Hu => hu::shade_above,
+        Shading::Chiu => chiu::shade_above,
+        Shading::Ggx => ggx::shade_above,
+        Shading::Coastal => coastal::shade_above,
     }
 }

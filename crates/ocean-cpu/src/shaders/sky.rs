@@ -6,6 +6,7 @@ pub mod preetham;
 pub mod preetham_clouds;
 
 use ocean_core::atmosphere::SkyLut;
+use ocean_core::plan::Sky;
 
 use crate::raster::{
     BlendMode, CompareFunction, CullMode, FrontFace, RasterState, RenderTarget, Vertex, draw,
@@ -28,36 +29,30 @@ pub struct SkyTechnique {
     pub sun_disc: fn(&SkyUniforms, Vec3) -> Vec3,
 }
 
-/// The mirror of sky technique `technique` (`None` for one without a mirror, which the planner
-/// never chooses: it is not available).
-pub fn technique(technique: &str) -> Option<SkyTechnique> {
+/// The mirror of sky technique `technique`.
+pub fn technique(technique: Sky) -> SkyTechnique {
     match technique {
-        "preetham" => Some(SkyTechnique {
+        Sky::Preetham => SkyTechnique {
             sky_radiance: |sky, _, dir| preetham::sky_radiance(sky, dir),
             sun_disc: preetham::sun_disc,
-        }),
-        "preetham_clouds" => Some(SkyTechnique {
+        },
+        Sky::PreethamClouds => SkyTechnique {
             sky_radiance: |sky, _, dir| preetham_clouds::sky_radiance(sky, dir),
             sun_disc: preetham_clouds::sun_disc,
-        }),
-        "atmosphere" => Some(SkyTechnique {
-            sky_radiance: atmosphere::sky_radiance,
-            sun_disc: atmosphere::sun_disc,
-        }),
-        _ => None,
+        },
+        Sky::Atmosphere => {
+            SkyTechnique { sky_radiance: atmosphere::sky_radiance, sun_disc: atmosphere::sun_disc }
+        }
     }
 }
 
 /// The environment's radiance of a world direction for the frame's sky technique: what
 /// `sky_radiance` of the WGSL's `// #import technique/sky` is.
-pub fn environment_radiance(name: &str) -> Option<SkyRadiance> {
-    match name {
-        "preetham" => Some(|sky, _, dir| preetham::sky_radiance(sky, dir.into()).into()),
-        "preetham_clouds" => {
-            Some(|sky, _, dir| preetham_clouds::sky_radiance(sky, dir.into()).into())
-        }
-        "atmosphere" => Some(|sky, lut, dir| atmosphere::sky_radiance(sky, lut, dir.into()).into()),
-        _ => None,
+pub fn environment_radiance(technique: Sky) -> SkyRadiance {
+    match technique {
+        Sky::Preetham => |sky, _, dir| preetham::sky_radiance(sky, dir.into()).into(),
+        Sky::PreethamClouds => |sky, _, dir| preetham_clouds::sky_radiance(sky, dir.into()).into(),
+        Sky::Atmosphere => |sky, lut, dir| atmosphere::sky_radiance(sky, lut, dir.into()).into(),
     }
 }
 
@@ -134,14 +129,10 @@ pub struct SkyInputs<'a> {
     pub lut: &'a SkyLut,
 }
 
-/// The techniques whose mirror runs over [`crate::envelope::Real`].
-pub const ENVELOPE_TECHNIQUES: [&str; 3] = ["preetham", "atmosphere", "preetham_clouds"];
-
-/// The water's `sky_radiance(sky, dir)` of a technique with an envelope over any
-/// [`crate::envelope::Real`] (the sky pass's radiance without its sun disc); `preetham` for a
-/// name not in [`ENVELOPE_TECHNIQUES`].
+/// The water's `sky_radiance(sky, dir)` over any [`crate::envelope::Real`] (the sky pass's
+/// radiance without its sun disc): every technique's mirror runs over one.
 pub fn sky_radiance_r<R: crate::envelope::Real>(
-    technique: &str,
+    technique: Sky,
     sky: &SkyUniforms,
     lut: &SkyLut,
     dir: [R; 3],
@@ -149,89 +140,82 @@ pub fn sky_radiance_r<R: crate::envelope::Real>(
     use crate::shaders::shared::preetham::preetham_radiance_r;
     use crate::shaders::shared::sky_lut::sky_lut_radiance_r;
     match technique {
-        "atmosphere" => {
+        Sky::Atmosphere => {
             let s = sky.sun_direction;
             sky_lut_radiance_r(lut, dir, [R::lit(s[0]), R::lit(s[1]), R::lit(s[2])])
         }
-        "preetham_clouds" => preetham_clouds::sky_radiance_r(sky, dir),
-        _ => preetham_radiance_r(sky, dir),
+        Sky::PreethamClouds => preetham_clouds::sky_radiance_r(sky, dir),
+        Sky::Preetham => preetham_radiance_r(sky, dir),
     }
 }
 
-/// `fs_main` of a technique with an envelope over any [`crate::envelope::Real`] at every pixel
-/// of a `width × height` frame, stored in `format`; `each(i)` runs before pixel i (a
-/// [`crate::envelope::Jitter`] reseeds there). `None` for a technique without an envelope yet.
-fn preetham_frame<R: crate::envelope::Real + Send>(
-    technique: &str,
+/// `fs_main` over any [`crate::envelope::Real`] at every pixel of a `width × height` frame,
+/// stored in `format`; `each(i)` runs before pixel i (a [`crate::envelope::Jitter`] reseeds
+/// there).
+fn sky_frame<R: crate::envelope::Real + Send>(
+    technique: Sky,
     inputs: SkyInputs<'_>,
     (width, height): (u32, u32),
     format: ocean_core::frame_format::FrameFormat,
     each: impl Fn(usize) + Sync,
-) -> Option<Vec<[R; 3]>> {
+) -> Vec<[R; 3]> {
     use rayon::prelude::*;
 
     use crate::shaders::shared::camera::view_ray_r;
     use crate::shaders::shared::preetham::preetham_sun_disc_r;
-    if !ENVELOPE_TECHNIQUES.contains(&technique) {
-        return None;
-    }
-    let clouds = technique == "preetham_clouds";
+    let clouds = technique == Sky::PreethamClouds;
     let SkyInputs { camera, sky, lut } = inputs;
     let w = width as usize;
-    Some(
-        (0..w * height as usize)
-            .into_par_iter()
-            .with_min_len(w.max(1))
-            .map(|i| {
-                each(i);
-                let p = [R::lit((i % w) as f32 + 0.5), R::lit((i / w) as f32 + 0.5)];
-                let dir = view_ray_r(camera, p);
-                let s = sky_radiance_r(technique, sky, lut, dir);
-                let d = if clouds {
-                    preetham_clouds::sun_disc_r(sky, dir)
-                } else {
-                    preetham_sun_disc_r(sky, dir)
-                };
-                std::array::from_fn(|c| (s[c] + d[c]).store(format))
-            })
-            .collect(),
-    )
+    (0..w * height as usize)
+        .into_par_iter()
+        .with_min_len(w.max(1))
+        .map(|i| {
+            each(i);
+            let p = [R::lit((i % w) as f32 + 0.5), R::lit((i / w) as f32 + 0.5)];
+            let dir = view_ray_r(camera, p);
+            let s = sky_radiance_r(technique, sky, lut, dir);
+            let d = if clouds {
+                preetham_clouds::sun_disc_r(sky, dir)
+            } else {
+                preetham_sun_disc_r(sky, dir)
+            };
+            std::array::from_fn(|c| (s[c] + d[c]).store(format))
+        })
+        .collect()
 }
 
 /// The sky pass's envelope at every pixel (what any conformant GPU writes there before the
-/// passes after it), for the techniques that have one ([`ENVELOPE_TECHNIQUES`]); `None` for
-/// the others.
+/// passes after it).
 pub fn envelope(
-    technique: &str,
+    technique: Sky,
     inputs: SkyInputs<'_>,
     size: (u32, u32),
     format: ocean_core::frame_format::FrameFormat,
-) -> Option<Vec<[crate::envelope::Iv; 3]>> {
-    preetham_frame(technique, inputs, size, format, |_| {})
+) -> Vec<[crate::envelope::Iv; 3]> {
+    sky_frame(technique, inputs, size, format, |_| {})
 }
 
-/// The sky pass as one random conformant GPU computes it (`rules`), for the techniques that
-/// have an envelope.
+/// The sky pass as one random conformant GPU computes it (`rules`).
 pub fn jitter(
-    technique: &str,
+    technique: Sky,
     inputs: SkyInputs<'_>,
     size: (u32, u32),
     format: ocean_core::frame_format::FrameFormat,
     rules: crate::envelope::JitterRules,
-) -> Option<Vec<[f32; 3]>> {
+) -> Vec<[f32; 3]> {
     use crate::envelope::Jitter;
     let v: Vec<[Jitter; 3]> =
-        preetham_frame(technique, inputs, size, format, |i| Jitter::reseed(rules, i as u64))?;
-    Some(v.into_iter().map(|p| p.map(|c| c.0)).collect())
+        sky_frame(technique, inputs, size, format, |i| Jitter::reseed(rules, i as u64));
+    v.into_iter().map(|p| p.map(|c| c.0)).collect()
 }
 
-/// The exact sky pass (f32, lavapipe's arithmetic) at every pixel, for the techniques that
-/// have an envelope: which pixels of a frame still hold it tells where the sky is judged.
+/// The exact sky pass (f32, lavapipe's arithmetic) at every pixel: which pixels of a frame
+/// still hold it tells where the sky is judged.
 pub fn exact(
-    technique: &str,
+    technique: Sky,
     inputs: SkyInputs<'_>,
     size: (u32, u32),
     format: ocean_core::frame_format::FrameFormat,
-) -> Option<Vec<[f32; 3]>> {
-    preetham_frame(technique, inputs, size, format, |_| {})
+) -> Vec<[f32; 3]> {
+    sky_frame(technique, inputs, size, format, |_| {})
 }

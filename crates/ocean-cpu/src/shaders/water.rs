@@ -1,6 +1,8 @@
 //! CPU mirror of `shaders/water.wgsl`: the sea surface (its shading from above is the
 //! shading technique's, [`super::shading`]).
 
+use ocean_core::far_field::{FAR_NONE, FAR_VARIANCE};
+use ocean_core::foam::FOAM_NONE;
 use ocean_core::frame::FrameUniforms;
 
 mod clipmap;
@@ -346,7 +348,7 @@ pub struct Footprint {
 /// `footprint(rel)`.
 pub fn footprint(rel: Vec3, frame: &FrameUniforms) -> Footprint {
     let far = &frame.far;
-    if far.mode == 0.0 {
+    if far.mode == FAR_NONE {
         let zero = vec2(0.0, 0.0);
         return Footprint {
             lods: zero,
@@ -498,7 +500,7 @@ pub fn gerstner_filtered_slopes(
         let k_short = (kz * fp.h.x - kx * fp.h.y) * sigma_short;
         let g = exp_arith(-0.5 * (k_long * k_long + k_short * k_short));
         s = s + vec2(b[2], b[3]) * (c * g);
-        if frame.far.mode == 2.0 {
+        if frame.far.mode == FAR_VARIANCE {
             let g2 = g * g;
             let v = 0.5 * (1.0 - g2 * g2) + c * c * (g2 * g2 - g2);
             variance += 0.5 * (b[2] * b[2] + b[3] * b[3]) * v;
@@ -567,7 +569,7 @@ pub fn wave_slopes(input: &VertexOut, fp: &Footprint, b: &Bindings<'_>) -> Vec3 
     let sb = bm.xy() * wb;
     let mut s = vec2(sd.x + sb.x, sd.y + sb.y);
     let mut variance = 0.0;
-    if frame.far.mode == 2.0 {
+    if frame.far.mode == FAR_VARIANCE {
         let vd = (max(d.z - d.x * d.x, 0.0) + max(d.w - d.y * d.y, 0.0)) * subtexel(fp.lods.x);
         let vb =
             (max(bm.z - bm.x * bm.x, 0.0) + max(bm.w - bm.y * bm.y, 0.0)) * subtexel(fp.lods.y);
@@ -746,7 +748,7 @@ pub fn fs_main(input: &VertexOut, b: &Bindings<'_>) -> [f32; 4] {
         let p = SurfacePoint { slopes, n, view, u_bumped, screen, coastal };
         let c = (b.shade_above)(input, &p, b);
         let mut cover = (b.foam_coverage)(input, &p, b);
-        if frame.coastal.shape[0] > 0.0 && frame.foam.mode > 0.0 {
+        if frame.coastal.shape[0] > 0.0 && frame.foam.mode != FOAM_NONE {
             cover = max(cover, foam_mix(coastal.y, foam_texture_at(input.pos, frame), frame));
         }
         return foam_over(c, cover, n, input.rel, frame, b.shadow_map).extend(1.0).into();

@@ -1,5 +1,6 @@
 //! Mirror of `shaders/shared/detail.wgsl`: shading `ggx`'s detail normal map.
 
+use ocean_core::far_field::FAR_VARIANCE;
 use ocean_core::frame::FrameUniforms;
 
 use super::optics::exp_arith;
@@ -25,7 +26,7 @@ pub fn detail_slopes(
         let k_short = (kz * h.x - kx * h.y) * sigma_short;
         let g = exp_arith(-0.5 * (k_long * k_long + k_short * k_short));
         s = s + vec2(w[0], w[1]) * (w[3] * (c * g));
-        if frame.far.mode == 2.0 {
+        if frame.far.mode == FAR_VARIANCE {
             let g2 = g * g;
             let v = 0.5 * (1.0 - g2 * g2) + c * c * (g2 * g2 - g2);
             variance += 0.5 * (w[3] * w[3]) * (w[0] * w[0] + w[1] * w[1]) * v;

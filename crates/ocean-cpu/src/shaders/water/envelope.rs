@@ -54,8 +54,8 @@ pub struct WaterPass<'a> {
     pub sky: &'a SkyUniforms,
     /// The sky-view table (`atmosphere`).
     pub lut: &'a SkyLut,
-    /// The sky technique (one of `sky::ENVELOPE_TECHNIQUES`).
-    pub sky_technique: &'a str,
+    /// The sky technique.
+    pub sky_technique: ocean_core::plan::Sky,
     /// The maps.
     pub textures: WaterTextures<'a>,
     /// Surface `hu_patches`' vertices (unused under `projected_grid`).

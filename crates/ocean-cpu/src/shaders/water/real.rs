@@ -21,6 +21,8 @@ mod shading;
 
 pub use foam::Foam;
 
+use ocean_core::far_field::{FAR_NONE, FAR_VARIANCE};
+use ocean_core::foam::FOAM_NONE;
 use ocean_core::frame::FrameUniforms;
 
 use crate::envelope::{Cond, Real, choose, choose_n, dot3, mat4_mul_vec4};
@@ -53,31 +55,8 @@ pub enum Tex {
     FoamField,
 }
 
-/// The shading techniques the envelope carries (`technique/shading`'s `shade_above`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Shading {
-    /// Seed 000's eq. 3 (`shading/hu.wgsl`).
-    Hu,
-    /// Seed 002's Cook–Torrance BRDF with GGX (`shading/ggx.wgsl`).
-    Ggx,
-    /// Seed 001's eqs. 2–8 (`shading/chiu.wgsl`).
-    Chiu,
-    /// Seed 004's Blinn–Phong, Fresnel and dull colour (`shading/coastal.wgsl`).
-    Coastal,
-}
-
-impl Shading {
-    /// The technique named `name`, if the envelope carries it.
-    pub fn of(name: &str) -> Option<Shading> {
-        match name {
-            "hu" => Some(Shading::Hu),
-            "ggx" => Some(Shading::Ggx),
-            "chiu" => Some(Shading::Chiu),
-            "coastal" => Some(Shading::Coastal),
-            _ => None,
-        }
-    }
-}
+/// The shading techniques (`technique/shading`'s `shade_above`): the envelope carries each.
+pub use ocean_core::plan::Shading;
 
 /// What the stage reads, over a [`Real`].
 pub struct Inputs<'a, R> {
@@ -101,16 +80,9 @@ pub struct Inputs<'a, R> {
     pub occluder: &'a (dyn Fn(u32, u32) -> R + Sync),
 }
 
-/// Why the stage's configuration is not carried over [`Real`] yet (`None`: it is), for a
-/// frame whose techniques are `shading` and `foam` and whose surface draws `clipmap` vertices
-/// or not.
-pub fn carried(frame: &FrameUniforms, shading: &str, foam: &str) -> Option<&'static str> {
-    if Shading::of(shading).is_none() {
-        return Some("the water pass's envelope does not carry this shading technique");
-    }
-    if Foam::of(foam).is_none() {
-        return Some("the water pass's envelope does not carry this foam technique");
-    }
+/// Why the stage's configuration is not carried over [`Real`] yet (`None`: it is): every
+/// shading and foam technique is, on every surface but waves `coastal` on a clipmap.
+pub fn carried(frame: &FrameUniforms) -> Option<&'static str> {
     if frame.coastal.shape[0] > 0.0 && frame.clip.vertex_count() > 0 {
         return Some("the water pass's envelope does not carry waves `coastal` on a clipmap");
     }
@@ -246,7 +218,7 @@ pub struct Footprint<R> {
 pub fn footprints<R: Real>(rel: [R; 3], frame: &FrameUniforms) -> Option<Vec<Footprint<R>>> {
     let l = R::lit;
     let far = &frame.far;
-    if far.mode == 0.0 {
+    if far.mode == FAR_NONE {
         let z = l(0.0);
         return Some(vec![Footprint {
             lods: [z; 2],
@@ -517,10 +489,10 @@ fn gerstner_filtered_slopes<R: Real>(
         let (a, b) = (frame.gerstner.waves[2 * i], frame.gerstner.waves[2 * i + 1]);
         let c = gerstner_cis_r(i, pos, frame)[0];
         let k = [l(TAU) * l(a[0]), l(TAU) * l(a[1])];
-        let (g, v) = damped(k, c, fp.h, sigma, frame.far.mode == 2.0);
+        let (g, v) = damped(k, c, fp.h, sigma, frame.far.mode == FAR_VARIANCE);
         let cg = c * g;
         s = [s[0] + l(b[2]) * cg, s[1] + l(b[3]) * cg];
-        if frame.far.mode == 2.0 {
+        if frame.far.mode == FAR_VARIANCE {
             variance = variance + l(0.5) * (l(b[2]).sq() + l(b[3]).sq()) * v;
         }
     }
@@ -538,10 +510,10 @@ fn detail_slopes<R: Real>(pos: [R; 2], h: [R; 2], sigma: [R; 2], frame: &FrameUn
         let p = R::sum_as_written(&terms, |t| (t[0] + t[1]) + t[2]);
         let c = cis_reduced_r(p)[0];
         let k = [l(TAU) * l(w[0]), l(TAU) * l(w[1])];
-        let (g, v) = damped(k, c, h, sigma, frame.far.mode == 2.0);
+        let (g, v) = damped(k, c, h, sigma, frame.far.mode == FAR_VARIANCE);
         let a = l(w[3]) * (c * g);
         s = [s[0] + l(w[0]) * a, s[1] + l(w[1]) * a];
-        if frame.far.mode == 2.0 {
+        if frame.far.mode == FAR_VARIANCE {
             variance = variance + l(0.5) * l(w[3]).sq() * (l(w[0]).sq() + l(w[1]).sq()) * v;
         }
     }
@@ -598,7 +570,7 @@ fn wave_slopes<R: Real>(v: &Varyings<R>, fp: &Footprint<R>, inp: &Inputs<'_, R>)
     let sd = [d[0] * wd, d[1] * wd];
     let sb = [b[0] * wb, b[1] * wb];
     let s = [sd[0] + sb[0], sd[1] + sb[1]];
-    if frame.far.mode != 2.0 {
+    if frame.far.mode != FAR_VARIANCE {
         return [s[0], s[1], l(0.0)];
     }
     let spread = |m: [R; 4], floor: [f64; 2]| {
@@ -835,7 +807,7 @@ fn fragment<R: Real>(
                 }
             };
             let mut cover = foam::coverage(v, slopes, inp);
-            if frame.coastal.shape[0] > 0.0 && frame.foam.mode > 0.0 {
+            if frame.coastal.shape[0] > 0.0 && frame.foam.mode != FOAM_NONE {
                 cover = foam::shore_cover(cover, coastal[1], pos, frame);
             }
             foam::over(c, cover, n, rel, inp)

@@ -11,31 +11,8 @@ use crate::envelope::{Real, choose_n, dot3, on_floor};
 use crate::shaders::shared::gerstner::gerstner_jacobian_r;
 use crate::shaders::shared::shadow::sun_visibility_r;
 
-/// The foam techniques the envelope carries (`technique/foam`'s `foam_coverage`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Foam {
-    /// No foam (`foam/none.wgsl`).
-    None,
-    /// Seed 002's high, steep, compressed crests (`foam/heuristic.wgsl`).
-    Heuristic,
-    /// Where the displacement's Jacobian falls below the threshold (`foam/jacobian.wgsl`).
-    Jacobian,
-    /// The foam field stage `foam` accumulates (`foam/accumulated.wgsl`).
-    Accumulated,
-}
-
-impl Foam {
-    /// The technique named `name`, if the envelope carries it.
-    pub fn of(name: &str) -> Option<Foam> {
-        match name {
-            "none" => Some(Foam::None),
-            "heuristic" => Some(Foam::Heuristic),
-            "jacobian" => Some(Foam::Jacobian),
-            "accumulated" => Some(Foam::Accumulated),
-            _ => None,
-        }
-    }
-}
+/// The foam techniques (`technique/foam`'s `foam_coverage`): the envelope carries each.
+pub use ocean_core::plan::Foam;
 
 /// `foam_value_noise(x, z, octave, seed)`.
 fn value_noise<R: Real>(x: R, z: R, octave: u32, seed: u32) -> R {

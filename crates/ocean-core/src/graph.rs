@@ -15,7 +15,7 @@ use crate::sky::SkyUniforms;
 use crate::tonemap::TonemapUniforms;
 use crate::waves::{FrameCycle, Synthesizer, WaveMaps};
 
-use super::{FramePlan, Pass, PlannedPass};
+use crate::plan::{FramePlan, Pass, PlannedPass};
 
 /// The water mesh of a frame, as the `water` pass draws it: vertices relative to `origin`
 /// (world x, z), triangles counter-clockwise seen from above.
@@ -129,7 +129,7 @@ impl<'a> FrameInputs<'a> {
             uniforms.coastal = sea.block(mesh.origin);
         }
         let mut environment = sky.uniforms();
-        if plan.techniques.of(crate::plan::Stage::Sky).name == "preetham_clouds" {
+        if plan.techniques.sky() == crate::plan::Sky::PreethamClouds {
             // The layer (crate::clouds): its place over the eye, its colour under the objects'
             // light, and the sun dimmed by the cloud in front of it.
             let c = &scene.clouds;
@@ -147,7 +147,7 @@ impl<'a> FrameInputs<'a> {
             let through = 1.0 - crate::clouds::cloud_alpha(origin, mean, s.direction);
             uniforms.sun.radiance = s.radiance.map(|r| r * through);
         }
-        let sky_lut = if plan.techniques.of(crate::plan::Stage::Sky).name == "atmosphere" {
+        let sky_lut = if plan.techniques.sky() == crate::plan::Sky::Atmosphere {
             atmosphere_environment(scene, &camera, &mut uniforms, &mut environment)
         } else {
             Box::new(bytemuck::Zeroable::zeroed())
@@ -339,8 +339,7 @@ impl FoamWork {
         eye: [f64; 2],
         mesh_origin: [f64; 2],
     ) -> Self {
-        let waves = plan.techniques.of(crate::plan::Stage::Waves).name;
-        let grid = crate::foam::FieldGrid::of(scene, waves);
+        let grid = crate::foam::FieldGrid::of(scene, plan.techniques.waves());
         let window = grid.window_start(eye);
         let count = state.foam_steps_this_frame(scene);
         let first_prev = state.foam_window.filter(|_| state.foam_steps > 0).unwrap_or(window);
