@@ -4,7 +4,7 @@
 //! model), so the error column is the change, not an error.
 
 use anyhow::Context;
-use ocean_core::plan::{FramePlan, OutputKind};
+use ocean_core::plan::{FramePlan, OutputKind, Shading, StageTechnique};
 use ocean_core::scene::Scene;
 use ocean_core::supersample::band_error;
 
@@ -17,7 +17,7 @@ fn steps(ctx: &Ctx, settings: u64) -> u64 {
 
 /// Steps of the `shading` knob.
 pub(super) fn shading_steps(ctx: &Ctx) -> u64 {
-    steps(ctx, 3)
+    steps(ctx, Shading::ALL.len() as u64)
 }
 
 /// Steps of the `post` knob.
@@ -41,19 +41,23 @@ pub(super) fn measure_frame_format(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
     measure(ctx, "frame_format", OutputKind::Hdr, "log_l_change", &settings)
 }
 
-/// The `shading` knob: `hu`, `chiu` and `ggx` on the default scene (HDR): frame time on both
-/// back ends, and mean |Δ log(1 + L)| over the frame against `hu`'s.
+/// The `shading` knob: every shading technique on the default scene (HDR): frame time on both
+/// back ends, and mean |Δ log(1 + L)| over the frame against the first's (`hu`).
 pub(super) fn measure_shading(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
-    let settings = ["hu", "chiu", "ggx"].map(|name| {
-        (name, Box::new(move |s: &mut Scene| s.techniques.shading = Some(name.into())) as Edit)
-    });
+    let settings: Vec<_> = Shading::ALL
+        .iter()
+        .map(|t| {
+            let name = t.name();
+            (name, Box::new(move |s: &mut Scene| s.techniques.shading = Some(name.into())) as Edit)
+        })
+        .collect();
     let mut rows = measure(ctx, "shading", OutputKind::Hdr, "log_l_change", &settings)?;
     // GGX's energy balance: the white furnace (F = 1) at the built-in scene's roughness, with
     // the CPU frame's time. `hu` and `chiu` reflect by a Fresnel-weighted mirror, which a
     // white furnace returns whole by construction, so they have no row.
     let ggx_ms = rows
         .iter()
-        .find(|r| r.setting == "ggx" && r.backend == CPU)
+        .find(|r| r.setting == Shading::Ggx.name() && r.backend == CPU)
         .map_or(f64::NAN, |r| r.time_ms);
     let alpha = ocean_core::ggx::alpha_from_roughness(Scene::builtin().ggx.roughness);
     for (metric, theta) in [
@@ -63,7 +67,7 @@ pub(super) fn measure_shading(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
     ] {
         rows.push(Row {
             knob: "shading",
-            setting: "ggx".into(),
+            setting: Shading::Ggx.name().into(),
             error_metric: metric,
             error: 1.0 - white_furnace(alpha, theta.to_radians()),
             time_ms: ggx_ms,

@@ -15,6 +15,7 @@ pub mod cycle;
 pub mod gerstner;
 pub mod modes;
 pub mod query;
+pub mod sea;
 pub mod surface;
 pub mod synthesis;
 pub mod uniforms;
@@ -23,7 +24,8 @@ pub use cycle::{FrameCycle, MAX_FRAME_CYCLE_BYTES};
 pub use modes::{Band, MAX_RESOLUTION, Mode, ModeParams, WaveModes, signed_index};
 pub use query::{
     INVERSION_TOLERANCE_REL, Inversion, MAX_INVERSION_ITERATIONS, SurfaceQuery, SurfaceSample,
-    WaveSurface, eval_direct, invert_displacement,
+    eval_direct, invert_displacement,
 };
+pub use sea::WaveSurface;
 pub use surface::{OceanParams, OceanSurface};
 pub use synthesis::{MapFloat, Synthesizer, WaveMaps};
