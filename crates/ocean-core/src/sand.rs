@@ -114,6 +114,9 @@ pub fn linear_srgb_albedo(s: &Spectrum) -> [f64; 3] {
     [surface[0] / white[0], surface[1] / white[1], surface[2] / white[2]]
 }
 
+/// Wet sand's albedo over dry sand's.
+pub const WET_SAND_DARKENING: f64 = 0.55;
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -156,6 +159,3 @@ mod tests {
         }
     }
 }
-
-/// Wet sand's albedo over dry sand's.
-pub const WET_SAND_DARKENING: f64 = 0.55;

@@ -322,6 +322,19 @@ fn zip(inner: &[(f64, u32)], outer: &[(f64, u32)], out: &mut Vec<[u32; 3]>) {
     }
 }
 
+/// Vertex of the objects' meshes (WGSL `ObjectVertex`): camera-relative position, unit normal,
+/// linear albedo.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct ObjectVertex {
+    /// Position − eye, m.
+    pub position: [f32; 3],
+    /// Unit normal.
+    pub normal: [f32; 3],
+    /// Linear RGB albedo.
+    pub color: [f32; 3],
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -403,17 +416,4 @@ mod tests {
         // And no radius works when a ring step plus the corner angle reach 90°.
         assert!(stitch_radius(256.0, [0.0, 0.0], 4).is_none());
     }
-}
-
-/// Vertex of the objects' meshes (WGSL `ObjectVertex`): camera-relative position, unit normal,
-/// linear albedo.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
-pub struct ObjectVertex {
-    /// Position − eye, m.
-    pub position: [f32; 3],
-    /// Unit normal.
-    pub normal: [f32; 3],
-    /// Linear RGB albedo.
-    pub color: [f32; 3],
 }
