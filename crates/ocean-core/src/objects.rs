@@ -22,7 +22,7 @@ pub enum ObjectKind {
 
 /// An `[[objects]]` entry. A flat table rather than a serde-tagged enum: serde buffers a
 /// tagged enum's fields and loses their positions, and a user's error must name the line.
-/// [`Scene::validate`] checks that each kind has exactly the keys it needs; [`Object::shape`]
+/// [`crate::scene::Scene::validate`] checks that each kind has exactly the keys it needs; [`Object::shape`]
 /// gives the typed view.
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
@@ -77,7 +77,7 @@ pub enum Shape {
 
 impl Object {
     /// The shape, or `None` if the object lacks its kind's key (a scene that passed
-    /// [`Scene::validate`] never does).
+    /// [`crate::scene::Scene::validate`] never does).
     pub fn shape(&self) -> Option<Shape> {
         match self.kind {
             ObjectKind::Sphere => self.radius.map(|radius| Shape::Sphere { radius }),
