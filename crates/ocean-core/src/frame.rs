@@ -751,23 +751,7 @@ impl FrameUniforms {
                 radiance: [sun_radiance.x as f32, sun_radiance.y as f32, sun_radiance.z as f32],
                 pad: 0.0,
             },
-            tiling: WaveTilingBlock {
-                displacement_origin: [
-                    mesh_origin[0].rem_euclid(l_d) as f32,
-                    mesh_origin[1].rem_euclid(l_d) as f32,
-                ],
-                bump_origin: [
-                    mesh_origin[0].rem_euclid(l_b) as f32,
-                    mesh_origin[1].rem_euclid(l_b) as f32,
-                ],
-                mesh_offset: [(mesh_origin[0] - eye.x) as f32, (mesh_origin[1] - eye.z) as f32],
-                pad0: 0.0,
-                pad1: 0.0,
-                inv_displacement_size: (1.0 / l_d) as f32,
-                inv_bump_size: (1.0 / l_b) as f32,
-                displacement_half_texel: (0.5 / o.resolution as f64) as f32,
-                bump_half_texel: (0.5 / o.bump_resolution as f64) as f32,
-            },
+            tiling: WaveTilingBlock::new(o, mesh_origin, eye),
             water: WaterBlock {
                 color: scene.water.color.map(|c| c as f32),
                 extinction_per_m: scene.water.extinction_per_m as f32,
@@ -800,17 +784,7 @@ impl FrameUniforms {
             )
             .with_sun(sun_dir.normalize_or_zero().y, f64::from(SUN_SPECULAR_EXPONENT))
             .with_mesh(scene.quality.lod_split_threshold, l_d / f64::from(o.resolution.max(1))),
-            grid: match plan.techniques.surface() {
-                Surface::ProjectedGrid => ProjectedGridBlock::new(
-                    camera,
-                    plan.wave_bound_m,
-                    scene.quality.projected_grid_cell_px,
-                ),
-                Surface::ShoreGrid => {
-                    crate::geometry::shore_grid::block(camera, scene.quality.projected_grid_cell_px)
-                }
-                Surface::HuPatches | Surface::Clipmap => ProjectedGridBlock::zeroed(),
-            },
+            grid: grid_block(scene, camera, plan),
             chiu: ChiuShadingBlock {
                 zeta_m: scene.chiu.zeta_m as f32,
                 shininess_per_m: scene.chiu.shininess_per_m as f32,
@@ -837,19 +811,7 @@ impl FrameUniforms {
                 ),
                 _ => Zeroable::zeroed(),
             },
-            ggx: GgxShadingBlock {
-                alpha: crate::ggx::alpha_from_roughness(scene.ggx.roughness) as f32,
-                schlick_fresnel: f32::from(u8::from(
-                    scene.ggx.fresnel == crate::scene::GgxFresnel::Schlick,
-                )),
-                schlick_geometry: f32::from(u8::from(
-                    scene.ggx.geometry == crate::scene::GgxGeometry::SchlickGgx,
-                )),
-                f0: {
-                    let eta = scene.water.ior;
-                    (((eta - 1.0) / (eta + 1.0)).powi(2)) as f32
-                },
-            },
+            ggx: GgxShadingBlock::new(scene),
             clip: match crate::geometry::Clipmap::of_frame(scene, camera, plan) {
                 Some(Ok(c)) => c.block(
                     o.wave_spectrum()
@@ -859,20 +821,7 @@ impl FrameUniforms {
                 ),
                 _ => Zeroable::zeroed(),
             },
-            detail: if shading == Shading::Ggx && scene.ggx.detail_strength > 0.0 {
-                crate::detail::DetailBlock::new(
-                    &crate::detail::detail_waves(
-                        scene.ggx.detail_wavelength_m,
-                        scene.ggx.detail_strength,
-                    ),
-                    scene.ggx.detail_speed_m_s,
-                    o.wind_direction_deg,
-                    o.time_s,
-                    mesh_origin,
-                )
-            } else {
-                Zeroable::zeroed()
-            },
+            detail: detail_block(scene, shading, mesh_origin),
             foam: crate::foam::FoamBlock::new(
                 scene,
                 plan.techniques.foam(),
@@ -890,6 +839,79 @@ impl FrameUniforms {
             ),
         }
     }
+}
+
+impl WaveTilingBlock {
+    /// The maps' tiling for a mesh whose reference point is world (x, z) `mesh_origin`, seen
+    /// from `eye`.
+    fn new(o: &crate::scene::Ocean, mesh_origin: [f64; 2], eye: DVec3) -> Self {
+        let l_d = o.patch_size_m;
+        let l_b = o.patch_size_m / o.bump_patch_divisor as f64;
+        WaveTilingBlock {
+            displacement_origin: [
+                mesh_origin[0].rem_euclid(l_d) as f32,
+                mesh_origin[1].rem_euclid(l_d) as f32,
+            ],
+            bump_origin: [
+                mesh_origin[0].rem_euclid(l_b) as f32,
+                mesh_origin[1].rem_euclid(l_b) as f32,
+            ],
+            mesh_offset: [(mesh_origin[0] - eye.x) as f32, (mesh_origin[1] - eye.z) as f32],
+            pad0: 0.0,
+            pad1: 0.0,
+            inv_displacement_size: (1.0 / l_d) as f32,
+            inv_bump_size: (1.0 / l_b) as f32,
+            displacement_half_texel: (0.5 / o.resolution as f64) as f32,
+            bump_half_texel: (0.5 / o.bump_resolution as f64) as f32,
+        }
+    }
+}
+
+impl GgxShadingBlock {
+    /// Shading `ggx`'s block of a scene's `[ggx]` and water.
+    fn new(scene: &Scene) -> Self {
+        let eta = scene.water.ior;
+        GgxShadingBlock {
+            alpha: crate::ggx::alpha_from_roughness(scene.ggx.roughness) as f32,
+            schlick_fresnel: f32::from(u8::from(
+                scene.ggx.fresnel == crate::scene::GgxFresnel::Schlick,
+            )),
+            schlick_geometry: f32::from(u8::from(
+                scene.ggx.geometry == crate::scene::GgxGeometry::SchlickGgx,
+            )),
+            f0: (((eta - 1.0) / (eta + 1.0)).powi(2)) as f32,
+        }
+    }
+}
+
+/// The grid block of the frame's surface: the projected grid's or the shore grid's, zero for
+/// the meshes drawn from vertex buffers or levels.
+fn grid_block(scene: &Scene, camera: &Camera, plan: &FramePlan) -> ProjectedGridBlock {
+    let cell_px = scene.quality.projected_grid_cell_px;
+    match plan.techniques.surface() {
+        Surface::ProjectedGrid => ProjectedGridBlock::new(camera, plan.wave_bound_m, cell_px),
+        Surface::ShoreGrid => crate::geometry::shore_grid::block(camera, cell_px),
+        Surface::HuPatches | Surface::Clipmap => ProjectedGridBlock::zeroed(),
+    }
+}
+
+/// Shading `ggx`'s detail normal map (zero under the other shadings or without detail).
+fn detail_block(
+    scene: &Scene,
+    shading: Shading,
+    mesh_origin: [f64; 2],
+) -> crate::detail::DetailBlock {
+    let (g, o) = (&scene.ggx, &scene.ocean);
+    if !(shading == Shading::Ggx && g.detail_strength > 0.0) {
+        return Zeroable::zeroed();
+    }
+    crate::detail::DetailBlock::new(
+        &crate::detail::detail_waves(g.detail_wavelength_m, g.detail_strength),
+        g.detail_speed_m_s,
+        o.wind_direction_deg,
+        o.time_s,
+        mesh_origin,
+    )
 }
 
 /// The height query of a frame of `plan` at time `t` (s): under waves `fft` the displacement

@@ -358,6 +358,19 @@ impl Scene {
     /// Returns the dotted key path of the first bad value and what is allowed.
     pub fn validate(&self) -> Result<(), Refusal> {
         self.check_techniques()?;
+        self.check_ocean_and_camera()?;
+        self.check_sun_water_quality()?;
+        self.check_terrain()?;
+        self.check_gerstner()?;
+        self.check_coastal()?;
+        self.check_shading_sections()?;
+        self.check_spray_foam_post()?;
+        self.check_objects()?;
+        self.check_derived()
+    }
+
+    /// The `[ocean]` and `[camera]` keys.
+    fn check_ocean_and_camera(&self) -> Result<(), Refusal> {
         let o = &self.ocean;
         check("ocean.wind_speed", &[o.wind_speed])?;
         check("ocean.wind_direction_deg", &[o.wind_direction_deg])?;
@@ -380,6 +393,11 @@ impl Scene {
         check_u32("camera.width", c.width)?;
         check_u32("camera.height", c.height)?;
         check("camera.exposure", &[c.exposure])?;
+        Ok(())
+    }
+
+    /// The `[sun]`, `[water]` and `[quality]` keys.
+    fn check_sun_water_quality(&self) -> Result<(), Refusal> {
         if let Some(s) = &self.sun {
             check("sun.direction", &s.direction)?;
             check("sun.color", &s.color)?;
@@ -408,6 +426,11 @@ impl Scene {
                 format!("{} is not a multiple of 8 (16, 24, …, 256)", q.clipmap_cells),
             ));
         }
+        Ok(())
+    }
+
+    /// The `[terrain]` keys, and what an island or a heightmap needs.
+    fn check_terrain(&self) -> Result<(), Refusal> {
         if let Some(t) = &self.terrain {
             check("terrain.depth_m", &[t.depth_m])?;
             check("terrain.center", &t.center)?;
@@ -468,8 +491,11 @@ impl Scene {
                 _ => {}
             }
         }
-        self.check_gerstner()?;
-        self.check_coastal()?;
+        Ok(())
+    }
+
+    /// The `[ggx]`, `[chiu]` and `[clouds]` keys.
+    fn check_shading_sections(&self) -> Result<(), Refusal> {
         check("ggx.roughness", &[self.ggx.roughness])?;
         check("ggx.detail_strength", &[self.ggx.detail_strength])?;
         check("ggx.detail_wavelength_m", &[self.ggx.detail_wavelength_m])?;
@@ -493,6 +519,11 @@ impl Scene {
         check("clouds.wind", &cl.wind)?;
         check("clouds.albedo", &[cl.albedo])?;
         check_u32("clouds.seed", cl.seed)?;
+        Ok(())
+    }
+
+    /// The `[spray]`, `[foam]` and `[post]` keys.
+    fn check_spray_foam_post(&self) -> Result<(), Refusal> {
         let sp = &self.spray;
         check_u32("spray.particles", sp.particles)?;
         check("spray.emit_chance", &[sp.emit_chance])?;
@@ -528,8 +559,7 @@ impl Scene {
         check("post.bloom_threshold", &[self.post.bloom_threshold])?;
         check("post.bloom_strength", &[self.post.bloom_strength])?;
         check_u32("post.bloom_levels", self.post.bloom_levels)?;
-        self.check_objects()?;
-        self.check_derived()
+        Ok(())
     }
 
     fn check_techniques(&self) -> Result<(), Refusal> {
