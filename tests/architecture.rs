@@ -1,7 +1,8 @@
-//! The crates' modules import one way: no import circle between the top-level modules of
-//! ocean-core, ocean-cpu, ocean-gpu or ocean-verify (docs/design.md, "The crates' layers").
-//! A circle is a strongly connected set of modules; the failure names each, with a file and
-//! line for every edge inside it, so the one to cut can be chosen.
+//! The crates' shape: no import circle between the top-level modules of ocean-core, ocean-cpu,
+//! ocean-gpu or ocean-verify (docs/design.md, "The crates' layers"), and no function of
+//! ocean-core over 150 lines outside its unit tests. A circle is a strongly connected set of
+//! modules; the failure names each, with a file and line for every edge inside it, so the one
+//! to cut can be chosen.
 
 #![allow(clippy::unwrap_used, reason = "a panic in a test is its failure report")]
 
@@ -217,4 +218,67 @@ fn the_check_finds_a_circle_and_ignores_comments_and_unit_tests() {
     // Without the back edge there is no circle.
     let acyclic: Sources = files.into_iter().filter(|(p, _)| p != "b/inner.rs").collect();
     assert!(report(&acyclic).is_empty());
+}
+
+/// The functions of `text` (outside its unit tests) longer than `limit` lines, as
+/// (name, first line, lines): from the `fn` line to the closing brace at its indentation.
+fn long_functions(text: &str, limit: usize) -> Vec<(String, usize, usize)> {
+    let text = text.split("#[cfg(test)]\nmod tests").next().unwrap_or(text);
+    let lines: Vec<&str> = text.lines().collect();
+    let mut out = Vec::new();
+    for (i, line) in lines.iter().enumerate() {
+        let trimmed = line.trim_start();
+        let indent = line.len() - trimmed.len();
+        let head =
+            ["pub fn ", "pub(crate) fn ", "pub(super) fn ", "fn ", "const fn ", "pub const fn "]
+                .iter()
+                .find_map(|p| trimmed.strip_prefix(p));
+        let Some(rest) = head else { continue };
+        let name: String = rest.chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect();
+        // The body's opening line: the first at or after the signature ending in `{` (a
+        // declaration without a body ends in `;` first).
+        let Some(open) = (i..lines.len()).find(|&k| {
+            let l = lines[k].trim_end();
+            l.ends_with('{') || l.ends_with(';')
+        }) else {
+            continue;
+        };
+        if lines[open].trim_end().ends_with(';') {
+            continue;
+        }
+        let close = (open + 1..lines.len()).find(|&k| {
+            let l = lines[k];
+            l.trim_start().starts_with('}') && l.len() - l.trim_start().len() == indent
+        });
+        if let Some(close) = close
+            && close - i + 1 > limit
+        {
+            out.push((name, i + 1, close - i + 1));
+        }
+    }
+    out
+}
+
+#[test]
+fn no_function_of_ocean_core_is_over_150_lines() {
+    let files = sources(&crate_src("ocean-core"));
+    let long: Vec<String> = files
+        .iter()
+        .flat_map(|(rel, text)| {
+            long_functions(text, 150)
+                .into_iter()
+                .map(move |(f, at, n)| format!("{rel}:{at}: fn {f} is {n} lines"))
+        })
+        .collect();
+    assert!(long.is_empty(), "split these at their seams:\n{}", long.join("\n"));
+    // Negative control: a 151-line function is found, a 150-line one and a unit test's are not.
+    let body = |n: usize| "    let x = 1;\n".repeat(n - 2);
+    let text = format!(
+        "pub fn long() {{\n{}}}\nfn short() {{\n{}}}\n#[cfg(test)]\nmod tests {{\n    fn t() {{\n{}    }}\n}}\n",
+        body(151),
+        body(150),
+        body(300)
+    );
+    let found = long_functions(&text, 150);
+    assert_eq!(found, vec![("long".to_owned(), 1, 151)]);
 }
