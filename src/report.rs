@@ -272,6 +272,7 @@ fn frame_view_vectors(scene: &Scene) -> anyhow::Result<Vec<[f64; 3]>> {
     let sky = |_: [f32; 3]| [0.0f32; 3];
     let (slope_chain, bump_chain) = fb.water_slopes(&plan);
     let b = fb.water_bindings(
+        &plan,
         (&slope_chain, &bump_chain),
         &sky,
         ocean_cpu::shaders::shading::hu::shade_above,

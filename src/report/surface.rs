@@ -73,7 +73,12 @@ pub(super) fn vertices_in_view(
     let camera = Camera::from_scene(&scene.camera)?;
     let (slopes, bump) = fb.water_slopes(&r.plan);
     let sky = |_: [f32; 3]| [0.0f32; 3];
-    let b = fb.water_bindings((&slopes, &bump), &sky, ocean_cpu::shaders::shading::hu::shade_above);
+    let b = fb.water_bindings(
+        &r.plan,
+        (&slopes, &bump),
+        &sky,
+        ocean_cpu::shaders::shading::hu::shade_above,
+    );
     let inside = |o: water::VertexOut| {
         let c = o.clip;
         c.w > 0.0 && c.x.abs() <= c.w && c.y.abs() <= c.w

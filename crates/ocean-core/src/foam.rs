@@ -78,13 +78,6 @@ impl crate::stage::Foam {
             Foam::Accumulated => FOAM_ACCUMULATED,
         }
     }
-
-    /// The technique whose [`FoamBlock::mode`] is `code` (tools that rerun the water pass
-    /// from a frame's uniforms), if any.
-    pub fn from_code(code: f32) -> Option<Self> {
-        use crate::stage::{Foam, StageTechnique};
-        Foam::ALL.iter().copied().find(|f| f.code() == code)
-    }
 }
 
 /// Stage `foam`'s uniforms (WGSL `FoamBlock`, `shaders/shared/frame.wgsl`).

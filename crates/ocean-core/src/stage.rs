@@ -251,13 +251,6 @@ stage_techniques! {
     }
 }
 
-impl FarField {
-    /// Whether the slope maps carry mip chains.
-    pub fn mipped(self) -> bool {
-        self != FarField::None
-    }
-}
-
 stage_techniques! {
     /// Stage `foam`: white water.
     Foam: Foam {

@@ -318,11 +318,6 @@ impl Techniques {
         Ok(t)
     }
 
-    /// The chosen technique of every stage.
-    pub fn chosen(&self) -> &Choice {
-        &self.chosen
-    }
-
     /// Stage `waves`' technique.
     pub fn waves(&self) -> Waves {
         self.chosen.waves

@@ -110,9 +110,11 @@ impl FrameBuffers {
     }
 
     /// The water pass's bindings over these buffers, with the slope chains of
-    /// [`Self::water_slopes`] and a given sky and shading (tools that rerun parts of the pass).
+    /// [`Self::water_slopes`], the plan's foam and a given sky and shading (tools that rerun
+    /// parts of the pass).
     pub fn water_bindings<'a>(
         &'a self,
+        plan: &FramePlan,
         (slopes, bump): (&'a MipChain, &'a MipChain),
         sky_radiance: &'a (dyn Fn([f32; 3]) -> [f32; 3] + Sync),
         shade_above: crate::shaders::shading::ShadeAbove,
@@ -132,7 +134,7 @@ impl FrameBuffers {
             foam_field: &self.foam_field,
             sky_radiance,
             shade_above,
-            foam_coverage: crate::shaders::foam::foam_coverage_of_mode(self.uniforms.foam.mode),
+            foam_coverage: crate::shaders::foam::foam_coverage(plan.techniques.foam()),
         }
     }
 

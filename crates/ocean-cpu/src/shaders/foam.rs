@@ -133,14 +133,3 @@ pub fn foam_coverage(technique: ocean_core::plan::Foam) -> FoamCoverage {
         Foam::Accumulated => accumulated::foam_coverage,
     }
 }
-
-/// The `foam_coverage` of [`ocean_core::foam::FoamBlock::mode`] `mode` (tools that rerun
-/// the water pass from a frame's uniforms).
-pub fn foam_coverage_of_mode(mode: f32) -> FoamCoverage {
-    match mode as u32 {
-        1 => heuristic::foam_coverage,
-        2 => jacobian::foam_coverage,
-        3 => accumulated::foam_coverage,
-        _ => none::foam_coverage,
-    }
-}
