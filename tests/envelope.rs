@@ -486,7 +486,7 @@ fn random_conformant_gpus_stay_inside_the_sky_envelope() {
         loose += outside(&sky::jitter(technique, inputs, size, plan.frame_format, rules));
     }
     println!(
-        "{runs} skies ({scenes} scenes, all three techniques) of random conformant GPUs: 0 outside; twice the rules: {loose} outside"
+        "{runs} skies ({scenes} scenes, every sky technique) of random conformant GPUs: 0 outside; twice the rules: {loose} outside"
     );
     assert!(scenes >= 14, "{scenes} scenes with a sky that has an envelope");
     assert!(loose > 0, "a GPU twice as loose as the rules never left the sky's envelope");

@@ -153,3 +153,22 @@ fn the_far_camera_sees_the_same_sea_as_the_near_one() {
     let differs = a.iter().zip(&c).filter(|(p, q)| p != q).count();
     assert!(differs > a.len() / 4, "{differs} of {} pixels differ", a.len());
 }
+
+/// Every sky technique (the enum's list, so a new one is covered when it is declared) at the
+/// camera's extremes and with the sun at the horizon, below it and at the zenith: what the
+/// water reflects and the sky pass draws stays finite and non-negative.
+#[test]
+fn every_sky_technique_at_the_extremes_is_finite() {
+    use ocean_core::stage::{Sky, StageTechnique};
+    let suns = ["[0.0, 0.0, -1.0]", "[0.0, -0.3, -1.0]", "[0.0, 1.0, 0.0]"];
+    for sky in Sky::ALL {
+        let t = format!("[techniques]\nsky = \"{}\"\n", sky.name());
+        for (name, camera) in CAMERAS {
+            check(&format!("{name} with {t}"), &format!("{camera}{t}"));
+        }
+        for sun in suns {
+            let cam = "position = [0.0, 6.0, 30.0]\nlook_at = [0.0, 1.0, -60.0]\n";
+            check(&format!("sun {sun} with {t}"), &format!("{cam}{t}[sun]\ndirection = {sun}\n"));
+        }
+    }
+}

@@ -765,6 +765,14 @@ pub const TECHNIQUE_FILES: &[TechniqueFile] = &[
         cpu_mirror: "crates/ocean-cpu/src/shaders/sky/atmosphere.rs",
     },
     TechniqueFile {
+        technique: crate::stage::Sky::Overcast.row(),
+        file: "sky/overcast.wgsl",
+        source: include_str!("../../../shaders/sky/overcast.wgsl"),
+        interface: SKY_INTERFACE,
+        blocks: &[],
+        cpu_mirror: "crates/ocean-cpu/src/shaders/sky/overcast.rs",
+    },
+    TechniqueFile {
         technique: crate::stage::Shading::Hu.row(),
         file: "shading/hu.wgsl",
         source: include_str!("../../../shaders/shading/hu.wgsl"),

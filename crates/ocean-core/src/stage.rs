@@ -236,6 +236,8 @@ stage_techniques! {
         PreethamClouds = "preetham_clouds", "Preetham + clouds (seed 001 eq. 4)";
         /// Rayleigh and Mie scattering (seed 002).
         Atmosphere = "atmosphere", "Rayleigh/Mie scattering (seed 002)";
+        /// The CIE standard overcast sky (Moon & Spencer 1942): grey, no sun disc.
+        Overcast = "overcast", "CIE standard overcast sky (Moon & Spencer 1942), no sun disc";
     }
 }
 

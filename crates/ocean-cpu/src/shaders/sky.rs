@@ -2,6 +2,7 @@
 //! at the far plane; its techniques are the submodules (`shaders/sky/<technique>.wgsl`).
 
 pub mod atmosphere;
+pub mod overcast;
 pub mod preetham;
 pub mod preetham_clouds;
 
@@ -43,6 +44,10 @@ pub fn technique(technique: Sky) -> SkyTechnique {
         Sky::Atmosphere => {
             SkyTechnique { sky_radiance: atmosphere::sky_radiance, sun_disc: atmosphere::sun_disc }
         }
+        Sky::Overcast => SkyTechnique {
+            sky_radiance: |sky, _, dir| overcast::sky_radiance(sky, dir),
+            sun_disc: overcast::sun_disc,
+        },
     }
 }
 
@@ -53,6 +58,7 @@ pub fn environment_radiance(technique: Sky) -> SkyRadiance {
         Sky::Preetham => |sky, _, dir| preetham::sky_radiance(sky, dir.into()).into(),
         Sky::PreethamClouds => |sky, _, dir| preetham_clouds::sky_radiance(sky, dir.into()).into(),
         Sky::Atmosphere => |sky, lut, dir| atmosphere::sky_radiance(sky, lut, dir.into()).into(),
+        Sky::Overcast => |sky, _, dir| overcast::sky_radiance(sky, dir.into()).into(),
     }
 }
 
@@ -146,6 +152,21 @@ pub fn sky_radiance_r<R: crate::envelope::Real>(
         }
         Sky::PreethamClouds => preetham_clouds::sky_radiance_r(sky, dir),
         Sky::Preetham => preetham_radiance_r(sky, dir),
+        Sky::Overcast => overcast::sky_radiance_r(sky, dir),
+    }
+}
+
+/// The sky pass's `sun_disc(sky, dir)` over any [`crate::envelope::Real`].
+pub fn sun_disc_r<R: crate::envelope::Real>(
+    technique: Sky,
+    sky: &SkyUniforms,
+    dir: [R; 3],
+) -> [R; 3] {
+    use crate::shaders::shared::preetham::preetham_sun_disc_r;
+    match technique {
+        Sky::Preetham | Sky::Atmosphere => preetham_sun_disc_r(sky, dir),
+        Sky::PreethamClouds => preetham_clouds::sun_disc_r(sky, dir),
+        Sky::Overcast => [R::lit(0.0); 3],
     }
 }
 
@@ -162,8 +183,6 @@ fn sky_frame<R: crate::envelope::Real + Send>(
     use rayon::prelude::*;
 
     use crate::shaders::shared::camera::view_ray_r;
-    use crate::shaders::shared::preetham::preetham_sun_disc_r;
-    let clouds = technique == Sky::PreethamClouds;
     let SkyInputs { camera, sky, lut } = inputs;
     let w = width as usize;
     (0..w * height as usize)
@@ -174,11 +193,7 @@ fn sky_frame<R: crate::envelope::Real + Send>(
             let p = [R::lit((i % w) as f32 + 0.5), R::lit((i / w) as f32 + 0.5)];
             let dir = view_ray_r(camera, p);
             let s = sky_radiance_r(technique, sky, lut, dir);
-            let d = if clouds {
-                preetham_clouds::sun_disc_r(sky, dir)
-            } else {
-                preetham_sun_disc_r(sky, dir)
-            };
+            let d = sun_disc_r(technique, sky, dir);
             std::array::from_fn(|c| (s[c] + d[c]).store(format))
         })
         .collect()
