@@ -214,6 +214,7 @@ fn bumped_fresnel_is_the_texture_lookup_of_the_bumped_view_vector() {
                 fresnel_above: &above,
                 fresnel_below: &below,
                 sky_radiance: &sky,
+                shade_above: ocean_cpu::shaders::shading::hu::shade_above,
                 ..water::Bindings::vertex_stage(&u, &empty, &unbound)
             };
             for i in 0..=40 {

@@ -215,3 +215,18 @@ pub fn bilinear(
     let lerp = |a: f32, b: f32, w: f32| w.mul_add(b - a, a);
     std::array::from_fn(|c| lerp(lerp(t00[c], t10[c], alpha), lerp(t01[c], t11[c], alpha), beta))
 }
+
+/// `wrap_linear`: repeat addressing, bilinear, linear between mip levels (the tiled wave maps
+/// and their chains).
+pub const WRAP_LINEAR: Sampler = Sampler {
+    address_mode_u: AddressMode::Repeat,
+    address_mode_v: AddressMode::Repeat,
+    filter: FilterMode::Linear,
+};
+
+/// `clamp_linear`: clamp-to-edge addressing, bilinear (screen-space maps, Fresnel texture).
+pub const CLAMP_LINEAR: Sampler = Sampler {
+    address_mode_u: AddressMode::ClampToEdge,
+    address_mode_v: AddressMode::ClampToEdge,
+    filter: FilterMode::Linear,
+};

@@ -12,7 +12,7 @@ use ocean_core::foam::{FoamStepUniforms, texel_is_fresh, texel_offset};
 use ocean_core::frame::FrameUniforms;
 
 use super::shared::gerstner::gerstner_jacobian_r;
-use super::water::{Bindings, SurfacePoint, VertexOut};
+pub use super::water::FoamCoverage;
 use crate::envelope::{Iv, Jitter, JitterRules, Real};
 use crate::sampler::Texture2D;
 
@@ -119,9 +119,6 @@ pub fn jitter(
     Jitter::reseed(rules, 0);
     run_steps::<Jitter>(steps, frame, displacement).into_iter().map(|v| v.0).collect()
 }
-
-/// A foam technique's `foam_coverage(in, p)`.
-pub type FoamCoverage = fn(&VertexOut, &SurfacePoint, &Bindings<'_>) -> f32;
 
 /// The CPU mirror of foam technique `technique`'s `foam_coverage`.
 pub fn foam_coverage(technique: ocean_core::plan::Foam) -> FoamCoverage {

@@ -6,12 +6,8 @@ pub mod coastal;
 pub mod ggx;
 pub mod hu;
 
-use super::water::{Bindings, SurfacePoint, VertexOut};
-use super::wgsl::Vec3;
+pub use super::water::ShadeAbove;
 use ocean_core::plan::Shading;
-
-/// A shading technique's `shade_above(in, p)`: the radiance of the water seen from above.
-pub type ShadeAbove = fn(&VertexOut, &SurfacePoint, &Bindings<'_>) -> Vec3;
 
 /// The CPU mirror of shading technique `technique`'s `shade_above`.
 pub fn shade_above(technique: Shading) -> ShadeAbove {

@@ -20,22 +20,17 @@ use super::wgsl::{
     Vec2, Vec3, Vec4, abs, clamp, ldexp, max, sqrt, texture_sample_level, vec2, vec3, vec4,
 };
 use crate::mip::{MipChain, texture_sample_level_mip};
-use crate::sampler::{AddressMode, FilterMode, Sampler, Texture2D};
+use crate::sampler::Texture2D;
 
-/// `wrap_linear`: repeat addressing, bilinear, linear between mip levels (the tiled wave maps
-/// and their chains).
-pub const WRAP_LINEAR: Sampler = Sampler {
-    address_mode_u: AddressMode::Repeat,
-    address_mode_v: AddressMode::Repeat,
-    filter: FilterMode::Linear,
-};
+pub use crate::sampler::{CLAMP_LINEAR, WRAP_LINEAR};
 
-/// `clamp_linear`: clamp-to-edge addressing, bilinear (screen-space maps, Fresnel texture).
-pub const CLAMP_LINEAR: Sampler = Sampler {
-    address_mode_u: AddressMode::ClampToEdge,
-    address_mode_v: AddressMode::ClampToEdge,
-    filter: FilterMode::Linear,
-};
+/// A shading technique's `shade_above(in, p)`: the radiance of the water seen from above
+/// (what the stage calls of `technique/shading`; [`super::shading`] holds the mirrors).
+pub type ShadeAbove = fn(&VertexOut, &SurfacePoint, &Bindings<'_>) -> Vec3;
+
+/// A foam technique's `foam_coverage(in, p)` (what the stage calls of `technique/foam`;
+/// [`super::foam`] holds the mirrors).
+pub type FoamCoverage = fn(&VertexOut, &SurfacePoint, &Bindings<'_>) -> f32;
 
 /// The stage's bindings (group 0 in binding order, then the sky function of
 /// `shared/preetham.wgsl` with its uniforms).
@@ -68,9 +63,9 @@ pub struct Bindings<'a> {
     /// `sky_radiance(dir)`.
     pub sky_radiance: &'a (dyn Fn([f32; 3]) -> [f32; 3] + Sync),
     /// The shading technique's `shade_above` (`technique/shading`).
-    pub shade_above: super::shading::ShadeAbove,
+    pub shade_above: ShadeAbove,
     /// The foam technique's `foam_coverage` (`technique/foam`).
-    pub foam_coverage: super::foam::FoamCoverage,
+    pub foam_coverage: FoamCoverage,
 }
 
 /// What a caller that runs the stage's vertex entry points alone (a test, a tool) binds in
@@ -93,10 +88,20 @@ fn black_sky(_: [f32; 3]) -> [f32; 3] {
     [0.0; 3]
 }
 
+/// No light from above: the vertex stage's stand-in for a shading technique.
+fn unshaded(_: &VertexOut, _: &SurfacePoint, _: &Bindings<'_>) -> Vec3 {
+    vec3(0.0, 0.0, 0.0)
+}
+
+/// No white water: the vertex stage's stand-in for a foam technique (what foam `none` is).
+fn no_foam(_: &VertexOut, _: &SurfacePoint, _: &Bindings<'_>) -> f32 {
+    0.0
+}
+
 impl<'a> Bindings<'a> {
     /// Bindings for the vertex entry points: `frame` and the `displacement` map, every other
-    /// texture `unbound`'s zero texel, a black sky, shading `hu` and foam `none`. A caller that
-    /// shades fragments overrides what it needs (`Bindings { bump: …, ..vertex_stage(…) }`).
+    /// texture `unbound`'s zero texel, a black sky, no shading and no foam. A caller that
+    /// shades fragments overrides what it needs (a shading technique's `shade_above` included) (`Bindings { bump: …, ..vertex_stage(…) }`).
     pub fn vertex_stage(
         frame: &'a FrameUniforms,
         displacement: &'a Texture2D,
@@ -117,8 +122,8 @@ impl<'a> Bindings<'a> {
             floor_map: t,
             foam_field: t,
             sky_radiance: &black_sky,
-            shade_above: super::shading::hu::shade_above,
-            foam_coverage: super::foam::none::foam_coverage,
+            shade_above: unshaded,
+            foam_coverage: no_foam,
         }
     }
 }
@@ -311,7 +316,7 @@ pub fn multi_scale_taps(pos: Vec2, fp: &Footprint, h: Vec2, b: &Bindings<'_>) ->
 
 /// `pow_int(x, n)`: x^n by binary exponentiation, multiplications in the WGSL's order.
 pub fn pow_int(x: f32, n: u32) -> f32 {
-    real::pow_int(x, n)
+    real::helpers::pow_int(x, n)
 }
 
 /// `sun_visibility(rel)` (shared/shadow.wgsl) with this stage's `shadow_map`.
@@ -321,7 +326,7 @@ pub fn sun_visibility(rel: Vec3, b: &Bindings<'_>) -> f32 {
 
 /// `lod_log2(x)`.
 pub fn lod_log2(x: f32) -> f32 {
-    real::lod_log2(x)
+    real::helpers::lod_log2(x)
 }
 
 /// `Footprint`: where the pixel's taps on the slope maps lie.
@@ -448,7 +453,7 @@ pub use super::shared::optics::{EXP_MIN, exp_arith};
 
 /// `normal_cdf(a)`: Φ(a) by Abramowitz & Stegun 7.1.26 (|error| < 1.5e-7).
 pub fn normal_cdf(a: f32) -> f32 {
-    real::normal_cdf(a)
+    real::helpers::normal_cdf(a)
 }
 
 /// `VISIBLE_A_MIN`: below this standardised mean the facets' weights are clamped.
@@ -476,7 +481,7 @@ pub fn visible_slopes(mu: f32, var_geo: f32, vy: f32, vh: f32) -> Vec2 {
 
 /// `subtexel(lod)`: the share of level 0's E\[s²\] − E\[s\]² a footprint of LOD `lod` < 0 holds.
 pub fn subtexel(lod: f32) -> f32 {
-    real::subtexel(lod)
+    real::helpers::subtexel(lod)
 }
 
 /// `gerstner_filtered_slopes(pos, fp, weight)`.
@@ -646,7 +651,7 @@ pub const SQRT2: f32 = std::f32::consts::SQRT_2;
 
 /// `grazing_square_axis(a, b)`.
 pub fn grazing_square_axis(a: f32, b: f32) -> f32 {
-    real::grazing_square_axis(a, b)
+    real::helpers::grazing_square_axis(a, b)
 }
 
 /// `bumped_view(view, n)`: the view vector's horizontal part bumped by the normal's

@@ -5,8 +5,8 @@ use ocean_core::frame::FrameUniforms;
 
 use super::shadow::sun_visibility_r;
 use crate::envelope::{Real, choose};
+use crate::sampler::CLAMP_LINEAR;
 use crate::sampler::Texture2D;
-use crate::shaders::water::CLAMP_LINEAR;
 use crate::shaders::wgsl::{Vec3, clamp, max, sqrt, texture_sample_level, vec2, vec3};
 
 /// `RELIEF_SHADOW_BIAS`, m.

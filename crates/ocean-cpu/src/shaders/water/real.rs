@@ -17,68 +17,27 @@ pub mod clipmap;
 mod coastal;
 mod floor;
 mod foam;
+pub mod helpers;
+mod inputs;
 mod shading;
 
 pub use foam::Foam;
+pub use inputs::{Inputs, Tex, Varyings};
+
+use helpers::{fresnel_st, lod_log2, normal_cdf, subtexel, unit};
+use inputs::LEAST_POSITIVE;
 
 use ocean_core::far_field::{FAR_NONE, FAR_VARIANCE};
 use ocean_core::foam::FOAM_NONE;
 use ocean_core::frame::FrameUniforms;
 
-use crate::envelope::{Cond, Real, choose, choose_n, dot3, mat4_mul_vec4};
+use crate::envelope::{Cond, Real, choose_n, dot3, mat4_mul_vec4};
 use crate::shaders::shared::gerstner::gerstner_cis_r;
 use crate::shaders::shared::optics::exp_arith_r;
 use crate::shaders::shared::trig::{TAU, cis_reduced_r};
 
-/// A texture the stage reads, as [`Inputs::sample`] names it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Tex {
-    /// Binding 1, repeat.
-    Displacement,
-    /// Binding 2 (a chain under far fields `mip` and `variance`), repeat.
-    DisplacementSlopes,
-    /// Binding 3 (likewise), repeat.
-    Bump,
-    /// Binding 4, clamp.
-    FresnelAbove,
-    /// Binding 5, clamp.
-    FresnelBelow,
-    /// Binding 6, clamp.
-    ReflectionMap,
-    /// Binding 7, clamp.
-    RefractionMap,
-    /// Binding 11, clamp.
-    FresnelFilter,
-    /// `floor_map` (binding 12), clamp.
-    FloorMap,
-    /// Binding 13 (foam `accumulated`'s field), repeat.
-    FoamField,
-}
-
 /// The shading techniques (`technique/shading`'s `shade_above`): the envelope carries each.
 pub use ocean_core::plan::Shading;
-
-/// What the stage reads, over a [`Real`].
-pub struct Inputs<'a, R> {
-    /// The frame's uniforms.
-    pub frame: &'a FrameUniforms,
-    /// The shading technique.
-    pub shading: Shading,
-    /// The foam technique.
-    pub foam: Foam,
-    /// `textureSampleLevel(texture, sampler, uv, lod)` with the texture's sampler.
-    pub sample: &'a (dyn Fn(Tex, [R; 2], R) -> [R; 4] + Sync),
-    /// For a slope chain's sample, the least t₂ − t₀² and t₃ − t₁² (E\[s²\] − E\[s\]² per
-    /// axis) any conformant filter gives there (−∞ where nothing is known beyond `sample`:
-    /// always, for a scalar), `crate::envelope::filter::spread_floor`.
-    pub spread_floor: &'a (dyn Fn(Tex, [R; 2], R) -> [f64; 2] + Sync),
-    /// The sky technique's `sky_radiance(sky, dir)`.
-    pub sky: &'a (dyn Fn([R; 3]) -> [R; 3] + Sync),
-    /// The shadow map's size.
-    pub shadow_dims: [u32; 2],
-    /// The shadow map's texel (x, y).
-    pub occluder: &'a (dyn Fn(u32, u32) -> R + Sync),
-}
 
 /// Why the stage's configuration is not carried over [`Real`] yet (`None`: it is): every
 /// shading and foam technique is, on every surface but waves `coastal` on a clipmap.
@@ -88,10 +47,6 @@ pub fn carried(frame: &FrameUniforms) -> Option<&'static str> {
     }
     None
 }
-
-/// The varyings of `VertexOut` in declaration order: rel (3), uv_d (2), uv_b (2), weight,
-/// pos (2).
-pub type Varyings<R> = [R; 10];
 
 /// `water_vertex(pos, mesh_weight)` under waves `fft`: the clip position and the varyings.
 pub fn water_vertex<R: Real>(
@@ -176,20 +131,6 @@ pub fn grid_vertex<R: Real>(i: u32, j: u32, inp: &Inputs<'_, R>) -> ([R; 4], Var
     let inv_w = l(1.0) / h[3];
     let off = inp.frame.tiling.mesh_offset;
     water_vertex([h[0] * inv_w - l(off[0]), h[2] * inv_w - l(off[1])], l(1.0), inp)
-}
-
-/// `lod_log2(x)` for x > 0: each binade x may lie in, united.
-pub fn lod_log2<R: Real>(x: R) -> R {
-    let l = R::lit;
-    let at = |e: i32, fract: R| {
-        let m = fract * l(2.0) - l(1.0);
-        l((e - 1) as f32) + m * (l(1.442_544_9) + m * (l(-0.718_145_2) + m * l(0.275_600_3)))
-    };
-    match x.frexp_cases() {
-        Some([Some((e, f)), None]) => at(e, f),
-        Some([Some((e0, f0)), Some((e1, f1))]) => at(e0, f0).hull(at(e1, f1)),
-        _ => l(f32::NEG_INFINITY).hull(l(f32::INFINITY)),
-    }
 }
 
 /// `Footprint` with its number of taps decided (`taps_log2`).
@@ -365,19 +306,6 @@ fn multi_scale_taps<R: Real>(
     (mean, along_sq, [f64::NEG_INFINITY; 2])
 }
 
-/// `normal_cdf(a)`.
-pub fn normal_cdf<R: Real>(a: R) -> R {
-    let l = R::lit;
-    let x = a.abs() * l(std::f32::consts::FRAC_1_SQRT_2);
-    let t = l(1.0) / (l(1.0) + l(0.327_591_1) * x);
-    let poly = ((((l(1.061_405_4) * t - l(1.453_152)) * t + l(1.421_413_8)) * t - l(0.284_496_74))
-        * t
-        + l(0.254_829_6))
-        * t;
-    let erf = l(1.0) - poly * exp_arith_r(-(x.sq()));
-    choose(a.lt(l(0.0)), || l(0.5) - l(0.5) * erf, || l(0.5) + l(0.5) * erf)
-}
-
 /// `visible_slopes(mu, var_geo, vy, vh)`.
 fn visible_slopes<R: Real>(mu: R, var_geo: R, vy: R, vh: R) -> [R; 2] {
     use crate::shaders::water::{VISIBLE_A_MAX, VISIBLE_A_MIN};
@@ -436,12 +364,6 @@ fn visible_bounds<R: Real>(out: [R; 2], mu: R, mt: R, st: R, vy: R, vh: R) -> [R
     let x = out[0].within(mu.least() - g_hi / vh_lo - slack, mu.most() - g_lo / vh_hi + slack);
     let y = out[1].within(0.0, st_hi * st_hi / (vh_lo * vh_lo) * (1.0 + e));
     [x, y]
-}
-
-/// `subtexel(lod)`.
-pub fn subtexel<R: Real>(lod: R) -> R {
-    let l = R::lit;
-    choose(l(0.0).le(lod), || l(1.0), || exp_arith_r(lod * l(2.0 * std::f32::consts::LN_2)))
 }
 
 /// `gerstner_displacement(pos)`.
@@ -597,159 +519,6 @@ fn wave_slopes<R: Real>(v: &Varyings<R>, fp: &Footprint<R>, inp: &Inputs<'_, R>)
         || [s[0], s[1], variance],
     )
 }
-
-/// `unit(v)`.
-fn unit<R: Real>(v: [R; 3]) -> [R; 3] {
-    let len = (v[0].sq() + v[1].sq() + v[2].sq()).sqrt();
-    v.map(|c| c / len)
-}
-
-/// `grazing_square_axis(a, b)`.
-pub fn grazing_square_axis<R: Real>(a: R, b: R) -> R {
-    let l = R::lit;
-    let s2 = l(std::f32::consts::SQRT_2);
-    let plus = (s2 + a - b) * (s2 + a + b);
-    let minus = (s2 - a - b) * (s2 - a + b);
-    l(0.5) * (plus.max(l(0.0)).sqrt() - minus.max(l(0.0)).sqrt())
-}
-
-/// `fresnel_st(u_bumped)`.
-fn fresnel_st<R: Real>(u: [R; 2], frame: &FrameUniforms) -> [R; 2] {
-    let l = R::lit;
-    let (x, y) = (u[0], u[1]);
-    let r2 = x.sq() + y.sq();
-    let z = (l(1.0) - r2).max(l(0.0)).sqrt();
-    let den = (l(1.0) + z).sqrt().max(r2.sqrt());
-    let d = [x / den, y / den];
-    let a = [grazing_square_axis(d[0], d[1]), grazing_square_axis(d[1], d[0])];
-    a.map(|c| c * l(frame.hu.fresnel_scale) + l(0.5))
-}
-
-/// `fresnel_filtered(u_bumped, variance)`.
-fn fresnel_filtered<R: Real>(u: [R; 2], variance: R, inp: &Inputs<'_, R>) -> R {
-    let l = R::lit;
-    let far = &inp.frame.far;
-    let r = (u[0].sq() + u[1].sq()).sqrt();
-    let t = (variance.sqrt() * l(far.inv_sigma_max)).sqrt();
-    let uv = [
-        r * l(far.filter_r_scale) + l(far.filter_r_offset),
-        t * l(far.filter_t_scale) + l(far.filter_t_offset),
-    ];
-    (inp.sample)(Tex::FresnelFilter, uv, l(0.0))[0].clamp(l(0.0), l(1.0))
-}
-
-/// `lobe_side(ur, c, v, a)`.
-fn lobe_side<R: Real>(ur: R, c: R, v: R, a: R) -> [R; 3] {
-    let l = R::lit;
-    let d = ur - c;
-    let m = (ur * a + c * v) / (a + v);
-    let w = (v * a / (v + a)).sqrt().max(l(1e-30));
-    [(a / (a + v)).sqrt() * exp_arith_r(l(-0.5) * d.sq() / (a + v)), m, w]
-}
-
-/// `sun_lobe_filtered(u, variance)`.
-fn sun_lobe_filtered<R: Real>(u: [R; 2], variance: R, frame: &FrameUniforms) -> R {
-    let l = R::lit;
-    let far = &frame.far;
-    let sun = frame.sun.direction;
-    let rh = [-l(sun[0]), -l(sun[2])];
-    let len = (rh[0].sq() + rh[1].sq()).sqrt();
-    let rho = choose_n(
-        l(1e-6).lt(len),
-        || {
-            let inv = l(1.0) / len;
-            [rh[0] * inv, rh[1] * inv]
-        },
-        || [l(1.0), l(0.0)],
-    );
-    let ur = u[0] * rho[0] + u[1] * rho[1];
-    let ut = u[1] * rho[0] - u[0] * rho[1];
-    let v = variance;
-    let at = l(far.sun_tangential);
-    let across = (at / (at + v)).sqrt() * exp_arith_r(l(-0.5) * ut.sq() / (at + v));
-    let beyond = l(far.sun_rim) * normal_cdf((ur - l(1.0)) / v.sqrt());
-    let c = l(far.sun_centre);
-    let above = lobe_side(ur, c, v, l(far.sun_above));
-    let below = lobe_side(ur, c, v, l(far.sun_below));
-    let p_above = above[0] * normal_cdf((c - above[1]) / above[2]);
-    let p_below = below[0]
-        * (normal_cdf((l(1.0) - below[1]) / below[2]) - normal_cdf((c - below[1]) / below[2]));
-    across * (beyond + p_above + p_below)
-}
-
-/// `reflect`ed sky along `n` seen along `view`: sky_radiance(unit(r + (0, 1e-6, 0))) with
-/// r = n·2(v·n) − v, r.y ≥ 0.
-fn sky_reflected<R: Real>(view: [R; 3], n: [R; 3], inp: &Inputs<'_, R>) -> [R; 3] {
-    let l = R::lit;
-    let vn = dot3(view, n);
-    let mut r: [R; 3] = std::array::from_fn(|c| n[c] * (l(2.0) * vn) - view[c]);
-    r[1] = r[1].max(l(0.0));
-    (inp.sky)(unit([r[0] + l(0.0), r[1] + l(1e-6), r[2] + l(0.0)]))
-}
-
-/// `sky_filtered(view, slopes, variance)`.
-fn sky_filtered<R: Real>(view: [R; 3], slopes: [R; 3], variance: R, inp: &Inputs<'_, R>) -> [R; 3] {
-    let l = R::lit;
-    let sigma = variance.sqrt();
-    let mut sum_fl = [l(0.0); 3];
-    let mut sum_f = l(0.0);
-    let mut skies = [[l(0.0); 3]; 4];
-    let mut fs = [l(0.0); 4];
-    for (i, (slot, f_slot)) in skies.iter_mut().zip(fs.iter_mut()).enumerate() {
-        let mut o = [l(0.0); 2];
-        match i {
-            0 => o[0] = sigma,
-            1 => o[0] = -sigma,
-            2 => o[1] = sigma,
-            _ => o[1] = -sigma,
-        }
-        let ni = unit([-(slopes[0] + o[0]), l(1.0), -(slopes[1] + o[1])]);
-        let st = fresnel_st([view[0] - ni[0], view[2] - ni[2]], inp.frame);
-        let fi = (inp.sample)(Tex::FresnelAbove, st, l(0.0))[3];
-        let sky = sky_reflected(view, ni, inp);
-        *slot = sky;
-        *f_slot = fi;
-        sum_fl = std::array::from_fn(|c| sum_fl[c] + sky[c] * fi);
-        sum_f = sum_f + fi;
-    }
-    let den = sum_f.max(l(1e-30));
-    let out = sum_fl.map(|c| c / den);
-    // The premise: every weight ≥ 0, and the divisor Σfᵢ itself (not its floor 1e-30).
-    if !R::INTERVAL || fs.iter().any(|f| f.least() < 0.0) || sum_f.least() < f64::from(1e-30f32) {
-        return out;
-    }
-    // Σ fᵢLᵢ / Σ fᵢ with every fᵢ > 0 is a convex combination of the Lᵢ: between the least
-    // and the greatest, but for the rounding of its 4 products, 3 sums and one division
-    // (allowed 16 ULP of the greatest).
-    std::array::from_fn(|c| {
-        let (lo, hi) = skies.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), s| {
-            (a.min(s[c].least()), b.max(s[c].most()))
-        });
-        let slack = 16.0 * crate::envelope::f32_ulp(lo.abs().max(hi.abs()));
-        out[c].within(lo - slack, hi + slack)
-    })
-}
-
-/// `pow_int(x, n)`.
-pub fn pow_int<R: Real>(x: R, n: u32) -> R {
-    let mut result = R::lit(1.0);
-    let mut base = x;
-    let mut e = n;
-    loop {
-        if e & 1 == 1 {
-            result = result * base;
-        }
-        e >>= 1;
-        if e == 0 {
-            break;
-        }
-        base = base.sq();
-    }
-    result
-}
-
-/// The least positive f32 (a subnormal): what a positive value is at least.
-const LEAST_POSITIVE: f64 = 1.401_298_464_324_817e-45;
 
 /// `fs_main(in)` at the pixel whose centre is `frag` (x + ½, y + ½): the colour it writes
 /// (before the target's storage), the union over the footprint's cases.

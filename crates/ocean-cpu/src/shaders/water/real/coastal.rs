@@ -6,7 +6,8 @@
 
 use ocean_core::frame::FrameUniforms;
 
-use super::{Inputs, LEAST_POSITIVE, floor};
+use super::floor;
+use super::inputs::{Inputs, LEAST_POSITIVE};
 use crate::envelope::{Cond, Real, choose, choose_n, on_floor};
 use crate::shaders::shared::coastal::{COASTAL_EDGE_M, COASTAL_FILM_M, COASTAL_SEGMENTS};
 use crate::shaders::shared::optics::exp_arith_r;

@@ -1,7 +1,7 @@
 //! `shared/floor.wgsl`'s height and depth of the sea floor and `shore_weight` (`[terrain]
 //! wave_damping`), over any [`Real`]: the relief map read through [`Inputs::sample`].
 
-use super::{Inputs, Tex};
+use super::inputs::{Inputs, Tex};
 use crate::envelope::Real;
 
 /// `floor_height(x, z)`: the plane plus the relief map (bilinear, clamped to its edge).

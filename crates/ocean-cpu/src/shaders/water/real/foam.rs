@@ -6,7 +6,7 @@
 use ocean_core::foam::{FOAM_INV_PI, FOAM_MIN_JACOBIAN, foam_hash};
 use ocean_core::frame::FrameUniforms;
 
-use super::{Inputs, Tex, Varyings};
+use super::inputs::{Inputs, Tex, Varyings};
 use crate::envelope::{Real, choose_n, dot3, on_floor};
 use crate::shaders::shared::gerstner::gerstner_jacobian_r;
 use crate::shaders::shared::shadow::sun_visibility_r;

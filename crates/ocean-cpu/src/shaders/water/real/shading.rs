@@ -4,10 +4,10 @@
 
 use ocean_core::frame::FrameUniforms;
 
-use super::{
-    Inputs, LEAST_POSITIVE, Tex, fresnel_filtered, fresnel_st, pow_int, sky_filtered,
-    sky_reflected, sun_lobe_filtered, unit,
+use super::helpers::{
+    fresnel_filtered, fresnel_st, pow_int, sky_filtered, sky_reflected, sun_lobe_filtered, unit,
 };
+use super::inputs::{Inputs, LEAST_POSITIVE, Tex};
 use crate::envelope::{Real, choose, choose_n, dot3, mat4_mul_vec4, on_floor};
 use crate::shaders::shading::chiu::CHIU_MAX_EXPONENT;
 use crate::shaders::shading::coastal::COASTAL_INV_PI;
