@@ -41,8 +41,8 @@ fn apply_system(
     chosen: Option<System>,
 ) -> anyhow::Result<()> {
     if let (Some(name), Some(chosen)) = (&system.system, chosen) {
-        Techniques::with_overrides(chosen, scene.techniques.iter())
-            .and_then(|t| t.check())
+        Techniques::of_overrides(chosen, &scene.techniques)
+            .check()
             .map_err(|e| anyhow::anyhow!("--system {name}: {e}"))?;
         scene.system = chosen;
     }

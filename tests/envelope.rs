@@ -611,7 +611,7 @@ fn random_conformant_gpus_stay_inside_the_foam_envelope() {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("reference/scenes");
     let storm = ocean_core::scene::Scene::load(&root.join("foam_storm.toml")).unwrap();
     let mut gerstner = ocean_core::scene::Scene::load(&root.join("foam_gerstner.toml")).unwrap();
-    gerstner.techniques.foam = Some("accumulated".into());
+    gerstner.techniques.foam = Some(ocean_core::plan::Foam::Accumulated);
     let (mut runs, mut texels, mut loose) = (0, 0, 0);
     for (name, scene) in [("foam_storm", storm), ("foam_gerstner (accumulated)", gerstner)] {
         let plan = FramePlan::new(&scene, OutputKind::Ldr);

@@ -7,7 +7,7 @@
 #![allow(clippy::unwrap_used, reason = "a panic in a test is its failure report")]
 
 use ocean_core::camera::Camera;
-use ocean_core::plan::OutputKind;
+use ocean_core::plan::{FarField, OutputKind};
 use ocean_core::scene::Scene;
 use ocean_core::supersample::{
     BAND_NAMES, band_error, band_luminance, box_filter, grid_side, sea_bands,
@@ -17,12 +17,12 @@ const W: u32 = 320;
 const H: u32 = 180;
 
 /// The scene's HDR frame at W × H, `spp` samples per pixel, far field `far`, time + `dt`.
-fn frame(scene: &Scene, far: &str, spp: u32, dt: f64) -> Vec<[f32; 4]> {
+fn frame(scene: &Scene, far: FarField, spp: u32, dt: f64) -> Vec<[f32; 4]> {
     let k = grid_side(spp).unwrap();
     let mut s = scene.clone();
     (s.camera.width, s.camera.height) = (W * k, H * k);
     s.ocean.time_s += dt;
-    s.techniques.far_field = Some(far.to_string());
+    s.techniques.far_field = Some(far);
     let r = ocean_cpu::render_scene(&s, OutputKind::Hdr, &mut |_| {}).unwrap();
     box_filter(&r.buffers.hdr.color, W, H, k)
 }
@@ -71,12 +71,12 @@ fn far_fields_against_the_64_sample_frame() {
         "scene | technique | band | mean |Δ log(1+L)| vs 64 spp | brightness ratio | flicker (64 spp flicker)"
     );
     for (name, scene) in scenes() {
-        let truth = frame(&scene, "none", 64, 0.0);
-        let truth_next = frame(&scene, "none", 64, dt);
+        let truth = frame(&scene, FarField::None, 64, 0.0);
+        let truth_next = frame(&scene, FarField::None, 64, dt);
         let bands = bands(&scene);
         let mut none_error = [0.0f64; 3];
 
-        for far in ["none", "mip", "variance"] {
+        for far in [FarField::None, FarField::Mip, FarField::Variance] {
             let a = frame(&scene, far, 1, 0.0);
             let b = frame(&scene, far, 1, dt);
             for (k, (band, rows)) in BAND_NAMES.iter().zip(&bands).enumerate() {
@@ -93,7 +93,7 @@ fn far_fields_against_the_64_sample_frame() {
                 );
                 let steady = flicker <= 1.5 * truth_flicker;
                 match far {
-                    "none" => {
+                    FarField::None => {
                         none_error[k] = e;
                         if steady {
                             failures.push(format!("{name} {band}: `none` does not flicker"));
@@ -107,13 +107,16 @@ fn far_fields_against_the_64_sample_frame() {
                         if !steady {
                             failures.push(format!("{name} {band}: `{far}` flickers {flicker}"));
                         }
-                        if far == "variance" && e >= none_error[k] {
+                        if far == FarField::Variance && e >= none_error[k] {
                             failures.push(format!("{name} {band}: `variance` {e} vs none"));
                         }
-                        if far == "variance" && e > BAND_LIMIT {
+                        if far == FarField::Variance && e > BAND_LIMIT {
                             failures.push(format!("{name} {band}: `variance` off by {e}"));
                         }
-                        if far == "variance" && k == 0 && (ratio - 1.0).abs() > HORIZON_BRIGHTNESS {
+                        if far == FarField::Variance
+                            && k == 0
+                            && (ratio - 1.0).abs() > HORIZON_BRIGHTNESS
+                        {
                             failures.push(format!("{name} horizon: `variance` brightness {ratio}"));
                         }
                     }

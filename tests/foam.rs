@@ -18,7 +18,7 @@ use std::path::PathBuf;
 use ocean_core::foam::{FoamBlock, heuristic_turbulence, jacobian_turbulence};
 use ocean_core::frame::FrameUniforms;
 use ocean_core::graph::FrameState;
-use ocean_core::plan::{Foam, FramePlan, OutputKind, ResourceId, Waves};
+use ocean_core::plan::{Foam, FramePlan, OutputKind, ResourceId, Shading, Waves};
 use ocean_core::rng::SplitMix64;
 use ocean_core::scene::{Scene, SceneSource};
 use ocean_core::waves::gerstner::GerstnerBlock;
@@ -182,7 +182,7 @@ fn gerstner_jacobian_matches_its_closed_form() {
 /// warm-up (frame n has run n + 1 steps).
 fn gerstner_accumulated() -> Scene {
     let mut s = reference("foam_gerstner");
-    s.techniques.foam = Some("accumulated".into());
+    s.techniques.foam = Some(Foam::Accumulated);
     (s.camera.width, s.camera.height) = (32, 18);
     s.foam.warmup_steps = 0;
     s.foam.grid = 64;
@@ -352,19 +352,19 @@ fn hdr(scene: &Scene) -> Vec<[f32; 4]> {
 }
 
 fn foam_is_drawn_over_every_shading_and_zero_coverage_changes_nothing() {
-    for shading in ["hu", "chiu", "ggx"] {
+    for shading in [Shading::Hu, Shading::Chiu, Shading::Ggx] {
         let mut base = fft_accumulated();
         (base.camera.width, base.camera.height) = (96, 54);
-        base.techniques.shading = Some(shading.into());
+        base.techniques.shading = Some(shading);
         base.foam.warmup_steps = 60;
-        let with = |foam: &str, coverage: f64| {
+        let with = |foam: Foam, coverage: f64| {
             let mut s = base.clone();
-            s.techniques.foam = Some(foam.into());
+            s.techniques.foam = Some(foam);
             s.foam.coverage = coverage;
             hdr(&s)
         };
-        let none = with("none", 0.9);
-        for foam in ["heuristic", "jacobian", "accumulated"] {
+        let none = with(Foam::None, 0.9);
+        for foam in [Foam::Heuristic, Foam::Jacobian, Foam::Accumulated] {
             let zero = with(foam, 0.0);
             let drawn = with(foam, 0.9);
             let same =

@@ -99,9 +99,9 @@ fn quality_scenes_match_the_cpu_oracle() {
     under.camera.look_at = [0.0, 25.0, -15.0];
     failures.extend(failures_of(&mut r, "underwater_fresnel64", &under, None));
     // Every far field (the reference scenes run the default, `variance`).
-    for far in ["none", "mip"] {
+    for far in [ocean_core::plan::FarField::None, ocean_core::plan::FarField::Mip] {
         let mut s = default_with("fresnel_table_size = 128");
-        s.techniques.far_field = Some(far.to_string());
+        s.techniques.far_field = Some(far);
         failures.extend(failures_of(&mut r, &format!("far_field_{far}"), &s, None));
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));

@@ -398,7 +398,7 @@ fn bloom_off_is_the_tonemap_frame_bit_for_bit() {
         ocean_cpu::render_scene_with_plan(s, plan, &mut |_| {}).unwrap().ldr.unwrap()
     };
     let mut plain = scene.clone();
-    plain.techniques.post = Some("tonemap".into());
+    plain.techniques.post = Some(ocean_core::plan::Post::Tonemap);
     let reference = render(&plain, FramePlan::new(&plain, OutputKind::Ldr));
     // Strength 0: the plan leaves the pass out, with its reason …
     let mut off = scene.clone();

@@ -12,9 +12,10 @@ use ocean_core::supersample::{band_error, box_filter, grid_side, sea_bands};
 use ocean_gpu::FrameMap;
 
 use super::{CPU, Ctx, Row};
+use ocean_core::plan::{FarField, StageTechnique};
 
-/// The far fields the knob measures, in the technique table's names.
-const FAR_FIELDS: [&str; 3] = ["none", "mip", "variance"];
+/// The far fields the knob measures: every one.
+const FAR_FIELDS: &[FarField] = FarField::ALL;
 
 /// Sample counts whose cost the knob measures against the 64-sample truth.
 const SPPS: [u32; 2] = [4, 16];
@@ -29,11 +30,11 @@ pub(super) fn steps(ctx: &Ctx) -> u64 {
 }
 
 /// The default scene at the knob's size with far field `far`, rendered at k× the size.
-fn scene(ctx: &Ctx, far: &str, k: u32) -> Scene {
+fn scene(ctx: &Ctx, far: FarField, k: u32) -> Scene {
     let mut s = Scene::builtin();
     let (w, h) = ctx.frame_size();
     (s.camera.width, s.camera.height) = (w * k, h * k);
-    s.techniques.far_field = Some(far.to_string());
+    s.techniques.far_field = Some(far);
     s
 }
 
@@ -48,9 +49,9 @@ fn cpu_hdr(ctx: &Ctx, scene: &Scene, k: u32) -> anyhow::Result<Vec<[f32; 4]>> {
 /// count.
 pub(super) fn measure(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
     let (w, h) = ctx.frame_size();
-    let base = scene(ctx, "none", 1);
+    let base = scene(ctx, FarField::None, 1);
     let bands = sea_bands(&Camera::from_scene(&base.camera)?, h);
-    let truth_scene = scene(ctx, "none", 8);
+    let truth_scene = scene(ctx, FarField::None, 8);
     let (truth_ms, truth) = ctx.time(|| {
         let f = cpu_hdr(ctx, &truth_scene, 8);
         ctx.step("far_field 64 spp");
@@ -75,7 +76,7 @@ pub(super) fn measure(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
     push("none 64 spp".into(), &truth, truth_ms, CPU);
     for spp in SPPS {
         let k = grid_side(spp)?;
-        let s = scene(ctx, "none", k);
+        let s = scene(ctx, FarField::None, k);
         let (ms, f) = ctx.time(|| {
             let f = cpu_hdr(ctx, &s, k);
             ctx.step("far_field spp");
@@ -84,7 +85,7 @@ pub(super) fn measure(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
         push(format!("none {spp} spp"), &f, ms, CPU);
         shots.push((format!("none {spp} spp"), f));
     }
-    for far in FAR_FIELDS {
+    for &far in FAR_FIELDS {
         let s = scene(ctx, far, 1);
         let (ms, f) = ctx.time(|| {
             let f = cpu_hdr(ctx, &s, 1);
@@ -118,7 +119,7 @@ pub(super) fn measure(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
     }
     match ctx.gpu().as_mut() {
         Ok(gpu) => {
-            for far in FAR_FIELDS {
+            for &far in FAR_FIELDS {
                 let s = scene(ctx, far, 1);
                 let plan = FramePlan::new(&s, OutputKind::Hdr);
                 let (ms, f) = ctx.time(|| {

@@ -16,15 +16,16 @@ use ocean_core::supersample::{band_error, sea_bands};
 use ocean_cpu::shaders::water;
 
 use super::{CPU, Ctx, Row};
+use ocean_core::plan::{Shading, Sky, Surface};
 
 /// The settings: (name, surface, projected grid cell in pixels, clipmap quads a level side).
-const SETTINGS: [(&str, &str, f64, u32); 6] = [
-    ("hu_patches", "hu_patches", 4.0, 64),
-    ("projected_grid 8 px", "projected_grid", 8.0, 64),
-    ("projected_grid 4 px", "projected_grid", 4.0, 64),
-    ("projected_grid 2 px", "projected_grid", 2.0, 64),
-    ("clipmap 32²", "clipmap", 4.0, 32),
-    ("clipmap 64²", "clipmap", 4.0, 64),
+const SETTINGS: [(&str, Surface, f64, u32); 6] = [
+    ("hu_patches", Surface::HuPatches, 4.0, 64),
+    ("projected_grid 8 px", Surface::ProjectedGrid, 8.0, 64),
+    ("projected_grid 4 px", Surface::ProjectedGrid, 4.0, 64),
+    ("projected_grid 2 px", Surface::ProjectedGrid, 2.0, 64),
+    ("clipmap 32²", Surface::Clipmap, 4.0, 32),
+    ("clipmap 64²", Surface::Clipmap, 4.0, 64),
 ];
 
 /// The reference mesh's cell, pixels.
@@ -35,11 +36,11 @@ pub(super) fn steps(ctx: &Ctx) -> u64 {
     (2 * SETTINGS.len() as u64 + 1) * (ctx.runs as u64 + 1)
 }
 
-fn scene(ctx: &Ctx, surface: &str, cell: f64, clipmap_cells: u32) -> Scene {
+fn scene(ctx: &Ctx, surface: Surface, cell: f64, clipmap_cells: u32) -> Scene {
     let mut s = Scene::builtin();
     s.objects.clear();
     (s.camera.width, s.camera.height) = ctx.frame_size();
-    s.techniques.surface = Some(surface.to_string());
+    s.techniques.surface = Some(surface);
     s.quality.projected_grid_cell_px = cell;
     s.quality.clipmap_cells = clipmap_cells;
     s
@@ -99,7 +100,7 @@ pub(super) fn vertices_in_view(
 
 /// Measures the knob.
 pub(super) fn measure(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
-    let reference = scene(ctx, "projected_grid", REFERENCE_CELL_PX, 64);
+    let reference = scene(ctx, Surface::ProjectedGrid, REFERENCE_CELL_PX, 64);
     let camera = Camera::from_scene(&reference.camera)?;
     let (w, h) = ctx.frame_size();
     let bands = sea_bands(&camera, h);
@@ -193,12 +194,12 @@ pub(super) fn clouds_steps(ctx: &Ctx) -> u64 {
 /// `preetham_clouds`: frame time on both back ends, and how far the clouds move the picture
 /// (mean |Δ log(1 + L)| over the frame against the clear sky's).
 pub(super) fn measure_clouds(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
-    let sky_scene = |sky: &str| {
+    let sky_scene = |sky: Sky| {
         let mut s = Scene::builtin();
         (s.camera.width, s.camera.height) = ctx.frame_size();
-        s.techniques.shading = Some("chiu".into());
-        s.techniques.surface = Some("projected_grid".into());
-        s.techniques.sky = Some(sky.into());
+        s.techniques.shading = Some(Shading::Chiu);
+        s.techniques.surface = Some(Surface::ProjectedGrid);
+        s.techniques.sky = Some(sky);
         s
     };
     let (w, h) = ctx.frame_size();
@@ -207,7 +208,7 @@ pub(super) fn measure_clouds(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
     let mut rows = Vec::new();
     let mut shared = ctx.gpu();
     let mut gpu = shared.as_mut().ok();
-    for sky in ["preetham", "preetham_clouds"] {
+    for sky in [Sky::Preetham, Sky::PreethamClouds] {
         let s = sky_scene(sky);
         let (ms, f) = ctx.time(|| {
             let r = ocean_cpu::render_scene(&s, OutputKind::Hdr, &mut |_| {})?;
@@ -218,7 +219,7 @@ pub(super) fn measure_clouds(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
         frames.push(f);
         rows.push(Row {
             knob: "clouds",
-            setting: sky.into(),
+            setting: sky.name().into(),
             error_metric: "log_l_change",
             error: change,
             time_ms: ms,
@@ -233,7 +234,7 @@ pub(super) fn measure_clouds(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
             })?;
             rows.push(Row {
                 knob: "clouds",
-                setting: sky.into(),
+                setting: sky.name().into(),
                 error_metric: "log_l_change",
                 error: change,
                 time_ms: gms,

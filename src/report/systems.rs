@@ -179,7 +179,7 @@ pub(super) fn measure(ctx: &Ctx) -> anyhow::Result<Systems> {
                 let truth_scene = {
                     let mut t = s.clone();
                     (t.camera.width, t.camera.height) = (w * 8, h * 8);
-                    t.techniques.far_field = Some("none".into());
+                    t.techniques.far_field = Some(ocean_core::plan::FarField::None);
                     t
                 };
                 let truth = ocean_cpu::render_scene(&truth_scene, OutputKind::Hdr, &mut |_| {})?;

@@ -4,7 +4,7 @@
 //! model), so the error column is the change, not an error.
 
 use anyhow::Context;
-use ocean_core::plan::{FramePlan, OutputKind, Shading, StageTechnique};
+use ocean_core::plan::{FramePlan, OutputKind, Post, Shading, StageTechnique};
 use ocean_core::scene::Scene;
 use ocean_core::supersample::band_error;
 
@@ -46,9 +46,9 @@ pub(super) fn measure_frame_format(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
 pub(super) fn measure_shading(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
     let settings: Vec<_> = Shading::ALL
         .iter()
-        .map(|t| {
+        .map(|&t| {
             let name = t.name();
-            (name, Box::new(move |s: &mut Scene| s.techniques.shading = Some(name.into())) as Edit)
+            (name, Box::new(move |s: &mut Scene| s.techniques.shading = Some(t)) as Edit)
         })
         .collect();
     let mut rows = measure(ctx, "shading", OutputKind::Hdr, "log_l_change", &settings)?;
@@ -113,9 +113,8 @@ fn white_furnace(alpha: f64, theta_v: f64) -> f64 {
 /// bloom is composited): frame time on both back ends, and the mean |Δ| of the 8-bit values
 /// (over 255) against `tonemap`'s picture.
 pub(super) fn measure_post(ctx: &Ctx) -> anyhow::Result<Vec<Row>> {
-    let settings = ["tonemap", "bloom"].map(|name| {
-        (name, Box::new(move |s: &mut Scene| s.techniques.post = Some(name.into())) as Edit)
-    });
+    let settings = [Post::Tonemap, Post::Bloom]
+        .map(|t| (t.name(), Box::new(move |s: &mut Scene| s.techniques.post = Some(t)) as Edit));
     measure(ctx, "post", OutputKind::Ldr, "ldr_mean_change", &settings)
 }
 

@@ -59,6 +59,19 @@ impl Stage {
         }
     }
 
+    /// Its techniques' names, in the table's order: "preetham, preetham_clouds, …".
+    pub fn known_techniques(self) -> String {
+        self.techniques().map(|t| t.name).collect::<Vec<_>>().join(", ")
+    }
+
+    /// The refusal of a name the stage does not have.
+    pub fn unknown_technique(self, name: &str) -> String {
+        format!(
+            "unknown technique `{name}` for stage `{self}` (known: {})",
+            self.known_techniques()
+        )
+    }
+
     /// The techniques of this stage, in the table's order.
     pub fn techniques(self) -> impl Iterator<Item = &'static TechniqueInfo> {
         match self {
@@ -160,6 +173,16 @@ macro_rules! stage_techniques {
         impl Serialize for $Enum {
             fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
                 s.serialize_str(self.name())
+            }
+        }
+
+        // A scene file's `[techniques]` value: the one place a name becomes a technique.
+        impl<'de> Deserialize<'de> for $Enum {
+            fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+                let name = String::deserialize(d)?;
+                <Self as StageTechnique>::from_name(&name).ok_or_else(|| {
+                    serde::de::Error::custom(Stage::$stage.unknown_technique(&name))
+                })
             }
         }
     };

@@ -132,54 +132,7 @@ pub struct Scene {
     pub quality: Quality,
 }
 
-/// The `[techniques]` table: a technique name per stage, overriding the system's choice.
-#[derive(Clone, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct TechniqueOverrides {
-    /// Stage `waves`.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub waves: Option<String>,
-    /// Stage `surface`.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub surface: Option<String>,
-    /// Stage `shading`.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub shading: Option<String>,
-    /// Stage `sky`.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub sky: Option<String>,
-    /// Stage `far_field`.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub far_field: Option<String>,
-    /// Stage `foam`.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub foam: Option<String>,
-    /// Stage `spray`.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub spray: Option<String>,
-    /// Stage `post`.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub post: Option<String>,
-}
-
-impl TechniqueOverrides {
-    /// The (stage, name) pairs that are set, in stage order.
-    pub fn iter(&self) -> impl Iterator<Item = (crate::technique::Stage, &str)> {
-        use crate::technique::Stage;
-        [
-            (Stage::Waves, &self.waves),
-            (Stage::Surface, &self.surface),
-            (Stage::Shading, &self.shading),
-            (Stage::Sky, &self.sky),
-            (Stage::FarField, &self.far_field),
-            (Stage::Foam, &self.foam),
-            (Stage::Spray, &self.spray),
-            (Stage::Post, &self.post),
-        ]
-        .into_iter()
-        .filter_map(|(s, v)| v.as_deref().map(|v| (s, v)))
-    }
-}
+pub use crate::technique::TechniqueOverrides;
 
 /// Default side of the 2D Fresnel textures (docs/design.md, "Tolerances": 256² is within 2e-3 of eq. 2 up to 76°
 /// from the normal).
@@ -612,11 +565,9 @@ impl Scene {
         Ok(())
     }
 
-    /// The technique of every stage: the system's, with `[techniques]` applied (the
-    /// system's own where an override is invalid; [`Self::validate`] refuses those).
+    /// The technique of every stage: the system's, with `[techniques]` applied.
     pub fn techniques(&self) -> crate::technique::Techniques {
-        crate::technique::Techniques::with_overrides(self.system, self.techniques.iter())
-            .unwrap_or_else(|_| crate::technique::Techniques::of_system(self.system))
+        crate::technique::Techniques::of_overrides(self.system, &self.techniques)
     }
 
     /// The format of the frame's colour buffers: `[post] frame_format`, else the system's.

@@ -563,15 +563,8 @@ impl Scene {
     }
 
     fn check_techniques(&self) -> Result<(), Refusal> {
-        use crate::technique::{TechniqueError, Techniques};
-        let techniques = Techniques::with_overrides(self.system, self.techniques.iter()).map_err(
-            |e| match &e {
-                TechniqueError::UnknownTechnique { stage, .. } => {
-                    (format!("techniques.{stage}"), e.to_string())
-                }
-                _ => ("system".to_owned(), e.to_string()),
-            },
-        )?;
+        use crate::technique::TechniqueError;
+        let techniques = self.techniques();
         techniques.check().map_err(|e| {
             let key = match &e {
                 TechniqueError::Incompatible { stage_a, stage_b, .. } => {
