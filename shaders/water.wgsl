@@ -188,7 +188,7 @@ fn vs_clipmap(@builtin(vertex_index) k: u32) -> VertexOut {
     let uv = map_uvs(pos);
     // Waves `coastal` raise the point by their own height, faded to the vertex spacing as the
     // Gerstner waves' below: no map to fetch.
-    if (frame.coastal.shape.x > 0.0) {
+    if (frame.coastal.shape.x == SWITCH_ON) {
         let ch = coastal_wave(pos, vec2<f32>(1.0, 0.0), vec2<f32>(0.0, 0.0), vec2<f32>(spacing, spacing)).x;
         return displaced_vertex(pos, vec4<f32>(0.0, ch, 0.0, 0.0), uv, 1.0);
     }
@@ -242,7 +242,7 @@ fn water_vertex(pos: vec2<f32>, mesh_weight: f32) -> VertexOut {
     let weight = mesh_weight * shore_weight(plane.x, plane.y, frame.terrain.top.z);
     // Waves technique `coastal`: the waves' height at the vertex, faded to the screen grids'
     // vertex spacing; no maps to fetch.
-    if (frame.coastal.shape.x > 0.0) {
+    if (frame.coastal.shape.x == SWITCH_ON) {
         let sp = grid_spacing(pos);
         let h = coastal_wave(pos, sp.xy, vec2<f32>(0.0, 0.0), sp.zw).x * weight;
         return displaced_vertex(pos, vec4<f32>(0.0, h, 0.0, 0.0), uv, weight);
@@ -500,7 +500,7 @@ fn filtered_slopes(in: VertexOut) -> vec3<f32> {
 fn wave_slopes(in: VertexOut, fp: Footprint) -> vec3<f32> {
     // Waves technique `coastal`: the waves' own slopes, filtered over the footprint as the
     // Gerstner waves' are (the far field `variance` gets no variance from them).
-    if (frame.coastal.shape.x > 0.0) {
+    if (frame.coastal.shape.x == SWITCH_ON) {
         let short = fp.dist * frame.far.pixel_angle;
         let sigma = vec2<f32>(0.5 * short / max(fp.vy, 1e-4), 0.5 * short);
         let w = coastal_wave(in.pos, fp.h, sigma, vec2<f32>(0.0, 0.0));
@@ -583,7 +583,7 @@ fn gerstner_filtered_slopes(pos: vec2<f32>, fp: Footprint, weight: f32) -> vec3<
 // as the displacement is.
 fn surface_jacobian(in: VertexOut) -> f32 {
     // Waves `coastal` move the surface vertically only.
-    if (frame.coastal.shape.x > 0.0) {
+    if (frame.coastal.shape.x == SWITCH_ON) {
         return 1.0;
     }
     if (frame.gerstner.count > 0.0) {
@@ -741,7 +741,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     let screen = in.clip.xy * frame.view.inv_viewport_size;
     if (view.y >= 0.0) {
         var coastal = vec3<f32>(0.0, 0.0, 1.0);
-        if (frame.coastal.shape.x > 0.0) {
+        if (frame.coastal.shape.x == SWITCH_ON) {
             // The pixel's footprint on the sea (zero under far field `none`).
             let fp = footprint(in.rel);
             let short = fp.dist * frame.far.pixel_angle;
@@ -752,7 +752,7 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
         var cover = foam_coverage(in, p);
         // The shore's foam (waves `coastal`) through the foam stage's texture, wherever a
         // foam technique is chosen.
-        if (frame.coastal.shape.x > 0.0 && frame.foam.mode != FOAM_NONE) {
+        if (frame.coastal.shape.x == SWITCH_ON && frame.foam.mode != FOAM_NONE) {
             cover = max(cover, foam_mix(coastal.y, foam_texture_at(in.pos)));
         }
         return vec4<f32>(foam_over(c, cover, n, in.rel), 1.0);

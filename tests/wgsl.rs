@@ -280,6 +280,8 @@ fn rust_consts() -> Vec<(&'static str, f64)> {
     use ocean_cpu::shaders::{water, waves};
     vec![
         ("SHADOW_BIAS", f64::from(shadow::SHADOW_BIAS)),
+        ("SWITCH_OFF", f64::from(ocean_core::switch::SWITCH_OFF)),
+        ("SWITCH_ON", f64::from(ocean_core::switch::SWITCH_ON)),
         ("FAR_NONE", f64::from(ocean_core::far_field::FAR_NONE)),
         ("FAR_MIP", f64::from(ocean_core::far_field::FAR_MIP)),
         ("FAR_VARIANCE", f64::from(ocean_core::far_field::FAR_VARIANCE)),

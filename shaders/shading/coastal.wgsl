@@ -18,7 +18,7 @@ fn shade_above(in: VertexOut, p: SurfacePoint) -> vec3<f32> {
     let s = frame.coastal_shading;
     let cos_v = max(dot3(view, n), 0.0);
     var f = 0.0;
-    if (s.schlick > 0.0) {
+    if (s.schlick == SWITCH_ON) {
         let m = 1.0 - cos_v;
         let m2 = m * m;
         f = s.f0 + (1.0 - s.f0) * (m2 * m2 * m);

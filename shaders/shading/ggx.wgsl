@@ -29,7 +29,7 @@ fn ggx_lambda(c: f32, alpha2: f32) -> f32 {
 
 // The Fresnel term at cos θ = c: eq. 2 or Schlick's.
 fn ggx_fresnel(c: f32) -> f32 {
-    if (frame.ggx.schlick_fresnel > 0.5) {
+    if (frame.ggx.schlick_fresnel == SWITCH_ON) {
         let m = 1.0 - clamp(c, 0.0, 1.0);
         let m2 = m * m;
         let m5 = m2 * m2 * m;
@@ -40,7 +40,7 @@ fn ggx_fresnel(c: f32) -> f32 {
 
 // The geometry term for n·l = nl, n·v = nv (both > 0).
 fn ggx_geometry(nl: f32, nv: f32, alpha2: f32) -> f32 {
-    if (frame.ggx.schlick_geometry > 0.5) {
+    if (frame.ggx.schlick_geometry == SWITCH_ON) {
         let k = 0.5 * sqrt(alpha2);
         return (nl / (nl * (1.0 - k) + k)) * (nv / (nv * (1.0 - k) + k));
     }

@@ -59,6 +59,11 @@ struct AmbientBlock {
     pad: f32,
 }
 
+// A switch in the uniforms (an f32: uniform blocks hold no bool) is exactly SWITCH_ON or
+// SWITCH_OFF (ocean-core switch::SWITCH_ON, …), tested with ==.
+const SWITCH_OFF: f32 = 0.0;
+const SWITCH_ON: f32 = 1.0;
+
 // `FarFieldBlock::mode`: the far-field technique (ocean-core far_field::FAR_NONE, …).
 const FAR_NONE: f32 = 0.0;
 const FAR_MIP: f32 = 1.0;

@@ -9,7 +9,7 @@ const SHADOW_BIAS: f32 = 0.002;
 // 1 where the sun reaches the camera-relative point `rel`, 0 where the shadow map holds
 // something nearer the sun.
 fn sun_visibility(rel: vec3<f32>) -> f32 {
-    if (frame.passes.shadow_map == 0.0) {
+    if (frame.passes.shadow_map == SWITCH_OFF) {
         return 1.0;
     }
     let s = transform_point(frame.sun.shadow_view_proj, rel);

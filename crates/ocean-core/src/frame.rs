@@ -25,6 +25,7 @@ pub use crate::geometry::ProjectedGridBlock;
 pub use crate::objects::{ObjectVertex, SPHERE_BANDS, SPHERE_SEGMENTS};
 pub use crate::scene::coastal_sea;
 use crate::scene::finite_time;
+use crate::switch::switch;
 
 pub use boat::{
     BOW_SHARE, HULL_TRIANGLES, ObjectPoses, SETTLE_STEPS, hull_bounds, hull_faces, hull_triangles,
@@ -731,7 +732,7 @@ impl FrameUniforms {
             None => (DVec3::Y, DVec3::ZERO, false),
         };
         let shadow = sun_view_proj(&scene.objects, poses, eye, sun_dir).unwrap_or(DMat4::IDENTITY);
-        let flag = |p: Pass| if plan.runs(p) { 1.0 } else { 0.0 };
+        let flag = |p: Pass| switch(plan.runs(p));
         let eta = scene.water.ior as f32;
         let shading = plan.techniques.shading();
         FrameUniforms {
@@ -873,12 +874,8 @@ impl GgxShadingBlock {
         let eta = scene.water.ior;
         GgxShadingBlock {
             alpha: crate::ggx::alpha_from_roughness(scene.ggx.roughness) as f32,
-            schlick_fresnel: f32::from(u8::from(
-                scene.ggx.fresnel == crate::scene::GgxFresnel::Schlick,
-            )),
-            schlick_geometry: f32::from(u8::from(
-                scene.ggx.geometry == crate::scene::GgxGeometry::SchlickGgx,
-            )),
+            schlick_fresnel: switch(scene.ggx.fresnel == crate::scene::GgxFresnel::Schlick),
+            schlick_geometry: switch(scene.ggx.geometry == crate::scene::GgxGeometry::SchlickGgx),
             f0: (((eta - 1.0) / (eta + 1.0)).powi(2)) as f32,
         }
     }

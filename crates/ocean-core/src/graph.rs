@@ -123,7 +123,7 @@ impl<'a> FrameInputs<'a> {
         }
         // Waves `coastal` likewise (a finite time always makes a sea).
         if time_s != scene.ocean.time_s
-            && uniforms.coastal.shape[0] > 0.0
+            && plan.techniques.waves() == crate::plan::Waves::Coastal
             && let Ok(sea) = crate::frame::coastal_sea(scene, time_s)
         {
             uniforms.coastal = sea.block(mesh.origin);

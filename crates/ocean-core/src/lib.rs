@@ -52,6 +52,7 @@ pub mod spectrum;
 pub mod spray;
 pub mod stage;
 pub mod supersample;
+pub mod switch;
 pub mod tables;
 pub mod technique;
 pub mod terrain;

@@ -60,8 +60,8 @@ pub const MUTANTS: &[Mutant] = &[
     Mutant {
         name: "ggx-fresnel-branch-flipped",
         file: "shading/ggx.wgsl",
-        find: "if (frame.ggx.schlick_fresnel > 0.5) {",
-        replace: "if (frame.ggx.schlick_fresnel < 0.5) {",
+        find: "if (frame.ggx.schlick_fresnel == SWITCH_ON) {",
+        replace: "if (frame.ggx.schlick_fresnel != SWITCH_ON) {",
         changes: "Inverts the Fresnel branch: with the default `exact` Fresnel GGX now uses Schlick's approximation for the environment and sun terms on every water pixel.",
         scene: "atmosphere_sunset",
     },

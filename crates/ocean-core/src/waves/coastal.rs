@@ -471,7 +471,12 @@ impl CoastalSea {
             (1.0 / seg) as f32,
             seg as f32,
         ];
-        b.shape = [1.0, self.amplitude_m as f32, self.power as f32, self.back_factor as f32];
+        b.shape = [
+            crate::switch::SWITCH_ON,
+            self.amplitude_m as f32,
+            self.power as f32,
+            self.back_factor as f32,
+        ];
         b.time = [self.time_turns as f32, BREAKER_INDEX as f32, self.corrections.len() as f32, 0.0];
         let (mean, rms_k) = profile_moments(self.power, self.back_factor);
         b.swash = [self.swash_level() as f32, self.run_up_m as f32, mean as f32, rms_k as f32];
@@ -679,20 +684,20 @@ impl CoastalShadingBlock {
             dull_factor: c.dull_factor as f32,
             shininess: c.shininess as f32,
             distortion: c.distortion as f32,
-            schlick: f32::from(u8::from(c.fresnel == crate::ggx::GgxFresnel::Schlick)),
+            schlick: crate::switch::switch(c.fresnel == crate::ggx::GgxFresnel::Schlick),
             f0: (((eta - 1.0) / (eta + 1.0)).powi(2)) as f32,
         }
     }
 }
 
 /// Waves technique `coastal`'s uniform block (`frame.coastal`, shared/coastal.wgsl): zero
-/// (`shape.x` 0) under the other waves techniques.
+/// (`shape.x` [`crate::switch::SWITCH_OFF`]) under the other waves techniques.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct CoastalBlock {
     /// The centre relative to the mesh's reference point (x, z), 1/Δ, Δ (m).
     pub center: [f32; 4],
-    /// (1 when on, A, p, back factor).
+    /// ([`crate::switch::SWITCH_ON`] when on, A, p, back factor).
     pub shape: [f32; 4],
     /// (ω t in turns, γ, correction waves, 0).
     pub time: [f32; 4],

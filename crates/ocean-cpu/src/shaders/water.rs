@@ -4,6 +4,7 @@
 use ocean_core::far_field::{FAR_NONE, FAR_VARIANCE};
 use ocean_core::foam::FOAM_NONE;
 use ocean_core::frame::FrameUniforms;
+use ocean_core::switch::SWITCH_ON;
 
 mod clipmap;
 pub mod envelope;
@@ -235,7 +236,7 @@ pub fn water_vertex(pos: Vec2, mesh_weight: f32, b: &Bindings<'_>) -> VertexOut 
     let plane = pos + vec2(frame.tiling.mesh_offset[0], frame.tiling.mesh_offset[1]);
     let weight =
         mesh_weight * shore_weight(plane.x, plane.y, frame.terrain.top[2], frame, b.floor_map);
-    if frame.coastal.shape[0] > 0.0 {
+    if frame.coastal.shape[0] == SWITCH_ON {
         let sp = grid_spacing(pos, frame);
         let h = coastal_wave(
             pos,
@@ -535,7 +536,7 @@ pub fn filtered_slopes(input: &VertexOut, b: &Bindings<'_>) -> Vec3 {
 /// `wave_slopes(in, fp)`.
 pub fn wave_slopes(input: &VertexOut, fp: &Footprint, b: &Bindings<'_>) -> Vec3 {
     let frame = b.frame;
-    if frame.coastal.shape[0] > 0.0 {
+    if frame.coastal.shape[0] == SWITCH_ON {
         let short = fp.dist * frame.far.pixel_angle;
         let sigma = vec2(0.5 * short / max(fp.vy, 1e-4), 0.5 * short);
         let w = coastal_wave(input.pos, fp.h, sigma, vec2(0.0, 0.0), frame, b.floor_map);
@@ -700,7 +701,7 @@ pub fn sky_filtered(view: Vec3, slopes: Vec3, variance: f32, b: &Bindings<'_>) -
 /// `surface_jacobian(in)`: J at the fragment, faded towards 1 with the mesh's weight.
 pub fn surface_jacobian(input: &VertexOut, b: &Bindings<'_>) -> f32 {
     let frame = b.frame;
-    if frame.coastal.shape[0] > 0.0 {
+    if frame.coastal.shape[0] == SWITCH_ON {
         return 1.0;
     }
     if frame.gerstner.count > 0.0 {
@@ -737,7 +738,7 @@ pub fn fs_main(input: &VertexOut, b: &Bindings<'_>) -> [f32; 4] {
     let u_bumped = bumped_view(view, n);
     let screen = input.clip.xy() * Vec2::from(frame.view.inv_viewport_size);
     if view.y >= 0.0 {
-        let coastal = if frame.coastal.shape[0] > 0.0 {
+        let coastal = if frame.coastal.shape[0] == SWITCH_ON {
             let fp = footprint(input.rel, frame);
             let short = fp.dist * frame.far.pixel_angle;
             coastal_shore(
@@ -753,7 +754,7 @@ pub fn fs_main(input: &VertexOut, b: &Bindings<'_>) -> [f32; 4] {
         let p = SurfacePoint { slopes, n, view, u_bumped, screen, coastal };
         let c = (b.shade_above)(input, &p, b);
         let mut cover = (b.foam_coverage)(input, &p, b);
-        if frame.coastal.shape[0] > 0.0 && frame.foam.mode != FOAM_NONE {
+        if frame.coastal.shape[0] == SWITCH_ON && frame.foam.mode != FOAM_NONE {
             cover = max(cover, foam_mix(coastal.y, foam_texture_at(input.pos, frame), frame));
         }
         return foam_over(c, cover, n, input.rel, frame, b.shadow_map).extend(1.0).into();

@@ -7,6 +7,7 @@ use crate::shaders::water::{
     sun_visibility,
 };
 use crate::shaders::wgsl::{Vec3, clamp, max, texture_sample_level, vec2, vec3};
+use ocean_core::switch::SWITCH_ON;
 
 /// `COASTAL_INV_PI`.
 pub const COASTAL_INV_PI: f32 = 0.318_309_87;
@@ -18,7 +19,7 @@ pub fn shade_above(input: &VertexOut, p: &SurfacePoint, b: &Bindings<'_>) -> Vec
     let view = p.view;
     let s = &frame.coastal_shading;
     let cos_v = max(dot3(view, n), 0.0);
-    let f = if s.schlick > 0.0 {
+    let f = if s.schlick == SWITCH_ON {
         let m = 1.0 - cos_v;
         let m2 = m * m;
         s.f0 + (1.0 - s.f0) * (m2 * m2 * m)

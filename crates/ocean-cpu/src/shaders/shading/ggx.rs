@@ -7,6 +7,7 @@ use crate::shaders::water::{
 };
 use crate::shaders::wgsl::{Vec3, clamp, max, texture_sample_level, vec2, vec3};
 use ocean_core::frame::FrameUniforms;
+use ocean_core::switch::SWITCH_ON;
 
 /// `GGX_PI`: f32(π).
 pub const GGX_PI: f32 = std::f32::consts::PI;
@@ -20,7 +21,7 @@ pub fn ggx_lambda(c: f32, alpha2: f32) -> f32 {
 
 /// `ggx_fresnel(c)`: eq. 2 or Schlick's.
 pub fn ggx_fresnel(c: f32, frame: &FrameUniforms) -> f32 {
-    if frame.ggx.schlick_fresnel > 0.5 {
+    if frame.ggx.schlick_fresnel == SWITCH_ON {
         let m = 1.0 - clamp(c, 0.0, 1.0);
         let m2 = m * m;
         let m5 = m2 * m2 * m;
@@ -31,7 +32,7 @@ pub fn ggx_fresnel(c: f32, frame: &FrameUniforms) -> f32 {
 
 /// `ggx_geometry(nl, nv, alpha2)`.
 pub fn ggx_geometry(nl: f32, nv: f32, alpha2: f32, frame: &FrameUniforms) -> f32 {
-    if frame.ggx.schlick_geometry > 0.5 {
+    if frame.ggx.schlick_geometry == SWITCH_ON {
         let k = 0.5 * alpha2.sqrt();
         return (nl / (nl * (1.0 - k) + k)) * (nv / (nv * (1.0 - k) + k));
     }

@@ -1,6 +1,7 @@
 //! Mirror of `shaders/shared/shadow.wgsl`: the sun's shadow map looked up at a point.
 
 use ocean_core::frame::FrameUniforms;
+use ocean_core::switch::SWITCH_OFF;
 
 use crate::envelope::{Cond, Real, choose, mat4_mul_vec4, on_floor};
 use crate::sampler::Texture2D;
@@ -24,7 +25,7 @@ pub fn sun_visibility_r<R: Real>(
     occluder: &dyn Fn(u32, u32) -> R,
 ) -> R {
     let l = R::lit;
-    if frame.passes.shadow_map == 0.0 {
+    if frame.passes.shadow_map == SWITCH_OFF {
         return l(1.0);
     }
     let s = mat4_mul_vec4(&frame.sun.shadow_view_proj, [rel[0], rel[1], rel[2], l(1.0)]);

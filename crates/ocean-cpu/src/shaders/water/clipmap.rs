@@ -7,6 +7,7 @@ use crate::shaders::shared::coastal::coastal_wave;
 use crate::shaders::shared::floor::shore_weight;
 use crate::shaders::shared::gerstner::gerstner_displacement_filtered;
 use crate::shaders::wgsl::{clamp, texture_sample_level, vec2, vec4};
+use ocean_core::switch::SWITCH_ON;
 
 /// `vs_clipmap(k)`: vertex k of level k / (6n²), morphed towards the next level's lattice.
 pub fn vs_clipmap(k: u32, b: &Bindings<'_>) -> VertexOut {
@@ -37,7 +38,7 @@ pub fn vs_clipmap(k: u32, b: &Bindings<'_>) -> VertexOut {
     let malpha = clamp((mdist - c.morph_start) * c.inv_band, 0.0, 1.0);
     let spacing = e[2] * (1.0 + malpha) * c.cell_m;
     let uv = map_uvs(pos, frame);
-    if frame.coastal.shape[0] > 0.0 {
+    if frame.coastal.shape[0] == SWITCH_ON {
         let ch = coastal_wave(
             pos,
             vec2(1.0, 0.0),

@@ -26,6 +26,7 @@ pub use inputs::{Inputs, Tex, Varyings};
 
 use helpers::{fresnel_st, lod_log2, normal_cdf, subtexel, unit};
 use inputs::LEAST_POSITIVE;
+use ocean_core::switch::SWITCH_ON;
 
 use ocean_core::far_field::{FAR_NONE, FAR_VARIANCE};
 use ocean_core::foam::FOAM_NONE;
@@ -42,7 +43,7 @@ pub use ocean_core::plan::Shading;
 /// Why the stage's configuration is not carried over [`Real`] yet (`None`: it is): every
 /// shading and foam technique is, on every surface but waves `coastal` on a clipmap.
 pub fn carried(frame: &FrameUniforms) -> Option<&'static str> {
-    if frame.coastal.shape[0] > 0.0 && frame.clip.vertex_count() > 0 {
+    if frame.coastal.shape[0] == SWITCH_ON && frame.clip.vertex_count() > 0 {
         return Some("the water pass's envelope does not carry waves `coastal` on a clipmap");
     }
     None
@@ -60,7 +61,7 @@ pub fn water_vertex<R: Real>(
     let off = f.tiling.mesh_offset;
     let plane = [pos[0] + l(off[0]), pos[1] + l(off[1])];
     let weight = mesh_weight * floor::shore_weight(plane[0], plane[1], f.terrain.top[2], inp);
-    if f.coastal.shape[0] > 0.0 {
+    if f.coastal.shape[0] == SWITCH_ON {
         // Waves `coastal`: their height at the vertex, faded to the screen grids' spacing.
         let sp = coastal::grid_spacing(pos, f);
         let z = l(0.0);
@@ -461,7 +462,7 @@ fn filtered_slopes<R: Real>(v: &Varyings<R>, fp: &Footprint<R>, inp: &Inputs<'_,
 fn wave_slopes<R: Real>(v: &Varyings<R>, fp: &Footprint<R>, inp: &Inputs<'_, R>) -> [R; 3] {
     let l = R::lit;
     let frame = inp.frame;
-    if frame.coastal.shape[0] > 0.0 {
+    if frame.coastal.shape[0] == SWITCH_ON {
         // Waves `coastal`: their own slopes over the footprint (no variance from them).
         let short = fp.dist * l(frame.far.pixel_angle);
         let sigma = [l(0.5) * short / fp.vy.max(l(1e-4)), l(0.5) * short];
@@ -557,7 +558,7 @@ fn fragment<R: Real>(
         l(0.0).le(view[1]),
         || {
             let pos = [v[8], v[9]];
-            let coastal = if frame.coastal.shape[0] > 0.0 {
+            let coastal = if frame.coastal.shape[0] == SWITCH_ON {
                 let short = fp.dist * l(frame.far.pixel_angle);
                 coastal::shore(pos, fp.h, [short / fp.vy.max(l(1e-4)), short], inp)
             } else {
@@ -576,7 +577,7 @@ fn fragment<R: Real>(
                 }
             };
             let mut cover = foam::coverage(v, slopes, inp);
-            if frame.coastal.shape[0] > 0.0 && frame.foam.mode != FOAM_NONE {
+            if frame.coastal.shape[0] == SWITCH_ON && frame.foam.mode != FOAM_NONE {
                 cover = foam::shore_cover(cover, coastal[1], pos, frame);
             }
             foam::over(c, cover, n, rel, inp)

@@ -5,6 +5,7 @@
 
 use ocean_core::foam::{FOAM_INV_PI, FOAM_MIN_JACOBIAN, foam_hash};
 use ocean_core::frame::FrameUniforms;
+use ocean_core::switch::SWITCH_ON;
 
 use super::inputs::{Inputs, Tex, Varyings};
 use crate::envelope::{Real, choose_n, dot3, on_floor};
@@ -67,7 +68,7 @@ fn surface_jacobian<R: Real>(v: &Varyings<R>, inp: &Inputs<'_, R>) -> R {
     let frame = inp.frame;
     let weight = v[7];
     // Waves `coastal` move the surface vertically only.
-    if frame.coastal.shape[0] > 0.0 {
+    if frame.coastal.shape[0] == SWITCH_ON {
         return l(1.0);
     }
     if frame.gerstner.count > 0.0 {

@@ -3,6 +3,7 @@
 //! BRDF, `shading/ggx.wgsl`) and `chiu` (seed 001's eqs. 2–8, `shading/chiu.wgsl`).
 
 use ocean_core::frame::FrameUniforms;
+use ocean_core::switch::SWITCH_ON;
 
 use super::helpers::{
     fresnel_filtered, fresnel_st, pow_int, sky_filtered, sky_reflected, sun_lobe_filtered, unit,
@@ -92,7 +93,7 @@ fn ggx_lambda<R: Real>(c: R, alpha2: R) -> R {
 /// `ggx_fresnel(c)`: eq. 2, or Schlick's.
 fn ggx_fresnel<R: Real>(c: R, frame: &FrameUniforms) -> R {
     let l = R::lit;
-    if frame.ggx.schlick_fresnel > 0.5 {
+    if frame.ggx.schlick_fresnel == SWITCH_ON {
         let m = l(1.0) - c.clamp(l(0.0), l(1.0));
         let m2 = m.sq();
         let m5 = m2.sq() * m;
@@ -105,7 +106,7 @@ fn ggx_fresnel<R: Real>(c: R, frame: &FrameUniforms) -> R {
 /// `ggx_geometry(nl, nv, alpha2)`.
 fn ggx_geometry<R: Real>(nl: R, nv: R, alpha2: R, frame: &FrameUniforms) -> R {
     let l = R::lit;
-    if frame.ggx.schlick_geometry > 0.5 {
+    if frame.ggx.schlick_geometry == SWITCH_ON {
         let k = l(0.5) * alpha2.sqrt();
         return (nl / (nl * (l(1.0) - k) + k)) * (nv / (nv * (l(1.0) - k) + k));
     }
@@ -251,7 +252,7 @@ pub(super) fn shade_above_coastal<R: Real>(
     let s = &frame.coastal_shading;
     let (n, view) = (p.n, p.view);
     let cos_v = dot3(view, n).max(l(0.0));
-    let f = if s.schlick > 0.0 {
+    let f = if s.schlick == SWITCH_ON {
         let m = l(1.0) - cos_v;
         let m2 = m * m;
         l(s.f0) + (l(1.0) - l(s.f0)) * (m2 * m2 * m)
