@@ -140,92 +140,10 @@ fn judge_passes(
     resources: &[ResourceId],
 ) -> anyhow::Result<Verdict> {
     let mut v = Verdict::default();
-    if plan.runs(Pass::Bloom)
-        && let (Some(((w, h), hdr)), Some(down), Some(up)) = (
-            gpu.map(ResourceId::Hdr),
-            gpu.texels(ResourceId::BloomDown),
-            gpu.texels(ResourceId::BloomUp),
-        )
-    {
-        for f in bloom_verdicts(scene, (w, h), hdr, down, up)? {
-            v.lines.push(format!("  [{:<14}] {}", "bloom", f.line()));
-            if !f.passed() {
-                v.failures.push(f.line());
-            }
-            v.json.push(f.to_json());
-        }
-        v.judged.extend(["bloom_down", "bloom_up"]);
-    }
-    for (id, f) in waves_verdicts(scene, plan, gpu)? {
-        v.record("waves", id.name(), &f, "");
-    }
-    if let Some(f) = foam_verdict(scene, plan, gpu)? {
-        v.record("foam", ResourceId::FoamField.name(), &f, "");
-    }
-    if let Some((f, ambiguous)) = shadow_verdict(scene, plan, gpu)? {
-        let note = format!(" ({:.2} % of texels' coverage ambiguous)", 100.0 * ambiguous);
-        v.record("shadow_map", ResourceId::ShadowMap.name(), &f, &note);
-    }
-    for map in [ObjectMap::Reflection, ObjectMap::Refraction] {
-        if let Some((id, f, ambiguous)) = map_verdict(scene, plan, gpu, map)? {
-            let note =
-                format!(" ({:.2} % of texels' coverage or discard ambiguous)", 100.0 * ambiguous);
-            v.record(id.name(), id.name(), &f, &note);
-        }
-    }
-    if plan.runs(Pass::WaveMips) {
-        for (source, chain) in ResourceId::SLOPE_CHAINS {
-            if let (Some(((w, h), src)), Some((_, atlas))) = (gpu.map(source), gpu.map(chain)) {
-                let f = wave_mips_verdict(chain, (w, h), src, atlas)?;
-                v.lines.push(format!("  [{:<14}] {}", "wave_mips", f.line()));
-                if !f.passed() {
-                    v.failures.push(f.line());
-                }
-                v.json.push(f.to_json());
-                v.judged.push(chain.name());
-            }
-        }
-    }
-    if plan.runs(Pass::FresnelTable) {
-        let eta = scene.water.ior as f32;
-        for (id, eta) in [(ResourceId::FresnelAbove, eta), (ResourceId::FresnelBelow, 1.0 / eta)] {
-            let (Some(((w, _), texels)), Some(r)) = (gpu.map(id), plan.resource(id)) else {
-                continue;
-            };
-            let params =
-                ocean_core::frame::FresnelTableUniforms::new(eta, r.size[0], plan.fresnel_mapping);
-            let env = ocean_cpu::shaders::fresnel_table::envelope(&params);
-            if env.len() != texels.len() {
-                bail!("{}: {} texels, the table {}", id.name(), texels.len(), env.len());
-            }
-            let f = ocean_verify::envelope::judge_floats(id.name(), &env, texels, w);
-            v.lines.push(format!("  [{:<14}] {}", "fresnel_table", f.line()));
-            if !f.passed() {
-                v.failures.push(f.line());
-            }
-            v.json.push(f.to_json());
-            v.judged.push(id.name());
-        }
-    }
-    // The far field's Fresnel filter is computed on the CPU and uploaded: the GPU must hold it
-    // bit for bit (an upload has no arithmetic to allow for).
-    if let (Some(table), Some(((w, _), texels))) =
-        (plan.fresnel_filter(scene), gpu.map(ResourceId::FresnelFilter))
-    {
-        let env: Vec<Option<[ocean_cpu::envelope::Iv; 4]>> =
-            table.texels.iter().map(|t| Some(t.map(ocean_cpu::envelope::Iv::point))).collect();
-        let f = if env.len() == texels.len() {
-            ocean_verify::envelope::judge_floats("fresnel_filter", &env, texels, w)
-        } else {
-            bail!("fresnel_filter: {} texels, the table {}", texels.len(), env.len());
-        };
-        v.lines.push(format!("  [{:<14}] {} (an upload: exact)", "wave_mips", f.line()));
-        if !f.passed() {
-            v.failures.push(f.line());
-        }
-        v.json.push(f.to_json());
-        v.judged.push("fresnel_filter");
-    }
+    v.judge_bloom(scene, plan, gpu)?;
+    v.judge_maps(scene, plan, gpu)?;
+    v.judge_wave_mips(plan, gpu)?;
+    v.judge_fresnel(scene, plan, gpu)?;
     if let (Some(((w, h), hdr)), Some(oracle)) = (gpu.map(ResourceId::Hdr), gpu.oracle_hdr)
         && let Some(f) = sky_verdict(scene, plan, (w, h), hdr, oracle)?
     {
@@ -236,41 +154,12 @@ fn judge_passes(
         v.json.push(f.to_json());
         v.judged.push("hdr (sky)");
     }
+    // The water's envelope is the costliest: where one failure is the answer, it is spared.
     if gpu.first_failure && !v.failures.is_empty() {
         v.not_judged.push("hdr (water)");
         return Ok(v);
     }
-    match water_verdict(scene, plan, gpu)? {
-        Ok((f, open, took, widths)) => {
-            let fmt = |x: Option<f64>| x.map_or("-".to_owned(), |x| format!("{x:.1e}"));
-            let note = format!(
-                " ({} water pixels, rel half-width p50 {} / p99 {}; {:.2} % open to the sky at \
-                 the mesh's edges; {}; envelope {took:.1?})",
-                widths.pixels,
-                fmt(widths.p50),
-                fmt(widths.p99),
-                100.0 * open,
-                gpu.precision.1
-            );
-            v.lines.push(format!("  [{:<14}] {}{note}", "water", f.line()));
-            if !f.passed() {
-                v.failures.push(f.line());
-            }
-            let mut j = f.to_json();
-            j["water_pixels"] = json!(widths.pixels);
-            j["water_rel_half_width_p50"] = json!(widths.p50);
-            j["water_rel_half_width_p99"] = json!(widths.p99);
-            j["open_share"] = json!(open);
-            j["precision"] = json!(gpu.precision.1);
-            v.json.push(j);
-            v.judged.push("hdr");
-        }
-        Err(why) => {
-            v.lines.push(format!("  [{:<14}] {:<20} not judged: {why}", "water", "hdr (water)"));
-            v.json.push(json!({"name": "hdr (water)", "tolerance": "envelope", "judged": false, "why": why}));
-            v.not_judged.push("hdr (water)");
-        }
-    }
+    v.judge_water(scene, plan, gpu)?;
     for &id in resources.iter().filter(|id| !v.judged.contains(&id.name())) {
         let pass = id.writer().map_or("", |p| p.name());
         let (why, entry) = ocean_verify::envelope::not_judged(id);
@@ -278,52 +167,227 @@ fn judge_passes(
         v.json.push(entry);
         v.not_judged.push(id.name());
     }
-    let Some(tonemap) = ocean_core::graph::tonemap_uniforms(scene, plan)? else {
-        return Ok(v);
-    };
-    let not_judged = |why: &str, v: &mut Verdict| {
-        v.lines.push(format!("  [{:<14}] {:<20} not judged: {why}", "tonemap", "ldr"));
-        v.json.push(json!({"name": "ldr", "tolerance": "envelope", "judged": false, "why": why}));
-        v.not_judged.push("ldr");
-    };
-    let (Some(((w, h), hdr)), Some(ldr)) = (gpu.map(ResourceId::Hdr), gpu.ldr) else {
-        not_judged("the GPU's HDR frame or picture is missing", &mut v);
-        v.failures.push("ldr: the GPU's HDR frame or picture is missing".to_owned());
-        return Ok(v);
-    };
-    let bloom = match (plan.runs(Pass::Bloom), gpu.texels(ResourceId::BloomUp)) {
-        (false, _) => None,
-        (true, Some(atlas)) => {
-            let inputs = ocean_core::graph::BloomInputs::new(scene);
-            Some(ocean_cpu::shaders::bloom::level0(&bloom_chain(
-                &inputs,
-                (w, h),
-                "bloom_up",
-                atlas,
-            )?))
-        }
-        (true, None) => {
-            not_judged("pass bloom's output (bloom_up) is not in the frame", &mut v);
-            return Ok(v);
-        }
-    };
-    let envelope = ocean_cpu::shaders::tonemap::envelope_of(hdr, bloom.as_ref(), w, h, &tonemap);
-    let no_bloom = ocean_cpu::sampler::Texture2D::new(1, 1, vec![[0.0; 4]]);
-    let exact = ocean_cpu::shaders::tonemap::tonemap_to_rgba8_with_bloom(
-        hdr,
-        w,
-        h,
-        &tonemap,
-        bloom.as_ref().unwrap_or(&no_bloom),
-    );
-    let verdict = ocean_verify::envelope::judge_picture("ldr", &envelope, ldr, &exact, w);
-    v.lines.push(format!("  [{:<14}] {}", "tonemap", verdict.line()));
-    if !verdict.passed() {
-        v.failures.push(verdict.line());
-    }
-    v.json.push(verdict.to_json());
-    v.judged.push("ldr");
+    v.judge_tonemap(scene, plan, gpu)?;
     Ok(v)
+}
+
+impl Verdict {
+    /// `bloom`'s chains, each level from the GPU's level before it.
+    fn judge_bloom(
+        &mut self,
+        scene: &Scene,
+        plan: &FramePlan,
+        gpu: &GpuSide<'_>,
+    ) -> anyhow::Result<()> {
+        if plan.runs(Pass::Bloom)
+            && let (Some(((w, h), hdr)), Some(down), Some(up)) = (
+                gpu.map(ResourceId::Hdr),
+                gpu.texels(ResourceId::BloomDown),
+                gpu.texels(ResourceId::BloomUp),
+            )
+        {
+            for f in bloom_verdicts(scene, (w, h), hdr, down, up)? {
+                self.lines.push(format!("  [{:<14}] {}", "bloom", f.line()));
+                if !f.passed() {
+                    self.failures.push(f.line());
+                }
+                self.json.push(f.to_json());
+            }
+            self.judged.extend(["bloom_down", "bloom_up"]);
+        }
+        Ok(())
+    }
+
+    /// The `waves` pass's maps, the foam field, and the shadow, reflection and refraction
+    /// maps.
+    fn judge_maps(
+        &mut self,
+        scene: &Scene,
+        plan: &FramePlan,
+        gpu: &GpuSide<'_>,
+    ) -> anyhow::Result<()> {
+        for (id, f) in waves_verdicts(scene, plan, gpu)? {
+            self.record("waves", id.name(), &f, "");
+        }
+        if let Some(f) = foam_verdict(scene, plan, gpu)? {
+            self.record("foam", ResourceId::FoamField.name(), &f, "");
+        }
+        if let Some((f, ambiguous)) = shadow_verdict(scene, plan, gpu)? {
+            let note = format!(" ({:.2} % of texels' coverage ambiguous)", 100.0 * ambiguous);
+            self.record("shadow_map", ResourceId::ShadowMap.name(), &f, &note);
+        }
+        for map in [ObjectMap::Reflection, ObjectMap::Refraction] {
+            if let Some((id, f, ambiguous)) = map_verdict(scene, plan, gpu, map)? {
+                let note = format!(
+                    " ({:.2} % of texels' coverage or discard ambiguous)",
+                    100.0 * ambiguous
+                );
+                self.record(id.name(), id.name(), &f, &note);
+            }
+        }
+        Ok(())
+    }
+
+    /// `wave_mips`' chains, each level from the GPU's level before it.
+    fn judge_wave_mips(&mut self, plan: &FramePlan, gpu: &GpuSide<'_>) -> anyhow::Result<()> {
+        if plan.runs(Pass::WaveMips) {
+            for (source, chain) in ResourceId::SLOPE_CHAINS {
+                if let (Some(((w, h), src)), Some((_, atlas))) = (gpu.map(source), gpu.map(chain)) {
+                    let f = wave_mips_verdict(chain, (w, h), src, atlas)?;
+                    self.record("wave_mips", chain.name(), &f, "");
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The Fresnel tables, and the far field's uploaded Fresnel filter.
+    fn judge_fresnel(
+        &mut self,
+        scene: &Scene,
+        plan: &FramePlan,
+        gpu: &GpuSide<'_>,
+    ) -> anyhow::Result<()> {
+        if plan.runs(Pass::FresnelTable) {
+            let eta = scene.water.ior as f32;
+            for (id, eta) in
+                [(ResourceId::FresnelAbove, eta), (ResourceId::FresnelBelow, 1.0 / eta)]
+            {
+                let (Some(((w, _), texels)), Some(r)) = (gpu.map(id), plan.resource(id)) else {
+                    continue;
+                };
+                let params = ocean_core::frame::FresnelTableUniforms::new(
+                    eta,
+                    r.size[0],
+                    plan.fresnel_mapping,
+                );
+                let env = ocean_cpu::shaders::fresnel_table::envelope(&params);
+                if env.len() != texels.len() {
+                    bail!("{}: {} texels, the table {}", id.name(), texels.len(), env.len());
+                }
+                let f = ocean_verify::envelope::judge_floats(id.name(), &env, texels, w);
+                self.record("fresnel_table", id.name(), &f, "");
+            }
+        }
+        // The far field's Fresnel filter is computed on the CPU and uploaded: the GPU must
+        // hold it bit for bit (an upload has no arithmetic to allow for).
+        if let (Some(table), Some(((w, _), texels))) =
+            (plan.fresnel_filter(scene), gpu.map(ResourceId::FresnelFilter))
+        {
+            let env: Vec<Option<[ocean_cpu::envelope::Iv; 4]>> =
+                table.texels.iter().map(|t| Some(t.map(ocean_cpu::envelope::Iv::point))).collect();
+            let f = if env.len() == texels.len() {
+                ocean_verify::envelope::judge_floats("fresnel_filter", &env, texels, w)
+            } else {
+                bail!("fresnel_filter: {} texels, the table {}", texels.len(), env.len());
+            };
+            self.record("wave_mips", "fresnel_filter", &f, " (an upload: exact)");
+        }
+        Ok(())
+    }
+
+    /// The HDR frame's water pixels, or why they are not judged.
+    fn judge_water(
+        &mut self,
+        scene: &Scene,
+        plan: &FramePlan,
+        gpu: &GpuSide<'_>,
+    ) -> anyhow::Result<()> {
+        match water_verdict(scene, plan, gpu)? {
+            Ok((f, open, took, widths)) => {
+                let fmt = |x: Option<f64>| x.map_or("-".to_owned(), |x| format!("{x:.1e}"));
+                let note = format!(
+                    " ({} water pixels, rel half-width p50 {} / p99 {}; {:.2} % open to the sky \
+                     at the mesh's edges; {}; envelope {took:.1?})",
+                    widths.pixels,
+                    fmt(widths.p50),
+                    fmt(widths.p99),
+                    100.0 * open,
+                    gpu.precision.1
+                );
+                self.lines.push(format!("  [{:<14}] {}{note}", "water", f.line()));
+                if !f.passed() {
+                    self.failures.push(f.line());
+                }
+                let mut j = f.to_json();
+                j["water_pixels"] = json!(widths.pixels);
+                j["water_rel_half_width_p50"] = json!(widths.p50);
+                j["water_rel_half_width_p99"] = json!(widths.p99);
+                j["open_share"] = json!(open);
+                j["precision"] = json!(gpu.precision.1);
+                self.json.push(j);
+                self.judged.push("hdr");
+            }
+            Err(why) => {
+                self.lines
+                    .push(format!("  [{:<14}] {:<20} not judged: {why}", "water", "hdr (water)"));
+                self.json.push(
+                    json!({"name": "hdr (water)", "tolerance": "envelope", "judged": false, "why": why}),
+                );
+                self.not_judged.push("hdr (water)");
+            }
+        }
+        Ok(())
+    }
+
+    /// The picture, against the `tonemap` envelope of the GPU's own HDR frame and bloom (not
+    /// judged where the plan has no tonemap; a failure where the HDR frame or the picture is
+    /// missing).
+    fn judge_tonemap(
+        &mut self,
+        scene: &Scene,
+        plan: &FramePlan,
+        gpu: &GpuSide<'_>,
+    ) -> anyhow::Result<()> {
+        let Some(tonemap) = ocean_core::graph::tonemap_uniforms(scene, plan)? else {
+            return Ok(());
+        };
+        let not_judged = |why: &str, v: &mut Verdict| {
+            v.lines.push(format!("  [{:<14}] {:<20} not judged: {why}", "tonemap", "ldr"));
+            v.json
+                .push(json!({"name": "ldr", "tolerance": "envelope", "judged": false, "why": why}));
+            v.not_judged.push("ldr");
+        };
+        let (Some(((w, h), hdr)), Some(ldr)) = (gpu.map(ResourceId::Hdr), gpu.ldr) else {
+            not_judged("the GPU's HDR frame or picture is missing", self);
+            self.failures.push("ldr: the GPU's HDR frame or picture is missing".to_owned());
+            return Ok(());
+        };
+        let bloom = match (plan.runs(Pass::Bloom), gpu.texels(ResourceId::BloomUp)) {
+            (false, _) => None,
+            (true, Some(atlas)) => {
+                let inputs = ocean_core::graph::BloomInputs::new(scene);
+                Some(ocean_cpu::shaders::bloom::level0(&bloom_chain(
+                    &inputs,
+                    (w, h),
+                    "bloom_up",
+                    atlas,
+                )?))
+            }
+            (true, None) => {
+                not_judged("pass bloom's output (bloom_up) is not in the frame", self);
+                return Ok(());
+            }
+        };
+        let envelope =
+            ocean_cpu::shaders::tonemap::envelope_of(hdr, bloom.as_ref(), w, h, &tonemap);
+        let no_bloom = ocean_cpu::sampler::Texture2D::new(1, 1, vec![[0.0; 4]]);
+        let exact = ocean_cpu::shaders::tonemap::tonemap_to_rgba8_with_bloom(
+            hdr,
+            w,
+            h,
+            &tonemap,
+            bloom.as_ref().unwrap_or(&no_bloom),
+        );
+        let verdict = ocean_verify::envelope::judge_picture("ldr", &envelope, ldr, &exact, w);
+        self.lines.push(format!("  [{:<14}] {}", "tonemap", verdict.line()));
+        if !verdict.passed() {
+            self.failures.push(verdict.line());
+        }
+        self.json.push(verdict.to_json());
+        self.judged.push("ldr");
+        Ok(())
+    }
 }
 
 /// The water pass's envelope where the water shows: how many pixels, and the relative
