@@ -218,10 +218,7 @@ fn dumped_picture(dir: &std::path::Path, w: u32, h: u32) -> anyhow::Result<Optio
 
 /// `ocean compare --against DIR`: the oracle's frame against a dump folder.
 fn against(args: &Args, dir: &std::path::Path) -> anyhow::Result<()> {
-    use ocean::output::{encode_png, write_atomic};
     use ocean_core::plan::OutputKind;
-    use ocean_verify::compare::compare_float_in;
-    use ocean_verify::cross_check::float_diff_png;
 
     if !dir.is_dir() {
         bail!("--against {}: not a folder (a dump of `ocean render --dump-passes`)", dir.display());
@@ -240,19 +237,7 @@ fn against(args: &Args, dir: &std::path::Path) -> anyhow::Result<()> {
     args.memory.check(&scene, &plan, &[ocean_core::plan::memory::MemoryBackend::Cpu])?;
     std::fs::create_dir_all(&args.out_dir)
         .with_context(|| format!("cannot make {}", args.out_dir.display()))?;
-    let made_by = manifest.adapter.as_ref().map_or_else(
-        || "an unknown adapter".to_owned(),
-        |a| {
-            let s = |k: &str| a[k].as_str().unwrap_or("?").to_owned();
-            format!(
-                "{} ({}, {}, driver {})",
-                s("name"),
-                s("backend"),
-                s("device_type"),
-                s("driver")
-            )
-        },
-    );
+    let made_by = made_by(&manifest);
     let software = manifest.adapter.as_ref().and_then(|a| a["software"].as_bool());
     let tolerance = ToleranceArg::resolve(args.tolerance, software);
     if tolerance == Tolerance::Envelope {
@@ -268,86 +253,14 @@ fn against(args: &Args, dir: &std::path::Path) -> anyhow::Result<()> {
         ocean_verify::compare::FLOAT_ABS
     );
     let r = ocean_cpu::render_scene(&scene, OutputKind::Ldr, &mut |_| {})?;
-    let mut failures = Vec::new();
-    let mut summary = Vec::new();
-    let mut not_in_dump = Vec::new();
-    let planned = ocean::dump::dumped(&plan);
-    // What the dump lists that the oracle's frame does not make: reported, not judged.
-    for name in manifest.resources.iter().flatten() {
-        if !planned.iter().any(|id| id.name() == name) {
-            println!("  [{:<14}] {name:<20} not in the oracle's plan (not compared)", "");
-        }
-    }
-    for id in planned {
-        let Some((w, h, ours)) = r.buffers.map(id) else { continue };
-        let pass = id.writer().map_or("", |p| p.name());
-        // The resources the manifest lists; without a list, the files that are there.
-        let held = match &manifest.resources {
-            Some(list) => list.iter().any(|n| n == id.name()),
-            None => std::fs::symlink_metadata(dir.join(ocean::dump::file_name(id))).is_ok(),
-        };
-        if !held {
-            println!("  [{pass:<14}] {:<20} not in dump", id.name());
-            not_in_dump.push(id.name());
-            continue;
-        }
-        let theirs = match ocean::dump::read(dir, id) {
-            Ok(t) => t,
-            Err(e) => {
-                println!("  [{pass:<14}] {:<20} MISSING {e:#}", id.name());
-                failures.push(format!("{}: {e:#}", id.name()));
-                summary.push(serde_json::json!({"name": id.name(), "passed": false, "error": format!("{e:#}")}));
-                continue;
-            }
-        };
-        let format = plan.resource(id).map_or(Default::default(), |r| r.format.storage());
-        let stats =
-            compare_float_in(id.name(), true, ((w, h), ours), (theirs.0, &theirs.1), format);
-        println!("  [{pass:<14}] {}", stats.line());
-        if theirs.0 == (w, h) {
-            let png = encode_png(float_diff_png(ours, &theirs.1, format), w, h)?;
-            write_atomic(&args.out_dir.join(format!("{}.diff.png", id.name())), &png)?;
-        }
-        if !stats.passed() {
-            failures.push(stats.line());
-        }
-        summary.push(stats.to_json());
-    }
+    let mut found = Found::default();
+    found.compare_resources(args, dir, &manifest, &plan, &r)?;
     // The picture: the dump's `ldr.png` against the oracle's, by the picture row of the
     // adapter that made it (the manifest's `software`; the hardware row when it does not say).
     if let Some(ours) = r.ldr.as_deref() {
-        let limits = if software == Some(true) {
-            ocean_verify::compare::ImageLimits::SOFTWARE
-        } else {
-            ocean_verify::compare::ImageLimits::HARDWARE
-        };
-        let (w, h) = (scene.camera.width, scene.camera.height);
-        match dumped_picture(dir, w, h) {
-            Ok(None) => {
-                println!("  [{:<14}] {:<20} not in dump", "tonemap", "ldr");
-                not_in_dump.push("ldr");
-            }
-            Ok(Some(theirs)) => {
-                let stats = ocean_verify::compare::compare_image(ours, &theirs, w, h);
-                println!("  [{:<14}] {} ({})", "tonemap", stats.line(&limits), limits.origin);
-                let failed = stats.failures(&limits);
-                if !failed.is_empty() {
-                    failures.push(format!("ldr: {}", failed.join("; ")));
-                }
-                let mut json = stats.to_json(&limits);
-                json["name"] = "ldr".into();
-                json["limits"] = limits.origin.into();
-                summary.push(json);
-            }
-            Err(e) => {
-                println!("  [{:<14}] {:<20} MISSING {e:#}", "tonemap", "ldr");
-                failures.push(format!("ldr: {e:#}"));
-                summary.push(
-                    serde_json::json!({"name": "ldr", "passed": false, "error": format!("{e:#}")}),
-                );
-            }
-        }
+        found.compare_picture(dir, (scene.camera.width, scene.camera.height), software, ours);
     }
+    let Found { mut failures, summary, not_in_dump } = found;
     if args.require_all && !not_in_dump.is_empty() {
         failures.push(format!("not in dump (--require-all): {}", not_in_dump.join(", ")));
     }
@@ -357,7 +270,7 @@ fn against(args: &Args, dir: &std::path::Path) -> anyhow::Result<()> {
         "resources": summary,
         "not_in_dump": not_in_dump,
     });
-    write_atomic(
+    ocean::output::write_atomic(
         &args.out_dir.join("against.json"),
         serde_json::to_string_pretty(&json)?.as_bytes(),
     )?;
@@ -370,6 +283,136 @@ fn against(args: &Args, dir: &std::path::Path) -> anyhow::Result<()> {
         );
     }
     Ok(())
+}
+
+/// The adapter a dump's manifest says made it, for the report's first line.
+fn made_by(manifest: &ocean::dump::Manifest) -> String {
+    manifest.adapter.as_ref().map_or_else(
+        || "an unknown adapter".to_owned(),
+        |a| {
+            let s = |k: &str| a[k].as_str().unwrap_or("?").to_owned();
+            format!(
+                "{} ({}, {}, driver {})",
+                s("name"),
+                s("backend"),
+                s("device_type"),
+                s("driver")
+            )
+        },
+    )
+}
+
+/// What `--against` found, resource by resource.
+#[derive(Default)]
+struct Found {
+    /// One line per resource beyond tolerance or unreadable.
+    failures: Vec<String>,
+    /// The JSON entries, one per resource compared.
+    summary: Vec<serde_json::Value>,
+    /// The oracle's resources the dump does not hold.
+    not_in_dump: Vec<&'static str>,
+}
+
+impl Found {
+    /// The oracle's float resources `r` against the dump's, each difference map written to
+    /// `args.out_dir`; what the dump lists that the oracle's plan does not make is reported,
+    /// not judged.
+    fn compare_resources(
+        &mut self,
+        args: &Args,
+        dir: &std::path::Path,
+        manifest: &ocean::dump::Manifest,
+        plan: &ocean_core::plan::FramePlan,
+        r: &ocean_cpu::Rendered,
+    ) -> anyhow::Result<()> {
+        use ocean::output::{encode_png, write_atomic};
+        use ocean_verify::compare::compare_float_in;
+        use ocean_verify::cross_check::float_diff_png;
+
+        let planned = ocean::dump::dumped(plan);
+        for name in manifest.resources.iter().flatten() {
+            if !planned.iter().any(|id| id.name() == name) {
+                println!("  [{:<14}] {name:<20} not in the oracle's plan (not compared)", "");
+            }
+        }
+        for id in planned {
+            let Some((w, h, ours)) = r.buffers.map(id) else { continue };
+            let pass = id.writer().map_or("", |p| p.name());
+            // The resources the manifest lists; without a list, the files that are there.
+            let held = match &manifest.resources {
+                Some(list) => list.iter().any(|n| n == id.name()),
+                None => std::fs::symlink_metadata(dir.join(ocean::dump::file_name(id))).is_ok(),
+            };
+            if !held {
+                println!("  [{pass:<14}] {:<20} not in dump", id.name());
+                self.not_in_dump.push(id.name());
+                continue;
+            }
+            let theirs = match ocean::dump::read(dir, id) {
+                Ok(t) => t,
+                Err(e) => {
+                    println!("  [{pass:<14}] {:<20} MISSING {e:#}", id.name());
+                    self.failures.push(format!("{}: {e:#}", id.name()));
+                    self.summary.push(serde_json::json!({"name": id.name(), "passed": false, "error": format!("{e:#}")}));
+                    continue;
+                }
+            };
+            let format = plan.resource(id).map_or(Default::default(), |r| r.format.storage());
+            let stats =
+                compare_float_in(id.name(), true, ((w, h), ours), (theirs.0, &theirs.1), format);
+            println!("  [{pass:<14}] {}", stats.line());
+            if theirs.0 == (w, h) {
+                let png = encode_png(float_diff_png(ours, &theirs.1, format), w, h)?;
+                write_atomic(&args.out_dir.join(format!("{}.diff.png", id.name())), &png)?;
+            }
+            if !stats.passed() {
+                self.failures.push(stats.line());
+            }
+            self.summary.push(stats.to_json());
+        }
+        Ok(())
+    }
+
+    /// The dump's `ldr.png` against the oracle's picture `ours` of size `(w, h)`, by the
+    /// picture row of the adapter that made it (`software`; the hardware row when unknown).
+    fn compare_picture(
+        &mut self,
+        dir: &std::path::Path,
+        (w, h): (u32, u32),
+        software: Option<bool>,
+        ours: &[u8],
+    ) {
+        let limits = if software == Some(true) {
+            ocean_verify::compare::ImageLimits::SOFTWARE
+        } else {
+            ocean_verify::compare::ImageLimits::HARDWARE
+        };
+        match dumped_picture(dir, w, h) {
+            Ok(None) => {
+                println!("  [{:<14}] {:<20} not in dump", "tonemap", "ldr");
+                self.not_in_dump.push("ldr");
+            }
+            Ok(Some(theirs)) => {
+                let stats = ocean_verify::compare::compare_image(ours, &theirs, w, h);
+                println!("  [{:<14}] {} ({})", "tonemap", stats.line(&limits), limits.origin);
+                let failed = stats.failures(&limits);
+                if !failed.is_empty() {
+                    self.failures.push(format!("ldr: {}", failed.join("; ")));
+                }
+                let mut json = stats.to_json(&limits);
+                json["name"] = "ldr".into();
+                json["limits"] = limits.origin.into();
+                self.summary.push(json);
+            }
+            Err(e) => {
+                println!("  [{:<14}] {:<20} MISSING {e:#}", "tonemap", "ldr");
+                self.failures.push(format!("ldr: {e:#}"));
+                self.summary.push(
+                    serde_json::json!({"name": "ldr", "passed": false, "error": format!("{e:#}")}),
+                );
+            }
+        }
+    }
 }
 
 /// `--against DIR --tolerance envelope`: the dump's picture against the `tonemap` envelope of

@@ -112,39 +112,16 @@ pub(crate) fn run(seq: Sequence<'_>) -> anyhow::Result<()> {
         bail!("--spp with --frames is not supported yet: render the frames at 1 sample per pixel");
     }
     let pattern = FramePattern::parse(seq.pattern)?;
-    seq.memory.limit_inputs();
-    let mut scene = ocean::scene_arg::load_scene(seq.scene, seq.system)?;
-    if let Some(t) = seq.time {
-        scene.ocean.time_s = t;
-    }
-    if let Some(s) = seq.size {
-        (scene.camera.width, scene.camera.height) = ocean::output::parse_size(s)?;
-    }
-    ocean::scene_arg::revalidate(&scene, "--time/--size")?;
+    let scene = load_scene(&seq)?;
     let step_s = 1.0 / seq.fps;
-    // Every frame's time within the scene's limits, checked on the last one before the first
-    // is drawn (--fps 1e-300 failed only after frame 0 was written).
-    let mut last_frame = scene.clone();
-    last_frame.ocean.time_s = scene.ocean.time_s + (seq.range.end - 1) as f64 * step_s;
-    ensure!(
-        last_frame.ocean.time_s.is_finite(),
-        "--frames {}..{} at {} fps: the last frame's time is not a finite number",
-        seq.range.start,
-        seq.range.end,
-        seq.fps
-    );
-    ocean::scene_arg::revalidate(
-        &last_frame,
-        &format!(
-            "--frames {}..{} at --fps {:?}: the last frame's time, {:?} s,",
-            seq.range.start, seq.range.end, seq.fps, last_frame.ocean.time_s
-        ),
-    )?;
+    check_last_frame_time(&seq, &scene, step_s)?;
     // One plan for every frame, whatever the range: a looping sea plays its cycle (any
     // count of two or more frames plans alike), so frame n does not depend on the range.
     let plan = FramePlan::for_frames(&scene, seq.kind, seq.range.end.max(2));
     let advance = plan.carries_state().then(|| plan.advance_only());
     seq.memory.check(&scene, &plan, &[seq.backend.memory()])?;
+    let job =
+        Job { seq: &seq, scene: &scene, plan: &plan, advance: advance.as_ref(), pattern: &pattern };
 
     let total = shard_len(seq.range, seq.shard);
     if total == 0 {
@@ -158,10 +135,9 @@ pub(crate) fn run(seq: Sequence<'_>) -> anyhow::Result<()> {
         );
         return Ok(());
     }
-    let on_disk = |n: u64| !seq.overwrite && pattern.path(n).exists();
     // The first frame to draw, found by looking at the frames before it one by one (on disk
     // and kept): work in proportion to what is already done, not to the range.
-    let Some(first) = seq.shard.frames(seq.range).find(|n| !on_disk(*n)) else {
+    let Some(first) = seq.shard.frames(seq.range).find(|n| !job.on_disk(*n)) else {
         eprintln!(
             "nothing to render: all {total} frame(s) of shard {}/{} are on disk (--overwrite \
              renders them again)",
@@ -173,21 +149,7 @@ pub(crate) fn run(seq: Sequence<'_>) -> anyhow::Result<()> {
     // What the request costs before it starts: the frames to draw, and, where the scene
     // carries state from frame to frame, the earlier frames stepped undrawn for it.
     let replay = if advance.is_some() { (last + 1).saturating_sub(total) } else { 0 };
-    eprintln!(
-        "frames {}..{} (shard {}/{}): {total} in the shard, the first to draw is frame {first}{}",
-        seq.range.start,
-        seq.range.end,
-        seq.shard.index,
-        seq.shard.count,
-        if replay > 0 {
-            format!(
-                "; the scene carries state from frame to frame, so up to {replay} earlier \
-                 frame(s) are stepped undrawn first (from frame 0)"
-            )
-        } else {
-            String::new()
-        }
-    );
+    announce(&seq, total, first, replay);
     if replay > MAX_REPLAY_FRAMES && !seq.replay_any {
         bail!(
             "this run would step {replay} frames undrawn for their state (foam or spray carry \
@@ -208,50 +170,8 @@ pub(crate) fn run(seq: Sequence<'_>) -> anyhow::Result<()> {
     };
     // One unit a frame the run passes through: drawn, stepped for its state, or on disk.
     let work = if advance.is_some() { last + 1 } else { total };
-    let bar = ProgressBar::new(work);
-    bar.set_style(
-        ProgressStyle::with_template(
-            "{elapsed:>4} [{bar:30}] {pos}/{len} frames passed, {per_sec}, ETA {eta} {msg}",
-        )
-        .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
-    let start = Instant::now();
-    let mut state = FrameState::new(step_s);
-    let (mut stepped, mut drawn, mut last_drawn) = (0u64, 0u64, first);
-    for next in seq.shard.frames(seq.range).skip_while(|n| *n < first) {
-        if on_disk(next) {
-            if advance.is_none() {
-                bar.inc(1);
-            }
-            continue;
-        }
-        while state.frame < next {
-            let n = state.frame;
-            match &advance {
-                // Frames before it leave state this one continues: step them undrawn.
-                Some(a) => {
-                    bar.set_message(format!("stepping frame {n} (state for frame {next})"));
-                    renderer.step(&scene, a, &mut state).with_context(|| format!("frame {n}"))?;
-                    stepped += 1;
-                    bar.inc(1);
-                }
-                None => state.frame = next,
-            }
-        }
-        bar.set_message(format!("frame {next}"));
-        let (ldr, hdr) =
-            renderer.draw(&scene, &plan, &mut state).with_context(|| format!("frame {next}"))?;
-        let path = pattern.path(next);
-        let bytes = encode(seq.kind, ldr, &hdr, scene.camera.width, scene.camera.height)?;
-        make_parent(&path)?;
-        let out = ocean::output::OutputFile::reserve(&path)?;
-        out.commit(&bytes).with_context(|| format!("frame {next}"))?;
-        drawn += 1;
-        last_drawn = next;
-        bar.inc(1);
-    }
-    bar.finish_and_clear();
-    let secs = start.elapsed().as_secs_f64();
+    let Tally { stepped, drawn, last_drawn, secs } =
+        job.render(&mut renderer, first, work, step_s)?;
     eprintln!(
         "wrote {drawn} frame(s) of {}..{}, first {first}, last {last_drawn} (shard {}/{} holds \
          {total}; {} already on disk, kept; {stepped} earlier frame(s) stepped for their \
@@ -265,6 +185,147 @@ pub(crate) fn run(seq: Sequence<'_>) -> anyhow::Result<()> {
         secs / drawn.max(1) as f64
     );
     Ok(())
+}
+
+/// The sequence's scene: the file's (or the system's), at `--time` and `--size`, validated.
+fn load_scene(seq: &Sequence<'_>) -> anyhow::Result<Scene> {
+    seq.memory.limit_inputs();
+    let mut scene = ocean::scene_arg::load_scene(seq.scene, seq.system)?;
+    if let Some(t) = seq.time {
+        scene.ocean.time_s = t;
+    }
+    if let Some(s) = seq.size {
+        (scene.camera.width, scene.camera.height) = ocean::output::parse_size(s)?;
+    }
+    ocean::scene_arg::revalidate(&scene, "--time/--size")?;
+    Ok(scene)
+}
+
+/// Every frame's time within the scene's limits, checked on the last one before the first
+/// is drawn (--fps 1e-300 failed only after frame 0 was written).
+fn check_last_frame_time(seq: &Sequence<'_>, scene: &Scene, step_s: f64) -> anyhow::Result<()> {
+    let mut last_frame = scene.clone();
+    last_frame.ocean.time_s = scene.ocean.time_s + (seq.range.end - 1) as f64 * step_s;
+    ensure!(
+        last_frame.ocean.time_s.is_finite(),
+        "--frames {}..{} at {} fps: the last frame's time is not a finite number",
+        seq.range.start,
+        seq.range.end,
+        seq.fps
+    );
+    ocean::scene_arg::revalidate(
+        &last_frame,
+        &format!(
+            "--frames {}..{} at --fps {:?}: the last frame's time, {:?} s,",
+            seq.range.start, seq.range.end, seq.fps, last_frame.ocean.time_s
+        ),
+    )
+}
+
+/// Says what the request costs before it starts: `total` frames in the shard, the first to
+/// draw, and `replay` earlier frames stepped undrawn for their state.
+fn announce(seq: &Sequence<'_>, total: u64, first: u64, replay: u64) {
+    eprintln!(
+        "frames {}..{} (shard {}/{}): {total} in the shard, the first to draw is frame {first}{}",
+        seq.range.start,
+        seq.range.end,
+        seq.shard.index,
+        seq.shard.count,
+        if replay > 0 {
+            format!(
+                "; the scene carries state from frame to frame, so up to {replay} earlier \
+                 frame(s) are stepped undrawn first (from frame 0)"
+            )
+        } else {
+            String::new()
+        }
+    );
+}
+
+/// A run's scene and plans, and where its frames go.
+struct Job<'a> {
+    seq: &'a Sequence<'a>,
+    scene: &'a Scene,
+    plan: &'a FramePlan,
+    /// The advance-only plan that steps a frame undrawn, where the scene carries state from
+    /// frame to frame.
+    advance: Option<&'a FramePlan>,
+    pattern: &'a FramePattern,
+}
+
+/// What a run did: frames stepped undrawn and drawn, the last drawn, and how long it took.
+struct Tally {
+    stepped: u64,
+    drawn: u64,
+    last_drawn: u64,
+    secs: f64,
+}
+
+impl Job<'_> {
+    /// Whether frame `n` is on disk and kept.
+    fn on_disk(&self, n: u64) -> bool {
+        !self.seq.overwrite && self.pattern.path(n).exists()
+    }
+
+    /// Draws the shard's frames from `first` on (those on disk kept), stepping the frames
+    /// before each undrawn where the scene carries state, with a bar of `work` units.
+    fn render(
+        &self,
+        renderer: &mut Renderer,
+        first: u64,
+        work: u64,
+        step_s: f64,
+    ) -> anyhow::Result<Tally> {
+        let (seq, scene) = (self.seq, self.scene);
+        let bar = ProgressBar::new(work);
+        bar.set_style(
+            ProgressStyle::with_template(
+                "{elapsed:>4} [{bar:30}] {pos}/{len} frames passed, {per_sec}, ETA {eta} {msg}",
+            )
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+        );
+        let start = Instant::now();
+        let mut state = FrameState::new(step_s);
+        let (mut stepped, mut drawn, mut last_drawn) = (0u64, 0u64, first);
+        for next in seq.shard.frames(seq.range).skip_while(|n| *n < first) {
+            if self.on_disk(next) {
+                if self.advance.is_none() {
+                    bar.inc(1);
+                }
+                continue;
+            }
+            while state.frame < next {
+                let n = state.frame;
+                match self.advance {
+                    // Frames before it leave state this one continues: step them undrawn.
+                    Some(a) => {
+                        bar.set_message(format!("stepping frame {n} (state for frame {next})"));
+                        renderer
+                            .step(scene, a, &mut state)
+                            .with_context(|| format!("frame {n}"))?;
+                        stepped += 1;
+                        bar.inc(1);
+                    }
+                    None => state.frame = next,
+                }
+            }
+            bar.set_message(format!("frame {next}"));
+            let (ldr, hdr) = renderer
+                .draw(scene, self.plan, &mut state)
+                .with_context(|| format!("frame {next}"))?;
+            let path = self.pattern.path(next);
+            let bytes = encode(seq.kind, ldr, &hdr, scene.camera.width, scene.camera.height)?;
+            make_parent(&path)?;
+            let out = ocean::output::OutputFile::reserve(&path)?;
+            out.commit(&bytes).with_context(|| format!("frame {next}"))?;
+            drawn += 1;
+            last_drawn = next;
+            bar.inc(1);
+        }
+        bar.finish_and_clear();
+        let secs = start.elapsed().as_secs_f64();
+        Ok(Tally { stepped, drawn, last_drawn, secs })
+    }
 }
 
 /// Makes the folder of an output when it is missing (a pattern may number its folders too:

@@ -14,14 +14,13 @@ use std::time::{Duration, Instant};
 
 use anyhow::{Context, anyhow, bail};
 use ocean_core::graph::FrameState;
-use ocean_core::plan::{FramePlan, OutputKind};
+use ocean_core::plan::FramePlan;
 use ocean_core::scene::{Ocean, Scene};
 use ocean_core::waves::OceanSurface;
 use ocean_gpu::frame::wave_key;
 use ocean_gpu::present::PresentStage;
-use ocean_gpu::readback::{Readbacks, TexelData};
 use ocean_gpu::timing::PendingTimings;
-use ocean_gpu::{Gpu, Readback, Renderer, WaveSynthesis};
+use ocean_gpu::{Gpu, Renderer, WaveSynthesis};
 use winit::application::ApplicationHandler;
 use winit::dpi::PhysicalSize;
 use winit::event::{ElementState, MouseButton, MouseScrollDelta, WindowEvent};
@@ -31,8 +30,10 @@ use winit::window::{Window, WindowId};
 
 use super::controller::{CameraController, Motion};
 use super::params::ViewParams;
-use super::ui::{self, Action, Overlay, Stats};
+use super::ui::Stats;
 use super::{Args, Vsync, fixed_step_time};
+
+mod frame;
 
 /// How long a minimised or occluded window sleeps between checks.
 const IDLE_WAIT: Duration = Duration::from_millis(100);
@@ -217,13 +218,6 @@ impl Graphics {
             None => Ok(()),
         }
     }
-}
-
-/// What egui drew this frame, ready to paint.
-struct UiPaint {
-    jobs: Vec<egui::ClippedPrimitive>,
-    textures: egui::TexturesDelta,
-    screen: egui_wgpu::ScreenDescriptor,
 }
 
 /// Draws a sea's wave modes (`Ocean::surface`, ~10–20 ms at N = 256 here) on a thread of its
@@ -586,225 +580,6 @@ impl App {
             std::thread::sleep(Duration::from_millis(ms).saturating_sub(now.elapsed()));
         }
         result
-    }
-
-    /// One frame on `gfx` (taken out of `self` for the frame).
-    fn draw(
-        &mut self,
-        event_loop: &ActiveEventLoop,
-        window: &Arc<Window>,
-        gfx: &mut Graphics,
-        size: PhysicalSize<u32>,
-        dt: f64,
-    ) -> anyhow::Result<()> {
-        gfx.resize(size)?;
-        let last = self.args.frames.is_some_and(|n| self.frame_index + 1 >= n);
-        self.sync_waves(gfx, last)?;
-
-        let mut reconfigure = false;
-        let texture = match gfx.surface.get_current_texture() {
-            wgpu::CurrentSurfaceTexture::Success(t) => t,
-            wgpu::CurrentSurfaceTexture::Suboptimal(t) => {
-                // Used this once; configured again after presenting.
-                reconfigure = true;
-                t
-            }
-            wgpu::CurrentSurfaceTexture::Timeout | wgpu::CurrentSurfaceTexture::Occluded => {
-                // Acquired before the frame is rendered, so a hidden window costs nothing.
-                self.go_idle();
-                return Ok(());
-            }
-            wgpu::CurrentSurfaceTexture::Outdated => {
-                eprintln!("view: surface outdated; configuring it again");
-                gfx.configure()?;
-                return Ok(());
-            }
-            wgpu::CurrentSurfaceTexture::Lost => {
-                eprintln!("view: surface lost; making a new one");
-                gfx.recreate_surface(window)?;
-                eprintln!("view: recovered: new surface");
-                return Ok(());
-            }
-            wgpu::CurrentSurfaceTexture::Validation => {
-                if gfx.device_lost() {
-                    return Ok(());
-                }
-                gfx.check_uncaptured("acquiring the window's next image")?;
-                bail!("GPU validation error while acquiring the window's next image");
-            }
-        };
-        let mut scene = self.scene.clone();
-        if let Some(sea) = &self.shown_sea {
-            scene.ocean = sea.clone();
-        }
-        self.controller.apply(&mut scene.camera);
-        (scene.camera.width, scene.camera.height) = (gfx.config.width, gfx.config.height);
-        scene.ocean.time_s = self.sim_time;
-        let plan = FramePlan::new(&scene, OutputKind::Ldr);
-        let cpu_start = Instant::now();
-        let frame =
-            match gfx.renderer.run_frame(&scene, &plan, &mut self.frame_state, Readback::None) {
-                Ok(f) => f,
-                Err(e) if gfx.device_lost() => {
-                    eprintln!("view: frame {} failed on a lost device ({e})", self.frame_index);
-                    return Ok(());
-                }
-                Err(e) => return Err(e.into()),
-            };
-
-        let view = texture.texture.create_view(&wgpu::TextureViewDescriptor {
-            format: Some(gfx.view_format),
-            ..Default::default()
-        });
-
-        let paint = if self.ui_visible {
-            let overlay = Overlay {
-                stats: &self.stats,
-                plan: self.last_plan.as_ref(),
-                adapter: &gfx.gpu().report.name,
-                controller: &self.controller,
-                time_s: self.sim_time,
-                size: (gfx.config.width, gfx.config.height),
-                error: self.param_error.as_deref(),
-                wave_source: self.wave_source,
-            };
-            let Some(state) = self.egui_state.as_mut() else { return Ok(()) };
-            let raw = state.take_egui_input(window);
-            let mut actions = Vec::new();
-            let ctx = self.egui_ctx.clone();
-            let out = ctx.run_pass(raw, |ctx| {
-                ui::draw(ctx, &mut self.params, &overlay, &mut actions);
-            });
-            state.handle_platform_output(window, out.platform_output);
-            for a in actions {
-                match a {
-                    Action::JumpHome => self.controller.jump_home(),
-                    Action::Horizon => self.controller.look_at_horizon(),
-                }
-            }
-            Some(UiPaint {
-                jobs: ctx.tessellate(out.shapes, out.pixels_per_point),
-                textures: out.textures_delta,
-                screen: egui_wgpu::ScreenDescriptor {
-                    size_in_pixels: [gfx.config.width, gfx.config.height],
-                    pixels_per_point: out.pixels_per_point,
-                },
-            })
-        } else {
-            None
-        };
-
-        let device = gfx.gpu().device.clone();
-        let queue = gfx.gpu().queue.clone();
-        if let Some(p) = &paint {
-            for (id, deltas) in &p.textures.set {
-                for delta in deltas {
-                    gfx.egui.update_texture(&device, &queue, *id, delta);
-                }
-            }
-        }
-        let mut encoder = device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("ocean.view") });
-        let mut extra = Vec::new();
-        let compose = |gfx: &mut Graphics,
-                       encoder: &mut wgpu::CommandEncoder,
-                       target: &wgpu::TextureView,
-                       extra: &mut Vec<wgpu::CommandBuffer>| {
-            gfx.present.encode(&device, encoder, &frame.output.view, target);
-            if let Some(p) = &paint {
-                extra.extend(gfx.egui.update_buffers(&device, &queue, encoder, &p.jobs, &p.screen));
-                let mut pass = encoder
-                    .begin_render_pass(&wgpu::RenderPassDescriptor {
-                        label: Some("ocean.view.egui"),
-                        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                            view: target,
-                            depth_slice: None,
-                            resolve_target: None,
-                            ops: wgpu::Operations {
-                                load: wgpu::LoadOp::Load,
-                                store: wgpu::StoreOp::Store,
-                            },
-                        })],
-                        depth_stencil_attachment: None,
-                        timestamp_writes: None,
-                        occlusion_query_set: None,
-                        multiview_mask: None,
-                    })
-                    .forget_lifetime();
-                gfx.egui.render(&mut pass, &p.jobs, &p.screen);
-            }
-        };
-        compose(gfx, &mut encoder, &view, &mut extra);
-        let mut readbacks: Readbacks<()> = Readbacks::default();
-        let shot_target;
-        if last && self.args.screenshot.is_some() {
-            if gfx.copy_src {
-                readbacks.copy_texture(
-                    &device,
-                    &mut encoder,
-                    (),
-                    "screenshot",
-                    &texture.texture,
-                    gfx.view_format,
-                );
-            } else {
-                shot_target = device.create_texture(&wgpu::TextureDescriptor {
-                    label: Some("ocean.view.screenshot"),
-                    size: texture.texture.size(),
-                    mip_level_count: 1,
-                    sample_count: 1,
-                    dimension: wgpu::TextureDimension::D2,
-                    format: gfx.view_format,
-                    usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-                    view_formats: &[],
-                });
-                let shot_view = shot_target.create_view(&Default::default());
-                compose(gfx, &mut encoder, &shot_view, &mut extra);
-                readbacks.copy_texture(
-                    &device,
-                    &mut encoder,
-                    (),
-                    "screenshot",
-                    &shot_target,
-                    gfx.view_format,
-                );
-            }
-        }
-        queue.submit(extra.into_iter().chain([encoder.finish()]));
-        if last && self.args.screenshot.is_some() {
-            let data = readbacks.finish(gfx.gpu())?;
-            if let Some(((), TexelData::Rgba8(rgba))) = data.into_iter().next() {
-                let s = texture.texture.size();
-                self.screenshot = Some((s.width, s.height, rgba));
-            }
-        }
-        if let Some(p) = &paint {
-            for id in &p.textures.free {
-                gfx.egui.free_texture(id);
-            }
-        }
-        window.pre_present_notify();
-        queue.present(texture);
-        if reconfigure {
-            gfx.configure()?;
-        }
-        if gfx.device_lost() {
-            return Ok(());
-        }
-        gfx.check_uncaptured("presenting the frame")?;
-
-        self.stats.record(dt, cpu_start.elapsed().as_secs_f64(), frame.waves_cpu, self.frame_index);
-        if let Some(p) = frame.pending_timings {
-            self.timings.push_back((self.frame_index, p));
-        }
-        self.collect_timings();
-        self.wave_source = frame.wave_source;
-        self.last_plan = Some(plan);
-        self.frame_index += 1;
-        if last {
-            event_loop.exit();
-        }
-        Ok(())
     }
 
     fn key(&mut self, event_loop: &ActiveEventLoop, code: KeyCode, pressed: bool, repeat: bool) {

@@ -1,0 +1,441 @@
+//! Each judged pass's envelope verdict, given the inputs the GPU itself read.
+
+use anyhow::bail;
+use ocean_core::plan::{FramePlan, Pass, ResourceId};
+use ocean_core::scene::Scene;
+
+use super::GpuSide;
+
+/// The water pass's envelope where the water shows: how many pixels, and the relative
+/// half-width of their channels at p50 and p99 (`None`: no pixel).
+pub(super) struct WaterWidths {
+    pub(super) pixels: usize,
+    pub(super) p50: Option<f64>,
+    pub(super) p99: Option<f64>,
+}
+
+/// The HDR frame's water pixels against the water pass's envelope (ocean-cpu
+/// `shaders::water::envelope`), given the GPU's own input maps and the sky pass's envelope
+/// behind it: every pixel where no object may show (none lands there, or the water is
+/// certainly drawn nearer: ocean-cpu `objects::depth_reach`). `Err(why)` where it is not
+/// judged: a configuration the envelope does not carry, a pass after the water that draws
+/// into the frame, a missing input.
+#[allow(clippy::type_complexity, reason = "a verdict, its open share, cost and widths, or why not")]
+pub(super) fn water_verdict(
+    scene: &Scene,
+    plan: &FramePlan,
+    gpu: &GpuSide<'_>,
+) -> anyhow::Result<
+    Result<(ocean_verify::envelope::RegionVerdict, f64, std::time::Duration, WaterWidths), String>,
+> {
+    use ocean_cpu::envelope::Iv;
+    use ocean_cpu::shaders::{sky, water};
+    if !plan.runs(Pass::Water) {
+        return Ok(Err("no water pass".into()));
+    }
+    let Some(((w, h), hdr)) = gpu.map(ResourceId::Hdr) else {
+        return Ok(Err("the GPU's HDR frame is missing".into()));
+    };
+    if plan.runs(Pass::Spray) {
+        return Ok(Err("spray draws over the water (its pass has no envelope yet)".into()));
+    }
+    let technique = plan.techniques.sky();
+    let frame =
+        ocean_core::graph::FrameInputs::new(scene, plan, &ocean_core::graph::FrameState::new(0.0))?;
+    let u = &frame.uniforms;
+    if let Some(why) = water::real::carried(u) {
+        return Ok(Err(why.into()));
+    }
+    let (fw, fh, floor) = ocean_core::terrain::relief_texels(scene.terrain.as_ref());
+    let get = |id: ResourceId| gpu.map(id).map(|((w, h), t)| (w, h, t));
+    let runs = |id: ResourceId| id.writer().is_some_and(|p| plan.runs(p));
+    let owned = match water::envelope::OwnedTextures::from_resources(
+        get,
+        plan.runs(Pass::WaveMips),
+        runs,
+        ocean_cpu::sampler::Texture2D::new(fw, fh, floor),
+    ) {
+        Ok(o) => o,
+        Err(name) => return Ok(Err(format!("its input {name} is not in the frame"))),
+    };
+    let format = plan.frame_format;
+    let pass = water::envelope::WaterPass {
+        frame: u,
+        sky: &frame.environment,
+        lut: &frame.sky_lut,
+        sky_technique: technique,
+        textures: owned.textures(),
+        vertices: &frame.mesh.vertices,
+        indices: &frame.mesh.indices,
+        size: [w, h],
+        format,
+        precision: gpu.precision.0,
+        shading: plan.techniques.shading(),
+        foam: plan.techniques.foam(),
+        every: gpu.water_every.max(1),
+    };
+    let inputs = sky::SkyInputs {
+        camera: &frame.camera_uniforms,
+        sky: &frame.environment,
+        lut: &frame.sky_lut,
+    };
+    let sky_env = sky::envelope(technique, inputs, (w, h), format);
+    let background: Vec<[Iv; 4]> =
+        sky_env.into_iter().map(|c| [c[0], c[1], c[2], Iv::point(1.0)]).collect();
+    if hdr.len() != background.len() {
+        bail!("hdr: {} texels, the frame {w}x{h}", hdr.len());
+    }
+    let started = std::time::Instant::now();
+    let water::envelope::MeshEnvelope { color: env, open, nearest } =
+        water::envelope::envelope(&pass, &background);
+    let took = started.elapsed();
+    let objects = match plan.pass(Pass::Objects).filter(|_| plan.runs(Pass::Objects)) {
+        Some(p) => {
+            let tris = ocean_core::frame::pass_triangles(scene, &frame.poses, p, frame.camera.eye);
+            ocean_cpu::shaders::objects::depth_reach(&tris, u, w, h)
+        }
+        None => vec![f64::NEG_INFINITY; env.len()],
+    };
+    // The pixels judged: those where no object's fragment may win against the water (none
+    // lands, or the water is certainly drawn nearer), on the quick verdict's lattice.
+    let every = gpu.water_every.max(1) as usize;
+    let on =
+        |i: usize| (i % w as usize).is_multiple_of(every) && (i / w as usize).is_multiple_of(every);
+    let reach: Vec<bool> = (0..env.len())
+        .map(|i| ocean_cpu::shaders::objects::may_show(objects[i], nearest[i]) || !on(i))
+        .collect();
+    let region: Vec<Option<bool>> = reach.iter().map(|&r| (!r).then_some(true)).collect();
+    let judged = reach.iter().filter(|r| !**r).count();
+    if judged == 0 {
+        let why = "an object may show at every pixel (the objects' colour has no envelope in the \
+                   main view yet)";
+        return Ok(Err(why.into()));
+    }
+    let open_share =
+        open.iter().zip(&reach).filter(|(o, r)| **o && !**r).count() as f64 / judged as f64;
+    let f = ocean_verify::envelope::judge_region("hdr (water pixels)", &env, &region, hdr, w);
+    // The widths where the water shows (the envelope is not the sky's alone).
+    let mut rel: Vec<f64> = (0..env.len())
+        .filter(|&i| !reach[i])
+        .filter(|&i| (0..3).any(|c| env[i][c] != background[i][c]))
+        .flat_map(|i| env[i][..3].iter().filter_map(|c| c.rel_half_width()).collect::<Vec<_>>())
+        .collect();
+    rel.sort_by(f64::total_cmp);
+    let q = |p: f64| rel.get(((rel.len().max(1) - 1) as f64 * p) as usize).copied();
+    let widths = WaterWidths { pixels: rel.len() / 3, p50: q(0.5), p99: q(0.99) };
+    Ok(Ok((f, open_share, took, widths)))
+}
+
+/// The HDR frame's sky pixels against the sky pass's envelope: the pixels where the oracle's
+/// final frame still holds its exact sky pass, and so do their eight neighbours (a pixel next
+/// to geometry is ambiguous: the GPU's rasteriser may cover it within its sub-pixel
+/// precision, and it is counted apart). `None` for a sky technique without an envelope yet, or
+/// a frame without a sky pixel.
+pub(super) fn sky_verdict(
+    scene: &Scene,
+    plan: &FramePlan,
+    (w, h): (u32, u32),
+    hdr: &[[f32; 4]],
+    oracle: &[[f32; 4]],
+) -> anyhow::Result<Option<ocean_verify::envelope::RegionVerdict>> {
+    use ocean_cpu::shaders::sky;
+    let technique = plan.techniques.sky();
+    // The sky's uniforms and table as the frame hands them to both back ends.
+    let frame =
+        ocean_core::graph::FrameInputs::new(scene, plan, &ocean_core::graph::FrameState::new(0.0))?;
+    let inputs = sky::SkyInputs {
+        camera: &frame.camera_uniforms,
+        sky: &frame.environment,
+        lut: &frame.sky_lut,
+    };
+    let format = plan.frame_format;
+    let env = sky::envelope(technique, inputs, (w, h), format);
+    let exact = sky::exact(technique, inputs, (w, h), format);
+    if hdr.len() != env.len() || oracle.len() != env.len() {
+        bail!("hdr: {} texels, the frame {w}x{h}", hdr.len());
+    }
+    let holds_sky: Vec<bool> = oracle
+        .iter()
+        .zip(&exact)
+        .map(|(o, e)| (0..3).all(|c| o[c].to_bits() == e[c].to_bits()))
+        .collect();
+    let (wi, hi) = (w as i64, h as i64);
+    let region: Vec<Option<bool>> = (0..env.len())
+        .map(|i| {
+            if !holds_sky[i] {
+                return None;
+            }
+            let (x, y) = ((i % w as usize) as i64, (i / w as usize) as i64);
+            let inner = (-1..=1).all(|dy| {
+                (-1..=1).all(|dx| {
+                    let (nx, ny) = (x + dx, y + dy);
+                    !(0..wi).contains(&nx)
+                        || !(0..hi).contains(&ny)
+                        || holds_sky[(ny * wi + nx) as usize]
+                })
+            });
+            Some(inner)
+        })
+        .collect();
+    // A frame without a sky pixel (looking down at the sea) leaves the sky unjudged.
+    if !region.contains(&Some(true)) {
+        return Ok(None);
+    }
+    Ok(Some(ocean_verify::envelope::judge_region("hdr (sky pixels)", &env, &region, hdr, w)))
+}
+
+/// Pass `waves`' three maps, those the frame holds, against the envelope of the spectrum,
+/// the FFT and the packing given the uploaded mode and twiddle tables (ocean-cpu
+/// `WavesMirror::envelope`). None where the frame's wave maps are not `waves.wgsl`'s (a cycle
+/// or a CPU synthesis: uploads).
+pub(super) fn waves_verdicts(
+    scene: &Scene,
+    plan: &FramePlan,
+    gpu: &GpuSide<'_>,
+) -> anyhow::Result<Vec<(ResourceId, ocean_verify::envelope::FloatVerdict)>> {
+    use ocean_core::plan::WavesKernel;
+    if !plan.runs(Pass::Waves) || plan.runs(Pass::Cycle) || plan.waves_kernel != WavesKernel::Shader
+    {
+        return Ok(Vec::new());
+    }
+    let surface = scene.ocean.surface()?;
+    let sets = [
+        (
+            &surface.displacement,
+            [Some(ResourceId::Displacement), Some(ResourceId::DisplacementSlopes), None],
+        ),
+        (&surface.bump, [None, None, Some(ResourceId::Bump)]),
+    ];
+    let mut out = Vec::new();
+    for (modes, ids) in sets {
+        if ids.iter().flatten().all(|&id| gpu.map(id).is_none()) {
+            continue;
+        }
+        let mirror = ocean_cpu::shaders::waves::WavesMirror::new(modes)?;
+        let params = mirror.uniforms(scene.ocean.time_s, scene.ocean.choppiness)?;
+        let env = mirror.envelope(&params);
+        for (id, env) in ids.into_iter().zip(env) {
+            let Some((id, ((w, h), texels))) = id.and_then(|id| Some((id, gpu.map(id)?))) else {
+                continue;
+            };
+            let n = params.size;
+            if (w, h) != (n, n) {
+                bail!("{}: {w}x{h}, the plan's map {n}x{n}", id.name());
+            }
+            let env: Vec<Option<[ocean_cpu::envelope::Iv; 4]>> =
+                env.into_iter().map(Some).collect();
+            out.push((id, ocean_verify::envelope::judge_floats(id.name(), &env, texels, w)));
+        }
+    }
+    Ok(out)
+}
+
+/// Pass `foam`'s field after a state's first frame (the warm-up and one step, from an empty
+/// field) against its envelope given the GPU's own displacement map (waves `fft`) or the
+/// waves' analytic Jacobian (`gerstner`). None where the frame has no field, or its J comes
+/// from a displacement map the frame does not hold.
+pub(super) fn foam_verdict(
+    scene: &Scene,
+    plan: &FramePlan,
+    gpu: &GpuSide<'_>,
+) -> anyhow::Result<Option<ocean_verify::envelope::FloatVerdict>> {
+    use ocean_cpu::sampler::Texture2D;
+    let Some(((w, h), field)) = gpu.map(ResourceId::FoamField).filter(|_| plan.runs(Pass::Foam))
+    else {
+        return Ok(None);
+    };
+    let state = ocean_core::graph::FrameState::new(0.0);
+    let frame = ocean_core::graph::FrameInputs::new(scene, plan, &state)?;
+    let eye = [frame.camera.eye.x, frame.camera.eye.z];
+    let work = ocean_core::graph::FoamWork::new(scene, plan, &state, eye, frame.mesh.origin);
+    let n = work.grid.size;
+    if (w, h) != (n, n) {
+        bail!("foam_field: {w}x{h}, the plan's field {n}x{n}");
+    }
+    let reads_map =
+        work.steps.iter().any(|u| u.analytic == 0) && frame.uniforms.passes.waves != 0.0;
+    let displacement = match gpu.map(ResourceId::Displacement) {
+        Some(((dw, dh), t)) => Texture2D::new(dw, dh, t.to_vec()),
+        None if !reads_map => Texture2D::new(1, 1, vec![[0.0; 4]]),
+        None => return Ok(None),
+    };
+    let env: Vec<Option<[ocean_cpu::envelope::Iv; 1]>> =
+        ocean_cpu::shaders::foam::envelope(&work.steps, &frame.uniforms, &displacement)
+            .into_iter()
+            .map(|v| Some([v]))
+            .collect();
+    Ok(Some(ocean_verify::envelope::judge_floats("foam_field", &env, field, w)))
+}
+
+/// The rasteriser's envelope of pass `shadow_map` (the objects' triangles, uploaded, seen
+/// from the sun): the map's size, each texel's interval and whether its coverage is
+/// ambiguous. None where the plan draws no shadow map.
+fn shadow_envelope(
+    scene: &Scene,
+    plan: &FramePlan,
+    frame: &ocean_core::graph::FrameInputs<'_>,
+) -> Option<([u32; 2], Vec<ocean_cpu::envelope::Iv>, Vec<bool>)> {
+    let pass = plan.pass(Pass::ShadowMap).filter(|_| plan.runs(Pass::ShadowMap))?;
+    let size = plan.resource(ResourceId::ShadowMap)?.size;
+    let tris: Vec<[[f32; 3]; 3]> =
+        ocean_core::frame::pass_triangles(scene, &frame.poses, pass, frame.camera.eye)
+            .iter()
+            .map(|t| t.map(|v| v.position))
+            .collect();
+    let (env, ambiguous) = ocean_cpu::shaders::shadow::envelope(&tris, &frame.uniforms, size);
+    Some((size, env, ambiguous))
+}
+
+/// Pass `shadow_map`'s depth map against [`shadow_envelope`], and the share of texels whose
+/// coverage is ambiguous. None where the frame holds no shadow map.
+pub(super) fn shadow_verdict(
+    scene: &Scene,
+    plan: &FramePlan,
+    gpu: &GpuSide<'_>,
+) -> anyhow::Result<Option<(ocean_verify::envelope::FloatVerdict, f64)>> {
+    let Some(((w, _), texels)) = gpu.map(ResourceId::ShadowMap) else { return Ok(None) };
+    let frame =
+        ocean_core::graph::FrameInputs::new(scene, plan, &ocean_core::graph::FrameState::new(0.0))?;
+    let Some((_, env, ambiguous)) = shadow_envelope(scene, plan, &frame) else {
+        return Ok(None);
+    };
+    if env.len() != texels.len() {
+        bail!("shadow_map: {} texels, the plan's map {}", texels.len(), env.len());
+    }
+    if env.iter().all(|c| c.full) {
+        return Ok(None);
+    }
+    let share = ambiguous.iter().filter(|&&a| a).count() as f64 / ambiguous.len().max(1) as f64;
+    let env: Vec<Option<[ocean_cpu::envelope::Iv; 1]>> =
+        env.into_iter().map(|v| Some([v])).collect();
+    Ok(Some((ocean_verify::envelope::judge_floats("shadow_map", &env, texels, w), share)))
+}
+
+/// One of pass `objects`' maps (reflection or refraction) against the rasteriser's envelope
+/// of the objects' triangles, each fragment shaded from its varyings' envelope (ocean-cpu
+/// `objects::map_envelope`); the shadow map it reads is the GPU's own where the frame holds
+/// it, else its envelope. Also the share of texels whose coverage or discard is ambiguous.
+/// None where the frame holds no such map, where shading `chiu` clips at a displacement map
+/// the frame does not hold, or where the envelope does not carry its shading yet (the
+/// floor's relief march).
+pub(super) fn map_verdict(
+    scene: &Scene,
+    plan: &FramePlan,
+    gpu: &GpuSide<'_>,
+    map: ocean_cpu::shaders::objects::ObjectMap,
+) -> anyhow::Result<Option<(ResourceId, ocean_verify::envelope::FloatVerdict, f64)>> {
+    use ocean_cpu::envelope::Iv;
+    use ocean_cpu::shaders::objects::ObjectMap;
+    let (id, pass) = match map {
+        ObjectMap::Reflection => (ResourceId::ReflectionMap, Pass::ReflectionMap),
+        ObjectMap::Refraction => (ResourceId::RefractionMap, Pass::RefractionMap),
+    };
+    let (Some(((w, h), texels)), Some(planned), Some(r)) =
+        (gpu.map(id), plan.pass(pass).filter(|_| plan.runs(pass)), plan.resource(id))
+    else {
+        return Ok(None);
+    };
+    let frame =
+        ocean_core::graph::FrameInputs::new(scene, plan, &ocean_core::graph::FrameState::new(0.0))?;
+    let tris = ocean_core::frame::pass_triangles(scene, &frame.poses, planned, frame.camera.eye);
+    let (dims, shadow) =
+        match (gpu.map(ResourceId::ShadowMap), shadow_envelope(scene, plan, &frame)) {
+            (Some(((sw, sh), t)), _) => ([sw, sh], t.iter().map(|t| Iv::point(t[0])).collect()),
+            (None, Some((size, env, _))) => (size, env),
+            (None, None) => ([1, 1], vec![Iv::point(1.0)]),
+        };
+    let occluder = |x: u32, y: u32| shadow[y as usize * dims[0] as usize + x as usize];
+    // Shading `chiu` clips at the wave height under the point: the GPU's own displacement map.
+    let displacement = match gpu.map(ResourceId::Displacement) {
+        Some(((dw, dh), t)) => ocean_cpu::sampler::Texture2D::new(dw, dh, t.to_vec()),
+        None if frame.uniforms.chiu.clip_waves == 0.0 => {
+            ocean_cpu::sampler::Texture2D::new(1, 1, vec![[0.0; 4]])
+        }
+        None => return Ok(None),
+    };
+    let inputs = ocean_cpu::shaders::objects::MapInputs {
+        frame: &frame.uniforms,
+        size: [w, h],
+        format: r.format.storage(),
+        clear: r.clear,
+        shadow_dims: dims,
+        occluder: &occluder,
+        displacement: &displacement,
+    };
+    let Some((env, ambiguous)) = ocean_cpu::shaders::objects::map_envelope(map, &tris, &inputs)
+    else {
+        return Ok(None);
+    };
+    if env.len() != texels.len() {
+        bail!("{}: {} texels, the map {w}x{h}", id.name(), texels.len());
+    }
+    // An envelope that is anything everywhere (a vertex the clipper's bounds cannot place)
+    // judges nothing: not judged, never passed.
+    if env.iter().all(|t| t.iter().all(|c| c.full)) {
+        return Ok(None);
+    }
+    let share = ambiguous.iter().filter(|&&a| a).count() as f64 / ambiguous.len().max(1) as f64;
+    let env: Vec<Option<[Iv; 4]>> = env.into_iter().map(Some).collect();
+    Ok(Some((id, ocean_verify::envelope::judge_floats(id.name(), &env, texels, w), share)))
+}
+
+/// One of pass `wave_mips`' chains against its envelope given the GPU's own slope map and
+/// levels (ocean-cpu `wave_mips::envelope`).
+pub(super) fn wave_mips_verdict(
+    chain: ResourceId,
+    (w, h): (u32, u32),
+    src: &[[f32; 4]],
+    atlas: &[[f32; 4]],
+) -> anyhow::Result<ocean_verify::envelope::FloatVerdict> {
+    use ocean_cpu::mip::{MipChain, level_count, level_row};
+    use ocean_cpu::sampler::Texture2D;
+    let levels = level_count(w, h);
+    let rows = level_row(h, levels);
+    if atlas.len() != w as usize * rows as usize {
+        bail!("{}: {} texels, the chain of a {w}x{h} map {w}x{rows}", chain.name(), atlas.len());
+    }
+    let gpu =
+        MipChain { width: w, height: h, levels, atlas: Texture2D::new(w, rows, atlas.to_vec()) };
+    let env = ocean_cpu::shaders::wave_mips::envelope(&Texture2D::new(w, h, src.to_vec()), &gpu);
+    Ok(ocean_verify::envelope::judge_floats(chain.name(), &env, atlas, w))
+}
+
+/// A GPU's bloom chain (its atlas, read back or from a dump) for a `w` × `h` frame, checked
+/// against the plan's chain size.
+pub(super) fn bloom_chain(
+    inputs: &ocean_core::graph::BloomInputs,
+    (w, h): (u32, u32),
+    name: &str,
+    atlas: &[[f32; 4]],
+) -> anyhow::Result<ocean_cpu::mip::MipChain> {
+    let [bw, bh] = ocean_core::bloom::level_size(w, h, 0);
+    let levels = inputs.down.len() as u32;
+    let rows = ocean_cpu::mip::level_row(bh, levels);
+    if atlas.len() != bw as usize * rows as usize {
+        bail!("{name}: {} texels, the plan's chain {bw}x{rows}", atlas.len());
+    }
+    let atlas = ocean_cpu::sampler::Texture2D::new(bw, rows, atlas.to_vec());
+    Ok(ocean_cpu::mip::MipChain { width: bw, height: bh, levels, atlas })
+}
+
+/// Pass `bloom`'s chains against its envelope given the GPU's own inputs (each level from the
+/// GPU's level before it: ocean-cpu `bloom::envelope`).
+pub(super) fn bloom_verdicts(
+    scene: &Scene,
+    (w, h): (u32, u32),
+    hdr: &[[f32; 4]],
+    down: &[[f32; 4]],
+    up: &[[f32; 4]],
+) -> anyhow::Result<Vec<ocean_verify::envelope::FloatVerdict>> {
+    use ocean_cpu::sampler::Texture2D;
+    let inputs = ocean_core::graph::BloomInputs::new(scene);
+    let bw = ocean_core::bloom::level_size(w, h, 0)[0];
+    let down = bloom_chain(&inputs, (w, h), "bloom_down", down)?;
+    let up = bloom_chain(&inputs, (w, h), "bloom_up", up)?;
+    let hdr = Texture2D::new(w, h, hdr.to_vec());
+    let (down_env, up_env) = ocean_cpu::shaders::bloom::envelope(&hdr, &down, &up, &inputs);
+    Ok(vec![
+        ocean_verify::envelope::judge_floats("bloom_down", &down_env, &down.atlas.texels, bw),
+        ocean_verify::envelope::judge_floats("bloom_up", &up_env, &up.atlas.texels, bw),
+    ])
+}
