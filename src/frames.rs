@@ -13,7 +13,7 @@ use ocean_gpu::FrameMap;
 
 use ocean::animation::{FramePattern, FrameRange, Shard};
 
-use crate::render::{Backend, encode};
+use crate::backend::{Backend, encode};
 
 /// What `ocean render --frames` was asked.
 pub(crate) struct Sequence<'a> {

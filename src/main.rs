@@ -1,6 +1,7 @@
 //! `ocean`: the command-line program. One module per subcommand; each returns an
 //! `anyhow::Result` whose message a user can act on, printed without a backtrace.
 
+mod backend;
 mod bench;
 mod compare;
 mod frames;

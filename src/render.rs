@@ -4,12 +4,14 @@
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
-use anyhow::{Context, anyhow, bail};
+use anyhow::{anyhow, bail};
 use indicatif::{ProgressBar, ProgressStyle};
 use ocean_core::plan::{FramePlan, OutputKind, Pass};
 use ocean_gpu::FrameMap;
 
-use ocean::output::{Channel, encode_exr, encode_png, parse_size};
+use ocean::output::parse_size;
+
+use crate::backend::{Backend, encode};
 
 /// Arguments of `ocean render`.
 #[derive(clap::Args, Debug)]
@@ -65,25 +67,6 @@ pub struct Args {
     /// before it starts.
     #[arg(long)]
     replay_any: bool,
-}
-
-/// Render back ends.
-#[derive(clap::ValueEnum, Clone, Copy, Debug)]
-pub(crate) enum Backend {
-    /// The deterministic software renderer (the correctness oracle).
-    Cpu,
-    /// The wgpu real-time path.
-    Gpu,
-}
-
-impl Backend {
-    /// The memory estimate's side of this back end.
-    pub(crate) fn memory(self) -> ocean_core::plan::memory::MemoryBackend {
-        match self {
-            Self::Cpu => ocean_core::plan::memory::MemoryBackend::Cpu,
-            Self::Gpu => ocean_core::plan::memory::MemoryBackend::Gpu,
-        }
-    }
 }
 
 /// Runs `ocean render`.
@@ -251,31 +234,6 @@ fn dump(
     let files = ocean::dump::write(dir, scene, (&shown, &text), plan, adapter, map, ldr)?;
     eprintln!("dumped {} file(s) to {}: {}", files.len(), dir.display(), files.join(", "));
     Ok(())
-}
-
-/// A frame's file: the 8-bit picture as PNG, or the linear HDR frame as an RGBA EXR.
-pub(crate) fn encode(
-    kind: OutputKind,
-    ldr: Option<Vec<u8>>,
-    hdr: &[[f32; 4]],
-    w: u32,
-    h: u32,
-) -> anyhow::Result<Vec<u8>> {
-    Ok(match kind {
-        OutputKind::Ldr => {
-            let rgba = ldr.context("the plan has no tonemap pass")?;
-            encode_png(rgba, w, h)?
-        }
-        OutputKind::Hdr => {
-            let channel = |c: usize| hdr.iter().map(|p| p[c]).collect::<Vec<f32>>();
-            let channels = ["R", "G", "B", "A"]
-                .iter()
-                .enumerate()
-                .map(|(c, name)| Channel { name, data: channel(c) })
-                .collect();
-            encode_exr(w as usize, h as usize, channels)?
-        }
-    })
 }
 
 /// The CPU render with a progress bar for renders that take over a second.
