@@ -23,6 +23,14 @@ struct UiPaint {
     screen: egui_wgpu::ScreenDescriptor,
 }
 
+impl Drop for UiPaint {
+    // `present` applies the deltas (or the frame was lost with them, as a release build would
+    // lose them too); epaint's debug assertion asks that what is dropped be cleared first.
+    fn drop(&mut self) {
+        self.textures.clear();
+    }
+}
+
 /// The window's next image, acquired for a frame.
 struct Acquired {
     texture: wgpu::SurfaceTexture,
