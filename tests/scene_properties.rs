@@ -152,3 +152,72 @@ fn the_scene_reference_lists_every_limit_as_validation_applies_it() {
         missing.join("\n")
     );
 }
+
+/// The value just past a limit's bound (`above`: past its max), `None` where nothing lies
+/// past it (−f64::MAX, ∞): for a whole key one more or less, else a relative step of 1e-6
+/// (at least 1e-9).
+fn past(l: &ocean_core::scene::Limit, above: bool) -> Option<f64> {
+    let b = if above { l.max } else { l.min };
+    if !b.is_finite() || b.abs() == f64::MAX {
+        return None;
+    }
+    let step = if l.whole { 1.0 } else { (b.abs() * 1e-6).max(1e-9) };
+    Some(if above { b + step } else { b - step })
+}
+
+/// The declaration of a key's range is what validation enforces: every key of `LIMITS` set
+/// just past either bound (each component of a vector) is refused, naming that key, and at
+/// the bound itself (the scenes of `every_key_at_its_limits_renders_finite_pixels`) is not
+/// refused for it. A limit that validation forgot to check fails here; so does a check
+/// that refuses inside the declared range.
+#[test]
+fn every_limit_is_enforced_at_both_bounds_and_names_its_key() {
+    use extreme_scene::{VECTOR_KEYS, VECTOR2_KEYS, literal, scene_text};
+    use ocean_core::scene::{LIMITS, SceneError, SceneSource};
+    let refused_key =
+        |text: &str| match ocean_core::scene::Scene::from_toml(text, SceneSource::Text) {
+            Err(SceneError::Invalid { key, .. }) => Some(key.unwrap_or_default()),
+            Err(e) => Some(format!("(no key) {e}")),
+            Ok(_) => None,
+        };
+    let (mut checked, mut failures) = (0, Vec::new());
+    for l in LIMITS {
+        // Where an index stands in the key, any element (an object of the kind that takes
+        // the key) may be the one refused.
+        let pattern = |k: &str| {
+            k.split('.')
+                .map(|p| if p.parse::<usize>().is_ok() { "*" } else { p })
+                .collect::<Vec<_>>()
+                .join(".")
+        };
+        let n = if VECTOR_KEYS.contains(&l.key) {
+            3
+        } else if VECTOR2_KEYS.contains(&l.key) {
+            2
+        } else {
+            1
+        };
+        for above in [false, true] {
+            let Some(v) = past(l, above) else { continue };
+            // `literal` writes a whole number unsigned; one below 0 must read as itself.
+            let mut value = if l.whole { format!("{}", v as i64) } else { literal(l, v) };
+            if n > 1 || l.key == "chiu.scales" {
+                value = format!("[{}]", vec![value; n].join(", "));
+            }
+            let mut values = vec![(l.key, value)];
+            if !l.key.starts_with("sun.") {
+                values.push(("sun.intensity", "5.0".to_owned()));
+            }
+            let text = scene_text(&values, &["sphere", "box", "boat"]);
+            checked += 1;
+            match refused_key(&text) {
+                Some(k) if pattern(&k) == l.key => {}
+                Some(k) => failures.push(format!("{} = {v}: refused for `{k}`", l.key)),
+                None => failures.push(format!("{} = {v}: accepted", l.key)),
+            }
+        }
+    }
+    eprintln!("{checked} values just past a limit, {} not refused for their key", failures.len());
+    assert!(checked > 150, "only {checked} bounds were tried");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
