@@ -4,14 +4,16 @@
 //!
 //! Two layers:
 //! - [`LIMITS`], one range per numeric key (vectors and colours per component), each with the
-//!   reason for its bounds. docs/scenes.md's table, the property test's extreme scenes and the
-//!   fuzzer read the same table.
+//!   reason for its bounds, declared once (`keys!`) with where a scene holds the key, which
+//!   is what validation checks. docs/scenes.md's table, the property test's extreme scenes and
+//!   the fuzzer read the same table; `tests/scene_properties.rs` sets each key just past
+//!   either bound and expects the refusal to name it.
 //! - Cross-key checks: the quantities the frame derives from several keys (the bump map's
 //!   band, the time the wave phase holds, the view, the spectrum, the water mesh) are built
 //!   here with the constructors the frame uses, and a failure is reported as the scene key it
 //!   comes from, never as the internal quantity.
 
-use super::{ObjectKind, Scene, Shape};
+use super::{Object, ObjectKind, Scene, Shape};
 use crate::error::number;
 use crate::waves::coastal::MAX_CORRECTION_WAVES;
 use crate::waves::gerstner::MAX_GERSTNER_WAVES;
@@ -64,254 +66,397 @@ pub const MIN_LENGTH_M: f64 = 1.0e-3;
 /// The cause, 1/w interpolating to exactly 0 on a far-patch triangle, is open.
 pub const MAX_GRID_SPACING_M: f64 = 16.0;
 
-/// Every numeric key's range, in scene-file order.
-pub const LIMITS: &[Limit] = &[
+/// What a scene holds of one key: per element (its index, for a key with a `*`), the value's
+/// components; empty where the scene does not set the key (an absent `[sun]` or `[terrain]`,
+/// an object of another kind).
+type Values = Vec<(usize, Vec<f64>)>;
+
+fn one(v: f64) -> Values {
+    vec![(0, vec![v])]
+}
+
+fn vector(v: &[f64]) -> Values {
+    vec![(0, v.to_vec())]
+}
+
+/// The elements of an array section that hold the key.
+fn each<T>(items: &[T], f: impl Fn(&T) -> Option<Vec<f64>>) -> Values {
+    items.iter().enumerate().filter_map(|(i, x)| f(x).map(|v| (i, v))).collect()
+}
+
+/// A sphere's radius.
+fn radius(o: &Object) -> Option<Vec<f64>> {
+    match o.shape() {
+        Some(Shape::Sphere { radius }) => Some(vec![radius]),
+        _ => None,
+    }
+}
+
+/// A box's or a boat's size.
+fn size(o: &Object) -> Option<Vec<f64>> {
+    match o.shape() {
+        Some(Shape::Box { size } | Shape::Boat { size, .. }) => Some(size.to_vec()),
+        _ => None,
+    }
+}
+
+/// A boat's heading.
+fn heading(o: &Object) -> Option<Vec<f64>> {
+    match o.shape() {
+        Some(Shape::Boat { heading_deg, .. }) => Some(vec![heading_deg]),
+        _ => None,
+    }
+}
+
+/// A boat's mass, where given.
+fn mass(o: &Object) -> Option<Vec<f64>> {
+    match o.shape() {
+        Some(Shape::Boat { mass_kg: Some(m), .. }) => Some(vec![m]),
+        _ => None,
+    }
+}
+
+/// Declares every numeric key once: its range and why ([`LIMITS`], which docs/scenes.md's
+/// table, the fuzzers and the property tests read) and where a scene holds it (which
+/// [`Scene::validate`] checks against the range).
+macro_rules! keys {
+    ($( $kind:ident($key:literal, $min:expr, $max:expr, $why:expr $(,)?) => $values:expr; )+) => {
+        /// Every numeric key's range, in scene-file order.
+        pub const LIMITS: &[Limit] = &[ $( $kind($key, $min, $max, $why), )+ ];
+
+        /// Where a scene holds each key of [`LIMITS`], in the same order.
+        const VALUES: &[fn(&Scene) -> Values] = &[ $( $values, )+ ];
+    };
+}
+
+keys! {
     real(
         "ocean.wind_speed",
         0.0,
         200.0,
         "m/s at 10 m; 0 is a flat sea, 200 is above any measured surface wind",
-    ),
-    real("ocean.wind_direction_deg", -1.0e6, 1.0e6, "degrees; any angle, within f32 range"),
+    ) => |s| one(s.ocean.wind_speed);
+    real("ocean.wind_direction_deg", -1.0e6, 1.0e6, "degrees; any angle, within f32 range")
+        => |s| one(s.ocean.wind_direction_deg);
     real(
         "ocean.fetch_km",
         1.0e-3,
         2.0e4,
         "JONSWAP/TMA fetch from 1 m to half the Earth's circumference",
-    ),
-    real("ocean.depth_m", 1.0e-2, f64::INFINITY, "m; inf is deep water"),
+    ) => |s| one(s.ocean.fetch_km);
+    real("ocean.depth_m", 1.0e-2, f64::INFINITY, "m; inf is deep water")
+        => |s| one(s.ocean.depth_m);
     real(
         "ocean.peak_enhancement",
         1.0,
         20.0,
         "JONSWAP γ: 1 is Pierson–Moskowitz, 3.3 the JONSWAP mean",
-    ),
+    ) => |s| one(s.ocean.peak_enhancement);
     real(
         "ocean.patch_size_m",
         1.0e-2,
         65536.0,
         "m; at most 16 m per sample of the largest grid (MAX_GRID_SPACING_M × 4096)",
-    ),
+    ) => |s| one(s.ocean.patch_size_m);
     whole(
         "ocean.resolution",
         2.0,
         super::MAX_RESOLUTION as f64,
         "4096² complex f64 fields are ~2 GiB of scratch",
-    ),
-    whole("ocean.bump_resolution", 2.0, super::MAX_RESOLUTION as f64, "as ocean.resolution"),
+    ) => |s| one(f64::from(s.ocean.resolution));
+    whole("ocean.bump_resolution", 2.0, super::MAX_RESOLUTION as f64, "as ocean.resolution")
+        => |s| one(f64::from(s.ocean.bump_resolution));
     whole(
         "ocean.bump_patch_divisor",
         1.0,
         super::MAX_BUMP_PATCH_DIVISOR as f64,
         "the bump modes' lattice index divisor × resolution stays far inside i32",
-    ),
-    real("ocean.choppiness", 0.0, 10.0, "Tessendorf's λ; beyond ~2 the surface folds everywhere"),
+    ) => |s| one(f64::from(s.ocean.bump_patch_divisor));
+    real("ocean.choppiness", 0.0, 10.0, "Tessendorf's λ; beyond ~2 the surface folds everywhere")
+        => |s| one(s.ocean.choppiness);
     real(
         "ocean.time_s",
         -f64::MAX,
         f64::MAX,
         "s; without a loop period |t| < 2^55 s, what the wave phase's tick count holds",
-    ),
+    ) => |s| one(s.ocean.time_s);
     real(
         "ocean.loop_period_s",
         0.0,
         crate::waves::uniforms::MAX_TIME_S,
         "s; 0 = no looping; at most 2^55 s, so the reduced time fits the wave phase",
-    ),
+    ) => |s| one(s.ocean.loop_period_s);
     real(
         "ocean.phillips_amplitude",
         0.0,
         1.0,
         "775 × the default α/(2π); steeper than any sea that does not break",
-    ),
-    real("ocean.phillips_small_wave_m", 0.0, 1.0e5, "m; as ocean.patch_size_m"),
+    ) => |s| one(s.ocean.phillips_amplitude);
+    real("ocean.phillips_small_wave_m", 0.0, 1.0e5, "m; as ocean.patch_size_m")
+        => |s| one(s.ocean.phillips_small_wave_m);
     real(
         "camera.position",
         -MAX_COORDINATE_M,
         MAX_COORDINATE_M,
         "m; the height y within ±1e6 m: the water mesh is built for |eye.y| ≤ 1e6 m",
-    ),
-    real("camera.look_at", -MAX_COORDINATE_M, MAX_COORDINATE_M, "m; as camera.position"),
+    ) => |s| vector(&s.camera.position);
+    real("camera.look_at", -MAX_COORDINATE_M, MAX_COORDINATE_M, "m; as camera.position")
+        => |s| vector(&s.camera.look_at);
     real(
         "camera.fov_y_deg",
         1.0e-2,
         179.0,
         "degrees; the projection's 1/tan(fov/2) stays below 2e4",
-    ),
+    ) => |s| one(s.camera.fov_y_deg);
     whole(
         "camera.width",
         1.0,
         super::MAX_IMAGE_SIDE as f64,
         "pixels; a 16384² f32 RGBA frame is 4 GiB",
-    ),
-    whole("camera.height", 1.0, super::MAX_IMAGE_SIDE as f64, "pixels; as camera.width"),
-    real("camera.exposure", 1.0e-6, 1.0e6, "multiplier before the tonemap; the tonemap needs > 0"),
+    ) => |s| one(f64::from(s.camera.width));
+    whole("camera.height", 1.0, super::MAX_IMAGE_SIDE as f64, "pixels; as camera.width")
+        => |s| one(f64::from(s.camera.height));
+    real("camera.exposure", 1.0e-6, 1.0e6, "multiplier before the tonemap; the tonemap needs > 0")
+        => |s| one(s.camera.exposure);
     real(
         "sun.direction",
         -MAX_COORDINATE_M,
         MAX_COORDINATE_M,
         "normalised on use; its length must be at least 1e-6",
-    ),
-    real("sun.color", 0.0, MAX_COLOUR, "linear RGB"),
+    ) => |s| s.sun.as_ref().map_or_else(Vec::new, |x| vector(&x.direction));
+    real("sun.color", 0.0, MAX_COLOUR, "linear RGB")
+        => |s| s.sun.as_ref().map_or_else(Vec::new, |x| vector(&x.color));
     real(
         "sun.intensity",
         0.0,
         MAX_SUN_INTENSITY,
         "radiance of the disc; keeps radiance × exposure inside f32",
-    ),
-    real("sun.turbidity", crate::sky::TURBIDITY_MIN, crate::sky::TURBIDITY_MAX, "Preetham's fit"),
-    real("sun.time_of_day_h", 0.0, 24.0, "h, local apparent solar time; sets sun.direction"),
-    real("sun.latitude_deg", -90.0, 90.0, "degrees north, for sun.time_of_day_h"),
-    real("sun.day_of_year", 1.0, 366.0, "1 = 1 January, for sun.time_of_day_h"),
+    ) => |s| s.sun.as_ref().map_or_else(Vec::new, |x| one(x.intensity));
+    real("sun.turbidity", crate::sky::TURBIDITY_MIN, crate::sky::TURBIDITY_MAX, "Preetham's fit")
+        => |s| s.sun.as_ref().map_or_else(Vec::new, |x| one(x.turbidity));
+    real("sun.time_of_day_h", 0.0, 24.0, "h, local apparent solar time; sets sun.direction")
+        => |s| s.sun.as_ref().and_then(|x| x.time_of_day_h).map_or_else(Vec::new, one);
+    real("sun.latitude_deg", -90.0, 90.0, "degrees north, for sun.time_of_day_h")
+        => |s| s.sun.as_ref().map_or_else(Vec::new, |x| one(x.latitude_deg));
+    real("sun.day_of_year", 1.0, 366.0, "1 = 1 January, for sun.time_of_day_h")
+        => |s| s.sun.as_ref().map_or_else(Vec::new, |x| one(x.day_of_year));
     real(
         "water.ior",
         1.0e-2,
         1.0e2,
         "η; 1 is no interface, < 1 total internal reflection from above",
-    ),
-    real("water.color", 0.0, MAX_COLOUR, "linear RGB radiance at sun intensity 1"),
-    real("water.extinction_per_m", 0.0, 1.0e3, "1/m; 1e3 is opaque within a millimetre"),
+    ) => |s| one(s.water.ior);
+    real("water.color", 0.0, MAX_COLOUR, "linear RGB radiance at sun intensity 1")
+        => |s| vector(&s.water.color);
+    real("water.extinction_per_m", 0.0, 1.0e3, "1/m; 1e3 is opaque within a millimetre")
+        => |s| one(s.water.extinction_per_m);
     whole(
         "quality.fresnel_table_size",
         2.0,
         crate::tables::MAX_TABLE_SIZE as f64,
         "texels per side",
-    ),
-    real("quality.reflection_map_scale", 1.0e-3, 1.0, "fraction of the viewport's side"),
+    ) => |s| one(f64::from(s.quality.fresnel_table_size));
+    real("quality.reflection_map_scale", 1.0e-3, 1.0, "fraction of the viewport's side")
+        => |s| one(s.quality.reflection_map_scale);
     real(
         "quality.lod_split_threshold",
         1.0e-4,
         10.0,
         "radians; small values make large meshes (the memory estimate bounds them)",
-    ),
+    ) => |s| one(s.quality.lod_split_threshold);
     real(
         "quality.projected_grid_cell_px",
         0.5,
         64.0,
         "pixels between the projected grid's lines (surface `projected_grid`)",
-    ),
-    real("quality.clipmap_cell_m", 1.0e-2, 1.0e2, "m, level 0's quad side (surface `clipmap`)"),
+    ) => |s| one(s.quality.projected_grid_cell_px);
+    real("quality.clipmap_cell_m", 1.0e-2, 1.0e2, "m, level 0's quad side (surface `clipmap`)")
+        => |s| one(s.quality.clipmap_cell_m);
     whole(
         "quality.clipmap_cells",
         16.0,
         256.0,
         "quads per level side, a multiple of 8 (surface `clipmap`)",
-    ),
-    real("terrain.depth_m", -1.0e4, 1.0e4, "m below the sea plane at terrain.center"),
-    real("terrain.center", -MAX_COORDINATE_M, MAX_COORDINATE_M, "m; as camera.position"),
-    real("terrain.slope", 0.0, 10.0, "metres of rise per metre; 10 is 84°"),
-    real("terrain.slope_direction_deg", -360.0, 360.0, "degrees from +x towards +z"),
-    real("terrain.extent_m", 1.0, 1.0e5, "m, the side of the drawn square"),
-    real("terrain.color", 0.0, MAX_COLOUR, "linear RGB albedo"),
+    ) => |s| one(f64::from(s.quality.clipmap_cells));
+    real("terrain.depth_m", -1.0e4, 1.0e4, "m below the sea plane at terrain.center")
+        => |s| s.terrain.as_ref().map_or_else(Vec::new, |t| one(t.depth_m));
+    real("terrain.center", -MAX_COORDINATE_M, MAX_COORDINATE_M, "m; as camera.position")
+        => |s| s.terrain.as_ref().map_or_else(Vec::new, |t| vector(&t.center));
+    real("terrain.slope", 0.0, 10.0, "metres of rise per metre; 10 is 84°")
+        => |s| s.terrain.as_ref().map_or_else(Vec::new, |t| one(t.slope));
+    real("terrain.slope_direction_deg", -360.0, 360.0, "degrees from +x towards +z")
+        => |s| s.terrain.as_ref().map_or_else(Vec::new, |t| one(t.slope_direction_deg));
+    real("terrain.extent_m", 1.0, 1.0e5, "m, the side of the drawn square")
+        => |s| s.terrain.as_ref().map_or_else(Vec::new, |t| one(t.extent_m));
+    real("terrain.color", 0.0, MAX_COLOUR, "linear RGB albedo")
+        => |s| s.terrain.as_ref().map_or_else(Vec::new, |t| vector(&t.color));
     real(
         "terrain.height_range_m",
         -1.0e4,
         1.0e4,
         "m at heightmap samples 0 and 1, added to the plane",
-    ),
-    real("terrain.island_radius_m", 0.0, 1.0e4, "m, the island's waterline on a flat floor"),
-    real("terrain.island_height_m", 0.0, 1.0e4, "m, the island's top above the sea plane"),
-    real("terrain.shore_slope", 1.0e-3, 10.0, "fall per metre of the island's shore"),
+    ) => |s| s.terrain.as_ref().map_or_else(Vec::new, |t| vector(&t.height_range_m));
+    real("terrain.island_radius_m", 0.0, 1.0e4, "m, the island's waterline on a flat floor")
+        => |s| s.terrain.as_ref().map_or_else(Vec::new, |t| one(t.island_radius_m));
+    real("terrain.island_height_m", 0.0, 1.0e4, "m, the island's top above the sea plane")
+        => |s| s.terrain.as_ref().map_or_else(Vec::new, |t| one(t.island_height_m));
+    real("terrain.shore_slope", 1.0e-3, 10.0, "fall per metre of the island's shore")
+        => |s| s.terrain.as_ref().map_or_else(Vec::new, |t| one(t.shore_slope));
     real(
         "terrain.wave_damping",
         0.0,
         4.0,
         "waves fft/gerstner kept over h: clamp(h/(r·λ)); 0.5 Crest's",
-    ),
-    real("ggx.roughness", 0.01, 1.0, "perceptual; α = roughness²"),
-    real("ggx.detail_strength", 0.0, 1.0, "RMS slope of the detail normal map; 0 leaves it out"),
-    real("ggx.detail_wavelength_m", 1.0e-3, 100.0, "m, the detail map's median wavelength"),
-    real("ggx.detail_speed_m_s", -100.0, 100.0, "m/s, the detail map's drift with the wind"),
-    real("chiu.zeta_m", 0.0, 100.0, "m; eq. 6's map shift at 1 m of view depth"),
-    real("chiu.shininess_per_m", 1.0e-3, 1.0e3, "eq. 5's Phong exponent per metre of depth"),
-    real("chiu.kd_per_m", 0.0, 10.0, "1/m; eq. 8's k_d"),
-    real("chiu.open_sea_depth_m", 0.0, 1.0e4, "m; eq. 8's y without a sea floor"),
-    real("chiu.scales", 0.01, 100.0, "eq. 1's scale factors, one to four"),
-    real("clouds.coverage", 0.0, 1.0, "0 a clear sky, 1 overcast"),
-    real("clouds.altitude_m", 1.0, 1.0e5, "m above the sea"),
-    real("clouds.scale_m", 1.0, 1.0e6, "m, the noise's coarsest cell"),
-    real("clouds.wind", -200.0, 200.0, "m/s, (x, z)"),
-    real("clouds.albedo", 0.0, 1.0, "the clouds' reflectance"),
-    whole("clouds.seed", 0.0, 4_294_967_295.0, "any u32"),
-    whole("spray.particles", 1.0, 1_048_576.0, "slots; 2^20 particles are 32 MiB of state"),
-    real("spray.emit_chance", 0.0, 1.0, "per step and free slot"),
-    real("spray.speed", 0.0, 100.0, "m/s"),
-    real("spray.lifetime_s", 1.0e-3, 100.0, "s"),
-    real("spray.step_s", 1.0e-4, 1.0, "s, one step per frame"),
-    whole("spray.warmup_steps", 0.0, 10_000.0, "steps before a state's first frame"),
-    real("spray.size_m", 1.0e-3, 10.0, "m, a sprite's side"),
-    real("spray.intensity", 0.0, MAX_COLOUR, "radiance of a sprite's centre"),
-    real("spray.color", 0.0, MAX_COLOUR, "linear RGB"),
-    real("foam.coverage", 0.0, 1.0, "the largest share of a pixel the foam covers"),
-    real("foam.color", 0.0, 1.0, "linear RGB albedo"),
-    real("foam.threshold", -10.0, 10.0, "J below which foam forms (1: flat, < 0: folded)"),
-    real("foam.softness", 1.0e-3, 10.0, "width in J of the ramp to full foam"),
-    real("foam.crest_height_m", 1.0e-3, 100.0, "m above the mean sea plane"),
-    real("foam.crest_slope", 1.0e-3, 100.0, "slope of the displaced surface"),
-    real("foam.texture_scale_m", 1.0e-2, 1.0e3, "m, one cell of the foam texture"),
-    whole("foam.seed", 0.0, 4_294_967_295.0, "any u32"),
-    real("foam.decay_s", 1.0e-3, 1.0e4, "s, e-folding time of accumulated foam"),
-    real("foam.growth_per_s", 0.0, 1.0e3, "foam per second a full ramp below the threshold"),
-    real("foam.step_s", 1.0e-4, 1.0, "s, one step per frame"),
-    whole("foam.warmup_steps", 0.0, 1000.0, "steps before a state's first frame"),
-    whole("foam.grid", 2.0, 4096.0, "texels per side (power of two)"),
-    real("foam.cell_m", 1.0e-2, 100.0, "m between the lattice's points"),
-    real("post.vignette", 0.0, 1.0, "0 none; 1 black at the image's corners"),
+    ) => |s| s.terrain.as_ref().map_or_else(Vec::new, |t| one(t.wave_damping));
+    real("ggx.roughness", 0.01, 1.0, "perceptual; α = roughness²") => |s| one(s.ggx.roughness);
+    real("ggx.detail_strength", 0.0, 1.0, "RMS slope of the detail normal map; 0 leaves it out")
+        => |s| one(s.ggx.detail_strength);
+    real("ggx.detail_wavelength_m", 1.0e-3, 100.0, "m, the detail map's median wavelength")
+        => |s| one(s.ggx.detail_wavelength_m);
+    real("ggx.detail_speed_m_s", -100.0, 100.0, "m/s, the detail map's drift with the wind")
+        => |s| one(s.ggx.detail_speed_m_s);
+    real("chiu.zeta_m", 0.0, 100.0, "m; eq. 6's map shift at 1 m of view depth")
+        => |s| one(s.chiu.zeta_m);
+    real("chiu.shininess_per_m", 1.0e-3, 1.0e3, "eq. 5's Phong exponent per metre of depth")
+        => |s| one(s.chiu.shininess_per_m);
+    real("chiu.kd_per_m", 0.0, 10.0, "1/m; eq. 8's k_d") => |s| one(s.chiu.kd_per_m);
+    real("chiu.open_sea_depth_m", 0.0, 1.0e4, "m; eq. 8's y without a sea floor")
+        => |s| one(s.chiu.open_sea_depth_m);
+    real("chiu.scales", 0.01, 100.0, "eq. 1's scale factors, one to four")
+        => |s| vector(&s.chiu.scales);
+    real("clouds.coverage", 0.0, 1.0, "0 a clear sky, 1 overcast") => |s| one(s.clouds.coverage);
+    real("clouds.altitude_m", 1.0, 1.0e5, "m above the sea") => |s| one(s.clouds.altitude_m);
+    real("clouds.scale_m", 1.0, 1.0e6, "m, the noise's coarsest cell") => |s| one(s.clouds.scale_m);
+    real("clouds.wind", -200.0, 200.0, "m/s, (x, z)") => |s| vector(&s.clouds.wind);
+    real("clouds.albedo", 0.0, 1.0, "the clouds' reflectance") => |s| one(s.clouds.albedo);
+    whole("clouds.seed", 0.0, 4_294_967_295.0, "any u32") => |s| one(f64::from(s.clouds.seed));
+    whole("spray.particles", 1.0, 1_048_576.0, "slots; 2^20 particles are 32 MiB of state")
+        => |s| one(f64::from(s.spray.particles));
+    real("spray.emit_chance", 0.0, 1.0, "per step and free slot") => |s| one(s.spray.emit_chance);
+    real("spray.speed", 0.0, 100.0, "m/s") => |s| one(s.spray.speed);
+    real("spray.lifetime_s", 1.0e-3, 100.0, "s") => |s| one(s.spray.lifetime_s);
+    real("spray.step_s", 1.0e-4, 1.0, "s, one step per frame") => |s| one(s.spray.step_s);
+    whole("spray.warmup_steps", 0.0, 10_000.0, "steps before a state's first frame")
+        => |s| one(f64::from(s.spray.warmup_steps));
+    real("spray.size_m", 1.0e-3, 10.0, "m, a sprite's side") => |s| one(s.spray.size_m);
+    real("spray.intensity", 0.0, MAX_COLOUR, "radiance of a sprite's centre")
+        => |s| one(s.spray.intensity);
+    real("spray.color", 0.0, MAX_COLOUR, "linear RGB") => |s| vector(&s.spray.color);
+    real("foam.coverage", 0.0, 1.0, "the largest share of a pixel the foam covers")
+        => |s| one(s.foam.coverage);
+    real("foam.color", 0.0, 1.0, "linear RGB albedo") => |s| vector(&s.foam.color);
+    real("foam.threshold", -10.0, 10.0, "J below which foam forms (1: flat, < 0: folded)")
+        => |s| one(s.foam.threshold);
+    real("foam.softness", 1.0e-3, 10.0, "width in J of the ramp to full foam")
+        => |s| one(s.foam.softness);
+    real("foam.crest_height_m", 1.0e-3, 100.0, "m above the mean sea plane")
+        => |s| one(s.foam.crest_height_m);
+    real("foam.crest_slope", 1.0e-3, 100.0, "slope of the displaced surface")
+        => |s| one(s.foam.crest_slope);
+    real("foam.texture_scale_m", 1.0e-2, 1.0e3, "m, one cell of the foam texture")
+        => |s| one(s.foam.texture_scale_m);
+    whole("foam.seed", 0.0, 4_294_967_295.0, "any u32") => |s| one(f64::from(s.foam.seed));
+    real("foam.decay_s", 1.0e-3, 1.0e4, "s, e-folding time of accumulated foam")
+        => |s| one(s.foam.decay_s);
+    real("foam.growth_per_s", 0.0, 1.0e3, "foam per second a full ramp below the threshold")
+        => |s| one(s.foam.growth_per_s);
+    real("foam.step_s", 1.0e-4, 1.0, "s, one step per frame") => |s| one(s.foam.step_s);
+    whole("foam.warmup_steps", 0.0, 1000.0, "steps before a state's first frame")
+        => |s| one(f64::from(s.foam.warmup_steps));
+    whole("foam.grid", 2.0, 4096.0, "texels per side (power of two)")
+        => |s| one(f64::from(s.foam.grid));
+    real("foam.cell_m", 1.0e-2, 100.0, "m between the lattice's points") => |s| one(s.foam.cell_m);
+    real("post.vignette", 0.0, 1.0, "0 none; 1 black at the image's corners")
+        => |s| one(s.post.vignette);
     real(
         "post.bloom_threshold",
         0.0,
         crate::tonemap::HDR_MAX as f64,
         "exposed units; what exceeds it blooms (the tonemap clamps at 65504)",
-    ),
-    real("post.bloom_strength", 0.0, 10.0, "the blurred light's share added to the frame"),
+    ) => |s| one(s.post.bloom_threshold);
+    real("post.bloom_strength", 0.0, 10.0, "the blurred light's share added to the frame")
+        => |s| one(s.post.bloom_strength);
     whole(
         "post.bloom_levels",
         1.0,
         crate::bloom::MAX_BLOOM_LEVELS as f64,
         "levels of the blur pyramid, each twice as wide",
-    ),
-    real("objects.*.center", -MAX_COORDINATE_M, MAX_COORDINATE_M, "m; as camera.position"),
-    real("objects.*.radius", MIN_LENGTH_M, MAX_COORDINATE_M, "m"),
+    ) => |s| one(f64::from(s.post.bloom_levels));
+    real("objects.*.center", -MAX_COORDINATE_M, MAX_COORDINATE_M, "m; as camera.position")
+        => |s| each(&s.objects, |o| Some(o.center.to_vec()));
+    real("objects.*.radius", MIN_LENGTH_M, MAX_COORDINATE_M, "m")
+        => |s| each(&s.objects, radius);
     real(
         "objects.*.size",
         MIN_LENGTH_M,
         MAX_COORDINATE_M,
         "m, each edge; a boat's are length, hull depth, beam",
-    ),
-    real("objects.*.heading_deg", -360.0, 360.0, "degrees from +x towards +z; a boat's bow"),
+    )
+        => |s| each(&s.objects, size);
+    real("objects.*.heading_deg", -360.0, 360.0, "degrees from +x towards +z; a boat's bow")
+        => |s| each(&s.objects, heading);
     real(
         "objects.*.mass_kg",
         1.0e-6,
         1.0e24,
         "kg, a boat's; below its hull's ρ·L·B·H (else it sinks: refused)",
-    ),
-    real("objects.*.color", 0.0, MAX_COLOUR, "linear RGB albedo"),
-    whole("gerstner.count", 0.0, MAX_GERSTNER_WAVES as f64, "waves the generator keeps at a time"),
-    real("gerstner.median_wavelength_m", 0.01, 1.0e4, "m"),
-    real("gerstner.median_amplitude_m", 0.0, 1.0e3, "m"),
-    real("gerstner.spread_deg", 0.0, 180.0, "degrees either side of the wind; the seed's 135"),
-    real("gerstner.choppiness", 0.0, 1.0, "each drawn steepness is about 0.95 times it"),
-    real("gerstner.min_lifetime_s", 0.01, 1.0e6, "s"),
-    real("gerstner.max_lifetime_s", 0.01, 1.0e6, "s, at least gerstner.min_lifetime_s"),
-    whole("gerstner.seed", 0.0, 4_294_967_295.0, "any u32; the generator's draws"),
-    real("gerstner.waves.*.amplitude_m", 0.0, 1.0e3, "m"),
-    real("gerstner.waves.*.wavelength_m", 0.01, 1.0e4, "m"),
-    real("gerstner.waves.*.direction_deg", -360.0, 360.0, "degrees from +x towards +z"),
-    real("gerstner.waves.*.steepness", 0.0, 1.0, "0 a sine wave, 1 a cusp at the crest"),
-    real("gerstner.waves.*.phase", -1.0e3, 1.0e3, "radians"),
-    real("coastal.center", -MAX_COORDINATE_M, MAX_COORDINATE_M, "m; the point the waves run to"),
-    real("coastal.amplitude_m", 0.0, 100.0, "m, crest above trough in deep water"),
-    real("coastal.wavelength_m", 0.1, 1.0e4, "m, the radial waves' deep-water wavelength"),
-    whole("coastal.power", 1.0, 15.0, "odd powers keep the seed's shape; the seed's 7"),
-    real("coastal.back_factor", 1.0, 8.0, "the seed's temp2 (2): the front's steepening"),
-    real("coastal.corrections.*.direction_deg", -360.0, 360.0, "degrees from +x towards +z"),
-    real("coastal.corrections.*.wavelength_m", 0.1, 1.0e4, "m"),
-    real("coastal.corrections.*.amplitude_m", 0.0, 100.0, "m, the seed's Amplitudes/2"),
-    whole("coastal.shininess", 1.0, 10000.0, "the highlight's Blinn–Phong exponent; the seed's 30"),
-    real("coastal.dull_factor", 0.0, 1.0, "the dull colour's share at the crests"),
-    real("coastal.dull_color", 0.0, MAX_COLOUR, "linear RGB albedo"),
-    real("coastal.distortion", 0.0, 1.0, "screen units per unit of normal tilt"),
-];
+    )
+        => |s| each(&s.objects, mass);
+    real("objects.*.color", 0.0, MAX_COLOUR, "linear RGB albedo")
+        => |s| each(&s.objects, |o| Some(o.color.to_vec()));
+    whole("gerstner.count", 0.0, MAX_GERSTNER_WAVES as f64, "waves the generator keeps at a time")
+        => |s| one(f64::from(s.gerstner.count));
+    real("gerstner.median_wavelength_m", 0.01, 1.0e4, "m")
+        => |s| one(s.gerstner.median_wavelength_m);
+    real("gerstner.median_amplitude_m", 0.0, 1.0e3, "m") => |s| one(s.gerstner.median_amplitude_m);
+    real("gerstner.spread_deg", 0.0, 180.0, "degrees either side of the wind; the seed's 135")
+        => |s| one(s.gerstner.spread_deg);
+    real("gerstner.choppiness", 0.0, 1.0, "each drawn steepness is about 0.95 times it")
+        => |s| one(s.gerstner.choppiness);
+    real("gerstner.min_lifetime_s", 0.01, 1.0e6, "s") => |s| one(s.gerstner.min_lifetime_s);
+    real("gerstner.max_lifetime_s", 0.01, 1.0e6, "s, at least gerstner.min_lifetime_s")
+        => |s| one(s.gerstner.max_lifetime_s);
+    whole("gerstner.seed", 0.0, 4_294_967_295.0, "any u32; the generator's draws")
+        => |s| one(f64::from(s.gerstner.seed));
+    real("gerstner.waves.*.amplitude_m", 0.0, 1.0e3, "m")
+        => |s| each(&s.gerstner.waves, |w| Some(vec![w.amplitude_m]));
+    real("gerstner.waves.*.wavelength_m", 0.01, 1.0e4, "m")
+        => |s| each(&s.gerstner.waves, |w| Some(vec![w.wavelength_m]));
+    real("gerstner.waves.*.direction_deg", -360.0, 360.0, "degrees from +x towards +z")
+        => |s| each(&s.gerstner.waves, |w| Some(vec![w.direction_deg]));
+    real("gerstner.waves.*.steepness", 0.0, 1.0, "0 a sine wave, 1 a cusp at the crest")
+        => |s| each(&s.gerstner.waves, |w| Some(vec![w.steepness]));
+    real("gerstner.waves.*.phase", -1.0e3, 1.0e3, "radians")
+        => |s| each(&s.gerstner.waves, |w| Some(vec![w.phase]));
+    real("coastal.center", -MAX_COORDINATE_M, MAX_COORDINATE_M, "m; the point the waves run to")
+        => |s| s.coastal.center.as_ref().map_or_else(Vec::new, |c| vector(c));
+    real("coastal.amplitude_m", 0.0, 100.0, "m, crest above trough in deep water")
+        => |s| one(s.coastal.amplitude_m);
+    real("coastal.wavelength_m", 0.1, 1.0e4, "m, the radial waves' deep-water wavelength")
+        => |s| one(s.coastal.wavelength_m);
+    whole("coastal.power", 1.0, 15.0, "odd powers keep the seed's shape; the seed's 7")
+        => |s| one(f64::from(s.coastal.power));
+    real("coastal.back_factor", 1.0, 8.0, "the seed's temp2 (2): the front's steepening")
+        => |s| one(s.coastal.back_factor);
+    real("coastal.corrections.*.direction_deg", -360.0, 360.0, "degrees from +x towards +z")
+        => |s| each(&s.coastal.corrections, |w| Some(vec![w.direction_deg]));
+    real("coastal.corrections.*.wavelength_m", 0.1, 1.0e4, "m")
+        => |s| each(&s.coastal.corrections, |w| Some(vec![w.wavelength_m]));
+    real("coastal.corrections.*.amplitude_m", 0.0, 100.0, "m, the seed's Amplitudes/2")
+        => |s| each(&s.coastal.corrections, |w| Some(vec![w.amplitude_m]));
+    whole(
+        "coastal.shininess",
+        1.0,
+        10000.0,
+        "the highlight's Blinn–Phong exponent; the seed's 30",
+    ) => |s| one(f64::from(s.coastal.shininess));
+    real("coastal.dull_factor", 0.0, 1.0, "the dull colour's share at the crests")
+        => |s| one(s.coastal.dull_factor);
+    real("coastal.dull_color", 0.0, MAX_COLOUR, "linear RGB albedo")
+        => |s| vector(&s.coastal.dull_color);
+    real("coastal.distortion", 0.0, 1.0, "screen units per unit of normal tilt")
+        => |s| one(s.coastal.distortion);
+}
 
 /// The limit of a key (`objects.3.radius` finds `objects.*.radius`: an index stands for every
 /// element of its array).
@@ -349,77 +494,35 @@ fn check(key: &str, values: &[f64]) -> Result<(), Refusal> {
     ))
 }
 
-fn check_u32(key: &str, v: u32) -> Result<(), Refusal> {
-    check(key, &[f64::from(v)])
-}
-
 impl Scene {
     /// Checks every value against [`LIMITS`] and every derived quantity the frame needs.
     /// Returns the dotted key path of the first bad value and what is allowed.
     pub fn validate(&self) -> Result<(), Refusal> {
         self.check_techniques()?;
-        self.check_ocean_and_camera()?;
-        self.check_sun_water_quality()?;
+        self.check_ranges()?;
+        self.check_quality()?;
         self.check_terrain()?;
         self.check_gerstner()?;
         self.check_coastal()?;
         self.check_shading_sections()?;
-        self.check_spray_foam_post()?;
+        self.check_foam()?;
         self.check_objects()?;
         self.check_derived()
     }
 
-    /// The `[ocean]` and `[camera]` keys.
-    fn check_ocean_and_camera(&self) -> Result<(), Refusal> {
-        let o = &self.ocean;
-        check("ocean.wind_speed", &[o.wind_speed])?;
-        check("ocean.wind_direction_deg", &[o.wind_direction_deg])?;
-        check("ocean.fetch_km", &[o.fetch_km])?;
-        check("ocean.depth_m", &[o.depth_m])?;
-        check("ocean.peak_enhancement", &[o.peak_enhancement])?;
-        check("ocean.patch_size_m", &[o.patch_size_m])?;
-        check_u32("ocean.resolution", o.resolution)?;
-        check_u32("ocean.bump_resolution", o.bump_resolution)?;
-        check_u32("ocean.bump_patch_divisor", o.bump_patch_divisor)?;
-        check("ocean.choppiness", &[o.choppiness])?;
-        check("ocean.time_s", &[o.time_s])?;
-        check("ocean.loop_period_s", &[o.loop_period_s])?;
-        check("ocean.phillips_amplitude", &[o.phillips_amplitude])?;
-        check("ocean.phillips_small_wave_m", &[o.phillips_small_wave_m])?;
-        let c = &self.camera;
-        check("camera.position", &c.position)?;
-        check("camera.look_at", &c.look_at)?;
-        check("camera.fov_y_deg", &[c.fov_y_deg])?;
-        check_u32("camera.width", c.width)?;
-        check_u32("camera.height", c.height)?;
-        check("camera.exposure", &[c.exposure])?;
+    /// Every key of [`LIMITS`] the scene holds, in the table's order, against its range.
+    fn check_ranges(&self) -> Result<(), Refusal> {
+        for (limit, values) in LIMITS.iter().zip(VALUES) {
+            for (i, v) in values(self) {
+                check(&limit.key.replace('*', &i.to_string()), &v)?;
+            }
+        }
         Ok(())
     }
 
-    /// The `[sun]`, `[water]` and `[quality]` keys.
-    fn check_sun_water_quality(&self) -> Result<(), Refusal> {
-        if let Some(s) = &self.sun {
-            check("sun.direction", &s.direction)?;
-            check("sun.color", &s.color)?;
-            check("sun.intensity", &[s.intensity])?;
-            check("sun.turbidity", &[s.turbidity])?;
-            check("sun.latitude_deg", &[s.latitude_deg])?;
-            check("sun.day_of_year", &[s.day_of_year])?;
-            if let Some(t) = s.time_of_day_h {
-                check("sun.time_of_day_h", &[t])?;
-            }
-        }
-        let w = &self.water;
-        check("water.ior", &[w.ior])?;
-        check("water.color", &w.color)?;
-        check("water.extinction_per_m", &[w.extinction_per_m])?;
+    /// `[quality]`'s clipmap cells, a multiple of 8.
+    fn check_quality(&self) -> Result<(), Refusal> {
         let q = &self.quality;
-        check_u32("quality.fresnel_table_size", q.fresnel_table_size)?;
-        check("quality.reflection_map_scale", &[q.reflection_map_scale])?;
-        check("quality.lod_split_threshold", &[q.lod_split_threshold])?;
-        check("quality.projected_grid_cell_px", &[q.projected_grid_cell_px])?;
-        check("quality.clipmap_cell_m", &[q.clipmap_cell_m])?;
-        check_u32("quality.clipmap_cells", q.clipmap_cells)?;
         if !q.clipmap_cells.is_multiple_of(8) {
             return Err((
                 "quality.clipmap_cells".into(),
@@ -432,17 +535,6 @@ impl Scene {
     /// The `[terrain]` keys, and what an island or a heightmap needs.
     fn check_terrain(&self) -> Result<(), Refusal> {
         if let Some(t) = &self.terrain {
-            check("terrain.depth_m", &[t.depth_m])?;
-            check("terrain.center", &t.center)?;
-            check("terrain.slope", &[t.slope])?;
-            check("terrain.slope_direction_deg", &[t.slope_direction_deg])?;
-            check("terrain.extent_m", &[t.extent_m])?;
-            check("terrain.color", &t.color)?;
-            check("terrain.height_range_m", &t.height_range_m)?;
-            check("terrain.island_radius_m", &[t.island_radius_m])?;
-            check("terrain.island_height_m", &[t.island_height_m])?;
-            check("terrain.shore_slope", &[t.shore_slope])?;
-            check("terrain.wave_damping", &[t.wave_damping])?;
             if t.kind == crate::scene::TerrainKind::Island {
                 let reach = crate::terrain::island_reach(t);
                 if t.extent_m < 2.0 * reach {
@@ -494,71 +586,27 @@ impl Scene {
         Ok(())
     }
 
-    /// The `[ggx]`, `[chiu]` and `[clouds]` keys.
+    /// `[chiu]`'s scales: one to [`super::MAX_SCALES`].
     fn check_shading_sections(&self) -> Result<(), Refusal> {
-        check("ggx.roughness", &[self.ggx.roughness])?;
-        check("ggx.detail_strength", &[self.ggx.detail_strength])?;
-        check("ggx.detail_wavelength_m", &[self.ggx.detail_wavelength_m])?;
-        check("ggx.detail_speed_m_s", &[self.ggx.detail_speed_m_s])?;
         let ch = &self.chiu;
-        check("chiu.zeta_m", &[ch.zeta_m])?;
-        check("chiu.shininess_per_m", &[ch.shininess_per_m])?;
-        check("chiu.kd_per_m", &[ch.kd_per_m])?;
-        check("chiu.open_sea_depth_m", &[ch.open_sea_depth_m])?;
-        check("chiu.scales", &ch.scales)?;
         if !(1..=super::MAX_SCALES).contains(&ch.scales.len()) {
             return Err((
                 "chiu.scales".into(),
                 format!("eq. 1 takes one to {} scales, got {}", super::MAX_SCALES, ch.scales.len()),
             ));
         }
-        let cl = &self.clouds;
-        check("clouds.coverage", &[cl.coverage])?;
-        check("clouds.altitude_m", &[cl.altitude_m])?;
-        check("clouds.scale_m", &[cl.scale_m])?;
-        check("clouds.wind", &cl.wind)?;
-        check("clouds.albedo", &[cl.albedo])?;
-        check_u32("clouds.seed", cl.seed)?;
         Ok(())
     }
 
-    /// The `[spray]`, `[foam]` and `[post]` keys.
-    fn check_spray_foam_post(&self) -> Result<(), Refusal> {
-        let sp = &self.spray;
-        check_u32("spray.particles", sp.particles)?;
-        check("spray.emit_chance", &[sp.emit_chance])?;
-        check("spray.speed", &[sp.speed])?;
-        check("spray.lifetime_s", &[sp.lifetime_s])?;
-        check("spray.step_s", &[sp.step_s])?;
-        check_u32("spray.warmup_steps", sp.warmup_steps)?;
-        check("spray.size_m", &[sp.size_m])?;
-        check("spray.intensity", &[sp.intensity])?;
-        check("spray.color", &sp.color)?;
+    /// `[foam]`'s lattice side, a power of two.
+    fn check_foam(&self) -> Result<(), Refusal> {
         let fo = &self.foam;
-        check("foam.coverage", &[fo.coverage])?;
-        check("foam.color", &fo.color)?;
-        check("foam.threshold", &[fo.threshold])?;
-        check("foam.softness", &[fo.softness])?;
-        check("foam.crest_height_m", &[fo.crest_height_m])?;
-        check("foam.crest_slope", &[fo.crest_slope])?;
-        check("foam.texture_scale_m", &[fo.texture_scale_m])?;
-        check_u32("foam.seed", fo.seed)?;
-        check("foam.decay_s", &[fo.decay_s])?;
-        check("foam.growth_per_s", &[fo.growth_per_s])?;
-        check("foam.step_s", &[fo.step_s])?;
-        check_u32("foam.warmup_steps", fo.warmup_steps)?;
-        check_u32("foam.grid", fo.grid)?;
         if !fo.grid.is_power_of_two() {
             return Err((
                 "foam.grid".into(),
                 format!("the foam lattice's side must be a power of two, got {}", fo.grid),
             ));
         }
-        check("foam.cell_m", &[fo.cell_m])?;
-        check("post.vignette", &[self.post.vignette])?;
-        check("post.bloom_threshold", &[self.post.bloom_threshold])?;
-        check("post.bloom_strength", &[self.post.bloom_strength])?;
-        check_u32("post.bloom_levels", self.post.bloom_levels)?;
         Ok(())
     }
 
@@ -579,14 +627,6 @@ impl Scene {
 
     fn check_gerstner(&self) -> Result<(), Refusal> {
         let g = &self.gerstner;
-        check_u32("gerstner.count", g.count)?;
-        check("gerstner.median_wavelength_m", &[g.median_wavelength_m])?;
-        check("gerstner.median_amplitude_m", &[g.median_amplitude_m])?;
-        check("gerstner.spread_deg", &[g.spread_deg])?;
-        check("gerstner.choppiness", &[g.choppiness])?;
-        check("gerstner.min_lifetime_s", &[g.min_lifetime_s])?;
-        check("gerstner.max_lifetime_s", &[g.max_lifetime_s])?;
-        check_u32("gerstner.seed", g.seed)?;
         if g.max_lifetime_s < g.min_lifetime_s {
             return Err((
                 "gerstner.max_lifetime_s".into(),
@@ -603,30 +643,11 @@ impl Scene {
                 format!("at most {MAX_GERSTNER_WAVES} waves, got {}", g.waves.len()),
             ));
         }
-        for (i, w) in g.waves.iter().enumerate() {
-            let key = |f: &str| format!("gerstner.waves.{i}.{f}");
-            check(&key("amplitude_m"), &[w.amplitude_m])?;
-            check(&key("wavelength_m"), &[w.wavelength_m])?;
-            check(&key("direction_deg"), &[w.direction_deg])?;
-            check(&key("steepness"), &[w.steepness])?;
-            check(&key("phase"), &[w.phase])?;
-        }
         Ok(())
     }
 
     fn check_coastal(&self) -> Result<(), Refusal> {
         let c = &self.coastal;
-        if let Some(center) = &c.center {
-            check("coastal.center", center)?;
-        }
-        check("coastal.amplitude_m", &[c.amplitude_m])?;
-        check("coastal.wavelength_m", &[c.wavelength_m])?;
-        check_u32("coastal.power", c.power)?;
-        check("coastal.back_factor", &[c.back_factor])?;
-        check_u32("coastal.shininess", c.shininess)?;
-        check("coastal.dull_factor", &[c.dull_factor])?;
-        check("coastal.dull_color", &c.dull_color)?;
-        check("coastal.distortion", &[c.distortion])?;
         if c.corrections.len() > MAX_CORRECTION_WAVES {
             return Err((
                 "coastal.corrections".into(),
@@ -636,20 +657,12 @@ impl Scene {
                 ),
             ));
         }
-        for (i, w) in c.corrections.iter().enumerate() {
-            let key = |f: &str| format!("coastal.corrections.{i}.{f}");
-            check(&key("direction_deg"), &[w.direction_deg])?;
-            check(&key("wavelength_m"), &[w.wavelength_m])?;
-            check(&key("amplitude_m"), &[w.amplitude_m])?;
-        }
         Ok(())
     }
 
     fn check_objects(&self) -> Result<(), Refusal> {
         for (i, obj) in self.objects.iter().enumerate() {
             let key = |f: &str| format!("objects.{i}.{f}");
-            check(&key("center"), &obj.center)?;
-            check(&key("color"), &obj.color)?;
             let boat = obj.kind == ObjectKind::Boat;
             let needs = if obj.kind == ObjectKind::Sphere { "radius" } else { "size" };
             let given = [
@@ -667,16 +680,8 @@ impl Scene {
                 ));
             }
             match obj.shape() {
-                Some(Shape::Sphere { radius }) => check(&key("radius"), &[radius])?,
-                Some(Shape::Box { size }) => check(&key("size"), &size)?,
-                Some(Shape::Boat { size, heading_deg, mass_kg }) => {
-                    check(&key("size"), &size)?;
-                    check(&key("heading_deg"), &[heading_deg])?;
-                    if let Some(m) = mass_kg {
-                        check(&key("mass_kg"), &[m])?;
-                    }
-                    self.check_boat(i, obj)?;
-                }
+                Some(Shape::Sphere { .. } | Shape::Box { .. }) => {}
+                Some(Shape::Boat { .. }) => self.check_boat(i, obj)?,
                 None => return Err((key(needs), format!("a {:?} needs `{needs}`", obj.kind))),
             }
         }
