@@ -1,4 +1,4 @@
-//! What the water stage over [`Real`] reads: its textures by name, its inputs and its
+//! What the water stage over [`Real`](crate::envelope::Real) reads: its textures by name, its inputs and its
 //! varyings. Below every part of [`super`], so the parts import it and not each other.
 
 use ocean_core::frame::FrameUniforms;
@@ -29,7 +29,7 @@ pub enum Tex {
     FoamField,
 }
 
-/// What the stage reads, over a [`Real`].
+/// What the stage reads, over a [`Real`](crate::envelope::Real).
 pub struct Inputs<'a, R> {
     /// The frame's uniforms.
     pub frame: &'a FrameUniforms,
