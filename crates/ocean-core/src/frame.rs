@@ -418,7 +418,7 @@ impl crate::geometry::Clipmap {
         camera: &crate::camera::Camera,
         plan: &crate::plan::FramePlan,
     ) -> Option<crate::Result<Self>> {
-        (plan.techniques.surface() == Surface::Clipmap).then(|| {
+        plan.techniques.surface().clipmap_levels().then(|| {
             Self::new(
                 [camera.eye.x, camera.eye.z],
                 camera.eye.y,
@@ -636,7 +636,7 @@ pub fn damped_wavelengths(scene: &Scene, plan: &FramePlan) -> Option<[f64; 2]> {
 /// How high the sand is wet, m above the sea plane: the coastal waves' run-up (ocean-core
 /// waves::coastal, "The shore zones"); 0 (no wet band) under the other waves techniques.
 pub fn wet_top_m(scene: &Scene) -> f64 {
-    if scene.techniques().waves() != Waves::Coastal {
+    if !scene.techniques().waves().runs_up_a_shore() {
         return 0.0;
     }
     // The run-up does not depend on the time: any finite one.
@@ -758,7 +758,7 @@ impl FrameUniforms {
                 extinction_per_m: scene.water.extinction_per_m as f32,
                 eta,
                 inv_eta: 1.0 / eta,
-                volume_model: if shading == Shading::Chiu { 1.0 } else { 0.0 },
+                volume_model: switch(shading.chiu_optics()),
                 kd_per_m: scene.chiu.kd_per_m as f32,
             },
             hu: HuShadingBlock {
@@ -789,7 +789,7 @@ impl FrameUniforms {
             chiu: ChiuShadingBlock {
                 zeta_m: scene.chiu.zeta_m as f32,
                 shininess_per_m: scene.chiu.shininess_per_m as f32,
-                clip_waves: if shading == Shading::Chiu { 1.0 } else { 0.0 },
+                clip_waves: switch(shading.chiu_optics()),
                 pad1: 0.0,
             },
             terrain: TerrainBlock::new(
@@ -800,7 +800,7 @@ impl FrameUniforms {
                 scene.water.ior,
                 damped_wavelengths(scene, plan),
             ),
-            scales: if shading == Shading::Chiu {
+            scales: if shading.chiu_optics() {
                 MultiScaleBlock::new(&scene.chiu.scales, l_d, mesh_origin)
             } else {
                 MultiScaleBlock::zeroed()
@@ -899,7 +899,7 @@ fn detail_block(
     mesh_origin: [f64; 2],
 ) -> crate::detail::DetailBlock {
     let (g, o) = (&scene.ggx, &scene.ocean);
-    if !(shading == Shading::Ggx && g.detail_strength > 0.0) {
+    if !(shading.detail_map() && g.detail_strength > 0.0) {
         return Zeroable::zeroed();
     }
     crate::detail::DetailBlock::new(
@@ -955,7 +955,7 @@ impl<'a> SurfaceSource<'a> {
             Waves::Coastal => Sea::Coastal(Box::new(coastal_sea(scene, o.time_s)?)),
             Waves::Fft => Sea::Fft {
                 modes: o.displacement_modes()?,
-                chiu: plan.techniques.shading() == Shading::Chiu,
+                chiu: plan.techniques.shading().chiu_optics(),
             },
         };
         Ok(Self { scene, sea, damped_m: damped_wavelengths(scene, plan).map(|l| l[0]) })

@@ -123,13 +123,13 @@ impl<'a> FrameInputs<'a> {
         }
         // Waves `coastal` likewise (a finite time always makes a sea).
         if time_s != scene.ocean.time_s
-            && plan.techniques.waves() == crate::plan::Waves::Coastal
+            && plan.techniques.waves().runs_up_a_shore()
             && let Ok(sea) = crate::frame::coastal_sea(scene, time_s)
         {
             uniforms.coastal = sea.block(mesh.origin);
         }
         let mut environment = sky.uniforms();
-        if plan.techniques.sky() == crate::plan::Sky::PreethamClouds {
+        if plan.techniques.sky().clouds() {
             // The layer (crate::clouds): its place over the eye, its colour under the objects'
             // light, and the sun dimmed by the cloud in front of it.
             let c = &scene.clouds;
@@ -147,7 +147,7 @@ impl<'a> FrameInputs<'a> {
             let through = 1.0 - crate::clouds::cloud_alpha(origin, mean, s.direction);
             uniforms.sun.radiance = s.radiance.map(|r| r * through);
         }
-        let sky_lut = if plan.techniques.sky() == crate::plan::Sky::Atmosphere {
+        let sky_lut = if plan.techniques.sky().sky_view_table() {
             atmosphere_environment(scene, &camera, &mut uniforms, &mut environment)
         } else {
             Box::new(bytemuck::Zeroable::zeroed())

@@ -200,6 +200,9 @@ stage_techniques! {
     }
 }
 
+// What the planner, the uniforms and the frame graph ask of a stage's technique: one
+// exhaustive `match` each, so a new technique answers every question where it is declared.
+
 impl Waves {
     /// Whether the waves are summed per vertex and per fragment in the water pass (no wave
     /// maps, no waves pass, the height query from the sum).
@@ -207,6 +210,15 @@ impl Waves {
         match self {
             Waves::Fft => false,
             Waves::Gerstner | Waves::Coastal => true,
+        }
+    }
+
+    /// Whether the waves run up a shore (a wet band on the sand, a sea rebuilt at each time
+    /// from the shore's geometry).
+    pub fn runs_up_a_shore(self) -> bool {
+        match self {
+            Waves::Coastal => true,
+            Waves::Fft | Waves::Gerstner => false,
         }
     }
 }
@@ -226,6 +238,31 @@ stage_techniques! {
 }
 
 impl Surface {
+    /// Whether the mesh is Hu's near tree with a far patch to the horizon (pass `far_patch`).
+    pub fn has_far_patch(self) -> bool {
+        match self {
+            Surface::HuPatches => true,
+            Surface::ProjectedGrid | Surface::Clipmap | Surface::ShoreGrid => false,
+        }
+    }
+
+    /// Whether the mesh is a clipmap's nested levels around the eye.
+    pub fn clipmap_levels(self) -> bool {
+        match self {
+            Surface::Clipmap => true,
+            Surface::HuPatches | Surface::ProjectedGrid | Surface::ShoreGrid => false,
+        }
+    }
+
+    /// Whether the mesh's vertices are bounded by the waves' height (a grid projected to the
+    /// sea plane must reach the highest crest).
+    pub fn needs_wave_bound(self) -> bool {
+        match self {
+            Surface::ProjectedGrid => true,
+            Surface::HuPatches | Surface::Clipmap | Surface::ShoreGrid => false,
+        }
+    }
+
     /// Whether the mesh is built from the camera each frame (a screen-space grid), so it
     /// reaches the horizon and needs the camera's ray-plane solve.
     pub fn camera_grid(self) -> bool {
@@ -250,6 +287,25 @@ stage_techniques! {
     }
 }
 
+impl Shading {
+    /// Chiu & Chang's optics: the water's colour from its depth (eqs. 5–8), the reflection and
+    /// refraction maps clipped at the waves (§3.5.1) and eq. 1's multi-scale sampling.
+    pub fn chiu_optics(self) -> bool {
+        match self {
+            Shading::Chiu => true,
+            Shading::Hu | Shading::Ggx | Shading::Coastal => false,
+        }
+    }
+
+    /// Whether it adds Welch's scrolling detail normal map.
+    pub fn detail_map(self) -> bool {
+        match self {
+            Shading::Ggx => true,
+            Shading::Hu | Shading::Chiu | Shading::Coastal => false,
+        }
+    }
+}
+
 stage_techniques! {
     /// Stage `sky`: the environment the water reflects.
     Sky: Sky {
@@ -264,6 +320,25 @@ stage_techniques! {
     }
 }
 
+impl Sky {
+    /// Whether the sky has seed 001's cloud layer (placed over the eye each frame, dimming the
+    /// sun).
+    pub fn clouds(self) -> bool {
+        match self {
+            Sky::PreethamClouds => true,
+            Sky::Preetham | Sky::Atmosphere | Sky::Overcast => false,
+        }
+    }
+
+    /// Whether the sky reads the atmosphere's sky-view table.
+    pub fn sky_view_table(self) -> bool {
+        match self {
+            Sky::Atmosphere => true,
+            Sky::Preetham | Sky::PreethamClouds | Sky::Overcast => false,
+        }
+    }
+}
+
 stage_techniques! {
     /// Stage `far_field`: what becomes of the wave detail a pixel cannot resolve.
     FarField: FarField {
@@ -273,6 +348,24 @@ stage_techniques! {
         Mip = "mip", "mip-mapped slope maps, trilinear at the footprint";
         /// Mip chains and the unresolved slope variance in the BRDF.
         Variance = "variance", "unresolved slope variance in the BRDF (Bruneton 2010)";
+    }
+}
+
+impl FarField {
+    /// Whether the slope maps carry mip chains (pass `wave_mips`).
+    pub fn mip_chains(self) -> bool {
+        match self {
+            FarField::None => false,
+            FarField::Mip | FarField::Variance => true,
+        }
+    }
+
+    /// Whether the BRDF reads the unresolved slope variance (the filtered Fresnel table).
+    pub fn slope_variance(self) -> bool {
+        match self {
+            FarField::Variance => true,
+            FarField::None | FarField::Mip => false,
+        }
     }
 }
 
@@ -290,6 +383,16 @@ stage_techniques! {
     }
 }
 
+impl Foam {
+    /// Whether the foam keeps a field from frame to frame (pass `foam`).
+    pub fn keeps_a_field(self) -> bool {
+        match self {
+            Foam::Accumulated => true,
+            Foam::None | Foam::Heuristic | Foam::Jacobian => false,
+        }
+    }
+}
+
 stage_techniques! {
     /// Stage `spray`: spray particles.
     Spray: Spray {
@@ -297,6 +400,16 @@ stage_techniques! {
         None = "none", "no spray";
         /// State-preserving GPU particles (seed 001).
         Particles = "particles", "state-preserving GPU particles (seed 001)";
+    }
+}
+
+impl Spray {
+    /// Whether spray particles are simulated and drawn (pass `spray`).
+    pub fn particles(self) -> bool {
+        match self {
+            Spray::Particles => true,
+            Spray::None => false,
+        }
     }
 }
 

@@ -164,7 +164,7 @@ impl MemoryEstimate {
         }
         if plan.runs(Pass::Water) {
             let surface = plan.techniques.surface();
-            if surface == crate::plan::Surface::Clipmap {
+            if surface.clipmap_levels() {
                 let q = &scene.quality;
                 let levels = crate::geometry::Clipmap::levels_for(
                     scene.camera.position[1],

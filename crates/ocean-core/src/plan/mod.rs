@@ -527,7 +527,7 @@ impl FramePlan {
             // Only the `variance` technique reads the filtered Fresnel table.
             let is_written = written(id)
                 && (id != ResourceId::FresnelFilter
-                    || self.techniques.far_field() == FarField::Variance);
+                    || self.techniques.far_field().slope_variance());
             if id == ResourceId::Ldr && !is_written {
                 continue;
             }

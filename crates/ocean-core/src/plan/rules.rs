@@ -12,7 +12,7 @@ use crate::camera::Camera;
 use crate::objects::Object;
 use crate::scene::Scene;
 use crate::tables::TextureMapping;
-use crate::technique::{FarField, Foam, Post, Spray, Surface, Techniques, Waves};
+use crate::technique::{Post, Surface, Techniques, Waves};
 
 /// How a plan is built: the number of frames it is for, and whether the pruning rules apply.
 #[derive(Clone, Copy, Debug)]
@@ -118,12 +118,15 @@ impl<'a> Rules<'a> {
     /// Why the map passes are out under waves summed per vertex.
     fn gerstner_reason(&self) -> String {
         let scene = self.scene;
-        if self.waves == Waves::Coastal {
-            return format!(
-                "waves = coastal: radial waves + {} correction wave(s) summed per vertex and \
-                 per fragment in the water pass, no maps",
-                scene.coastal.corrections.len()
-            );
+        match self.waves {
+            Waves::Coastal => {
+                return format!(
+                    "waves = coastal: radial waves + {} correction wave(s) summed per vertex \
+                     and per fragment in the water pass, no maps",
+                    scene.coastal.corrections.len()
+                );
+            }
+            Waves::Gerstner | Waves::Fft => {}
         }
         format!(
             "waves = gerstner: {} wave(s) summed per vertex and per fragment in the water \
@@ -221,7 +224,7 @@ fn wave_mips(r: &Rules<'_>) -> (bool, String) {
     let techniques = r.techniques;
     let waves_on = r.waves_on;
     let far = techniques.far_field();
-    if far == FarField::None {
+    if !far.mip_chains() {
         (false, "far_field = none: the slope maps are sampled at level 0".into())
     } else if !waves_on {
         (false, "no wind: the sea is flat, nothing to filter".into())
@@ -381,7 +384,7 @@ fn far_patch(r: &Rules<'_>) -> (bool, String) {
     let techniques = r.techniques;
     let far_hidden = r.far_hidden;
     let full = FULL;
-    if techniques.surface() != Surface::HuPatches {
+    if !techniques.surface().has_far_patch() {
         return (
             false,
             format!(
@@ -415,44 +418,39 @@ fn far_patch(r: &Rules<'_>) -> (bool, String) {
 fn water(r: &Rules<'_>) -> (bool, String) {
     let scene = r.scene;
     let techniques = r.techniques;
-    if techniques.surface().camera_grid() {
+    let shading = techniques.shading();
+    let (cols, rows) = crate::geometry::ProjectedGridBlock::quads(
+        scene.camera.width,
+        scene.camera.height,
+        scene.quality.projected_grid_cell_px,
+    );
+    let on = match techniques.surface() {
         // Both screen-space grids: ⌈w/cell⌉ × ⌈h/cell⌉ quads, one vertex-index draw.
-        let (cols, rows) = crate::geometry::ProjectedGridBlock::quads(
-            scene.camera.width,
-            scene.camera.height,
-            scene.quality.projected_grid_cell_px,
-        );
-        let grid = if techniques.surface() == Surface::ShoreGrid {
+        Surface::ShoreGrid => format!(
+            ", on the shore grid of {cols}×{rows} quads ahead of the eye (rows of equal screen \
+             height, seed 004)"
+        ),
+        Surface::ProjectedGrid => {
+            format!(", on a projected grid of {cols}×{rows} quads from the vertex index")
+        }
+        Surface::Clipmap => {
+            let q = &scene.quality;
+            let levels = crate::geometry::Clipmap::levels_for(
+                scene.camera.position[1],
+                q.clipmap_cell_m,
+                q.clipmap_cells,
+            );
             format!(
-                "the shore grid of {cols}×{rows} quads ahead of the eye (rows of \
-                 equal screen height, seed 004)"
-            )
-        } else {
-            format!("a projected grid of {cols}×{rows} quads from the vertex index")
-        };
-        let shading = techniques.shading();
-        (true, format!("the sea surface, shading {shading}, on {grid}"))
-    } else if techniques.surface() == Surface::Clipmap {
-        let q = &scene.quality;
-        let levels = crate::geometry::Clipmap::levels_for(
-            scene.camera.position[1],
-            q.clipmap_cell_m,
-            q.clipmap_cells,
-        );
-        (
-            true,
-            format!(
-                "the sea surface, shading {}, on a clipmap of {levels} levels of \
-                 {n}×{n} quads ({} m to {} m) from the vertex index",
-                techniques.shading(),
+                ", on a clipmap of {levels} levels of {n}×{n} quads ({} m to {} m) from the \
+                 vertex index",
                 q.clipmap_cell_m,
                 q.clipmap_cell_m * (1u64 << (levels - 1)) as f64,
                 n = q.clipmap_cells,
-            ),
-        )
-    } else {
-        (true, format!("the sea surface, shading {}", techniques.shading()))
-    }
+            )
+        }
+        Surface::HuPatches => String::new(),
+    };
+    (true, format!("the sea surface, shading {shading}{on}"))
 }
 
 /// Pass `spray`: the particles of spray `particles`.
@@ -461,7 +459,7 @@ fn spray(r: &Rules<'_>, plan: &FramePlan) -> (bool, String) {
     let opt = r.opt;
     let techniques = r.techniques;
     let t = techniques.spray();
-    if t != Spray::Particles {
+    if !t.particles() {
         (false, format!("spray = {t}"))
     } else {
         let n = plan.spray_emitters.len();
@@ -492,7 +490,7 @@ fn foam(r: &Rules<'_>) -> (bool, String) {
     let techniques = r.techniques;
     let waves = r.waves;
     let t = techniques.foam();
-    if t != Foam::Accumulated {
+    if !t.keeps_a_field() {
         (false, format!("foam = {t}: the water pass draws it, no state"))
     } else {
         let g = crate::foam::FieldGrid::of(scene, waves);
@@ -557,7 +555,7 @@ impl FramePlan {
     /// The plan of `scene` for `output` under `opt`: the rules of this module, pass by pass.
     pub(super) fn build(scene: &Scene, output: OutputKind, opt: Options) -> Self {
         let rules = Rules::new(scene, output, opt);
-        let (techniques, waves, gerstner) = (rules.techniques, rules.waves, rules.gerstner);
+        let (techniques, waves) = (rules.techniques, rules.waves);
         let waves_kernel = rules.waves_kernel;
         let mut plan = FramePlan {
             system: techniques.system,
@@ -572,27 +570,32 @@ impl FramePlan {
             reflection_map_size: [scene.camera.width, scene.camera.height].map(|side| {
                 ((f64::from(side) * scene.quality.reflection_map_scale).round() as u32).max(1)
             }),
-            wave_bound_m: if waves == Waves::Coastal {
-                // Vertical only; a scene whose dispersion fails validation has no sea.
-                let v = crate::scene::coastal_sea(scene, scene.ocean.time_s)
-                    .map_or(0.0, |s| s.bound_m());
-                [v, 0.0]
-            } else if gerstner {
-                let (v, h) = scene.gerstner.bounds();
-                [v, h]
-            } else if techniques.surface() == Surface::ProjectedGrid
-                || techniques.spray() == Spray::Particles
-            {
-                // A validated scene's spectrum exists; without one the sea is flat.
-                let hs = scene.ocean.wave_spectrum().map_or(0.0, |s| s.significant_wave_height());
-                let a = crate::geometry::ProjectedGridBlock::BOUND_OVER_HS * hs;
-                [a, a * scene.ocean.choppiness]
-            } else {
-                [0.0; 2]
+            wave_bound_m: match waves {
+                Waves::Coastal => {
+                    // Vertical only; a scene whose dispersion fails validation has no sea.
+                    let v = crate::scene::coastal_sea(scene, scene.ocean.time_s)
+                        .map_or(0.0, |s| s.bound_m());
+                    [v, 0.0]
+                }
+                Waves::Gerstner => {
+                    let (v, h) = scene.gerstner.bounds();
+                    [v, h]
+                }
+                Waves::Fft
+                    if techniques.surface().needs_wave_bound()
+                        || techniques.spray().particles() =>
+                {
+                    // A validated scene's spectrum exists; without one the sea is flat.
+                    let hs =
+                        scene.ocean.wave_spectrum().map_or(0.0, |s| s.significant_wave_height());
+                    let a = crate::geometry::ProjectedGridBlock::BOUND_OVER_HS * hs;
+                    [a, a * scene.ocean.choppiness]
+                }
+                Waves::Fft => [0.0; 2],
             },
             spray_emitters: std::sync::Arc::default(),
         };
-        if techniques.spray() == Spray::Particles {
+        if techniques.spray().particles() {
             plan.spray_emitters = std::sync::Arc::new(crate::spray::emitters(
                 &scene.objects,
                 scene.ocean.patch_size_m,
