@@ -2,8 +2,8 @@
 //! triangle into the HDR frame. The sky model is the technique `shaders/sky.wgsl` imports as
 //! `technique/sky`: `preetham` (`shaders/sky/preetham.wgsl`), `preetham_clouds`
 //! (`shaders/sky/preetham_clouds.wgsl`, seed 001 eq. 4), both over `shaders/shared/preetham.wgsl`,
-//! or `atmosphere` (`shaders/sky/atmosphere.wgsl`, seed 002, over `shaders/shared/sky_lut.wgsl`),
-//! assembled by [`crate::common::shader_module_with`] for the renderer's techniques (the
+//! `atmosphere` (`shaders/sky/atmosphere.wgsl`, seed 002, over `shaders/shared/sky_lut.wgsl`),
+//! or `overcast` (`shaders/sky/overcast.wgsl`, the CIE standard overcast sky), assembled by [`crate::common::shader_module_with`] for the renderer's techniques (the
 //! renderer assembles the stage again when a plan asks for the other). Bindings:
 //! group 0 = `CameraUniforms`, group 1 = `SkyUniforms` and sky `atmosphere`'s `SkyLut`. CPU mirror: `ocean-cpu/src/shaders/sky.rs` (its `RASTER_STATE`: depth test
 //! `Always`, no depth writes, no blending — the same here).
