@@ -211,11 +211,13 @@ fn selftest_quick_judges_every_scene_and_catches_the_judged_passes_bugs() {
             "shared/preetham.wgsl",
             "sky/preetham_clouds.wgsl",
             "shared/sky_lut.wgsl",
-            // The water pass under shadings `hu` and `ggx`: a swapped channel, an unnormalised
-            // half vector and a flipped Fresnel branch are caught; the far field's 1 % bugs in
-            // water.wgsl stay inside the water's wide envelope (docs/tolerances.md).
+            // The water pass under shadings `hu`, `ggx` and `chiu`: a swapped channel, an
+            // unnormalised half vector, a flipped Fresnel branch and chiu's tilted reflection
+            // (over the coastal waves) are caught; water.wgsl's far-field variance 1 % too large
+            // stays inside the water's wide envelope over wave maps (docs/tolerances.md).
             "shading/hu.wgsl",
             "shading/ggx.wgsl",
+            "shading/chiu.wgsl",
             // Shading and waves `coastal`, judged where the water is certainly nearer than the
             // island and the boat; Gerstner's phase and foam `jacobian` over analytic waves;
             // the objects' reflection map and the shadow test.

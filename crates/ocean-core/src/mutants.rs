@@ -6,7 +6,9 @@
 //! channels, a texel offset, a wrong mip level, a missing normalisation, a flipped comparison,
 //! a wrong branch — in one file of `shaders/`. The CPU mirrors are never mutated: the oracle
 //! renders the correct frame, the GPU the mutated one, and the comparison must fail. Every
-//! mutant names the reference scene in which its line runs.
+//! mutant names a reference scene in which its line runs: of those, the one where the envelope
+//! judges the line most sharply (analytic waves rather than wave maps, where it can), since a
+//! GPU with the bug fails `ocean selftest` wherever any clean scene leaves its envelope.
 //!
 //! The active mutant is per thread: the command line activates one on its main thread, where
 //! the GPU renderer assembles its shaders; each test thread activates its own.
@@ -47,7 +49,7 @@ pub const MUTANTS: &[Mutant] = &[
         find: "let r = n * (2.0 * vn) - view;",
         replace: "let r = n * (2.04 * vn) - view;",
         changes: "Scales the normal term of chiu's reflection vector by 2 % (2.0 -> 2.04), tilting the sky lookup and the eq. 5 sun lobe on every water pixel.",
-        scene: "island",
+        scene: "coastal_waves",
     },
     Mutant {
         name: "ggx-half-vector-unnormalized",
@@ -192,8 +194,8 @@ pub const MUTANTS: &[Mutant] = &[
         file: "foam/heuristic.wgsl",
         find: "let h = in.rel.y + frame.view.eye_height;",
         replace: "let h = in.rel.y + frame.view.eye_height * 1.01;",
-        changes: "The heuristic's crest height uses a 1 % too large eye height (12 m -> 12.12 m, +0.12 m against a 0.3 m crest scale), so the foam on the crests grows.",
-        scene: "foam_crests",
+        changes: "The heuristic's crest height uses a 1 % too large eye height (3 m -> 3.03 m, +0.03 m against a 0.8 m crest height), so the foam on the crests grows.",
+        scene: "welch_calm_day",
     },
     Mutant {
         name: "foam-jacobian-j-minus-1pct",
@@ -257,7 +259,7 @@ pub const MUTANTS: &[Mutant] = &[
         find: "fp.lods = vec2<f32>(l + frame.far.lod_offset_d,",
         replace: "fp.lods = vec2<f32>(l + 1.0 + frame.far.lod_offset_d,",
         changes: "The displacement slope chain is sampled one mip level too coarse (LOD + 1), blurring the waves' slopes and their variance beyond the near field.",
-        scene: "storm",
+        scene: "looking_down",
     },
 ];
 
