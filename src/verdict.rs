@@ -152,7 +152,7 @@ fn judge_passes(
     v.judge_wave_mips(plan, gpu)?;
     v.judge_fresnel(scene, plan, gpu)?;
     if let (Some(((w, h), hdr)), Some(oracle)) = (gpu.map(ResourceId::Hdr), gpu.oracle_hdr)
-        && let Some(f) = sky_verdict(scene, plan, (w, h), hdr, oracle)?
+        && let Some(f) = sky_verdict(scene, plan, (w, h), (hdr, oracle), gpu)?
     {
         v.lines.push(format!("  [{:<14}] {}", "sky", f.line()));
         if !f.passed() {

@@ -127,6 +127,77 @@ fn books_balance_and_every_transition_follows_the_rules() {
     assert!(launched > 1000 && freed > 1000);
 }
 
+/// Every live particle of 400 steps of the rock's spray, over a rough sea, lies inside
+/// `spray::sprite_box` (which the envelope verdicts leave out of the frame, `spray::reach`),
+/// with its sprite, and so does its centre's pixel; a box for a launch 20 % slower, or one
+/// whose floor is 0.3 m higher, misses some (the negative controls: the bound is the flight).
+fn every_live_sprite_lies_in_the_sprays_reach_and_a_tighter_bound_misses_some() {
+    let mut scene = rock();
+    (scene.camera.width, scene.camera.height) = (160, 90);
+    let plan = FramePlan::new(&scene, OutputKind::Hdr);
+    let camera = ocean_core::camera::Camera::from_scene(&scene.camera).unwrap();
+    let frame = ocean_core::graph::FrameInputs::new(&scene, &plan, &FrameState::new(0.0)).unwrap();
+    let emitters = plan.spray_emitters.as_slice();
+    assert!(!emitters.is_empty(), "the rock has emitters");
+    let mut u = ocean_core::spray::SprayFrame::new(&scene, &plan, &camera, 0, 0).draw;
+    // A rough sea: heights in [-0.9, 1.1] m, 16² texels, so that particles launch (an emitter
+    // under the water) and are freed (back under it) all over the pool.
+    let mut r = 12345u32;
+    let mut next = || {
+        r = r.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+        (r >> 8) as f32 / 16_777_216.0
+    };
+    let texels: Vec<[f32; 4]> = (0..256).map(|_| [0.0, next() * 2.0 - 0.9, 0.0, 1.0]).collect();
+    let lowest = texels.iter().map(|t| f64::from(t[1])).fold(f64::INFINITY, f64::min);
+    let sea = Texture2D::new(16, 16, texels);
+    let boxed = |speed: f32, lowest: f64| {
+        let mut d = u;
+        d.speed = speed;
+        spray::sprite_box(emitters, &d, Some(lowest)).unwrap()
+    };
+    let exact = boxed(u.speed, lowest);
+    let slow = boxed(u.speed * 0.8, lowest);
+    let mut high = exact;
+    high[0][1] += 0.3;
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    let reach = spray::reach(emitters, &u, Some(lowest), &frame.uniforms, w, h);
+    let inside = |b: &[[f64; 3]; 2], p: &Particle| {
+        (0..3).all(|c| (b[0][c]..=b[1][c]).contains(&f64::from(p.pos[c])))
+    };
+    let mut pool = vec![Particle::default(); u.count as usize];
+    let (mut live, mut outside_slow, mut outside_high, mut drawn) = (0u64, 0u64, 0u64, 0u64);
+    for step in 0..400u32 {
+        u.step = step;
+        spray::step(&mut pool, &u, emitters, &sea);
+        for p in pool.iter().filter(|p| p.pos[3] > 0.0) {
+            live += 1;
+            assert!(inside(&exact, p), "step {step}: a particle outside the box {exact:?}: {p:?}");
+            outside_slow += u64::from(!inside(&slow, p));
+            outside_high += u64::from(!inside(&high, p));
+            let clip = spray::vs_main(0, std::slice::from_ref(p), &frame.uniforms, &u).clip;
+            if clip.w > 0.0 {
+                let x = (clip.x / clip.w * 0.5 + 0.5) * w as f32;
+                let y = (0.5 - clip.y / clip.w * 0.5) * h as f32;
+                if (0.0..w as f32).contains(&x) && (0.0..h as f32).contains(&y) {
+                    drawn += 1;
+                    let i = y as usize * w as usize + x as usize;
+                    assert!(reach[i], "step {step}: a sprite at ({x}, {y}) outside the reach");
+                }
+            }
+        }
+    }
+    let share = reach.iter().filter(|r| **r).count() as f64 / reach.len() as f64;
+    println!(
+        "{live} live particle-steps ({drawn} on screen) inside the box; reach {:.0} % of the \
+         frame; outside a 20 % slower launch's box {outside_slow}, a floor 0.3 m higher \
+         {outside_high}",
+        100.0 * share
+    );
+    assert!(live > 10_000 && drawn > 1_000, "too few particles to tell: {live}, {drawn}");
+    assert!(outside_slow > 0 && outside_high > 0, "the bound is not the flight's");
+    assert!(share < 1.0, "the reach is the whole frame");
+}
+
 fn gpu_pool_equals_the_cpu_pool_after_100_steps() {
     let scene = rock();
     let cpu = cpu_pool(&scene, 100);
@@ -153,6 +224,7 @@ fn gpu_pool_equals_the_cpu_pool_after_100_steps() {
 
 fn main() -> std::process::ExitCode {
     run_tests!(gpu_harness::GPU_ADAPTER;
-        cpu: cpu_pool_is_the_same_over_runs_and_threads, books_balance_and_every_transition_follows_the_rules;
+        cpu: cpu_pool_is_the_same_over_runs_and_threads, books_balance_and_every_transition_follows_the_rules,
+            every_live_sprite_lies_in_the_sprays_reach_and_a_tighter_bound_misses_some;
         gpu: gpu_pool_equals_the_cpu_pool_after_100_steps)
 }

@@ -36,9 +36,6 @@ pub(super) fn water_verdict(
     let Some(((w, h), hdr)) = gpu.map(ResourceId::Hdr) else {
         return Ok(Err("the GPU's HDR frame is missing".into()));
     };
-    if plan.runs(Pass::Spray) {
-        return Ok(Err("spray draws over the water (its pass has no envelope yet)".into()));
-    }
     let technique = plan.techniques.sky();
     let frame =
         ocean_core::graph::FrameInputs::new(scene, plan, &ocean_core::graph::FrameState::new(0.0))?;
@@ -97,18 +94,22 @@ pub(super) fn water_verdict(
         None => vec![f64::NEG_INFINITY; env.len()],
     };
     // The pixels judged: those where no object's fragment may win against the water (none
-    // lands, or the water is certainly drawn nearer), on the quick verdict's lattice.
+    // lands, or the water is certainly drawn nearer) and no sprite of the spray may land, on
+    // the quick verdict's lattice.
+    let spray = spray_reach(plan, &frame, (w, h), gpu);
     let every = gpu.water_every.max(1) as usize;
     let on =
         |i: usize| (i % w as usize).is_multiple_of(every) && (i / w as usize).is_multiple_of(every);
     let reach: Vec<bool> = (0..env.len())
-        .map(|i| ocean_cpu::shaders::objects::may_show(objects[i], nearest[i]) || !on(i))
+        .map(|i| {
+            ocean_cpu::shaders::objects::may_show(objects[i], nearest[i]) || spray[i] || !on(i)
+        })
         .collect();
     let region: Vec<Option<bool>> = reach.iter().map(|&r| (!r).then_some(true)).collect();
     let judged = reach.iter().filter(|r| !**r).count();
     if judged == 0 {
-        let why = "an object may show at every pixel (the objects' colour has no envelope in the \
-                   main view yet)";
+        let why = "an object or the spray may show at every pixel (neither the objects' colour \
+                   in the main view nor the sprites have an envelope yet)";
         return Ok(Err(why.into()));
     }
     let open_share =
@@ -127,7 +128,8 @@ pub(super) fn water_verdict(
 }
 
 /// The HDR frame's sky pixels against the sky pass's envelope: the pixels where the oracle's
-/// final frame still holds its exact sky pass, and so do their eight neighbours (a pixel next
+/// final frame still holds its exact sky pass and no sprite may land, and so do their eight
+/// neighbours (a pixel next
 /// to geometry is ambiguous: the GPU's rasteriser may cover it within its sub-pixel
 /// precision, and it is counted apart). `None` for a sky technique without an envelope yet, or
 /// a frame without a sky pixel.
@@ -135,8 +137,8 @@ pub(super) fn sky_verdict(
     scene: &Scene,
     plan: &FramePlan,
     (w, h): (u32, u32),
-    hdr: &[[f32; 4]],
-    oracle: &[[f32; 4]],
+    (hdr, oracle): (&[[f32; 4]], &[[f32; 4]]),
+    gpu: &GpuSide<'_>,
 ) -> anyhow::Result<Option<ocean_verify::envelope::RegionVerdict>> {
     use ocean_cpu::shaders::sky;
     let technique = plan.techniques.sky();
@@ -154,10 +156,14 @@ pub(super) fn sky_verdict(
     if hdr.len() != env.len() || oracle.len() != env.len() {
         bail!("hdr: {} texels, the frame {w}x{h}", hdr.len());
     }
+    // A sprite may land anywhere the spray reaches, on a GPU whose particles took another
+    // branch than the oracle's: those pixels are not the sky's to judge.
+    let spray = spray_reach(plan, &frame, (w, h), gpu);
     let holds_sky: Vec<bool> = oracle
         .iter()
         .zip(&exact)
-        .map(|(o, e)| (0..3).all(|c| o[c].to_bits() == e[c].to_bits()))
+        .zip(&spray)
+        .map(|((o, e), s)| !s && (0..3).all(|c| o[c].to_bits() == e[c].to_bits()))
         .collect();
     let (wi, hi) = (w as i64, h as i64);
     let region: Vec<Option<bool>> = (0..env.len())
@@ -182,6 +188,31 @@ pub(super) fn sky_verdict(
         return Ok(None);
     }
     Ok(Some(ocean_verify::envelope::judge_region("hdr (sky pixels)", &env, &region, hdr, w)))
+}
+
+/// Per pixel of a `w` × `h` frame, whether a sprite of the frame's spray may land there on
+/// any conformant GPU (ocean-cpu `spray::reach`); nowhere without a spray pass.
+/// The step's water heights come from the GPU's own displacement map: the lowest texel
+/// bounds them from below.
+fn spray_reach(
+    plan: &FramePlan,
+    frame: &ocean_core::graph::FrameInputs<'_>,
+    (w, h): (u32, u32),
+    gpu: &GpuSide<'_>,
+) -> Vec<bool> {
+    if !plan.runs(Pass::Spray) {
+        return vec![false; w as usize * h as usize];
+    }
+    let draw = ocean_core::spray::SprayFrame::new(frame.scene, plan, &frame.camera, 0, 0).draw;
+    let lowest_water = if draw.waves == 0.0 {
+        Some(0.0)
+    } else {
+        gpu.map(ResourceId::Displacement).map(|(_, t)| {
+            t.iter().map(|t| f64::from(t[1]) * f64::from(draw.waves)).fold(f64::INFINITY, f64::min)
+        })
+    };
+    let emitters = &plan.spray_emitters;
+    ocean_cpu::shaders::spray::reach(emitters, &draw, lowest_water, &frame.uniforms, w, h)
 }
 
 /// Pass `waves`' three maps, those the frame holds, against the envelope of the spectrum,

@@ -1,6 +1,7 @@
 //! CPU mirror of `shaders/spray.wgsl`: the spray's step (every slot from its previous value,
 //! the same arithmetic and random numbers as the compute shader) and its sprites (six
-//! vertices per particle from the vertex index, added to the frame).
+//! vertices per particle from the vertex index, added to the frame); and, for the envelope
+//! verdicts, where on any conformant GPU its sprites may land.
 
 pub use ocean_core::spray::{Emitter, Particle, SprayUniforms, spray_random};
 
@@ -139,4 +140,116 @@ pub fn draw_sprites(
     raster::draw(target, &RASTER_STATE, &tris, |frag| {
         Some(fs_main(vec2(frag.varyings[0], frag.varyings[1]), draw))
     });
+}
+
+/// The box, relative to the spray's origin, that every sprite of the spray's particles lies
+/// in on any conformant GPU: `None` without an emitter (no particle is ever launched).
+/// `lowest_water`: the lowest height the step's `water_height` may return (the displacement
+/// map's lowest texel, which a filter with non-negative weights cannot undercut), if known.
+///
+/// The bound is the flight, not the arithmetic, so rounding, a comparison decided the other
+/// way (a particle freed a step sooner or later, a slot launched or not) and the random
+/// numbers' last bits cannot take a particle out of it:
+/// - a particle leaves an emitter with velocity component c at most
+///   `speed · (1.4 |dir_c| + 0.15)` (the random part of the speed below 1.4, each jitter
+///   component within ±0.15 · speed), and lives at most `lifetime` (it is freed at the first
+///   step past it);
+/// - semi-implicit Euler keeps it under the parabola y₀ + v t − g t²/2, so it rises at most
+///   v²/2g above its emitter, and once falling below `lowest_water` it is freed at that very
+///   step: a live particle is above its emitter (rising) or above the lowest water (falling),
+///   and its life ends by the time the parabola crosses that water;
+/// - its sprite's corners lie within half its side · √2 of it.
+///
+/// A margin of 1 % and 1 cm covers the f32 steps.
+pub fn sprite_box(
+    emitters: &[Emitter],
+    draw: &SprayUniforms,
+    lowest_water: Option<f64>,
+) -> Option<[[f64; 3]; 2]> {
+    emitters.first()?;
+    let speed = f64::from(draw.speed.abs());
+    let v: [f64; 3] = std::array::from_fn(|c| {
+        let dir = emitters.iter().map(|e| f64::from(e.dir[c].abs())).fold(0.0f64, f64::max);
+        speed * (1.4 * dir + 0.15)
+    });
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for e in emitters {
+        for c in 0..3 {
+            lo[c] = lo[c].min(f64::from(e.pos[c]));
+            hi[c] = hi[c].max(f64::from(e.pos[c]));
+        }
+    }
+    let (dt, g) = (f64::from(draw.dt.abs()), f64::from(draw.gravity));
+    let mut t = f64::from(draw.lifetime) + dt;
+    let rise = if g > 0.0 { (v[1] * v[1] / (2.0 * g)).min(v[1] * t) } else { v[1] * t };
+    let floor = match lowest_water {
+        // Below the lowest water and falling, a particle is freed: the parabola from the
+        // highest emitter crosses it at t_f; a particle rising is above its emitter.
+        Some(h) if g > 0.0 && h.is_finite() => {
+            let h = h - 0.01 * h.abs() - 0.01;
+            let drop = (hi[1] - h).max(0.0);
+            t = t.min((v[1] + (v[1] * v[1] + 2.0 * g * drop).sqrt()) / g + dt);
+            h.min(lo[1])
+        }
+        _ => lo[1] - (v[1] * t + 0.5 * g.max(0.0) * t * t),
+    };
+    let sprite = f64::from(draw.sprite[0].abs()) * std::f64::consts::SQRT_2;
+    let margin = |d: f64| d * 1.01 + sprite + 0.01;
+    Some([
+        [lo[0] - margin(v[0] * t), floor - margin(0.0), lo[2] - margin(v[2] * t)],
+        [hi[0] + margin(v[0] * t), hi[1] + margin(rise), hi[2] + margin(v[2] * t)],
+    ])
+}
+
+/// Per pixel of a `width` × `height` view, whether a sprite of the spray may cover it on any
+/// conformant GPU: the screen rectangle around [`sprite_box`]'s eight corners (given the
+/// lowest water the step may sample, if known) seen through
+/// the frame's view-projection, widened by two pixels; every pixel where a corner may lie
+/// behind the eye (w ≤ 0), none where all of them do. The verdicts leave these pixels out:
+/// the sprites' own envelope is not carried.
+pub fn reach(
+    emitters: &[Emitter],
+    draw: &SprayUniforms,
+    lowest_water: Option<f64>,
+    frame: &FrameUniforms,
+    width: u32,
+    height: u32,
+) -> Vec<bool> {
+    let n = width as usize * height as usize;
+    let Some([lo, hi]) = sprite_box(emitters, draw, lowest_water) else {
+        return vec![false; n];
+    };
+    let m = glam::DMat4::from_cols_array_2d(&frame.view.view_proj.map(|c| c.map(f64::from)));
+    let origin = glam::DVec3::from_array(std::array::from_fn(|c| f64::from(draw.origin_rel[c])));
+    let clips: Vec<glam::DVec4> = (0..8)
+        .map(|k| {
+            let p = glam::DVec3::new(
+                if k & 1 == 0 { lo[0] } else { hi[0] },
+                if k & 2 == 0 { lo[1] } else { hi[1] },
+                if k & 4 == 0 { lo[2] } else { hi[2] },
+            );
+            m * (p + origin).extend(1.0)
+        })
+        .collect();
+    let eps = 1e-6 * clips.iter().map(|c| c.w.abs()).fold(0.0, f64::max);
+    if clips.iter().all(|c| c.w < -eps) {
+        return vec![false; n];
+    }
+    if clips.iter().any(|c| c.w <= eps) {
+        return vec![true; n];
+    }
+    let (hw, hh) = (0.5 * f64::from(width), 0.5 * f64::from(height));
+    let (mut x0, mut x1, mut y0, mut y1) =
+        (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+    for c in &clips {
+        let (x, y) = (c.x / c.w * hw + hw, c.y / c.w * -hh + hh);
+        (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
+    }
+    let (x0, x1, y0, y1) = (x0 - 2.0, x1 + 2.0, y0 - 2.0, y1 + 2.0);
+    (0..n)
+        .map(|i| {
+            let (x, y) = ((i % width as usize) as f64 + 0.5, (i / width as usize) as f64 + 0.5);
+            (x0..=x1).contains(&x) && (y0..=y1).contains(&y)
+        })
+        .collect()
 }
