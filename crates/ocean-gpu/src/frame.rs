@@ -233,17 +233,12 @@ impl GpuBackend<'_> {
         t
     }
 
-    /// A render target of the plan's size and format for `id`; the 8-bit picture, which the
-    /// tonemap's compute pass stores into, a storage texture as well.
+    /// A render target of the plan's size and format for `id`.
     fn target(&self, plan: &FramePlan, id: ResourceId) -> GpuTexture {
         let (size, format) =
             plan.resource(id).map_or(([1, 1], MAP_FORMAT), |r| (r.size, wgpu_format(r.format)));
         let label = format!("ocean.{}", id.name());
-        let usage = match id {
-            ResourceId::Ldr => target_usage() | wgpu::TextureUsages::STORAGE_BINDING,
-            _ => target_usage(),
-        };
-        self.kept.texture(&label, size[0], size[1], format, usage).0
+        self.kept.texture(&label, size[0], size[1], format, target_usage()).0
     }
 
     /// A depth buffer of `width × height`, kept across frames.
@@ -771,8 +766,8 @@ impl Backend for GpuBackend<'_> {
                 self.encoder,
                 t,
                 (&hdr.view, &glow),
-                (&ldr.view, [ldr.width, ldr.height]),
-                self.timer.compute_writes(slot),
+                &ldr.view,
+                self.timer.render_writes(slot),
             );
             self.put(ResourceId::Ldr, ldr);
         }
