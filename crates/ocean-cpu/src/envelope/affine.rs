@@ -48,16 +48,34 @@ struct Form {
     co: [f64; TERMS],
     n: usize,
     e: f64,
+    /// Σ|aᵢ| + e, kept from construction: every operation reads the range of its operands
+    /// (`Af::to_iv`) and of its result, and summing the coefficients each time was a third of
+    /// the water pass's envelope.
+    r: f64,
 }
 
 impl Form {
     fn constant(c: f64, e: f64) -> Form {
-        Form { c, ids: [0; TERMS], co: [0.0; TERMS], n: 0, e }
+        Form { c, ids: [0; TERMS], co: [0.0; TERMS], n: 0, e, r: 0.0 }.measured()
+    }
+
+    /// The form with its radius computed: after every change of its coefficients or error.
+    fn measured(mut self) -> Form {
+        self.r = self.co[..self.n].iter().map(|a| a.abs()).sum::<f64>() + self.e;
+        self
     }
 
     /// Σ|aᵢ| + e.
+    #[inline]
     fn radius(&self) -> f64 {
-        self.co[..self.n].iter().map(|a| a.abs()).sum::<f64>() + self.e
+        debug_assert!(
+            {
+                let sum = self.co[..self.n].iter().map(|a| a.abs()).sum::<f64>() + self.e;
+                sum.to_bits() == self.r.to_bits() || sum.is_nan() && self.r.is_nan()
+            },
+            "a form's radius was not measured after a change"
+        );
+        self.r
     }
 
     /// α·a + β·b + γ, plus `extra` error; symbols merged by id, the smallest folded into the
@@ -65,24 +83,34 @@ impl Form {
     fn combine(a: &Form, alpha: f64, b: &Form, beta: f64, gamma: f64, extra: f64) -> Form {
         let mut ids = [0u32; 2 * TERMS];
         let mut co = [0f64; 2 * TERMS];
-        let (mut i, mut j, mut n) = (0, 0, 0);
-        while i < a.n || j < b.n {
-            let (id, v) = if j >= b.n || (i < a.n && a.ids[i] < b.ids[j]) {
+        let mut n = 0;
+        // A zero coefficient is written and not counted, so the merge has no branch on it.
+        let mut push = |id: u32, v: f64| {
+            ids[n] = id;
+            co[n] = v;
+            n += usize::from(v != 0.0);
+        };
+        let (mut i, mut j) = (0, 0);
+        while i < a.n && j < b.n {
+            let (x, y) = (a.ids[i], b.ids[j]);
+            if x < y {
+                push(x, alpha * a.co[i]);
                 i += 1;
-                (a.ids[i - 1], alpha * a.co[i - 1])
-            } else if i >= a.n || b.ids[j] < a.ids[i] {
+            } else if y < x {
+                push(y, beta * b.co[j]);
                 j += 1;
-                (b.ids[j - 1], beta * b.co[j - 1])
             } else {
+                push(x, alpha * a.co[i] + beta * b.co[j]);
                 i += 1;
                 j += 1;
-                (a.ids[i - 1], alpha * a.co[i - 1] + beta * b.co[j - 1])
-            };
-            if v != 0.0 {
-                ids[n] = id;
-                co[n] = v;
-                n += 1;
             }
+        }
+        // One side is done; a literal's form has no symbol at all, the common case.
+        for k in i..a.n {
+            push(a.ids[k], alpha * a.co[k]);
+        }
+        for k in j..b.n {
+            push(b.ids[k], beta * b.co[k]);
         }
         let c = alpha * a.c + beta * b.c + gamma;
         let mut e = alpha.abs() * a.e + beta.abs() * b.e + extra;
@@ -127,14 +155,14 @@ impl Form {
             out.n = n;
         }
         out.e = e;
-        out
+        out.measured()
     }
 
     /// The product (linear part exact; the symbols' product within radius × radius).
     fn mul(a: &Form, b: &Form, extra: f64) -> Form {
         let rest = a.radius() * b.radius() + a.c.abs() * b.e + b.c.abs() * a.e;
-        let a_lin = Form { e: 0.0, ..*a };
-        let b_lin = Form { e: 0.0, ..*b };
+        let a_lin = Form { e: 0.0, ..*a }.measured();
+        let b_lin = Form { e: 0.0, ..*b }.measured();
         // c_a·b_lin + c_b·a_lin − c_a·c_b (the constant counted twice).
         Form::combine(&b_lin, a.c, &a_lin, b.c, -a.c * b.c, rest + extra)
     }
@@ -162,6 +190,7 @@ impl Af {
             f.ids[0] = fresh();
             f.co[0] = r;
             f.n = 1;
+            f = f.measured();
         }
         Af { iv, form: Some(f) }
     }
@@ -265,10 +294,19 @@ impl Add for Af {
     }
 }
 
+/// `a + (−b)` in one step: the same bits (negation is exact, and so is a product by ±1),
+/// without building the negated form.
 impl Sub for Af {
     type Output = Af;
     fn sub(self, b: Af) -> Af {
-        self + -b
+        let iv = self.to_iv() - b.to_iv();
+        let form = match (self.form_or_iv(), b.form_or_iv()) {
+            (Some(x), Some(y)) if self.form.is_some() || b.form.is_some() => {
+                Some(Form::combine(&x, 1.0, &y, -1.0, 0.0, Af::rounding(iv, 1.0)))
+            }
+            _ => None,
+        };
+        Af::with(iv, form)
     }
 }
 

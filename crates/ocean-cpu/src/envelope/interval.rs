@@ -71,18 +71,27 @@ fn pow2(e: i32) -> f64 {
 
 /// The f32 ULP at magnitude `m` ≥ 0 (the spacing of f32 values in m's binade): 2⁻¹⁴⁹ below
 /// the normal range, +∞ for non-finite m.
+///
+/// Every envelope operation asks for two of these, so it reads the binade off the exponent
+/// bits instead of branching on the range: 2^e · 2⁻²³ is exact, and below 2⁻¹²⁶ it falls under
+/// the subnormal spacing that `max` keeps.
+#[inline]
 pub fn f32_ulp(m: f64) -> f64 {
-    let m = m.abs();
-    if !m.is_finite() {
-        return f64::INFINITY;
+    const EXP: u64 = 0x7ff0_0000_0000_0000;
+    // 2¹²⁸'s exponent bits: from there on the binade is past f32's top one.
+    const PAST_F32: u64 = (128 + 1023) << 52;
+    let binade = m.to_bits() & EXP;
+    if binade >= PAST_F32 {
+        // f32's top binade ends at 2^128; a magnitude past f32::MAX keeps that binade's ULP.
+        return if binade == EXP { f64::INFINITY } else { pow2(127 - 23) };
     }
-    if m < F32_MIN_NORMAL {
-        return f64::from(f32::from_bits(1));
-    }
-    let e = ((m.to_bits() >> 52) & 0x7ff) as i32 - 1023;
-    // f32's top binade ends at 2^128; a magnitude past f32::MAX keeps that binade's ULP.
-    pow2(e.min(127) - 23)
+    (f64::from_bits(binade) * TWO_POW_M23).max(F32_SUBNORMAL_ULP)
 }
+
+/// 2⁻²³: an f32 ULP relative to its binade's power of two.
+const TWO_POW_M23: f64 = 1.0 / (1u64 << 23) as f64;
+/// 2⁻¹⁴⁹: the spacing of f32's subnormals.
+const F32_SUBNORMAL_ULP: f64 = 1.401_298_464_324_817e-45;
 
 /// log2's allowance at a result of magnitude up to `m`: the larger of 2⁻²¹ (absolute, for
 /// arguments in [0.5, 2]) and 3 ULP (elsewhere).
@@ -170,13 +179,12 @@ impl Iv {
     /// magnitude, then what f32 storage allows: overflow to ±∞ and flushed subnormals. The
     /// extra 2⁻⁵⁰ of each end's magnitude covers that rounding and the widening's own, so no
     /// outward step is needed per operation.
-    #[inline]
+    #[inline(always)]
     fn rounded(lo: f64, hi: f64, ulps: f64) -> Iv {
-        if lo.is_nan() || hi.is_nan() {
-            return Iv::FULL;
-        }
-        let m = lo.abs().max(hi.abs());
-        if m.is_nan() || m > F32_MAX {
+        // Written so that the common case (finite ends inside one binade each) runs without a
+        // mispredicted branch: every envelope operation ends here.
+        // NaN fails both comparisons: a NaN end is anything too.
+        if !(lo.abs() <= F32_MAX && hi.abs() <= F32_MAX) {
             // May overflow: under the finite-math assumption, anything.
             return Iv::FULL;
         }
@@ -184,16 +192,22 @@ impl Iv {
         // widened by the large end's ULP. Moving inward from an end whose magnitude grows
         // (lo > 0, hi < 0), a result past the next power of two B has ULPs twice as large:
         // it is at least B − ulps·ulp(B) from the end's side, which may reach further.
-        let l = {
-            let w = lo - ulps * f32_ulp(lo);
-            let b = if lo > 0.0 { pow2_above(lo) } else { f64::INFINITY };
-            if hi >= b { w.min(b - ulps * f32_ulp(b)) } else { w }
-        } - lo.abs() * F64_SLACK;
-        let h = {
-            let w = hi + ulps * f32_ulp(hi);
-            let b = if hi < 0.0 { -pow2_above(-hi) } else { f64::NEG_INFINITY };
-            if lo <= b { w.max(b + ulps * f32_ulp(b)) } else { w }
-        } + hi.abs() * F64_SLACK;
+        let mut l = lo - ulps * f32_ulp(lo);
+        if lo > 0.0 {
+            let b = pow2_above(lo);
+            if hi >= b {
+                l = l.min(b - ulps * f32_ulp(b));
+            }
+        }
+        let mut h = hi + ulps * f32_ulp(hi);
+        if hi < 0.0 {
+            let b = -pow2_above(-hi);
+            if lo <= b {
+                h = h.max(b + ulps * f32_ulp(b));
+            }
+        }
+        let l = l - lo.abs() * F64_SLACK;
+        let h = h + hi.abs() * F64_SLACK;
         // No rounding changes a result's sign: a value whose every exact result is ≥ 0 stays
         // ≥ 0 (so the square root of a product of squares is defined), likewise ≤ 0.
         let l = if lo >= 0.0 { l.max(0.0) } else { l };
@@ -203,16 +217,14 @@ impl Iv {
 
     /// A result that may pass f32's range is anything (WGSL's finite-math assumption lets an
     /// implementation assume no overflow, and no infinity after it); subnormals may flush to 0.
-    fn stored(mut lo: f64, mut hi: f64) -> Iv {
-        if lo.is_nan() || hi.is_nan() || hi > F32_MAX || lo < -F32_MAX {
+    #[inline(always)]
+    fn stored(lo: f64, hi: f64) -> Iv {
+        // NaN fails both comparisons.
+        if !(hi <= F32_MAX && lo >= -F32_MAX) {
             return Iv::FULL;
         }
-        if lo > 0.0 && lo < F32_MIN_NORMAL {
-            lo = 0.0;
-        }
-        if hi < 0.0 && hi > -F32_MIN_NORMAL {
-            hi = 0.0;
-        }
+        let lo = if lo > 0.0 && lo < F32_MIN_NORMAL { 0.0 } else { lo };
+        let hi = if hi < 0.0 && hi > -F32_MIN_NORMAL { 0.0 } else { hi };
         Iv::new(lo, hi)
     }
 
@@ -258,9 +270,10 @@ fn unflushed(lo: f64) -> f64 {
 }
 
 /// The least power of two above `x` > 0 (where f32's ULP doubles).
+#[inline(always)]
 fn pow2_above(x: f64) -> f64 {
-    let e = ((x.to_bits() >> 52) & 0x7ff) as i32 - 1023;
-    pow2(e + 1)
+    // One more in the exponent field: 2^(e + 1), also for an f64 subnormal (e = −1023).
+    f64::from_bits((x.to_bits() & 0x7ff0_0000_0000_0000) + (1 << 52))
 }
 
 /// The spacing of binary16 values at magnitude `a` < 65536.
@@ -304,7 +317,7 @@ pub(crate) fn half_subnormal(x: f64) -> bool {
 /// The four products' (or quotients') hull, each rounded to nearest in f64 (the caller's
 /// [`Iv::rounded`] covers that). `f` must be monotone in each argument on each sign-constant
 /// piece (× and ÷ are), so with a point operand two corners decide it.
-#[inline]
+#[inline(always)]
 fn corners(a: Iv, b: Iv, f: impl Fn(f64, f64) -> f64) -> (f64, f64) {
     let (x, y) = if b.lo == b.hi {
         (f(a.lo, b.lo), f(a.hi, b.lo))
@@ -312,14 +325,13 @@ fn corners(a: Iv, b: Iv, f: impl Fn(f64, f64) -> f64) -> (f64, f64) {
         (f(a.lo, b.lo), f(a.lo, b.hi))
     } else {
         let c = [f(a.lo, b.lo), f(a.lo, b.hi), f(a.hi, b.lo), f(a.hi, b.hi)];
-        if c.iter().any(|v| v.is_nan()) {
+        // `|` rather than `||`: four compares, no branch between them.
+        if c[0].is_nan() | c[1].is_nan() | c[2].is_nan() | c[3].is_nan() {
             return (f64::NAN, f64::NAN);
         }
-        let lo = c.iter().copied().fold(f64::INFINITY, f64::min);
-        let hi = c.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        return (lo, hi);
+        return (c[0].min(c[1]).min(c[2].min(c[3])), c[0].max(c[1]).max(c[2].max(c[3])));
     };
-    if x.is_nan() || y.is_nan() {
+    if x.is_nan() | y.is_nan() {
         return (f64::NAN, f64::NAN);
     }
     (x.min(y), x.max(y))
@@ -327,6 +339,7 @@ fn corners(a: Iv, b: Iv, f: impl Fn(f64, f64) -> f64) -> (f64, f64) {
 
 impl Add for Iv {
     type Output = Iv;
+    #[inline(always)]
     fn add(self, b: Iv) -> Iv {
         if self.full || b.full {
             return Iv::FULL;
@@ -337,6 +350,7 @@ impl Add for Iv {
 
 impl Sub for Iv {
     type Output = Iv;
+    #[inline(always)]
     fn sub(self, b: Iv) -> Iv {
         if self.full || b.full {
             return Iv::FULL;
@@ -347,6 +361,7 @@ impl Sub for Iv {
 
 impl Mul for Iv {
     type Output = Iv;
+    #[inline(always)]
     fn mul(self, b: Iv) -> Iv {
         if self.full || b.full {
             return Iv::FULL;
@@ -359,6 +374,7 @@ impl Mul for Iv {
 /// Negation is exact (a sign flip).
 impl Neg for Iv {
     type Output = Iv;
+    #[inline(always)]
     fn neg(self) -> Iv {
         Iv { lo: -self.hi, hi: -self.lo, full: self.full }
     }
@@ -366,6 +382,7 @@ impl Neg for Iv {
 
 impl Div for Iv {
     type Output = Iv;
+    #[inline(always)]
     fn div(self, b: Iv) -> Iv {
         if self.full || b.full || b.lo <= 0.0 && b.hi >= 0.0 {
             return Iv::FULL;
@@ -668,3 +685,7 @@ impl Real for Iv {
         ByteRange { lo, hi }
     }
 }
+
+#[cfg(test)]
+#[path = "interval_tests.rs"]
+mod tests;

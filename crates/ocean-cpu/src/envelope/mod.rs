@@ -489,7 +489,7 @@ pub fn mat4_mul_vec4<R: Real>(m: &[[f32; 4]; 4], v: [R; 4]) -> [R; 4] {
 /// Three components, one operation each (a `vec3<f32>` of any [`Real`]).
 #[inline]
 pub fn map3<R: Real>(v: [R; 3], f: impl Fn(R) -> R) -> [R; 3] {
-    v.map(f)
+    [f(v[0]), f(v[1]), f(v[2])]
 }
 
 /// Component-wise `f(a, b)`.
