@@ -1019,7 +1019,27 @@ pub fn scene_sky(scene: &Scene) -> crate::Result<PreethamSky> {
 /// an upward surface divided by π: the objects' ambient term ([`AmbientBlock::sky`]).
 /// A fixed 32 × 64 midpoint grid in (cos² θ, φ) — uniform in projected solid angle — so it is
 /// deterministic.
+///
+/// Every frame asks for it and a sky seldom changes between frames, so the last sky's answer
+/// is kept: the sum is 2,048 evaluations of the Preetham model, about 0.3 ms, which was most of
+/// a real-time frame's CPU encode (issue 37).
 pub fn sky_ambient(sky: &PreethamSky) -> [f32; 3] {
+    static LAST: std::sync::Mutex<Option<(PreethamSky, [f32; 3])>> = std::sync::Mutex::new(None);
+    if let Ok(last) = LAST.lock()
+        && let Some((kept, ambient)) = *last
+        && kept == *sky
+    {
+        return ambient;
+    }
+    let ambient = sky_ambient_of(sky);
+    if let Ok(mut last) = LAST.lock() {
+        *last = Some((*sky, ambient));
+    }
+    ambient
+}
+
+/// [`sky_ambient`] computed.
+fn sky_ambient_of(sky: &PreethamSky) -> [f32; 3] {
     let (rows, cols) = (32, 64);
     let mut sum = DVec3::ZERO;
     for i in 0..rows {
@@ -1059,6 +1079,24 @@ pub fn bump_texels(maps: &WaveMaps<f32>) -> Vec<[f32; 4]> {
 mod tests {
     use super::*;
     use crate::scene::ObjectKind;
+
+    /// The kept answer is the asked sky's: two skies asked in turn each get their own sum,
+    /// and the two sums differ (so a stale answer would be seen).
+    #[test]
+    fn the_kept_sky_ambient_is_the_asked_sky_s() {
+        let sky = |turbidity: f64| {
+            let params = crate::sky::SkyParams::new([0.3, 0.5, 0.2], turbidity, [1.0; 3], 1.0);
+            PreethamSky::new(params.expect("a valid sky"))
+        };
+        let (clear, hazy) = (sky(2.5), sky(6.0));
+        let (a, b) = (sky_ambient_of(&clear), sky_ambient_of(&hazy));
+        assert_ne!(a, b);
+        for _ in 0..3 {
+            assert_eq!(sky_ambient(&clear), a);
+            assert_eq!(sky_ambient(&clear), a);
+            assert_eq!(sky_ambient(&hazy), b);
+        }
+    }
 
     fn object(kind: ObjectKind, center: [f64; 3]) -> Object {
         Object {
