@@ -403,6 +403,15 @@ fn bench_cases(json: &serde_json::Value) -> Vec<serde_json::Value> {
         if c["kind"] == "frame" {
             assert!(!c["passes"].as_array().expect("passes").is_empty(), "{c}");
             assert_eq!(c["backend"] == "gpu", c["encode_ms"].as_f64().is_some(), "{c}");
+            // The encode's CPU time is the calling thread's, inside the call's wall time.
+            if cfg!(unix) && c["backend"] == "gpu" {
+                let (cpu, wall) = (c["encode_cpu_ms"].as_f64(), c["encode_ms"].as_f64());
+                let (Some(cpu), Some(wall)) = (cpu, wall) else { panic!("no encode times: {c}") };
+                assert!(
+                    cpu > 0.0 && cpu <= 1.01 * wall + 0.05,
+                    "CPU {cpu} ms, wall {wall} ms: {c}"
+                );
+            }
             // The steady frame (no read-back, frames back to back) is a GPU frame's figure.
             assert_eq!(
                 c["backend"] == "gpu",
