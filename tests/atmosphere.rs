@@ -220,3 +220,45 @@ fn the_kept_sky_table_is_the_fresh_one() {
     let other = SkyLut::kept(2.0, lower, top);
     assert!(*other == *SkyLut::new(2.0, lower, top) && *other != *first);
 }
+
+/// A frame's light under sky `atmosphere` — the sun at the eye and the sky's ambient term,
+/// kept per eye height and sun since they cost a quarter of a millisecond each frame — is the
+/// one computed anew, bit for bit, for two suns asked in turn; and the two differ, so a stale
+/// answer would be seen.
+#[test]
+fn the_kept_atmosphere_light_is_the_fresh_one() {
+    use ocean_core::atmosphere::{SkyLut, sun_at_eye, top_irradiance};
+    use ocean_core::graph::{FrameInputs, FrameState};
+    use ocean_core::plan::{FramePlan, OutputKind};
+    use ocean_core::scene::Scene;
+    use ocean_core::technique::System;
+    let base = Scene::builtin_for(System::Welch).with_system(System::Welch).expect("welch");
+    let scene = |elevation: f64| {
+        let mut s = base.clone();
+        s.sun.as_mut().expect("a sun").direction = dir(elevation, 40.0);
+        s
+    };
+    let (high, low) = (scene(50.0), scene(12.0));
+    let light = |s: &Scene| {
+        let plan = FramePlan::new(s, OutputKind::Ldr);
+        assert!(plan.techniques.sky().sky_view_table(), "welch's sky is the atmosphere");
+        let f = FrameInputs::new(s, &plan, &FrameState::new(0.0)).expect("frame");
+        (f.uniforms.ambient.sky, f.uniforms.sun.radiance, f.camera.eye.y)
+    };
+    let fresh = |s: &Scene, altitude: f64| {
+        let sun = s.sun.as_ref().expect("a sun");
+        let d = glam::DVec3::from(sun.direction).normalize().to_array();
+        let top = top_irradiance(std::array::from_fn(|c| sun.color[c] * sun.intensity));
+        let at_eye = sun_at_eye(altitude.max(0.0), d, top).map(|e| e as f32);
+        (SkyLut::new(altitude.max(0.0), d, top).ambient(d), at_eye)
+    };
+    let mut seen = Vec::new();
+    for s in [&high, &low, &high, &low] {
+        let (ambient, sun, altitude) = light(s);
+        let (want_ambient, want_sun) = fresh(s, altitude);
+        assert_eq!(ambient, want_ambient);
+        assert_eq!(sun, want_sun);
+        seen.push(ambient);
+    }
+    assert_ne!(seen[0], seen[1], "two suns, one ambient term");
+}

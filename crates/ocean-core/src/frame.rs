@@ -1020,22 +1020,12 @@ pub fn scene_sky(scene: &Scene) -> crate::Result<PreethamSky> {
 /// A fixed 32 × 64 midpoint grid in (cos² θ, φ) — uniform in projected solid angle — so it is
 /// deterministic.
 ///
-/// Every frame asks for it and a sky seldom changes between frames, so the last sky's answer
-/// is kept: the sum is 2,048 evaluations of the Preetham model, about 0.3 ms, which was most of
-/// a real-time frame's CPU encode (issue 37).
+/// Every frame asks for it and a sky seldom changes between frames, so it is kept
+/// (`crate::kept`): the sum is 2,048 evaluations of the Preetham model, about 0.3 ms, which was
+/// most of a real-time frame's CPU encode (issue 37).
 pub fn sky_ambient(sky: &PreethamSky) -> [f32; 3] {
-    static LAST: std::sync::Mutex<Option<(PreethamSky, [f32; 3])>> = std::sync::Mutex::new(None);
-    if let Ok(last) = LAST.lock()
-        && let Some((kept, ambient)) = *last
-        && kept == *sky
-    {
-        return ambient;
-    }
-    let ambient = sky_ambient_of(sky);
-    if let Ok(mut last) = LAST.lock() {
-        *last = Some((*sky, ambient));
-    }
-    ambient
+    static KEPT: crate::kept::Kept<PreethamSky, [f32; 3]> = crate::kept::Kept::new();
+    KEPT.get(*sky, || sky_ambient_of(sky))
 }
 
 /// [`sky_ambient`] computed.

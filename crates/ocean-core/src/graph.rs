@@ -222,13 +222,22 @@ fn atmosphere_environment(
         }
         None => ([0.0, 1.0, 0.0], [0.0; 3]),
     };
-    let top = top_irradiance(sea);
     let altitude = camera.eye.y.max(0.0);
+    /// The sun's irradiance at the top and at the eye, and the sky's ambient term.
+    type Light = ([f64; 3], [f64; 3], [f32; 3]);
+    // Two integrations of 256 steps and the table's 2,048 lookups: a quarter of a millisecond
+    // that every frame asked again for the same eye height and sun, so kept with the table.
+    static KEPT: crate::kept::Kept<[u64; 7], Light> = crate::kept::Kept::new();
+    let key = [altitude, dir[0], dir[1], dir[2], sea[0], sea[1], sea[2]].map(f64::to_bits);
+    let (top, at_eye, ambient) = KEPT.get(key, || {
+        let top = top_irradiance(sea);
+        let ambient = SkyLut::kept(altitude, dir, top).ambient(dir);
+        (top, sun_at_eye(altitude, dir, top), ambient)
+    });
     let lut = SkyLut::kept(altitude, dir, top);
-    let at_eye = sun_at_eye(altitude, dir, top);
     uniforms.sun.radiance = at_eye.map(|e| e as f32);
     environment.sun_radiance = [at_eye[0] as f32, at_eye[1] as f32, at_eye[2] as f32, 0.0];
-    uniforms.ambient.sky = lut.ambient(dir);
+    uniforms.ambient.sky = ambient;
     lut
 }
 
