@@ -15,8 +15,8 @@
 //!   GPU shares the cores (lavapipe), the wall time also counts waiting for one, so the CPU
 //!   time is the figure to hold to a budget;
 //! - `steady_ms` (GPU): what a real-time user sees, without read-back: [`STEADY_FRAMES`]
-//!   real-time frames recorded and submitted back to back, one wait at the end, the total divided by
-//!   their count (the GPU's and the CPU's work overlap as in a viewer);
+//!   real-time frames recorded and submitted back to back, one wait at the end, the total
+//!   divided by their count (the GPU's and the CPU's work overlap as in a viewer);
 //! - per pass, of the median run itself (so that they add up inside its total): GPU time
 //!   from timestamp queries where the adapter has them, the CPU's wall time per pass;
 //! - `peak_rss_mib`: the process's peak resident memory during the case (Linux: VmHWM,

@@ -48,34 +48,16 @@ struct Form {
     co: [f64; TERMS],
     n: usize,
     e: f64,
-    /// Σ|aᵢ| + e, kept from construction: every operation reads the range of its operands
-    /// (`Af::to_iv`) and of its result, and summing the coefficients each time was a third of
-    /// the water pass's envelope.
-    r: f64,
 }
 
 impl Form {
     fn constant(c: f64, e: f64) -> Form {
-        Form { c, ids: [0; TERMS], co: [0.0; TERMS], n: 0, e, r: 0.0 }.measured()
-    }
-
-    /// The form with its radius computed: after every change of its coefficients or error.
-    fn measured(mut self) -> Form {
-        self.r = self.co[..self.n].iter().map(|a| a.abs()).sum::<f64>() + self.e;
-        self
+        Form { c, ids: [0; TERMS], co: [0.0; TERMS], n: 0, e }
     }
 
     /// Σ|aᵢ| + e.
-    #[inline]
     fn radius(&self) -> f64 {
-        debug_assert!(
-            {
-                let sum = self.co[..self.n].iter().map(|a| a.abs()).sum::<f64>() + self.e;
-                sum.to_bits() == self.r.to_bits() || sum.is_nan() && self.r.is_nan()
-            },
-            "a form's radius was not measured after a change"
-        );
-        self.r
+        self.co[..self.n].iter().map(|a| a.abs()).sum::<f64>() + self.e
     }
 
     /// α·a + β·b + γ, plus `extra` error; symbols merged by id, the smallest folded into the
@@ -155,14 +137,14 @@ impl Form {
             out.n = n;
         }
         out.e = e;
-        out.measured()
+        out
     }
 
     /// The product (linear part exact; the symbols' product within radius × radius).
     fn mul(a: &Form, b: &Form, extra: f64) -> Form {
         let rest = a.radius() * b.radius() + a.c.abs() * b.e + b.c.abs() * a.e;
-        let a_lin = Form { e: 0.0, ..*a }.measured();
-        let b_lin = Form { e: 0.0, ..*b }.measured();
+        let a_lin = Form { e: 0.0, ..*a };
+        let b_lin = Form { e: 0.0, ..*b };
         // c_a·b_lin + c_b·a_lin − c_a·c_b (the constant counted twice).
         Form::combine(&b_lin, a.c, &a_lin, b.c, -a.c * b.c, rest + extra)
     }
@@ -190,7 +172,6 @@ impl Af {
             f.ids[0] = fresh();
             f.co[0] = r;
             f.n = 1;
-            f = f.measured();
         }
         Af { iv, form: Some(f) }
     }
@@ -280,17 +261,25 @@ impl Af {
     }
 }
 
-impl Add for Af {
-    type Output = Af;
-    fn add(self, b: Af) -> Af {
-        let iv = self.to_iv() + b.to_iv();
+impl Af {
+    /// `self + beta·b` for β = ±1 (exact scalings), whose interval `iv` is: the forms
+    /// combined with one rounding's allowance.
+    fn plus(self, b: Af, beta: f64, iv: Iv) -> Af {
         let form = match (self.form_or_iv(), b.form_or_iv()) {
             (Some(x), Some(y)) if self.form.is_some() || b.form.is_some() => {
-                Some(Form::combine(&x, 1.0, &y, 1.0, 0.0, Af::rounding(iv, 1.0)))
+                Some(Form::combine(&x, 1.0, &y, beta, 0.0, Af::rounding(iv, 1.0)))
             }
             _ => None,
         };
         Af::with(iv, form)
+    }
+}
+
+impl Add for Af {
+    type Output = Af;
+    fn add(self, b: Af) -> Af {
+        let iv = self.to_iv() + b.to_iv();
+        self.plus(b, 1.0, iv)
     }
 }
 
@@ -300,13 +289,7 @@ impl Sub for Af {
     type Output = Af;
     fn sub(self, b: Af) -> Af {
         let iv = self.to_iv() - b.to_iv();
-        let form = match (self.form_or_iv(), b.form_or_iv()) {
-            (Some(x), Some(y)) if self.form.is_some() || b.form.is_some() => {
-                Some(Form::combine(&x, 1.0, &y, -1.0, 0.0, Af::rounding(iv, 1.0)))
-            }
-            _ => None,
-        };
-        Af::with(iv, form)
+        self.plus(b, -1.0, iv)
     }
 }
 
