@@ -20,12 +20,17 @@ use crate::waves::WaveMaps;
 
 mod boat;
 mod foam;
+mod triangles;
 
 pub use crate::geometry::ProjectedGridBlock;
 pub use crate::objects::{ObjectVertex, SPHERE_BANDS, SPHERE_SEGMENTS};
 pub use crate::scene::coastal_sea;
 use crate::scene::finite_time;
 use crate::switch::switch;
+
+pub use triangles::{
+    ObjectsKey, object_triangles, pass_floor_triangles, pass_object_triangles, pass_triangles,
+};
 
 pub use boat::{
     BOW_SHARE, HULL_TRIANGLES, ObjectPoses, SETTLE_STEPS, hull_bounds, hull_faces, hull_triangles,
@@ -488,126 +493,6 @@ impl WaveMipsUniforms {
     /// The uniforms of a dispatch writing a `dst`-sized level from a `src`-sized one.
     pub fn new(dst: [u32; 2], src: [u32; 2]) -> Self {
         Self { width: dst[0], height: dst[1], src_width: src[0], src_height: src[1] }
-    }
-}
-
-/// Triangles (three vertices each) of every object, camera-relative, counter-clockwise seen
-/// from outside; boats at their entries in `poses` (indexed as `objects`), else at rest.
-pub fn object_triangles(
-    objects: &[Object],
-    poses: &ObjectPoses,
-    eye: DVec3,
-) -> Vec<[ObjectVertex; 3]> {
-    let mut tris = Vec::new();
-    for (i, o) in objects.iter().enumerate() {
-        push_object_triangles(&mut tris, o, poses.of(i, o), eye);
-    }
-    tris
-}
-
-/// Appends the triangles of one object (a boat at `pose`).
-fn push_object_triangles(
-    tris: &mut Vec<[ObjectVertex; 3]>,
-    o: &Object,
-    pose: Option<BoatPose>,
-    eye: DVec3,
-) {
-    let c = DVec3::from_array(o.center);
-    let color = o.color.map(|v| v as f32);
-    let vertex = |p: DVec3, n: DVec3| ObjectVertex {
-        position: (p - eye).as_vec3().to_array(),
-        normal: n.as_vec3().to_array(),
-        color,
-    };
-    match (o.shape(), pose) {
-        (Some(Shape::Sphere { radius }), _) => {
-            let point = |b: u32, s: u32| {
-                let theta = std::f64::consts::PI * b as f64 / SPHERE_BANDS as f64;
-                let phi = std::f64::consts::TAU * s as f64 / SPHERE_SEGMENTS as f64;
-                DVec3::new(theta.sin() * phi.cos(), theta.cos(), -theta.sin() * phi.sin())
-            };
-            for b in 0..SPHERE_BANDS {
-                for s in 0..SPHERE_SEGMENTS {
-                    let (n00, n01) = (point(b, s), point(b, s + 1));
-                    let (n10, n11) = (point(b + 1, s), point(b + 1, s + 1));
-                    let v = |n: DVec3| vertex(c + n * radius, n);
-                    if b > 0 {
-                        tris.push([v(n00), v(n10), v(n01)]);
-                    }
-                    if b + 1 < SPHERE_BANDS {
-                        tris.push([v(n01), v(n10), v(n11)]);
-                    }
-                }
-            }
-        }
-        (Some(Shape::Box { size }), _) => {
-            let h = DVec3::from_array(size) * 0.5;
-            // Each face: normal axis and the two in-face axes in counter-clockwise order.
-            for (n, u, w) in [
-                (DVec3::X, DVec3::NEG_Z, DVec3::Y),
-                (DVec3::NEG_X, DVec3::Z, DVec3::Y),
-                (DVec3::Y, DVec3::X, DVec3::NEG_Z),
-                (DVec3::NEG_Y, DVec3::X, DVec3::Z),
-                (DVec3::Z, DVec3::X, DVec3::Y),
-                (DVec3::NEG_Z, DVec3::NEG_X, DVec3::Y),
-            ] {
-                let corner = |a: f64, b: f64| c + (n + u * a + w * b) * h;
-                let q =
-                    [corner(-1.0, -1.0), corner(1.0, -1.0), corner(1.0, 1.0), corner(-1.0, 1.0)];
-                tris.push([vertex(q[0], n), vertex(q[1], n), vertex(q[2], n)]);
-                tris.push([vertex(q[0], n), vertex(q[2], n), vertex(q[3], n)]);
-            }
-        }
-        (Some(Shape::Boat { size, .. }), Some(pose)) => {
-            for (p, n) in hull_triangles(size, &pose) {
-                tris.push(p.map(|p| vertex(p, n)));
-            }
-        }
-        (Some(Shape::Boat { .. }), None) | (None, _) => {}
-    }
-}
-
-/// The triangles an object pass of the plan draws: its objects' (boats at `poses`), then the
-/// sea floor's when the pass draws it ([`pass_object_triangles`] then
-/// [`pass_floor_triangles`], in one list).
-pub fn pass_triangles(
-    scene: &Scene,
-    poses: &ObjectPoses,
-    pass: &crate::plan::PlannedPass,
-    eye: DVec3,
-) -> Vec<[ObjectVertex; 3]> {
-    let mut tris = pass_object_triangles(scene, poses, pass, eye);
-    if let Some(floor) = pass_floor_triangles(scene, pass, eye) {
-        tris.extend_from_slice(&floor);
-    }
-    tris
-}
-
-/// The triangles of an object pass's objects (boats at `poses`), camera-relative.
-pub fn pass_object_triangles(
-    scene: &Scene,
-    poses: &ObjectPoses,
-    pass: &crate::plan::PlannedPass,
-    eye: DVec3,
-) -> Vec<[ObjectVertex; 3]> {
-    let mut tris = Vec::new();
-    for &i in &pass.objects {
-        let o = &scene.objects[i];
-        push_object_triangles(&mut tris, o, poses.of(i, o), eye);
-    }
-    tris
-}
-
-/// The sea floor's triangles when an object pass draws it, camera-relative: one kept list per
-/// floor and eye ([`terrain_triangles`]), shared by the frame's passes.
-pub fn pass_floor_triangles(
-    scene: &Scene,
-    pass: &crate::plan::PlannedPass,
-    eye: DVec3,
-) -> Option<std::sync::Arc<Vec<[ObjectVertex; 3]>>> {
-    match (pass.terrain, &scene.terrain) {
-        (true, Some(t)) => Some(terrain_triangles(t, eye, wet_top_m(scene))),
-        _ => None,
     }
 }
 

@@ -26,7 +26,7 @@ use std::time::{Duration, Instant};
 
 use ocean_core::frame::{
     FrameUniforms, FresnelTableUniforms, ObjectVertex, bump_texels, displacement_slope_texels,
-    displacement_texels, pass_floor_triangles, pass_object_triangles,
+    displacement_texels, pass_floor_triangles,
 };
 use ocean_core::graph::{Backend, FoamWork, FrameInputs, FrameState, run_frame};
 use ocean_core::plan::{Format, FramePlan, Pass, PlannedPass, ResourceId, WavesKernel};
@@ -40,7 +40,7 @@ use crate::device::{AdapterReport, Error, Gpu};
 use crate::foam::{FoamStage, GpuFoam};
 use crate::fresnel_table::FresnelTableStage;
 use crate::objects::{
-    ObjectsEntry, ObjectsStage, VertexChunk, labelled_vertex_chunks, vertex_chunks,
+    KeptObjects, ObjectsEntry, ObjectsSource, ObjectsStage, VertexChunk, labelled_vertex_chunks,
 };
 use crate::pool::FramePool;
 use crate::readback::{FloatMap, Readbacks, TexelData};
@@ -167,6 +167,8 @@ pub struct Renderer {
     fresnel: KeptTables,
     /// The sea floor's triangles as last uploaded, and the list they were uploaded from.
     floor_vertices: KeptFloor,
+    /// The object passes' vertex buffers and what they hold.
+    object_vertices: KeptObjects,
     /// The far field's Fresnel filter table as uploaded, and the table it was made from.
     filter: Option<(Arc<ocean_core::far_field::FresnelFilterTable>, GpuTexture)>,
 }
@@ -203,6 +205,7 @@ pub struct GpuBackend<'r> {
     kept: &'r FramePool,
     fresnel: &'r mut KeptTables,
     floor_vertices: &'r mut KeptFloor,
+    object_vertices: &'r mut KeptObjects,
     filter: &'r mut Option<(Arc<ocean_core::far_field::FresnelFilterTable>, GpuTexture)>,
     reused: Vec<Pass>,
     encoder: &'r mut wgpu::CommandEncoder,
@@ -409,9 +412,9 @@ impl GpuBackend<'_> {
     /// still camera, draw the same ones.
     fn object_vertices(&mut self, pass: &PlannedPass, frame: &FrameInputs<'_>) -> Vec<VertexChunk> {
         let eye = frame.camera.eye;
-        let tris = pass_object_triangles(frame.scene, &frame.poses, pass, eye);
         let max = self.gpu.device.limits().max_buffer_size.min(self.max_vertex_buffer_bytes);
-        let mut chunks = vertex_chunks(self.kept, bytemuck::cast_slice(&tris), max);
+        let from = ObjectsSource { scene: frame.scene, poses: &frame.poses, eye };
+        let mut chunks = self.object_vertices.chunks(self.kept, &from, pass, max);
         if let Some(floor) = pass_floor_triangles(frame.scene, pass, eye) {
             let kept = self
                 .floor_vertices
@@ -827,6 +830,7 @@ impl Renderer {
             timers: TimerPool::default(),
             fresnel: Vec::new(),
             floor_vertices: None,
+            object_vertices: KeptObjects::default(),
             filter: None,
         })
     }
@@ -1167,6 +1171,7 @@ impl Renderer {
             kept: &self.kept,
             fresnel: &mut self.fresnel,
             floor_vertices: &mut self.floor_vertices,
+            object_vertices: &mut self.object_vertices,
             filter: &mut self.filter,
             reused: Vec::new(),
             encoder,

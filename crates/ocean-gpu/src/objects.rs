@@ -9,7 +9,7 @@
 //! CPU mirror: `ocean-cpu/src/shaders/objects.rs`.
 
 use crate::created::Counted;
-use ocean_core::frame::ObjectVertex;
+use ocean_core::frame::{ObjectVertex, ObjectsKey};
 
 use crate::common::{
     Load, begin_render_pass, entry, eye_depth, label, linear_sampler, pipeline_layout, primitive,
@@ -186,16 +186,8 @@ pub struct VertexChunk {
 }
 
 /// Vertex buffers of at most `max_bytes` each holding `vertices` (whole triangles), or one
-/// placeholder vertex when there are none (a buffer cannot be empty).
-pub fn vertex_chunks(
-    kept: &crate::pool::FramePool,
-    vertices: &[ocean_core::frame::ObjectVertex],
-    max_bytes: u64,
-) -> Vec<VertexChunk> {
-    labelled_vertex_chunks(kept, "ocean.objects.vertices", vertices, max_bytes)
-}
-
-/// [`vertex_chunks`] into the pool's buffers of `label`.
+/// placeholder vertex when there are none (a buffer cannot be empty), in the pool's buffers
+/// of `label`.
 pub fn labelled_vertex_chunks(
     kept: &crate::pool::FramePool,
     label: &str,
@@ -218,4 +210,76 @@ pub fn labelled_vertex_chunks(
             count: if vertices.is_empty() { 0 } else { c.len() as u32 },
         })
         .collect()
+}
+
+/// The object passes' vertex buffers, kept across frames while what they hold is what would be
+/// made again ([`ocean_core::frame::ObjectsKey`]): a still camera over still objects builds and
+/// uploads each pass's triangles once, and the passes of a frame that draw the same objects
+/// build them once. Each pass writes only its own buffers (a label of its own in the pool), so
+/// a pass whose objects change never overwrites what another pass keeps.
+#[derive(Default)]
+pub struct KeptObjects {
+    /// Per object pass: the key of what its buffers hold, the size they were cut to, the
+    /// buffers.
+    slots: Vec<(ocean_core::plan::Pass, ObjectsKey, u64, Vec<VertexChunk>)>,
+    /// The last list built and its key.
+    built: (ObjectsKey, Vec<[ObjectVertex; 3]>),
+    /// This call's key (its allocation kept).
+    key: ObjectsKey,
+}
+
+/// What a pass's objects are drawn from: the scene, the boats' poses, the eye.
+pub struct ObjectsSource<'a> {
+    /// The validated scene.
+    pub scene: &'a ocean_core::scene::Scene,
+    /// The boats' poses this frame.
+    pub poses: &'a ocean_core::frame::ObjectPoses,
+    /// The eye (the triangles are relative to it).
+    pub eye: glam::DVec3,
+}
+
+impl KeptObjects {
+    /// The vertex buffers of `pass`'s objects (`ocean_core::frame::pass_object_triangles`),
+    /// cut at `max_bytes`: the kept ones while their key holds, else made and uploaded.
+    pub fn chunks(
+        &mut self,
+        kept: &crate::pool::FramePool,
+        from: &ObjectsSource<'_>,
+        pass: &ocean_core::plan::PlannedPass,
+        max_bytes: u64,
+    ) -> Vec<VertexChunk> {
+        self.key.set(from.scene, from.poses, pass, from.eye);
+        let slot = self.slots.iter().find(|s| s.0 == pass.name);
+        if let Some((_, key, cut, chunks)) = slot
+            && *key == self.key
+            && *cut == max_bytes
+        {
+            return chunks.clone();
+        }
+        if self.built.0 != self.key {
+            self.built.1 =
+                ocean_core::frame::pass_object_triangles(from.scene, from.poses, pass, from.eye);
+            self.built.0.clone_from(&self.key);
+        }
+        let chunks = labelled_vertex_chunks(
+            kept,
+            pass_vertices_label(pass.name),
+            bytemuck::cast_slice(&self.built.1),
+            max_bytes,
+        );
+        self.slots.retain(|s| s.0 != pass.name);
+        self.slots.push((pass.name, self.key.clone(), max_bytes, chunks.clone()));
+        chunks
+    }
+}
+
+/// The pool label of an object pass's vertex buffers.
+fn pass_vertices_label(pass: ocean_core::plan::Pass) -> &'static str {
+    use ocean_core::plan::Pass;
+    match pass {
+        Pass::ShadowMap => "ocean.shadow_map.object_vertices",
+        Pass::ReflectionMap => "ocean.reflection_map.object_vertices",
+        Pass::RefractionMap => "ocean.refraction_map.object_vertices",
+        _ => "ocean.objects.vertices",
+    }
 }
