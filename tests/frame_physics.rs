@@ -39,7 +39,11 @@ fn grid(camera: &Camera) -> Result<WaterMesh, ocean_cpu::frame::Error> {
             triangles.push([at(i + 1, j), at(i, j + 1), at(i + 1, j + 1)]);
         }
     }
-    Ok(WaterMesh { vertices, indices: triangles, origin: [camera.eye.x, camera.eye.z] })
+    Ok(WaterMesh {
+        vertices: vertices.into(),
+        indices: triangles.into(),
+        origin: [camera.eye.x, camera.eye.z],
+    })
 }
 
 fn render_calm(ior: f64) -> (Scene, FrameBuffers) {

@@ -753,3 +753,53 @@ fn the_kept_near_patch_is_the_fresh_one() {
     assert_eq!(other, NearPatch::build(&p, higher).unwrap());
     assert_ne!(other, first);
 }
+
+/// The kept water mesh of a frame (`DrawMesh::kept`, per patch parameters and view) is the
+/// mesh built anew, bit for bit, and for the same view the same lists (what lets the GPU
+/// back end keep one upload); a turned camera and a plan without the far patch get their own.
+#[test]
+fn the_kept_water_mesh_is_the_fresh_one() {
+    use ocean_core::camera::Camera;
+    use ocean_core::graph::DrawMesh;
+    use ocean_core::plan::{FramePlan, OutputKind, Pass};
+    use ocean_core::scene::Scene;
+    use std::sync::Arc;
+
+    let bytes = |m: &DrawMesh| {
+        let v: &[u8] = bytemuck::cast_slice(m.vertices.as_slice());
+        let i: &[u8] = bytemuck::cast_slice(m.indices.as_slice());
+        (v.to_vec(), i.to_vec(), m.origin.map(f64::to_bits))
+    };
+    let check = |scene: &Scene, plan: &FramePlan| {
+        let camera = Camera::from_scene(&scene.camera).unwrap();
+        let kept = DrawMesh::kept(plan, scene, &camera).unwrap();
+        assert!(!kept.vertices.is_empty(), "the default scene draws a mesh");
+        let fresh: DrawMesh = plan.water_mesh(scene, &camera).unwrap().into();
+        assert!(bytes(&kept) == bytes(&fresh), "the kept mesh is not the fresh one");
+        let again = DrawMesh::kept(plan, scene, &camera).unwrap();
+        assert!(Arc::ptr_eq(&again.vertices, &kept.vertices), "the same view, another list");
+        assert!(Arc::ptr_eq(&again.indices, &kept.indices));
+        kept
+    };
+    let scene = Scene::builtin();
+    let plan = FramePlan::new(&scene, OutputKind::Ldr);
+    assert!(plan.runs(Pass::FarPatch), "the default plan draws the far patch");
+    let first = check(&scene, &plan);
+
+    let mut turned = scene.clone();
+    turned.camera.look_at[0] += 20.0;
+    let other = check(&turned, &plan);
+    assert!(!Arc::ptr_eq(&other.vertices, &first.vertices), "a turned camera got the kept mesh");
+    assert!(bytes(&other) != bytes(&first), "a turned camera drew the same far patch");
+
+    // Looking straight down from 25 m the plan leaves the far patch out; the full plan,
+    // same camera and parameters, draws it: the key tells the two apart.
+    let mut down = scene.clone();
+    down.camera.position = [3.0, 25.0, -7.0];
+    down.camera.look_at = [3.0, 0.0, -7.1];
+    let near_plan = FramePlan::new(&down, OutputKind::Ldr);
+    assert!(!near_plan.runs(Pass::FarPatch), "{near_plan}");
+    let alone = check(&down, &near_plan);
+    let full = check(&down, &FramePlan::full(&down, OutputKind::Ldr));
+    assert!(alone.vertices.len() < full.vertices.len(), "the near patch alone is smaller");
+}

@@ -10,7 +10,10 @@
 //!   otherwise (`GpuFrame::reused`), with the same picture as a fresh renderer's;
 //! - the same frame twice uploads no uniform block the second time, and a block asked for
 //!   twice in a frame with the same bytes (the sky's, read by `sky` and `water`) is one buffer
-//!   uploaded once.
+//!   uploaded once;
+//! - the vertex and index lists (the objects', the water mesh's) likewise: the same frame
+//!   twice uploads none the second time, a moved object or a turned camera uploads what
+//!   changed and draws a fresh renderer's picture.
 
 #![allow(clippy::unwrap_used, reason = "a panic in a test is its failure report")]
 
@@ -153,6 +156,42 @@ fn uniform_blocks_are_uploaded_once_and_only_on_change() {
     assert_eq!((next.uniform_writes, next.buffers), (1, 0), "only the changed block: {next}");
 }
 
+/// The frame's vertex and index lists (the objects', the water mesh's) are uploaded when
+/// they change and not again: the same frame twice uploads none the second time; a moved
+/// object uploads its passes' triangles, a turned camera the water mesh, and each draws a
+/// fresh renderer's picture.
+fn vertex_lists_are_uploaded_once_and_only_on_change() {
+    let s = scene(System::Hu, W, H);
+    assert!(!s.objects.is_empty(), "the default scene has objects");
+    let plan = FramePlan::new(&s, OutputKind::Ldr);
+    let mut r = Renderer::new().unwrap();
+    let first = r.run_with(&s, &plan, Readback::Output).unwrap();
+    let start = created();
+    let again = r.run_with(&s, &plan, Readback::Output).unwrap();
+    assert_eq!(created().since(start).data_writes, 0, "the same frame uploaded its lists again");
+    assert_eq!(first.ldr, again.ldr, "the kept lists changed the picture");
+
+    let mut moved = s.clone();
+    moved.objects[0].center[0] += 0.5;
+    let mut turned = s.clone();
+    turned.camera.look_at[0] += 5.0;
+    for (what, changed) in [("a moved object", moved), ("a turned camera", turned)] {
+        let changed_plan = FramePlan::new(&changed, OutputKind::Ldr);
+        let start = created();
+        let frame = r.run_with(&changed, &changed_plan, Readback::Output).unwrap();
+        let writes = created().since(start).data_writes;
+        eprintln!("{what}: {writes} vertex/index uploads");
+        assert!(writes > 0, "{what} uploaded nothing");
+        let fresh =
+            Renderer::new().unwrap().run_with(&changed, &changed_plan, Readback::Output).unwrap();
+        assert_eq!(frame.ldr, fresh.ldr, "{what}: the picture differs from a fresh renderer's");
+        assert_ne!(frame.ldr, first.ldr, "{what} drew the first picture");
+        // And back: the first frame's lists again, drawn as at first.
+        let back = r.run_with(&s, &plan, Readback::Output).unwrap();
+        assert_eq!(back.ldr, first.ldr, "{what}, then the first frame: another picture");
+    }
+}
+
 /// The `create_*` calls of `source` outside comments: what would bypass the counter.
 fn uncounted(source: &str) -> Vec<String> {
     const CALLS: [&str; 12] = [
@@ -200,6 +239,7 @@ fn main() -> std::process::ExitCode {
         cpu: every_gpu_object_of_the_crate_is_counted;
         gpu: steady_frames_make_no_gpu_objects,
             fresnel_tables_are_computed_only_when_eta_changes,
-            uniform_blocks_are_uploaded_once_and_only_on_change;
+            uniform_blocks_are_uploaded_once_and_only_on_change,
+            vertex_lists_are_uploaded_once_and_only_on_change;
     )
 }

@@ -4,6 +4,7 @@
 //! hands each to a [`Backend`], which knows how to execute one pass and nothing else. A back
 //! end chooses no size, pass, technique or constant: they are all here or in the plan.
 
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use crate::camera::Camera;
@@ -21,17 +22,43 @@ use crate::plan::{FramePlan, Pass, PlannedPass};
 /// (world x, z), triangles counter-clockwise seen from above.
 #[derive(Clone, Debug, PartialEq)]
 pub struct DrawMesh {
-    /// The vertices.
-    pub vertices: Vec<WaterVertex>,
+    /// The vertices (shared: a kept mesh is handed to every frame that asks for it, and a
+    /// back end may keep its upload while it holds the same list).
+    pub vertices: Arc<Vec<WaterVertex>>,
     /// The triangles.
-    pub indices: Vec<[u32; 3]>,
+    pub indices: Arc<Vec<[u32; 3]>>,
     /// The reference point (world x, z), m.
     pub origin: [f64; 2],
 }
 
 impl From<crate::geometry::WaterMesh> for DrawMesh {
     fn from(m: crate::geometry::WaterMesh) -> Self {
-        Self { vertices: m.vertices, indices: m.indices, origin: m.origin }
+        Self { vertices: Arc::new(m.vertices), indices: Arc::new(m.indices), origin: m.origin }
+    }
+}
+
+impl DrawMesh {
+    /// The water mesh of `plan`'s frame seen by `camera` ([`FramePlan::water_mesh`]), kept
+    /// per patch parameters and view where the plan draws the near and far patch (their
+    /// refinement and stitching were a third of `hu`'s CPU encode every frame of a still
+    /// camera); the kept mesh is the one made anew, bit for bit. The surfaces drawn from the
+    /// vertex index (`clipmap`, `projected_grid`) build an empty mesh and keep nothing.
+    ///
+    /// # Errors
+    /// As [`FramePlan::water_mesh`] (an error is not kept).
+    pub fn kept(plan: &FramePlan, scene: &Scene, camera: &Camera) -> crate::Result<Self> {
+        static KEPT: crate::kept::Kept<(crate::geometry::PatchParams, [u64; 9]), DrawMesh> =
+            crate::kept::Kept::new();
+        let surface = plan.techniques.surface();
+        let index_drawn = surface.camera_grid() || surface.clipmap_levels();
+        if index_drawn {
+            return plan.water_mesh(scene, camera).map(Into::into);
+        }
+        let (e, f) = (camera.eye, camera.forward);
+        let far = if plan.runs(Pass::FarPatch) { 1.0 } else { 0.0 };
+        let view = [e.x, e.y, e.z, f.x, f.y, f.z, camera.fov_y, camera.aspect(), far];
+        let key = (scene.patch_params_for(camera), view.map(f64::to_bits));
+        KEPT.get_or_make(key, || plan.water_mesh(scene, camera).map(Into::into))
     }
 }
 
@@ -76,7 +103,7 @@ impl<'a> FrameInputs<'a> {
     pub fn new(scene: &'a Scene, plan: &'a FramePlan, state: &FrameState) -> crate::Result<Self> {
         let camera = Camera::from_scene(&scene.camera)?;
         let start = Instant::now();
-        let mesh = plan.water_mesh(scene, &camera)?.into();
+        let mesh = DrawMesh::kept(plan, scene, &camera)?;
         Self::with_mesh(scene, plan, state, camera, mesh, start.elapsed())
     }
 
@@ -93,7 +120,7 @@ impl<'a> FrameInputs<'a> {
         camera: Camera,
     ) -> crate::Result<Self> {
         let start = Instant::now();
-        let mesh = plan.water_mesh(scene, &camera)?.into();
+        let mesh = DrawMesh::kept(plan, scene, &camera)?;
         Self::with_mesh(scene, plan, state, camera, mesh, start.elapsed())
     }
 

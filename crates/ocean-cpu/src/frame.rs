@@ -274,7 +274,7 @@ fn water_vertices(
         (verts, (0..grid / 3).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect())
     } else {
         let verts = mesh.vertices.iter().map(|v| vertex(water::vs_main(v, bindings))).collect();
-        (verts, mesh.indices.clone())
+        (verts, mesh.indices.to_vec())
     }
 }
 

@@ -10,7 +10,8 @@ use std::cell::Cell;
 use wgpu::util::DeviceExt;
 
 /// How many GPU objects of each kind the crate has made so far on this thread, and how many
-/// uniform-block uploads it has issued ([`crate::pool::FramePool::uniform`]).
+/// uniform-block and vertex/index uploads it has issued ([`crate::pool::FramePool::uniform`],
+/// [`crate::pool::FramePool::data`]).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct ObjectCounts {
     /// Textures.
@@ -29,6 +30,9 @@ pub struct ObjectCounts {
     pub pipelines: u64,
     /// `Queue::write_buffer` calls of uniform blocks (not an object: the uploads).
     pub uniform_writes: u64,
+    /// `Queue::write_buffer` calls of vertex and index lists (the objects', the floor's, the
+    /// water mesh's): none in a frame whose lists are the kept ones.
+    pub data_writes: u64,
 }
 
 impl ObjectCounts {
@@ -44,6 +48,7 @@ impl ObjectCounts {
             samplers: self.samplers - earlier.samplers,
             pipelines: self.pipelines - earlier.pipelines,
             uniform_writes: self.uniform_writes - earlier.uniform_writes,
+            data_writes: self.data_writes - earlier.data_writes,
         }
     }
 
@@ -64,7 +69,7 @@ impl std::fmt::Display for ObjectCounts {
         write!(
             f,
             "{} textures, {} views, {} buffers, {} bind groups, {} query sets, {} samplers, \
-             {} pipeline objects; {} uniform uploads",
+             {} pipeline objects; {} uniform uploads, {} vertex/index uploads",
             self.textures,
             self.views,
             self.buffers,
@@ -72,7 +77,8 @@ impl std::fmt::Display for ObjectCounts {
             self.query_sets,
             self.samplers,
             self.pipelines,
-            self.uniform_writes
+            self.uniform_writes,
+            self.data_writes
         )
     }
 }
@@ -87,10 +93,11 @@ enum Kind {
     Sampler,
     Pipeline,
     UniformWrite,
+    DataWrite,
 }
 
 thread_local! {
-    static COUNTS: Cell<[u64; 8]> = const { Cell::new([0; 8]) };
+    static COUNTS: Cell<[u64; 9]> = const { Cell::new([0; 9]) };
 }
 
 fn count(kind: Kind) {
@@ -103,6 +110,10 @@ fn count(kind: Kind) {
 
 pub(crate) fn count_uniform_write() {
     count(Kind::UniformWrite);
+}
+
+pub(crate) fn count_data_write() {
+    count(Kind::DataWrite);
 }
 
 /// The counts so far on this thread.
@@ -118,6 +129,7 @@ pub fn created() -> ObjectCounts {
         samplers: c(Kind::Sampler),
         pipelines: c(Kind::Pipeline),
         uniform_writes: c(Kind::UniformWrite),
+        data_writes: c(Kind::DataWrite),
     }
 }
 

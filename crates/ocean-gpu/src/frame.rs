@@ -169,6 +169,8 @@ pub struct Renderer {
     floor_vertices: KeptFloor,
     /// The object passes' vertex buffers and what they hold.
     object_vertices: KeptObjects,
+    /// The water mesh's buffers and the lists they were uploaded from.
+    water_mesh: KeptWaterMesh,
     /// The far field's Fresnel filter table as uploaded, and the table it was made from.
     filter: Option<(Arc<ocean_core::far_field::FresnelFilterTable>, GpuTexture)>,
 }
@@ -180,6 +182,13 @@ type KeptTables = Vec<(ResourceId, FresnelTableUniforms, GpuTexture)>;
 /// `terrain_triangles`: one list per floor and eye, told apart by its pointer) and the buffer
 /// size they were cut to.
 type KeptFloor = Option<(Arc<Vec<[ObjectVertex; 3]>>, u64, Vec<VertexChunk>)>;
+
+/// The water mesh's vertex and index buffers and the kept lists they hold.
+type KeptWaterMesh = Option<(
+    Arc<Vec<ocean_core::geometry::WaterVertex>>,
+    Arc<Vec<[u32; 3]>>,
+    (wgpu::Buffer, wgpu::Buffer),
+)>;
 
 fn wgpu_format(f: Format) -> wgpu::TextureFormat {
     match f {
@@ -206,6 +215,7 @@ pub struct GpuBackend<'r> {
     fresnel: &'r mut KeptTables,
     floor_vertices: &'r mut KeptFloor,
     object_vertices: &'r mut KeptObjects,
+    water_mesh: &'r mut KeptWaterMesh,
     filter: &'r mut Option<(Arc<ocean_core::far_field::FresnelFilterTable>, GpuTexture)>,
     reused: Vec<Pass>,
     encoder: &'r mut wgpu::CommandEncoder,
@@ -542,16 +552,7 @@ impl GpuBackend<'_> {
         let bump_view = chain_view(ResourceId::BumpMips).unwrap_or_else(|| bump.view.clone());
         let (hdr, depth) = self.start_hdr(frame.plan);
         let mesh = &frame.mesh;
-        let water_vertices = self.kept.data(
-            "ocean.water.vertices",
-            wgpu::BufferUsages::VERTEX,
-            bytemuck::cast_slice(&mesh.vertices),
-        );
-        let water_indices = self.kept.data(
-            "ocean.water.indices",
-            wgpu::BufferUsages::INDEX,
-            bytemuck::cast_slice(&mesh.indices),
-        );
+        let (water_vertices, water_indices) = self.water_buffers(mesh);
         let (sky_buffer, sky_lut) = self.sky_buffers(frame);
         let slot = self.timer.slot(Pass::Water);
         self.stages.water.encode(
@@ -590,6 +591,35 @@ impl GpuBackend<'_> {
 }
 
 impl GpuBackend<'_> {
+    /// The water mesh's vertex and index buffers: uploaded once per kept mesh (ocean-core's
+    /// `DrawMesh::kept`, told apart by its lists' pointers), so the frames of a still camera
+    /// draw one upload.
+    fn water_buffers(
+        &mut self,
+        mesh: &ocean_core::graph::DrawMesh,
+    ) -> (wgpu::Buffer, wgpu::Buffer) {
+        if let Some((v, i, buffers)) = self.water_mesh.as_ref()
+            && Arc::ptr_eq(v, &mesh.vertices)
+            && Arc::ptr_eq(i, &mesh.indices)
+        {
+            return buffers.clone();
+        }
+        let buffers = (
+            self.kept.data(
+                "ocean.water.vertices",
+                wgpu::BufferUsages::VERTEX,
+                bytemuck::cast_slice(&mesh.vertices),
+            ),
+            self.kept.data(
+                "ocean.water.indices",
+                wgpu::BufferUsages::INDEX,
+                bytemuck::cast_slice(&mesh.indices),
+            ),
+        );
+        *self.water_mesh = Some((mesh.vertices.clone(), mesh.indices.clone(), buffers.clone()));
+        buffers
+    }
+
     /// The sky's uniform blocks, which passes `sky` and `water` both read: one buffer each,
     /// uploaded once a frame at most.
     fn sky_buffers(&self, frame: &FrameInputs<'_>) -> (wgpu::Buffer, wgpu::Buffer) {
@@ -831,6 +861,7 @@ impl Renderer {
             fresnel: Vec::new(),
             floor_vertices: None,
             object_vertices: KeptObjects::default(),
+            water_mesh: None,
             filter: None,
         })
     }
@@ -1172,6 +1203,7 @@ impl Renderer {
             fresnel: &mut self.fresnel,
             floor_vertices: &mut self.floor_vertices,
             object_vertices: &mut self.object_vertices,
+            water_mesh: &mut self.water_mesh,
             filter: &mut self.filter,
             reused: Vec::new(),
             encoder,

@@ -271,6 +271,7 @@ impl FramePool {
         );
         if !bytes.is_empty() {
             self.queue.write_buffer(&buffer, 0, bytes);
+            crate::created::count_data_write();
         }
         buffer
     }
