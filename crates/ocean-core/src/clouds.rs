@@ -95,20 +95,34 @@ fn period_samples() -> &'static [f32] {
     })
 }
 
-/// The layer's mean opacity over one period at threshold `threshold`.
+/// The layer's mean opacity over one period at threshold `threshold`, kept per threshold
+/// (a frame asks it for its layer's threshold: 4,096 samples every frame).
 pub fn cloud_mean_opacity(threshold: f32) -> f32 {
+    static KEPT: crate::kept::Kept<u32, f32> = crate::kept::Kept::new();
+    KEPT.get(threshold.to_bits(), || mean_opacity(threshold))
+}
+
+/// [`cloud_mean_opacity`], computed.
+fn mean_opacity(threshold: f32) -> f32 {
     let s = period_samples();
     (s.iter().map(|&f| f64::from(cloud_opacity(f, threshold))).sum::<f64>() / s.len() as f64) as f32
 }
 
 /// The threshold whose mean opacity is `coverage` ∈ [0, 1]: bisection (the mean falls
 /// monotonically as the threshold rises) between −¼, where every α is 1, and 1, where every
-/// α is 0.
+/// α is 0. Kept per coverage: the bisection is 40 means of 4,096 samples, and every frame of
+/// a cloudy sky asks for it ([`cloud_origin`]).
 pub fn cloud_threshold(coverage: f32) -> f32 {
+    static KEPT: crate::kept::Kept<u32, f32> = crate::kept::Kept::new();
+    KEPT.get(coverage.to_bits(), || threshold_of(coverage))
+}
+
+/// [`cloud_threshold`], computed.
+fn threshold_of(coverage: f32) -> f32 {
     let (mut lo, mut hi) = (-0.25f32, 1.0f32);
     for _ in 0..40 {
         let mid = 0.5 * (lo + hi);
-        if cloud_mean_opacity(mid) > coverage {
+        if mean_opacity(mid) > coverage {
             lo = mid;
         } else {
             hi = mid;
@@ -188,5 +202,26 @@ impl Default for Clouds {
             albedo: 0.8,
             seed: 1,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The kept threshold and mean are the computed ones, bit for bit, after more coverages
+    /// than are kept (the first asked again is computed again), and each coverage its own.
+    #[test]
+    fn the_kept_threshold_and_mean_are_the_computed_ones() {
+        let mut seen = Vec::new();
+        for c in [0.1f32, 0.3, 0.5, 0.7, 0.9, 0.1, 0.3] {
+            let t = cloud_threshold(c);
+            assert_eq!(t.to_bits(), threshold_of(c).to_bits(), "coverage {c}");
+            assert_eq!(cloud_mean_opacity(t).to_bits(), mean_opacity(t).to_bits(), "{c}");
+            seen.push(t.to_bits());
+        }
+        seen.sort_unstable();
+        seen.dedup();
+        assert_eq!(seen.len(), 5, "five coverages, five thresholds");
     }
 }

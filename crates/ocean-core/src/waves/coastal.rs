@@ -533,8 +533,15 @@ fn phase_turns(omega: f64, t: f64) -> f64 {
 /// profile's RMS wavenumber over k (Σ n²|c_n|² / Σ|c_n|² over its harmonics): a vertex that
 /// cannot hold the wave fades it towards its mean as if it were one sine of that
 /// wavenumber, which damps the filtered profile's variance at the right rate for small
-/// spacings (module docs, "The per-vertex form").
+/// spacings (module docs, "The per-vertex form"). Kept per (p, m): every frame's uniform
+/// block asks for them (8,192 samples each time).
 pub fn profile_moments(power: u32, back: f64) -> (f64, f64) {
+    static KEPT: crate::kept::Kept<(u32, u64), (f64, f64)> = crate::kept::Kept::new();
+    KEPT.get((power, back.to_bits()), || moments(power, back))
+}
+
+/// [`profile_moments`], computed.
+fn moments(power: u32, back: f64) -> (f64, f64) {
     const N: usize = 8192;
     let f = |i: usize| {
         let (s, c) = (TAU * i as f64 / N as f64).sin_cos();
@@ -709,4 +716,23 @@ pub struct CoastalBlock {
     pub swash: [f32; 4],
     /// Per segment: (Φ₀ mod 1, Φ₁, Φ₂, 0) and (K_s·A's three coefficients, 0).
     pub table: [[f32; 4]; 2 * COASTAL_SEGMENTS],
+}
+
+#[cfg(test)]
+mod tests {
+    /// The kept moments are the computed ones, bit for bit, after more profiles than are
+    /// kept, and each profile its own.
+    #[test]
+    fn the_kept_profile_moments_are_the_computed_ones() {
+        let pairs = [(1, 1.0), (3, 1.5), (5, 2.0), (7, 2.0), (9, 3.0), (1, 1.0), (3, 1.5)];
+        let mut seen = Vec::new();
+        for (p, b) in pairs {
+            let (kept, made) = (super::profile_moments(p, b), super::moments(p, b));
+            assert_eq!((kept.0.to_bits(), kept.1.to_bits()), (made.0.to_bits(), made.1.to_bits()));
+            seen.push(kept.0.to_bits());
+        }
+        seen.sort_unstable();
+        seen.dedup();
+        assert_eq!(seen.len(), 5, "five profiles, five means");
+    }
 }
