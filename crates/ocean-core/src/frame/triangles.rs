@@ -300,14 +300,14 @@ mod tests {
         assert_ne!(base, key(&s, &moved, &pass, eye), "the boat's pose");
         let next = DVec3::new(f64::from_bits(eye.x.to_bits() + 1), eye.y, eye.z);
         assert_ne!(base, key(&s, &rest, &pass, next), "the eye, by one ulp");
-        let mut edits: Vec<(&str, Box<dyn Fn(&mut Scene)>)> = vec![
-            ("a centre", Box::new(|s| s.objects[1].center[2] += 1e-9)),
-            ("a radius", Box::new(|s| s.objects[0].radius = Some(2.6))),
-            ("a size", Box::new(|s| s.objects[1].size = Some([6.0, 1.5, 2.1]))),
-            ("a colour", Box::new(|s| s.objects[0].color[1] = 0.21)),
-            ("a kind", Box::new(|s| s.objects[1].kind = ObjectKind::Boat)),
+        let edits: [(&str, fn(&mut Scene)); 6] = [
+            ("a centre", |s| s.objects[1].center[2] += 1e-9),
+            ("a radius", |s| s.objects[0].radius = Some(2.6)),
+            ("a size", |s| s.objects[1].size = Some([6.0, 1.5, 2.1])),
+            ("a colour", |s| s.objects[0].color[1] = 0.21),
+            ("a kind", |s| s.objects[1].kind = ObjectKind::Boat),
+            ("the order", |s| s.objects.swap(0, 1)),
         ];
-        edits.push(("the order", Box::new(|s| s.objects.swap(0, 1))));
         for (what, edit) in edits {
             let mut other = s.clone();
             edit(&mut other);
