@@ -300,7 +300,8 @@ mod tests {
         assert_ne!(base, key(&s, &moved, &pass, eye), "the boat's pose");
         let next = DVec3::new(f64::from_bits(eye.x.to_bits() + 1), eye.y, eye.z);
         assert_ne!(base, key(&s, &rest, &pass, next), "the eye, by one ulp");
-        let edits: [(&str, fn(&mut Scene)); 6] = [
+        type Edit = (&'static str, fn(&mut Scene));
+        let edits: [Edit; 6] = [
             ("a centre", |s| s.objects[1].center[2] += 1e-9),
             ("a radius", |s| s.objects[0].radius = Some(2.6)),
             ("a size", |s| s.objects[1].size = Some([6.0, 1.5, 2.1])),
