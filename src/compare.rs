@@ -140,7 +140,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             let gpu = &renders.gpu;
             let plan = &gpu.plan;
             let ran: Vec<ResourceId> = ocean::dump::dumped(plan);
-            let side = GpuSide {
+            let mut side = GpuSide {
                 maps: ResourceId::MAPS
                     .into_iter()
                     .filter_map(|id| {
@@ -152,7 +152,10 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 precision: ocean::verdict::precision_of(&check.adapter.name, &check.adapter.vendor),
                 first_failure: false,
                 water_every: 1,
+                spray: None,
             };
+            let probe = ocean::verdict::spray::probe(&renderer, &scene, plan, &side)?;
+            side.spray = probe.as_ref();
             let v = envelope_verdict(&scene, plan, &side, &ran)?;
             for l in &v.lines {
                 println!("{l}");
@@ -478,6 +481,7 @@ fn against_envelope(
         }),
         first_failure: false,
         water_every: 1,
+        spray: None,
     };
     let v = envelope_verdict(scene, plan, &side, &held)?;
     for l in &v.lines {

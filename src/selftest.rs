@@ -45,7 +45,7 @@ fn judge(
     let frame = renderer.run(scene, &plan)?;
     // The oracle's frame tells which pixels hold the sky (a small frame: cheap).
     let oracle = ocean_cpu::render_scene(scene, OutputKind::Ldr, &mut |_| {})?;
-    let side = GpuSide {
+    let mut side = GpuSide {
         maps: ResourceId::MAPS
             .into_iter()
             .filter_map(|id| frame.map(id).map(|m| (id, ((m.width, m.height), &m.texels[..]))))
@@ -58,7 +58,10 @@ fn judge(
         ),
         first_failure,
         water_every: if quick { 3 } else { 1 },
+        spray: None,
     };
+    let probe = ocean::verdict::spray::probe(renderer, scene, &frame.plan, &side)?;
+    side.spray = probe.as_ref();
     envelope_verdict(scene, &frame.plan, &side, &ocean::dump::dumped(&frame.plan))
 }
 
@@ -219,10 +222,14 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         "planted_results": mutant_json,
     });
     ocean::output::write_atomic(&args.json, serde_json::to_string_pretty(&json)?.as_bytes())?;
+    let rest = if not_judged.is_empty() {
+        "every resource of these frames is judged in some scene".to_owned()
+    } else {
+        format!("not judged yet: {} (their passes have no envelope)", not_judged.join(", "))
+    };
     println!(
-        "judged by the envelope: {}; not judged yet: {} (their passes have no envelope)",
-        judged_names.iter().copied().collect::<Vec<_>>().join(", "),
-        not_judged.join(", ")
+        "judged by the envelope: {}; {rest}",
+        judged_names.iter().copied().collect::<Vec<_>>().join(", ")
     );
     println!("wrote {} in {:.1} s", args.json.display(), start.elapsed().as_secs_f64());
     println!("{line}");

@@ -10,6 +10,7 @@ use ocean_cpu::shaders::objects::ObjectMap;
 use serde_json::{Value, json};
 
 mod passes;
+pub mod spray;
 
 use passes::{
     bloom_chain, bloom_verdicts, foam_verdict, map_verdict, shadow_verdict, sky_verdict,
@@ -39,6 +40,9 @@ pub struct GpuSide<'a> {
     /// The water pass's envelope on every `water_every`-th pixel along each axis (1: all; 3
     /// for a quick verdict: a ninth of the cost).
     pub water_every: u32,
+    /// One more step of the spray, run on the device after the frame ([`spray::probe`]);
+    /// `None` where the frame has no spray or the step was not run (a dump).
+    pub spray: Option<&'a spray::SprayProbe>,
 }
 
 /// The precision of an adapter by its name and PCI vendor id as written in a report or a
@@ -57,6 +61,7 @@ impl Default for GpuSide<'_> {
             precision: (ocean_cpu::envelope::Precision::VULKAN_MINIMUM, "Vulkan's minimum limits"),
             first_failure: false,
             water_every: 1,
+            spray: None,
         }
     }
 }
@@ -151,6 +156,7 @@ fn judge_passes(
     v.judge_maps(scene, plan, gpu)?;
     v.judge_wave_mips(plan, gpu)?;
     v.judge_fresnel(scene, plan, gpu)?;
+    v.judge_spray(plan, gpu)?;
     if let (Some(((w, h), hdr)), Some(oracle)) = (gpu.map(ResourceId::Hdr), gpu.oracle_hdr)
         && let Some(f) = sky_verdict(scene, plan, (w, h), (hdr, oracle), gpu)?
     {
@@ -232,6 +238,30 @@ impl Verdict {
                 self.record(id.name(), id.name(), &f, &note);
             }
         }
+        Ok(())
+    }
+
+    /// The spray's step from the pool the GPU held ([`spray::verdict`]); where the frame has
+    /// a spray but no step was run (a dump), listed as not judged.
+    fn judge_spray(&mut self, plan: &FramePlan, gpu: &GpuSide<'_>) -> anyhow::Result<()> {
+        if !plan.runs(Pass::Spray) {
+            return Ok(());
+        }
+        let Some(probe) = gpu.spray else {
+            let why = "no step of the pool was run on the device (a dump holds no pool)";
+            self.lines
+                .push(format!("  [{:<14}] {:<20} not judged: {why}", "spray", "spray_particles"));
+            self.json.push(json!({"name": "spray_particles", "tolerance": "envelope", "judged": false, "why": why}));
+            self.not_judged.push("spray_particles");
+            return Ok(());
+        };
+        let f = spray::verdict(plan, gpu, probe)?;
+        self.lines.push(format!("  [{:<14}] {}", "spray", f.line()));
+        if !f.passed() {
+            self.failures.push(f.line());
+        }
+        self.json.push(f.to_json());
+        self.judged.push("spray_particles");
         Ok(())
     }
 

@@ -222,9 +222,74 @@ fn gpu_pool_equals_the_cpu_pool_after_100_steps() {
     assert_ne!(bits(&gpu), bits(&earlier));
 }
 
+/// The step `ocean compare` probes: one more step of the pool a frame left on the device, run
+/// there on buffers of its own from the frame's displacement map, equals the CPU mirror's step
+/// bit for bit on lavapipe and lies inside the step's envelope (ocean-cpu
+/// `spray::step_envelope`); the frame's pool is untouched, and a step with a 1 % faster launch
+/// leaves the envelope (the negative control).
+fn the_probed_step_equals_the_cpu_step_and_lies_in_its_envelope() {
+    use ocean_core::plan::ResourceId;
+    let scene = rock();
+    let gpu = ocean_gpu::Gpu::new().unwrap_or_else(|e| panic!("{e}"));
+    let mut r = ocean_gpu::Renderer::with_gpu(gpu, ocean_gpu::WaveSynthesis::GpuFft).unwrap();
+    let mut state = FrameState::new(1.0 / 30.0);
+    let mut frame = None;
+    for k in 0..40 {
+        let plan = FramePlan::new(&scene, OutputKind::Hdr);
+        let read = if k == 39 { ocean_gpu::Readback::All } else { ocean_gpu::Readback::None };
+        frame = Some(r.run_frame(&scene, &plan, &mut state, read).unwrap());
+    }
+    let frame = frame.unwrap();
+    let map = frame.map(ResourceId::Displacement).expect("the displacement map read back");
+    let before = r.spray_particles().unwrap().unwrap();
+    let steps = r.spray_steps().unwrap();
+    assert_eq!(steps, 40);
+    let inputs = ocean_core::graph::FrameInputs::new(&scene, &frame.plan, &state).unwrap();
+    let params =
+        ocean_core::spray::SprayFrame::new(&scene, &frame.plan, &inputs.camera, steps, 1).steps[0];
+    let probe = |u: &SprayUniforms| {
+        r.spray_probe(&before, u, (map.width, map.height, &map.texels)).unwrap().unwrap()
+    };
+    let after = probe(&params);
+    let texture = Texture2D::new(map.width, map.height, map.texels.clone());
+    let emitters = &frame.plan.spray_emitters;
+    let mut cpu = before.clone();
+    spray::step(&mut cpu, &params, emitters, &texture);
+    let differ = bits(&after).iter().zip(bits(&cpu)).filter(|(a, b)| **a != *b).count();
+    assert_eq!(differ, 0, "the device's probed step must equal the CPU's bit for bit");
+    assert_eq!(bits(&r.spray_particles().unwrap().unwrap()), bits(&before), "the pool moved");
+    let launched = before.iter().zip(&after).filter(|(b, a)| b.pos[3] == 0.0 && a.pos[3] > 0.0);
+    let launched = launched.count();
+    let precision = ocean_cpu::envelope::Precision::LAVAPIPE;
+    let env = spray::step_envelope(&before, &params, emitters, &texture, precision);
+    let outside = |p: &[Particle]| {
+        env.iter()
+            .zip(p)
+            .map(|(e, a)| {
+                (0..4)
+                    .filter(|&c| !e.pos[c].contains(a.pos[c]) || !e.vel[c].contains(a.vel[c]))
+                    .count()
+            })
+            .sum::<usize>()
+    };
+    let undecided = env.iter().filter(|e| !e.decided).count();
+    let fast = probe(&SprayUniforms { speed: params.speed * 1.01, ..params });
+    println!(
+        "probed step {steps} on {}: {launched} launched, {undecided} of {} slots undecided; \
+         a 1 % faster launch: {} values outside",
+        r.adapter(),
+        before.len(),
+        outside(&fast)
+    );
+    assert!(launched > 5, "the probed step launches particles: {launched}");
+    assert_eq!(outside(&after), 0, "the device's step lies in its envelope");
+    assert!(outside(&fast) > 10, "a 1 % faster launch leaves the envelope");
+}
+
 fn main() -> std::process::ExitCode {
     run_tests!(gpu_harness::GPU_ADAPTER;
         cpu: cpu_pool_is_the_same_over_runs_and_threads, books_balance_and_every_transition_follows_the_rules,
             every_live_sprite_lies_in_the_sprays_reach_and_a_tighter_bound_misses_some;
-        gpu: gpu_pool_equals_the_cpu_pool_after_100_steps)
+        gpu: gpu_pool_equals_the_cpu_pool_after_100_steps,
+            the_probed_step_equals_the_cpu_step_and_lies_in_its_envelope)
 }

@@ -191,9 +191,16 @@ fn selftest_quick_judges_every_scene_and_catches_the_judged_passes_bugs() {
     assert_eq!(v["planted"], MUTANTS.len(), "the whole bank");
     let judged: Vec<&str> =
         v["judged"].as_array().unwrap().iter().map(|j| j.as_str().unwrap()).collect();
-    for pass_output in
-        ["ldr", "bloom_up", "displacement", "bump", "foam_field", "shadow_map", "hdr"]
-    {
+    for pass_output in [
+        "ldr",
+        "bloom_up",
+        "displacement",
+        "bump",
+        "foam_field",
+        "shadow_map",
+        "hdr",
+        "spray_particles",
+    ] {
         assert!(judged.contains(&pass_output), "{pass_output} not judged: {judged:?}");
     }
     for r in v["planted_results"].as_array().unwrap() {
@@ -227,6 +234,8 @@ fn selftest_quick_judges_every_scene_and_catches_the_judged_passes_bugs() {
             "foam/jacobian.wgsl",
             "objects.wgsl",
             "shared/shadow.wgsl",
+            // The spray's step, from the pool the GPU held (its launch speed).
+            "spray.wgsl",
         ];
         if judged_files.contains(&file) {
             assert_eq!(r["caught"], true, "a bug in a judged pass was missed: {r}");

@@ -20,7 +20,6 @@
 //!
 //! A skipped pass leaves the plan's 1×1 zero texture where its map would be, as on the CPU.
 
-use crate::created::Counted;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -873,27 +872,44 @@ impl Renderer {
     /// A device error while mapping the copy.
     pub fn spray_particles(&self) -> Result<Option<Vec<ocean_core::spray::Particle>>, Error> {
         let Some(pool) = &self.spray else { return Ok(None) };
-        let device = &self.gpu.device;
-        let staging = device.new_buffer(&wgpu::BufferDescriptor {
-            label: Some("ocean.spray.readback"),
-            size: pool.particles.size(),
-            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-            mapped_at_creation: false,
-        });
-        let mut encoder = device.create_command_encoder(&Default::default());
-        encoder.copy_buffer_to_buffer(&pool.particles, 0, &staging, 0, pool.particles.size());
-        self.gpu.queue.submit([encoder.finish()]);
-        let (tx, rx) = std::sync::mpsc::channel();
-        staging.slice(..).map_async(wgpu::MapMode::Read, move |r| {
-            // The receiver outlives the wait below; a failed send only means nobody listens.
-            let _ = tx.send(r);
-        });
-        let fail = |e: String| Error::Unavailable(format!("reading the spray back: {e}"));
-        device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| fail(e.to_string()))?;
-        rx.recv().map_err(|e| fail(e.to_string()))?.map_err(|e| fail(e.to_string()))?;
-        let bytes = staging.slice(..).get_mapped_range().map_err(|e| fail(e.to_string()))?.to_vec();
-        staging.unmap();
-        Ok(Some(bytemuck::cast_slice(&bytes).to_vec()))
+        crate::spray::read_particles(&self.gpu, &pool.particles).map(Some)
+    }
+
+    /// The steps the spray's particle pool has run (`None` before a frame with pass `spray`).
+    pub fn spray_steps(&self) -> Option<u64> {
+        self.spray.as_ref().map(|p| p.steps)
+    }
+
+    /// One `step` of the spray from the slots `before` with `params`, reading the sea's
+    /// height from a map holding `displacement` (`width` × `height` texels), on buffers of
+    /// its own: the slots as this device writes them (`None` before a frame with pass
+    /// `spray`). The envelope's verdict on the step, from the device's own inputs; the
+    /// frame's pool is not touched.
+    ///
+    /// # Errors
+    /// A device error while reading the slots back.
+    pub fn spray_probe(
+        &self,
+        before: &[ocean_core::spray::Particle],
+        params: &ocean_core::spray::SprayUniforms,
+        (width, height, displacement): (u32, u32, &[[f32; 4]]),
+    ) -> Result<Option<Vec<ocean_core::spray::Particle>>, Error> {
+        let Some(pool) = &self.spray else { return Ok(None) };
+        let map = GpuTexture::upload_map(
+            &self.gpu,
+            "ocean.spray.probe.displacement",
+            width,
+            height,
+            displacement,
+        );
+        let after = self.stages.spray.probe_step(
+            &self.gpu,
+            before,
+            &pool.key.emitters,
+            params,
+            &map.view,
+        )?;
+        Ok(Some(after))
     }
 
     /// Caps each vertex buffer of the objects' triangles at `bytes` (below the device's own

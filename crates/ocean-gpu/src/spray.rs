@@ -201,6 +201,80 @@ impl SprayStage {
         pass.dispatch_workgroups(pool.count.div_ceil(WORKGROUP_SIZE), 1, 1);
     }
 
+    /// One `step` of a pool holding `before` (the emitters `emitters`, the step's uniforms
+    /// `params`), reading the sea's height from `displacement`, on buffers of its own: the
+    /// slots as the device writes them. For the envelope's verdict on the step from the
+    /// device's own inputs (`ocean compare`); a frame's pool is left as it was.
+    ///
+    /// # Errors
+    /// A device error while reading the slots back.
+    pub fn probe_step(
+        &self,
+        gpu: &crate::device::Gpu,
+        before: &[Particle],
+        emitters: &[Emitter],
+        params: &SprayUniforms,
+        displacement: &wgpu::TextureView,
+    ) -> Result<Vec<Particle>, Error> {
+        let device = &gpu.device;
+        let init = |label: &str, contents: &[u8], usage| {
+            device.new_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents,
+                usage,
+            })
+        };
+        let placeholder = [Emitter::default()];
+        let e: &[Emitter] = if emitters.is_empty() { &placeholder } else { emitters };
+        let slots = if before.is_empty() { &[Particle::default()][..] } else { before };
+        let particles = init(
+            "ocean.spray.probe.particles",
+            bytemuck::cast_slice(slots),
+            wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        );
+        let emitters = init(
+            "ocean.spray.probe.emitters",
+            bytemuck::cast_slice(e),
+            wgpu::BufferUsages::STORAGE,
+        );
+        let u = init(
+            "ocean.spray.probe.uniforms",
+            bytemuck::bytes_of(params),
+            wgpu::BufferUsages::UNIFORM,
+        );
+        let group = device.new_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("ocean.spray.probe"),
+            layout: &self.step_layout,
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: u.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: particles.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 2, resource: emitters.as_entire_binding() },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: wgpu::BindingResource::TextureView(displacement),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 4,
+                    resource: wgpu::BindingResource::Sampler(&self.sampler),
+                },
+            ],
+        });
+        let mut encoder = device.create_command_encoder(&Default::default());
+        {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("ocean.spray.probe"),
+                timestamp_writes: None,
+            });
+            pass.set_pipeline(&self.step);
+            pass.set_bind_group(0, &group, &[]);
+            pass.dispatch_workgroups((before.len() as u32).div_ceil(WORKGROUP_SIZE), 1, 1);
+        }
+        gpu.queue.submit([encoder.finish()]);
+        let mut after = read_particles(gpu, &particles)?;
+        after.truncate(before.len());
+        Ok(after)
+    }
+
     /// Whether the device can draw the sprites (an `Rgba16Float` frame, or `FLOAT32_BLENDABLE`).
     pub fn can_draw(&self) -> bool {
         self.draw.is_some()
@@ -245,4 +319,35 @@ impl SprayStage {
         pass.set_bind_group(0, &group, &[]);
         pass.draw(0..6 * pool.count, 0..1);
     }
+}
+
+/// The slots `buffer` holds, read back from the device (blocks until it is done).
+///
+/// # Errors
+/// A device error while mapping the copy.
+pub fn read_particles(
+    gpu: &crate::device::Gpu,
+    buffer: &wgpu::Buffer,
+) -> Result<Vec<Particle>, Error> {
+    let device = &gpu.device;
+    let staging = device.new_buffer(&wgpu::BufferDescriptor {
+        label: Some("ocean.spray.readback"),
+        size: buffer.size(),
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    let mut encoder = device.create_command_encoder(&Default::default());
+    encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, buffer.size());
+    gpu.queue.submit([encoder.finish()]);
+    let (tx, rx) = std::sync::mpsc::channel();
+    staging.slice(..).map_async(wgpu::MapMode::Read, move |r| {
+        // The receiver outlives the wait below; a failed send only means nobody listens.
+        let _ = tx.send(r);
+    });
+    let fail = |e: String| Error::Unavailable(format!("reading the spray back: {e}"));
+    device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| fail(e.to_string()))?;
+    rx.recv().map_err(|e| fail(e.to_string()))?.map_err(|e| fail(e.to_string()))?;
+    let bytes = staging.slice(..).get_mapped_range().map_err(|e| fail(e.to_string()))?.to_vec();
+    staging.unmap();
+    Ok(bytemuck::cast_slice(&bytes).to_vec())
 }

@@ -10,7 +10,9 @@ use rayon::prelude::*;
 
 use super::shared::frame::transform_point;
 use super::water::WRAP_LINEAR;
-use super::wgsl::{Vec2, Vec3, Vec4, max, texture_sample_level, vec2, vec3};
+use super::water::envelope::Sampling;
+use super::wgsl::{Vec2, Vec3, Vec4, max, vec2};
+use crate::envelope::{Cond, Iv, Jitter, JitterRules, Precision, Real, choose};
 use crate::raster::{
     self, BlendMode, CompareFunction, CullMode, FrontFace, RasterState, RenderTarget, Vertex,
 };
@@ -18,8 +20,23 @@ use crate::sampler::Texture2D;
 
 /// `water_height(x, z)`.
 pub fn water_height(x: f32, z: f32, params: &SprayUniforms, displacement: &Texture2D) -> f32 {
-    let uv = vec2(x, z) * params.inv_patch + params.half_texel;
-    texture_sample_level(displacement, &WRAP_LINEAR, uv, 0.0).y * params.waves
+    water_height_r(x, z, params, displacement, Precision::LAVAPIPE)
+}
+
+/// `water_height(x, z)` over any [`Real`], on a device of precision `p` (its filter weights).
+fn water_height_r<R: Real + Sampling<R>>(
+    x: R,
+    z: R,
+    params: &SprayUniforms,
+    displacement: &Texture2D,
+    p: Precision,
+) -> R {
+    let l = R::lit;
+    let uv = [
+        x * l(params.inv_patch) + l(params.half_texel),
+        z * l(params.inv_patch) + l(params.half_texel),
+    ];
+    R::level0(displacement, &WRAP_LINEAR, uv, p)[1] * l(params.waves)
 }
 
 /// `step` for slot `i`: the slot's next value.
@@ -30,34 +47,99 @@ pub fn step_slot(
     emitters: &[Emitter],
     displacement: &Texture2D,
 ) -> Particle {
+    let next = step_slot_r::<f32>(i, p, params, emitters, displacement, Precision::LAVAPIPE);
+    Particle { pos: next.pos, vel: next.vel }
+}
+
+/// A slot's next value over any [`Real`], and whether every branch the step took was
+/// decided (for an envelope: a slot freed, kept, launched or left alike on every conformant
+/// GPU).
+#[derive(Clone, Copy, Debug)]
+pub struct SlotStep<R> {
+    /// Position (xyz) and active tag (w).
+    pub pos: [R; 4],
+    /// Velocity (xyz) and age (w).
+    pub vel: [R; 4],
+    /// No branch was undecided.
+    pub decided: bool,
+}
+
+/// `step` for slot `i` from its value `p` (as the GPU held it) over any [`Real`], reading the
+/// sea's height through a filter of precision `prec`: the one mirror of the step, for the
+/// exact frame (`f32`), its envelope ([`Iv`]) and a random conformant GPU ([`Jitter`]).
+pub(crate) fn step_slot_r<R: Real + Sampling<R>>(
+    i: u32,
+    p: Particle,
+    params: &SprayUniforms,
+    emitters: &[Emitter],
+    displacement: &Texture2D,
+    prec: Precision,
+) -> SlotStep<R> {
+    let l = R::lit;
     let random = |k: u32| spray_random(params.seed, i, params.step, k);
-    let mut p = p;
+    let same = SlotStep { pos: p.pos.map(l), vel: p.vel.map(l), decided: true };
     if p.pos[3] > 0.0 {
-        let mut v = Vec4::from(p.vel).xyz();
-        v.y -= params.gravity * params.dt;
-        let x = Vec4::from(p.pos).xyz() + v * params.dt;
-        let age = p.vel[3] + params.dt;
-        let mut active = 1.0;
-        if age > params.lifetime
-            || (v.y < 0.0 && x.y < water_height(x.x, x.z, params, displacement))
-        {
-            active = 0.0;
+        let dt = l(params.dt);
+        let vy = l(p.vel[1]) - l(params.gravity) * dt;
+        let v = [l(p.vel[0]), vy, l(p.vel[2])];
+        let x: [R; 3] = std::array::from_fn(|c| l(p.pos[c]) + v[c] * dt);
+        let age = l(p.vel[3]) + dt;
+        // Rust's `||` and `&&` short-circuit as WGSL's do; the height is read only when the
+        // particle falls.
+        let old = l(params.lifetime).lt(age);
+        let freed = match old.decided() {
+            Some(true) => old,
+            _ => {
+                let falls = vy.lt(l(0.0));
+                let under = match falls.decided() {
+                    Some(false) => falls,
+                    _ => falls.and(x[1].lt(water_height_r(x[0], x[2], params, displacement, prec))),
+                };
+                old.or(under)
+            }
+        };
+        let active = choose(freed, || l(0.0), || l(1.0));
+        SlotStep {
+            pos: [x[0], x[1], x[2], active],
+            vel: [v[0], v[1], v[2], age],
+            decided: freed.decided().is_some(),
         }
-        p.pos = x.extend(active).into();
-        p.vel = v.extend(age).into();
     } else if params.emitters > 0 {
         let e = emitters[(i % params.emitters) as usize];
-        if e.pos[1] < water_height(e.pos[0], e.pos[2], params, displacement)
-            && random(0) < params.emit_chance
-        {
-            let s = params.speed * (0.6 + 0.8 * random(1));
-            let jitter =
-                vec3(random(2) - 0.5, random(3) - 0.5, random(4) - 0.5) * (0.3 * params.speed);
-            p.pos = [e.pos[0], e.pos[1], e.pos[2], 1.0];
-            p.vel = (Vec4::from(e.dir).xyz() * s + jitter).extend(0.0).into();
+        // The random numbers are integer arithmetic: decided alike everywhere (and a NaN
+        // chance launches nothing, as the WGSL's `<`).
+        let chance = random(0) < params.emit_chance;
+        if !chance {
+            return same;
         }
+        let submerged =
+            l(e.pos[1]).lt(water_height_r(l(e.pos[0]), l(e.pos[2]), params, displacement, prec));
+        let launch = || {
+            let speed = l(params.speed);
+            let s = speed * (l(0.6) + l(0.8) * l(random(1)));
+            let spread = l(0.3) * speed;
+            let jitter = [2, 3, 4].map(|k| (l(random(k)) - l(0.5)) * spread);
+            let vel: [R; 3] = std::array::from_fn(|c| l(e.dir[c]) * s + jitter[c]);
+            ([l(e.pos[0]), l(e.pos[1]), l(e.pos[2]), l(1.0)], [vel[0], vel[1], vel[2], l(0.0)])
+        };
+        match submerged.decided() {
+            Some(true) => {
+                let (pos, vel) = launch();
+                SlotStep { pos, vel, decided: true }
+            }
+            Some(false) => same,
+            None => {
+                let (pos, vel) = launch();
+                SlotStep {
+                    pos: std::array::from_fn(|c| pos[c].hull(same.pos[c])),
+                    vel: std::array::from_fn(|c| vel[c].hull(same.vel[c])),
+                    decided: false,
+                }
+            }
+        }
+    } else {
+        same
     }
-    p
 }
 
 /// `step` dispatched over every slot (each slot depends on its own value only, so the order
@@ -72,6 +154,45 @@ pub fn step(
         .par_iter_mut()
         .enumerate()
         .for_each(|(i, p)| *p = step_slot(i as u32, *p, params, emitters, displacement));
+}
+
+/// The envelope of one `step` of every slot from the pool `before` as the GPU held it: each
+/// slot's interval of every value a conformant GPU may write, reading the sea's height from
+/// `displacement` through a filter of precision `prec`, and whether the slot's branches were
+/// all decided (where not, both outcomes, united).
+pub fn step_envelope(
+    before: &[Particle],
+    params: &SprayUniforms,
+    emitters: &[Emitter],
+    displacement: &Texture2D,
+    prec: Precision,
+) -> Vec<SlotStep<Iv>> {
+    before
+        .par_iter()
+        .enumerate()
+        .map(|(i, p)| step_slot_r(i as u32, *p, params, emitters, displacement, prec))
+        .collect()
+}
+
+/// One `step` of every slot as one random conformant GPU computes it (`rules.scale` times
+/// the rules; each slot draws from the seed and its index).
+pub fn step_jitter(
+    before: &[Particle],
+    params: &SprayUniforms,
+    emitters: &[Emitter],
+    displacement: &Texture2D,
+    prec: Precision,
+    rules: JitterRules,
+) -> Vec<Particle> {
+    before
+        .par_iter()
+        .enumerate()
+        .map(|(i, p)| {
+            Jitter::reseed(rules, i as u64);
+            let s = step_slot_r::<Jitter>(i as u32, *p, params, emitters, displacement, prec);
+            Particle { pos: s.pos.map(|v| v.0), vel: s.vel.map(|v| v.0) }
+        })
+        .collect()
 }
 
 /// `SpriteOut`.
@@ -253,3 +374,7 @@ pub fn reach(
         })
         .collect()
 }
+
+#[cfg(test)]
+#[path = "spray_tests.rs"]
+mod tests;

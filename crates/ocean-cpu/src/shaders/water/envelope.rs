@@ -79,7 +79,7 @@ pub struct WaterPass<'a> {
 
 /// `textureSampleLevel` as each scalar type samples (level 0 of a texture, a chain at an
 /// LOD) on a device of precision `p`.
-trait Sampling<R> {
+pub(crate) trait Sampling<R> {
     fn level0(t: &Texture2D, s: &Sampler, uv: [R; 2], p: Precision) -> [R; 4];
     fn mip(c: &MipChain, s: &Sampler, uv: [R; 2], lod: R, p: Precision) -> [R; 4];
     /// [`filter::spread_floor`] for an interval, −∞ otherwise.
