@@ -120,7 +120,8 @@ impl Verdict {
 /// the `waves` pass's maps (from the uploaded modes), the foam field (from the GPU's
 /// displacement map), the shadow and reflection maps (the rasteriser's envelope of the
 /// objects' triangles),
-/// the uploaded `fresnel_filter` (bit for bit), the Fresnel tables, the HDR frame's sky pixels
+/// the uploaded `fresnel_filter` (bit for bit), the Fresnel tables, the spray's step (from the
+/// pool the GPU held, where `gpu.spray` holds one), the HDR frame's sky pixels
 /// (where `oracle_hdr` says the sky shows) and the picture (against the `tonemap` envelope of
 /// the GPU's own HDR frame and bloom). The rest of `resources`, whose passes have no envelope
 /// yet, are listed as not judged; a frame of which nothing is judged fails.

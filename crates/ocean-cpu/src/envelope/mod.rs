@@ -15,7 +15,7 @@
 //!
 //! Passes whose mirrors run over [`Real`]: `sky` (all three techniques, with the camera's
 //! view ray), `tonemap`, `bloom`, `waves` (with `shared/trig.wgsl`), `foam`'s field (with
-//! the Gerstner Jacobian), `wave_mips`, `fresnel_table` (with `shared/fresnel.wgsl`), and
+//! the Gerstner Jacobian), `spray`'s step, `wave_mips`, `fresnel_table` (with `shared/fresnel.wgsl`), and
 //! with the rasteriser's envelope ([`raster`]) `shadow_map`, `objects`' reflection and
 //! refraction maps and `water` (its configurations `shaders::water::real::carried` names, at
 //! the device's [`Precision`]). The others have no envelope yet; `ocean compare --tolerance
