@@ -42,17 +42,15 @@ impl DrawMesh {
     /// per patch parameters and view where the plan draws the near and far patch (their
     /// refinement, stitching and upload were redone every frame of a still camera, about
     /// 0.2 ms of `hu`'s CPU encode on lavapipe); the kept mesh is the one made anew, bit for
-    /// bit. The surfaces drawn from the vertex index (`clipmap`, `projected_grid`; the same
-    /// test as [`FramePlan::water_mesh`]'s) build an empty mesh and keep nothing.
+    /// bit. The surfaces drawn from the vertex index ([`crate::stage::Surface::index_drawn`])
+    /// build an empty mesh and keep nothing.
     ///
     /// # Errors
     /// As [`FramePlan::water_mesh`] (an error is not kept).
     pub fn kept(plan: &FramePlan, scene: &Scene, camera: &Camera) -> crate::Result<Self> {
         static KEPT: crate::kept::Kept<(crate::geometry::PatchParams, [u64; 9]), DrawMesh> =
             crate::kept::Kept::new();
-        let surface = plan.techniques.surface();
-        let index_drawn = surface.camera_grid() || surface.clipmap_levels();
-        if index_drawn {
+        if plan.techniques.surface().index_drawn() {
             return plan.water_mesh(scene, camera).map(Into::into);
         }
         let (e, f) = (camera.eye, camera.forward);

@@ -650,7 +650,9 @@ impl FramePlan {
         if let Some(clipmap) = crate::geometry::Clipmap::of_frame(scene, camera, self) {
             return Ok(index_drawn(clipmap?.origin));
         }
-        if self.techniques.surface().camera_grid() {
+        if self.techniques.surface().index_drawn() {
+            // The clipmap returned above: what is left of the index-drawn surfaces is the
+            // camera grids.
             let cell = |x: f64| (x / g).round() * g;
             return Ok(index_drawn([cell(camera.eye.x), cell(camera.eye.z)]));
         }
