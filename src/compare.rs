@@ -154,7 +154,12 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 water_every: 1,
                 spray: None,
             };
-            let probe = ocean::verdict::spray::probe(&renderer, &scene, plan, &side)?;
+            let probe = ocean::verdict::spray::probe(
+                &renderer,
+                &scene,
+                plan,
+                side.map(ResourceId::Displacement),
+            )?;
             side.spray = probe.as_ref();
             let v = envelope_verdict(&scene, plan, &side, &ran)?;
             for l in &v.lines {
@@ -483,6 +488,15 @@ fn against_envelope(
         water_every: 1,
         spray: None,
     };
+    // The spray's step, where the dump holds one (`ocean render --dump-passes` on a GPU).
+    let spray = match ocean::dump::read_spray_step(dir, manifest)? {
+        Some(s) => {
+            let params = ocean::verdict::spray::step_uniforms(scene, plan, s.step)?;
+            Some(ocean::verdict::spray::SprayProbe { before: s.before, after: s.after, params })
+        }
+        None => None,
+    };
+    let side = GpuSide { spray: spray.as_ref(), ..side };
     let v = envelope_verdict(scene, plan, &side, &held)?;
     for l in &v.lines {
         println!("{l}");

@@ -10,6 +10,10 @@
 //!   the manifest gives the texture's own order r, g, b, a). Row 0 of the image is the
 //!   texture's row 0.
 //! - `ldr.png`: the 8-bit sRGB picture, when the plan tonemaps.
+//! - `spray_step.exr` (a GPU frame with a spray): the particle pool as the frame left it on
+//!   the device and after one more step run there, a row per slot and four columns (before:
+//!   position and tag, velocity and age; after: the same), channels x, y, z, w; the
+//!   manifest's `spray_step` names it with the step's number and the slots.
 //! - `manifest.json`: the scene (its text and path), the plan (as `ocean plan --json`), the
 //!   frame's time and size, the back end and its adapter (name, vendor, device type, driver,
 //!   backend: the provenance of the numbers), the conventions, and per resource: the pass and
@@ -146,10 +150,12 @@ fn conventions() -> Value {
 pub type MapOf<'a> = dyn Fn(ResourceId) -> Option<((u32, u32), &'a [[f32; 4]])> + 'a;
 
 /// Writes the dump of a frame to `dir` (created if missing): every resource of [`dumped`],
-/// `ldr.png` when there is a picture, and the manifest. Returns the files written.
+/// `ldr.png` when there is a picture, the spray's probed step when given, and the manifest.
+/// Returns the files written.
 ///
 /// # Errors
 /// A folder or file that cannot be written, or a map the back end did not keep.
+#[expect(clippy::too_many_arguments, reason = "a dump's parts, each from its back end")]
 pub fn write(
     dir: &Path,
     scene: &Scene,
@@ -158,6 +164,7 @@ pub fn write(
     adapter: Option<&ocean_gpu::AdapterReport>,
     map: &MapOf<'_>,
     ldr: Option<&[u8]>,
+    spray: Option<&crate::verdict::spray::SprayProbe>,
 ) -> anyhow::Result<Vec<String>> {
     let backend = if adapter.is_some() { "gpu" } else { "cpu" };
     let adapter = match adapter {
@@ -216,6 +223,13 @@ pub fn write(
         crate::output::write_atomic(&dir.join("ldr.png"), &png)?;
         files.push("ldr.png".to_owned());
     }
+    let spray_step = match spray {
+        Some(step) => {
+            files.push(SPRAY_STEP_FILE.to_owned());
+            write_spray_step(dir, step)?
+        }
+        None => Value::Null,
+    };
     let manifest = json!({
         "layout": LAYOUT,
         "backend": backend,
@@ -230,6 +244,7 @@ pub fn write(
         "conventions": conventions(),
         "plan": serde_json::to_value(plan)?,
         "resources": resources,
+        "spray_step": spray_step,
     });
     crate::output::write_atomic(
         &dir.join("manifest.json"),
@@ -263,6 +278,9 @@ pub struct Manifest {
     pub resources: Option<Vec<String>>,
     /// Who made the dump (`adapter`: name, vendor, device type, driver, backend), as written.
     pub adapter: Option<Value>,
+    /// The spray step the dump holds ([`SPRAY_STEP_FILE`]): the step's number and the pool's
+    /// slots.
+    pub spray_step: Option<(u64, u64)>,
 }
 
 impl Manifest {
@@ -365,7 +383,24 @@ pub fn read_manifest(dir: &Path) -> anyhow::Result<Option<Manifest>> {
         a @ Value::Object(_) => Some(a.clone()),
         other => bail!("{} must be an object, got {other}", key("adapter")),
     };
+    let spray_step = match &v["spray_step"] {
+        Value::Null => None,
+        e => {
+            let whole = |k: &str| e[k].as_u64();
+            match (whole("step"), whole("slots"), e["file"].as_str()) {
+                (Some(step), Some(slots), Some(SPRAY_STEP_FILE)) if slots > 0 => {
+                    Some((step, slots))
+                }
+                _ => bail!(
+                    "{} must give `file` \"{SPRAY_STEP_FILE}\", a whole `step` and a whole, \
+                     positive number of `slots`, got {e}",
+                    key("spray_step")
+                ),
+            }
+        }
+    };
     Ok(Some(Manifest {
+        spray_step,
         scene_toml: string(&v["scene"]["toml"], "scene.toml")?.filter(|t| !t.is_empty()),
         system: string(&frame["system"], "frame.system")?,
         size,
@@ -384,33 +419,106 @@ pub type ReadMap = ((u32, u32), Vec<[f32; 4]>);
 /// # Errors
 /// A missing or unreadable file, or one without the four channels.
 pub fn read(dir: &Path, id: ResourceId) -> anyhow::Result<ReadMap> {
+    read_file(&dir.join(file_name(id)), channels(id).map(|c| c.0))
+}
+
+/// Reads an EXR of this layout: (width, height) and its texels, channel c from the channel
+/// named `names[c]` (or R, G, B, A).
+fn read_file(path: &Path, names: [&str; 4]) -> anyhow::Result<ReadMap> {
     use exr::prelude::*;
-    let path = dir.join(file_name(id));
     // The header first: a forged size is refused before a texel is decoded (4 channels of
     // f32 as [f32; 4] texels, plus the samples as stored). A mip chain's atlas is up to twice
     // as tall as its level 0.
-    let (size, stored) = ocean_core::input::exr_header(&path).map_err(anyhow::Error::msg)?;
+    let (size, stored) = ocean_core::input::exr_header(path).map_err(anyhow::Error::msg)?;
     let max_side = 2 * u64::from(ocean_core::scene::MAX_IMAGE_SIDE);
-    ocean_core::input::check_image_size(&path, size, max_side, stored + 16)
+    ocean_core::input::check_image_size(path, size, max_side, stored + 16)
         .map_err(anyhow::Error::msg)?;
-    let image = read_all_flat_layers_from_file(&path)
+    let image = read_all_flat_layers_from_file(path)
         .with_context(|| format!("cannot read {}", path.display()))?;
     let Some(layer) = image.layer_data.first() else { bail!("{} holds no layer", path.display()) };
     let (w, h) = (layer.size.width(), layer.size.height());
-    let names = channels(id);
     let rgba = ["R", "G", "B", "A"];
     let mut texels = vec![[0.0f32; 4]; w * h];
     for c in 0..4 {
         let found = layer.channel_data.list.iter().find(|ch| {
             let n = ch.name.to_string();
-            n == names[c].0 || n == rgba[c]
+            n == names[c] || n == rgba[c]
         });
         let Some(ch) = found else {
-            bail!("{} has no channel `{}` (or `{}`)", path.display(), names[c].0, rgba[c])
+            bail!("{} has no channel `{}` (or `{}`)", path.display(), names[c], rgba[c])
         };
         for (t, v) in texels.iter_mut().zip(ch.sample_data.values_as_f32()) {
             t[c] = v;
         }
     }
     Ok(((w as u32, h as u32), texels))
+}
+
+/// The spray step's file in a dump: four columns, a row per slot.
+pub const SPRAY_STEP_FILE: &str = "spray_step.exr";
+
+/// The columns of [`SPRAY_STEP_FILE`].
+const SPRAY_STEP_COLUMNS: [&str; 4] = [
+    "before: position (x, y, z relative to the spray's origin, m), active (1) or free (0)",
+    "before: velocity (m/s), age (s)",
+    "after: position, active",
+    "after: velocity, age",
+];
+
+/// The spray step as a dump holds it (`ocean compare`'s probe: the pool as the frame left it
+/// on the device, and after one more step there): `None` where the dump has none.
+///
+/// # Errors
+/// A manifest entry that names another file or a step that is not a whole number, or a file
+/// that is not four columns of `slots` rows.
+pub fn read_spray_step(dir: &Path, manifest: &Manifest) -> anyhow::Result<Option<SprayStep>> {
+    let Some((step, slots)) = manifest.spray_step else { return Ok(None) };
+    let ((w, h), texels) = read_file(&dir.join(SPRAY_STEP_FILE), ["x", "y", "z", "w"])?;
+    if (w, u64::from(h)) != (4, slots) {
+        bail!("{}: {w}x{h}, the manifest's 4x{slots}", dir.join(SPRAY_STEP_FILE).display());
+    }
+    let column = |c: usize| -> Vec<ocean_core::spray::Particle> {
+        texels
+            .chunks_exact(4)
+            .map(|row| ocean_core::spray::Particle { pos: row[c], vel: row[c + 1] })
+            .collect()
+    };
+    Ok(Some(SprayStep { step, before: column(0), after: column(2) }))
+}
+
+/// A dump's spray step ([`read_spray_step`]).
+#[derive(Clone, Debug)]
+pub struct SprayStep {
+    /// The step's number (its uniforms' `step`).
+    pub step: u64,
+    /// The pool as the frame left it on the device.
+    pub before: Vec<ocean_core::spray::Particle>,
+    /// The pool after the step.
+    pub after: Vec<ocean_core::spray::Particle>,
+}
+
+/// The spray step's file and manifest entry: four columns ([`SPRAY_STEP_COLUMNS`]), a row
+/// per slot.
+fn write_spray_step(dir: &Path, step: &crate::verdict::spray::SprayProbe) -> anyhow::Result<Value> {
+    let rows: Vec<[[f32; 4]; 4]> =
+        step.before.iter().zip(&step.after).map(|(b, a)| [b.pos, b.vel, a.pos, a.vel]).collect();
+    let data: Vec<Channel<'_>> = ["x", "y", "z", "w"]
+        .into_iter()
+        .enumerate()
+        .map(|(c, name)| Channel {
+            name,
+            data: rows.iter().flat_map(|r| r.iter().map(move |t| t[c])).collect(),
+        })
+        .collect();
+    let bytes = encode_exr(4, rows.len(), data)?;
+    crate::output::write_atomic(&dir.join(SPRAY_STEP_FILE), &bytes)?;
+    Ok(json!({
+        "file": SPRAY_STEP_FILE,
+        "pass": "spray",
+        "step": step.params.step,
+        "slots": rows.len(),
+        "columns": SPRAY_STEP_COLUMNS,
+        "meaning": "the pool as the frame left it on the device, and after one more step run there; \
+                    `ocean compare --against` holds the step to its envelope",
+    }))
 }

@@ -138,7 +138,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
                 .collect();
             if let Some(dir) = &args.dump_passes {
                 let map = |id| r.buffers.map(id).map(|(w, h, t)| ((w, h), t));
-                dump(dir, &scene, args.scene.as_deref(), &r.plan, None, &map, r.ldr.as_deref())?;
+                let ldr = r.ldr.as_deref();
+                dump(dir, &scene, args.scene.as_deref(), &r.plan, None, &map, ldr, None)?;
             }
             (r.ldr, r.buffers.hdr.color, passes, "CPU".to_owned())
         }
@@ -154,7 +155,20 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             if let Some(dir) = &args.dump_passes {
                 let map = |id| f.map(id).map(|m| ((m.width, m.height), &m.texels[..]));
                 let adapter = Some(renderer.adapter());
-                dump(dir, &scene, args.scene.as_deref(), &plan, adapter, &map, f.ldr.as_deref())?;
+                // One more step of the spray on the device, for the envelope's verdict on it.
+                let displacement = map(ocean_core::plan::ResourceId::Displacement);
+                let spray = ocean::verdict::spray::probe(&renderer, &scene, &plan, displacement)?;
+                let ldr = f.ldr.as_deref();
+                dump(
+                    dir,
+                    &scene,
+                    args.scene.as_deref(),
+                    &plan,
+                    adapter,
+                    &map,
+                    ldr,
+                    spray.as_ref(),
+                )?;
             }
             let hdr = f.map(FrameMap::Hdr).map(|m| m.texels.clone()).unwrap_or_default();
             let passes = f
@@ -213,7 +227,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// `--dump-passes`: the frame's resources and manifest into `dir` (`ocean::dump`).
+/// `--dump-passes`: the frame's resources and manifest into `dir` (`ocean::dump`), with the
+/// spray's probed step where the GPU ran one.
+#[expect(clippy::too_many_arguments, reason = "a dump's parts, each from its back end")]
 fn dump(
     dir: &std::path::Path,
     scene: &ocean_core::scene::Scene,
@@ -222,6 +238,7 @@ fn dump(
     adapter: Option<&ocean_gpu::AdapterReport>,
     map: &ocean::dump::MapOf<'_>,
     ldr: Option<&[u8]>,
+    spray: Option<&ocean::verdict::spray::SprayProbe>,
 ) -> anyhow::Result<()> {
     let (shown, text) = match path {
         Some(p) => (
@@ -231,7 +248,7 @@ fn dump(
         ),
         None => ("(the built-in default scene)".to_owned(), String::new()),
     };
-    let files = ocean::dump::write(dir, scene, (&shown, &text), plan, adapter, map, ldr)?;
+    let files = ocean::dump::write(dir, scene, (&shown, &text), plan, adapter, map, ldr, spray)?;
     eprintln!("dumped {} file(s) to {}: {}", files.len(), dir.display(), files.join(", "));
     Ok(())
 }

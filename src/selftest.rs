@@ -60,7 +60,12 @@ fn judge(
         water_every: if quick { 3 } else { 1 },
         spray: None,
     };
-    let probe = ocean::verdict::spray::probe(renderer, scene, &frame.plan, &side)?;
+    let probe = ocean::verdict::spray::probe(
+        renderer,
+        scene,
+        &frame.plan,
+        side.map(ResourceId::Displacement),
+    )?;
     side.spray = probe.as_ref();
     envelope_verdict(scene, &frame.plan, &side, &ocean::dump::dumped(&frame.plan))
 }

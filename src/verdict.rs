@@ -249,7 +249,7 @@ impl Verdict {
             return Ok(());
         }
         let Some(probe) = gpu.spray else {
-            let why = "no step of the pool was run on the device (a dump holds no pool)";
+            let why = "no step of the pool was run on the device (the dump holds no spray step)";
             self.lines
                 .push(format!("  [{:<14}] {:<20} not judged: {why}", "spray", "spray_particles"));
             self.json.push(json!({"name": "spray_particles", "tolerance": "envelope", "judged": false, "why": why}));

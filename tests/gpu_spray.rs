@@ -9,6 +9,9 @@
 #[path = "support/gpu_harness.rs"]
 mod gpu_harness;
 
+#[path = "support/cli.rs"]
+mod cli;
+
 use std::path::PathBuf;
 
 use ocean_core::graph::FrameState;
@@ -286,10 +289,93 @@ fn the_probed_step_equals_the_cpu_step_and_lies_in_its_envelope() {
     assert!(outside(&fast) > 10, "a 1 % faster launch leaves the envelope");
 }
 
+/// `ocean render --backend gpu --dump-passes` keeps the probed step (`spray_step.exr`, named
+/// in the manifest), and `ocean compare --against` holds it to its envelope: 0 values outside;
+/// one velocity 1 % off in the dump, or the manifest's step one off (its random numbers),
+/// fails the verdict on `spray_particles`.
+fn a_gpu_dump_holds_the_spray_step_and_compare_against_judges_it() {
+    use ocean::output::{Channel, encode_exr};
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path().join("rock");
+    let scene = root().join("reference/scenes/chiu_rock.toml");
+    let (scene, d_s) = (scene.to_string_lossy(), d.to_string_lossy());
+    let png = dir.path().join("rock.png");
+    let o = cli::ocean(&[
+        "render",
+        &scene,
+        "--backend",
+        "gpu",
+        "--size",
+        "96x54",
+        "--dump-passes",
+        &d_s,
+        "-o",
+        &png.to_string_lossy(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let m: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.join("manifest.json")).unwrap()).unwrap();
+    let slots = m["spray_step"]["slots"].as_u64().expect("the manifest names the spray step");
+    assert_eq!(m["spray_step"]["file"], "spray_step.exr");
+    let out = dir.path().join("cmp");
+    let against = || {
+        let o = cli::ocean(&[
+            "compare",
+            "--against",
+            &d_s,
+            "--tolerance",
+            "envelope",
+            "--out-dir",
+            &out.to_string_lossy(),
+        ]);
+        let line = String::from_utf8_lossy(&o.stdout)
+            .lines()
+            .find(|l| l.contains("spray_particles"))
+            .unwrap_or_default()
+            .to_owned();
+        (o.status.success(), line)
+    };
+    let (ok, line) = against();
+    println!("{slots} slots: {line}");
+    assert!(ok && line.contains(" 0 of ") && line.ends_with("ok"), "{line}");
+    // One velocity of the step's output 1 % off.
+    let image = exr::prelude::read_all_flat_layers_from_file(d.join("spray_step.exr")).unwrap();
+    let layer = &image.layer_data[0];
+    let mut columns: Vec<(String, Vec<f32>)> = layer
+        .channel_data
+        .list
+        .iter()
+        .map(|c| (c.name.to_string(), c.sample_data.values_as_f32().collect()))
+        .collect();
+    let active = (0..slots as usize)
+        .find(|&r| columns.iter().any(|(n, v)| n == "w" && v[4 * r + 2] == 1.0))
+        .expect("a live particle after the step");
+    for (n, v) in &mut columns {
+        if n == "y" {
+            v[4 * active + 3] *= 1.01;
+        }
+    }
+    let good = std::fs::read(d.join("spray_step.exr")).unwrap();
+    let channels =
+        columns.iter().map(|(n, v)| Channel { name: n, data: v.clone() }).collect::<Vec<_>>();
+    let bytes = encode_exr(4, slots as usize, channels).unwrap();
+    std::fs::write(d.join("spray_step.exr"), bytes).unwrap();
+    let (ok, line) = against();
+    assert!(!ok && line.contains("FAIL") && line.contains(" 1 of "), "{line}");
+    // The manifest's step one off: the step's random numbers are another step's.
+    std::fs::write(d.join("spray_step.exr"), good).unwrap();
+    let mut off = m.clone();
+    off["spray_step"]["step"] = (m["spray_step"]["step"].as_u64().unwrap() + 1).into();
+    std::fs::write(d.join("manifest.json"), serde_json::to_string_pretty(&off).unwrap()).unwrap();
+    let (ok, line) = against();
+    assert!(!ok && line.contains("FAIL"), "{line}");
+}
+
 fn main() -> std::process::ExitCode {
     run_tests!(gpu_harness::GPU_ADAPTER;
         cpu: cpu_pool_is_the_same_over_runs_and_threads, books_balance_and_every_transition_follows_the_rules,
             every_live_sprite_lies_in_the_sprays_reach_and_a_tighter_bound_misses_some;
         gpu: gpu_pool_equals_the_cpu_pool_after_100_steps,
-            the_probed_step_equals_the_cpu_step_and_lies_in_its_envelope)
+            the_probed_step_equals_the_cpu_step_and_lies_in_its_envelope,
+            a_gpu_dump_holds_the_spray_step_and_compare_against_judges_it)
 }

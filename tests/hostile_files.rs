@@ -410,11 +410,37 @@ fn a_hostile_manifest_is_refused_with_its_cause() {
     }
     // A forged map header: refused before decoding.
     std::fs::write(d.join("manifest.json"), &good).unwrap();
+    std::fs::copy(d.join("hdr.exr"), dir.path().join("hdr.good")).unwrap();
     std::fs::write(d.join("hdr.exr"), forged_exr(65536, 65536)).unwrap();
     let o = run_in(dir.path(), &["compare", "--against", "d", "--out-dir", "c"]);
     let e = stderr(&o);
     assert_eq!(o.status.code(), Some(1), "{e}");
     assert!(e.contains("hdr.exr") && e.contains("65536×65536"), "{e}");
+    assert!(peak_mib(&o) < REFUSED_MIB, "{e}");
+    // A spray step that names another file, has no whole step or no slots: refused by name.
+    assert!(good.contains("\"spray_step\": null"), "the manifest says it has no spray step");
+    let step =
+        |entry: &str| good.replace("\"spray_step\": null", &format!("\"spray_step\": {entry}"));
+    for bad in [
+        r#"{"file": "../hdr.exr", "step": 1, "slots": 4}"#,
+        r#"{"file": "spray_step.exr", "step": -1, "slots": 4}"#,
+        r#"{"file": "spray_step.exr", "step": 1, "slots": 0}"#,
+    ] {
+        std::fs::write(d.join("manifest.json"), step(bad)).unwrap();
+        compare(&["spray_step", "spray_step.exr"]);
+    }
+    // A forged spray step file: refused before decoding, under the envelope that reads it.
+    std::fs::write(d.join("hdr.exr"), std::fs::read(dir.path().join("hdr.good")).unwrap()).unwrap();
+    let entry = r#"{"file": "spray_step.exr", "step": 1, "slots": 4}"#;
+    std::fs::write(d.join("manifest.json"), step(entry)).unwrap();
+    std::fs::write(d.join("spray_step.exr"), forged_exr(65536, 65536)).unwrap();
+    let o = run_in(
+        dir.path(),
+        &["compare", "--against", "d", "--out-dir", "c", "--tolerance", "envelope"],
+    );
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    assert!(e.contains("spray_step.exr") && e.contains("65536×65536"), "{e}");
     assert!(peak_mib(&o) < REFUSED_MIB, "{e}");
 }
 

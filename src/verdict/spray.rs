@@ -9,7 +9,7 @@ use ocean_core::scene::Scene;
 use ocean_core::spray::{Particle, SprayFrame, SprayUniforms};
 use ocean_cpu::sampler::Texture2D;
 
-use super::GpuSide;
+use super::{FrameRef, GpuSide};
 
 /// One step of the spray as a device ran it: the slots before and after, and its uniforms.
 #[derive(Clone, Debug)]
@@ -24,15 +24,26 @@ pub struct SprayProbe {
 
 /// The frame's displacement map as the GPU read it (its read-back), or the 1×1 zero map a
 /// frame without a `waves` pass binds.
-fn displacement(gpu: &GpuSide<'_>) -> (u32, u32, Vec<[f32; 4]>) {
-    match gpu.map(ResourceId::Displacement) {
+fn displacement(map: Option<FrameRef<'_>>) -> (u32, u32, Vec<[f32; 4]>) {
+    match map {
         Some(((w, h), t)) => (w, h, t.to_vec()),
         None => (1, 1, vec![[0.0; 4]]),
     }
 }
 
-/// Runs the step after `renderer`'s last frame (of `scene` under `plan`, whose read-back maps
-/// `gpu` holds) on the device: `None` where the frame has no spray.
+/// The uniforms of step `step` of the spray of `scene` under `plan`.
+///
+/// # Errors
+/// A camera the scene cannot make.
+pub fn step_uniforms(scene: &Scene, plan: &FramePlan, step: u64) -> anyhow::Result<SprayUniforms> {
+    let state = ocean_core::graph::FrameState::new(0.0);
+    let frame = ocean_core::graph::FrameInputs::new(scene, plan, &state)?;
+    Ok(SprayFrame::new(scene, plan, &frame.camera, step, 1).steps[0])
+}
+
+/// Runs the step after `renderer`'s last frame (of `scene` under `plan`, with the read-back
+/// `displacement` map, if the frame has one) on the device: `None` where the frame has no
+/// spray.
 ///
 /// # Errors
 /// A device error, or uniforms the scene cannot make.
@@ -40,7 +51,7 @@ pub fn probe(
     renderer: &ocean_gpu::Renderer,
     scene: &Scene,
     plan: &FramePlan,
-    gpu: &GpuSide<'_>,
+    displacement_map: Option<FrameRef<'_>>,
 ) -> anyhow::Result<Option<SprayProbe>> {
     if !plan.runs(Pass::Spray) {
         return Ok(None);
@@ -48,10 +59,8 @@ pub fn probe(
     let (Some(before), Some(steps)) = (renderer.spray_particles()?, renderer.spray_steps()) else {
         return Ok(None);
     };
-    let state = ocean_core::graph::FrameState::new(0.0);
-    let frame = ocean_core::graph::FrameInputs::new(scene, plan, &state)?;
-    let params = SprayFrame::new(scene, plan, &frame.camera, steps, 1).steps[0];
-    let (w, h, map) = displacement(gpu);
+    let params = step_uniforms(scene, plan, steps)?;
+    let (w, h, map) = displacement(displacement_map);
     let Some(after) = renderer.spray_probe(&before, &params, (w, h, &map))? else {
         return Ok(None);
     };
@@ -77,7 +86,7 @@ pub fn verdict(
             probe.after.len()
         );
     }
-    let (w, h, map) = displacement(gpu);
+    let (w, h, map) = displacement(gpu.map(ResourceId::Displacement));
     let env = ocean_cpu::shaders::spray::step_envelope(
         &probe.before,
         &probe.params,
