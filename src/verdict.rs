@@ -248,8 +248,18 @@ impl Verdict {
         if !plan.runs(Pass::Spray) {
             return Ok(());
         }
-        let Some(probe) = gpu.spray else {
-            let why = "no step of the pool was run on the device (the dump holds no spray step)";
+        let why = match gpu.spray {
+            None => {
+                Some("no step of the pool was run on the device (the dump holds no spray step)")
+            }
+            // The step read the frame's displacement map: without it, nothing to judge from.
+            Some(_) if plan.runs(Pass::Waves) && gpu.map(ResourceId::Displacement).is_none() => {
+                Some("its input displacement is not in the frame")
+            }
+            Some(_) => None,
+        };
+        let (Some(probe), None) = (gpu.spray, why) else {
+            let why = why.unwrap_or_default();
             self.lines
                 .push(format!("  [{:<14}] {:<20} not judged: {why}", "spray", "spray_particles"));
             self.json.push(json!({"name": "spray_particles", "tolerance": "envelope", "judged": false, "why": why}));

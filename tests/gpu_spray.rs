@@ -292,7 +292,7 @@ fn the_probed_step_equals_the_cpu_step_and_lies_in_its_envelope() {
 /// `ocean render --backend gpu --dump-passes` keeps the probed step (`spray_step.exr`, named
 /// in the manifest), and `ocean compare --against` holds it to its envelope: 0 values outside;
 /// one velocity 1 % off in the dump, or the manifest's step one off (its random numbers),
-/// fails the verdict on `spray_particles`.
+/// fails the verdict on `spray_particles`; without the displacement map it is not judged.
 fn a_gpu_dump_holds_the_spray_step_and_compare_against_judges_it() {
     use ocean::output::{Channel, encode_exr};
     let dir = tempfile::tempdir().unwrap();
@@ -369,6 +369,14 @@ fn a_gpu_dump_holds_the_spray_step_and_compare_against_judges_it() {
     std::fs::write(d.join("manifest.json"), serde_json::to_string_pretty(&off).unwrap()).unwrap();
     let (ok, line) = against();
     assert!(!ok && line.contains("FAIL"), "{line}");
+    // Without the displacement map the step read, the step is not judged (never passed on a
+    // map of zeros, which the GPU did not read).
+    let mut without = m.clone();
+    without["resources"].as_array_mut().unwrap().retain(|r| r["name"] != "displacement");
+    let text = serde_json::to_string_pretty(&without).unwrap();
+    std::fs::write(d.join("manifest.json"), text).unwrap();
+    let (_, line) = against();
+    assert!(line.contains("not judged: its input displacement is not in the frame"), "{line}");
 }
 
 fn main() -> std::process::ExitCode {
