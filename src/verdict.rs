@@ -267,9 +267,11 @@ impl Verdict {
             return Ok(());
         };
         let f = spray::verdict(plan, gpu, probe)?;
-        self.lines.push(format!("  [{:<14}] {}", "spray", f.line()));
+        // A slot is two of the region's "pixels": its position and its velocity.
+        let line = f.line().replacen(" pixels, ", " slot vec4s (two a slot), ", 1);
+        self.lines.push(format!("  [{:<14}] {line}", "spray"));
         if !f.passed() {
-            self.failures.push(f.line());
+            self.failures.push(line);
         }
         self.json.push(f.to_json());
         self.judged.push("spray_particles");
