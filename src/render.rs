@@ -144,39 +144,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             (r.ldr, r.buffers.hdr.color, passes, "CPU".to_owned())
         }
         Backend::Gpu => {
-            let mut renderer = ocean_gpu::Renderer::new()?;
-            let plan = FramePlan::new(&scene, kind);
-            let readback = if args.dump_passes.is_some() {
-                ocean_gpu::Readback::All
-            } else {
-                ocean_gpu::Readback::Output
-            };
-            let f = renderer.run_with(&scene, &plan, readback)?;
-            if let Some(dir) = &args.dump_passes {
-                let map = |id| f.map(id).map(|m| ((m.width, m.height), &m.texels[..]));
-                let adapter = Some(renderer.adapter());
-                // One more step of the spray on the device, for the envelope's verdict on it.
-                let displacement = map(ocean_core::plan::ResourceId::Displacement);
-                let spray = ocean::verdict::spray::probe(&renderer, &scene, &plan, displacement)?;
-                let ldr = f.ldr.as_deref();
-                dump(
-                    dir,
-                    &scene,
-                    args.scene.as_deref(),
-                    &plan,
-                    adapter,
-                    &map,
-                    ldr,
-                    spray.as_ref(),
-                )?;
-            }
-            let hdr = f.map(FrameMap::Hdr).map(|m| m.texels.clone()).unwrap_or_default();
-            let passes = f
-                .gpu_timings
-                .iter()
-                .map(|(p, d)| format!("{} {:.1} ms", p.name(), d.as_secs_f64() * 1e3))
-                .collect();
-            (f.ldr, hdr, passes, format!("GPU {}", f.adapter.name))
+            render_gpu(&scene, kind, args.dump_passes.as_deref(), args.scene.as_deref())?
         }
     };
     let (ldr, hdr) = if k > 1 {
@@ -225,6 +193,41 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         passes.join(", ")
     );
     Ok(())
+}
+
+/// What a still frame made: the 8-bit picture (if the plan tonemaps), the HDR frame, each
+/// pass's time, and the back end's name.
+type Rendered = (Option<Vec<u8>>, Vec<[f32; 4]>, Vec<String>, String);
+
+/// The GPU render of a still frame, and its dump (`--dump-passes DIR`) with the spray's
+/// probed step.
+fn render_gpu(
+    scene: &ocean_core::scene::Scene,
+    kind: OutputKind,
+    dump_to: Option<&std::path::Path>,
+    path: Option<&std::path::Path>,
+) -> anyhow::Result<Rendered> {
+    let mut renderer = ocean_gpu::Renderer::new()?;
+    let plan = FramePlan::new(scene, kind);
+    let readback =
+        if dump_to.is_some() { ocean_gpu::Readback::All } else { ocean_gpu::Readback::Output };
+    let f = renderer.run_with(scene, &plan, readback)?;
+    if let Some(dir) = dump_to {
+        let map = |id| f.map(id).map(|m| ((m.width, m.height), &m.texels[..]));
+        let adapter = Some(renderer.adapter());
+        // One more step of the spray on the device, for the envelope's verdict on it.
+        let displacement = map(ocean_core::plan::ResourceId::Displacement);
+        let spray = ocean::verdict::spray::probe(&renderer, scene, &plan, displacement)?;
+        let ldr = f.ldr.as_deref();
+        dump(dir, scene, path, &plan, adapter, &map, ldr, spray.as_ref())?;
+    }
+    let hdr = f.map(FrameMap::Hdr).map(|m| m.texels.clone()).unwrap_or_default();
+    let passes = f
+        .gpu_timings
+        .iter()
+        .map(|(p, d)| format!("{} {:.1} ms", p.name(), d.as_secs_f64() * 1e3))
+        .collect();
+    Ok((f.ldr, hdr, passes, format!("GPU {}", f.adapter.name)))
 }
 
 /// `--dump-passes`: the frame's resources and manifest into `dir` (`ocean::dump`), with the
