@@ -1,7 +1,9 @@
 //! Spray technique `particles` (seed 001 §3.4): the particle pool's books balance and every
 //! transition follows the model's rules (`ocean_core::spray`); the CPU's pool is the same bits
 //! over runs and thread counts; and the GPU's pool, kept on the device across frames, equals
-//! the CPU's bit for bit after 100 steps of system `chiu`'s rock scene.
+//! the CPU's bit for bit after 100 steps of system `chiu`'s rock scene. The step's envelope
+//! holds the oracle's step and random conformant GPUs' on the scenes with a spray, the step
+//! `ocean compare` probes on the device, and a GPU dump's step, each with its negative control.
 
 #![allow(clippy::unwrap_used, reason = "a panic in a test is its failure report")]
 
@@ -201,6 +203,89 @@ fn every_live_sprite_lies_in_the_sprays_reach_and_a_tighter_bound_misses_some() 
     assert!(share < 1.0, "the reach is the whole frame");
 }
 
+/// The spray's step on the scenes that run one (every reference scene with a spray, and
+/// system `chiu`'s built-in scene), from the CPU oracle's pool after the scene's first frame
+/// (its warm-up and one step) and its displacement map: the oracle's step and 8 random
+/// conformant GPUs' lie inside the step's envelope at lavapipe's precision and at Vulkan's
+/// minimum; GPUs twice as loose as the rules leave it (the negative control).
+fn random_conformant_gpus_stay_inside_the_spray_step_envelope() {
+    use ocean_cpu::envelope::{JitterRules, Precision};
+    let mut scenes: Vec<(String, Scene)> = std::fs::read_dir(root().join("reference/scenes"))
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .map(|p| (p.file_stem().unwrap().to_string_lossy().into_owned(), Scene::load(&p).unwrap()))
+        .collect();
+    let chiu = ocean::scene_arg::SystemArg { system: Some("chiu".into()) };
+    scenes.push(("builtin-chiu".into(), ocean::scene_arg::load_scene(None, &chiu).unwrap()));
+    let (mut judged, mut slots, mut undecided, mut loose) = (Vec::new(), 0, 0, 0);
+    for (name, mut scene) in scenes {
+        (scene.camera.width, scene.camera.height) = (64, 36);
+        let plan = FramePlan::new(&scene, OutputKind::Hdr);
+        if !plan.runs(ocean_core::plan::Pass::Spray) {
+            continue;
+        }
+        let mut state = FrameState::new(1.0 / 30.0);
+        ocean_cpu::render::render_animation_frame(&scene, plan.clone(), &mut state, &mut |_| {})
+            .unwrap();
+        let pool = state.spray.as_ref().unwrap();
+        let inputs = ocean_core::graph::FrameInputs::new(&scene, &plan, &state).unwrap();
+        let work = ocean_core::spray::SprayFrame::new(&scene, &plan, &inputs.camera, pool.steps, 1);
+        let params = work.steps[0];
+        let displacement = if plan.runs(ocean_core::plan::Pass::Waves) {
+            let surface = scene.ocean.surface().unwrap();
+            ocean_cpu::shaders::waves::WavesMirror::new(&surface.displacement)
+                .unwrap()
+                .run(scene.ocean.time_s, scene.ocean.choppiness)
+                .unwrap()
+                .displacement
+        } else {
+            Texture2D::new(1, 1, vec![[0.0; 4]])
+        };
+        let (before, emitters) = (&pool.particles, &plan.spray_emitters);
+        let mut exact = before.clone();
+        spray::step(&mut exact, &params, emitters, &displacement);
+        let launched = before.iter().zip(&exact).filter(|(b, a)| b.pos[3] == 0.0 && a.pos[3] > 0.0);
+        assert!(launched.count() > 0, "{name}: the step launches nothing");
+        for precision in [Precision::LAVAPIPE, Precision::VULKAN_MINIMUM] {
+            let env = spray::step_envelope(before, &params, emitters, &displacement, precision);
+            let outside = |after: &[Particle]| {
+                env.iter()
+                    .zip(after)
+                    .map(|(e, a)| {
+                        (0..4)
+                            .filter(|&c| {
+                                !e.pos[c].contains(a.pos[c]) || !e.vel[c].contains(a.vel[c])
+                            })
+                            .count()
+                    })
+                    .sum::<usize>()
+            };
+            assert_eq!(outside(&exact), 0, "{name}: the oracle's step");
+            undecided += env.iter().filter(|e| !e.decided).count();
+            for seed in 0..8 {
+                let rules = JitterRules { seed, scale: 1.0 };
+                let gpu =
+                    spray::step_jitter(before, &params, emitters, &displacement, precision, rules);
+                assert_eq!(outside(&gpu), 0, "{name}, seed {seed}, {precision:?}");
+                let rules = JitterRules { seed: 1000 + seed, scale: 2.0 };
+                let gpu =
+                    spray::step_jitter(before, &params, emitters, &displacement, precision, rules);
+                loose += outside(&gpu);
+            }
+            slots += before.len();
+        }
+        judged.push(name);
+    }
+    println!(
+        "spray steps of {judged:?} at two precisions: {slots} slots × 8 random conformant GPUs inside ({undecided} undecided); twice the rules: {loose} values outside"
+    );
+    assert!(!judged.is_empty(), "no scene runs a spray");
+    assert!(judged.iter().any(|n| n == "chiu_rock") && judged.len() >= 2, "{judged:?}");
+    assert!(loose > 0, "a GPU twice as loose as the rules never left the spray step's envelope");
+}
+
 fn gpu_pool_equals_the_cpu_pool_after_100_steps() {
     let scene = rock();
     let cpu = cpu_pool(&scene, 100);
@@ -382,7 +467,8 @@ fn a_gpu_dump_holds_the_spray_step_and_compare_against_judges_it() {
 fn main() -> std::process::ExitCode {
     run_tests!(gpu_harness::GPU_ADAPTER;
         cpu: cpu_pool_is_the_same_over_runs_and_threads, books_balance_and_every_transition_follows_the_rules,
-            every_live_sprite_lies_in_the_sprays_reach_and_a_tighter_bound_misses_some;
+            every_live_sprite_lies_in_the_sprays_reach_and_a_tighter_bound_misses_some,
+            random_conformant_gpus_stay_inside_the_spray_step_envelope;
         gpu: gpu_pool_equals_the_cpu_pool_after_100_steps,
             the_probed_step_equals_the_cpu_step_and_lies_in_its_envelope,
             a_gpu_dump_holds_the_spray_step_and_compare_against_judges_it)
