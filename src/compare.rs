@@ -489,13 +489,7 @@ fn against_envelope(
         spray: None,
     };
     // The spray's step, where the dump holds one (`ocean render --dump-passes` on a GPU).
-    let spray = match ocean::dump::read_spray_step(dir, manifest)? {
-        Some(s) => {
-            let params = ocean::verdict::spray::step_uniforms(scene, plan, s.step)?;
-            Some(ocean::verdict::spray::SprayProbe { before: s.before, after: s.after, params })
-        }
-        None => None,
-    };
+    let spray = ocean::dump::read_spray_step(dir, manifest, scene, plan)?;
     let side = GpuSide { spray: spray.as_ref(), ..side };
     let v = envelope_verdict(scene, plan, &side, &held)?;
     for l in &v.lines {

@@ -466,12 +466,18 @@ const SPRAY_STEP_COLUMNS: [&str; 4] = [
 ];
 
 /// The spray step as a dump holds it (`ocean compare`'s probe: the pool as the frame left it
-/// on the device, and after one more step there): `None` where the dump has none.
+/// on the device, and after one more step there), with that step's uniforms for `scene`
+/// under `plan`: `None` where the dump has none.
 ///
 /// # Errors
-/// A manifest entry that names another file or a step that is not a whole number, or a file
-/// that is not four columns of `slots` rows.
-pub fn read_spray_step(dir: &Path, manifest: &Manifest) -> anyhow::Result<Option<SprayStep>> {
+/// A file that is not four columns of the manifest's `slots` rows, or uniforms the scene
+/// cannot make.
+pub fn read_spray_step(
+    dir: &Path,
+    manifest: &Manifest,
+    scene: &Scene,
+    plan: &FramePlan,
+) -> anyhow::Result<Option<crate::verdict::spray::SprayProbe>> {
     let Some((step, slots)) = manifest.spray_step else { return Ok(None) };
     let ((w, h), texels) = read_file(&dir.join(SPRAY_STEP_FILE), ["x", "y", "z", "w"])?;
     if (w, u64::from(h)) != (4, slots) {
@@ -483,18 +489,8 @@ pub fn read_spray_step(dir: &Path, manifest: &Manifest) -> anyhow::Result<Option
             .map(|row| ocean_core::spray::Particle { pos: row[c], vel: row[c + 1] })
             .collect()
     };
-    Ok(Some(SprayStep { step, before: column(0), after: column(2) }))
-}
-
-/// A dump's spray step ([`read_spray_step`]).
-#[derive(Clone, Debug)]
-pub struct SprayStep {
-    /// The step's number (its uniforms' `step`).
-    pub step: u64,
-    /// The pool as the frame left it on the device.
-    pub before: Vec<ocean_core::spray::Particle>,
-    /// The pool after the step.
-    pub after: Vec<ocean_core::spray::Particle>,
+    let params = crate::verdict::spray::step_uniforms(scene, plan, step)?;
+    Ok(Some(crate::verdict::spray::SprayProbe { before: column(0), after: column(2), params }))
 }
 
 /// The spray step's file and manifest entry: four columns ([`SPRAY_STEP_COLUMNS`]), a row

@@ -248,23 +248,25 @@ impl Verdict {
         if !plan.runs(Pass::Spray) {
             return Ok(());
         }
-        let why = match gpu.spray {
-            None => {
-                Some("no step of the pool was run on the device (the dump holds no spray step)")
-            }
+        let probe = match gpu.spray {
+            None => Err("no step of the pool was run on the device (the dump holds no spray step)"),
             // The step read the frame's displacement map: without it, nothing to judge from.
             Some(_) if plan.runs(Pass::Waves) && gpu.map(ResourceId::Displacement).is_none() => {
-                Some("its input displacement is not in the frame")
+                Err("its input displacement is not in the frame")
             }
-            Some(_) => None,
+            Some(probe) => Ok(probe),
         };
-        let (Some(probe), None) = (gpu.spray, why) else {
-            let why = why.unwrap_or_default();
-            self.lines
-                .push(format!("  [{:<14}] {:<20} not judged: {why}", "spray", "spray_particles"));
-            self.json.push(json!({"name": "spray_particles", "tolerance": "envelope", "judged": false, "why": why}));
-            self.not_judged.push("spray_particles");
-            return Ok(());
+        let probe = match probe {
+            Ok(probe) => probe,
+            Err(why) => {
+                self.lines.push(format!(
+                    "  [{:<14}] {:<20} not judged: {why}",
+                    "spray", "spray_particles"
+                ));
+                self.json.push(json!({"name": "spray_particles", "tolerance": "envelope", "judged": false, "why": why}));
+                self.not_judged.push("spray_particles");
+                return Ok(());
+            }
         };
         let f = spray::verdict(plan, gpu, probe)?;
         // A slot is two of the region's "pixels": its position and its velocity.

@@ -36,9 +36,9 @@ fn displacement(map: Option<FrameRef<'_>>) -> (u32, u32, Vec<[f32; 4]>) {
 /// # Errors
 /// A camera the scene cannot make.
 pub fn step_uniforms(scene: &Scene, plan: &FramePlan, step: u64) -> anyhow::Result<SprayUniforms> {
-    let state = ocean_core::graph::FrameState::new(0.0);
-    let frame = ocean_core::graph::FrameInputs::new(scene, plan, &state)?;
-    Ok(SprayFrame::new(scene, plan, &frame.camera, step, 1).steps[0])
+    // The camera alone (the sprites face it), not a frame's inputs: no mesh, sky or boat.
+    let camera = ocean_core::camera::Camera::from_scene(&scene.camera)?;
+    Ok(SprayFrame::new(scene, plan, &camera, step, 1).steps[0])
 }
 
 /// Runs the step after `renderer`'s last frame (of `scene` under `plan`, with the read-back

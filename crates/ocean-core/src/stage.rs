@@ -271,6 +271,7 @@ impl Surface {
             Surface::HuPatches | Surface::Clipmap => false,
         }
     }
+
     /// Whether the GPU draws the surface from the vertex index alone (a clipmap's levels, a
     /// camera grid), so the plan's mesh holds no vertex or index list, only its reference
     /// point: [`crate::plan::FramePlan::water_mesh`] makes no list, and

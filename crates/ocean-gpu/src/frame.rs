@@ -902,13 +902,8 @@ impl Renderer {
             height,
             displacement,
         );
-        let after = self.stages.spray.probe_step(
-            &self.gpu,
-            before,
-            &pool.key.emitters,
-            params,
-            &map.view,
-        )?;
+        let after =
+            self.stages.spray.probe_step(&self.gpu, &self.kept, before, pool, params, &map.view)?;
         Ok(Some(after))
     }
 

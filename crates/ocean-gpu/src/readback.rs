@@ -59,6 +59,24 @@ pub(crate) fn map_for_reading(slice: wgpu::BufferSlice<'_>) -> MapState {
     state
 }
 
+/// Maps the whole of `buffer` (MAP_READ, its copy already submitted) for reading, waits for
+/// the device, and copies its bytes out; the error's text otherwise.
+pub(crate) fn map_read_bytes(
+    device: &wgpu::Device,
+    buffer: &wgpu::Buffer,
+) -> Result<Vec<u8>, String> {
+    let (tx, rx) = std::sync::mpsc::channel();
+    buffer.map_async(wgpu::MapMode::Read, .., move |r| {
+        // The receiver outlives the wait below; a failed send only means nobody listens.
+        let _ = tx.send(r);
+    });
+    device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| e.to_string())?;
+    rx.recv().map_err(|e| e.to_string())?.map_err(|e| e.to_string())?;
+    let bytes = buffer.get_mapped_range(..).map_err(|e| e.to_string())?.to_vec();
+    buffer.unmap();
+    Ok(bytes)
+}
+
 /// The texture copies of one submission.
 pub struct Readbacks<K> {
     pending: Vec<Pending<K>>,

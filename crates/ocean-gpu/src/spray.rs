@@ -201,76 +201,40 @@ impl SprayStage {
         pass.dispatch_workgroups(pool.count.div_ceil(WORKGROUP_SIZE), 1, 1);
     }
 
-    /// One `step` of a pool holding `before` (the emitters `emitters`, the step's uniforms
-    /// `params`), reading the sea's height from `displacement`, on buffers of its own: the
-    /// slots as the device writes them. For the envelope's verdict on the step from the
-    /// device's own inputs (`ocean compare`); a frame's pool is left as it was.
+    /// One `step` of a pool holding `before` (`pool`'s emitters, the step's uniforms
+    /// `params`), reading the sea's height from `displacement`, recorded as a frame records
+    /// it ([`Self::encode_step`]) on a slot buffer of its own: the slots as the device writes
+    /// them. For the envelope's verdict on the step from the device's own inputs (`ocean
+    /// compare`); `pool` is left as it was.
     ///
     /// # Errors
     /// A device error while reading the slots back.
     pub fn probe_step(
         &self,
         gpu: &crate::device::Gpu,
+        kept: &crate::pool::FramePool,
         before: &[Particle],
-        emitters: &[Emitter],
+        pool: &GpuSpray,
         params: &SprayUniforms,
         displacement: &wgpu::TextureView,
     ) -> Result<Vec<Particle>, Error> {
-        let device = &gpu.device;
-        let init = |label: &str, contents: &[u8], usage| {
-            device.new_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some(label),
-                contents,
-                usage,
-            })
-        };
-        let placeholder = [Emitter::default()];
-        let e: &[Emitter] = if emitters.is_empty() { &placeholder } else { emitters };
+        // A buffer cannot be empty: one free slot stands in for none.
         let slots = if before.is_empty() { &[Particle::default()][..] } else { before };
-        let particles = init(
-            "ocean.spray.probe.particles",
-            bytemuck::cast_slice(slots),
-            wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-        );
-        let emitters = init(
-            "ocean.spray.probe.emitters",
-            bytemuck::cast_slice(e),
-            wgpu::BufferUsages::STORAGE,
-        );
-        let u = init(
-            "ocean.spray.probe.uniforms",
-            bytemuck::bytes_of(params),
-            wgpu::BufferUsages::UNIFORM,
-        );
-        let group = device.new_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("ocean.spray.probe"),
-            layout: &self.step_layout,
-            entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: u.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 1, resource: particles.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 2, resource: emitters.as_entire_binding() },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: wgpu::BindingResource::TextureView(displacement),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 4,
-                    resource: wgpu::BindingResource::Sampler(&self.sampler),
-                },
-            ],
-        });
-        let mut encoder = device.create_command_encoder(&Default::default());
-        {
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("ocean.spray.probe"),
-                timestamp_writes: None,
-            });
-            pass.set_pipeline(&self.step);
-            pass.set_bind_group(0, &group, &[]);
-            pass.dispatch_workgroups((before.len() as u32).div_ceil(WORKGROUP_SIZE), 1, 1);
-        }
+        let probe = GpuSpray {
+            key: pool.key.clone(),
+            particles: gpu.device.new_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("ocean.spray.probe.particles"),
+                contents: bytemuck::cast_slice(slots),
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            }),
+            emitters: pool.emitters.clone(),
+            count: slots.len() as u32,
+            steps: pool.steps,
+        };
+        let mut encoder = gpu.device.create_command_encoder(&Default::default());
+        self.encode_step(kept, &mut encoder, &probe, params, displacement);
         gpu.queue.submit([encoder.finish()]);
-        let mut after = read_particles(gpu, &particles)?;
+        let mut after = read_particles(gpu, &probe.particles)?;
         after.truncate(before.len());
         Ok(after)
     }
@@ -339,15 +303,7 @@ pub fn read_particles(
     let mut encoder = device.create_command_encoder(&Default::default());
     encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, buffer.size());
     gpu.queue.submit([encoder.finish()]);
-    let (tx, rx) = std::sync::mpsc::channel();
-    staging.slice(..).map_async(wgpu::MapMode::Read, move |r| {
-        // The receiver outlives the wait below; a failed send only means nobody listens.
-        let _ = tx.send(r);
-    });
-    let fail = |e: String| Error::Unavailable(format!("reading the spray back: {e}"));
-    device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| fail(e.to_string()))?;
-    rx.recv().map_err(|e| fail(e.to_string()))?.map_err(|e| fail(e.to_string()))?;
-    let bytes = staging.slice(..).get_mapped_range().map_err(|e| fail(e.to_string()))?.to_vec();
-    staging.unmap();
+    let bytes = crate::readback::map_read_bytes(device, &staging)
+        .map_err(|e| Error::Unavailable(format!("reading the spray back: {e}")))?;
     Ok(bytemuck::cast_slice(&bytes).to_vec())
 }

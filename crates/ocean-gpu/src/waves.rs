@@ -740,15 +740,6 @@ fn map_read(
     buffer: &wgpu::Buffer,
     what: &'static str,
 ) -> Result<Vec<u8>, WavesError> {
-    let (tx, rx) = std::sync::mpsc::channel();
-    buffer.map_async(wgpu::MapMode::Read, .., move |r| {
-        // The receiver outlives the wait below; a failed send only means nobody listens.
-        let _ = tx.send(r);
-    });
-    let fail = |reason: String| WavesError::Readback { what, reason };
-    device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| fail(e.to_string()))?;
-    rx.recv().map_err(|e| fail(e.to_string()))?.map_err(|e| fail(e.to_string()))?;
-    let bytes = buffer.get_mapped_range(..).map_err(|e| fail(e.to_string()))?.to_vec();
-    buffer.unmap();
-    Ok(bytes)
+    crate::readback::map_read_bytes(device, buffer)
+        .map_err(|reason| WavesError::Readback { what, reason })
 }

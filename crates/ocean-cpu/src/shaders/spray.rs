@@ -64,6 +64,14 @@ pub struct SlotStep<R> {
     pub decided: bool,
 }
 
+impl SlotStep<Iv> {
+    /// How many of the slot's eight values `p` holds outside this envelope.
+    pub fn values_outside(&self, p: &Particle) -> usize {
+        let out = |e: &[Iv; 4], v: &[f32; 4]| (0..4).filter(|&c| !e[c].contains(v[c])).count();
+        out(&self.pos, &p.pos) + out(&self.vel, &p.vel)
+    }
+}
+
 /// `step` for slot `i` from its value `p` (as the GPU held it) over any [`Real`], reading the
 /// sea's height through a filter of precision `prec`: the one mirror of the step, for the
 /// exact frame (`f32`), its envelope ([`Iv`]) and a random conformant GPU ([`Jitter`]).
@@ -98,16 +106,18 @@ pub(crate) fn step_slot_r<R: Real + Sampling<R>>(
                 old.or(under)
             }
         };
-        let active = choose(freed, || l(0.0), || l(1.0));
+        let alive = choose(freed, || l(0.0), || l(1.0));
         SlotStep {
-            pos: [x[0], x[1], x[2], active],
+            pos: [x[0], x[1], x[2], alive],
             vel: [v[0], v[1], v[2], age],
             decided: freed.decided().is_some(),
         }
     } else if params.emitters > 0 {
         let e = emitters[(i % params.emitters) as usize];
-        // The random numbers are integer arithmetic: decided alike everywhere (and a NaN
-        // chance launches nothing, as the WGSL's `<`).
+        // The WGSL tests the water first (`e.pos.y < water_height(…) && random < chance`);
+        // neither side has an effect, so the mirror takes the random number first: it is
+        // integer arithmetic, decided alike everywhere, and spares the envelope the filter of
+        // every slot that launches nothing (a NaN chance launches nothing, as the WGSL's `<`).
         let chance = random(0) < params.emit_chance;
         if !chance {
             return same;
