@@ -12,7 +12,7 @@ use ocean_core::sky::{
     TURBIDITY_MIN, TWILIGHT_DEPTH,
 };
 use ocean_cpu::raster::RenderTarget;
-use ocean_cpu::shaders::sky::{VertexOut, fs_main, vs_main};
+use ocean_cpu::shaders::sky::cs_main;
 
 /// The `sky` pass with technique `preetham`.
 fn render_sky(
@@ -246,13 +246,7 @@ fn finite_and_non_negative_everywhere() {
             }
             let t = ocean_cpu::shaders::sky::technique(ocean_core::plan::Sky::Preetham);
             let lut: ocean_core::atmosphere::SkyLut = bytemuck::Zeroable::zeroed();
-            let px = fs_main(
-                &VertexOut { position: [0.5, 0.5, 0.0, 1.0].into() },
-                &camera,
-                &u,
-                &lut,
-                &t,
-            );
+            let px = cs_main([0, 0], &camera, &u, &lut, &t);
             assert!(px.iter().all(|c| c.is_finite()));
         }
     }
@@ -587,11 +581,9 @@ fn comparator_rejects_a_wrong_pixel_and_a_wrong_sky() {
 }
 
 #[test]
-fn full_screen_triangle_covers_every_pixel_once() {
-    // Vertex shader output, and the pass through the rasterizer: every pixel written (the target
-    // starts as NaN) and a second pass with additive blending would count 1 per pixel.
-    let p: Vec<[f32; 4]> = (0..3).map(|i| vs_main(i).position.into()).collect();
-    assert_eq!(p, [[-1.0, -1.0, 0.0, 1.0], [3.0, -1.0, 0.0, 1.0], [-1.0, 3.0, 0.0, 1.0]]);
+fn the_pass_writes_every_pixel_and_no_depth() {
+    // One invocation per pixel: every pixel written (the target starts as NaN), at its centre
+    // (pixel (x, y) is cs_main at id (x, y)), and the depth left alone.
     for (w, h) in [(1, 1), (7, 5), (33, 64)] {
         let cam = TestCamera::new([0.0, 0.0, -1.0], deg(50.0), w, h);
         let mut target = RenderTarget::new(w, h);
@@ -599,6 +591,16 @@ fn full_screen_triangle_covers_every_pixel_once() {
         render_sky(&mut target, &cam.uniforms(w, h, [0.0; 3]), &sky_at(0.5, 0.0, 3.0).uniforms());
         assert!(target.color.iter().all(|p| p.iter().all(|c| c.is_finite())), "{w}x{h}");
         assert!(target.depth.iter().all(|&d| d == 1.0), "the sky writes no depth");
+        let t = ocean_cpu::shaders::sky::technique(ocean_core::plan::Sky::Preetham);
+        let lut: ocean_core::atmosphere::SkyLut = bytemuck::Zeroable::zeroed();
+        let (camera, u) = (cam.uniforms(w, h, [0.0; 3]), sky_at(0.5, 0.0, 3.0).uniforms());
+        let last = cs_main([w - 1, h - 1], &camera, &u, &lut, &t);
+        assert_eq!(target.color.last().unwrap().map(f32::to_bits), last.map(f32::to_bits));
+        // Negative control: the pixel before it is another ray.
+        if w > 1 {
+            let other = cs_main([w - 2, h - 1], &camera, &u, &lut, &t);
+            assert_ne!(other.map(f32::to_bits), last.map(f32::to_bits), "{w}x{h}");
+        }
     }
 }
 

@@ -245,12 +245,20 @@ impl GpuBackend<'_> {
         t
     }
 
-    /// A render target of the plan's size and format for `id`.
+    /// A render target of the plan's size and format for `id`; the HDR frame and the 8-bit
+    /// picture, which the sky's and the tonemap's compute passes store into, storage textures
+    /// as well.
     fn target(&self, plan: &FramePlan, id: ResourceId) -> GpuTexture {
         let (size, format) =
             plan.resource(id).map_or(([1, 1], MAP_FORMAT), |r| (r.size, wgpu_format(r.format)));
         let label = format!("ocean.{}", id.name());
-        self.kept.texture(&label, size[0], size[1], format, target_usage()).0
+        let usage = match id {
+            ResourceId::Ldr | ResourceId::Hdr => {
+                target_usage() | wgpu::TextureUsages::STORAGE_BINDING
+            }
+            _ => target_usage(),
+        };
+        self.kept.texture(&label, size[0], size[1], format, usage).0
     }
 
     /// A depth buffer of `width × height`, kept across frames.
@@ -659,11 +667,10 @@ impl Backend for GpuBackend<'_> {
             self.kept,
             self.encoder,
             &frame.camera_uniforms,
-            &sky,
-            &sky_lut,
-            &hdr.view,
+            (&sky, &sky_lut),
+            (&hdr.view, [hdr.width, hdr.height]),
             &depth.view,
-            self.timer.render_writes(slot),
+            self.timer.compute_writes(slot),
         );
         self.hdr_started = true;
         Ok(())

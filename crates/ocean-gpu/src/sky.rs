@@ -1,110 +1,138 @@
-//! Stage `sky` (`shaders/sky.wgsl`): the environment behind everything, one full-screen
-//! triangle into the HDR frame. The sky model is the technique `shaders/sky.wgsl` imports as
-//! `technique/sky`: `preetham` (`shaders/sky/preetham.wgsl`), `preetham_clouds`
-//! (`shaders/sky/preetham_clouds.wgsl`, seed 001 eq. 4), both over `shaders/shared/preetham.wgsl`,
-//! `atmosphere` (`shaders/sky/atmosphere.wgsl`, seed 002, over `shaders/shared/sky_lut.wgsl`),
-//! or `overcast` (`shaders/sky/overcast.wgsl`, the CIE standard overcast sky), assembled by [`crate::common::shader_module_with`] for the renderer's techniques (the
-//! renderer assembles the stage again when a plan asks for the other). Bindings:
-//! group 0 = `CameraUniforms`, group 1 = `SkyUniforms` and sky `atmosphere`'s `SkyLut`. CPU mirror: `ocean-cpu/src/shaders/sky.rs` (its `RASTER_STATE`: depth test
-//! `Always`, no depth writes, no blending — the same here).
+//! Stage `sky` (`shaders/sky.wgsl`): the environment behind everything, one compute dispatch
+//! of 8×8 workgroups storing into the HDR frame (a full-screen pass in compute: on GPUs whose
+//! fragment work runs on a few units it uses the whole chip), after a depth-only pass that
+//! clears the frame's depth to 0 (reversed Z). The sky model is the technique
+//! `shaders/sky.wgsl` imports as `technique/sky`: `preetham` (`shaders/sky/preetham.wgsl`),
+//! `preetham_clouds` (`shaders/sky/preetham_clouds.wgsl`, seed 001 eq. 4), both over
+//! `shaders/shared/preetham.wgsl`, `atmosphere` (`shaders/sky/atmosphere.wgsl`, seed 002, over
+//! `shaders/shared/sky_lut.wgsl`), or `overcast` (`shaders/sky/overcast.wgsl`, the CIE
+//! standard overcast sky), assembled for the renderer's techniques (the renderer assembles the
+//! stage again when a plan asks for another). Bindings: group 0 = `CameraUniforms` and the
+//! HDR frame (storage, write, in the frame's format), group 1 = `SkyUniforms` and sky
+//! `atmosphere`'s `SkyLut`. CPU mirror: `ocean-cpu/src/shaders/sky.rs`.
 
 use crate::created::Counted;
 use ocean_core::camera_uniforms::CameraUniforms;
 
-use crate::common::{
-    Load, begin_render_pass, depth_state, entry, label, pipeline_layout, primitive, replace_target,
-    shader_module_with, uniform_entry,
-};
+use crate::common::{entry, label, pipeline_layout, storage_entry_of, uniform_entry};
 use crate::device::Error;
+
+/// `@workgroup_size(8, 8, 1)` of the WGSL.
+const WORKGROUP_SIZE: u32 = 8;
 
 /// The stage's pipeline.
 pub struct SkyStage {
-    pipeline: wgpu::RenderPipeline,
+    pipeline: wgpu::ComputePipeline,
     camera_layout: wgpu::BindGroupLayout,
     sky_layout: wgpu::BindGroupLayout,
 }
 
 impl SkyStage {
-    /// Creates the pipeline `"ocean.sky"` for the sky technique of `techniques`, drawing into
-    /// a frame of `target` format.
+    /// Creates the pipeline `"ocean.sky"` for the sky technique of `techniques`, storing into
+    /// a frame of `target` format (`Rgba32Float` or `Rgba16Float`).
     ///
     /// # Errors
-    /// [`Error::Core`] if the WGSL cannot be assembled.
+    /// [`Error::Core`] if the WGSL cannot be assembled; [`Error::Unavailable`] if its storage
+    /// declaration cannot be made the frame's format.
     pub fn new(
         device: &wgpu::Device,
         techniques: &ocean_core::plan::Techniques,
         target: wgpu::TextureFormat,
     ) -> Result<Self, Error> {
         let name = label("sky");
-        let module = shader_module_with(device, "sky", techniques)?;
+        // WGSL has no preprocessor: the rgba16float module is the assembled source with its
+        // one storage declaration's format replaced (the line says so in sky.wgsl).
+        let source = ocean_core::shader_source::stage_source_with("sky", techniques)?;
+        let declared = "texture_storage_2d<rgba32float, write>";
+        let source = match target {
+            wgpu::TextureFormat::Rgba32Float => source,
+            wgpu::TextureFormat::Rgba16Float if source.matches(declared).count() == 1 => {
+                source.replace(declared, "texture_storage_2d<rgba16float, write>")
+            }
+            other => {
+                return Err(Error::Unavailable(format!(
+                    "the sky stores into rgba32float or rgba16float frames (declared once as \
+                     `{declared}` in sky.wgsl), not {other:?}"
+                )));
+            }
+        };
+        let module = device.new_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(&name),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
         let layout = |l: &str, entries: &[wgpu::BindGroupLayoutEntry]| {
             device
                 .new_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(l), entries })
         };
-        let fragment = wgpu::ShaderStages::FRAGMENT;
-        let camera_layout = layout("ocean.sky.camera", &[uniform_entry(0, fragment)]);
+        let compute = wgpu::ShaderStages::COMPUTE;
+        let camera_layout =
+            layout("ocean.sky.camera", &[uniform_entry(0, compute), storage_entry_of(1, target)]);
         let sky_layout =
-            layout("ocean.sky.sky", &[uniform_entry(0, fragment), uniform_entry(1, fragment)]);
-        let pipeline = device.new_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            layout("ocean.sky.sky", &[uniform_entry(0, compute), uniform_entry(1, compute)]);
+        let pipeline = device.new_compute_pipeline(&wgpu::ComputePipelineDescriptor {
             label: Some(&name),
             layout: Some(&pipeline_layout(device, &name, &[&camera_layout, &sky_layout])),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some(entry("sky", "vs_main")?),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            primitive: primitive(),
-            depth_stencil: Some(depth_state(wgpu::CompareFunction::Always, false)),
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some(entry("sky", "fs_main")?),
-                compilation_options: Default::default(),
-                targets: &replace_target(target),
-            }),
-            multiview_mask: None,
+            module: &module,
+            entry_point: Some(entry("sky", "cs_main")?),
+            compilation_options: wgpu::PipelineCompilationOptions::default(),
             cache: None,
         });
         Ok(Self { pipeline, camera_layout, sky_layout })
     }
 
-    /// Records the pass: clears the HDR frame to 0 and its depth to 0 (reversed Z), then draws
-    /// the sky.
+    /// Records the pass: clears the frame's depth to 0 (reversed Z), then stores the sky into
+    /// every texel of the HDR frame (`width × height`, made with storage usage).
     #[expect(clippy::too_many_arguments, reason = "one argument per binding and attachment")]
     pub fn encode(
         &self,
         kept: &crate::pool::FramePool,
         encoder: &mut wgpu::CommandEncoder,
         camera: &CameraUniforms,
-        sky: &wgpu::Buffer,
-        sky_lut: &wgpu::Buffer,
-        hdr: &wgpu::TextureView,
+        (sky, sky_lut): (&wgpu::Buffer, &wgpu::Buffer),
+        (hdr, [width, height]): (&wgpu::TextureView, [u32; 2]),
         depth: &wgpu::TextureView,
-        timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
+        timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
         let name = label("sky");
+        drop(encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("ocean.sky.depth"),
+            color_attachments: &[],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: depth,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(0.0),
+                    store: wgpu::StoreOp::Store,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        }));
         let camera_group = kept.bind_group(
             "ocean.sky.camera",
             &self.camera_layout,
-            &[kept.uniform("ocean.sky.camera", camera).as_entire_binding()],
+            &[
+                kept.uniform("ocean.sky.camera", camera).as_entire_binding(),
+                wgpu::BindingResource::TextureView(hdr),
+            ],
         );
         let sky_group = kept.bind_group(
             "ocean.sky.sky",
             &self.sky_layout,
             &[sky.as_entire_binding(), sky_lut.as_entire_binding()],
         );
-        let mut pass = begin_render_pass(
-            encoder,
-            &name,
-            hdr,
-            Load::Clear([0.0; 4]),
-            Some((depth, Load::Clear(0.0))),
-            timestamps,
-        );
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some(&name),
+            timestamp_writes: timestamps,
+        });
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, &camera_group, &[]);
         pass.set_bind_group(1, &sky_group, &[]);
-        pass.draw(0..3, 0..1);
+        pass.dispatch_workgroups(
+            width.div_ceil(WORKGROUP_SIZE),
+            height.div_ceil(WORKGROUP_SIZE),
+            1,
+        );
     }
 }

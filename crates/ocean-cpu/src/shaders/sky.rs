@@ -1,5 +1,5 @@
-//! Mirror of `shaders/sky.wgsl`: the environment behind everything, one full-screen triangle
-//! at the far plane; its techniques are the submodules (`shaders/sky/<technique>.wgsl`).
+//! Mirror of `shaders/sky.wgsl`: the environment behind everything, one compute invocation
+//! per pixel; its techniques are the submodules (`shaders/sky/<technique>.wgsl`).
 
 pub mod atmosphere;
 pub mod overcast;
@@ -9,13 +9,12 @@ pub mod preetham_clouds;
 use ocean_core::atmosphere::SkyLut;
 use ocean_core::plan::Sky;
 
-use crate::raster::{
-    BlendMode, CompareFunction, CullMode, FrontFace, RasterState, RenderTarget, Vertex, draw,
-};
+use rayon::prelude::*;
+
+use crate::raster::RenderTarget;
 use crate::shaders::shared::camera::{CameraUniforms, view_ray};
-use crate::shaders::shared::fullscreen::fullscreen_position;
 use crate::shaders::shared::preetham::SkyUniforms;
-use crate::shaders::wgsl::{Vec3, Vec4};
+use crate::shaders::wgsl::{Vec3, vec2};
 
 /// A sky technique's `sky_radiance`: radiance of a world direction (arrays at this boundary
 /// to the frame and the water's bindings), given the stage's `sky` and `sky_lut`.
@@ -62,46 +61,24 @@ pub fn environment_radiance(technique: Sky) -> SkyRadiance {
     }
 }
 
-/// `VertexOut` of `sky.wgsl`: in the fragment stage `position` is `@builtin(position)`
-/// (pixel centre x + 0.5, y + 0.5, depth, 1/w).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct VertexOut {
-    /// `@builtin(position)`.
-    pub position: Vec4,
-}
-
-/// The pipeline state of the `sky` pass: it is drawn first, as the background, so it neither
-/// tests nor writes depth; no blending. The GPU pipeline uses the same (`depth_compare:
-/// Always`, `depth_write_enabled: false`, or no depth attachment).
-pub const RASTER_STATE: RasterState = RasterState {
-    front_face: FrontFace::Ccw,
-    cull_mode: CullMode::None,
-    depth_compare: CompareFunction::Always,
-    depth_write: false,
-    blend: BlendMode::Replace,
-};
-
-/// `vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOut`.
-pub fn vs_main(vertex_index: u32) -> VertexOut {
-    VertexOut { position: fullscreen_position(vertex_index) }
-}
-
-/// `fs_main(in: VertexOut) -> @location(0) vec4<f32>`: linear HDR radiance, alpha 1.
-pub fn fs_main(
-    input: &VertexOut,
+/// `cs_main(@builtin(global_invocation_id) id)`: the linear HDR radiance, alpha 1, that it
+/// stores at texel `id` (inside the frame: the shader returns early outside), along the ray
+/// through the pixel centre `id + 0.5` (exact in f32 for any frame a GPU can hold).
+pub fn cs_main(
+    id: [u32; 2],
     camera: &CameraUniforms,
     sky: &SkyUniforms,
     lut: &SkyLut,
     t: &SkyTechnique,
 ) -> [f32; 4] {
-    let dir = view_ray(camera, input.position.xy());
+    let dir = view_ray(camera, vec2(id[0] as f32 + 0.5, id[1] as f32 + 0.5));
     let radiance = (t.sky_radiance)(sky, lut, dir) + (t.sun_disc)(sky, dir);
     radiance.extend(1.0).into()
 }
 
-/// Draws the `sky` pass into `target` with the rasterizer: vertices 0, 1, 2 through
-/// [`vs_main`], every covered pixel through [`fs_main`] with sky technique `t`,
-/// [`RASTER_STATE`].
+/// The `sky` pass into `target`: [`cs_main`] at every pixel with sky technique `t`, stored in
+/// the target's format, rows in parallel (each pixel is a pure function of its centre). The
+/// pass neither tests nor writes depth.
 ///
 /// `camera.viewport` must describe `target` (checked in debug builds).
 pub fn render_sky(
@@ -118,9 +95,14 @@ pub fn render_sky(
         target.width,
         target.height
     );
-    let triangle: [Vertex<0>; 3] = [0, 1, 2].map(|i| Vertex::new(vs_main(i).position.into(), []));
-    draw(target, &RASTER_STATE, &[triangle], |frag| {
-        Some(fs_main(&VertexOut { position: frag.frag_coord.into() }, camera, sky, lut, t))
+    let (width, format) = (target.width as usize, target.format);
+    if width == 0 {
+        return;
+    }
+    target.color.par_chunks_mut(width).enumerate().for_each(|(y, row)| {
+        for (x, px) in row.iter_mut().enumerate() {
+            *px = format.store4(cs_main([x as u32, y as u32], camera, sky, lut, t));
+        }
     });
 }
 
@@ -170,7 +152,7 @@ pub fn sun_disc_r<R: crate::envelope::Real>(
     }
 }
 
-/// `fs_main` over any [`crate::envelope::Real`] at every pixel of a `width × height` frame,
+/// `cs_main` over any [`crate::envelope::Real`] at every pixel of a `width × height` frame,
 /// stored in `format`; `each(i)` runs before pixel i (a [`crate::envelope::Jitter`] reseeds
 /// there).
 fn sky_frame<R: crate::envelope::Real + Send>(
