@@ -1,8 +1,10 @@
-// Stage `tonemap`: HDR linear frame -> 8-bit sRGB, one full-screen triangle, written to an
-// Rgba8Unorm target. The steps, their order and the reasons: ocean_core::tonemap.
+// Stage `tonemap`: HDR linear frame -> 8-bit sRGB, a compute pass of one invocation per pixel
+// storing into an Rgba8Unorm storage texture. A full-screen pass is compute, not a triangle:
+// on GPUs whose fragment work runs on a few units (Hopper's two graphics TPCs) a compute pass
+// uses the whole chip (docs/design.md, "GPU speed on real hardware"). Each invocation
+// computes what a fragment at the pixel centre did, so the bytes are the same. The steps,
+// their order and the reasons: ocean_core::tonemap.
 // CPU mirror: ocean-cpu/src/shaders/tonemap.rs.
-
-// #import shared/fullscreen.wgsl
 
 struct TonemapUniforms {
     exposure: f32,
@@ -23,6 +25,8 @@ struct TonemapUniforms {
 @group(0) @binding(1) var hdr_frame: texture_2d<f32>;
 // Post `bloom`: level 0 of the up chain, half the frame's size (a 1x1 zero texture without).
 @group(0) @binding(2) var bloom: texture_2d<f32>;
+// The 8-bit picture.
+@group(0) @binding(3) var ldr: texture_storage_2d<rgba8unorm, write>;
 
 // Largest finite f16 (ocean_core::tonemap::HDR_MAX).
 const HDR_MAX: f32 = 65504.0;
@@ -39,10 +43,6 @@ const HABLE_R: f32 = 0.045;
 const HABLE_S: f32 = 0.15;
 const HABLE_T: f32 = 0.018;
 const HABLE_WHITE_SCALE: f32 = 1.3790642;
-
-struct VertexOut {
-    @builtin(position) position: vec4<f32>,
-}
 
 // ACES filmic curve, K. Narkowicz's fit (2016): x (2.51 x + 0.03) / (x (2.43 x + 0.59) + 0.14).
 fn aces_narkowicz(x: vec3<f32>) -> vec3<f32> {
@@ -97,22 +97,21 @@ fn quantize_unorm8(v: vec3<f32>) -> vec3<f32> {
     return round(v * 255.0) / 255.0;
 }
 
-@vertex
-fn vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOut {
-    var out: VertexOut;
-    out.position = fullscreen_position(vertex_index);
-    return out;
-}
-
-@fragment
-fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
-    let texel = vec2<i32>(in.position.xy);
+// One pixel: what a fragment at its centre (`centre` = texel + 0.5, exact in f32) stores.
+@compute @workgroup_size(8, 8, 1)
+fn cs_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let size = textureDimensions(ldr);
+    if (id.x >= size.x || id.y >= size.y) {
+        return;
+    }
+    let texel = vec2<i32>(id.xy);
+    let centre = vec2<f32>(id.xy) + vec2<f32>(0.5);
     let hdr = textureLoad(hdr_frame, texel, 0).rgb;
     let exposed = hdr * tonemap.exposure;
     let sanitised = min(max(exposed, vec3<f32>(0.0)), vec3<f32>(HDR_MAX));
     let bloomed = sanitised + tonemap.bloom_scale * bloom_at(texel);
-    let x = bloomed * vignette_factor(in.position.xy);
+    let x = bloomed * vignette_factor(centre);
     let mapped = clamp(tone_curve(x), vec3<f32>(0.0), vec3<f32>(1.0));
     let encoded = srgb_oetf(mapped);
-    return vec4<f32>(quantize_unorm8(encoded), 1.0);
+    textureStore(ldr, texel, vec4<f32>(quantize_unorm8(encoded), 1.0));
 }

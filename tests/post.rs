@@ -7,8 +7,8 @@
 use ocean_core::scene::{Post, Scene, SceneSource};
 use ocean_core::tonemap::{Curve, HABLE_WHITE_SCALE, TonemapUniforms};
 use ocean_cpu::shaders::tonemap::{
-    HdrFrame, VertexOut, aces_narkowicz, fs_main, hable, store_unorm8, tone_curve,
-    tonemap_to_rgba8, vignette_factor,
+    HdrFrame, aces_narkowicz, cs_main, hable, store_unorm8, tone_curve, tonemap_to_rgba8,
+    vignette_factor,
 };
 use ocean_cpu::shaders::wgsl::Vec3;
 
@@ -210,8 +210,8 @@ fn extreme_inputs_give_documented_outputs_with_both_curves_and_a_vignette() {
             let texels = [[hdr; 4]; 9];
             let frame = HdrFrame { width: 3, height: 3, texels: &texels };
             // The centre pixel (factor 1) and a corner (factor 1 − 8/9·… > 0).
-            for (x, y) in [(1.5f32, 1.5f32), (0.5, 0.5)] {
-                let px = fs_main(&VertexOut { position: [x, y, 0.0, 1.0].into() }, &u, &frame);
+            for (x, y) in [(1u32, 1u32), (0, 0)] {
+                let px = cs_main([x, y], &u, &frame);
                 assert!(px.iter().all(|c| c.is_finite()), "{curve:?} {hdr}: {px:?}");
                 assert_eq!(store_unorm8(px[0]), want, "{curve:?} {hdr} at ({x}, {y})");
             }

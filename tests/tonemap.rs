@@ -1,14 +1,12 @@
 //! The `tonemap` stage: the CPU mirror (f32) against the closed forms in f64 written here
 //! independently (Narkowicz's ACES fit, the IEC 61966-2-1 sRGB OETF, 8-bit rounding with ties
 //! to even),
-//! its invariants (0 → 0, monotonic, NaN/inf handling) and the full-frame driver against the
-//! rasterizer. Each comparator has a negative control.
+//! its invariants (0 → 0, monotonic, NaN/inf handling) and the full-frame driver against one
+//! compute invocation per pixel. Each comparator has a negative control.
 
 use ocean_core::tonemap::TonemapUniforms;
-use ocean_cpu::raster::{RasterState, RenderTarget, Vertex, draw};
 use ocean_cpu::shaders::tonemap::{
-    HdrFrame, VertexOut, aces_narkowicz, fs_main, quantize_unorm8, srgb_oetf, store_unorm8,
-    tonemap_to_rgba8, vs_main,
+    HdrFrame, aces_narkowicz, cs_main, quantize_unorm8, srgb_oetf, store_unorm8, tonemap_to_rgba8,
 };
 
 /// Narkowicz (2016): x(ax + b) / (x(cx + d) + e), a = 2.51, b = 0.03, c = 2.43, d = 0.59,
@@ -36,7 +34,7 @@ fn shade(hdr: f32, exposure: f32) -> u8 {
     let texels = [[hdr, hdr, hdr, 1.0]];
     let frame = HdrFrame { width: 1, height: 1, texels: &texels };
     let u = TonemapUniforms { exposure, ..TonemapUniforms::DEFAULT };
-    let rgba = fs_main(&VertexOut { position: [0.5, 0.5, 0.0, 1.0].into() }, &u, &frame);
+    let rgba = cs_main([0, 0], &u, &frame);
     assert_eq!(rgba[0], rgba[1]);
     assert_eq!(rgba[3], 1.0);
     store_unorm8(rgba[0])
@@ -155,11 +153,7 @@ fn nan_and_infinities_have_documented_outputs() {
     // Mixed channels stay independent.
     let texels = [[f32::NAN, 0.18, f32::INFINITY, f32::NAN]];
     let frame = HdrFrame { width: 1, height: 1, texels: &texels };
-    let px = fs_main(
-        &VertexOut { position: [0.5, 0.5, 0.0, 1.0].into() },
-        &TonemapUniforms::DEFAULT,
-        &frame,
-    );
+    let px = cs_main([0, 0], &TonemapUniforms::DEFAULT, &frame);
     assert_eq!(px.map(store_unorm8), [0, pipeline_f64(0.18, 1.0), 255, 255]);
 }
 
@@ -188,9 +182,9 @@ fn pipeline_matches_the_f64_closed_forms() {
 }
 
 #[test]
-fn frame_driver_equals_the_rasterized_pass() {
-    // tonemap_to_rgba8 calls fs_main at every pixel centre; drawing the full-screen triangle
-    // through the rasterizer gives the same bytes, in RGBA order, row 0 first.
+fn frame_driver_equals_one_invocation_per_pixel() {
+    // tonemap_to_rgba8 calls cs_main once per pixel, as the dispatch does: the same bytes, in
+    // RGBA order, row 0 first.
     let (w, h) = (37u32, 23u32);
     let hdr: Vec<[f32; 4]> = (0..w * h)
         .map(|i| {
@@ -203,14 +197,10 @@ fn frame_driver_equals_the_rasterized_pass() {
     assert_eq!(bytes.len(), (w * h * 4) as usize);
 
     let frame = HdrFrame { width: w, height: h, texels: &hdr };
-    let mut target = RenderTarget::new(w, h);
-    target.clear_color([f32::NAN; 4]);
-    let tri: [Vertex<0>; 3] = [0, 1, 2].map(|i| Vertex::new(vs_main(i).position.into(), []));
-    let state = RasterState { depth_write: false, ..RasterState::default() };
-    draw(&mut target, &state, &[tri], |f| {
-        Some(fs_main(&VertexOut { position: f.frag_coord.into() }, &u, &frame))
-    });
-    let raster: Vec<u8> = target.color.iter().flat_map(|p| p.map(store_unorm8)).collect();
+    let raster: Vec<u8> = (0..h)
+        .flat_map(|y| (0..w).map(move |x| [x, y]))
+        .flat_map(|id| cs_main(id, &u, &frame).map(store_unorm8))
+        .collect();
     assert_eq!(bytes, raster);
     assert!(bytes.chunks(4).all(|p| p[3] == 255));
     // Negative control: a transposed read (x and y swapped) gives other bytes.

@@ -456,8 +456,8 @@ pub const STAGES: &[StageEntry] = &[
         name: "tonemap",
         file: "tonemap.wgsl",
         source: include_str!("../../../shaders/tonemap.wgsl"),
-        entry_points: VS_FS,
-        bindings: &[b(0, 0, "tonemap"), b(0, 1, "hdr_frame"), b(0, 2, "bloom")],
+        entry_points: &[("cs_main", Compute)],
+        bindings: &[b(0, 0, "tonemap"), b(0, 1, "hdr_frame"), b(0, 2, "bloom"), b(0, 3, "ldr")],
         blocks: &[block!(TonemapUniforms {
             exposure,
             curve,

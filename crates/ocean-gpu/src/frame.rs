@@ -805,8 +805,8 @@ impl Backend for GpuBackend<'_> {
                 self.encoder,
                 t,
                 (&hdr.view, &glow),
-                &ldr.view,
-                self.timer.render_writes(slot),
+                (&ldr.view, [ldr.width, ldr.height]),
+                self.timer.compute_writes(slot),
             );
             self.put(ResourceId::Ldr, ldr);
         }

@@ -1,5 +1,5 @@
-//! Mirror of `shaders/tonemap.wgsl`: HDR linear frame → 8-bit sRGB. The steps and why:
-//! `ocean_core::tonemap`.
+//! Mirror of `shaders/tonemap.wgsl`: HDR linear frame → 8-bit sRGB, one compute invocation
+//! per pixel. The steps and why: `ocean_core::tonemap`.
 
 use rayon::prelude::*;
 
@@ -7,8 +7,7 @@ pub use ocean_core::tonemap::TonemapUniforms;
 
 use crate::envelope::{ByteRange, Iv, Jitter, JitterRules, Real, map3, zip3};
 use crate::sampler::Texture2D;
-use crate::shaders::shared::fullscreen::fullscreen_position;
-use crate::shaders::wgsl::{Components, Vec2, Vec3, Vec4, vec4};
+use crate::shaders::wgsl::{Components, Vec2, Vec3, Vec4};
 
 pub use ocean_core::tonemap::{HABLE_P, HABLE_Q, HABLE_R, HABLE_S, HABLE_T, HABLE_WHITE_SCALE};
 
@@ -16,13 +15,6 @@ pub use ocean_core::tonemap::{HABLE_P, HABLE_Q, HABLE_R, HABLE_S, HABLE_T, HABLE
 pub const HDR_MAX: f32 = 65504.0;
 /// 1 / 2.4 as the nearest f32.
 pub const SRGB_INV_GAMMA: f32 = 0.416_666_66;
-
-/// `VertexOut` of `tonemap.wgsl`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct VertexOut {
-    /// `@builtin(position)`.
-    pub position: Vec4,
-}
 
 /// The `hdr_frame: texture_2d<f32>` binding: a borrowed row-major RGBA f32 image, texel
 /// (x, y) at `y · width + x`, row 0 at the top.
@@ -81,11 +73,6 @@ pub fn quantize_unorm8(v: Vec3) -> Vec3 {
     v.map(quantize_r)
 }
 
-/// `vs_main(@builtin(vertex_index) vertex_index: u32) -> VertexOut`.
-pub fn vs_main(vertex_index: u32) -> VertexOut {
-    VertexOut { position: fullscreen_position(vertex_index) }
-}
-
 /// What the `bloom` binding holds without post `bloom`: one zero texel (× `bloom_scale` = 0).
 static NO_BLOOM: std::sync::LazyLock<Texture2D> =
     std::sync::LazyLock::new(|| Texture2D::new(1, 1, vec![[0.0; 4]]));
@@ -95,33 +82,30 @@ pub fn bloom_at(p: [i32; 2], bloom: &Texture2D) -> Vec3 {
     crate::shaders::bloom::upsample_at(bloom, p)
 }
 
-/// `fs_main(in: VertexOut) -> @location(0) vec4<f32>` without post `bloom` (its binding the
-/// 1×1 zero texture): [`fs_main_with_bloom`].
-pub fn fs_main(input: &VertexOut, tonemap: &TonemapUniforms, hdr_frame: &HdrFrame) -> [f32; 4] {
-    fs_main_with_bloom(input, tonemap, hdr_frame, &NO_BLOOM)
+/// `cs_main(@builtin(global_invocation_id) id)` without post `bloom` (its binding the 1×1
+/// zero texture): [`cs_main_with_bloom`].
+pub fn cs_main(id: [u32; 2], tonemap: &TonemapUniforms, hdr_frame: &HdrFrame) -> [f32; 4] {
+    cs_main_with_bloom(id, tonemap, hdr_frame, &NO_BLOOM)
 }
 
-/// `fs_main(in: VertexOut) -> @location(0) vec4<f32>` with the `bloom` binding: the quantised
-/// sRGB value, alpha 1.
-pub fn fs_main_with_bloom(
-    input: &VertexOut,
+/// `cs_main(@builtin(global_invocation_id) id)` with the `bloom` binding: the quantised sRGB
+/// value, alpha 1, that it stores at texel `id` (inside the frame: the shader returns early
+/// outside). The pixel centre `id + 0.5` is exact in f32 for any frame a GPU can hold.
+pub fn cs_main_with_bloom(
+    id: [u32; 2],
     tonemap: &TonemapUniforms,
     hdr_frame: &HdrFrame,
     bloom: &Texture2D,
 ) -> [f32; 4] {
-    let texel = [input.position.x as i32, input.position.y as i32];
+    let texel = [id[0] as i32, id[1] as i32];
+    let centre = [id[0] as f32 + 0.5, id[1] as f32 + 0.5];
     let hdr = hdr_frame.texture_load(texel).xyz();
     let b = bloom_at(texel, bloom);
-    let [r, g, bl] = shade(
-        [hdr.x, hdr.y, hdr.z],
-        [b.x, b.y, b.z],
-        [input.position.x, input.position.y],
-        tonemap,
-    );
+    let [r, g, bl] = shade([hdr.x, hdr.y, hdr.z], [b.x, b.y, b.z], centre, tonemap);
     [r, g, bl, 1.0]
 }
 
-/// `fs_main`'s arithmetic after its texture reads, over any [`Real`]: `f32` for the exact
+/// `cs_main`'s arithmetic after its texture reads, over any [`Real`]: `f32` for the exact
 /// frame (lavapipe's bits), [`crate::envelope::Iv`] for the envelope of a hardware GPU,
 /// [`crate::envelope::Jitter`] for a random conformant GPU. `hdr` is the HDR texel, `bloom`
 /// `bloom_at(texel)` (zeros without post `bloom`), `p` the pixel centre.
@@ -177,9 +161,9 @@ fn srgb_oetf_r<R: Real>(c: R) -> R {
     R::select(hi, lo, c.le(R::lit(0.0031308)))
 }
 
-/// What lavapipe's `Rgba8Unorm` target stores for a shader output `v`: v · 255 rounded to the
+/// What lavapipe's `Rgba8Unorm` storage texture stores for a shader output `v`: v · 255 rounded to the
 /// nearest integer. Vulkan requires only one of the two integers closest to v · 255 (nearest
-/// is recommended), so for the outputs of [`fs_main`], within a few ULP of multiples of 1/255,
+/// is recommended), so for the outputs of [`cs_main`], within a few ULP of multiples of 1/255,
 /// another conformant GPU may store one code less or more: [`crate::envelope`] carries that.
 pub fn store_unorm8(v: f32) -> u8 {
     Real::store_unorm8(v).lo
@@ -188,9 +172,8 @@ pub fn store_unorm8(v: f32) -> u8 {
 /// The `tonemap` pass over a whole `width × height` HDR frame (row-major, row 0 at the top):
 /// RGBA8 bytes, 4 per pixel in the same order, ready for a PNG.
 ///
-/// The full-screen triangle covers every pixel centre exactly once, so this calls
-/// [`fs_main`] at each centre (x + 0.5, y + 0.5) directly rather than through the
-/// rasterizer; rows run in parallel and each pixel is a pure function of its texel.
+/// The dispatch runs one invocation per pixel, so this calls [`cs_main`] at each pixel; rows
+/// run in parallel and each pixel is a pure function of its texel.
 ///
 /// # Panics
 /// If `hdr` does not hold `width · height` texels.
@@ -222,8 +205,7 @@ pub fn tonemap_to_rgba8_with_bloom(
     }
     out.par_chunks_mut(width as usize * 4).enumerate().for_each(|(y, row)| {
         for (x, px) in row.chunks_exact_mut(4).enumerate() {
-            let position = vec4(x as f32 + 0.5, y as f32 + 0.5, 0.0, 1.0);
-            let rgba = fs_main_with_bloom(&VertexOut { position }, tonemap, &frame, bloom);
+            let rgba = cs_main_with_bloom([x as u32, y as u32], tonemap, &frame, bloom);
             for (byte, v) in px.iter_mut().zip(rgba) {
                 *byte = store_unorm8(v);
             }
