@@ -15,17 +15,20 @@
 //! oracle draws no geometry, one pixel in from its edge) against the sky's envelope, and the
 //! wave maps that three dumps keep (`calm`, `chiu_shallow`, `foam_storm`) against the `waves`
 //! pass's envelope, and `foam_storm`'s foam field against the `foam` pass's.
-//! That verdict does not depend on the oracle's frame, only on the judged passes' shaders: it is stale (ignored) when one of them
-//! differs from the snapshot's (`envelope_shaders_fnv64`); a scene whose picture's inputs are
-//! not all in the dump (pass bloom's chains) must show its picture as not judged, and its sky
-//! judged.
+//! That verdict does not depend on the oracle's frame, only on the judged passes' shaders, per
+//! resource (`DEPENDS`): a resource whose shaders differ from the snapshot's
+//! (`envelope_shaders_fnv64`) is reported stale, never passed, while the scene's other
+//! resources are still judged; a scene all of whose resources are stale is ignored, with the
+//! reason. A scene whose picture's inputs are not all in the dump (pass bloom's chains) must
+//! show its picture as not judged, and its sky judged.
 //!
 //! Negative controls: a planted change to a picture (a tenth of it 25 % darker) fails the row,
 //! and one bit flipped in a frame changes its digest.
 //!
 //! Limits of the design, on purpose: the digest is of the HDR frame, so a change of the
 //! tonemap alone would show as a failure of the picture row rather than as stale (the fix is
-//! the same: re-render); the oracle frames are rendered before the tests are filtered (19
+//! the same: re-render); the oracle frames, and the envelope verdicts of scenes with something
+//! fresh to judge, are computed before the tests are filtered (19
 //! frames at 256×144, a few seconds); and when every scene is stale only the controls run —
 //! the snapshot then needs a GPU session, which CI does not have. `OCEAN_HARDWARE_DIGESTS=1` prints the digests
 //! of this build's oracle (to refresh `oracle.json` after re-rendering the snapshot on a GPU).
@@ -154,12 +157,18 @@ fn file_digest(path: &Path) -> u64 {
 }
 
 /// The shaders of the passes the envelope judges from the dump's own inputs whose bytes differ
-/// from the snapshot's (`oracle.json`'s `envelope_shaders_fnv64`): while none does, the
-/// envelope verdict of a scene does not depend on the oracle's frame.
+/// from the snapshot's (`oracle.json`'s `envelope_shaders_fnv64`): a resource whose shaders
+/// (`DEPENDS`) are all unchanged has a verdict that does not depend on the oracle's frame.
 fn changed_envelope_shaders(digests: &serde_json::Value) -> Vec<String> {
     let shaders = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("shaders");
     let stored = digests["envelope_shaders_fnv64"].as_object().expect("envelope_shaders_fnv64");
     assert!(!stored.is_empty(), "no shader digests");
+    for file in stored.keys() {
+        assert!(
+            DEPENDS.iter().any(|(_, files)| files.contains(&file.as_str())),
+            "{file} is in envelope_shaders_fnv64 but no resource of DEPENDS reads it"
+        );
+    }
     stored
         .iter()
         .filter(|(file, d)| {
@@ -169,6 +178,69 @@ fn changed_envelope_shaders(digests: &serde_json::Value) -> Vec<String> {
         .collect()
 }
 
+/// What each resource that `ocean compare --against` judges from a dump is computed by: the
+/// snapshot's shader files (of `envelope_shaders_fnv64`) whose change makes its verdict on the
+/// H200's frames stale. One shader changed (a pass moved to compute, say) stales only the
+/// resources it computes; the others keep their hardware verdict. A resource not listed here
+/// depends on every stored file.
+const DEPENDS: [(&str, &[&str]); 10] = [
+    ("ldr", &["tonemap.wgsl", "shared/fullscreen.wgsl", "bloom.wgsl"]),
+    ("bloom_down", &["bloom.wgsl", "shared/fullscreen.wgsl"]),
+    ("bloom_up", &["bloom.wgsl", "shared/fullscreen.wgsl"]),
+    (
+        "hdr (sky pixels)",
+        &[
+            "sky.wgsl",
+            "sky/preetham.wgsl",
+            "sky/preetham_clouds.wgsl",
+            "sky/atmosphere.wgsl",
+            "shared/preetham.wgsl",
+            "shared/sky_lut.wgsl",
+            "shared/camera.wgsl",
+            "shared/fullscreen.wgsl",
+        ],
+    ),
+    ("displacement", &["waves.wgsl", "shared/trig.wgsl"]),
+    ("bump", &["waves.wgsl", "shared/trig.wgsl"]),
+    ("foam_field", &["foam.wgsl", "shared/gerstner.wgsl", "shared/trig.wgsl"]),
+    ("reflection_map", &["objects.wgsl", "shadow.wgsl"]),
+    ("refraction_map", &["objects.wgsl", "shadow.wgsl"]),
+    ("shadow_map", &["shadow.wgsl"]),
+];
+
+/// Whether the verdict on `resource` is stale because a shader it depends on changed.
+fn shader_stale(resource: &str, changed: &[String]) -> bool {
+    match DEPENDS.iter().find(|(r, _)| *r == resource) {
+        Some((_, files)) => changed.iter().any(|c| files.contains(&c.as_str())),
+        None => !changed.is_empty(),
+    }
+}
+
+/// The resources a dump's envelope verdict may judge (the picture, the sky's pixels, and the
+/// maps the dump keeps) that are fresh: none of their shaders changed, and for one judged from
+/// the scene's geometry, not `stale_geometry`. Empty: the scene's envelope verdict on the H200
+/// is wholly stale.
+fn fresh_resources(dir: &Path, changed: &[String], stale_geometry: bool) -> Vec<&'static str> {
+    let kept = |r: &str| match r {
+        "ldr" | "hdr (sky pixels)" => true,
+        map => dir.join(format!("{map}.exr")).is_file(),
+    };
+    DEPENDS
+        .iter()
+        .map(|(r, _)| *r)
+        .filter(|r| kept(r) && !shader_stale(r, changed))
+        .filter(|r| !(stale_geometry && GEOMETRY_JUDGED.contains(r)))
+        .collect()
+}
+
+/// What a scene's envelope verdict came to when nothing failed.
+enum Envelope {
+    /// A fresh resource was judged, and inside.
+    Judged,
+    /// Every resource judged is stale (the reason): the trial is ignored, never passed.
+    AllStale(String),
+}
+
 /// `ocean compare --against DIR --tolerance envelope` on one scene of the snapshot: exit 0,
 /// the picture judged with 0 bytes outside (and pass bloom's chains, where the dump holds
 /// them), everything else listed as not judged.
@@ -176,7 +248,12 @@ fn changed_envelope_shaders(digests: &serde_json::Value) -> Vec<String> {
 /// stale, not failed, when the scene's oracle frame has changed since the snapshot.
 const GEOMETRY_JUDGED: [&str; 3] = ["reflection_map", "refraction_map", "shadow_map"];
 
-fn envelope_scene(dir: &Path, lacks_bloom: bool, stale_geometry: bool) -> Result<(), Failed> {
+fn envelope_scene(
+    dir: &Path,
+    lacks_bloom: bool,
+    stale_geometry: bool,
+    changed: &[String],
+) -> Result<Envelope, Failed> {
     let name = dir.file_name().unwrap().to_string_lossy().into_owned();
     let out =
         std::env::temp_dir().join(format!("ocean-h200-envelope-{name}-{}", std::process::id()));
@@ -212,16 +289,24 @@ fn envelope_scene(dir: &Path, lacks_bloom: bool, stale_geometry: bool) -> Result
         .filter(|r| r["passed"] == false)
         .map(|r| r["name"].as_str().unwrap_or(""))
         .collect();
-    // A geometry-judged map of a stale scene may differ: it is reported stale, never passed;
-    // anything else failing fails.
-    let stale: Vec<&str> =
-        failed.iter().copied().filter(|f| stale_geometry && GEOMETRY_JUDGED.contains(f)).collect();
-    if !o.status.success() && (stale.is_empty() || stale.len() != failed.len()) {
+    // A geometry-judged map of a stale scene may differ, and so may a resource whose shaders
+    // changed since the snapshot: each is reported stale, never passed; anything else failing
+    // fails.
+    let is_stale =
+        |r: &str| (stale_geometry && GEOMETRY_JUDGED.contains(&r)) || shader_stale(r, changed);
+    let stale_failed = failed.iter().filter(|f| is_stale(f)).count();
+    if !o.status.success() && (stale_failed == 0 || stale_failed != failed.len()) {
         return Err(fail().into());
     }
+    let stale: Vec<&str> = resources
+        .iter()
+        .filter(|r| r["judged"] != false)
+        .map(|r| r["name"].as_str().unwrap_or(""))
+        .filter(|r| is_stale(r))
+        .collect();
     if !stale.is_empty() {
         println!(
-            "{name}: {} stale — judged from the scene's geometry, and the scene's oracle frame has changed since the snapshot",
+            "{name}: {} stale — its shaders changed since the snapshot, or it is judged from the scene's geometry and the scene's oracle frame has changed",
             stale.join(", ")
         );
     }
@@ -230,6 +315,8 @@ fn envelope_scene(dir: &Path, lacks_bloom: bool, stale_geometry: bool) -> Result
     // and inside.
     let ldr_ok = if lacks_bloom {
         ldr["judged"] == false
+    } else if is_stale("ldr") {
+        true
     } else {
         ldr["passed"] == true && ldr["outside"] == 0
     };
@@ -238,6 +325,7 @@ fn envelope_scene(dir: &Path, lacks_bloom: bool, stale_geometry: bool) -> Result
     }
     // The sky's pixels of the HDR frame, where the scene's sky has an envelope (Preetham).
     if let Some(sky) = resources.iter().find(|r| r["name"] == "hdr (sky pixels)")
+        && !is_stale("hdr (sky pixels)")
         && (sky["passed"] != true || sky["outside"] != 0)
     {
         return Err(format!("{name}: the sky's pixels were not judged inside: {sky}").into());
@@ -245,7 +333,7 @@ fn envelope_scene(dir: &Path, lacks_bloom: bool, stale_geometry: bool) -> Result
     // The wave maps, where the dump holds them (pass `waves`, from the uploaded modes alone),
     // and the foam field (pass `foam`, from the dump's displacement map).
     for map in ["displacement", "bump", "foam_field"] {
-        if !dir.join(format!("{map}.exr")).is_file() {
+        if !dir.join(format!("{map}.exr")).is_file() || is_stale(map) {
             continue;
         }
         let entry = resources.iter().find(|r| r["name"] == map).ok_or("no wave-map entry")?;
@@ -259,18 +347,26 @@ fn envelope_scene(dir: &Path, lacks_bloom: bool, stale_geometry: bool) -> Result
         .map(|r| r["name"].as_str().unwrap())
         .collect();
     if judged.is_empty() {
-        return Err(format!("{name}: nothing judged").into());
+        if stale.is_empty() {
+            return Err(format!("{name}: nothing judged").into());
+        }
+        return Ok(Envelope::AllStale(format!(
+            "{name}: stale for the envelope: nothing fresh was judged ({} stale)",
+            stale.join(", ")
+        )));
     }
     println!(
         "{name}: envelope: {} judged, 0 outside{}",
         judged.join(", "),
         if lacks_bloom {
             " (ldr not judged: bloom_up is not in the dump)".to_owned()
+        } else if is_stale("ldr") {
+            String::new()
         } else {
             format!(" (ldr width p50 {} / p99 {} codes)", ldr["codes_p50"], ldr["codes_p99"])
         }
     );
-    Ok(())
+    Ok(Envelope::Judged)
 }
 
 /// The envelope verdict's negative control: the `calm` dump with one byte of its picture three
@@ -336,9 +432,18 @@ fn main() -> ExitCode {
         let stale_geometry = digests["hdr_fnv64"][&name]
             .as_str()
             .is_none_or(|s| u64::from_str_radix(s, 16).ok() != Some(now));
-        if !changed.is_empty() {
+        let fresh = fresh_resources(&dir, &changed, stale_geometry);
+        let outcome = (!fresh.is_empty())
+            .then(|| envelope_scene(&dir, lacks_bloom, stale_geometry, &changed));
+        if let Some(Ok(Envelope::AllStale(why))) = outcome {
+            println!("{why}");
+            trials.push(
+                Trial::test(trial_name, move || Err(why.clone().into())).with_ignored_flag(true),
+            );
+        } else if fresh.is_empty() {
             let why = format!(
-                "{name}: stale for the envelope: {} changed since the snapshot",
+                "{name}: stale for the envelope: every resource it judges reads a shader changed \
+                 since the snapshot ({})",
                 changed.join(", ")
             );
             println!("{why}");
@@ -346,10 +451,8 @@ fn main() -> ExitCode {
                 Trial::test(trial_name, move || Err(why.clone().into())).with_ignored_flag(true),
             );
         } else {
-            let d = dir.clone();
-            trials.push(Trial::test(trial_name, move || {
-                envelope_scene(&d, lacks_bloom, stale_geometry)
-            }));
+            let outcome = outcome.expect("a scene with fresh resources was judged");
+            trials.push(Trial::test(trial_name, move || outcome.map(|_| ())));
         }
         first.get_or_insert_with(|| o.clone());
         out.insert(name.clone(), format!("{now:016x}").into());
