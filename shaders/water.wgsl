@@ -731,8 +731,9 @@ struct SurfacePoint {
     coastal: vec3<f32>,
 }
 
-@fragment
-fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
+// The water's colour at a fragment, from its interpolated inputs alone (`in.clip.xy` is the
+// pixel centre): what fs_main returns and cs_shade stores.
+fn shade(in: VertexOut) -> vec4<f32> {
     let slopes = filtered_slopes(in);
     let n = unit(vec3<f32>(-slopes.x, 1.0, -slopes.y));
     let view = unit(-in.rel);
@@ -775,4 +776,65 @@ fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
     }
     let c = frame.water.color * f + sky_t * (1.0 - f);
     return vec4<f32>(c, 1.0);
+}
+
+// The fragment path (a device whose colour attachments cannot hold the visibility buffer):
+// each fragment shaded where it is rasterised.
+@fragment
+fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
+    return shade(in);
+}
+
+// The visibility buffer, the raster pass's output on the compute path: the interpolated
+// inputs of the last fragment that passes the depth test at each pixel, exactly as the
+// fragment stage received them (rgba32float holds every f32), and a coverage flag (pos_cover.z:
+// 1, 0 where no water was drawn). Interpolated inputs rather than a triangle id and
+// barycentrics: the shading then reads the very values a fragment would have, so the two
+// paths store the same bits, and no vertex is transformed twice.
+struct VisibilityOut {
+    @location(0) rel_weight: vec4<f32>,
+    @location(1) uvs: vec4<f32>,
+    @location(2) pos_cover: vec4<f32>,
+}
+
+@fragment
+fn fs_visibility(in: VertexOut) -> VisibilityOut {
+    return VisibilityOut(
+        vec4<f32>(in.rel, in.weight),
+        vec4<f32>(in.uv_d, in.uv_b),
+        vec4<f32>(in.pos, 1.0, 0.0),
+    );
+}
+
+@group(2) @binding(0) var vis_rel_weight: texture_2d<f32>;
+@group(2) @binding(1) var vis_uvs: texture_2d<f32>;
+@group(2) @binding(2) var vis_pos_cover: texture_2d<f32>;
+// The HDR frame. ocean-gpu makes the rgba16float variant by replacing this one declaration.
+@group(2) @binding(3) var hdr_frame: texture_storage_2d<rgba32float, write>;
+
+// The shading in compute (docs/design.md, "GPU speed on real hardware": on GPUs whose
+// fragment work runs on a few units a compute pass uses the whole chip): one invocation per
+// pixel the visibility buffer covers, shading what its fragment would have, at the pixel
+// centre (`id + 0.5`, exact in f32, as a fragment's position is).
+@compute @workgroup_size(8, 8, 1)
+fn cs_shade(@builtin(global_invocation_id) id: vec3<u32>) {
+    let size = textureDimensions(hdr_frame);
+    if (id.x >= size.x || id.y >= size.y) {
+        return;
+    }
+    let p = vec2<i32>(id.xy);
+    let c = textureLoad(vis_pos_cover, p, 0);
+    if (c.z == 0.0) {
+        return;
+    }
+    let a = textureLoad(vis_rel_weight, p, 0);
+    let b = textureLoad(vis_uvs, p, 0);
+    var in: VertexOut;
+    in.clip = vec4<f32>(vec2<f32>(id.xy) + vec2<f32>(0.5), 0.0, 1.0);
+    in.rel = a.xyz;
+    in.weight = a.w;
+    in.uv_d = b.xy;
+    in.uv_b = b.zw;
+    in.pos = c.xy;
+    textureStore(hdr_frame, p, shade(in));
 }

@@ -232,6 +232,84 @@ fn extreme_scenes_render_finite_pixels_on_the_gpu() {
     assert!(accepted >= cases.len() / 2, "only {accepted} accepted");
 }
 
+/// Every map and the picture of a frame, as bits.
+fn frame_bits(r: &mut Renderer, scene: &Scene) -> Vec<(String, Vec<u32>)> {
+    let plan = FramePlan::new(scene, OutputKind::Ldr);
+    let f = r.run(scene, &plan).unwrap_or_else(|e| panic!("{e}"));
+    let mut out: Vec<(String, Vec<u32>)> = f
+        .maps
+        .iter()
+        .map(|(m, t)| (format!("{m:?}"), t.texels.iter().flatten().map(|v| v.to_bits()).collect()))
+        .collect();
+    out.push(("ldr".into(), f.ldr.unwrap().into_iter().map(u32::from).collect()));
+    out
+}
+
+/// The maps and pictures of two renders that differ, by name, with the count of differing
+/// values.
+fn differing(a: &[(String, Vec<u32>)], b: &[(String, Vec<u32>)]) -> Vec<(String, usize)> {
+    assert_eq!(a.len(), b.len());
+    a.iter()
+        .zip(b)
+        .filter_map(|((n, x), (_, y))| {
+            let d = if x.len() == y.len() {
+                x.iter().zip(y).filter(|(p, q)| p != q).count()
+            } else {
+                x.len().max(y.len())
+            };
+            (d > 0).then(|| (n.clone(), d))
+        })
+        .collect()
+}
+
+/// The water shaded in compute from the visibility buffer (issue 37) stores the same bits as
+/// the fragment shader that shades each fragment where it is rasterised: every map and the
+/// picture of every reference scene at 96×54 (all four systems, every surface, 16-bit frames,
+/// the camera under the water). On lavapipe the renderer picks the compute path by itself.
+/// Negative control: the same comparison between the scene and the scene 1 ms later finds
+/// the HDR frame changed.
+fn the_water_paths_store_the_same_bits() {
+    use ocean_gpu::water::WaterPath;
+    let mut r = renderer();
+    assert_eq!(r.water_path(), WaterPath::Compute, "lavapipe holds the visibility buffer");
+    let mut scenes: Vec<PathBuf> = std::fs::read_dir(root().join("reference/scenes"))
+        .unwrap()
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    scenes.sort();
+    assert!(scenes.len() >= 28, "{} reference scenes", scenes.len());
+    let mut control = None;
+    for path in &scenes {
+        let name = path.file_stem().unwrap().to_string_lossy().into_owned();
+        let mut scene = Scene::load(path).unwrap_or_else(|e| panic!("{name}: {e}"));
+        (scene.camera.width, scene.camera.height) = (96, 54);
+        r.set_water_path(WaterPath::Compute).unwrap();
+        let compute = frame_bits(&mut r, &scene);
+        r.set_water_path(WaterPath::Fragment).unwrap();
+        let fragment = frame_bits(&mut r, &scene);
+        let d = differing(&compute, &fragment);
+        assert!(d.is_empty(), "{name}: compute and fragment water differ: {d:?}");
+        eprintln!(
+            "{name}: {} maps and the picture, the same bits on both paths",
+            compute.len() - 1
+        );
+        if name == "default" {
+            let mut later = scene.clone();
+            later.ocean.time_s += 0.001;
+            r.set_water_path(WaterPath::Compute).unwrap();
+            control = Some(differing(&compute, &frame_bits(&mut r, &later)));
+        }
+    }
+    let control = control.expect("the default scene");
+    assert!(
+        control.iter().any(|(n, c)| n == "Hdr" && *c > 0),
+        "the control (1 ms later) was not told apart: {control:?}"
+    );
+    eprintln!("control, 1 ms later: {control:?}");
+}
+
 fn main() -> std::process::ExitCode {
     run_tests!(gpu_harness::GPU_ADAPTER;
         cpu: the_size_check_fails_on_a_map_of_another_size;
@@ -239,6 +317,7 @@ fn main() -> std::process::ExitCode {
             every_resource_both_back_ends_allocate_has_the_plans_size,
             the_gpu_plays_the_cycle_the_plan_precomputes,
             object_geometry_cut_into_small_buffers_draws_the_same_picture,
-            extreme_scenes_render_finite_pixels_on_the_gpu;
+            extreme_scenes_render_finite_pixels_on_the_gpu,
+            the_water_paths_store_the_same_bits;
     )
 }

@@ -369,6 +369,10 @@ pub const STAGES: &[StageEntry] = &[
             ("vs_projected_grid", Vertex),
             // Surface `clipmap`: the levels from the vertex index.
             ("vs_clipmap", Vertex),
+            // The compute path: the raster pass writes the visibility buffer, a compute pass
+            // shades it.
+            ("fs_visibility", Fragment),
+            ("cs_shade", Compute),
         ],
         bindings: &[
             b(0, 0, "frame"),
@@ -387,6 +391,10 @@ pub const STAGES: &[StageEntry] = &[
             b(0, 13, "foam_field"),
             b(1, 0, "sky"),
             b(1, 1, "sky_lut"),
+            b(2, 0, "vis_rel_weight"),
+            b(2, 1, "vis_uvs"),
+            b(2, 2, "vis_pos_cover"),
+            b(2, 3, "hdr_frame"),
         ],
         blocks: &[],
         cpu_mirror: "crates/ocean-cpu/src/shaders/water.rs",

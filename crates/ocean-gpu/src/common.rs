@@ -50,6 +50,40 @@ pub fn shader_module_with(
     }))
 }
 
+/// The module of a stage that stores into the frame from compute (`sky`, `water`), for a
+/// frame of `target` format: WGSL has no preprocessor, so the rgba16float module is the
+/// assembled source with its one storage declaration's format replaced (the line says so in
+/// the stage's WGSL).
+///
+/// # Errors
+/// [`Error::Core`] if the WGSL cannot be assembled; [`Error::Unavailable`] for a format other
+/// than `Rgba32Float` and `Rgba16Float`, or a source that does not declare the storage once.
+pub fn frame_storage_module(
+    device: &wgpu::Device,
+    stage: &str,
+    techniques: &ocean_core::plan::Techniques,
+    target: wgpu::TextureFormat,
+) -> Result<wgpu::ShaderModule, Error> {
+    let source = ocean_core::shader_source::stage_source_with(stage, techniques)?;
+    let declared = "texture_storage_2d<rgba32float, write>";
+    let source = match target {
+        wgpu::TextureFormat::Rgba32Float => source,
+        wgpu::TextureFormat::Rgba16Float if source.matches(declared).count() == 1 => {
+            source.replace(declared, "texture_storage_2d<rgba16float, write>")
+        }
+        other => {
+            return Err(Error::Unavailable(format!(
+                "stage `{stage}` stores into rgba32float or rgba16float frames (declared once \
+                 as `{declared}` in {stage}.wgsl), not {other:?}"
+            )));
+        }
+    };
+    Ok(device.new_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(&label(stage)),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    }))
+}
+
 /// The entry point `name` of `stage` as the stage registry lists it
 /// (`ocean_core::registry::STAGES`): pipelines take their entry points from there, so an entry
 /// the registry does not list cannot be used, and one it lists that the WGSL lacks fails to

@@ -9,10 +9,10 @@
 //! | fresnel_table | 2 × the plan's N² `Rgba32Float` (η, 1/η), compute | — |
 //! | shadow_map | the plan's `R32Float` (1, 0, 0, 0) | 1, `Less` |
 //! | reflection_map, refraction_map | the plan's sizes, the frame format (0) | 0, `Greater` |
-//! | sky (or, camera under water, a clear to the plan's colour) | HDR viewport, the frame format | 0, `Always` without writes |
+//! | sky (or, camera under water, a clear to the plan's colour) | HDR viewport, the frame format, compute | 0 (a depth-only clear) |
 //! | objects | HDR (kept) | kept, `Greater` |
-//! | water | HDR (kept) | kept, `Greater` |
-//! | tonemap | viewport `Rgba8Unorm` | — |
+//! | water | [`WaterPath::Compute`]: the visibility buffer (3 × `Rgba32Float`, coverage 0), then HDR (kept), compute; [`WaterPath::Fragment`]: HDR (kept) | kept, `Greater` |
+//! | tonemap | viewport `Rgba8Unorm`, compute | — |
 //!
 //! The frame format is the plan's `frame_format` (`ocean_core::frame_format`): `Rgba32Float`,
 //! or `Rgba16Float` (system `welch`), also for the bloom chains; the stages that draw or blur
@@ -52,7 +52,7 @@ use crate::texture::{
 };
 use crate::timing::{PassTimer, PendingTimings, TimerPool};
 use crate::tonemap::TonemapStage;
-use crate::water::{WaterDraw, WaterMeshBuffers, WaterStage, WaterTextures};
+use crate::water::{WaterDraw, WaterMeshBuffers, WaterPath, WaterStage, WaterTextures};
 use crate::wave_maps::{WaveMapSource, WaveSynthesis, make_source_from};
 use crate::wave_mips::{GpuMipChain, WaveMipsStage};
 use ocean_core::far_field::mip_level_count;
@@ -172,6 +172,8 @@ pub struct Renderer {
     water_mesh: KeptWaterMesh,
     /// The far field's Fresnel filter table as uploaded, and the table it was made from.
     filter: Option<(Arc<ocean_core::far_field::FresnelFilterTable>, GpuTexture)>,
+    /// How the water is shaded.
+    water_path: WaterPath,
 }
 
 /// Each Fresnel table's texture and the uniforms it was computed from.
@@ -590,7 +592,7 @@ impl GpuBackend<'_> {
                 }),
                 (n, _) => WaterDraw::Grid(n),
             },
-            &hdr.view,
+            (&hdr.view, [hdr.width, hdr.height]),
             &depth.view,
             self.timer.render_writes(slot),
         );
@@ -836,6 +838,7 @@ impl Renderer {
         let built = crate::common::pipeline_techniques();
         let built_format = ocean_core::frame_format::FrameFormat::default();
         let target = crate::texture::frame_format(built_format);
+        let water_path = WaterPath::for_device(d);
         let stages = gpu.scoped("creating the pipelines", || -> Result<_, Error> {
             Ok(Stages {
                 wave_mips: WaveMipsStage::new(d)?,
@@ -843,7 +846,7 @@ impl Renderer {
                 sky: SkyStage::new(d, &built, target)?,
                 objects: ObjectsStage::new(d, target)?,
                 shadow: ShadowStage::new(d)?,
-                water: WaterStage::new(d, &built, target)?,
+                water: WaterStage::new(d, &built, target, water_path)?,
                 spray: SprayStage::new(d, target)?,
                 foam: FoamStage::new(d)?,
                 bloom: BloomStage::new(d, built_format)?,
@@ -869,7 +872,30 @@ impl Renderer {
             object_vertices: KeptObjects::default(),
             water_mesh: None,
             filter: None,
+            water_path,
         })
+    }
+
+    /// How the water is shaded ([`WaterPath::for_device`] unless set).
+    pub fn water_path(&self) -> WaterPath {
+        self.water_path
+    }
+
+    /// Shades the water on `path` from the next frame on (the same bits either way; a test
+    /// compares them). [`WaterPath::Compute`] on a device without room for the visibility
+    /// buffer fails when the pipelines are made.
+    ///
+    /// # Errors
+    /// [`Error::Wgpu`] if a pipeline does not validate; [`Error::Core`] if the WGSL cannot be
+    /// assembled.
+    pub fn set_water_path(&mut self, path: WaterPath) -> Result<(), Error> {
+        let d = &self.gpu.device;
+        let (t, target) = (self.built, crate::texture::frame_format(self.built_format));
+        self.stages.water = self.gpu.scoped("assembling the water's pipelines", || {
+            WaterStage::new(d, &t, target, path)
+        })??;
+        self.water_path = path;
+        Ok(())
     }
 
     /// The spray's particle pool as the last frame left it (`None` before a frame with pass
@@ -1134,7 +1160,10 @@ impl Renderer {
             let d = &self.gpu.device;
             let target = crate::texture::frame_format(format);
             let (sky, water) = self.gpu.scoped("assembling the pipelines", || {
-                Ok::<_, Error>((SkyStage::new(d, &t, target)?, WaterStage::new(d, &t, target)?))
+                Ok::<_, Error>((
+                    SkyStage::new(d, &t, target)?,
+                    WaterStage::new(d, &t, target, self.water_path)?,
+                ))
             })??;
             self.stages.sky = sky;
             self.stages.water = water;

@@ -14,7 +14,9 @@
 use crate::created::Counted;
 use ocean_core::camera_uniforms::CameraUniforms;
 
-use crate::common::{entry, label, pipeline_layout, storage_entry_of, uniform_entry};
+use crate::common::{
+    entry, frame_storage_module, label, pipeline_layout, storage_entry_of, uniform_entry,
+};
 use crate::device::Error;
 
 /// `@workgroup_size(8, 8, 1)` of the WGSL.
@@ -40,26 +42,7 @@ impl SkyStage {
         target: wgpu::TextureFormat,
     ) -> Result<Self, Error> {
         let name = label("sky");
-        // WGSL has no preprocessor: the rgba16float module is the assembled source with its
-        // one storage declaration's format replaced (the line says so in sky.wgsl).
-        let source = ocean_core::shader_source::stage_source_with("sky", techniques)?;
-        let declared = "texture_storage_2d<rgba32float, write>";
-        let source = match target {
-            wgpu::TextureFormat::Rgba32Float => source,
-            wgpu::TextureFormat::Rgba16Float if source.matches(declared).count() == 1 => {
-                source.replace(declared, "texture_storage_2d<rgba16float, write>")
-            }
-            other => {
-                return Err(Error::Unavailable(format!(
-                    "the sky stores into rgba32float or rgba16float frames (declared once as \
-                     `{declared}` in sky.wgsl), not {other:?}"
-                )));
-            }
-        };
-        let module = device.new_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some(&name),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
-        });
+        let module = frame_storage_module(device, "sky", techniques, target)?;
         let layout = |l: &str, entries: &[wgpu::BindGroupLayoutEntry]| {
             device
                 .new_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(l), entries })

@@ -10,14 +10,22 @@
 //! `shaders/shared/sky_lut.wgsl`). Vertices: ocean-core's
 //! `geometry::WaterVertex` (12 bytes), u32 indices. State: reversed-Z `Greater` with depth
 //! writes, no blending, no culling (the surface is seen from below under water).
+//!
+//! Two paths ([`WaterPath`]), the same bits: where the device's colour attachments can hold
+//! it, the raster pass writes a visibility buffer (`fs_visibility`: each pixel's last passing
+//! fragment's interpolated inputs, three `rgba32float` targets, group 2's textures) and a
+//! compute pass shades it (`cs_shade`, storing into the HDR frame); otherwise each fragment
+//! is shaded where it is rasterised (`fs_main`). The CPU mirror shades the last passing
+//! fragment of each pixel once, which is what both paths compute.
 //! CPU mirror: `ocean-cpu/src/shaders/water.rs` (samplers `WRAP_LINEAR`, `CLAMP_LINEAR`).
 
 use crate::created::Counted;
 use ocean_core::geometry::WaterVertex;
 
 use crate::common::{
-    Load, begin_render_pass, entry, eye_depth, label, linear_sampler, pipeline_layout, primitive,
-    replace_target, sampler_entry, shader_module_with, texture_entry, uniform_entry,
+    Load, begin_render_pass, entry, eye_depth, frame_storage_module, label, linear_sampler,
+    pipeline_layout, primitive, replace_target, sampler_entry, storage_entry_of, texture_entry,
+    uniform_entry,
 };
 use crate::device::Error;
 
@@ -75,10 +83,55 @@ pub struct WaterMeshBuffers<'a> {
 }
 
 /// The stage's pipeline, layouts and samplers.
+/// How the water is shaded: the same bits either way.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum WaterPath {
+    /// The raster pass writes a visibility buffer, a compute pass shades it (a full-screen
+    /// pass in compute: on GPUs whose fragment work runs on a few units, the whole chip).
+    Compute,
+    /// Each fragment shaded where it is rasterised.
+    Fragment,
+}
+
+/// The visibility buffer's bytes per pixel: three `rgba32float` colour attachments.
+const VISIBILITY_BYTES: u32 = 48;
+
+/// The visibility buffer's format (each f32 input held exactly).
+const VISIBILITY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+
+/// `@workgroup_size(8, 8, 1)` of `cs_shade`.
+const WORKGROUP_SIZE: u32 = 8;
+
+impl WaterPath {
+    /// [`WaterPath::Compute`] where the device's colour attachments hold the visibility
+    /// buffer (WebGPU's default limit, 32 bytes a sample, does not; Vulkan devices report
+    /// 128), else [`WaterPath::Fragment`].
+    pub fn for_device(device: &wgpu::Device) -> Self {
+        let l = device.limits();
+        if l.max_color_attachments >= 3
+            && l.max_color_attachment_bytes_per_sample >= VISIBILITY_BYTES
+        {
+            Self::Compute
+        } else {
+            Self::Fragment
+        }
+    }
+}
+
+/// The compute path's pipelines.
+struct ComputeShading {
+    /// Surfaces' raster pipelines writing the visibility buffer: mesh, grid, clipmap.
+    visibility: [wgpu::RenderPipeline; 3],
+    shade: wgpu::ComputePipeline,
+    layout: wgpu::BindGroupLayout,
+}
+
+/// The stage's pipelines (one per surface's vertex entry point) and samplers.
 pub struct WaterStage {
     pipeline: wgpu::RenderPipeline,
     grid_pipeline: wgpu::RenderPipeline,
     clipmap_pipeline: wgpu::RenderPipeline,
+    compute: Option<ComputeShading>,
     layout: wgpu::BindGroupLayout,
     sky_layout: wgpu::BindGroupLayout,
     wrap_linear: wgpu::Sampler,
@@ -87,19 +140,22 @@ pub struct WaterStage {
 
 impl WaterStage {
     /// Creates the pipeline `"ocean.water"` for the sky and shading techniques of
-    /// `techniques`, drawing into a frame of `target` format, and its samplers.
+    /// `techniques`, drawing into a frame of `target` format (`Rgba32Float` or
+    /// `Rgba16Float`), on `path`, and its samplers.
     ///
     /// # Errors
-    /// [`Error::Core`] if the WGSL cannot be assembled.
+    /// [`Error::Core`] if the WGSL cannot be assembled; [`Error::Unavailable`] if the compute
+    /// path's storage declaration cannot be made the frame's format.
     pub fn new(
         device: &wgpu::Device,
         techniques: &ocean_core::plan::Techniques,
         target: wgpu::TextureFormat,
+        path: WaterPath,
     ) -> Result<Self, Error> {
         let name = label("water");
-        let module = shader_module_with(device, "water", techniques)?;
-        let vf = wgpu::ShaderStages::VERTEX_FRAGMENT;
-        let fragment = wgpu::ShaderStages::FRAGMENT;
+        let module = frame_storage_module(device, "water", techniques, target)?;
+        let vf = wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE;
+        let fragment = wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE;
         let layout = device.new_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some(&name),
             entries: &[
@@ -124,11 +180,21 @@ impl WaterStage {
             label: Some("ocean.water.sky"),
             entries: &[uniform_entry(0, fragment), uniform_entry(1, fragment)],
         });
-        let pipeline_layout = pipeline_layout(device, &name, &[&layout, &sky_layout]);
-        let make = |vs: &str, buffers: &[Option<wgpu::VertexBufferLayout<'_>>]| {
+        let raster_layout = pipeline_layout(device, &name, &[&layout, &sky_layout]);
+        let visibility_targets: [Option<wgpu::ColorTargetState>; 3] = std::array::from_fn(|_| {
+            Some(wgpu::ColorTargetState {
+                format: VISIBILITY_FORMAT,
+                blend: None,
+                write_mask: wgpu::ColorWrites::ALL,
+            })
+        });
+        let make = |vs: &str,
+                    buffers: &[Option<wgpu::VertexBufferLayout<'_>>],
+                    fs: &str,
+                    targets: &[Option<wgpu::ColorTargetState>]| {
             Ok::<_, Error>(device.new_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some(&name),
-                layout: Some(&pipeline_layout),
+                layout: Some(&raster_layout),
                 vertex: wgpu::VertexState {
                     module: &module,
                     entry_point: Some(entry("water", vs)?),
@@ -140,21 +206,57 @@ impl WaterStage {
                 multisample: wgpu::MultisampleState::default(),
                 fragment: Some(wgpu::FragmentState {
                     module: &module,
-                    entry_point: Some(entry("water", "fs_main")?),
+                    entry_point: Some(entry("water", fs)?),
                     compilation_options: Default::default(),
-                    targets: &replace_target(target),
+                    targets,
                 }),
                 multiview_mask: None,
                 cache: None,
             }))
         };
-        let pipeline = make("vs_main", &[Some(WATER_VERTEX_LAYOUT)])?;
-        let grid_pipeline = make("vs_projected_grid", &[])?;
-        let clipmap_pipeline = make("vs_clipmap", &[])?;
+        let shaded = replace_target(target);
+        let pipeline = make("vs_main", &[Some(WATER_VERTEX_LAYOUT)], "fs_main", &shaded)?;
+        let grid_pipeline = make("vs_projected_grid", &[], "fs_main", &shaded)?;
+        let clipmap_pipeline = make("vs_clipmap", &[], "fs_main", &shaded)?;
+        let compute = match path {
+            WaterPath::Fragment => None,
+            WaterPath::Compute => {
+                let vis = |vs: &str, buffers: &[Option<wgpu::VertexBufferLayout<'_>>]| {
+                    make(vs, buffers, "fs_visibility", &visibility_targets)
+                };
+                let visibility = [
+                    vis("vs_main", &[Some(WATER_VERTEX_LAYOUT)])?,
+                    vis("vs_projected_grid", &[])?,
+                    vis("vs_clipmap", &[])?,
+                ];
+                let compute = wgpu::ShaderStages::COMPUTE;
+                let vis_layout = device.new_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                    label: Some("ocean.water.visibility"),
+                    entries: &[
+                        texture_entry(0, compute, false),
+                        texture_entry(1, compute, false),
+                        texture_entry(2, compute, false),
+                        storage_entry_of(3, target),
+                    ],
+                });
+                let shade_layout =
+                    pipeline_layout(device, &name, &[&layout, &sky_layout, &vis_layout]);
+                let shade = device.new_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                    label: Some(&name),
+                    layout: Some(&shade_layout),
+                    module: &module,
+                    entry_point: Some(entry("water", "cs_shade")?),
+                    compilation_options: Default::default(),
+                    cache: None,
+                });
+                Some(ComputeShading { visibility, shade, layout: vis_layout })
+            }
+        };
         Ok(Self {
             pipeline,
             grid_pipeline,
             clipmap_pipeline,
+            compute,
             layout,
             sky_layout,
             wrap_linear: linear_sampler(
@@ -170,7 +272,14 @@ impl WaterStage {
         })
     }
 
-    /// Records the pass over what the sky and objects drew (`Load::Keep` on colour and depth).
+    /// The path the stage was made for.
+    pub fn path(&self) -> WaterPath {
+        if self.compute.is_some() { WaterPath::Compute } else { WaterPath::Fragment }
+    }
+
+    /// Records the pass over what the sky and objects drew (`Load::Keep` on colour and depth):
+    /// on the compute path, the raster pass into the visibility buffer (kept in `kept`) and
+    /// the compute pass shading it into `hdr`, timed as one span.
     #[expect(clippy::too_many_arguments, reason = "one argument per binding and attachment")]
     pub fn encode(
         &self,
@@ -181,7 +290,7 @@ impl WaterStage {
         sky_lut: &wgpu::Buffer,
         textures: &WaterTextures<'_>,
         draw: &WaterDraw<'_>,
-        hdr: &wgpu::TextureView,
+        hdr: (&wgpu::TextureView, [u32; 2]),
         depth: &wgpu::TextureView,
         timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
     ) {
@@ -212,19 +321,118 @@ impl WaterStage {
             &self.sky_layout,
             &[sky.as_entire_binding(), sky_lut.as_entire_binding()],
         );
-        let mut pass = begin_render_pass(
-            encoder,
-            &name,
-            hdr,
-            Load::Keep,
-            Some((depth, Load::Keep)),
-            timestamps,
+        let (hdr_view, [width, height]) = hdr;
+        let Some(compute) = &self.compute else {
+            let mut pass = begin_render_pass(
+                encoder,
+                &name,
+                hdr_view,
+                Load::Keep,
+                Some((depth, Load::Keep)),
+                timestamps,
+            );
+            self.draw(
+                &mut pass,
+                draw,
+                [&self.pipeline, &self.grid_pipeline, &self.clipmap_pipeline],
+                &group,
+                &sky_group,
+            );
+            return;
+        };
+        // The visibility buffer, kept from frame to frame; only the coverage target is
+        // cleared (the others are read where it says a fragment was written).
+        let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING;
+        let vis =
+            ["ocean.water.vis_rel_weight", "ocean.water.vis_uvs", "ocean.water.vis_pos_cover"]
+                .map(|l| kept.texture(l, width, height, VISIBILITY_FORMAT, usage).0);
+        // One timed span over both passes: the raster pass writes its beginning, the shading
+        // its end (as the waves' two transforms share theirs, `wave_maps`).
+        let (raster_ts, shade_ts) = match timestamps {
+            Some(ts) => (
+                Some(wgpu::RenderPassTimestampWrites { end_of_pass_write_index: None, ..ts }),
+                Some(wgpu::ComputePassTimestampWrites {
+                    query_set: ts.query_set,
+                    beginning_of_pass_write_index: None,
+                    end_of_pass_write_index: ts.end_of_pass_write_index,
+                }),
+            ),
+            None => (None, None),
+        };
+        {
+            fn attachment(
+                v: &wgpu::TextureView,
+                load: wgpu::LoadOp<wgpu::Color>,
+            ) -> Option<wgpu::RenderPassColorAttachment<'_>> {
+                Some(wgpu::RenderPassColorAttachment {
+                    view: v,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations { load, store: wgpu::StoreOp::Store },
+                })
+            }
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("ocean.water.visibility"),
+                color_attachments: &[
+                    attachment(&vis[0].view, wgpu::LoadOp::Load),
+                    attachment(&vis[1].view, wgpu::LoadOp::Load),
+                    attachment(&vis[2].view, wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT)),
+                ],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: depth,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Load,
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: raster_ts,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            let [mesh, grid, clipmap] = &compute.visibility;
+            self.draw(&mut pass, draw, [mesh, grid, clipmap], &group, &sky_group);
+        }
+        let vis_group = kept.bind_group(
+            "ocean.water.visibility",
+            &compute.layout,
+            &[
+                wgpu::BindingResource::TextureView(&vis[0].view),
+                wgpu::BindingResource::TextureView(&vis[1].view),
+                wgpu::BindingResource::TextureView(&vis[2].view),
+                wgpu::BindingResource::TextureView(hdr_view),
+            ],
         );
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("ocean.water.shade"),
+            timestamp_writes: shade_ts,
+        });
+        pass.set_pipeline(&compute.shade);
+        pass.set_bind_group(0, &group, &[]);
+        pass.set_bind_group(1, &sky_group, &[]);
+        pass.set_bind_group(2, &vis_group, &[]);
+        pass.dispatch_workgroups(
+            width.div_ceil(WORKGROUP_SIZE),
+            height.div_ceil(WORKGROUP_SIZE),
+            1,
+        );
+    }
+
+    /// The surface's draw on `pipelines` (mesh, grid, clipmap) with the stage's groups.
+    fn draw(
+        &self,
+        pass: &mut wgpu::RenderPass<'_>,
+        draw: &WaterDraw<'_>,
+        pipelines: [&wgpu::RenderPipeline; 3],
+        group: &wgpu::BindGroup,
+        sky_group: &wgpu::BindGroup,
+    ) {
+        let [mesh_pipeline, grid_pipeline, clipmap_pipeline] = pipelines;
         match draw {
             WaterDraw::Mesh(mesh) => {
-                pass.set_pipeline(&self.pipeline);
-                pass.set_bind_group(0, &group, &[]);
-                pass.set_bind_group(1, &sky_group, &[]);
+                pass.set_pipeline(mesh_pipeline);
+                pass.set_bind_group(0, group, &[]);
+                pass.set_bind_group(1, sky_group, &[]);
                 if mesh.index_count > 0 {
                     pass.set_vertex_buffer(0, mesh.vertices.slice(..));
                     pass.set_index_buffer(mesh.indices.slice(..), wgpu::IndexFormat::Uint32);
@@ -233,12 +441,12 @@ impl WaterStage {
             }
             WaterDraw::Grid(vertices) | WaterDraw::Clipmap(vertices) => {
                 pass.set_pipeline(if matches!(draw, WaterDraw::Grid(_)) {
-                    &self.grid_pipeline
+                    grid_pipeline
                 } else {
-                    &self.clipmap_pipeline
+                    clipmap_pipeline
                 });
-                pass.set_bind_group(0, &group, &[]);
-                pass.set_bind_group(1, &sky_group, &[]);
+                pass.set_bind_group(0, group, &[]);
+                pass.set_bind_group(1, sky_group, &[]);
                 pass.draw(0..*vertices, 0..1);
             }
         }
