@@ -63,9 +63,14 @@ fn vs_main(v: ObjectVertex) -> VertexOut {
     return out;
 }
 
+// The main view's colour at a fragment.
+fn shade_main(in: VertexOut) -> vec4<f32> {
+    return vec4<f32>(shade(in.normal, in.color, sun_reaches(in.rel, in.world_y)), 1.0);
+}
+
 @fragment
 fn fs_main(in: VertexOut) -> @location(0) vec4<f32> {
-    return vec4<f32>(shade(in.normal, in.color, sun_reaches(in.rel, in.world_y)), 1.0);
+    return shade_main(in);
 }
 
 @vertex
@@ -94,12 +99,21 @@ fn clip_height(rel: vec3<f32>) -> f32 {
     return textureSampleLevel(displacement, wrap_linear, uv, 0.0).y * frame.passes.waves;
 }
 
+// Only what is above the water is reflected.
+fn reflect_discards(in: VertexOut) -> bool {
+    return in.world_y < clip_height(in.rel);
+}
+
 @fragment
 fn fs_reflect(in: VertexOut) -> @location(0) vec4<f32> {
-    // Only what is above the water is reflected.
-    if (in.world_y < clip_height(in.rel)) {
+    if (reflect_discards(in)) {
         discard;
     }
+    return shade_reflect(in);
+}
+
+// The reflection map's colour at a fragment that is kept.
+fn shade_reflect(in: VertexOut) -> vec4<f32> {
     // The mirrored normal lit by the mirrored sun is the original normal lit by the sun.
     let n = vec3<f32>(in.normal.x, -in.normal.y, in.normal.z);
     return vec4<f32>(shade(n, in.color, 1.0), 1.0);
@@ -119,12 +133,21 @@ fn vs_refract(v: ObjectVertex) -> VertexOut {
     return out;
 }
 
+// Only what is under the water is seen through it.
+fn refract_discards(in: VertexOut) -> bool {
+    return in.world_y > clip_height(in.rel);
+}
+
 @fragment
 fn fs_refract(in: VertexOut) -> @location(0) vec4<f32> {
-    // Only what is under the water is seen through it.
-    if (in.world_y > clip_height(in.rel)) {
+    if (refract_discards(in)) {
         discard;
     }
+    return shade_refract(in);
+}
+
+// The refraction map's colour at a fragment that is kept.
+fn shade_refract(in: VertexOut) -> vec4<f32> {
     // Eq. 4: C = α(d)·C_deep + (1 − α(d))·C_obj, α = 1 − e^{−K d}, d the path length in the
     // water from the (apparent) point towards the eye: the part of the segment below y = 0.
     // A point between the plane and the wave above it (shading `chiu`'s clipping) is at the
@@ -143,4 +166,103 @@ fn fs_refract(in: VertexOut) -> @location(0) vec4<f32> {
     // The water's colour at the object's depth: `hu`'s constant, or eq. 8 (shading `chiu`,
     // whose eq. 7 is this same blend with atten = K).
     return vec4<f32>(water_volume_colour(-in.world_y) * fog + obj * (1.0 - fog), 1.0);
+}
+
+// The compute path (ocean-gpu's shading_path): the raster pass writes the visibility buffer,
+// the last passing fragment's interpolated inputs (each f32 exactly) and a coverage flag
+// (c.w: 1, 0 where nothing was drawn); a compute pass shades it at the pixel centre. The
+// discards stay in the raster pass, so the depth each pass leaves is the fragment path's.
+struct VisibilityOut {
+    @location(0) a: vec4<f32>,
+    @location(1) b: vec4<f32>,
+    @location(2) c: vec4<f32>,
+}
+
+fn visibility(in: VertexOut) -> VisibilityOut {
+    return VisibilityOut(
+        vec4<f32>(in.normal, in.world_y),
+        vec4<f32>(in.color, 0.0),
+        vec4<f32>(in.rel, 1.0),
+    );
+}
+
+@fragment
+fn fs_visibility_main(in: VertexOut) -> VisibilityOut {
+    return visibility(in);
+}
+
+@fragment
+fn fs_visibility_reflect(in: VertexOut) -> VisibilityOut {
+    if (reflect_discards(in)) {
+        discard;
+    }
+    return visibility(in);
+}
+
+@fragment
+fn fs_visibility_refract(in: VertexOut) -> VisibilityOut {
+    if (refract_discards(in)) {
+        discard;
+    }
+    return visibility(in);
+}
+
+@group(1) @binding(0) var vis_a: texture_2d<f32>;
+@group(1) @binding(1) var vis_b: texture_2d<f32>;
+@group(1) @binding(2) var vis_c: texture_2d<f32>;
+// The pass's colour target: the HDR frame, the reflection or the refraction map. ocean-gpu
+// makes the rgba16float variant by replacing this one declaration.
+@group(1) @binding(3) var target_frame: texture_storage_2d<rgba32float, write>;
+
+// The fragment a covered pixel's visibility buffer holds (None: `covered` false).
+struct Visible {
+    covered: bool,
+    in: VertexOut,
+}
+
+fn visible(id: vec3<u32>) -> Visible {
+    var v: Visible;
+    v.covered = false;
+    let size = textureDimensions(target_frame);
+    if (id.x >= size.x || id.y >= size.y) {
+        return v;
+    }
+    let p = vec2<i32>(id.xy);
+    let c = textureLoad(vis_c, p, 0);
+    if (c.w == 0.0) {
+        return v;
+    }
+    let a = textureLoad(vis_a, p, 0);
+    let b = textureLoad(vis_b, p, 0);
+    v.covered = true;
+    v.in.clip = vec4<f32>(vec2<f32>(id.xy) + vec2<f32>(0.5), 0.0, 1.0);
+    v.in.normal = a.xyz;
+    v.in.world_y = a.w;
+    v.in.color = b.xyz;
+    v.in.rel = c.xyz;
+    return v;
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn cs_shade_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    let v = visible(id);
+    if (v.covered) {
+        textureStore(target_frame, vec2<i32>(id.xy), shade_main(v.in));
+    }
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn cs_shade_reflect(@builtin(global_invocation_id) id: vec3<u32>) {
+    let v = visible(id);
+    if (v.covered) {
+        textureStore(target_frame, vec2<i32>(id.xy), shade_reflect(v.in));
+    }
+}
+
+@compute @workgroup_size(8, 8, 1)
+fn cs_shade_refract(@builtin(global_invocation_id) id: vec3<u32>) {
+    let v = visible(id);
+    if (v.covered) {
+        textureStore(target_frame, vec2<i32>(id.xy), shade_refract(v.in));
+    }
 }

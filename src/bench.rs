@@ -117,9 +117,9 @@ pub struct Bench {
     pub adapter_info: Option<AdapterInfo>,
     /// The GPU's measured copy bandwidth (a 64 MiB buffer copy, bytes read + written), GB/s.
     pub gpu_copy_gb_s: Option<f64>,
-    /// How the GPU shaded the water: `compute` (a visibility buffer shaded in a compute pass)
-    /// or `fragment` (`ocean_gpu::water::WaterPath`).
-    pub water_path: Option<&'static str>,
+    /// How the GPU shaded the water and the objects: `compute` (a visibility buffer shaded
+    /// in a compute pass) or `fragment` (`ocean_gpu::ShadingPath`).
+    pub shading_path: Option<&'static str>,
     /// Every case.
     pub cases: Vec<Case>,
     /// How each system's frame time scales with its pixels, and the synthesis with
@@ -538,10 +538,7 @@ pub fn measure(
         adapter: renderer.as_ref().map(|r| r.adapter().to_string()),
         adapter_info: renderer.as_ref().map(|r| AdapterInfo::of(r.adapter())),
         gpu_copy_gb_s: bandwidth,
-        water_path: renderer.as_ref().map(|r| match r.water_path() {
-            ocean_gpu::water::WaterPath::Compute => "compute",
-            ocean_gpu::water::WaterPath::Fragment => "fragment",
-        }),
+        shading_path: renderer.as_ref().map(|r| r.shading_path().name()),
         fits: fits(&cases),
         cases,
         total_s: start.elapsed().as_secs_f64(),
@@ -563,8 +560,8 @@ pub fn table(b: &Bench) -> String {
     );
     if let Some(bw) = b.gpu_copy_gb_s {
         let _ = writeln!(out, "GPU buffer copy: {bw:.1} GB/s (read + written)");
-        if let Some(p) = b.water_path {
-            let _ = writeln!(out, "water shaded in a {p} pass");
+        if let Some(p) = b.shading_path {
+            let _ = writeln!(out, "water and objects shaded in {p} passes");
         }
     }
     let _ = writeln!(

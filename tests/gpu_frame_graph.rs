@@ -262,16 +262,17 @@ fn differing(a: &[(String, Vec<u32>)], b: &[(String, Vec<u32>)]) -> Vec<(String,
         .collect()
 }
 
-/// The water shaded in compute from the visibility buffer (issue 37) stores the same bits as
-/// the fragment shader that shades each fragment where it is rasterised: every map and the
+/// The water and the objects (main view, reflection and refraction maps) shaded in compute
+/// from the visibility buffer (issue 37) store the same bits as the fragment shaders that
+/// shade each fragment where it is rasterised: every map and the
 /// picture of every reference scene at 96×54 (all four systems, every surface, 16-bit frames,
 /// the camera under the water). On lavapipe the renderer picks the compute path by itself.
 /// Negative control: the same comparison between the scene and the scene 1 ms later finds
 /// the HDR frame changed.
-fn the_water_paths_store_the_same_bits() {
-    use ocean_gpu::water::WaterPath;
+fn the_shading_paths_store_the_same_bits() {
+    use ocean_gpu::ShadingPath;
     let mut r = renderer();
-    assert_eq!(r.water_path(), WaterPath::Compute, "lavapipe holds the visibility buffer");
+    assert_eq!(r.shading_path(), ShadingPath::Compute, "lavapipe holds the visibility buffer");
     let mut scenes: Vec<PathBuf> = std::fs::read_dir(root().join("reference/scenes"))
         .unwrap()
         .flatten()
@@ -285,12 +286,12 @@ fn the_water_paths_store_the_same_bits() {
         let name = path.file_stem().unwrap().to_string_lossy().into_owned();
         let mut scene = Scene::load(path).unwrap_or_else(|e| panic!("{name}: {e}"));
         (scene.camera.width, scene.camera.height) = (96, 54);
-        r.set_water_path(WaterPath::Compute).unwrap();
+        r.set_shading_path(ShadingPath::Compute).unwrap();
         let compute = frame_bits(&mut r, &scene);
-        r.set_water_path(WaterPath::Fragment).unwrap();
+        r.set_shading_path(ShadingPath::Fragment).unwrap();
         let fragment = frame_bits(&mut r, &scene);
         let d = differing(&compute, &fragment);
-        assert!(d.is_empty(), "{name}: compute and fragment water differ: {d:?}");
+        assert!(d.is_empty(), "{name}: the compute and fragment paths differ: {d:?}");
         eprintln!(
             "{name}: {} maps and the picture, the same bits on both paths",
             compute.len() - 1
@@ -298,7 +299,7 @@ fn the_water_paths_store_the_same_bits() {
         if name == "default" {
             let mut later = scene.clone();
             later.ocean.time_s += 0.001;
-            r.set_water_path(WaterPath::Compute).unwrap();
+            r.set_shading_path(ShadingPath::Compute).unwrap();
             control = Some(differing(&compute, &frame_bits(&mut r, &later)));
         }
     }
@@ -318,6 +319,6 @@ fn main() -> std::process::ExitCode {
             the_gpu_plays_the_cycle_the_plan_precomputes,
             object_geometry_cut_into_small_buffers_draws_the_same_picture,
             extreme_scenes_render_finite_pixels_on_the_gpu,
-            the_water_paths_store_the_same_bits;
+            the_shading_paths_store_the_same_bits;
     )
 }

@@ -333,6 +333,14 @@ pub const STAGES: &[StageEntry] = &[
             ("fs_reflect", Fragment),
             ("vs_refract", Vertex),
             ("fs_refract", Fragment),
+            // The compute path: the raster passes write the visibility buffer, compute passes
+            // shade it.
+            ("fs_visibility_main", Fragment),
+            ("fs_visibility_reflect", Fragment),
+            ("fs_visibility_refract", Fragment),
+            ("cs_shade_main", Compute),
+            ("cs_shade_reflect", Compute),
+            ("cs_shade_refract", Compute),
         ],
         bindings: &[
             b(0, 0, "frame"),
@@ -341,6 +349,10 @@ pub const STAGES: &[StageEntry] = &[
             b(0, 3, "shadow_map"),
             b(0, 4, "floor_map"),
             b(0, 5, "clamp_linear"),
+            b(1, 0, "vis_a"),
+            b(1, 1, "vis_b"),
+            b(1, 2, "vis_c"),
+            b(1, 3, "target_frame"),
         ],
         // ObjectVertex is a vertex-buffer layout (tightly packed), not a WGSL memory layout:
         // ocean-gpu's OBJECT_VERTEX_LAYOUT describes it.

@@ -11,7 +11,7 @@
 //! | reflection_map, refraction_map | the plan's sizes, the frame format (0) | 0, `Greater` |
 //! | sky (or, camera under water, a clear to the plan's colour) | HDR viewport, the frame format, compute | 0 (a depth-only clear) |
 //! | objects | HDR (kept) | kept, `Greater` |
-//! | water | [`WaterPath::Compute`]: the visibility buffer (3 × `Rgba32Float`, coverage 0), then HDR (kept), compute; [`WaterPath::Fragment`]: HDR (kept) | kept, `Greater` |
+//! | water | [`ShadingPath::Compute`]: the visibility buffer (3 × `Rgba32Float`, coverage 0), then HDR (kept), compute; [`ShadingPath::Fragment`]: HDR (kept) | kept, `Greater` |
 //! | tonemap | viewport `Rgba8Unorm`, compute | — |
 //!
 //! The frame format is the plan's `frame_format` (`ocean_core::frame_format`): `Rgba32Float`,
@@ -43,6 +43,7 @@ use crate::objects::{
 };
 use crate::pool::FramePool;
 use crate::readback::{FloatMap, Readbacks, TexelData};
+use crate::shading_path::ShadingPath;
 use crate::shadow::ShadowStage;
 use crate::sky::SkyStage;
 use crate::spray::{GpuSpray, SprayStage};
@@ -52,7 +53,7 @@ use crate::texture::{
 };
 use crate::timing::{PassTimer, PendingTimings, TimerPool};
 use crate::tonemap::TonemapStage;
-use crate::water::{WaterDraw, WaterMeshBuffers, WaterPath, WaterStage, WaterTextures};
+use crate::water::{WaterDraw, WaterMeshBuffers, WaterStage, WaterTextures};
 use crate::wave_maps::{WaveMapSource, WaveSynthesis, make_source_from};
 use crate::wave_mips::{GpuMipChain, WaveMipsStage};
 use ocean_core::far_field::mip_level_count;
@@ -172,8 +173,8 @@ pub struct Renderer {
     water_mesh: KeptWaterMesh,
     /// The far field's Fresnel filter table as uploaded, and the table it was made from.
     filter: Option<(Arc<ocean_core::far_field::FresnelFilterTable>, GpuTexture)>,
-    /// How the water is shaded.
-    water_path: WaterPath,
+    /// How the water and the objects are shaded.
+    shading_path: ShadingPath,
 }
 
 /// Each Fresnel table's texture and the uniforms it was computed from.
@@ -247,17 +248,18 @@ impl GpuBackend<'_> {
         t
     }
 
-    /// A render target of the plan's size and format for `id`; the HDR frame and the 8-bit
-    /// picture, which the sky's and the tonemap's compute passes store into, storage textures
-    /// as well.
+    /// A render target of the plan's size and format for `id`; the ones compute passes store
+    /// into (the HDR frame: sky, water and objects; the 8-bit picture: tonemap; the reflection
+    /// and refraction maps: objects), storage textures as well.
     fn target(&self, plan: &FramePlan, id: ResourceId) -> GpuTexture {
         let (size, format) =
             plan.resource(id).map_or(([1, 1], MAP_FORMAT), |r| (r.size, wgpu_format(r.format)));
         let label = format!("ocean.{}", id.name());
         let usage = match id {
-            ResourceId::Ldr | ResourceId::Hdr => {
-                target_usage() | wgpu::TextureUsages::STORAGE_BINDING
-            }
+            ResourceId::Ldr
+            | ResourceId::Hdr
+            | ResourceId::ReflectionMap
+            | ResourceId::RefractionMap => target_usage() | wgpu::TextureUsages::STORAGE_BINDING,
             _ => target_usage(),
         };
         self.kept.texture(&label, size[0], size[1], format, usage).0
@@ -500,11 +502,12 @@ impl GpuBackend<'_> {
                 let group = self.objects_group();
                 let slot = self.timer.slot(pass.name);
                 self.stages.objects.encode(
+                    self.kept,
                     self.encoder,
                     entry,
                     &group,
                     &vertices,
-                    &target.view,
+                    (&target.view, [target.width, target.height]),
                     &depth.view,
                     (Load::Clear([0.0; 4]), Load::Clear(0.0)),
                     self.timer.render_writes(slot),
@@ -516,11 +519,12 @@ impl GpuBackend<'_> {
                 let group = self.objects_group();
                 let slot = self.timer.slot(Pass::Objects);
                 self.stages.objects.encode(
+                    self.kept,
                     self.encoder,
                     ObjectsEntry::Main,
                     &group,
                     &vertices,
-                    &hdr.view,
+                    (&hdr.view, [hdr.width, hdr.height]),
                     &depth.view,
                     (Load::Keep, Load::Keep),
                     self.timer.render_writes(slot),
@@ -838,15 +842,15 @@ impl Renderer {
         let built = crate::common::pipeline_techniques();
         let built_format = ocean_core::frame_format::FrameFormat::default();
         let target = crate::texture::frame_format(built_format);
-        let water_path = WaterPath::for_device(d);
+        let shading_path = ShadingPath::for_device(d);
         let stages = gpu.scoped("creating the pipelines", || -> Result<_, Error> {
             Ok(Stages {
                 wave_mips: WaveMipsStage::new(d)?,
                 fresnel_table: FresnelTableStage::new(d)?,
                 sky: SkyStage::new(d, &built, target)?,
-                objects: ObjectsStage::new(d, target)?,
+                objects: ObjectsStage::new(d, target, shading_path)?,
                 shadow: ShadowStage::new(d)?,
-                water: WaterStage::new(d, &built, target, water_path)?,
+                water: WaterStage::new(d, &built, target, shading_path)?,
                 spray: SprayStage::new(d, target)?,
                 foam: FoamStage::new(d)?,
                 bloom: BloomStage::new(d, built_format)?,
@@ -872,29 +876,33 @@ impl Renderer {
             object_vertices: KeptObjects::default(),
             water_mesh: None,
             filter: None,
-            water_path,
+            shading_path,
         })
     }
 
-    /// How the water is shaded ([`WaterPath::for_device`] unless set).
-    pub fn water_path(&self) -> WaterPath {
-        self.water_path
+    /// How the water and the objects are shaded ([`ShadingPath::for_device`] unless set).
+    pub fn shading_path(&self) -> ShadingPath {
+        self.shading_path
     }
 
-    /// Shades the water on `path` from the next frame on (the same bits either way; a test
-    /// compares them). [`WaterPath::Compute`] on a device without room for the visibility
+    /// Shades the water and the objects on `path` from the next frame on (the same bits either way; a test
+    /// compares them). [`ShadingPath::Compute`] on a device without room for the visibility
     /// buffer fails when the pipelines are made.
     ///
     /// # Errors
     /// [`Error::Wgpu`] if a pipeline does not validate; [`Error::Core`] if the WGSL cannot be
     /// assembled.
-    pub fn set_water_path(&mut self, path: WaterPath) -> Result<(), Error> {
+    pub fn set_shading_path(&mut self, path: ShadingPath) -> Result<(), Error> {
         let d = &self.gpu.device;
         let (t, target) = (self.built, crate::texture::frame_format(self.built_format));
-        self.stages.water = self.gpu.scoped("assembling the water's pipelines", || {
-            WaterStage::new(d, &t, target, path)
+        let (water, objects) = self.gpu.scoped("assembling the shading pipelines", || {
+            Ok::<_, Error>((
+                WaterStage::new(d, &t, target, path)?,
+                ObjectsStage::new(d, target, path)?,
+            ))
         })??;
-        self.water_path = path;
+        (self.stages.water, self.stages.objects) = (water, objects);
+        self.shading_path = path;
         Ok(())
     }
 
@@ -1162,7 +1170,7 @@ impl Renderer {
             let (sky, water) = self.gpu.scoped("assembling the pipelines", || {
                 Ok::<_, Error>((
                     SkyStage::new(d, &t, target)?,
-                    WaterStage::new(d, &t, target, self.water_path)?,
+                    WaterStage::new(d, &t, target, self.shading_path)?,
                 ))
             })??;
             self.stages.sky = sky;
@@ -1175,7 +1183,7 @@ impl Renderer {
             let (objects, spray, bloom) =
                 self.gpu.scoped("making the pipelines for the frame format", || {
                     Ok::<_, Error>((
-                        ObjectsStage::new(d, target)?,
+                        ObjectsStage::new(d, target, self.shading_path)?,
                         SprayStage::new(d, target)?,
                         BloomStage::new(d, format)?,
                     ))

@@ -42,6 +42,7 @@ pub mod objects;
 pub mod pool;
 pub mod present;
 pub mod readback;
+pub mod shading_path;
 pub mod shadow;
 pub mod sky;
 pub mod spray;
@@ -59,4 +60,5 @@ pub use frame::{FrameMap, GpuFrame, Readback, Renderer};
 /// The glam the embedding API's [`embed::CameraView`] takes its matrices in.
 pub use glam;
 pub use readback::FloatMap;
+pub use shading_path::ShadingPath;
 pub use wave_maps::{WaveMapSource, WaveSynthesis};

@@ -6,16 +6,26 @@
 //! 5 = `clamp_linear` (the sun under the water, shared/floor.wgsl). Vertices: ocean-core's `ObjectVertex` (36 bytes), drawn as a
 //! triangle list in the order `object_triangles` gives. State: reversed-Z `Greater` with depth
 //! writes, no blending, no culling (the CPU's `eye_state`).
+//!
+//! Two paths ([`ShadingPath`], the same bits): each pass's raster pass writes the visibility
+//! buffer (`fs_visibility_*`, the discards of the maps kept there) and a compute pass shades it
+//! into the pass's target (`cs_shade_*`; group 1: the buffer's three textures and the target
+//! as storage), or each fragment is shaded where it is rasterised (`fs_*`).
 //! CPU mirror: `ocean-cpu/src/shaders/objects.rs`.
 
 use crate::created::Counted;
 use ocean_core::frame::{ObjectVertex, ObjectsKey};
 
 use crate::common::{
-    Load, begin_render_pass, entry, eye_depth, label, linear_sampler, pipeline_layout, primitive,
-    replace_target, sampler_entry, shader_module, texture_entry, uniform_entry,
+    Load, begin_render_pass, entry, eye_depth, frame_storage_module, label, linear_sampler,
+    pipeline_layout, primitive, replace_target, sampler_entry, storage_entry_of, texture_entry,
+    uniform_entry,
 };
 use crate::device::Error;
+use crate::shading_path::{
+    ShadingPath, WORKGROUP_SIZE, begin_visibility_pass, split_timestamps, visibility_color_targets,
+    visibility_targets,
+};
 
 /// Which pair of entry points.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -29,13 +39,33 @@ pub enum ObjectsEntry {
 }
 
 impl ObjectsEntry {
-    fn entry_points(self) -> (&'static str, &'static str) {
+    /// The vertex, fragment, visibility-buffer fragment and compute shading entry points.
+    fn entry_points(self) -> [&'static str; 4] {
         match self {
-            Self::Main => ("vs_main", "fs_main"),
-            Self::Reflect => ("vs_reflect", "fs_reflect"),
-            Self::Refract => ("vs_refract", "fs_refract"),
+            Self::Main => ["vs_main", "fs_main", "fs_visibility_main", "cs_shade_main"],
+            Self::Reflect => {
+                ["vs_reflect", "fs_reflect", "fs_visibility_reflect", "cs_shade_reflect"]
+            }
+            Self::Refract => {
+                ["vs_refract", "fs_refract", "fs_visibility_refract", "cs_shade_refract"]
+            }
         }
     }
+
+    fn index(self) -> usize {
+        match self {
+            Self::Main => 0,
+            Self::Reflect => 1,
+            Self::Refract => 2,
+        }
+    }
+}
+
+/// One entry pair's pipelines: the fragment path's, or the compute path's raster pass into
+/// the visibility buffer and its shading.
+enum EntryPipelines {
+    Fragment(wgpu::RenderPipeline),
+    Compute { visibility: wgpu::RenderPipeline, shade: wgpu::ComputePipeline },
 }
 
 /// The vertex buffer layout of `ObjectVertex`: position, normal, colour (Float32x3 each).
@@ -45,36 +75,54 @@ pub const OBJECT_VERTEX_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::Vertex
     attributes: &wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x3],
 };
 
-/// The stage's three pipelines.
+/// The stage's pipelines, one set per entry pair.
 pub struct ObjectsStage {
-    main: wgpu::RenderPipeline,
-    reflect: wgpu::RenderPipeline,
-    refract: wgpu::RenderPipeline,
+    pipelines: [EntryPipelines; 3],
     /// Group 0: the frame's uniforms, the displacement map and its sampler, the shadow map,
     /// the floor's relief and its sampler.
     pub frame_layout: wgpu::BindGroupLayout,
+    /// Group 1 of the compute path: the visibility buffer and the target as storage.
+    vis_layout: wgpu::BindGroupLayout,
     wrap_linear: wgpu::Sampler,
     clamp_linear: wgpu::Sampler,
 }
 
 impl ObjectsStage {
-    /// Creates the pipelines `"ocean.objects"` (one per entry pair), drawing into colour
-    /// buffers of `target` format (the frame's: its HDR frame, reflection and refraction maps).
+    /// Creates the pipelines `"ocean.objects"` (one set per entry pair), drawing into colour
+    /// buffers of `target` format (the frame's: its HDR frame, reflection and refraction maps),
+    /// on `path`.
     ///
     /// # Errors
     /// [`Error::Core`] if the WGSL cannot be assembled.
-    pub fn new(device: &wgpu::Device, target: wgpu::TextureFormat) -> Result<Self, Error> {
+    pub fn new(
+        device: &wgpu::Device,
+        target: wgpu::TextureFormat,
+        path: ShadingPath,
+    ) -> Result<Self, Error> {
         let name = label("objects");
-        let module = shader_module(device, "objects")?;
+        let module =
+            frame_storage_module(device, "objects", &crate::common::pipeline_techniques(), target)?;
+        let vf = wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE;
+        let fragment = wgpu::ShaderStages::FRAGMENT | wgpu::ShaderStages::COMPUTE;
         let frame_layout = device.new_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some(&name),
             entries: &[
-                uniform_entry(0, wgpu::ShaderStages::VERTEX_FRAGMENT),
-                texture_entry(1, wgpu::ShaderStages::FRAGMENT, true),
-                sampler_entry(2, wgpu::ShaderStages::FRAGMENT),
-                texture_entry(3, wgpu::ShaderStages::FRAGMENT, false),
-                texture_entry(4, wgpu::ShaderStages::FRAGMENT, true),
-                sampler_entry(5, wgpu::ShaderStages::FRAGMENT),
+                uniform_entry(0, vf),
+                texture_entry(1, fragment, true),
+                sampler_entry(2, fragment),
+                texture_entry(3, fragment, false),
+                texture_entry(4, fragment, true),
+                sampler_entry(5, fragment),
+            ],
+        });
+        let compute = wgpu::ShaderStages::COMPUTE;
+        let vis_layout = device.new_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("ocean.objects.visibility"),
+            entries: &[
+                texture_entry(0, compute, false),
+                texture_entry(1, compute, false),
+                texture_entry(2, compute, false),
+                storage_entry_of(3, target),
             ],
         });
         // The CPU mirror's WRAP_LINEAR and CLAMP_LINEAR (the water's samplers).
@@ -83,10 +131,12 @@ impl ObjectsStage {
         let clamp_linear =
             linear_sampler(device, "ocean.objects.clamp_linear", wgpu::AddressMode::ClampToEdge);
         let layout = pipeline_layout(device, &name, &[&frame_layout]);
-        let pipeline = |which: ObjectsEntry| -> Result<wgpu::RenderPipeline, Error> {
-            let (vs, fs) = which.entry_points();
+        let shade_layout = pipeline_layout(device, &name, &[&frame_layout, &vis_layout]);
+        let shaded = replace_target(target);
+        let visibility_targets = visibility_color_targets();
+        let raster = |vs: &str, fs: &str, targets: &[Option<wgpu::ColorTargetState>]| {
             let (vs, fs) = (entry("objects", vs)?, entry("objects", fs)?);
-            Ok(device.new_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            Ok::<_, Error>(device.new_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some(&name),
                 layout: Some(&layout),
                 vertex: wgpu::VertexState {
@@ -102,17 +152,37 @@ impl ObjectsStage {
                     module: &module,
                     entry_point: Some(fs),
                     compilation_options: Default::default(),
-                    targets: &replace_target(target),
+                    targets,
                 }),
                 multiview_mask: None,
                 cache: None,
             }))
         };
+        let pipelines = |which: ObjectsEntry| -> Result<EntryPipelines, Error> {
+            let [vs, fs, fs_vis, cs] = which.entry_points();
+            Ok(match path {
+                ShadingPath::Fragment => EntryPipelines::Fragment(raster(vs, fs, &shaded)?),
+                ShadingPath::Compute => EntryPipelines::Compute {
+                    visibility: raster(vs, fs_vis, &visibility_targets)?,
+                    shade: device.new_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                        label: Some(&name),
+                        layout: Some(&shade_layout),
+                        module: &module,
+                        entry_point: Some(entry("objects", cs)?),
+                        compilation_options: Default::default(),
+                        cache: None,
+                    }),
+                },
+            })
+        };
         Ok(Self {
-            main: pipeline(ObjectsEntry::Main)?,
-            reflect: pipeline(ObjectsEntry::Reflect)?,
-            refract: pipeline(ObjectsEntry::Refract)?,
+            pipelines: [
+                pipelines(ObjectsEntry::Main)?,
+                pipelines(ObjectsEntry::Reflect)?,
+                pipelines(ObjectsEntry::Refract)?,
+            ],
             frame_layout,
+            vis_layout,
             wrap_linear,
             clamp_linear,
         })
@@ -144,32 +214,90 @@ impl ObjectsStage {
     }
 
     /// Records one pass drawing every chunk of `vertices` with `entry` into
-    /// `target`/`depth`. The reflection and refraction maps start cleared (colour 0, depth 0);
-    /// the main view draws over the sky (`Load::Keep`).
+    /// `target`/`depth` (`size`: the target's). The reflection and refraction maps start
+    /// cleared (colour 0, depth 0); the main view draws over the sky (`Load::Keep`). On the
+    /// compute path: the target's clear (where asked), the raster pass into the visibility
+    /// buffer (kept in `kept`) and the shading into `target`, timed as one span.
     #[expect(clippy::too_many_arguments, reason = "one argument per binding and attachment")]
     pub fn encode(
         &self,
+        kept: &crate::pool::FramePool,
         encoder: &mut wgpu::CommandEncoder,
         entry: ObjectsEntry,
         frame: &wgpu::BindGroup,
         vertices: &[VertexChunk],
-        target: &wgpu::TextureView,
+        (target, size): (&wgpu::TextureView, [u32; 2]),
         depth: &wgpu::TextureView,
         load: (Load<[f32; 4]>, Load<f32>),
         timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
     ) {
         let name = label("objects");
-        let mut pass =
-            begin_render_pass(encoder, &name, target, load.0, Some((depth, load.1)), timestamps);
-        pass.set_pipeline(match entry {
-            ObjectsEntry::Main => &self.main,
-            ObjectsEntry::Reflect => &self.reflect,
-            ObjectsEntry::Refract => &self.refract,
-        });
-        pass.set_bind_group(0, frame, &[]);
-        for chunk in vertices {
-            pass.set_vertex_buffer(0, chunk.buffer.slice(..));
-            pass.draw(0..chunk.count, 0..1);
+        let draw = |pass: &mut wgpu::RenderPass<'_>, pipeline: &wgpu::RenderPipeline| {
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, frame, &[]);
+            for chunk in vertices {
+                pass.set_vertex_buffer(0, chunk.buffer.slice(..));
+                pass.draw(0..chunk.count, 0..1);
+            }
+        };
+        match &self.pipelines[entry.index()] {
+            EntryPipelines::Fragment(pipeline) => {
+                let mut pass = begin_render_pass(
+                    encoder,
+                    &name,
+                    target,
+                    load.0,
+                    Some((depth, load.1)),
+                    timestamps,
+                );
+                draw(&mut pass, pipeline);
+            }
+            EntryPipelines::Compute { visibility, shade } => {
+                let (raster_ts, shade_ts) = split_timestamps(timestamps);
+                if let Load::Clear(_) = load.0 {
+                    drop(begin_render_pass(
+                        encoder,
+                        "ocean.objects.clear",
+                        target,
+                        load.0,
+                        None,
+                        None,
+                    ));
+                }
+                let vis = visibility_targets(kept, &name, size);
+                {
+                    let mut pass = begin_visibility_pass(
+                        encoder,
+                        "ocean.objects.visibility",
+                        &vis,
+                        (depth, load.1),
+                        raster_ts,
+                    );
+                    draw(&mut pass, visibility);
+                }
+                let vis_group = kept.bind_group(
+                    "ocean.objects.visibility",
+                    &self.vis_layout,
+                    &[
+                        wgpu::BindingResource::TextureView(&vis[0].view),
+                        wgpu::BindingResource::TextureView(&vis[1].view),
+                        wgpu::BindingResource::TextureView(&vis[2].view),
+                        wgpu::BindingResource::TextureView(target),
+                    ],
+                );
+                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some("ocean.objects.shade"),
+                    timestamp_writes: shade_ts,
+                });
+                pass.set_pipeline(shade);
+                pass.set_bind_group(0, frame, &[]);
+                pass.set_bind_group(1, &vis_group, &[]);
+                pass.dispatch_workgroups(
+                    size[0].div_ceil(WORKGROUP_SIZE),
+                    size[1].div_ceil(WORKGROUP_SIZE),
+                    1,
+                );
+            }
         }
     }
 }

@@ -11,12 +11,9 @@
 //! `geometry::WaterVertex` (12 bytes), u32 indices. State: reversed-Z `Greater` with depth
 //! writes, no blending, no culling (the surface is seen from below under water).
 //!
-//! Two paths ([`WaterPath`]), the same bits: where the device's colour attachments can hold
-//! it, the raster pass writes a visibility buffer (`fs_visibility`: each pixel's last passing
-//! fragment's interpolated inputs, three `rgba32float` targets, group 2's textures) and a
-//! compute pass shades it (`cs_shade`, storing into the HDR frame); otherwise each fragment
-//! is shaded where it is rasterised (`fs_main`). The CPU mirror shades the last passing
-//! fragment of each pixel once, which is what both paths compute.
+//! Two paths ([`ShadingPath`], the same bits): the raster pass writes the visibility buffer
+//! (`fs_visibility`, group 2's textures) and a compute pass shades it (`cs_shade`, storing
+//! into the HDR frame), or each fragment is shaded where it is rasterised (`fs_main`).
 //! CPU mirror: `ocean-cpu/src/shaders/water.rs` (samplers `WRAP_LINEAR`, `CLAMP_LINEAR`).
 
 use crate::created::Counted;
@@ -28,6 +25,10 @@ use crate::common::{
     uniform_entry,
 };
 use crate::device::Error;
+use crate::shading_path::{
+    ShadingPath, WORKGROUP_SIZE, begin_visibility_pass, split_timestamps, visibility_color_targets,
+    visibility_targets,
+};
 
 /// The vertex buffer layout of `WaterVertex`: pos (Float32x2), weight (Float32).
 pub const WATER_VERTEX_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
@@ -83,41 +84,6 @@ pub struct WaterMeshBuffers<'a> {
 }
 
 /// The stage's pipeline, layouts and samplers.
-/// How the water is shaded: the same bits either way.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum WaterPath {
-    /// The raster pass writes a visibility buffer, a compute pass shades it (a full-screen
-    /// pass in compute: on GPUs whose fragment work runs on a few units, the whole chip).
-    Compute,
-    /// Each fragment shaded where it is rasterised.
-    Fragment,
-}
-
-/// The visibility buffer's bytes per pixel: three `rgba32float` colour attachments.
-const VISIBILITY_BYTES: u32 = 48;
-
-/// The visibility buffer's format (each f32 input held exactly).
-const VISIBILITY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
-
-/// `@workgroup_size(8, 8, 1)` of `cs_shade`.
-const WORKGROUP_SIZE: u32 = 8;
-
-impl WaterPath {
-    /// [`WaterPath::Compute`] where the device's colour attachments hold the visibility
-    /// buffer (WebGPU's default limit, 32 bytes a sample, does not; Vulkan devices report
-    /// 128), else [`WaterPath::Fragment`].
-    pub fn for_device(device: &wgpu::Device) -> Self {
-        let l = device.limits();
-        if l.max_color_attachments >= 3
-            && l.max_color_attachment_bytes_per_sample >= VISIBILITY_BYTES
-        {
-            Self::Compute
-        } else {
-            Self::Fragment
-        }
-    }
-}
-
 /// The compute path's pipelines.
 struct ComputeShading {
     /// Surfaces' raster pipelines writing the visibility buffer: mesh, grid, clipmap.
@@ -150,7 +116,7 @@ impl WaterStage {
         device: &wgpu::Device,
         techniques: &ocean_core::plan::Techniques,
         target: wgpu::TextureFormat,
-        path: WaterPath,
+        path: ShadingPath,
     ) -> Result<Self, Error> {
         let name = label("water");
         let module = frame_storage_module(device, "water", techniques, target)?;
@@ -181,13 +147,7 @@ impl WaterStage {
             entries: &[uniform_entry(0, fragment), uniform_entry(1, fragment)],
         });
         let raster_layout = pipeline_layout(device, &name, &[&layout, &sky_layout]);
-        let visibility_targets: [Option<wgpu::ColorTargetState>; 3] = std::array::from_fn(|_| {
-            Some(wgpu::ColorTargetState {
-                format: VISIBILITY_FORMAT,
-                blend: None,
-                write_mask: wgpu::ColorWrites::ALL,
-            })
-        });
+        let visibility_targets = visibility_color_targets();
         let make = |vs: &str,
                     buffers: &[Option<wgpu::VertexBufferLayout<'_>>],
                     fs: &str,
@@ -219,8 +179,8 @@ impl WaterStage {
         let grid_pipeline = make("vs_projected_grid", &[], "fs_main", &shaded)?;
         let clipmap_pipeline = make("vs_clipmap", &[], "fs_main", &shaded)?;
         let compute = match path {
-            WaterPath::Fragment => None,
-            WaterPath::Compute => {
+            ShadingPath::Fragment => None,
+            ShadingPath::Compute => {
                 let vis = |vs: &str, buffers: &[Option<wgpu::VertexBufferLayout<'_>>]| {
                     make(vs, buffers, "fs_visibility", &visibility_targets)
                 };
@@ -273,8 +233,8 @@ impl WaterStage {
     }
 
     /// The path the stage was made for.
-    pub fn path(&self) -> WaterPath {
-        if self.compute.is_some() { WaterPath::Compute } else { WaterPath::Fragment }
+    pub fn path(&self) -> ShadingPath {
+        if self.compute.is_some() { ShadingPath::Compute } else { ShadingPath::Fragment }
     }
 
     /// Records the pass over what the sky and objects drew (`Load::Keep` on colour and depth):
@@ -340,56 +300,16 @@ impl WaterStage {
             );
             return;
         };
-        // The visibility buffer, kept from frame to frame; only the coverage target is
-        // cleared (the others are read where it says a fragment was written).
-        let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING;
-        let vis =
-            ["ocean.water.vis_rel_weight", "ocean.water.vis_uvs", "ocean.water.vis_pos_cover"]
-                .map(|l| kept.texture(l, width, height, VISIBILITY_FORMAT, usage).0);
-        // One timed span over both passes: the raster pass writes its beginning, the shading
-        // its end (as the waves' two transforms share theirs, `wave_maps`).
-        let (raster_ts, shade_ts) = match timestamps {
-            Some(ts) => (
-                Some(wgpu::RenderPassTimestampWrites { end_of_pass_write_index: None, ..ts }),
-                Some(wgpu::ComputePassTimestampWrites {
-                    query_set: ts.query_set,
-                    beginning_of_pass_write_index: None,
-                    end_of_pass_write_index: ts.end_of_pass_write_index,
-                }),
-            ),
-            None => (None, None),
-        };
+        let vis = visibility_targets(kept, "ocean.water", [width, height]);
+        let (raster_ts, shade_ts) = split_timestamps(timestamps);
         {
-            fn attachment(
-                v: &wgpu::TextureView,
-                load: wgpu::LoadOp<wgpu::Color>,
-            ) -> Option<wgpu::RenderPassColorAttachment<'_>> {
-                Some(wgpu::RenderPassColorAttachment {
-                    view: v,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations { load, store: wgpu::StoreOp::Store },
-                })
-            }
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("ocean.water.visibility"),
-                color_attachments: &[
-                    attachment(&vis[0].view, wgpu::LoadOp::Load),
-                    attachment(&vis[1].view, wgpu::LoadOp::Load),
-                    attachment(&vis[2].view, wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT)),
-                ],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: depth,
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Load,
-                        store: wgpu::StoreOp::Store,
-                    }),
-                    stencil_ops: None,
-                }),
-                timestamp_writes: raster_ts,
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
+            let mut pass = begin_visibility_pass(
+                encoder,
+                "ocean.water.visibility",
+                &vis,
+                (depth, Load::Keep),
+                raster_ts,
+            );
             let [mesh, grid, clipmap] = &compute.visibility;
             self.draw(&mut pass, draw, [mesh, grid, clipmap], &group, &sky_group);
         }

@@ -1,0 +1,140 @@
+//! How a stage that draws the scene's surfaces (`water`, `objects`) shades them: in a compute
+//! pass from a visibility buffer, or in the fragment stage. Both store the same bits
+//! (`tests/gpu_frame_graph.rs` compares them on every reference scene).
+//!
+//! On the compute path the raster pass writes, for each pixel's last fragment that passes the
+//! depth test, the fragment's interpolated inputs (three `rgba32float` colour attachments:
+//! each f32 held exactly, and a coverage flag) instead of its colour, and a compute pass of
+//! one invocation per pixel shades what that fragment would have, at the pixel centre. On GPUs
+//! whose fragment work runs on a few units (Hopper's two graphics TPCs, docs/design.md "GPU
+//! speed on real hardware") the shading then uses the whole chip, and overdrawn fragments
+//! cost a depth test, not a shading. Interpolated inputs rather than a triangle id and
+//! barycentrics: the shading reads the very values a fragment would, so the two paths agree
+//! bit for bit and no vertex is transformed twice. The CPU oracle shades each pixel's last
+//! passing fragment once, which is what both paths compute.
+
+/// The visibility buffer's bytes per pixel: three `rgba32float` colour attachments.
+pub(crate) const VISIBILITY_BYTES: u32 = 48;
+
+/// The visibility buffer's format (each f32 input held exactly).
+pub(crate) const VISIBILITY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+
+/// `@workgroup_size(8, 8, 1)` of the shading entry points.
+pub(crate) const WORKGROUP_SIZE: u32 = 8;
+
+/// How a stage shades its surfaces: the same bits either way.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ShadingPath {
+    /// The raster pass writes a visibility buffer, a compute pass shades it.
+    Compute,
+    /// Each fragment shaded where it is rasterised.
+    Fragment,
+}
+
+impl ShadingPath {
+    /// [`ShadingPath::Compute`] where the device's colour attachments hold the visibility
+    /// buffer (WebGPU's default limit, 32 bytes a sample, does not; Vulkan devices report
+    /// 128), else [`ShadingPath::Fragment`].
+    pub fn for_device(device: &wgpu::Device) -> Self {
+        let l = device.limits();
+        if l.max_color_attachments >= 3
+            && l.max_color_attachment_bytes_per_sample >= VISIBILITY_BYTES
+        {
+            Self::Compute
+        } else {
+            Self::Fragment
+        }
+    }
+
+    /// `compute` or `fragment`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Compute => "compute",
+            Self::Fragment => "fragment",
+        }
+    }
+}
+
+/// The visibility buffer's three targets, kept in `kept` under `label`'s names, `size`.
+pub(crate) fn visibility_targets(
+    kept: &crate::pool::FramePool,
+    label: &str,
+    [width, height]: [u32; 2],
+) -> [crate::texture::GpuTexture; 3] {
+    let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING;
+    ["a", "b", "cover"].map(|n| {
+        kept.texture(&format!("{label}.vis_{n}"), width, height, VISIBILITY_FORMAT, usage).0
+    })
+}
+
+/// The colour targets of a pipeline writing the visibility buffer.
+pub(crate) fn visibility_color_targets() -> [Option<wgpu::ColorTargetState>; 3] {
+    std::array::from_fn(|_| {
+        Some(wgpu::ColorTargetState {
+            format: VISIBILITY_FORMAT,
+            blend: None,
+            write_mask: wgpu::ColorWrites::ALL,
+        })
+    })
+}
+
+/// Begins the raster pass into the visibility buffer `vis` (only the coverage target is
+/// cleared: the others are read where it says a fragment was written) over `depth` loaded as
+/// `depth_load`.
+pub(crate) fn begin_visibility_pass<'e>(
+    encoder: &'e mut wgpu::CommandEncoder,
+    label: &str,
+    vis: &[crate::texture::GpuTexture; 3],
+    (depth, depth_load): (&wgpu::TextureView, crate::common::Load<f32>),
+    timestamp_writes: Option<wgpu::RenderPassTimestampWrites<'_>>,
+) -> wgpu::RenderPass<'e> {
+    fn attachment(
+        v: &wgpu::TextureView,
+        load: wgpu::LoadOp<wgpu::Color>,
+    ) -> Option<wgpu::RenderPassColorAttachment<'_>> {
+        Some(wgpu::RenderPassColorAttachment {
+            view: v,
+            depth_slice: None,
+            resolve_target: None,
+            ops: wgpu::Operations { load, store: wgpu::StoreOp::Store },
+        })
+    }
+    let load = match depth_load {
+        crate::common::Load::Clear(d) => wgpu::LoadOp::Clear(d),
+        crate::common::Load::Keep => wgpu::LoadOp::Load,
+    };
+    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+        label: Some(label),
+        color_attachments: &[
+            attachment(&vis[0].view, wgpu::LoadOp::Load),
+            attachment(&vis[1].view, wgpu::LoadOp::Load),
+            attachment(&vis[2].view, wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT)),
+        ],
+        depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+            view: depth,
+            depth_ops: Some(wgpu::Operations { load, store: wgpu::StoreOp::Store }),
+            stencil_ops: None,
+        }),
+        timestamp_writes,
+        occlusion_query_set: None,
+        multiview_mask: None,
+    })
+}
+
+/// One timed span over a raster pass and the compute pass after it: the raster pass writes
+/// the span's beginning, the compute pass its end.
+pub(crate) fn split_timestamps(
+    ts: Option<wgpu::RenderPassTimestampWrites<'_>>,
+) -> (Option<wgpu::RenderPassTimestampWrites<'_>>, Option<wgpu::ComputePassTimestampWrites<'_>>) {
+    match ts {
+        Some(ts) => (
+            Some(wgpu::RenderPassTimestampWrites { end_of_pass_write_index: None, ..ts }),
+            Some(wgpu::ComputePassTimestampWrites {
+                query_set: ts.query_set,
+                beginning_of_pass_write_index: None,
+                end_of_pass_write_index: ts.end_of_pass_write_index,
+            }),
+        ),
+        None => (None, None),
+    }
+}
