@@ -223,8 +223,7 @@ struct Visible {
 fn visible(id: vec3<u32>) -> Visible {
     var v: Visible;
     v.covered = false;
-    let size = textureDimensions(target_frame);
-    if (id.x >= size.x || id.y >= size.y) {
+    if (!in_target(id)) {
         return v;
     }
     let p = vec2<i32>(id.xy);
@@ -251,18 +250,35 @@ fn cs_shade_main(@builtin(global_invocation_id) id: vec3<u32>) {
     }
 }
 
+// The maps' shading stores their clear colour, 0, where nothing was drawn (alpha = coverage),
+// so the map needs no clear pass of its own.
+fn in_target(id: vec3<u32>) -> bool {
+    let size = textureDimensions(target_frame);
+    return id.x < size.x && id.y < size.y;
+}
+
 @compute @workgroup_size(8, 8, 1)
 fn cs_shade_reflect(@builtin(global_invocation_id) id: vec3<u32>) {
-    let v = visible(id);
-    if (v.covered) {
-        textureStore(target_frame, vec2<i32>(id.xy), shade_reflect(v.in));
+    if (!in_target(id)) {
+        return;
     }
+    let v = visible(id);
+    var c = vec4<f32>(0.0);
+    if (v.covered) {
+        c = shade_reflect(v.in);
+    }
+    textureStore(target_frame, vec2<i32>(id.xy), c);
 }
 
 @compute @workgroup_size(8, 8, 1)
 fn cs_shade_refract(@builtin(global_invocation_id) id: vec3<u32>) {
-    let v = visible(id);
-    if (v.covered) {
-        textureStore(target_frame, vec2<i32>(id.xy), shade_refract(v.in));
+    if (!in_target(id)) {
+        return;
     }
+    let v = visible(id);
+    var c = vec4<f32>(0.0);
+    if (v.covered) {
+        c = shade_refract(v.in);
+    }
+    textureStore(target_frame, vec2<i32>(id.xy), c);
 }

@@ -53,6 +53,11 @@ pub struct Args {
     /// Timed runs per case after the warm-up (default: 3 quick, 5 full).
     #[arg(long)]
     runs: Option<u32>,
+    /// How the GPU shades the water and the objects: `compute` (a visibility buffer shaded in
+    /// compute passes) or `fragment` (default: what the device allows, compute on Vulkan).
+    /// The two give the same bits; timing both tells which pays on a GPU.
+    #[arg(long, value_parser = ["compute", "fragment"])]
+    shading: Option<String>,
     /// Also write the JSON to this file.
     #[arg(short, long)]
     output: Option<PathBuf>,
@@ -483,7 +488,7 @@ pub(crate) fn waves(
 pub fn measure(
     quick: bool,
     backend: &str,
-    only: Option<&str>,
+    (only, shading): (Option<&str>, Option<&str>),
     runs: u32,
     progress: &mut dyn FnMut(&str),
 ) -> anyhow::Result<Bench> {
@@ -497,6 +502,14 @@ pub fn measure(
     } else {
         None
     };
+    if let (Some(r), Some(path)) = (renderer.as_mut(), shading) {
+        let path = if path == "fragment" {
+            ocean_gpu::ShadingPath::Fragment
+        } else {
+            ocean_gpu::ShadingPath::Compute
+        };
+        r.set_shading_path(path).with_context(|| format!("shading in {}", path.name()))?;
+    }
     let mut sizes: &[[u32; 2]] = if quick { &QUICK_SIZES } else { &FULL_SIZES };
     let mut ns: &[u32] = if quick { &QUICK_N } else { &FULL_N };
     match only {
@@ -614,7 +627,8 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     // Before minutes of measuring: the output's folder exists and takes a file.
     let out = args.output.as_deref().map(ocean::output::OutputFile::reserve).transpose()?;
     let bar = indicatif::ProgressBar::new_spinner();
-    let b = measure(args.quick, &args.backend, args.only.as_deref(), runs, &mut |what| {
+    let choice = (args.only.as_deref(), args.shading.as_deref());
+    let b = measure(args.quick, &args.backend, choice, runs, &mut |what| {
         bar.set_message(what.to_owned());
         bar.tick();
     })?;

@@ -15,7 +15,9 @@
 #   render.log     what each render printed;
 #   selftest.json, selftest.log   `ocean selftest` (the envelope on every reference scene and
 #                  planted bug; `--quick` with --quick);
-#   bench.json, bench.log         `ocean bench --backend gpu` (`--quick` with --quick).
+#   bench.json, bench.log         `ocean bench --backend gpu` (`--quick` with --quick), with
+#                  the water and objects shaded in compute and in the fragment stage:
+#                  {"compute": …, "fragment": …}.
 # Run from the repository's root (the reference scenes are read from there). Each step goes
 # on when another fails, and says so; the exit status is the number of steps that failed.
 #
@@ -25,7 +27,7 @@
 # prints into its oracle.json, with the commit and the adapter in its README.
 set -u
 if [ $# -lt 2 ]; then
-    sed -n '2,25p' "$0" >&2
+    sed -n '2,27p' "$0" >&2
     exit 2
 fi
 ocean=$(realpath "$1")
@@ -97,7 +99,21 @@ tar -C "$work" -czf "$out/snapshot.tgz" . &&
 tail -n 1 "$out/selftest.log"
 
 # 3. What a real-time user sees.
-"$ocean" bench --backend gpu $quick --json -o "$out/bench.json" >"$out/bench.log" 2>&1 ||
-    { echo "bench failed (bench.log)"; failed=$((failed + 1)); }
-echo "bench: $(wc -c <"$out/bench.json" 2>/dev/null || echo 0) bytes of JSON"
+# Both shading paths (the same bits; which is faster on this GPU decides the default), in one
+# JSON file: {"compute": …, "fragment": …}.
+: >"$out/bench.log"
+for path in compute fragment; do
+    "$ocean" bench --backend gpu $quick --shading "$path" -o "$out/bench-$path.json" \
+        >>"$out/bench.log" 2>&1 ||
+        { echo "bench ($path) failed (bench.log)"; failed=$((failed + 1)); }
+done
+{
+    printf '{"compute": '
+    cat "$out/bench-compute.json" 2>/dev/null || printf 'null'
+    printf ', "fragment": '
+    cat "$out/bench-fragment.json" 2>/dev/null || printf 'null'
+    printf '}\n'
+} >"$out/bench.json"
+rm -f "$out/bench-compute.json" "$out/bench-fragment.json"
+echo "bench: $(wc -c <"$out/bench.json") bytes of JSON"
 exit "$failed"

@@ -176,8 +176,8 @@ pub const MUTANTS: &[Mutant] = &[
     Mutant {
         name: "objects-reflect-clip-flipped",
         file: "objects.wgsl",
-        find: "if (in.world_y < clip_height(in.rel)) {",
-        replace: "if (in.world_y > clip_height(in.rel)) {",
+        find: "return in.world_y < clip_height(in.rel);",
+        replace: "return in.world_y > clip_height(in.rel);",
         changes: "Flips the reflection map's clip: the parts of the objects under the water are mirrored and the parts above it discarded.",
         scene: "default",
     },

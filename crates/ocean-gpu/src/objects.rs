@@ -254,15 +254,21 @@ impl ObjectsStage {
             }
             EntryPipelines::Compute { visibility, shade } => {
                 let (raster_ts, shade_ts) = split_timestamps(timestamps);
-                if let Load::Clear(_) = load.0 {
-                    drop(begin_render_pass(
-                        encoder,
-                        "ocean.objects.clear",
-                        target,
-                        load.0,
-                        None,
-                        None,
-                    ));
+                // The maps' shading stores their clear colour (0) where nothing was drawn; any
+                // other clear is a pass of its own.
+                let cleared_by_shading = entry != ObjectsEntry::Main;
+                match load.0 {
+                    Load::Clear(c) if !(cleared_by_shading && c == [0.0; 4]) => {
+                        drop(begin_render_pass(
+                            encoder,
+                            "ocean.objects.clear",
+                            target,
+                            load.0,
+                            None,
+                            None,
+                        ));
+                    }
+                    _ => {}
                 }
                 let vis = visibility_targets(kept, &name, size);
                 {
