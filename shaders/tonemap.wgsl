@@ -1,7 +1,7 @@
 // Stage `tonemap`: HDR linear frame -> 8-bit sRGB, a compute pass of one invocation per pixel
 // storing into an Rgba8Unorm storage texture. A full-screen pass is compute, not a triangle:
 // on GPUs whose fragment work runs on a few units (Hopper's two graphics TPCs) a compute pass
-// uses the whole chip (docs/design.md, "GPU speed on real hardware"). Each invocation
+// uses the whole chip (docs/design.md, "One frame, two back ends"). Each invocation
 // computes what a fragment at the pixel centre did, so the bytes are the same. The steps,
 // their order and the reasons: ocean_core::tonemap.
 // CPU mirror: ocean-cpu/src/shaders/tonemap.rs.

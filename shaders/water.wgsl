@@ -812,7 +812,7 @@ fn fs_visibility(in: VertexOut) -> VisibilityOut {
 // The HDR frame. ocean-gpu makes the rgba16float variant by replacing this one declaration.
 @group(2) @binding(3) var hdr_frame: texture_storage_2d<rgba32float, write>;
 
-// The shading in compute (docs/design.md, "GPU speed on real hardware": on GPUs whose
+// The shading in compute (docs/design.md, "One frame, two back ends": on GPUs whose
 // fragment work runs on a few units a compute pass uses the whole chip): one invocation per
 // pixel the visibility buffer covers, shading what its fragment would have, at the pixel
 // centre (`id + 0.5`, exact in f32, as a fragment's position is).

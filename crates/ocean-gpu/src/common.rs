@@ -50,7 +50,7 @@ pub fn shader_module_with(
     }))
 }
 
-/// The module of a stage that stores into the frame from compute (`sky`, `water`), for a
+/// The module of a stage that stores into the frame from compute (`sky`, `water`, `objects`), for a
 /// frame of `target` format: WGSL has no preprocessor, so the rgba16float module is the
 /// assembled source with its one storage declaration's format replaced (the line says so in
 /// the stage's WGSL).

@@ -18,13 +18,12 @@ use ocean_core::frame::{ObjectVertex, ObjectsKey};
 
 use crate::common::{
     Load, begin_render_pass, entry, eye_depth, frame_storage_module, label, linear_sampler,
-    pipeline_layout, primitive, replace_target, sampler_entry, storage_entry_of, texture_entry,
-    uniform_entry,
+    pipeline_layout, primitive, replace_target, sampler_entry, texture_entry, uniform_entry,
 };
 use crate::device::Error;
 use crate::shading_path::{
-    ShadingPath, WORKGROUP_SIZE, begin_visibility_pass, split_timestamps, visibility_color_targets,
-    visibility_targets,
+    Shading, ShadingPath, begin_visibility_pass, encode_shading, split_timestamps,
+    visibility_color_targets, visibility_layout, visibility_targets,
 };
 
 /// Which pair of entry points.
@@ -49,6 +48,15 @@ impl ObjectsEntry {
             Self::Refract => {
                 ["vs_refract", "fs_refract", "fs_visibility_refract", "cs_shade_refract"]
             }
+        }
+    }
+
+    /// What the compute path's shading stores where nothing was drawn: the maps' clear
+    /// colour (`cs_shade_reflect`, `cs_shade_refract`), nothing in the main view.
+    fn stored_where_undrawn(self) -> Option<[f32; 4]> {
+        match self {
+            Self::Main => None,
+            Self::Reflect | Self::Refract => Some([0.0; 4]),
         }
     }
 
@@ -115,16 +123,7 @@ impl ObjectsStage {
                 sampler_entry(5, fragment),
             ],
         });
-        let compute = wgpu::ShaderStages::COMPUTE;
-        let vis_layout = device.new_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("ocean.objects.visibility"),
-            entries: &[
-                texture_entry(0, compute, false),
-                texture_entry(1, compute, false),
-                texture_entry(2, compute, false),
-                storage_entry_of(3, target),
-            ],
-        });
+        let vis_layout = visibility_layout(device, "ocean.objects.visibility", target);
         // The CPU mirror's WRAP_LINEAR and CLAMP_LINEAR (the water's samplers).
         let wrap_linear =
             linear_sampler(device, "ocean.objects.wrap_linear", wgpu::AddressMode::Repeat);
@@ -254,21 +253,18 @@ impl ObjectsStage {
             }
             EntryPipelines::Compute { visibility, shade } => {
                 let (raster_ts, shade_ts) = split_timestamps(timestamps);
-                // The maps' shading stores their clear colour (0) where nothing was drawn; any
-                // other clear is a pass of its own.
-                let cleared_by_shading = entry != ObjectsEntry::Main;
-                match load.0 {
-                    Load::Clear(c) if !(cleared_by_shading && c == [0.0; 4]) => {
-                        drop(begin_render_pass(
-                            encoder,
-                            "ocean.objects.clear",
-                            target,
-                            load.0,
-                            None,
-                            None,
-                        ));
-                    }
-                    _ => {}
+                // A clear the shading does not store itself is a pass of its own.
+                if let Load::Clear(c) = load.0
+                    && entry.stored_where_undrawn() != Some(c)
+                {
+                    drop(begin_render_pass(
+                        encoder,
+                        "ocean.objects.clear",
+                        target,
+                        load.0,
+                        None,
+                        None,
+                    ));
                 }
                 let vis = visibility_targets(kept, &name, size);
                 {
@@ -281,27 +277,14 @@ impl ObjectsStage {
                     );
                     draw(&mut pass, visibility);
                 }
-                let vis_group = kept.bind_group(
-                    "ocean.objects.visibility",
-                    &self.vis_layout,
-                    &[
-                        wgpu::BindingResource::TextureView(&vis[0].view),
-                        wgpu::BindingResource::TextureView(&vis[1].view),
-                        wgpu::BindingResource::TextureView(&vis[2].view),
-                        wgpu::BindingResource::TextureView(target),
-                    ],
-                );
-                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                    label: Some("ocean.objects.shade"),
-                    timestamp_writes: shade_ts,
-                });
-                pass.set_pipeline(shade);
-                pass.set_bind_group(0, frame, &[]);
-                pass.set_bind_group(1, &vis_group, &[]);
-                pass.dispatch_workgroups(
-                    size[0].div_ceil(WORKGROUP_SIZE),
-                    size[1].div_ceil(WORKGROUP_SIZE),
-                    1,
+                let shading = Shading { vis: &vis, target, size, layout: &self.vis_layout };
+                encode_shading(
+                    kept,
+                    encoder,
+                    "ocean.objects.shade",
+                    (shade, &[frame]),
+                    &shading,
+                    shade_ts,
                 );
             }
         }

@@ -6,8 +6,8 @@
 //! depth test, the fragment's interpolated inputs (three `rgba32float` colour attachments:
 //! each f32 held exactly, and a coverage flag) instead of its colour, and a compute pass of
 //! one invocation per pixel shades what that fragment would have, at the pixel centre. On GPUs
-//! whose fragment work runs on a few units (Hopper's two graphics TPCs, docs/design.md "GPU
-//! speed on real hardware") the shading then uses the whole chip, and overdrawn fragments
+//! whose fragment work runs on a few units (Hopper's two graphics TPCs, docs/design.md "One
+//! frame, two back ends") the shading then uses the whole chip, and overdrawn fragments
 //! cost a depth test, not a shading. Interpolated inputs rather than a triangle id and
 //! barycentrics: the shading reads the very values a fragment would, so the two paths agree
 //! bit for bit and no vertex is transformed twice. The CPU oracle shades each pixel's last
@@ -20,7 +20,7 @@ pub(crate) const VISIBILITY_BYTES: u32 = 48;
 pub(crate) const VISIBILITY_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 
 /// `@workgroup_size(8, 8, 1)` of the shading entry points.
-pub(crate) const WORKGROUP_SIZE: u32 = 8;
+const WORKGROUP_SIZE: u32 = 8;
 
 /// How a stage shades its surfaces: the same bits either way.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -137,4 +137,73 @@ pub(crate) fn split_timestamps(
         ),
         None => (None, None),
     }
+}
+
+/// The bind group layout of a shading pass's visibility group: the buffer's three textures
+/// (`textureLoad` only) and the pass's target as a write-only storage texture of `target`
+/// format (bindings 0–3, as the WGSL declares them).
+pub(crate) fn visibility_layout(
+    device: &wgpu::Device,
+    label: &str,
+    target: wgpu::TextureFormat,
+) -> wgpu::BindGroupLayout {
+    use crate::created::Counted;
+    let compute = wgpu::ShaderStages::COMPUTE;
+    device.new_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some(label),
+        entries: &[
+            crate::common::texture_entry(0, compute, false),
+            crate::common::texture_entry(1, compute, false),
+            crate::common::texture_entry(2, compute, false),
+            crate::common::storage_entry_of(3, target),
+        ],
+    })
+}
+
+/// What a shading pass reads and writes: the visibility buffer, the pass's target (`size`
+/// texels) and the layout of the group that binds them.
+pub(crate) struct Shading<'a> {
+    /// The visibility buffer the raster pass wrote.
+    pub vis: &'a [crate::texture::GpuTexture; 3],
+    /// The pass's colour target, bound as storage.
+    pub target: &'a wgpu::TextureView,
+    /// The target's size, texels.
+    pub size: [u32; 2],
+    /// [`visibility_layout`] of the stage.
+    pub layout: &'a wgpu::BindGroupLayout,
+}
+
+/// Records the compute pass `label` that shades the visibility buffer into the target:
+/// `groups` bound first (the stage's own), the visibility group after them, one invocation
+/// per texel.
+pub(crate) fn encode_shading(
+    kept: &crate::pool::FramePool,
+    encoder: &mut wgpu::CommandEncoder,
+    label: &str,
+    (pipeline, groups): (&wgpu::ComputePipeline, &[&wgpu::BindGroup]),
+    s: &Shading<'_>,
+    timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
+) {
+    let vis_group = kept.bind_group(
+        label,
+        s.layout,
+        &[
+            wgpu::BindingResource::TextureView(&s.vis[0].view),
+            wgpu::BindingResource::TextureView(&s.vis[1].view),
+            wgpu::BindingResource::TextureView(&s.vis[2].view),
+            wgpu::BindingResource::TextureView(s.target),
+        ],
+    );
+    let mut pass = encoder
+        .begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some(label), timestamp_writes });
+    pass.set_pipeline(pipeline);
+    for (i, g) in groups.iter().enumerate() {
+        pass.set_bind_group(i as u32, *g, &[]);
+    }
+    pass.set_bind_group(groups.len() as u32, &vis_group, &[]);
+    pass.dispatch_workgroups(
+        s.size[0].div_ceil(WORKGROUP_SIZE),
+        s.size[1].div_ceil(WORKGROUP_SIZE),
+        1,
+    );
 }

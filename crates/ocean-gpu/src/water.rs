@@ -21,13 +21,12 @@ use ocean_core::geometry::WaterVertex;
 
 use crate::common::{
     Load, begin_render_pass, entry, eye_depth, frame_storage_module, label, linear_sampler,
-    pipeline_layout, primitive, replace_target, sampler_entry, storage_entry_of, texture_entry,
-    uniform_entry,
+    pipeline_layout, primitive, replace_target, sampler_entry, texture_entry, uniform_entry,
 };
 use crate::device::Error;
 use crate::shading_path::{
-    ShadingPath, WORKGROUP_SIZE, begin_visibility_pass, split_timestamps, visibility_color_targets,
-    visibility_targets,
+    Shading, ShadingPath, begin_visibility_pass, encode_shading, split_timestamps,
+    visibility_color_targets, visibility_layout, visibility_targets,
 };
 
 /// The vertex buffer layout of `WaterVertex`: pos (Float32x2), weight (Float32).
@@ -83,7 +82,6 @@ pub struct WaterMeshBuffers<'a> {
     pub index_count: u32,
 }
 
-/// The stage's pipeline, layouts and samplers.
 /// The compute path's pipelines.
 struct ComputeShading {
     /// Surfaces' raster pipelines writing the visibility buffer: mesh, grid, clipmap.
@@ -189,16 +187,7 @@ impl WaterStage {
                     vis("vs_projected_grid", &[])?,
                     vis("vs_clipmap", &[])?,
                 ];
-                let compute = wgpu::ShaderStages::COMPUTE;
-                let vis_layout = device.new_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                    label: Some("ocean.water.visibility"),
-                    entries: &[
-                        texture_entry(0, compute, false),
-                        texture_entry(1, compute, false),
-                        texture_entry(2, compute, false),
-                        storage_entry_of(3, target),
-                    ],
-                });
+                let vis_layout = visibility_layout(device, "ocean.water.visibility", target);
                 let shade_layout =
                     pipeline_layout(device, &name, &[&layout, &sky_layout, &vis_layout]);
                 let shade = device.new_compute_pipeline(&wgpu::ComputePipelineDescriptor {
@@ -230,11 +219,6 @@ impl WaterStage {
                 wgpu::AddressMode::ClampToEdge,
             ),
         })
-    }
-
-    /// The path the stage was made for.
-    pub fn path(&self) -> ShadingPath {
-        if self.compute.is_some() { ShadingPath::Compute } else { ShadingPath::Fragment }
     }
 
     /// Records the pass over what the sky and objects drew (`Load::Keep` on colour and depth):
@@ -313,28 +297,15 @@ impl WaterStage {
             let [mesh, grid, clipmap] = &compute.visibility;
             self.draw(&mut pass, draw, [mesh, grid, clipmap], &group, &sky_group);
         }
-        let vis_group = kept.bind_group(
-            "ocean.water.visibility",
-            &compute.layout,
-            &[
-                wgpu::BindingResource::TextureView(&vis[0].view),
-                wgpu::BindingResource::TextureView(&vis[1].view),
-                wgpu::BindingResource::TextureView(&vis[2].view),
-                wgpu::BindingResource::TextureView(hdr_view),
-            ],
-        );
-        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-            label: Some("ocean.water.shade"),
-            timestamp_writes: shade_ts,
-        });
-        pass.set_pipeline(&compute.shade);
-        pass.set_bind_group(0, &group, &[]);
-        pass.set_bind_group(1, &sky_group, &[]);
-        pass.set_bind_group(2, &vis_group, &[]);
-        pass.dispatch_workgroups(
-            width.div_ceil(WORKGROUP_SIZE),
-            height.div_ceil(WORKGROUP_SIZE),
-            1,
+        let shading =
+            Shading { vis: &vis, target: hdr_view, size: [width, height], layout: &compute.layout };
+        encode_shading(
+            kept,
+            encoder,
+            "ocean.water.shade",
+            (&compute.shade, &[&group, &sky_group]),
+            &shading,
+            shade_ts,
         );
     }
 

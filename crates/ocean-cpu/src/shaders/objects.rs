@@ -143,9 +143,14 @@ pub fn clip_height_r<R: Real>(
     sample(uv)[1] * l(frame.passes.waves)
 }
 
+/// `reflect_discards`: only what is above the water is reflected.
+pub fn reflect_discards(input: &VertexOut, frame: &FrameUniforms, maps: Maps<'_>) -> bool {
+    input.world_y < clip_height(input.rel, frame, maps.displacement)
+}
+
 /// `fs_reflect`; `None` is `discard`.
 pub fn fs_reflect(input: &VertexOut, frame: &FrameUniforms, maps: Maps<'_>) -> Option<[f32; 4]> {
-    if input.world_y < clip_height(input.rel, frame, maps.displacement) {
+    if reflect_discards(input, frame, maps) {
         return None;
     }
     let n = vec3(input.normal.x, -input.normal.y, input.normal.z);
@@ -167,9 +172,14 @@ pub fn vs_refract(v: &ObjectVertex, frame: &FrameUniforms) -> VertexOut {
     }
 }
 
+/// `refract_discards`: only what is under the water is seen through it.
+pub fn refract_discards(input: &VertexOut, frame: &FrameUniforms, maps: Maps<'_>) -> bool {
+    input.world_y > clip_height(input.rel, frame, maps.displacement)
+}
+
 /// `fs_refract`; `None` is `discard`.
 pub fn fs_refract(input: &VertexOut, frame: &FrameUniforms, maps: Maps<'_>) -> Option<[f32; 4]> {
-    if input.world_y > clip_height(input.rel, frame, maps.displacement) {
+    if refract_discards(input, frame, maps) {
         return None;
     }
     let v = |v: Vec3| [v.x, v.y, v.z];
@@ -183,8 +193,8 @@ pub fn fs_refract(input: &VertexOut, frame: &FrameUniforms, maps: Maps<'_>) -> O
 /// A fragment's varyings over any [`Real`]: (normal, colour, rel, world_y).
 pub type Varyings<R> = ([R; 3], [R; 3], [R; 3], R);
 
-/// `fs_refract`'s colour after its `discard` (eq. 4: the object fogged by the water between
-/// it and the eye) over any [`Real`]; `sun_at(at, world_y)` is `sun_reaches`.
+/// `shade_refract`, `fs_refract`'s colour after its `discard` (eq. 4: the object fogged by the
+/// water between it and the eye) over any [`Real`]; `sun_at(at, world_y)` is `sun_reaches`.
 pub fn refract_colour_r<R: Real>(
     (normal, color, rel, world_y): Varyings<R>,
     frame: &FrameUniforms,
