@@ -6,6 +6,9 @@
 //!   texture, view, buffer, bind group, query set, sampler or pipeline; the warm-up did make
 //!   them (the counter's control), and so does a resize (the plan's sizes changed), after which
 //!   the frames are steady again;
+//! - frames whose timestamps nobody reads (a benchmark's, a viewer closing) make no query set
+//!   either: their queries come back to the pool once their buffer has mapped; the control
+//!   holds the frames' timings unread, and then every frame needs a query set of its own;
 //! - the Fresnel tables are computed on the first frame and when η changes, and kept
 //!   otherwise (`GpuFrame::reused`), with the same picture as a fresh renderer's;
 //! - the same frame twice uploads no uniform block the second time, and a block asked for
@@ -102,6 +105,41 @@ fn steady_frames_make_no_gpu_objects() {
         let made = created().since(start);
         assert_eq!(made.objects(), 0, "{}: after the resize: {made}", system.name());
     }
+}
+
+fn unread_timings_make_no_query_sets() {
+    let s = scene(System::Hu, W, H);
+    let plan = FramePlan::new(&s, OutputKind::Ldr);
+    let mut r = Renderer::new().unwrap();
+    if !r.gpu().timestamps {
+        eprintln!(
+            "{}: no timestamp queries on this adapter; nothing to check",
+            r.gpu().report.name
+        );
+        return;
+    }
+    let mut state = FrameState::new(1.0 / 30.0);
+    for _ in 0..3 {
+        frame(&mut r, &s, &plan, &mut state, true);
+    }
+    // Frames whose timings are dropped unread (`hold: false`) or held unread.
+    let mut unread = |r: &mut Renderer, n: usize, hold: bool| {
+        let (start, mut held) = (created(), Vec::new());
+        for _ in 0..n {
+            let f = r.run_frame(&s, &plan, &mut state, Readback::None).unwrap();
+            r.gpu().wait().unwrap();
+            if hold {
+                held.extend(f.pending_timings);
+            }
+        }
+        created().since(start)
+    };
+    // Control: timings held unread keep their queries, so each frame makes a set once the
+    // pool's one free set (the warm-up's, read and given back) is taken.
+    let made = unread(&mut r, 5, true);
+    assert_eq!(made.query_sets, 4, "5 frames with their timings held made {made}");
+    let made = unread(&mut r, 50, false);
+    assert_eq!(made.objects(), 0, "50 frames with their timings dropped made {made}");
 }
 
 fn fresnel_tables_are_computed_only_when_eta_changes() {
@@ -238,6 +276,7 @@ fn main() -> std::process::ExitCode {
     run_tests!(gpu_harness::GPU_ADAPTER;
         cpu: every_gpu_object_of_the_crate_is_counted;
         gpu: steady_frames_make_no_gpu_objects,
+            unread_timings_make_no_query_sets,
             fresnel_tables_are_computed_only_when_eta_changes,
             uniform_blocks_are_uploaded_once_and_only_on_change,
             vertex_lists_are_uploaded_once_and_only_on_change;

@@ -82,8 +82,9 @@ pub enum Readback {
 
 /// A frame rendered on the GPU.
 pub struct GpuFrame {
-    /// The plan it ran.
-    pub plan: FramePlan,
+    /// The plan it ran (shared with the renderer's frames that run an equal plan, so that a
+    /// steady frame does not copy it).
+    pub plan: Arc<FramePlan>,
     /// The maps read back, in [`ResourceId::MAPS`] order (skipped passes: their 1×1 zero map).
     pub maps: Vec<(FrameMap, FloatMap)>,
     /// The 8-bit sRGB RGBA picture, when the plan tonemaps and it was read back.
@@ -175,6 +176,8 @@ pub struct Renderer {
     filter: Option<(Arc<ocean_core::far_field::FresnelFilterTable>, GpuTexture)>,
     /// How the water and the objects are shaded.
     shading_path: ShadingPath,
+    /// The plan the last frame ran, handed to the next frame that runs an equal one.
+    last_plan: Option<Arc<FramePlan>>,
 }
 
 /// Each Fresnel table's texture and the uniforms it was computed from.
@@ -877,6 +880,7 @@ impl Renderer {
             water_mesh: None,
             filter: None,
             shading_path,
+            last_plan: None,
         })
     }
 
@@ -1128,8 +1132,13 @@ impl Renderer {
                 }
             }
         }
+        let plan = match &self.last_plan {
+            Some(kept) if **kept == *plan => Arc::clone(kept),
+            _ => Arc::new(plan.clone()),
+        };
+        self.last_plan = Some(Arc::clone(&plan));
         Ok(GpuFrame {
-            plan: plan.clone(),
+            plan,
             maps,
             ldr,
             output,

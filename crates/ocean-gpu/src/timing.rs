@@ -11,6 +11,7 @@ use ocean_core::plan::Pass;
 
 use crate::device::{Error, Gpu};
 use crate::readback::{MapState, map_for_reading};
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Most GPU passes a frame can time (9 plan passes, the Fresnel stage twice).
 const MAX_GPU_PASSES: u32 = 16;
@@ -23,18 +24,44 @@ pub struct PassTimer {
 }
 
 /// Query sets and their buffers a renderer keeps: a frame's timer comes back to the pool once
-/// its timestamps are read, so that a steady frame makes no query set.
+/// its timestamps are read, or once a frame whose timestamps nobody read has dropped them and
+/// their buffer has finished mapping, so that a steady frame makes no query set.
 #[derive(Clone, Default)]
-pub struct TimerPool(Arc<Mutex<Vec<Queries>>>);
+pub struct TimerPool(Arc<Mutex<Timers>>);
+
+#[derive(Default)]
+struct Timers {
+    free: Vec<Queries>,
+    /// Dropped unread: free again once their readback buffer has mapped.
+    draining: Vec<(Queries, MapState)>,
+}
 
 impl TimerPool {
     fn take(&self) -> Option<Queries> {
-        self.0.lock().ok()?.pop()
+        let mut t = self.0.lock().ok()?;
+        if let Some(q) = t.free.pop() {
+            return Some(q);
+        }
+        let done = t
+            .draining
+            .iter()
+            .position(|(_, state)| state.lock().is_ok_and(|s| s.as_ref().is_some()))?;
+        let (q, _) = t.draining.swap_remove(done);
+        // Mapped or failed, the buffer may be used again once unmapped (unmapping a buffer
+        // whose map failed does nothing).
+        q.readback.unmap();
+        Some(q)
     }
 
     fn give(&self, q: Queries) {
-        if let Ok(mut free) = self.0.lock() {
-            free.push(q);
+        if let Ok(mut t) = self.0.lock() {
+            t.free.push(q);
+        }
+    }
+
+    fn drain(&self, q: Queries, state: MapState) {
+        if let Ok(mut t) = self.0.lock() {
+            t.draining.push((q, state));
         }
     }
 }
@@ -173,6 +200,7 @@ impl PassTimer {
             bytes,
             slots: self.slots,
             state,
+            returned: AtomicBool::new(false),
         })
     }
 }
@@ -185,6 +213,8 @@ pub struct PendingTimings {
     slots: Vec<Pass>,
     period_ns: f32,
     state: MapState,
+    /// Whether the queries went back to the pool when they were read.
+    returned: AtomicBool,
 }
 
 impl PendingTimings {
@@ -196,21 +226,27 @@ impl PendingTimings {
             Ok(mut s) => s.take()?,
             Err(_) => return Some(Err(fail("poisoned lock".into()))),
         };
-        if let Err(e) = status {
-            return Some(Err(fail(e.to_string())));
-        }
-        let slice = self.queries.readback.slice(..self.bytes);
-        let ticks: Vec<u64> = match slice.get_mapped_range() {
-            Ok(view) => view
-                .chunks_exact(8)
-                .map(|c| u64::from_le_bytes([c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]]))
-                .collect(),
-            Err(e) => return Some(Err(fail(e.to_string()))),
+        let ticks: Result<Vec<u64>, String> = match status {
+            Err(e) => Err(e.to_string()),
+            Ok(()) => match self.queries.readback.slice(..self.bytes).get_mapped_range() {
+                Ok(view) => Ok(view
+                    .chunks_exact(8)
+                    .map(|c| u64::from_le_bytes([c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]]))
+                    .collect()),
+                Err(e) => Err(e.to_string()),
+            },
         };
+        // The map has ended either way: the queries can serve another frame.
         self.queries.readback.unmap();
-        if let Some(home) = &self.home {
+        if let Some(home) = &self.home
+            && !self.returned.swap(true, Ordering::Relaxed)
+        {
             home.give(self.queries.clone());
         }
+        let ticks = match ticks {
+            Ok(t) => t,
+            Err(e) => return Some(Err(fail(e))),
+        };
         let mut out: Vec<(Pass, Duration)> = Vec::new();
         for (i, pass) in self.slots.iter().enumerate() {
             let dt = ticks[2 * i + 1].saturating_sub(ticks[2 * i]);
@@ -221,5 +257,17 @@ impl PendingTimings {
             }
         }
         Some(Ok(out))
+    }
+}
+
+impl Drop for PendingTimings {
+    /// Timestamps nobody read (a benchmark's frames, a viewer closing) still give their
+    /// queries back: the pool hands them out again once their buffer has mapped.
+    fn drop(&mut self) {
+        if let Some(home) = self.home.take()
+            && !self.returned.load(Ordering::Relaxed)
+        {
+            home.drain(self.queries.clone(), Arc::clone(&self.state));
+        }
     }
 }
