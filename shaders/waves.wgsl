@@ -8,8 +8,8 @@
 //   fft_rows_shared, fft_columns_shared
 //                every stage along x (z) in one dispatch: a workgroup per line and array
 //                holds the line in workgroup memory (two halves, ping and pong) between
-//                stages; the same butterflies, twiddles and operations as the one-stage
-//                entry points, so the same results; N ≤ FFT_SHARED_MAX
+//                pairs of stages (radix 4); the same butterflies, twiddles and operations
+//                as the one-stage entry points, so the same results; N ≤ FFT_SHARED_MAX
 //   pack         the maps as the water stage binds them: displacement (disp_x, height,
 //                disp_z, jacobian), displacement_slopes (slope_x, slope_z, 0, 0), bump
 //                (slope_x, slope_z, height, jacobian)
@@ -160,18 +160,54 @@ var<workgroup> fft_line: array<vec2<f32>, 2048>;
 
 // Every stage of the FFT of the line starting at `base` with element `stride`, in workgroup
 // memory, whose two halves, [0, N) and [FFT_SHARED_MAX, FFT_SHARED_MAX + N), take turns to be
-// read and written, stage by stage. Thread `local` does
-// butterflies local, local + FFT_SHARED_THREADS, … of each stage, as `butterfly` does one.
+// read and written. Stages go two at a time between barriers (radix 4): the butterflies j and
+// j + N/4 of stage s (s ≤ N/4, so both have the same q = j mod s) write the elements 2j − q,
+// 2j − q + s, 2j − q + N/2 and 2j − q + s + N/2, which are exactly the inputs of butterflies
+// 2j − q and 2j − q + s of stage 2s (q' = q and q + s, one twiddle 2j − 2q for both); one
+// thread does all four in registers. The same butterflies, twiddles and operations as
+// `butterfly`, so the same results, with half the barriers and half the workgroup-memory
+// traffic; an odd log2(N) ends with one radix-2 stage. Thread `local` does quads local,
+// local + FFT_SHARED_THREADS, … of each pair of stages.
 fn fft_line_shared(base: u32, stride: u32, local: u32) {
     let n = params.size;
     let half = n / 2u;
+    let quarter = n / 4u;
     for (var i = local; i < n; i += FFT_SHARED_THREADS) {
         fft_line[i] = src[base + i * stride];
     }
     workgroupBarrier();
     var read_at = 0u;
     var write_at = FFT_SHARED_MAX;
-    for (var stage = 0u; stage < params.log2_size; stage++) {
+    var stage = 0u;
+    for (; stage + 1u < params.log2_size; stage += 2u) {
+        let s = 1u << stage;
+        for (var j = local; j < quarter; j += FFT_SHARED_THREADS) {
+            let q = j & (s - 1u);
+            let a0 = fft_line[read_at + j];
+            let b0 = fft_line[read_at + j + half];
+            let a1 = fft_line[read_at + j + quarter];
+            let b1 = fft_line[read_at + j + quarter + half];
+            let d0 = a0 - b0;
+            let d1 = a1 - b1;
+            let y0 = a0 + b0;
+            let y1 = complex_mul(d0, twiddles[j - q]);
+            let y2 = a1 + b1;
+            let y3 = complex_mul(d1, twiddles[j + quarter - q]);
+            let w = twiddles[2u * (j - q)];
+            let e0 = y0 - y2;
+            let e1 = y1 - y3;
+            let out = 4u * j - 3u * q;
+            fft_line[write_at + out] = y0 + y2;
+            fft_line[write_at + out + s] = y1 + y3;
+            fft_line[write_at + out + 2u * s] = complex_mul(e0, w);
+            fft_line[write_at + out + 3u * s] = complex_mul(e1, w);
+        }
+        workgroupBarrier();
+        let t = read_at;
+        read_at = write_at;
+        write_at = t;
+    }
+    if (stage < params.log2_size) {
         let s = 1u << stage;
         for (var j = local; j < half; j += FFT_SHARED_THREADS) {
             let q = j & (s - 1u);

@@ -551,7 +551,8 @@ fn shared_memory_fft_matches_the_one_stage_fft() {
     use ocean_gpu::waves::FftKernel;
     let gpu = gpu("shared_memory_fft_matches_the_one_stage_fft")
         .expect("the harness runs GPU tests with a GPU");
-    for n in [16, 256, 1024] {
+    // log2(N) even and odd (the shared kernel's last stage alone).
+    for n in [16, 32, 256, 512, 1024] {
         let modes = build(n, Dispersion::deep(G));
         let shared = GpuWaves::with_kernel(&gpu.device, &modes, FftKernel::Shared).unwrap();
         let stages = GpuWaves::with_kernel(&gpu.device, &modes, FftKernel::Stages).unwrap();

@@ -9,7 +9,7 @@
 //! A frame is `spectrum` into ping, the FFT, then `pack` from ping. N must be a power of two.
 //! The FFT ([`FftKernel`]): for N ≤ [`FFT_SHARED_MAX`] one dispatch per axis
 //! (`fft_rows_shared`, `fft_columns_shared`: a workgroup per line holds it in workgroup memory
-//! through every stage, ping → pong → ping), else 2·log₂N one-stage dispatches (rows, then
+//! through every stage, two stages between barriers (radix 4), ping → pong → ping), else 2·log₂N one-stage dispatches (rows, then
 //! columns) alternating ping → pong → ping …. Both do the same butterflies with the same
 //! operations; [`GpuWaves::encode_dispatches`] runs the one-stage form, dispatch by dispatch,
 //! for the comparison with the CPU mirror.

@@ -195,10 +195,11 @@ pub fn fft_columns<R: Real>(
     butterfly(id[2] * n * n + id[1], n, id[0], params, fft_pass, twiddles, src, dst);
 }
 
-/// `fft_line_shared(base, stride, local)` of every thread of a workgroup, one stage after
-/// another as the barriers order them: the line's whole FFT in the workgroup's `fft_line`
-/// (two halves, at 0 and at [`FFT_SHARED_MAX`], read and written in turn), then written to
-/// `dst`.
+/// `fft_line_shared(base, stride, local)` of every thread of a workgroup, one pair of stages
+/// after another as the barriers order them (radix 4: butterflies j and j + N/4 of stage s and
+/// the two of stage 2s that read their outputs, in one thread's registers; an odd log2(N) ends
+/// with one radix-2 stage): the line's whole FFT in the workgroup's `fft_line` (two halves, at
+/// 0 and at [`FFT_SHARED_MAX`], read and written in turn), then written to `dst`.
 pub fn fft_line_shared(
     base: u32,
     stride: u32,
@@ -208,23 +209,48 @@ pub fn fft_line_shared(
     dst: &mut [Vec2],
 ) {
     let n = params.size;
-    let half = n / 2;
+    let (half, quarter) = (n / 2, n / 4);
     let mut fft_line = vec![[0.0f32; 2]; 2 * FFT_SHARED_MAX as usize];
     for i in 0..n {
         fft_line[i as usize] = src[(base + i * stride) as usize];
     }
+    let sub = |a: Vec2, b: Vec2| [a[0] - b[0], a[1] - b[1]];
+    let add = |a: Vec2, b: Vec2| [a[0] + b[0], a[1] + b[1]];
     let (mut read_at, mut write_at) = (0u32, FFT_SHARED_MAX);
-    for stage in 0..params.log2_size {
+    let mut stage = 0;
+    while stage + 1 < params.log2_size {
+        let s = 1u32 << stage;
+        for j in 0..quarter {
+            let q = j & (s - 1);
+            let at = |i: u32| fft_line[(read_at + i) as usize];
+            let (a0, b0) = (at(j), at(j + half));
+            let (a1, b1) = (at(j + quarter), at(j + quarter + half));
+            let (d0, d1) = (sub(a0, b0), sub(a1, b1));
+            let y0 = add(a0, b0);
+            let y1 = complex_mul(d0, twiddles[(j - q) as usize]);
+            let y2 = add(a1, b1);
+            let y3 = complex_mul(d1, twiddles[(j + quarter - q) as usize]);
+            let w = twiddles[(2 * (j - q)) as usize];
+            let (e0, e1) = (sub(y0, y2), sub(y1, y3));
+            let out = 4 * j - 3 * q;
+            fft_line[(write_at + out) as usize] = add(y0, y2);
+            fft_line[(write_at + out + s) as usize] = add(y1, y3);
+            fft_line[(write_at + out + 2 * s) as usize] = complex_mul(e0, w);
+            fft_line[(write_at + out + 3 * s) as usize] = complex_mul(e1, w);
+        }
+        std::mem::swap(&mut read_at, &mut write_at);
+        stage += 2;
+    }
+    if stage < params.log2_size {
         let s = 1u32 << stage;
         for j in 0..half {
             let q = j & (s - 1);
             let a = fft_line[(read_at + j) as usize];
             let b = fft_line[(read_at + j + half) as usize];
             let w = twiddles[(j - q) as usize];
-            let d = [a[0] - b[0], a[1] - b[1]];
             let out = 2 * j - q;
-            fft_line[(write_at + out) as usize] = [a[0] + b[0], a[1] + b[1]];
-            fft_line[(write_at + out + s) as usize] = complex_mul(d, w);
+            fft_line[(write_at + out) as usize] = add(a, b);
+            fft_line[(write_at + out + s) as usize] = complex_mul(sub(a, b), w);
         }
         std::mem::swap(&mut read_at, &mut write_at);
     }
@@ -530,11 +556,12 @@ mod tests {
         assert_eq!(cis_turns(-0.5), [-1.0, -0.0]);
     }
 
-    /// The shared-memory FFT (one dispatch per axis) against the one-stage dispatches: the
-    /// same butterflies in the same order of operations, so bit for bit, at every N it runs.
+    /// The shared-memory FFT (one dispatch per axis, stages two at a time) against the
+    /// one-stage dispatches: the same butterflies in the same order of operations, so bit for
+    /// bit, at every N it runs, log2(N) odd (a last radix-2 stage) and even.
     #[test]
     fn the_shared_memory_fft_is_the_one_stage_fft() {
-        for n in [2u32, 8, 64, 1024] {
+        for n in [2u32, 4, 8, 64, 512, 1024] {
             let size = (ARRAYS * n * n) as usize;
             let mut state = 0x2545_f491_4f6c_dd1d_u64 ^ u64::from(n);
             let mut next = || {
