@@ -41,6 +41,26 @@ struct TextureKey {
     usage: wgpu::TextureUsages,
 }
 
+impl TextureKey {
+    /// Whether this is the key of these fields (compared without making a key).
+    fn is(
+        &self,
+        label: &str,
+        n: u32,
+        size: [u32; 2],
+        levels: u32,
+        format: wgpu::TextureFormat,
+        usage: wgpu::TextureUsages,
+    ) -> bool {
+        self.n == n
+            && self.size == size
+            && self.levels == levels
+            && self.format == format
+            && self.usage == usage
+            && self.label == label
+    }
+}
+
 #[derive(Clone, PartialEq, Eq)]
 enum Resource {
     Buffer(wgpu::Buffer, u64, Option<NonZeroU64>),
@@ -52,6 +72,45 @@ enum Resource {
 struct GroupKey {
     layout: wgpu::BindGroupLayout,
     resources: Vec<(u32, Resource)>,
+}
+
+impl Resource {
+    /// The kept form of a binding (`None` for the kinds the pool does not keep).
+    fn of(r: &wgpu::BindingResource<'_>) -> Option<Resource> {
+        Some(match r {
+            wgpu::BindingResource::Buffer(b) => {
+                Resource::Buffer(b.buffer.clone(), b.offset, b.size)
+            }
+            wgpu::BindingResource::TextureView(v) => Resource::View((*v).clone()),
+            wgpu::BindingResource::Sampler(s) => Resource::Sampler((*s).clone()),
+            _ => return None,
+        })
+    }
+
+    /// Whether `r` is this binding (compared without cloning its handles).
+    fn is(&self, r: &wgpu::BindingResource<'_>) -> bool {
+        match (self, r) {
+            (Resource::Buffer(buffer, offset, size), wgpu::BindingResource::Buffer(b)) => {
+                *buffer == *b.buffer && *offset == b.offset && *size == b.size
+            }
+            (Resource::View(view), wgpu::BindingResource::TextureView(v)) => view == *v,
+            (Resource::Sampler(sampler), wgpu::BindingResource::Sampler(s)) => sampler == *s,
+            _ => false,
+        }
+    }
+}
+
+impl GroupKey {
+    /// Whether this is the key of `layout` with `resources`.
+    fn is(
+        &self,
+        layout: &wgpu::BindGroupLayout,
+        resources: &[(u32, wgpu::BindingResource<'_>)],
+    ) -> bool {
+        self.layout == *layout
+            && self.resources.len() == resources.len()
+            && self.resources.iter().zip(resources).all(|((i, kept), (j, r))| i == j && kept.is(r))
+    }
 }
 
 struct Slot<K, V> {
@@ -73,8 +132,9 @@ struct KeptBuffer {
 #[derive(Default)]
 struct Inner {
     frame: u64,
-    /// Requests per (kind, label) in this frame.
-    uses: HashMap<(u8, String), u32>,
+    /// Requests per label in this frame, by kind (kept from frame to frame, so that a steady
+    /// frame's requests allocate nothing).
+    uses: HashMap<String, [u32; 3]>,
     textures: Vec<Slot<TextureKey, GpuTexture>>,
     chains: Vec<Slot<TextureKey, GpuMipChain>>,
     buffers: Vec<KeptBuffer>,
@@ -83,7 +143,11 @@ struct Inner {
 
 impl Inner {
     fn next(&mut self, kind: u8, label: &str) -> u32 {
-        let n = self.uses.entry((kind, label.to_owned())).or_insert(0);
+        let counts = match self.uses.get_mut(label) {
+            Some(c) => c,
+            None => self.uses.entry(label.to_owned()).or_default(),
+        };
+        let n = &mut counts[usize::from(kind)];
         *n += 1;
         *n - 1
     }
@@ -122,7 +186,9 @@ impl FramePool {
     pub fn begin_frame(&self) {
         let mut g = self.lock();
         g.frame += 1;
-        g.uses.clear();
+        // Labels the last frame did not use are let go; the others count from zero again.
+        g.uses.retain(|_, n| *n != [0; 3]);
+        g.uses.values_mut().for_each(|n| *n = [0; 3]);
         let frame = g.frame;
         let fresh = |used: u64, keep: u64| used + keep >= frame;
         g.textures.retain(|s| fresh(s.used, KEEP_TARGETS));
@@ -148,19 +214,22 @@ impl FramePool {
         usage: wgpu::TextureUsages,
     ) -> (GpuTexture, bool) {
         let mut g = self.lock();
+        let n = g.next(TEXTURE, label);
+        let frame = g.frame;
+        if let Some(s) =
+            g.textures.iter_mut().find(|s| s.key.is(label, n, [width, height], 1, format, usage))
+        {
+            s.used = frame;
+            return (s.value.clone(), false);
+        }
         let key = TextureKey {
             label: label.to_owned(),
-            n: g.next(TEXTURE, label),
+            n,
             size: [width, height],
             levels: 1,
             format,
             usage,
         };
-        let frame = g.frame;
-        if let Some(s) = g.textures.iter_mut().find(|s| s.key == key) {
-            s.used = frame;
-            return (s.value.clone(), false);
-        }
         let value = GpuTexture::new(&self.device, label, width, height, format, usage);
         g.textures.push(Slot { key, value: value.clone(), used: frame });
         (value, true)
@@ -195,19 +264,23 @@ impl FramePool {
         format: wgpu::TextureFormat,
     ) -> GpuMipChain {
         let mut g = self.lock();
-        let key = TextureKey {
-            label: label.to_owned(),
-            n: g.next(CHAIN, label),
-            size: [width, height],
-            levels: count,
-            format,
-            usage: crate::texture::map_usage(),
-        };
+        let n = g.next(CHAIN, label);
+        let usage = crate::texture::map_usage();
         let frame = g.frame;
-        if let Some(s) = g.chains.iter_mut().find(|s| s.key == key) {
+        if let Some(s) =
+            g.chains.iter_mut().find(|s| s.key.is(label, n, [width, height], count, format, usage))
+        {
             s.used = frame;
             return s.value.clone();
         }
+        let key = TextureKey {
+            label: label.to_owned(),
+            n,
+            size: [width, height],
+            levels: count,
+            format,
+            usage,
+        };
         let value = GpuMipChain::with_format(&self.device, label, width, height, count, format);
         g.chains.push(Slot { key, value: value.clone(), used: frame });
         value
@@ -345,29 +418,17 @@ impl FramePool {
         layout: &wgpu::BindGroupLayout,
         resources: &[(u32, wgpu::BindingResource<'_>)],
     ) -> wgpu::BindGroup {
-        let key = resources
-            .iter()
-            .map(|(i, r)| {
-                let r = match r {
-                    wgpu::BindingResource::Buffer(b) => {
-                        Resource::Buffer(b.buffer.clone(), b.offset, b.size)
-                    }
-                    wgpu::BindingResource::TextureView(v) => Resource::View((*v).clone()),
-                    wgpu::BindingResource::Sampler(s) => Resource::Sampler((*s).clone()),
-                    _ => return None,
-                };
-                Some((*i, r))
-            })
-            .collect::<Option<Vec<_>>>()
-            .map(|resources| GroupKey { layout: layout.clone(), resources });
         let mut g = self.lock();
         let frame = g.frame;
-        if let Some(key) = &key
-            && let Some(s) = g.groups.iter_mut().find(|s| s.key == *key)
-        {
+        if let Some(s) = g.groups.iter_mut().find(|s| s.key.is(layout, resources)) {
             s.used = frame;
             return s.value.clone();
         }
+        let key = resources
+            .iter()
+            .map(|(i, r)| Some((*i, Resource::of(r)?)))
+            .collect::<Option<Vec<_>>>()
+            .map(|resources| GroupKey { layout: layout.clone(), resources });
         let entries: Vec<wgpu::BindGroupEntry<'_>> = resources
             .iter()
             .map(|(i, r)| wgpu::BindGroupEntry { binding: *i, resource: r.clone() })
