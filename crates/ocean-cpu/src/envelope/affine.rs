@@ -48,16 +48,25 @@ struct Form {
     co: [f64; TERMS],
     n: usize,
     e: f64,
+    /// Σ|aᵢ| + e, summed once where the form is made ([`Form::seal`]): every operation reads
+    /// its operands' radii, most of them twice.
+    rad: f64,
 }
 
 impl Form {
     fn constant(c: f64, e: f64) -> Form {
-        Form { c, ids: [0; TERMS], co: [0.0; TERMS], n: 0, e }
+        Form { c, ids: [0; TERMS], co: [0.0; TERMS], n: 0, e, rad: e }
+    }
+
+    /// The form with its radius summed from its terms (after they changed).
+    fn seal(mut self) -> Form {
+        self.rad = self.co[..self.n].iter().map(|a| a.abs()).sum::<f64>() + self.e;
+        self
     }
 
     /// Σ|aᵢ| + e.
     fn radius(&self) -> f64 {
-        self.co[..self.n].iter().map(|a| a.abs()).sum::<f64>() + self.e
+        self.rad
     }
 
     /// α·a + β·b + γ, plus `extra` error; symbols merged by id, the smallest folded into the
@@ -137,14 +146,15 @@ impl Form {
             out.n = n;
         }
         out.e = e;
-        out
+        out.seal()
     }
 
     /// The product (linear part exact; the symbols' product within radius × radius).
     fn mul(a: &Form, b: &Form, extra: f64) -> Form {
         let rest = a.radius() * b.radius() + a.c.abs() * b.e + b.c.abs() * a.e;
-        let a_lin = Form { e: 0.0, ..*a };
-        let b_lin = Form { e: 0.0, ..*b };
+        // `combine` reads the terms and the centre, not the radius.
+        let a_lin = Form { e: 0.0, ..*a }.seal();
+        let b_lin = Form { e: 0.0, ..*b }.seal();
         // c_a·b_lin + c_b·a_lin − c_a·c_b (the constant counted twice).
         Form::combine(&b_lin, a.c, &a_lin, b.c, -a.c * b.c, rest + extra)
     }
@@ -172,6 +182,7 @@ impl Af {
             f.ids[0] = fresh();
             f.co[0] = r;
             f.n = 1;
+            f = f.seal();
         }
         Af { iv, form: Some(f) }
     }
