@@ -23,6 +23,9 @@ pub struct PassTimer {
     home: Option<TimerPool>,
 }
 
+/// Most dropped, unread timers a pool waits for (the oldest is let go past it).
+const MAX_DRAINING: usize = 8;
+
 /// Query sets and their buffers a renderer keeps: a frame's timer comes back to the pool once
 /// its timestamps are read, or once a frame whose timestamps nobody read has dropped them and
 /// their buffer has finished mapping, so that a steady frame makes no query set.
@@ -61,6 +64,10 @@ impl TimerPool {
 
     fn drain(&self, q: Queries, state: MapState) {
         if let Ok(mut t) = self.0.lock() {
+            // A caller that never polls the device never sees a map end: keep a few, not all.
+            if t.draining.len() >= MAX_DRAINING {
+                t.draining.remove(0);
+            }
             t.draining.push((q, state));
         }
     }
