@@ -220,12 +220,15 @@ struct Visible {
     in: VertexOut,
 }
 
+// Whether the invocation's pixel lies in the target (each entry point asks first).
+fn in_target(id: vec3<u32>) -> bool {
+    let size = textureDimensions(target_frame);
+    return id.x < size.x && id.y < size.y;
+}
+
 fn visible(id: vec3<u32>) -> Visible {
     var v: Visible;
     v.covered = false;
-    if (!in_target(id)) {
-        return v;
-    }
     let p = vec2<i32>(id.xy);
     let c = textureLoad(vis_c, p, 0);
     if (c.w == 0.0) {
@@ -244,6 +247,9 @@ fn visible(id: vec3<u32>) -> Visible {
 
 @compute @workgroup_size(8, 8, 1)
 fn cs_shade_main(@builtin(global_invocation_id) id: vec3<u32>) {
+    if (!in_target(id)) {
+        return;
+    }
     let v = visible(id);
     if (v.covered) {
         textureStore(target_frame, vec2<i32>(id.xy), shade_main(v.in));
@@ -252,11 +258,6 @@ fn cs_shade_main(@builtin(global_invocation_id) id: vec3<u32>) {
 
 // The maps' shading stores their clear colour, 0, where nothing was drawn (alpha = coverage),
 // so the map needs no clear pass of its own.
-fn in_target(id: vec3<u32>) -> bool {
-    let size = textureDimensions(target_frame);
-    return id.x < size.x && id.y < size.y;
-}
-
 @compute @workgroup_size(8, 8, 1)
 fn cs_shade_reflect(@builtin(global_invocation_id) id: vec3<u32>) {
     if (!in_target(id)) {

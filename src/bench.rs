@@ -35,6 +35,14 @@ use ocean_core::plan::{FramePlan, OutputKind, Pass, SYSTEMS, System};
 use ocean_core::scene::Scene;
 use serde::Serialize;
 
+/// `--shading`: a [`ocean_gpu::ShadingPath`] by its name.
+fn shading_path(name: &str) -> Result<ocean_gpu::ShadingPath, String> {
+    ocean_gpu::ShadingPath::from_name(name).ok_or_else(|| {
+        let names: Vec<&str> = ocean_gpu::ShadingPath::ALL.iter().map(|p| p.name()).collect();
+        format!("`{name}` is not a shading path: {}", names.join(", "))
+    })
+}
+
 /// Arguments of `ocean bench`.
 #[derive(clap::Args, Debug)]
 pub struct Args {
@@ -56,8 +64,8 @@ pub struct Args {
     /// How the GPU shades the water and the objects: `compute` (a visibility buffer shaded in
     /// compute passes) or `fragment` (default: what the device allows, compute on Vulkan).
     /// The two give the same bits; timing both tells which pays on a GPU.
-    #[arg(long, value_parser = ["compute", "fragment"])]
-    shading: Option<String>,
+    #[arg(long, value_parser = shading_path)]
+    shading: Option<ocean_gpu::ShadingPath>,
     /// Also write the JSON to this file.
     #[arg(short, long)]
     output: Option<PathBuf>,
@@ -488,7 +496,7 @@ pub(crate) fn waves(
 pub fn measure(
     quick: bool,
     backend: &str,
-    (only, shading): (Option<&str>, Option<&str>),
+    (only, shading): (Option<&str>, Option<ocean_gpu::ShadingPath>),
     runs: u32,
     progress: &mut dyn FnMut(&str),
 ) -> anyhow::Result<Bench> {
@@ -503,11 +511,6 @@ pub fn measure(
         None
     };
     if let (Some(r), Some(path)) = (renderer.as_mut(), shading) {
-        let path = if path == "fragment" {
-            ocean_gpu::ShadingPath::Fragment
-        } else {
-            ocean_gpu::ShadingPath::Compute
-        };
         r.set_shading_path(path).with_context(|| format!("shading in {}", path.name()))?;
     }
     let mut sizes: &[[u32; 2]] = if quick { &QUICK_SIZES } else { &FULL_SIZES };
@@ -627,7 +630,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
     // Before minutes of measuring: the output's folder exists and takes a file.
     let out = args.output.as_deref().map(ocean::output::OutputFile::reserve).transpose()?;
     let bar = indicatif::ProgressBar::new_spinner();
-    let choice = (args.only.as_deref(), args.shading.as_deref());
+    let choice = (args.only.as_deref(), args.shading);
     let b = measure(args.quick, &args.backend, choice, runs, &mut |what| {
         bar.set_message(what.to_owned());
         bar.tick();

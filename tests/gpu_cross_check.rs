@@ -14,6 +14,8 @@
 #[macro_use]
 #[path = "support/gpu_harness.rs"]
 mod gpu_harness;
+#[path = "support/reference_scenes.rs"]
+mod reference_scenes;
 
 use std::path::PathBuf;
 
@@ -60,21 +62,10 @@ fn renderer_with(waves: WaveSynthesis) -> Renderer {
 /// sky; the water pass takes its branch for a surface seen from below, with Fresnel for 1/η
 /// and Snell's window).
 fn reference_scenes() -> Vec<(String, Scene)> {
-    let mut paths: Vec<PathBuf> = std::fs::read_dir(root().join("reference/scenes"))
-        .expect("reference/scenes")
-        .map(|e| e.expect("entry").path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    paths.sort();
-    let mut scenes: Vec<(String, Scene)> = paths
-        .into_iter()
-        .map(|p| {
-            let mut s = Scene::load(&p).expect("reference scene");
-            s.camera.width = WIDTH;
-            s.camera.height = HEIGHT;
-            (p.file_stem().expect("name").to_string_lossy().into_owned(), s)
-        })
-        .collect();
+    let mut scenes = reference_scenes::reference_scenes();
+    for (_, s) in &mut scenes {
+        (s.camera.width, s.camera.height) = (WIDTH, HEIGHT);
+    }
     let mut under = Scene::builtin();
     (under.camera.width, under.camera.height) = (WIDTH, HEIGHT);
     under.camera.position = [0.0, -2.5, 20.0];

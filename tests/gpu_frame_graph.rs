@@ -16,6 +16,8 @@ mod gpu_harness;
 mod extreme_scene;
 #[path = "support/random_scene.rs"]
 mod random_scene;
+#[path = "support/reference_scenes.rs"]
+mod reference_scenes;
 
 use std::path::PathBuf;
 
@@ -273,18 +275,10 @@ fn the_shading_paths_store_the_same_bits() {
     use ocean_gpu::ShadingPath;
     let mut r = renderer();
     assert_eq!(r.shading_path(), ShadingPath::Compute, "lavapipe holds the visibility buffer");
-    let mut scenes: Vec<PathBuf> = std::fs::read_dir(root().join("reference/scenes"))
-        .unwrap()
-        .flatten()
-        .map(|e| e.path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    scenes.sort();
+    let scenes = reference_scenes::reference_scenes();
     assert!(scenes.len() >= 28, "{} reference scenes", scenes.len());
     let mut control = None;
-    for path in &scenes {
-        let name = path.file_stem().unwrap().to_string_lossy().into_owned();
-        let mut scene = Scene::load(path).unwrap_or_else(|e| panic!("{name}: {e}"));
+    for (name, mut scene) in scenes {
         (scene.camera.width, scene.camera.height) = (96, 54);
         r.set_shading_path(ShadingPath::Compute).unwrap();
         let compute = frame_bits(&mut r, &scene);

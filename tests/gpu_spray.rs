@@ -13,6 +13,8 @@ mod gpu_harness;
 
 #[path = "support/cli.rs"]
 mod cli;
+#[path = "support/reference_scenes.rs"]
+mod reference_scenes;
 
 use std::path::PathBuf;
 
@@ -215,13 +217,7 @@ fn every_live_sprite_lies_in_the_sprays_reach_and_a_tighter_bound_misses_some() 
 /// minimum; GPUs twice as loose as the rules leave it (the negative control).
 fn random_conformant_gpus_stay_inside_the_spray_step_envelope() {
     use ocean_cpu::envelope::{JitterRules, Precision};
-    let mut scenes: Vec<(String, Scene)> = std::fs::read_dir(root().join("reference/scenes"))
-        .unwrap()
-        .flatten()
-        .map(|e| e.path())
-        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
-        .map(|p| (p.file_stem().unwrap().to_string_lossy().into_owned(), Scene::load(&p).unwrap()))
-        .collect();
+    let mut scenes = reference_scenes::reference_scenes();
     let chiu = ocean::scene_arg::SystemArg { system: Some("chiu".into()) };
     scenes.push(("builtin-chiu".into(), ocean::scene_arg::load_scene(None, &chiu).unwrap()));
     let (mut judged, mut slots, mut undecided, mut loose) = (Vec::new(), 0, 0, 0);

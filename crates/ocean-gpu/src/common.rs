@@ -279,17 +279,6 @@ pub fn begin_render_pass<'e>(
         }),
         Load::Keep => wgpu::LoadOp::Load,
     };
-    let depth_stencil_attachment = depth.map(|(view, l)| wgpu::RenderPassDepthStencilAttachment {
-        view,
-        depth_ops: Some(wgpu::Operations {
-            load: match l {
-                Load::Clear(d) => wgpu::LoadOp::Clear(d),
-                Load::Keep => wgpu::LoadOp::Load,
-            },
-            store: wgpu::StoreOp::Store,
-        }),
-        stencil_ops: None,
-    });
     encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
         label: Some(label),
         color_attachments: &[Some(wgpu::RenderPassColorAttachment {
@@ -298,11 +287,29 @@ pub fn begin_render_pass<'e>(
             resolve_target: None,
             ops: wgpu::Operations { load, store: wgpu::StoreOp::Store },
         })],
-        depth_stencil_attachment,
+        depth_stencil_attachment: depth.map(|(view, l)| depth_attachment(view, l)),
         timestamp_writes,
         occlusion_query_set: None,
         multiview_mask: None,
     })
+}
+
+/// A depth buffer attachment, `load`ed and stored.
+pub fn depth_attachment(
+    view: &wgpu::TextureView,
+    load: Load<f32>,
+) -> wgpu::RenderPassDepthStencilAttachment<'_> {
+    wgpu::RenderPassDepthStencilAttachment {
+        view,
+        depth_ops: Some(wgpu::Operations {
+            load: match load {
+                Load::Clear(d) => wgpu::LoadOp::Clear(d),
+                Load::Keep => wgpu::LoadOp::Load,
+            },
+            store: wgpu::StoreOp::Store,
+        }),
+        stencil_ops: None,
+    }
 }
 
 /// The render pipeline of a full-screen pass (`shared/fullscreen.wgsl`): `vs_main` and

@@ -46,12 +46,20 @@ impl ShadingPath {
         }
     }
 
+    /// Both paths.
+    pub const ALL: [ShadingPath; 2] = [Self::Compute, Self::Fragment];
+
     /// `compute` or `fragment`.
     pub fn name(self) -> &'static str {
         match self {
             Self::Compute => "compute",
             Self::Fragment => "fragment",
         }
+    }
+
+    /// The path of that [`Self::name`].
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|p| p.name() == name)
     }
 }
 
@@ -99,10 +107,6 @@ pub(crate) fn begin_visibility_pass<'e>(
             ops: wgpu::Operations { load, store: wgpu::StoreOp::Store },
         })
     }
-    let load = match depth_load {
-        crate::common::Load::Clear(d) => wgpu::LoadOp::Clear(d),
-        crate::common::Load::Keep => wgpu::LoadOp::Load,
-    };
     encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
         label: Some(label),
         color_attachments: &[
@@ -110,11 +114,7 @@ pub(crate) fn begin_visibility_pass<'e>(
             attachment(&vis[1].view, wgpu::LoadOp::Load),
             attachment(&vis[2].view, wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT)),
         ],
-        depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-            view: depth,
-            depth_ops: Some(wgpu::Operations { load, store: wgpu::StoreOp::Store }),
-            stencil_ops: None,
-        }),
+        depth_stencil_attachment: Some(crate::common::depth_attachment(depth, depth_load)),
         timestamp_writes,
         occlusion_query_set: None,
         multiview_mask: None,

@@ -80,14 +80,10 @@ impl SkyStage {
         drop(encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("ocean.sky.depth"),
             color_attachments: &[],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: depth,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(0.0),
-                    store: wgpu::StoreOp::Store,
-                }),
-                stencil_ops: None,
-            }),
+            depth_stencil_attachment: Some(crate::common::depth_attachment(
+                depth,
+                crate::common::Load::Clear(0.0),
+            )),
             timestamp_writes: None,
             occlusion_query_set: None,
             multiview_mask: None,

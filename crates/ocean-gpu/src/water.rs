@@ -82,19 +82,18 @@ pub struct WaterMeshBuffers<'a> {
     pub index_count: u32,
 }
 
-/// The compute path's pipelines.
+/// The compute path's shading pipeline and the layout of its visibility group.
 struct ComputeShading {
-    /// Surfaces' raster pipelines writing the visibility buffer: mesh, grid, clipmap.
-    visibility: [wgpu::RenderPipeline; 3],
     shade: wgpu::ComputePipeline,
     layout: wgpu::BindGroupLayout,
 }
 
-/// The stage's pipelines (one per surface's vertex entry point) and samplers.
+/// The stage's pipelines (one raster pipeline per surface's vertex entry point) and samplers.
 pub struct WaterStage {
-    pipeline: wgpu::RenderPipeline,
-    grid_pipeline: wgpu::RenderPipeline,
-    clipmap_pipeline: wgpu::RenderPipeline,
+    /// Mesh, grid, clipmap: shading each fragment (`fs_main`) on the fragment path, writing
+    /// the visibility buffer (`fs_visibility`) on the compute path.
+    raster: [wgpu::RenderPipeline; 3],
+    /// The compute path's shading (`None` on the fragment path).
     compute: Option<ComputeShading>,
     layout: wgpu::BindGroupLayout,
     sky_layout: wgpu::BindGroupLayout,
@@ -145,11 +144,11 @@ impl WaterStage {
             entries: &[uniform_entry(0, fragment), uniform_entry(1, fragment)],
         });
         let raster_layout = pipeline_layout(device, &name, &[&layout, &sky_layout]);
-        let visibility_targets = visibility_color_targets();
-        let make = |vs: &str,
-                    buffers: &[Option<wgpu::VertexBufferLayout<'_>>],
-                    fs: &str,
-                    targets: &[Option<wgpu::ColorTargetState>]| {
+        let (fs, targets) = match path {
+            ShadingPath::Fragment => ("fs_main", replace_target(target).to_vec()),
+            ShadingPath::Compute => ("fs_visibility", visibility_color_targets().to_vec()),
+        };
+        let make = |vs: &str, buffers: &[Option<wgpu::VertexBufferLayout<'_>>]| {
             Ok::<_, Error>(device.new_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some(&name),
                 layout: Some(&raster_layout),
@@ -166,27 +165,20 @@ impl WaterStage {
                     module: &module,
                     entry_point: Some(entry("water", fs)?),
                     compilation_options: Default::default(),
-                    targets,
+                    targets: &targets,
                 }),
                 multiview_mask: None,
                 cache: None,
             }))
         };
-        let shaded = replace_target(target);
-        let pipeline = make("vs_main", &[Some(WATER_VERTEX_LAYOUT)], "fs_main", &shaded)?;
-        let grid_pipeline = make("vs_projected_grid", &[], "fs_main", &shaded)?;
-        let clipmap_pipeline = make("vs_clipmap", &[], "fs_main", &shaded)?;
+        let raster = [
+            make("vs_main", &[Some(WATER_VERTEX_LAYOUT)])?,
+            make("vs_projected_grid", &[])?,
+            make("vs_clipmap", &[])?,
+        ];
         let compute = match path {
             ShadingPath::Fragment => None,
             ShadingPath::Compute => {
-                let vis = |vs: &str, buffers: &[Option<wgpu::VertexBufferLayout<'_>>]| {
-                    make(vs, buffers, "fs_visibility", &visibility_targets)
-                };
-                let visibility = [
-                    vis("vs_main", &[Some(WATER_VERTEX_LAYOUT)])?,
-                    vis("vs_projected_grid", &[])?,
-                    vis("vs_clipmap", &[])?,
-                ];
                 let vis_layout = visibility_layout(device, "ocean.water.visibility", target);
                 let shade_layout =
                     pipeline_layout(device, &name, &[&layout, &sky_layout, &vis_layout]);
@@ -198,13 +190,11 @@ impl WaterStage {
                     compilation_options: Default::default(),
                     cache: None,
                 });
-                Some(ComputeShading { visibility, shade, layout: vis_layout })
+                Some(ComputeShading { shade, layout: vis_layout })
             }
         };
         Ok(Self {
-            pipeline,
-            grid_pipeline,
-            clipmap_pipeline,
+            raster,
             compute,
             layout,
             sky_layout,
@@ -275,13 +265,7 @@ impl WaterStage {
                 Some((depth, Load::Keep)),
                 timestamps,
             );
-            self.draw(
-                &mut pass,
-                draw,
-                [&self.pipeline, &self.grid_pipeline, &self.clipmap_pipeline],
-                &group,
-                &sky_group,
-            );
+            self.draw(&mut pass, draw, &group, &sky_group);
             return;
         };
         let vis = visibility_targets(kept, "ocean.water", [width, height]);
@@ -294,8 +278,7 @@ impl WaterStage {
                 (depth, Load::Keep),
                 raster_ts,
             );
-            let [mesh, grid, clipmap] = &compute.visibility;
-            self.draw(&mut pass, draw, [mesh, grid, clipmap], &group, &sky_group);
+            self.draw(&mut pass, draw, &group, &sky_group);
         }
         let shading =
             Shading { vis: &vis, target: hdr_view, size: [width, height], layout: &compute.layout };
@@ -309,16 +292,15 @@ impl WaterStage {
         );
     }
 
-    /// The surface's draw on `pipelines` (mesh, grid, clipmap) with the stage's groups.
+    /// The surface's draw on its raster pipeline with the stage's groups.
     fn draw(
         &self,
         pass: &mut wgpu::RenderPass<'_>,
         draw: &WaterDraw<'_>,
-        pipelines: [&wgpu::RenderPipeline; 3],
         group: &wgpu::BindGroup,
         sky_group: &wgpu::BindGroup,
     ) {
-        let [mesh_pipeline, grid_pipeline, clipmap_pipeline] = pipelines;
+        let [mesh_pipeline, grid_pipeline, clipmap_pipeline] = &self.raster;
         match draw {
             WaterDraw::Mesh(mesh) => {
                 pass.set_pipeline(mesh_pipeline);

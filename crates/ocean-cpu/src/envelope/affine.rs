@@ -72,6 +72,12 @@ impl Form {
     /// α·a + β·b + γ, plus `extra` error; symbols merged by id, the smallest folded into the
     /// error past [`TERMS`].
     fn combine(a: &Form, alpha: f64, b: &Form, beta: f64, gamma: f64, extra: f64) -> Form {
+        let e = alpha.abs() * a.e + beta.abs() * b.e + extra;
+        Form::combine_terms(a, alpha, b, beta, gamma, e)
+    }
+
+    /// α·a + β·b + γ of the two forms' centres and symbols (not their errors), with error `e`.
+    fn combine_terms(a: &Form, alpha: f64, b: &Form, beta: f64, gamma: f64, e: f64) -> Form {
         let mut ids = [0u32; 2 * TERMS];
         let mut co = [0f64; 2 * TERMS];
         let mut n = 0;
@@ -104,7 +110,7 @@ impl Form {
             push(b.ids[k], beta * b.co[k]);
         }
         let c = alpha * a.c + beta * b.c + gamma;
-        let mut e = alpha.abs() * a.e + beta.abs() * b.e + extra;
+        let mut e = e;
         let mag = c.abs() + co[..n].iter().map(|v| v.abs()).sum::<f64>() + e;
         e += mag * F64_REL;
         Form::fold(c, &ids[..n], &co[..n], e)
@@ -152,11 +158,9 @@ impl Form {
     /// The product (linear part exact; the symbols' product within radius × radius).
     fn mul(a: &Form, b: &Form, extra: f64) -> Form {
         let rest = a.radius() * b.radius() + a.c.abs() * b.e + b.c.abs() * a.e;
-        // `combine` reads the terms and the centre, not the radius.
-        let a_lin = Form { e: 0.0, ..*a }.seal();
-        let b_lin = Form { e: 0.0, ..*b }.seal();
-        // c_a·b_lin + c_b·a_lin − c_a·c_b (the constant counted twice).
-        Form::combine(&b_lin, a.c, &a_lin, b.c, -a.c * b.c, rest + extra)
+        // c_a·b_lin + c_b·a_lin − c_a·c_b (the constant counted twice; the linear parts
+        // without their errors, which `rest` holds).
+        Form::combine_terms(b, a.c, a, b.c, -a.c * b.c, rest + extra)
     }
 }
 
