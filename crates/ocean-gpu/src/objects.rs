@@ -22,8 +22,8 @@ use crate::common::{
 };
 use crate::device::Error;
 use crate::shading_path::{
-    Shading, ShadingPath, begin_visibility_pass, encode_shading, split_timestamps,
-    visibility_color_targets, visibility_layout, visibility_targets,
+    OBJECTS_VISIBILITY, Shading, ShadingPath, begin_visibility_pass, encode_shading,
+    split_timestamps, visibility_color_targets, visibility_layout, visibility_targets,
 };
 
 /// Which pair of entry points.
@@ -230,7 +230,6 @@ impl ObjectsStage {
         load: (Load<[f32; 4]>, Load<f32>),
         timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
     ) {
-        let name = label("objects");
         let draw = |pass: &mut wgpu::RenderPass<'_>, pipeline: &wgpu::RenderPipeline| {
             pass.set_pipeline(pipeline);
             pass.set_bind_group(0, frame, &[]);
@@ -243,7 +242,7 @@ impl ObjectsStage {
             EntryPipelines::Fragment(pipeline) => {
                 let mut pass = begin_render_pass(
                     encoder,
-                    &name,
+                    "ocean.objects",
                     target,
                     load.0,
                     Some((depth, load.1)),
@@ -266,7 +265,7 @@ impl ObjectsStage {
                         None,
                     ));
                 }
-                let vis = visibility_targets(kept, &name, size);
+                let vis = visibility_targets(kept, OBJECTS_VISIBILITY, size);
                 {
                     let mut pass = begin_visibility_pass(
                         encoder,

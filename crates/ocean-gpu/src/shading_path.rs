@@ -63,16 +63,22 @@ impl ShadingPath {
     }
 }
 
-/// The visibility buffer's three targets, kept in `kept` under `label`'s names, `size`.
+/// The water's visibility buffer's labels.
+pub(crate) const WATER_VISIBILITY: [&str; 3] =
+    ["ocean.water.vis_a", "ocean.water.vis_b", "ocean.water.vis_cover"];
+/// The objects' visibility buffer's labels.
+pub(crate) const OBJECTS_VISIBILITY: [&str; 3] =
+    ["ocean.objects.vis_a", "ocean.objects.vis_b", "ocean.objects.vis_cover"];
+
+/// The visibility buffer's three targets, kept in `kept` under `labels` (constants: a
+/// steady frame formats no label), `size`.
 pub(crate) fn visibility_targets(
     kept: &crate::pool::FramePool,
-    label: &str,
+    labels: [&str; 3],
     [width, height]: [u32; 2],
 ) -> [crate::texture::GpuTexture; 3] {
     let usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING;
-    ["a", "b", "cover"].map(|n| {
-        kept.texture(&format!("{label}.vis_{n}"), width, height, VISIBILITY_FORMAT, usage).0
-    })
+    labels.map(|l| kept.texture(l, width, height, VISIBILITY_FORMAT, usage).0)
 }
 
 /// The colour targets of a pipeline writing the visibility buffer.

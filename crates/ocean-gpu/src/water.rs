@@ -25,8 +25,8 @@ use crate::common::{
 };
 use crate::device::Error;
 use crate::shading_path::{
-    Shading, ShadingPath, begin_visibility_pass, encode_shading, split_timestamps,
-    visibility_color_targets, visibility_layout, visibility_targets,
+    Shading, ShadingPath, WATER_VISIBILITY, begin_visibility_pass, encode_shading,
+    split_timestamps, visibility_color_targets, visibility_layout, visibility_targets,
 };
 
 /// The vertex buffer layout of `WaterVertex`: pos (Float32x2), weight (Float32).
@@ -268,7 +268,7 @@ impl WaterStage {
             self.draw(&mut pass, draw, &group, &sky_group);
             return;
         };
-        let vis = visibility_targets(kept, "ocean.water", [width, height]);
+        let vis = visibility_targets(kept, WATER_VISIBILITY, [width, height]);
         let (raster_ts, shade_ts) = split_timestamps(timestamps);
         {
             let mut pass = begin_visibility_pass(
