@@ -170,11 +170,13 @@ fn judge_passes(
     }
     // The water's envelope is the costliest: where one failure is the answer, it is spared.
     if gpu.first_failure && !v.failures.is_empty() {
-        v.not_judged.push("hdr (water)");
+        v.not_judged.push("hdr");
         return Ok(v);
     }
     v.judge_water(scene, plan, gpu)?;
-    for &id in resources.iter().filter(|id| !v.judged.contains(&id.name())) {
+    // Each resource once: judged, not judged with its own reason, or without an envelope.
+    let listed: Vec<&str> = v.judged.iter().chain(&v.not_judged).copied().collect();
+    for &id in resources.iter().filter(|id| !listed.contains(&id.name())) {
         let pass = id.writer().map_or("", |p| p.name());
         let (why, entry) = ocean_verify::envelope::not_judged(id);
         v.lines.push(format!("  [{pass:<14}] {:<20} not judged: {why}", id.name()));
@@ -349,12 +351,17 @@ impl Verdict {
             Ok((f, open, took, widths)) => {
                 let fmt = |x: Option<f64>| x.map_or("-".to_owned(), |x| format!("{x:.1e}"));
                 let note = format!(
-                    " ({} water pixels, rel half-width p50 {} / p99 {}; {:.2} % open to the sky \
-                     at the mesh's edges; {}; envelope {took:.1?})",
+                    " ({} water pixels, rel half-width p50 {} / p99 {}; {} object pixels, p50 \
+                     {}; {} where either may show; {:.2} % open (the mesh's edges, or water or \
+                     object); {} unbounded, not judged; {}; envelope {took:.1?})",
                     widths.pixels,
                     fmt(widths.p50),
                     fmt(widths.p99),
+                    widths.objects,
+                    fmt(widths.objects_p50),
+                    widths.either,
                     100.0 * open,
+                    widths.unbounded,
                     gpu.precision.1
                 );
                 self.lines.push(format!("  [{:<14}] {}{note}", "water", f.line()));
@@ -365,6 +372,10 @@ impl Verdict {
                 j["water_pixels"] = json!(widths.pixels);
                 j["water_rel_half_width_p50"] = json!(widths.p50);
                 j["water_rel_half_width_p99"] = json!(widths.p99);
+                j["object_pixels"] = json!(widths.objects);
+                j["object_rel_half_width_p50"] = json!(widths.objects_p50);
+                j["either_pixels"] = json!(widths.either);
+                j["unbounded_pixels"] = json!(widths.unbounded);
                 j["open_share"] = json!(open);
                 j["precision"] = json!(gpu.precision.1);
                 self.json.push(j);
@@ -376,7 +387,9 @@ impl Verdict {
                 self.json.push(
                     json!({"name": "hdr (water)", "tolerance": "envelope", "judged": false, "why": why}),
                 );
-                self.not_judged.push("hdr (water)");
+                // The resource's name, as the judged list has it, so that a scene whose water
+                // is not judged does not hide another's that is.
+                self.not_judged.push("hdr");
             }
         }
         Ok(())

@@ -779,6 +779,14 @@ fn random_conformant_gpus_stay_inside_the_object_maps_envelope() {
                 ocean_core::frame::pass_triangles(&scene, &frame.poses, planned, frame.camera.eye);
             let (dw, dh, disp) = o.map(ResourceId::Displacement).unwrap_or((1, 1, &[[0.0; 4]]));
             let displacement = ocean_cpu::sampler::Texture2D::new(dw, dh, disp.to_vec());
+            // The relief's march: its hull for the envelope, the exact march for the GPUs.
+            let (fw, fh, floor) = ocean_core::terrain::relief_texels(scene.terrain.as_ref());
+            let floor_map = ocean_cpu::sampler::Texture2D::new(fw, fh, floor);
+            let relief_bound = objects::relief_envelope(&u);
+            let relief_iv = |_: [Iv; 3]| relief_bound;
+            let relief = |p: [f32; 3]| {
+                ocean_cpu::shaders::shared::floor::relief_sun(p.into(), &u, &floor_map)
+            };
             let envelope_inputs = objects::MapInputs {
                 frame: &u,
                 size: r.size,
@@ -787,6 +795,7 @@ fn random_conformant_gpus_stay_inside_the_object_maps_envelope() {
                 shadow_dims: dims,
                 occluder: &occ_iv,
                 displacement: &displacement,
+                relief: &relief_iv,
             };
             let gpu_inputs = objects::MapInputs {
                 frame: &u,
@@ -796,10 +805,9 @@ fn random_conformant_gpus_stay_inside_the_object_maps_envelope() {
                 shadow_dims: dims,
                 occluder: &occ,
                 displacement: &displacement,
+                relief: &relief,
             };
-            let Some((env, amb)) = objects::map_envelope(map, &tris, &envelope_inputs) else {
-                continue;
-            };
+            let (env, amb) = objects::map_envelope(map, &tris, &envelope_inputs);
             let (_, _, exact) = o.map(id).unwrap();
             let outside = |g: &[[f32; 4]]| -> usize {
                 env.iter()
@@ -848,326 +856,4 @@ fn random_conformant_gpus_stay_inside_the_object_maps_envelope() {
     );
     assert!(kinds[0] >= 3 && kinds[1] >= 3, "{kinds:?} maps the envelope judges");
     assert!(loose > 0, "a GPU twice as loose as the rules never left the envelope");
-}
-
-/// The water pass's configurations the envelope carries, among the reference scenes at
-/// `size`: (name, scene, plan).
-fn water_scenes(size: (u32, u32)) -> Vec<(String, ocean_core::scene::Scene, FramePlan)> {
-    use ocean_core::plan::Pass;
-    let mut out = Vec::new();
-    for path in reference_scenes() {
-        let name = path.file_stem().unwrap().to_string_lossy().into_owned();
-        let mut scene = ocean_core::scene::Scene::load(&path).unwrap();
-        (scene.camera.width, scene.camera.height) = size;
-        let plan = FramePlan::new(&scene, OutputKind::Ldr);
-        let state = ocean_core::graph::FrameState::new(0.0);
-        let frame = ocean_core::graph::FrameInputs::new(&scene, &plan, &state).unwrap();
-        if plan.runs(Pass::Spray)
-            || ocean_cpu::shaders::water::real::carried(&frame.uniforms).is_some()
-        {
-            continue;
-        }
-        out.push((name, scene, plan));
-    }
-    out
-}
-
-/// The water pass: its mirror over `Real` at f32 is the exact mirror bit for bit (every
-/// vertex, and fragments at the vertices and between them); the oracle's HDR frame and 8
-/// random conformant GPUs' water passes stay inside its envelope on every reference scene it
-/// carries (the pixels where an object may show left out: an object may land there and the
-/// water is not certainly nearer); a GPU twice as loose as the rules leaves it.
-/// Random conformant GPUs draw the objects of the main view (`vs_main`) no nearer than
-/// `objects::depth_reach` bounds them (`near`), which the water verdict trusts where the
-/// water is certainly nearer. Returns how many of their depths a bound 1 % nearer would
-/// leave (the caller's negative control: the bound is the depth, not a blanket; a scene of
-/// small triangles may have none, whose depth planes' f32 allowance is large).
-fn object_depths_within(
-    tris: &[[ocean_core::frame::ObjectVertex; 3]],
-    u: &ocean_core::frame::FrameUniforms,
-    (w, h): (u32, u32),
-    near: &[f64],
-    name: &str,
-) -> usize {
-    use ocean_cpu::shaders::objects;
-    let mut tighter = 0;
-    for seed in 0..4 {
-        let rules = JitterRules { seed, scale: 1.0 };
-        let clip: Vec<[[f32; 4]; 3]> = tris
-            .iter()
-            .enumerate()
-            .map(|(k, t)| {
-                Jitter::reseed(rules, (k as u64) << 32 | 0xffff_ffff);
-                t.each_ref().map(|v| objects::vs_main_r::<Jitter>(v, u).0.map(|x| x.0))
-            })
-            .collect();
-        let depth = ocean_cpu::envelope::raster::jitter_pass(
-            &clip,
-            w,
-            h,
-            true,
-            [0.0; 4],
-            rules,
-            |_, _, z| Some([z, 0.0, 0.0, 0.0]),
-        );
-        for (i, d) in depth.iter().enumerate().filter(|(_, d)| d[0] > 0.0) {
-            let z = f64::from(d[0]);
-            assert!(
-                z <= near[i],
-                "{name} seed {seed}: an object's depth {z} at {i}, bound {}",
-                near[i]
-            );
-            tighter += usize::from(z > near[i] - 1e-2 * near[i].abs());
-        }
-    }
-    tighter
-}
-
-#[test]
-fn random_conformant_gpus_stay_inside_the_water_envelope() {
-    use ocean_core::plan::Pass;
-    use ocean_cpu::shaders::water::{self, envelope as we};
-    use ocean_cpu::shaders::{objects, sky};
-    let (w, h) = (160u32, 90u32);
-    let scenes = water_scenes((w, h));
-    let (mut runs, mut loose, mut judged, mut open, mut water_px) = (0, 0, 0usize, 0usize, 0usize);
-    let mut objects_tight = 0;
-    let mut rel = Vec::new();
-    let mut names = Vec::new();
-    for (name, scene, plan) in &scenes {
-        let mut state = ocean_core::graph::FrameState::new(0.0);
-        let frame = ocean_core::graph::FrameInputs::new(scene, plan, &state).unwrap();
-        let u = frame.uniforms;
-        let tech = plan.techniques.sky();
-        let format = plan.frame_format;
-        let o = ocean_cpu::frame::render_frame(
-            &frame,
-            ocean_cpu::frame::Environment::Planned,
-            &mut state,
-            &mut |_| {},
-        )
-        .unwrap();
-        let owned = we::OwnedTextures::from_resources(
-            |id| o.map(id),
-            plan.runs(Pass::WaveMips),
-            |id| o.map(id).is_some(),
-            {
-                let (fw, fh, t) = ocean_core::terrain::relief_texels(scene.terrain.as_ref());
-                ocean_cpu::sampler::Texture2D::new(fw, fh, t)
-            },
-        )
-        .unwrap();
-        let pass = we::WaterPass {
-            frame: &u,
-            sky: &frame.environment,
-            lut: &frame.sky_lut,
-            sky_technique: tech,
-            textures: owned.textures(),
-            vertices: &frame.mesh.vertices,
-            indices: &frame.mesh.indices,
-            size: [w, h],
-            format,
-            precision: ocean_cpu::envelope::Precision::LAVAPIPE,
-            shading: plan.techniques.shading(),
-            foam: plan.techniques.foam(),
-            every: 1,
-        };
-        // The generic mirror at f32 against the exact one.
-        let t = owned.textures();
-        let radiance = sky::environment_radiance(tech);
-        let (env_u, lut) = (&frame.environment, &*frame.sky_lut);
-        let sky_fn = move |d: [f32; 3]| radiance(env_u, lut, d);
-        let bindings = water::Bindings {
-            frame: &u,
-            displacement: t.displacement,
-            displacement_slopes: t.displacement_slopes,
-            bump: t.bump,
-            fresnel_above: t.fresnel_above,
-            fresnel_below: t.fresnel_below,
-            reflection_map: t.reflection_map,
-            refraction_map: t.refraction_map,
-            shadow_map: t.shadow_map,
-            fresnel_filter: t.fresnel_filter,
-            floor_map: t.floor_map,
-            foam_field: t.foam_field,
-            sky_radiance: &sky_fn,
-            shade_above: ocean_cpu::shaders::shading::shade_above(plan.techniques.shading()),
-            foam_coverage: ocean_cpu::shaders::foam::foam_coverage(plan.techniques.foam()),
-        };
-        let grid = u.grid.vertex_count() > 0;
-        let clipmap = u.clip.vertex_count() as usize;
-        let count = if clipmap > 0 {
-            clipmap
-        } else if grid {
-            (u.grid.cols as usize + 1) * (u.grid.rows as usize + 1)
-        } else {
-            frame.mesh.vertices.len()
-        };
-        let mut checked = 0;
-        for id in (0..count).step_by((count / 3000).max(1)) {
-            // A clipmap's vertex index k names its lattice point's id.
-            let point = if clipmap > 0 {
-                water::real::clipmap::point_id(id as u32, &u) as usize
-            } else {
-                id
-            };
-            let (clip, v) = we::exact_vertex(&pass, point);
-            let exact = if clipmap > 0 {
-                water::vs_clipmap(id as u32, &bindings)
-            } else if grid {
-                // Lattice point (i, j): corner 0 of quad (i, j), or the last row/column's.
-                let cols = u.grid.cols as u32;
-                let (i, j) = (id as u32 % (cols + 1), id as u32 / (cols + 1));
-                let (qi, di) = if i == cols { (i - 1, 1) } else { (i, 0) };
-                let (qj, dj) = if j == u.grid.rows as u32 { (j - 1, 1) } else { (j, 0) };
-                let corner = [[0, 5], [1, 2]][di][dj];
-                water::vs_projected_grid(6 * (qj * cols + qi) + corner, &bindings)
-            } else {
-                water::vs_main(&frame.mesh.vertices[id], &bindings)
-            };
-            assert_eq!(
-                clip.map(f32::to_bits),
-                <[f32; 4]>::from(exact.clip).map(f32::to_bits),
-                "{name} {id}"
-            );
-            assert_eq!(v.map(f32::to_bits), exact.varyings().map(f32::to_bits), "{name} {id}");
-            for frag in [[10.5, 20.5], [80.5, 60.5]] {
-                let e = we::envelope_fragment(&pass, frag, &v.map(Iv::point));
-                for seed in 0..8 {
-                    let j = we::jitter_fragment(
-                        &pass,
-                        frag,
-                        &v,
-                        JitterRules { seed, scale: 1.0 },
-                        id as u64,
-                    );
-                    assert!(
-                        (0..4).all(|c| e[c].contains(j[c])),
-                        "{name} vertex {id} seed {seed}: {j:?} not in {e:?}"
-                    );
-                }
-                let a = we::exact_fragment(&pass, frag, &v);
-                let b = water::fs_main(
-                    &water::VertexOut::from_fragment([frag[0], frag[1], 0.5, 1.0], &v),
-                    &bindings,
-                );
-                assert_eq!(
-                    a.map(f32::to_bits),
-                    b.map(f32::to_bits),
-                    "{name} vertex {id} at {frag:?}"
-                );
-                checked += 1;
-            }
-        }
-        assert!(checked > 100, "{name}: {checked} fragments compared");
-        // The background: the sky pass's envelope, and a random GPU's sky.
-        let inputs = sky::SkyInputs {
-            camera: &frame.camera_uniforms,
-            sky: &frame.environment,
-            lut: &frame.sky_lut,
-        };
-        let bg_env: Vec<[Iv; 4]> = sky::envelope(tech, inputs, (w, h), format)
-            .into_iter()
-            .map(|c| [c[0], c[1], c[2], Iv::point(1.0)])
-            .collect();
-        let started = std::time::Instant::now();
-        let we::MeshEnvelope { color: env, open: amb, nearest } = we::envelope(&pass, &bg_env);
-        let took = started.elapsed();
-        let objects = plan
-            .pass(Pass::Objects)
-            .filter(|_| plan.runs(Pass::Objects))
-            .map(|p| ocean_core::frame::pass_triangles(scene, &frame.poses, p, frame.camera.eye));
-        // The pixels where an object may show: it may land there, and the water is not
-        // certainly drawn nearer. Every random GPU's objects stay within their depth bound.
-        let near = objects
-            .as_ref()
-            .map_or(vec![f64::NEG_INFINITY; env.len()], |t| objects::depth_reach(t, &u, w, h));
-        if let Some(t) = &objects {
-            objects_tight += object_depths_within(t, &u, (w, h), &near, name);
-        }
-        let reach: Vec<bool> =
-            near.iter().zip(&nearest).map(|(&o, &n)| objects::may_show(o, n)).collect();
-        let outside = |g: &[[f32; 4]]| -> usize {
-            env.iter()
-                .zip(g)
-                .zip(&reach)
-                .filter(|(_, r)| !**r)
-                .map(|((e, g), _)| (0..4).filter(|&c| !e[c].contains(g[c])).count())
-                .sum()
-        };
-        let (_, _, hdr) = o.map(ResourceId::Hdr).unwrap();
-        assert_eq!(outside(hdr), 0, "{name}: the oracle's HDR frame");
-        // The spread of the random GPUs per texel, against the envelope's width there.
-        let mut spread = vec![[(f32::INFINITY, f32::NEG_INFINITY); 3]; env.len()];
-        for seed in 0..8 {
-            let rules = JitterRules { seed, scale: 1.0 };
-            let bg = sky::jitter(tech, inputs, (w, h), format, rules);
-            let bg: Vec<[f32; 4]> = bg.into_iter().map(|c| [c[0], c[1], c[2], 1.0]).collect();
-            let j = we::jitter(&pass, &bg, rules);
-            assert_eq!(outside(&j), 0, "{name} seed {seed}");
-            for (s, g) in spread.iter_mut().zip(&j) {
-                for c in 0..3 {
-                    s[c] = (s[c].0.min(g[c]), s[c].1.max(g[c]));
-                }
-            }
-            runs += 1;
-        }
-        let rules = JitterRules { seed: 99, scale: 2.0 };
-        let bg = sky::jitter(tech, inputs, (w, h), format, rules);
-        let bg: Vec<[f32; 4]> = bg.into_iter().map(|c| [c[0], c[1], c[2], 1.0]).collect();
-        loose += outside(&we::jitter(&pass, &bg, rules));
-        let water: Vec<usize> = (0..env.len())
-            .filter(|&i| {
-                !reach[i]
-                    && (0..3)
-                        .any(|c| env[i][c].lo != bg_env[i][c].lo || env[i][c].hi != bg_env[i][c].hi)
-            })
-            .collect();
-        water_px += water.len();
-        judged += env.len() - reach.iter().filter(|&&r| r).count();
-        open += water.iter().filter(|&&i| amb[i]).count();
-        let mut ratio: Vec<f64> = water
-            .iter()
-            .flat_map(|&i| (0..3).map(move |c| (i, c)))
-            .filter(|&(i, c)| !env[i][c].full && spread[i][c].1 > spread[i][c].0)
-            .map(|(i, c)| {
-                (env[i][c].hi - env[i][c].lo) / f64::from(spread[i][c].1 - spread[i][c].0)
-            })
-            .collect();
-        ratio.sort_by(f64::total_cmp);
-        let looseness = ratio.get(ratio.len() / 2).copied().unwrap_or(f64::NAN);
-        let mut r: Vec<f64> = water
-            .iter()
-            .flat_map(|&i| env[i][..3].iter().filter_map(|c| c.rel_half_width()))
-            .collect();
-        r.sort_by(f64::total_cmp);
-        let q =
-            |p: f64| r.get(((r.len().max(1) - 1) as f64 * p) as usize).copied().unwrap_or(f64::NAN);
-        println!(
-            "{name}: {} water pixels, envelope {took:.2?}, rel half-width p50 {:.1e} p90 {:.1e} \
-             p99 {:.1e}, {} channels unbounded; envelope width / 8 GPUs' spread p50 {looseness:.0}",
-            water.len(),
-            q(0.5),
-            q(0.9),
-            q(0.99),
-            r.iter().filter(|x| x.is_infinite()).count()
-        );
-        rel.extend(r);
-        names.push(name.clone());
-    }
-    rel.sort_by(f64::total_cmp);
-    let q =
-        |p: f64| rel.get(((rel.len().max(1) - 1) as f64 * p) as usize).copied().unwrap_or(f64::NAN);
-    println!(
-        "water pass on {} scenes ({}) × 8 random conformant GPUs: 0 outside of {judged} pixels judged \
-         ({water_px} water, {open} of them open to the sky); twice the rules: {loose} outside; \
-         rel half-width p50 {:.1e}, p99 {:.1e}",
-        names.len(),
-        names.join(", "),
-        q(0.5),
-        q(0.99)
-    );
-    assert!(runs > 0 && water_px > 0, "no water pass judged");
-    assert!(loose > 0, "a GPU twice as loose as the rules never left the water envelope");
-    assert!(objects_tight > 0, "the objects' depth bound is 1 % loose or more at every pixel");
 }

@@ -12,14 +12,24 @@ pub(super) struct WaterWidths {
     pub(super) pixels: usize,
     pub(super) p50: Option<f64>,
     pub(super) p99: Option<f64>,
+    /// Pixels judged by the objects' envelope: no water fragment can pass them.
+    pub(super) objects: usize,
+    /// The relative half-width of their channels at p50.
+    pub(super) objects_p50: Option<f64>,
+    /// Pixels where an object or the water may show: judged by the hull of both.
+    pub(super) either: usize,
+    /// Pixels left out because their colour's envelope is unbounded.
+    pub(super) unbounded: usize,
 }
 
-/// The HDR frame's water pixels against the water pass's envelope (ocean-cpu
-/// `shaders::water::envelope`), given the GPU's own input maps and the sky pass's envelope
-/// behind it: every pixel where no object may show (none lands there, or the water is
-/// certainly drawn nearer: ocean-cpu `objects::depth_reach`). `Err(why)` where it is not
-/// judged: a configuration the envelope does not carry, a pass after the water that draws
-/// into the frame, a missing input.
+/// The HDR frame's water and object pixels against the water pass's envelope (ocean-cpu
+/// `shaders::water::envelope`) composed with the objects' (`objects::main_view`), given the
+/// GPU's own input maps and the sky pass's envelope behind both: the water's where no object
+/// may show (none lands there, or the water is certainly drawn nearer: ocean-cpu
+/// `objects::depth_reach`), the objects' where no water fragment can pass them, the hull of
+/// both where either may show (`main_view::compose`); no sprite may land on a judged pixel.
+/// `Err(why)` where it is not judged: a configuration the envelope does not carry, a pass
+/// after the water that draws into the frame, a missing input.
 #[allow(clippy::type_complexity, reason = "a verdict, its open share, cost and widths, or why not")]
 pub(super) fn water_verdict(
     scene: &Scene,
@@ -29,6 +39,7 @@ pub(super) fn water_verdict(
     Result<(ocean_verify::envelope::RegionVerdict, f64, std::time::Duration, WaterWidths), String>,
 > {
     use ocean_cpu::envelope::Iv;
+    use ocean_cpu::shaders::objects::main_view::Shows;
     use ocean_cpu::shaders::{sky, water};
     if !plan.runs(Pass::Water) {
         return Ok(Err("no water pass".into()));
@@ -83,47 +94,87 @@ pub(super) fn water_verdict(
         bail!("hdr: {} texels, the frame {w}x{h}", hdr.len());
     }
     let started = std::time::Instant::now();
-    let water::envelope::MeshEnvelope { color: env, open, nearest } =
+    let water::envelope::MeshEnvelope { color: env, open, nearest, reach } =
         water::envelope::envelope(&pass, &background);
     let took = started.elapsed();
-    let objects = match plan.pass(Pass::Objects).filter(|_| plan.runs(Pass::Objects)) {
-        Some(p) => {
-            let tris = ocean_core::frame::pass_triangles(scene, &frame.poses, p, frame.camera.eye);
-            ocean_cpu::shaders::objects::depth_reach(&tris, u, w, h)
-        }
+    let planned = plan.pass(Pass::Objects).filter(|_| plan.runs(Pass::Objects));
+    let tris = planned
+        .map(|p| ocean_core::frame::pass_triangles(scene, &frame.poses, p, frame.camera.eye));
+    let objects_reach = match &tris {
+        Some(t) => ocean_cpu::shaders::objects::depth_reach(t, u, w, h),
         None => vec![f64::NEG_INFINITY; env.len()],
     };
-    // The pixels judged: those where no object's fragment may win against the water (none
-    // lands, or the water is certainly drawn nearer) and no sprite of the spray may land, on
-    // the quick verdict's lattice.
+    // The objects' colour over the sky, with the shadow map they read: the GPU's own where
+    // the frame holds it, else its envelope.
+    let (dims, shadow) = shadow_occluder(scene, plan, &frame, gpu);
+    let occluder = |x: u32, y: u32| shadow[y as usize * dims[0] as usize + x as usize];
+    let relief_bound = ocean_cpu::shaders::objects::relief_envelope(u);
+    let relief = |_: [Iv; 3]| relief_bound;
+    let inputs = ocean_cpu::shaders::objects::main_view::MainInputs {
+        frame: u,
+        size: [w, h],
+        format,
+        shadow_dims: dims,
+        occluder: &occluder,
+        relief: &relief,
+    };
+    let objects = tris.as_ref().and_then(|t| {
+        ocean_cpu::shaders::objects::main_view::main_envelope(t, &inputs, &background)
+    });
+    let mesh = water::envelope::MeshEnvelope { color: env, open, nearest, reach };
+    let composed =
+        ocean_cpu::shaders::objects::main_view::compose(&mesh, &objects_reach, objects.as_ref());
+    // The pixels judged: those whose envelope is carried (an object may show only where its
+    // colour is) where no sprite of the spray may land, on the quick verdict's lattice.
     let spray = spray_reach(plan, &frame, (w, h), gpu);
     let every = gpu.water_every.max(1) as usize;
     let on =
         |i: usize| (i % w as usize).is_multiple_of(every) && (i / w as usize).is_multiple_of(every);
-    let reach: Vec<bool> = (0..env.len())
-        .map(|i| {
-            ocean_cpu::shaders::objects::may_show(objects[i], nearest[i]) || spray[i] || !on(i)
-        })
+    // A pixel whose colour may be anything (a vertex the clipper's bounds cannot place, a
+    // sub-pixel triangle whose varyings are unbounded) would be passed, not judged.
+    let bounded = |e: &[Iv; 4]| e[..3].iter().any(|c| !c.full);
+    let candidates = |i: usize| composed[i].filter(|_| !spray[i] && on(i));
+    let unbounded =
+        (0..composed.len()).filter(|&i| candidates(i).is_some_and(|(e, _)| !bounded(&e)));
+    let unbounded = unbounded.count();
+    let shows: Vec<Option<Shows>> = (0..composed.len())
+        .map(|i| candidates(i).filter(|(e, _)| bounded(e)).map(|(_, s)| s))
         .collect();
-    let region: Vec<Option<bool>> = reach.iter().map(|&r| (!r).then_some(true)).collect();
-    let judged = reach.iter().filter(|r| !**r).count();
+    let env: Vec<[Iv; 4]> = composed.iter().map(|c| c.map_or([Iv::FULL; 4], |(e, _)| e)).collect();
+    let region: Vec<Option<bool>> = shows.iter().map(|s| s.map(|_| true)).collect();
+    let judged = shows.iter().flatten().count();
     if judged == 0 {
-        let why = "an object or the spray may show at every pixel (neither the objects' colour \
-                   in the main view nor the sprites have an envelope yet)";
+        let why = "no pixel has a bounded envelope where no sprite may land (the sprites have \
+                   no envelope yet; a vertex the clipper's bounds cannot place leaves the pass \
+                   unbounded)";
         return Ok(Err(why.into()));
     }
-    let open_share =
-        open.iter().zip(&reach).filter(|(o, r)| **o && !**r).count() as f64 / judged as f64;
-    let f = ocean_verify::envelope::judge_region("hdr (water pixels)", &env, &region, hdr, w);
+    let count = |s: Shows| shows.iter().filter(|x| **x == Some(s)).count();
+    let open_water = (0..shows.len()).filter(|&i| shows[i] == Some(Shows::Water) && mesh.open[i]);
+    let open_share = (open_water.count() + count(Shows::Either)) as f64 / judged as f64;
+    let f = ocean_verify::envelope::judge_region("hdr (water, objects)", &env, &region, hdr, w);
     // The widths where the water shows (the envelope is not the sky's alone).
     let mut rel: Vec<f64> = (0..env.len())
-        .filter(|&i| !reach[i])
+        .filter(|&i| shows[i] == Some(Shows::Water))
         .filter(|&i| (0..3).any(|c| env[i][c] != background[i][c]))
         .flat_map(|i| env[i][..3].iter().filter_map(|c| c.rel_half_width()).collect::<Vec<_>>())
         .collect();
     rel.sort_by(f64::total_cmp);
-    let q = |p: f64| rel.get(((rel.len().max(1) - 1) as f64 * p) as usize).copied();
-    let widths = WaterWidths { pixels: rel.len() / 3, p50: q(0.5), p99: q(0.99) };
+    let q = |rel: &[f64], p: f64| rel.get(((rel.len().max(1) - 1) as f64 * p) as usize).copied();
+    let mut on_objects: Vec<f64> = (0..env.len())
+        .filter(|&i| shows[i] == Some(Shows::Objects))
+        .flat_map(|i| env[i][..3].iter().filter_map(|c| c.rel_half_width()).collect::<Vec<_>>())
+        .collect();
+    on_objects.sort_by(f64::total_cmp);
+    let widths = WaterWidths {
+        pixels: rel.len() / 3,
+        p50: q(&rel, 0.5),
+        p99: q(&rel, 0.99),
+        objects: count(Shows::Objects),
+        objects_p50: q(&on_objects, 0.5),
+        either: count(Shows::Either),
+        unbounded,
+    };
     Ok(Ok((f, open_share, took, widths)))
 }
 
@@ -317,6 +368,22 @@ fn shadow_envelope(
     Some((size, env, ambiguous))
 }
 
+/// The shadow map an objects' pass reads, as intervals: the GPU's own where the frame holds
+/// it, else its envelope (a lit point where the plan draws none): its size and texels.
+fn shadow_occluder(
+    scene: &Scene,
+    plan: &FramePlan,
+    frame: &ocean_core::graph::FrameInputs<'_>,
+    gpu: &GpuSide<'_>,
+) -> ([u32; 2], Vec<ocean_cpu::envelope::Iv>) {
+    use ocean_cpu::envelope::Iv;
+    match (gpu.map(ResourceId::ShadowMap), shadow_envelope(scene, plan, frame)) {
+        (Some(((sw, sh), t)), _) => ([sw, sh], t.iter().map(|t| Iv::point(t[0])).collect()),
+        (None, Some((size, env, _))) => (size, env),
+        (None, None) => ([1, 1], vec![Iv::point(1.0)]),
+    }
+}
+
 /// Pass `shadow_map`'s depth map against [`shadow_envelope`], and the share of texels whose
 /// coverage is ambiguous. None where the frame holds no shadow map.
 pub(super) fn shadow_verdict(
@@ -346,9 +413,9 @@ pub(super) fn shadow_verdict(
 /// of the objects' triangles, each fragment shaded from its varyings' envelope (ocean-cpu
 /// `objects::map_envelope`); the shadow map it reads is the GPU's own where the frame holds
 /// it, else its envelope. Also the share of texels whose coverage or discard is ambiguous.
-/// None where the frame holds no such map, where shading `chiu` clips at a displacement map
-/// the frame does not hold, or where the envelope does not carry its shading yet (the
-/// floor's relief march).
+/// None where the frame holds no such map, or where shading `chiu` clips at a displacement
+/// map the frame does not hold. The floor's relief shadow march is taken as the hull of its
+/// two results (ocean-cpu `objects::relief_envelope`).
 pub(super) fn map_verdict(
     scene: &Scene,
     plan: &FramePlan,
@@ -369,12 +436,7 @@ pub(super) fn map_verdict(
     let frame =
         ocean_core::graph::FrameInputs::new(scene, plan, &ocean_core::graph::FrameState::new(0.0))?;
     let tris = ocean_core::frame::pass_triangles(scene, &frame.poses, planned, frame.camera.eye);
-    let (dims, shadow) =
-        match (gpu.map(ResourceId::ShadowMap), shadow_envelope(scene, plan, &frame)) {
-            (Some(((sw, sh), t)), _) => ([sw, sh], t.iter().map(|t| Iv::point(t[0])).collect()),
-            (None, Some((size, env, _))) => (size, env),
-            (None, None) => ([1, 1], vec![Iv::point(1.0)]),
-        };
+    let (dims, shadow) = shadow_occluder(scene, plan, &frame, gpu);
     let occluder = |x: u32, y: u32| shadow[y as usize * dims[0] as usize + x as usize];
     // Shading `chiu` clips at the wave height under the point: the GPU's own displacement map.
     let displacement = match gpu.map(ResourceId::Displacement) {
@@ -384,6 +446,8 @@ pub(super) fn map_verdict(
         }
         None => return Ok(None),
     };
+    let relief_bound = ocean_cpu::shaders::objects::relief_envelope(&frame.uniforms);
+    let relief = |_: [Iv; 3]| relief_bound;
     let inputs = ocean_cpu::shaders::objects::MapInputs {
         frame: &frame.uniforms,
         size: [w, h],
@@ -392,11 +456,9 @@ pub(super) fn map_verdict(
         shadow_dims: dims,
         occluder: &occluder,
         displacement: &displacement,
+        relief: &relief,
     };
-    let Some((env, ambiguous)) = ocean_cpu::shaders::objects::map_envelope(map, &tris, &inputs)
-    else {
-        return Ok(None);
-    };
+    let (env, ambiguous) = ocean_cpu::shaders::objects::map_envelope(map, &tris, &inputs);
     if env.len() != texels.len() {
         bail!("{}: {} texels, the map {w}x{h}", id.name(), texels.len());
     }

@@ -174,6 +174,14 @@ pub const MUTANTS: &[Mutant] = &[
         scene: "chiu_shallow",
     },
     Mutant {
+        name: "objects-main-color-bgr",
+        file: "objects.wgsl",
+        find: "return vec4<f32>(shade(in.normal, in.color, sun_reaches(in.rel, in.world_y)), 1.0);",
+        replace: "return vec4<f32>(shade(in.normal, in.color.bgr, sun_reaches(in.rel, in.world_y)), 1.0);",
+        changes: "Swaps the red and blue channels of the objects' and the floor's albedo in the main view (the island's dry sand (0.561, 0.449, 0.326) -> (0.326, 0.449, 0.561)); their reflection and refraction are unchanged.",
+        scene: "coastal_island",
+    },
+    Mutant {
         name: "objects-reflect-clip-flipped",
         file: "objects.wgsl",
         find: "return in.world_y < clip_height(in.rel);",

@@ -1,6 +1,8 @@
 //! CPU mirror of `shaders/objects.wgsl`: the objects in the main view, mirrored into the
 //! reflection map, and scaled and fogged into the refraction map (eq. 4).
 
+pub mod main_view;
+
 use ocean_core::frame::{FrameUniforms, ObjectVertex};
 
 use super::shared::floor::{FloorMaps, sun_reaches, sun_reaches_r};
@@ -222,19 +224,12 @@ fn relief_marched(frame: &FrameUniforms) -> bool {
     frame.terrain.floor[3] != 0.0 && frame.terrain.sun_under[3] != 0.0
 }
 
-/// `sun_reaches(rel, world_y)` over any [`Real`] where the floor casts no relief shadow
-/// (`terrain.floor.w` or `sun_under.w` 0: `relief_sun` is 1); the shadow map read by
-/// `occluder`. `None` where the relief would be marched (a texture lookup per step, which the
-/// envelope does not carry yet).
-pub fn sun_reaches_flat_r<R: Real>(
-    rel: [R; 3],
-    world_y: R,
-    frame: &FrameUniforms,
-    dims: [u32; 2],
-    occluder: &dyn Fn(u32, u32) -> R,
-) -> Option<R> {
-    (!relief_marched(frame))
-        .then(|| sun_reaches_r(rel, world_y, frame, dims, occluder, &|_| R::lit(1.0)))
+/// The envelope of `relief_sun`: 1 where the frame marches no relief, else [0, 1]. The march
+/// (a texture lookup and a comparison per step) is not carried; its result is one of its two
+/// values, so their hull holds it. Points above the water never march (`sun_reaches` is 1
+/// there), so this widens only the colour of what lies under the water.
+pub fn relief_envelope(frame: &FrameUniforms) -> Iv {
+    if relief_marched(frame) { Iv::new(0.0, 1.0) } else { Iv::point(1.0) }
 }
 
 /// What the stage's vertex entry points output, over any [`Real`]: the clip position and the
@@ -298,22 +293,24 @@ pub struct MapInputs<'a, R> {
     pub occluder: &'a dyn Fn(u32, u32) -> R,
     /// The displacement map (binding 1), read by shading `chiu`'s clip height.
     pub displacement: &'a Texture2D,
+    /// `relief_sun` at a camera-relative point: 0 where the floor's relief hides the sun
+    /// from it, else 1; for an envelope, [`relief_envelope`].
+    pub relief: &'a dyn Fn([R; 3]) -> R,
 }
 
 /// A map's fragment shader over any [`Real`] after interpolation: whether it discards, and
-/// the colour; `sample` is the displacement map's `textureSampleLevel`. `None` where it needs
-/// what the envelope does not carry yet (the floor's relief march).
+/// the colour; `sample` is the displacement map's `textureSampleLevel`.
 fn map_fragment<R: Real>(
     map: ObjectMap,
     v: Varyings<R>,
     m: &MapInputs<'_, R>,
     sample: &dyn Fn([R; 2]) -> [R; 4],
-) -> Option<(R::Cond, [R; 4])> {
+) -> (R::Cond, [R; 4]) {
     let l = R::lit;
     let (frame, dims, occluder) = (m.frame, m.shadow_dims, m.occluder);
     let (normal, color, rel, world_y) = v;
     let clip = clip_height_r(rel, frame, sample);
-    Some(match map {
+    match map {
         ObjectMap::Reflection => {
             // The mirrored normal lit by the mirrored sun is the original normal lit by the sun.
             let n = [normal[0], -normal[1], normal[2]];
@@ -321,77 +318,102 @@ fn map_fragment<R: Real>(
             (world_y.lt(clip), [r, g, b, l(1.0)])
         }
         ObjectMap::Refraction => {
-            sun_reaches_flat_r(rel, world_y, frame, dims, occluder)?;
-            let sun = |at: [R; 3], wy: R| {
-                sun_reaches_flat_r(at, wy, frame, dims, occluder).unwrap_or(l(1.0))
-            };
+            let sun = |at: [R; 3], wy: R| sun_reaches_r(at, wy, frame, dims, occluder, m.relief);
             (clip.lt(world_y), refract_colour_r(v, frame, &sun))
         }
-    })
+    }
+}
+
+/// A piece's vertex in its original triangle: barycentrics, and their largest error.
+type Barycentric = ([f64; 3], f64);
+
+/// A pass's triangles on screen as the rasteriser's envelope sees them: each piece the
+/// clipper may make, and the varyings of the triangle it came from.
+struct Drawn {
+    /// The pieces after the viewport transform.
+    screen: Vec<[raster::ScreenIv; 3]>,
+    /// Per piece: its triangle, and its vertices' barycentrics in it (with their error).
+    owner: Vec<(usize, [Barycentric; 3])>,
+    /// Per triangle, its vertices' varyings.
+    verts: Vec<[Varyings<Iv>; 3]>,
+}
+
+impl Drawn {
+    /// `triangles` through the vertex entry point `vs`, clipped at the near and far planes;
+    /// `None` where the clipper's bounds cannot place a piece (the pass may be anything).
+    fn new(
+        triangles: &[[ObjectVertex; 3]],
+        frame: &FrameUniforms,
+        size: [u32; 2],
+        vs: fn(&ObjectVertex, &FrameUniforms) -> ObjectOut<Iv>,
+    ) -> Option<Self> {
+        let mut d = Self {
+            screen: Vec::with_capacity(triangles.len()),
+            owner: Vec::with_capacity(triangles.len()),
+            verts: Vec::with_capacity(triangles.len()),
+        };
+        for t in triangles {
+            let v = t.each_ref().map(|v| vs(v, frame));
+            // Past the near or far plane: the clipper's polygon, each part with its
+            // vertices' barycentrics in the original.
+            for part in raster::clip_near_far(v.map(|(clip, _)| clip))? {
+                let s = part.map(|p| raster::to_screen(p.clip, size[0], size[1]));
+                let [Some(a), Some(b), Some(c)] = s else { return None };
+                d.screen.push([a, b, c]);
+                d.owner.push((d.verts.len(), part.map(|p| (p.bary, p.bary_err))));
+            }
+            d.verts.push(v.map(|(_, var)| var));
+        }
+        Some(d)
+    }
+
+    /// Piece `k`'s varyings at a sample, as the rasteriser's envelope interpolates them.
+    fn varyings(&self, k: usize, interp: &raster::Interp) -> Varyings<Iv> {
+        let (t, bary) = self.owner[k];
+        let v = &self.verts[t];
+        // A piece's vertices hold convex combinations of the original triangle's values.
+        let at = |f: &dyn Fn(usize) -> Iv| -> [Iv; 3] {
+            bary.map(|(b, err)| raster::part_value([f(0), f(1), f(2)], b, err))
+        };
+        let mix = |f: &dyn Fn(usize) -> Iv| interp.varying(at(f));
+        (
+            std::array::from_fn(|c| mix(&|j| v[j].0[c])),
+            std::array::from_fn(|c| mix(&|j| v[j].1[c])),
+            std::array::from_fn(|c| mix(&|j| v[j].2[c])),
+            mix(&|j| v[j].3),
+        )
+    }
 }
 
 /// The envelope of one of the stage's maps a conformant GPU draws of `triangles`
 /// (reversed-Z `Greater`): per texel its colour interval and whether its coverage or discard
 /// is ambiguous. Each fragment is shaded from its varyings' envelope at the sample, the
-/// displacement map filtered by the filter's envelope. `None` for the refraction map over a
-/// floor with relief shadows (a march of lookups the envelope does not carry yet).
+/// displacement map filtered by the filter's envelope, the relief's shadow march by
+/// `m.relief` ([`relief_envelope`]).
 pub fn map_envelope(
     map: ObjectMap,
     triangles: &[[ObjectVertex; 3]],
     m: &MapInputs<'_, Iv>,
-) -> Option<(Vec<[Iv; 4]>, Vec<bool>)> {
+) -> (Vec<[Iv; 4]>, Vec<bool>) {
     let (frame, size, format, clear) = (m.frame, m.size, m.format, m.clear);
-    if map == ObjectMap::Refraction && relief_marched(frame) {
-        return None;
-    }
     let sample =
         |uv: [Iv; 2]| crate::envelope::filter::sample_level0(m.displacement, &WRAP_LINEAR, uv);
     let vs = match map {
         ObjectMap::Reflection => vs_reflect_r::<Iv>,
         ObjectMap::Refraction => vs_refract_r::<Iv>,
     };
-    let mut screen = Vec::with_capacity(triangles.len());
-    let mut owner = Vec::with_capacity(triangles.len());
-    let mut verts = Vec::with_capacity(triangles.len());
-    let full = || {
+    let Some(drawn) = Drawn::new(triangles, frame, size, vs) else {
+        // A triangle the clipper's bounds cannot place: anything.
         let n = (size[0] as usize) * (size[1] as usize);
-        (vec![[Iv::FULL; 4]; n], vec![true; n])
+        return (vec![[Iv::FULL; 4]; n], vec![true; n]);
     };
-    for t in triangles {
-        let v = t.each_ref().map(|v| vs(v, frame));
-        // Past the near or far plane: the clipper's polygon, each part with its vertices'
-        // barycentrics in the original. One it cannot bound: anything.
-        let Some(parts) = raster::clip_near_far(v.map(|(clip, _)| clip)) else {
-            return Some(full());
-        };
-        for part in parts {
-            let s = part.map(|p| raster::to_screen(p.clip, size[0], size[1]));
-            let [Some(a), Some(b), Some(c)] = s else { return Some(full()) };
-            screen.push([a, b, c]);
-            owner.push((verts.len(), part.map(|p| (p.bary, p.bary_err))));
-        }
-        verts.push(v.map(|(_, var)| var));
-    }
     let shade = |k: usize, interp: &raster::Interp| {
-        let (t, bary) = owner[k];
-        let v = &verts[t];
-        // A part's vertices hold convex combinations of the original triangle's values.
-        let at = |f: &dyn Fn(usize) -> Iv| -> [Iv; 3] {
-            bary.map(|(b, err)| raster::part_value([f(0), f(1), f(2)], b, err))
-        };
-        let mix = |f: &dyn Fn(usize) -> Iv| interp.varying(at(f));
-        let var: Varyings<Iv> = (
-            std::array::from_fn(|c| mix(&|j| v[j].0[c])),
-            std::array::from_fn(|c| mix(&|j| v[j].1[c])),
-            std::array::from_fn(|c| mix(&|j| v[j].2[c])),
-            mix(&|j| v[j].3),
-        );
-        let (discard, color) = map_fragment(map, var, m, &sample)
-            .unwrap_or((crate::envelope::Tri::Either, [Iv::FULL; 4]));
+        let var = drawn.varyings(k, interp);
+        let (discard, color) = map_fragment(map, var, m, &sample);
         let kept = discard.decided().map(|d| !d);
         Shaded { color: color.map(|c| c.store(format)), kept }
     };
-    Some(raster::color_pass_greater(&screen, size[0], size[1], clear, shade))
+    raster::color_pass_greater(&drawn.screen, size[0], size[1], clear, shade)
 }
 
 /// One of the stage's maps as one random conformant GPU draws it (`rules.scale` times the
@@ -407,21 +429,9 @@ pub fn map_jitter(
         ObjectMap::Reflection => vs_reflect_r::<Jitter>,
         ObjectMap::Refraction => vs_refract_r::<Jitter>,
     };
-    // The vertex shader with random roundings too.
-    let verts: Vec<[ObjectOut<f32>; 3]> = triangles
-        .iter()
-        .enumerate()
-        .map(|(k, t)| {
-            Jitter::reseed(rules, (k as u64) << 32 | 0xffff_ffff);
-            t.each_ref().map(|v| {
-                let (clip, (n, c, r, y)) = vs(v, frame);
-                let f = |a: [Jitter; 3]| a.map(|x| x.0);
-                (clip.map(|x| x.0), (f(n), f(c), f(r), y.0))
-            })
-        })
-        .collect();
-    let clip: Vec<[[f32; 4]; 3]> = verts.iter().map(|t| t.map(|v| v.0)).collect();
+    let (verts, clip) = jitter_vertices(triangles, frame, rules, vs);
     let occ = |x: u32, y: u32| Jitter((m.occluder)(x, y));
+    let relief = |p: [Jitter; 3]| Jitter((m.relief)(p.map(|x| x.0)));
     let mj = MapInputs {
         frame,
         size,
@@ -430,26 +440,65 @@ pub fn map_jitter(
         shadow_dims: m.shadow_dims,
         occluder: &occ,
         displacement: m.displacement,
+        relief: &relief,
     };
     let sample = |uv: [Jitter; 2]| {
         crate::envelope::filter::sample_level0_jitter(m.displacement, &WRAP_LINEAR, uv)
     };
     raster::jitter_pass(&clip, size[0], size[1], true, clear, rules, |k, w, _| {
-        let t = &verts[k];
-        // The interpolation with random roundings: Σ wₖ·vₖ in f32 operations.
-        let mix = |f: &dyn Fn(usize) -> f32| -> Jitter {
-            let t = [0, 1, 2].map(|j| Jitter(w[j] as f32) * Jitter(f(j)));
-            Jitter::sum(&t)
-        };
-        let var: Varyings<Jitter> = (
-            std::array::from_fn(|c| mix(&|j| t[j].1.0[c])),
-            std::array::from_fn(|c| mix(&|j| t[j].1.1[c])),
-            std::array::from_fn(|c| mix(&|j| t[j].1.2[c])),
-            mix(&|j| t[j].1.3),
-        );
-        let (discard, color) = map_fragment(map, var, &mj, &sample)?;
+        let var = jitter_varyings(&verts[k], w);
+        let (discard, color) = map_fragment(map, var, &mj, &sample);
         (!discard).then(|| color.map(|c| c.store(format).0))
     })
+}
+
+/// A vertex entry point over [`Jitter`]: one random GPU's vertex shader.
+type JitterVertex = fn(&ObjectVertex, &FrameUniforms) -> ObjectOut<Jitter>;
+
+/// A random GPU's triangles after the vertex shader: each vertex's clip position and
+/// varyings, and the clip positions apart (what the rasteriser reads).
+type JitteredTriangles = (Vec<[ObjectOut<f32>; 3]>, Vec<[[f32; 4]; 3]>);
+
+/// `triangles` through `vs` with random roundings: each vertex's clip position and varyings,
+/// and the clip positions apart. The roundings are drawn per vertex position, since a GPU
+/// transforms equal positions alike (what keeps an edge two triangles share free of gaps).
+fn jitter_vertices(
+    triangles: &[[ObjectVertex; 3]],
+    frame: &FrameUniforms,
+    rules: JitterRules,
+    vs: JitterVertex,
+) -> JitteredTriangles {
+    let verts: Vec<[ObjectOut<f32>; 3]> = triangles
+        .iter()
+        .map(|t| {
+            t.each_ref().map(|v| {
+                let seed = v
+                    .position
+                    .iter()
+                    .fold(rules.seed, |h, c| ocean_core::rng::mix64(h ^ u64::from(c.to_bits())));
+                Jitter::reseed(rules, seed);
+                let (clip, (n, c, r, y)) = vs(v, frame);
+                let f = |a: [Jitter; 3]| a.map(|x| x.0);
+                (clip.map(|x| x.0), (f(n), f(c), f(r), y.0))
+            })
+        })
+        .collect();
+    let clip = verts.iter().map(|t| t.map(|v| v.0)).collect();
+    (verts, clip)
+}
+
+/// A triangle's varyings at perspective-correct weights `w`, interpolated with random
+/// roundings: Σ wₖ·vₖ in f32 operations.
+fn jitter_varyings(t: &[ObjectOut<f32>; 3], w: [f64; 3]) -> Varyings<Jitter> {
+    let mix = |f: &dyn Fn(usize) -> f32| -> Jitter {
+        Jitter::sum(&[0, 1, 2].map(|j| Jitter(w[j] as f32) * Jitter(f(j))))
+    };
+    (
+        std::array::from_fn(|c| mix(&|j| t[j].1.0[c])),
+        std::array::from_fn(|c| mix(&|j| t[j].1.1[c])),
+        std::array::from_fn(|c| mix(&|j| t[j].1.2[c])),
+        mix(&|j| t[j].1.3),
+    )
 }
 
 /// Whether an object's fragment may be what a pixel shows after the water pass: one may land

@@ -21,6 +21,10 @@ pub struct MeshEnvelope {
     /// The depth (reversed Z) that a fragment certainly drawn at the texel guarantees: the
     /// stored depth is at least this after the pass (−∞: no fragment is certain there).
     pub nearest: Vec<f64>,
+    /// The largest depth (reversed Z) any fragment that may land at the texel may have: a
+    /// later or earlier pass's fragment stored at least this deep cannot be passed (−∞: none
+    /// may land there).
+    pub reach: Vec<f64>,
 }
 
 impl MeshEnvelope {
@@ -30,6 +34,7 @@ impl MeshEnvelope {
             color: vec![[Iv::FULL; 4]; n],
             open: vec![true; n],
             nearest: vec![f64::NEG_INFINITY; n],
+            reach: vec![f64::INFINITY; n],
         }
     }
 }
@@ -137,11 +142,13 @@ pub fn color_pass_mesh(
     });
     drop(pending);
     let mut candidates: Vec<(usize, usize, Interp)> = Vec::new();
+    let mut reach = vec![f64::NEG_INFINITY; n];
     each(&mut |i, k, sx, sy, c, _| {
         let z = match c {
             Cover::No => return,
             Cover::Possible(z) | Cover::Certain(z) => z,
         };
+        reach[i] = reach[i].max(z.hi);
         if z.hi <= 0.0 || z.hi < sure[i] {
             return;
         }
@@ -170,5 +177,5 @@ pub fn color_pass_mesh(
             }
         })
         .collect();
-    MeshEnvelope { color: env, open, nearest: sure }
+    MeshEnvelope { color: env, open, nearest: sure, reach }
 }

@@ -306,8 +306,19 @@ fn fragment_envelope(frag: [f32; 2], v: &Varyings<Iv>, inp: &Inputs<'_, Af>) -> 
 /// The water pass over `background` (the HDR frame before it) as one random conformant GPU
 /// draws it (`rules`).
 pub fn jitter(p: &WaterPass<'_>, background: &[[f32; 4]], rules: JitterRules) -> Vec<[f32; 4]> {
+    jitter_with_depth(p, background, rules).0
+}
+
+/// [`jitter`], with the depth the pass stores at each pixel (0 where no fragment landed):
+/// what decides, pixel by pixel, whether it passes an earlier pass's depth.
+pub fn jitter_with_depth(
+    p: &WaterPass<'_>,
+    background: &[[f32; 4]],
+    rules: JitterRules,
+) -> (Vec<[f32; 4]>, Vec<f32>) {
     let [w, h] = p.size;
-    with_inputs(p, Jitter, |inp| {
+    let mut depth = vec![0.0f32; background.len()];
+    let out = with_inputs(p, Jitter, |inp| {
         let (verts, tris) = mesh(p, |id| {
             Jitter::reseed(rules, (id as u64) << 24 | 0xff_ffff);
             let (c, v) = vertex(p, inp, id);
@@ -316,28 +327,21 @@ pub fn jitter(p: &WaterPass<'_>, background: &[[f32; 4]], rules: JitterRules) ->
         let clip: Vec<[[f32; 4]; 3]> =
             tris.iter().map(|t| t.map(|i| verts[i as usize].0.map(|c| c.0))).collect();
         let bits = p.precision.subpixel_bits;
-        let out = raster::jitter_pass_at(
-            &clip,
-            w,
-            h,
-            true,
-            [f32::NAN; 4],
-            rules,
-            bits,
-            |i, k, wts, _| {
-                let ids = tris[k];
-                // The interpolation with random roundings: Σ wₖ·vₖ in f32 operations.
-                let v: Varyings<Jitter> = std::array::from_fn(|c| {
-                    Jitter::sum(
-                        &[0, 1, 2].map(|j| Jitter(wts[j] as f32) * verts[ids[j] as usize].1[c]),
-                    )
-                });
-                let frag = [(i % w as usize) as f32 + 0.5, (i / w as usize) as f32 + 0.5];
-                Some(real::fs_main(frag, &v, inp).map(|c| c.store(p.format).0))
-            },
-        );
-        out.into_iter().zip(background).map(|(o, b)| if o[0].is_nan() { *b } else { o }).collect()
-    })
+        raster::jitter_pass_at(&clip, w, h, true, [f32::NAN; 4], rules, bits, |i, k, wts, z| {
+            let ids = tris[k];
+            // The interpolation with random roundings: Σ wₖ·vₖ in f32 operations.
+            let v: Varyings<Jitter> = std::array::from_fn(|c| {
+                Jitter::sum(&[0, 1, 2].map(|j| Jitter(wts[j] as f32) * verts[ids[j] as usize].1[c]))
+            });
+            let frag = [(i % w as usize) as f32 + 0.5, (i / w as usize) as f32 + 0.5];
+            // Called only for a sample that passes the depth test: the last call stores.
+            depth[i] = z;
+            Some(real::fs_main(frag, &v, inp).map(|c| c.store(p.format).0))
+        })
+    });
+    let color =
+        out.into_iter().zip(background).map(|(o, b)| if o[0].is_nan() { *b } else { o }).collect();
+    (color, depth)
 }
 
 /// The fragment shader over `f32` through the same inputs (the exact mirror's arithmetic:
