@@ -229,6 +229,10 @@ pub struct GpuBackend<'r> {
     chains: Vec<(ResourceId, GpuMipChain)>,
     depth: Option<GpuTexture>,
     hdr_started: bool,
+    /// Whether the HDR frame's depth still waits for its clear: the sky pass (compute) leaves
+    /// it to the next pass that draws into it, which clears it as it begins (one render pass
+    /// fewer than a clear of its own).
+    depth_uncleared: bool,
     frame_buffer: wgpu::Buffer,
     waves_cpu: Option<Duration>,
     wave_source: Option<&'static str>,
@@ -312,6 +316,31 @@ impl GpuBackend<'_> {
             self.hdr_started = true;
         }
         (hdr, depth)
+    }
+
+    /// How the next pass that draws into the HDR frame's depth loads it: cleared to 0
+    /// (reversed Z) if the sky pass left the clear to it, else as stored.
+    fn take_depth_load(&mut self) -> Load<f32> {
+        if std::mem::take(&mut self.depth_uncleared) { Load::Clear(0.0) } else { Load::Keep }
+    }
+
+    /// Clears the HDR frame's depth if no pass after the sky drew into it (a frame of the
+    /// sky alone), so that the depth read back is the cleared one.
+    fn finish_depth(&mut self) {
+        if let (true, Some(depth)) = (self.depth_uncleared, &self.depth) {
+            drop(self.encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("ocean.hdr.depth_clear"),
+                color_attachments: &[],
+                depth_stencil_attachment: Some(crate::common::depth_attachment(
+                    &depth.view,
+                    Load::Clear(0.0),
+                )),
+                timestamp_writes: None,
+                occlusion_query_set: None,
+                multiview_mask: None,
+            }));
+            self.depth_uncleared = false;
+        }
     }
 
     fn wave_maps(&mut self, frame: &FrameInputs<'_>, state: &FrameState) -> Result<(), Error> {
@@ -519,6 +548,7 @@ impl GpuBackend<'_> {
             }
             _ => {
                 let (hdr, depth) = self.start_hdr(frame.plan);
+                let depth_load = self.take_depth_load();
                 let group = self.objects_group();
                 let slot = self.timer.slot(Pass::Objects);
                 self.stages.objects.encode(
@@ -529,7 +559,7 @@ impl GpuBackend<'_> {
                     &vertices,
                     (&hdr.view, [hdr.width, hdr.height]),
                     &depth.view,
-                    (Load::Keep, Load::Keep),
+                    (Load::Keep, depth_load),
                     self.timer.render_writes(slot),
                 );
             }
@@ -567,6 +597,7 @@ impl GpuBackend<'_> {
             .unwrap_or_else(|| displacement_slopes.view.clone());
         let bump_view = chain_view(ResourceId::BumpMips).unwrap_or_else(|| bump.view.clone());
         let (hdr, depth) = self.start_hdr(frame.plan);
+        let depth_load = self.take_depth_load();
         let mesh = &frame.mesh;
         let (water_vertices, water_indices) = self.water_buffers(mesh);
         let (sky_buffer, sky_lut) = self.sky_buffers(frame);
@@ -600,7 +631,7 @@ impl GpuBackend<'_> {
                 (n, _) => WaterDraw::Grid(n),
             },
             (&hdr.view, [hdr.width, hdr.height]),
-            &depth.view,
+            (&depth.view, depth_load),
             self.timer.render_writes(slot),
         );
     }
@@ -669,7 +700,7 @@ impl Backend for GpuBackend<'_> {
     }
 
     fn sky(&mut self, frame: &FrameInputs<'_>) -> Result<(), Error> {
-        let (hdr, depth) = self.hdr(frame.plan);
+        let (hdr, _) = self.hdr(frame.plan);
         let (sky, sky_lut) = self.sky_buffers(frame);
         let slot = self.timer.slot(Pass::Sky);
         self.stages.sky.encode(
@@ -678,10 +709,10 @@ impl Backend for GpuBackend<'_> {
             &frame.camera_uniforms,
             (&sky, &sky_lut),
             (&hdr.view, [hdr.width, hdr.height]),
-            &depth.view,
             self.timer.compute_writes(slot),
         );
         self.hdr_started = true;
+        self.depth_uncleared = true;
         Ok(())
     }
 
@@ -730,6 +761,7 @@ impl Backend for GpuBackend<'_> {
         pool.steps += steps;
         let u = work.draw;
         let (hdr, depth) = self.hdr(frame.plan);
+        let depth_load = self.take_depth_load();
         let slot = self.timer.slot(Pass::Spray);
         let Some(pool) = self.spray.as_ref() else { return Ok(()) };
         self.stages.spray.encode_draw(
@@ -739,7 +771,7 @@ impl Backend for GpuBackend<'_> {
             pool,
             &u,
             &hdr.view,
-            &depth.view,
+            (&depth.view, depth_load),
             self.timer.render_writes(slot),
         );
         Ok(())
@@ -1276,12 +1308,14 @@ impl Renderer {
             chains: Vec::new(),
             depth: None,
             hdr_started: false,
+            depth_uncleared: false,
             frame_buffer,
             waves_cpu: None,
             max_vertex_buffer_bytes: self.max_vertex_buffer_bytes,
             wave_source: None,
         };
         run_frame(&mut backend, inputs, state, &mut |_| {})?;
+        backend.finish_depth();
         let GpuBackend { timer, waves_cpu, wave_source, maps, chains, depth, reused, .. } = backend;
         Ok(Recorded { maps, chains, depth, timer, waves_cpu, wave_source, reused })
     }

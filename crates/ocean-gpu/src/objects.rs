@@ -214,7 +214,8 @@ impl ObjectsStage {
 
     /// Records one pass drawing every chunk of `vertices` with `entry` into
     /// `target`/`depth` (`size`: the target's). The reflection and refraction maps start
-    /// cleared (colour 0, depth 0); the main view draws over the sky (`Load::Keep`). On the
+    /// cleared (colour 0, depth 0); the main view draws over the sky (its colour kept, its
+    /// depth cleared by the first pass after the sky, as `load.1` says). On the
     /// compute path: the target's clear (where asked), the raster pass into the visibility
     /// buffer (kept in `kept`) and the shading into `target`, timed as one span.
     #[expect(clippy::too_many_arguments, reason = "one argument per binding and attachment")]

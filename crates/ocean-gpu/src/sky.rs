@@ -63,9 +63,9 @@ impl SkyStage {
         Ok(Self { pipeline, camera_layout, sky_layout })
     }
 
-    /// Records the pass: clears the frame's depth to 0 (reversed Z), then stores the sky into
-    /// every texel of the HDR frame (`width × height`, made with storage usage).
-    #[expect(clippy::too_many_arguments, reason = "one argument per binding and attachment")]
+    /// Records the pass: stores the sky into every texel of the HDR frame (`width × height`,
+    /// made with storage usage). The frame's depth is cleared by the next pass that draws
+    /// into it (the frame's `take_depth_load`), not by a pass of its own here.
     pub fn encode(
         &self,
         kept: &crate::pool::FramePool,
@@ -73,21 +73,9 @@ impl SkyStage {
         camera: &CameraUniforms,
         (sky, sky_lut): (&wgpu::Buffer, &wgpu::Buffer),
         (hdr, [width, height]): (&wgpu::TextureView, [u32; 2]),
-        depth: &wgpu::TextureView,
         timestamps: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
         let name = label("sky");
-        drop(encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("ocean.sky.depth"),
-            color_attachments: &[],
-            depth_stencil_attachment: Some(crate::common::depth_attachment(
-                depth,
-                crate::common::Load::Clear(0.0),
-            )),
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        }));
         let camera_group = kept.bind_group(
             "ocean.sky.camera",
             &self.camera_layout,

@@ -255,7 +255,7 @@ impl SprayStage {
         pool: &GpuSpray,
         params: &SprayUniforms,
         target: &wgpu::TextureView,
-        depth: &wgpu::TextureView,
+        (depth, depth_load): (&wgpu::TextureView, Load<f32>),
         timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
     ) {
         let Some(draw) = &self.draw else { return };
@@ -276,7 +276,7 @@ impl SprayStage {
             &name,
             target,
             Load::Keep,
-            Some((depth, Load::Keep)),
+            Some((depth, depth_load)),
             timestamps,
         );
         pass.set_pipeline(draw);

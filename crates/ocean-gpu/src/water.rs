@@ -211,7 +211,8 @@ impl WaterStage {
         })
     }
 
-    /// Records the pass over what the sky and objects drew (`Load::Keep` on colour and depth):
+    /// Records the pass over what the sky and objects drew (colour kept; depth as
+    /// `depth_load` says: cleared when no pass has drawn into it since the sky):
     /// on the compute path, the raster pass into the visibility buffer (kept in `kept`) and
     /// the compute pass shading it into `hdr`, timed as one span.
     #[expect(clippy::too_many_arguments, reason = "one argument per binding and attachment")]
@@ -225,7 +226,7 @@ impl WaterStage {
         textures: &WaterTextures<'_>,
         draw: &WaterDraw<'_>,
         hdr: (&wgpu::TextureView, [u32; 2]),
-        depth: &wgpu::TextureView,
+        (depth, depth_load): (&wgpu::TextureView, Load<f32>),
         timestamps: Option<wgpu::RenderPassTimestampWrites<'_>>,
     ) {
         let name = label("water");
@@ -262,7 +263,7 @@ impl WaterStage {
                 &name,
                 hdr_view,
                 Load::Keep,
-                Some((depth, Load::Keep)),
+                Some((depth, depth_load)),
                 timestamps,
             );
             self.draw(&mut pass, draw, &group, &sky_group);
@@ -275,7 +276,7 @@ impl WaterStage {
                 encoder,
                 "ocean.water.visibility",
                 &vis,
-                (depth, Load::Keep),
+                (depth, depth_load),
                 raster_ts,
             );
             self.draw(&mut pass, draw, &group, &sky_group);
