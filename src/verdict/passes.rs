@@ -94,15 +94,14 @@ pub(super) fn water_verdict(
         bail!("hdr: {} texels, the frame {w}x{h}", hdr.len());
     }
     let started = std::time::Instant::now();
-    let water::envelope::MeshEnvelope { color: env, open, nearest, reach } =
-        water::envelope::envelope(&pass, &background);
+    let mesh = water::envelope::envelope(&pass, &background);
     let took = started.elapsed();
     let planned = plan.pass(Pass::Objects).filter(|_| plan.runs(Pass::Objects));
     let tris = planned
         .map(|p| ocean_core::frame::pass_triangles(scene, &frame.poses, p, frame.camera.eye));
     let objects_reach = match &tris {
         Some(t) => ocean_cpu::shaders::objects::depth_reach(t, u, w, h),
-        None => vec![f64::NEG_INFINITY; env.len()],
+        None => vec![f64::NEG_INFINITY; mesh.color.len()],
     };
     // The objects' colour over the sky, with the shadow map they read: the GPU's own where
     // the frame holds it, else its envelope.
@@ -121,7 +120,6 @@ pub(super) fn water_verdict(
     let objects = tris.as_ref().and_then(|t| {
         ocean_cpu::shaders::objects::main_view::main_envelope(t, &inputs, &background)
     });
-    let mesh = water::envelope::MeshEnvelope { color: env, open, nearest, reach };
     let composed =
         ocean_cpu::shaders::objects::main_view::compose(&mesh, &objects_reach, objects.as_ref());
     // The pixels judged: those whose envelope is carried (an object may show only where its

@@ -26,7 +26,7 @@ mod color;
 mod jitter;
 mod mesh;
 
-pub use color::{ColorPass, Shaded, color_pass_greater, color_pass_over};
+pub use color::{Shaded, color_pass_greater};
 pub use jitter::{jitter_depth_pass, jitter_pass, jitter_pass_at};
 pub use mesh::{MeshEnvelope, MeshTri, color_pass_mesh};
 
