@@ -542,17 +542,19 @@ fn gpu_matches_ocean_core_at_large_time() {
     }
 }
 
-/// The shared-memory FFT (one dispatch per axis, `FftKernel::Shared`, the default up to N =
-/// 1024) against the one-stage dispatches on the same device: the same butterflies and
-/// operations in another order of memory traffic. The CPU mirror shows them bit-identical
-/// (`ocean_cpu::shaders::waves` unit test); on the GPU they must be within the GPU↔mirror
+/// The shared-memory FFT (two dispatches a frame, the spectrum fused into the rows and the
+/// packing into the columns; `FftKernel::Shared`, the default up to N = 1024) against the
+/// one-stage dispatches on the same device: the same operations in another order of memory
+/// traffic. The CPU mirror shows them bit-identical (`ocean_cpu::shaders::waves::shared_memory`
+/// unit test); on the GPU they must be within the GPU↔mirror
 /// tolerance, and the count of values that are not bit-identical is printed.
 fn shared_memory_fft_matches_the_one_stage_fft() {
     use ocean_gpu::waves::FftKernel;
     let gpu = gpu("shared_memory_fft_matches_the_one_stage_fft")
         .expect("the harness runs GPU tests with a GPU");
-    // log2(N) even and odd (the shared kernel's last stage alone).
-    for n in [16, 32, 256, 512, 1024] {
+    // log2(N) even and odd (the shared kernel's last stage alone); four lines a workgroup
+    // (N ≤ 256), two (512) and one (1024).
+    for n in [4, 16, 32, 128, 256, 512, 1024] {
         let modes = build(n, Dispersion::deep(G));
         let shared = GpuWaves::with_kernel(&gpu.device, &modes, FftKernel::Shared).unwrap();
         let stages = GpuWaves::with_kernel(&gpu.device, &modes, FftKernel::Stages).unwrap();

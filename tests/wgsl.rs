@@ -327,6 +327,8 @@ fn rust_consts() -> Vec<(&'static str, f64)> {
         ("TURN_UNIT", f64::from(waves::TURN_UNIT)),
         ("FFT_SHARED_MAX", f64::from(ocean_core::waves::uniforms::FFT_SHARED_MAX)),
         ("FFT_SHARED_THREADS", f64::from(ocean_core::waves::uniforms::FFT_SHARED_THREADS)),
+        ("FFT_KEPT_PER_ARRAY", f64::from(ocean_core::waves::uniforms::FFT_KEPT_PER_ARRAY)),
+        ("WAVE_ARRAYS", f64::from(ocean_core::waves::uniforms::WAVE_ARRAYS)),
         ("MIN_CHROMATICITY_Y", f64::from(preetham::MIN_CHROMATICITY_Y)),
         ("INV_PI", f64::from(objects::INV_PI)),
         ("SIN_C3", f64::from(waves::SIN_C3)),

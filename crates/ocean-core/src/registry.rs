@@ -224,8 +224,8 @@ pub const STAGES: &[StageEntry] = &[
             ("spectrum", Compute),
             ("fft_rows", Compute),
             ("fft_columns", Compute),
-            ("fft_rows_shared", Compute),
-            ("fft_columns_shared", Compute),
+            ("spectrum_rows_shared", Compute),
+            ("columns_pack_shared", Compute),
             ("pack", Compute),
         ],
         bindings: &[

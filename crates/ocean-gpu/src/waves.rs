@@ -6,13 +6,16 @@
 //! and the FFT stage formula: ocean-core's `waves::uniforms`. The CPU mirror, dispatch for
 //! dispatch: `ocean_cpu::shaders::waves`.
 //!
-//! A frame is `spectrum` into ping, the FFT, then `pack` from ping. N must be a power of two.
-//! The FFT ([`FftKernel`]): for N ≤ [`FFT_SHARED_MAX`] one dispatch per axis
-//! (`fft_rows_shared`, `fft_columns_shared`: a workgroup per line holds it in workgroup memory
-//! through every stage, two stages between barriers (radix 4), ping → pong → ping), else 2·log₂N one-stage dispatches (rows, then
-//! columns) alternating ping → pong → ping …. Both do the same butterflies with the same
-//! operations; [`GpuWaves::encode_dispatches`] runs the one-stage form, dispatch by dispatch,
-//! for the comparison with the CPU mirror.
+//! N must be a power of two.
+//! The FFT ([`FftKernel`]): for N ≤ [`FFT_SHARED_MAX`] the whole frame in two dispatches
+//! (`spectrum_rows_shared`, `columns_pack_shared`: a workgroup per row, then per column,
+//! holds its lines in workgroup memory through every stage, two stages between barriers
+//! (radix 4), the spectrum computed as the rows are loaded and the textures packed as the
+//! columns are done), else `spectrum`, 2·log₂N one-stage dispatches (rows, then columns)
+//! alternating ping → pong → ping …, and `pack`. Both do the same operations for every value;
+//! [`GpuWaves::encode_dispatches`] runs the one-stage form, dispatch by dispatch, for the
+//! comparison with the CPU mirror (whose `shared_memory` module mirrors the two-dispatch
+//! form).
 //!
 //! The three textures are written for every map: the water stage takes `displacement` and
 //! `displacement_slopes` from the displacement map's `GpuWaves` and `bump` from the bump
@@ -25,7 +28,8 @@ use std::ops::Range;
 use ocean_core::dispersion::Dispersion;
 use ocean_core::waves::WaveModes;
 use ocean_core::waves::uniforms::{
-    WaveModeData, WavesUniforms, check_fft_size, fft_passes, fft_twiddles, wave_mode_table,
+    WAVE_ARRAYS, WaveModeData, WavesUniforms, check_fft_size, fft_passes, fft_shared_lines,
+    fft_twiddles, wave_mode_table,
 };
 
 /// Errors of the GPU wave synthesis.
@@ -117,8 +121,9 @@ pub use ocean_core::waves::uniforms::{FFT_SHARED_MAX, FFT_SHARED_THREADS};
 pub enum FftKernel {
     /// One dispatch per stage and axis (2·log₂N), through the storage buffers.
     Stages,
-    /// One dispatch per axis, the line in workgroup memory between stages (N ≤
-    /// [`FFT_SHARED_MAX`], and the device's workgroup limits at least WebGPU's defaults).
+    /// Two dispatches a frame, rows (with the spectrum) then columns (with the packing), the
+    /// lines in workgroup memory between stages (N ≤ [`FFT_SHARED_MAX`], and the device's
+    /// workgroup limits at least WebGPU's defaults).
     Shared,
 }
 
@@ -140,7 +145,7 @@ impl FftKernel {
 
 const WORKGROUP_2D: u32 = 8;
 const WORKGROUP_FFT: u32 = 64;
-const ARRAYS: u32 = 4;
+const ARRAYS: u32 = WAVE_ARRAYS;
 
 /// The pipelines, buffers and textures of the `waves` stage for one [`WaveModes`].
 #[derive(Debug)]
@@ -155,8 +160,8 @@ pub struct GpuWaves {
     spectrum: wgpu::ComputePipeline,
     fft_rows: wgpu::ComputePipeline,
     fft_columns: wgpu::ComputePipeline,
-    fft_rows_shared: wgpu::ComputePipeline,
-    fft_columns_shared: wgpu::ComputePipeline,
+    spectrum_rows_shared: wgpu::ComputePipeline,
+    columns_pack_shared: wgpu::ComputePipeline,
     kernel: FftKernel,
     pack: wgpu::ComputePipeline,
     shared_group: wgpu::BindGroup,
@@ -415,8 +420,8 @@ impl GpuWaves {
             spectrum: pipeline("spectrum"),
             fft_rows: pipeline("fft_rows"),
             fft_columns: pipeline("fft_columns"),
-            fft_rows_shared: pipeline("fft_rows_shared"),
-            fft_columns_shared: pipeline("fft_columns_shared"),
+            spectrum_rows_shared: pipeline("spectrum_rows_shared"),
+            columns_pack_shared: pipeline("columns_pack_shared"),
             kernel,
             pack: pipeline("pack"),
             shared_group,
@@ -603,34 +608,29 @@ impl GpuWaves {
         }
     }
 
-    /// A frame with the shared-memory FFT: `spectrum` (→ ping), `fft_rows_shared` (ping →
-    /// pong), `fft_columns_shared` (pong → ping), `pack` (from ping).
+    /// A frame with the shared-memory FFT in two dispatches: `spectrum_rows_shared` (→
+    /// pong; a workgroup per row and batch of [`fft_shared_lines`] arrays) and
+    /// `columns_pack_shared` (pong → the textures; a workgroup per column).
     fn record_shared(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
         let n = self.resolution;
-        let tiles = n.div_ceil(WORKGROUP_2D);
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("ocean.waves"),
             timestamp_writes,
         });
         pass.set_bind_group(0, &self.shared_group, &[]);
         pass.set_bind_group(2, &self.texture_group, &[]);
-        pass.set_pipeline(&self.spectrum);
-        pass.set_bind_group(1, &self.spectrum_group, &[]);
-        pass.dispatch_workgroups(tiles, tiles, 1);
         // The one-stage groups 0 (ping → pong) and 1 (pong → ping); their stage uniform is
-        // not read.
-        for (pipeline, group) in [(&self.fft_rows_shared, 0), (&self.fft_columns_shared, 1)] {
-            pass.set_pipeline(pipeline);
-            pass.set_bind_group(1, &self.pass_groups[group], &[]);
-            pass.dispatch_workgroups(n, ARRAYS, 1);
-        }
-        pass.set_pipeline(&self.pack);
-        pass.set_bind_group(1, &self.pack_group, &[]);
-        pass.dispatch_workgroups(tiles, tiles, 1);
+        // not read, nor is the second's ping.
+        pass.set_pipeline(&self.spectrum_rows_shared);
+        pass.set_bind_group(1, &self.pass_groups[0], &[]);
+        pass.dispatch_workgroups(n, ARRAYS / fft_shared_lines(n), 1);
+        pass.set_pipeline(&self.columns_pack_shared);
+        pass.set_bind_group(1, &self.pass_groups[1], &[]);
+        pass.dispatch_workgroups(n, 1, 1);
     }
 
     /// An output texture.

@@ -13,11 +13,13 @@
 
 use ocean_core::waves::WaveModes;
 use ocean_core::waves::uniforms::{
-    FFT_SHARED_MAX, FftPassUniforms, WaveModeData, WavesUniforms, check_fft_size, fft_passes,
-    fft_twiddles, wave_mode_table,
+    FftPassUniforms, WaveModeData, WavesUniforms, check_fft_size, fft_passes, fft_twiddles,
+    wave_mode_table,
 };
 
 use crate::envelope::{Iv, Jitter, JitterRules, Real};
+
+pub mod shared_memory;
 use crate::sampler::Texture2D;
 use crate::shaders::shared::trig::cis_reduced_r;
 
@@ -95,20 +97,17 @@ fn scale<R: Real>(v: Cx<R>, s: R) -> Cx<R> {
     [v[0] * s, v[1] * s]
 }
 
-/// `spectrum(id)`: the four packed spectra of bin (id.x, id.y), written into `dst`.
-pub fn spectrum<R: Real>(
-    id: [u32; 3],
+/// `spectrum_of(i, j)`: the four packed spectra of bin (i, j), in array order.
+pub fn spectrum_of<R: Real>(
+    i: u32,
+    j: u32,
     params: &WavesUniforms,
     modes: &[WaveModeData],
-    dst: &mut [Cx<R>],
-) {
+) -> [Cx<R>; 4] {
     let n = params.size;
-    if id[0] >= n || id[1] >= n {
-        return;
-    }
     let l = R::lit;
-    let bin = id[1] * n + id[0];
-    let partner = ((n - id[1]) & (n - 1)) * n + ((n - id[0]) & (n - 1));
+    let bin = j * n + i;
+    let partner = ((n - j) & (n - 1)) * n + ((n - i) & (n - 1));
     let mode = modes[bin as usize];
     let (h0, h0_minus) = (mode.h0.map(l), modes[partner as usize].h0.map(l));
     let e: Cx<R> = phase_cis(mode.phase_rate, mode.frequency, params);
@@ -129,13 +128,30 @@ pub fn spectrum<R: Real>(
     let disp_x_dx = scale(h, lambda * kx * kx * inv_k);
     let disp_z_dz = scale(h, lambda * kz * kz * inv_k);
     let disp_x_dz = scale(h, lambda * kx * kz * inv_k);
+    [
+        pack_pair(h, disp_x),
+        pack_pair(disp_z, disp_x_dz),
+        pack_pair(slope_x, slope_z),
+        pack_pair(disp_x_dx, disp_z_dz),
+    ]
+}
 
+/// `spectrum(id)`: the four packed spectra of bin (id.x, id.y), written into `dst`.
+pub fn spectrum<R: Real>(
+    id: [u32; 3],
+    params: &WavesUniforms,
+    modes: &[WaveModeData],
+    dst: &mut [Cx<R>],
+) {
+    let n = params.size;
+    if id[0] >= n || id[1] >= n {
+        return;
+    }
+    let bin = (id[1] * n + id[0]) as usize;
     let plane = (n * n) as usize;
-    let bin = bin as usize;
-    dst[bin] = pack_pair(h, disp_x);
-    dst[plane + bin] = pack_pair(disp_z, disp_x_dz);
-    dst[2 * plane + bin] = pack_pair(slope_x, slope_z);
-    dst[3 * plane + bin] = pack_pair(disp_x_dx, disp_z_dz);
+    for (f, value) in spectrum_of(id[0], id[1], params, modes).into_iter().enumerate() {
+        dst[f * plane + bin] = value;
+    }
 }
 
 /// `butterfly(base, stride, j)` of the stage in `fft_pass`.
@@ -195,92 +211,22 @@ pub fn fft_columns<R: Real>(
     butterfly(id[2] * n * n + id[1], n, id[0], params, fft_pass, twiddles, src, dst);
 }
 
-/// `fft_line_shared(base, stride, local)` of every thread of a workgroup, one pair of stages
-/// after another as the barriers order them (radix 4: butterflies j and j + N/4 of stage s and
-/// the two of stage 2s that read their outputs, in one thread's registers; an odd log2(N) ends
-/// with one radix-2 stage): the line's whole FFT in the workgroup's `fft_line` (two halves, at
-/// 0 and at [`FFT_SHARED_MAX`], read and written in turn), then written to `dst`.
-pub fn fft_line_shared(
-    base: u32,
-    stride: u32,
-    params: &WavesUniforms,
-    twiddles: &[Vec2],
-    src: &[Vec2],
-    dst: &mut [Vec2],
-) {
-    let n = params.size;
-    let (half, quarter) = (n / 2, n / 4);
-    let mut fft_line = vec![[0.0f32; 2]; 2 * FFT_SHARED_MAX as usize];
-    for i in 0..n {
-        fft_line[i as usize] = src[(base + i * stride) as usize];
-    }
-    let sub = |a: Vec2, b: Vec2| [a[0] - b[0], a[1] - b[1]];
-    let add = |a: Vec2, b: Vec2| [a[0] + b[0], a[1] + b[1]];
-    let (mut read_at, mut write_at) = (0u32, FFT_SHARED_MAX);
-    let mut stage = 0;
-    while stage + 1 < params.log2_size {
-        let s = 1u32 << stage;
-        for j in 0..quarter {
-            let q = j & (s - 1);
-            let at = |i: u32| fft_line[(read_at + i) as usize];
-            let (a0, b0) = (at(j), at(j + half));
-            let (a1, b1) = (at(j + quarter), at(j + quarter + half));
-            let (d0, d1) = (sub(a0, b0), sub(a1, b1));
-            let y0 = add(a0, b0);
-            let y1 = complex_mul(d0, twiddles[(j - q) as usize]);
-            let y2 = add(a1, b1);
-            let y3 = complex_mul(d1, twiddles[(j + quarter - q) as usize]);
-            let w = twiddles[(2 * (j - q)) as usize];
-            let (e0, e1) = (sub(y0, y2), sub(y1, y3));
-            let out = 4 * j - 3 * q;
-            fft_line[(write_at + out) as usize] = add(y0, y2);
-            fft_line[(write_at + out + s) as usize] = add(y1, y3);
-            fft_line[(write_at + out + 2 * s) as usize] = complex_mul(e0, w);
-            fft_line[(write_at + out + 3 * s) as usize] = complex_mul(e1, w);
-        }
-        std::mem::swap(&mut read_at, &mut write_at);
-        stage += 2;
-    }
-    if stage < params.log2_size {
-        let s = 1u32 << stage;
-        for j in 0..half {
-            let q = j & (s - 1);
-            let a = fft_line[(read_at + j) as usize];
-            let b = fft_line[(read_at + j + half) as usize];
-            let w = twiddles[(j - q) as usize];
-            let out = 2 * j - q;
-            fft_line[(write_at + out) as usize] = add(a, b);
-            fft_line[(write_at + out + s) as usize] = complex_mul(sub(a, b), w);
-        }
-        std::mem::swap(&mut read_at, &mut write_at);
-    }
-    for i in 0..n {
-        dst[(base + i * stride) as usize] = fft_line[(read_at + i) as usize];
-    }
-}
-
-/// `fft_rows_shared(group)`: group.x row, group.y array.
-pub fn fft_rows_shared(
-    group: [u32; 3],
-    params: &WavesUniforms,
-    twiddles: &[Vec2],
-    src: &[Vec2],
-    dst: &mut [Vec2],
-) {
-    let n = params.size;
-    fft_line_shared(group[1] * n * n + group[0] * n, 1, params, twiddles, src, dst);
-}
-
-/// `fft_columns_shared(group)`: group.x column, group.y array.
-pub fn fft_columns_shared(
-    group: [u32; 3],
-    params: &WavesUniforms,
-    twiddles: &[Vec2],
-    src: &[Vec2],
-    dst: &mut [Vec2],
-) {
-    let n = params.size;
-    fft_line_shared(group[1] * n * n + group[0], n, params, twiddles, src, dst);
+/// `store_texel`: the three texels (displacement, displacement_slopes, bump) of one bin from
+/// its four transformed arrays.
+pub fn store_texel<R: Real>(params: &WavesUniforms, arrays: [Cx<R>; 4]) -> [[R; 4]; 3] {
+    let l = R::lit;
+    let [height_disp_x, disp_z_disp_x_dz, slopes, disp_x_dx_disp_z_dz] = arrays;
+    let height = height_disp_x[0];
+    let disp_x = if params.lambda == 0.0 { l(0.0) } else { height_disp_x[1] };
+    let disp_z = disp_z_disp_x_dz[0];
+    let disp_x_dz = disp_z_disp_x_dz[1];
+    let jacobian = (l(1.0) + disp_x_dx_disp_z_dz[0]) * (l(1.0) + disp_x_dx_disp_z_dz[1])
+        - disp_x_dz * disp_x_dz;
+    [
+        [disp_x, height, disp_z, jacobian],
+        [slopes[0], slopes[1], l(0.0), l(0.0)],
+        [slopes[0], slopes[1], height, jacobian],
+    ]
 }
 
 /// The three texels `pack(id)` stores: (displacement, displacement_slopes, bump), or `None`
@@ -290,24 +236,9 @@ pub fn pack<R: Real>(id: [u32; 3], params: &WavesUniforms, src: &[Cx<R>]) -> Opt
     if id[0] >= n || id[1] >= n {
         return None;
     }
-    let l = R::lit;
     let bin = (id[1] * n + id[0]) as usize;
     let plane = (n * n) as usize;
-    let height_disp_x = src[bin];
-    let disp_z_disp_x_dz = src[plane + bin];
-    let slopes = src[2 * plane + bin];
-    let disp_x_dx_disp_z_dz = src[3 * plane + bin];
-    let height = height_disp_x[0];
-    let disp_x = if params.lambda == 0.0 { l(0.0) } else { height_disp_x[1] };
-    let disp_z = disp_z_disp_x_dz[0];
-    let disp_x_dz = disp_z_disp_x_dz[1];
-    let jacobian = (l(1.0) + disp_x_dx_disp_z_dz[0]) * (l(1.0) + disp_x_dx_disp_z_dz[1])
-        - disp_x_dz * disp_x_dz;
-    Some([
-        [disp_x, height, disp_z, jacobian],
-        [slopes[0], slopes[1], l(0.0), l(0.0)],
-        [slopes[0], slopes[1], height, jacobian],
-    ])
+    Some(store_texel(params, [0, 1, 2, 3].map(|f| src[f * plane + bin])))
 }
 
 /// The three textures `pack` writes.
@@ -554,60 +485,5 @@ mod tests {
         assert_eq!(cis_turns(0.0), [1.0, 0.0]);
         assert_eq!(cis_turns(0.25), [-0.0, 1.0]);
         assert_eq!(cis_turns(-0.5), [-1.0, -0.0]);
-    }
-
-    /// The shared-memory FFT (one dispatch per axis, stages two at a time) against the
-    /// one-stage dispatches: the same butterflies in the same order of operations, so bit for
-    /// bit, at every N it runs, log2(N) odd (a last radix-2 stage) and even.
-    #[test]
-    fn the_shared_memory_fft_is_the_one_stage_fft() {
-        for n in [2u32, 4, 8, 64, 512, 1024] {
-            let size = (ARRAYS * n * n) as usize;
-            let mut state = 0x2545_f491_4f6c_dd1d_u64 ^ u64::from(n);
-            let mut next = || {
-                state ^= state << 13;
-                state ^= state >> 7;
-                state ^= state << 17;
-                (state >> 40) as f32 / (1u64 << 24) as f32 - 0.5
-            };
-            let input: Vec<Vec2> = (0..size).map(|_| [next(), next()]).collect();
-            let params = WavesUniforms {
-                size: n,
-                log2_size: n.trailing_zeros(),
-                time_ticks: [0, 0],
-                time_remainder: 0.0,
-                lambda: 0.0,
-                pad0: 0,
-                pad1: 0,
-            };
-            let twiddles = fft_twiddles(n as usize);
-            let mut stages = input.clone();
-            let mut scratch = vec![[0.0f32; 2]; size];
-            for (p, pass) in fft_passes(n as usize).iter().enumerate() {
-                let rows = p < n.trailing_zeros() as usize;
-                for id in (0..ARRAYS)
-                    .flat_map(|a| (0..n).flat_map(move |l| (0..n / 2).map(move |j| [j, l, a])))
-                {
-                    if rows {
-                        fft_rows(id, &params, pass, &twiddles, &stages, &mut scratch);
-                    } else {
-                        fft_columns(id, &params, pass, &twiddles, &stages, &mut scratch);
-                    }
-                }
-                std::mem::swap(&mut stages, &mut scratch);
-            }
-            let mut pong = vec![[0.0f32; 2]; size];
-            let mut ping = vec![[0.0f32; 2]; size];
-            for group in (0..ARRAYS).flat_map(|a| (0..n).map(move |l| [l, a, 0])) {
-                fft_rows_shared(group, &params, &twiddles, &input, &mut pong);
-            }
-            for group in (0..ARRAYS).flat_map(|a| (0..n).map(move |l| [l, a, 0])) {
-                fft_columns_shared(group, &params, &twiddles, &pong, &mut ping);
-            }
-            let differ = ping.iter().zip(&stages).filter(|(a, b)| a != b).count();
-            assert_eq!(differ, 0, "N = {n}: {differ} of {size} values differ");
-            // The control: the input itself differs from its transform.
-            assert!(input.iter().zip(&ping).filter(|(a, b)| a != b).count() > size / 2);
-        }
     }
 }
