@@ -357,9 +357,10 @@ pub(crate) fn gpu_frame_of(
     let (mut timed, mut encodes, mut steady) = (Runs::default(), Vec::new(), Vec::new());
     let mut encode_cpu = Vec::new();
     // The real-time frames run as the viewer's do: one state carried from frame to frame, so
-    // the spray's and the foam's warm-up (which a still frame simulates in full) is paid once,
-    // before the timing, and every timed frame steps them once.
-    let mut live = FrameState::new(0.0);
+    // the spray's and the foam's warm-up (which a still frame simulates in full) and the
+    // boats' settle run are paid once, before the timing, and every timed frame steps them
+    // on by 1/60 s of sea time.
+    let mut live = FrameState::new(1.0 / 60.0).with_carried_boats();
     r.run_frame(s, &plan, &mut live, Readback::None)?;
     for _ in 0..runs {
         let f = r.run_with(s, &plan, Readback::Output)?;

@@ -313,7 +313,7 @@ impl App {
             t0,
             sim_time: t0,
             frame_index: 0,
-            frame_state: FrameState::new(0.0),
+            frame_state: FrameState::new(0.0).with_carried_boats(),
             last_frame: None,
             stats: Stats::default(),
             last_plan: None,

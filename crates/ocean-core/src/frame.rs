@@ -33,8 +33,8 @@ pub use triangles::{
 };
 
 pub use boat::{
-    BOW_SHARE, HULL_TRIANGLES, ObjectPoses, SETTLE_STEPS, hull_bounds, hull_faces, hull_triangles,
-    resting_pose, settle, settle_periods, settle_window_s, settled_pose,
+    BOW_SHARE, BoatRun, HULL_TRIANGLES, ObjectPoses, SETTLE_STEPS, hull_bounds, hull_faces,
+    hull_triangles, resting_pose, settle, settle_periods, settle_window_s, settled_pose,
 };
 
 /// Phong exponent s of the sun's specular term, a whole number (the water stage raises to it

@@ -137,7 +137,7 @@ impl<'a> FrameInputs<'a> {
     ) -> crate::Result<Self> {
         let sky = scene_sky(scene)?;
         let time_s = state.time_s(scene);
-        let poses = ObjectPoses::at(scene, plan, time_s)?;
+        let poses = state.boat_poses(scene, plan, time_s)?;
         let mut uniforms = FrameUniforms::new(scene, &camera, plan, mesh.origin, &poses);
         uniforms.ambient.sky = sky_ambient(&sky);
         // Waves `gerstner` at the frame's time (the block is made at the scene's).
@@ -339,6 +339,11 @@ pub struct FrameState {
     pub foam_window: Option<[i64; 2]>,
     /// The CPU back end's foam field.
     pub foam: Option<FoamField>,
+    /// Whether the frames' boats are carried from one frame to the next
+    /// ([`Self::with_carried_boats`]) rather than settled afresh in each.
+    pub carry_boats: bool,
+    /// The carried boats, when `carry_boats` holds.
+    boats: std::sync::Mutex<Option<crate::frame::BoatRun>>,
 }
 
 /// Foam `accumulated`'s field as the CPU back end carries it across frames.
@@ -405,7 +410,43 @@ impl FrameState {
             foam_steps: 0,
             foam_window: None,
             foam: None,
+            carry_boats: false,
+            boats: Default::default(),
         }
+    }
+
+    /// This state with its boats carried from frame to frame, as a live animation wants them
+    /// (the viewer, an embedding program, `ocean bench`'s real-time frames): each frame steps
+    /// the boats on from the previous frame's time, one or two sub-steps at 60 frames a second,
+    /// instead of settling them afresh over a window of 128 sub-steps
+    /// (`crate::frame::ObjectPoses::carried`). A frame's poses then depend on the times of the
+    /// frames before it, so a still frame or an animation whose frames must each stand alone
+    /// (`ocean render --frames`, sharded) keeps the default.
+    pub fn with_carried_boats(mut self) -> Self {
+        self.carry_boats = true;
+        self
+    }
+
+    /// The poses of the boats of a frame of `scene` at `time_s` (carried or settled).
+    ///
+    /// # Errors
+    /// As [`crate::frame::ObjectPoses::at`].
+    pub fn boat_poses(
+        &self,
+        scene: &Scene,
+        plan: &FramePlan,
+        time_s: f64,
+    ) -> crate::Result<ObjectPoses> {
+        if !self.carry_boats {
+            return ObjectPoses::at(scene, plan, time_s);
+        }
+        // A poisoned lock only means a panic mid-step elsewhere: start the boats afresh.
+        let mut run = self.boats.lock().unwrap_or_else(|e| {
+            let mut g = e.into_inner();
+            *g = None;
+            g
+        });
+        ObjectPoses::carried(scene, plan, time_s, &mut run)
     }
 
     /// How many foam steps this frame runs: the scene's warm-up and one on the state's

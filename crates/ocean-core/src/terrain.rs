@@ -350,7 +350,7 @@ struct FloorGrid {
 
 /// A relief compared by identity: a relief is made once, at load or `prepare`, and comparing
 /// its texels would cost what keeping the grid saves.
-struct SameRelief(Option<Arc<Relief>>);
+pub(crate) struct SameRelief(pub(crate) Option<Arc<Relief>>);
 
 impl PartialEq for SameRelief {
     fn eq(&self, other: &Self) -> bool {

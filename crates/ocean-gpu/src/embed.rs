@@ -210,7 +210,8 @@ impl EmbeddedOcean {
             )
         })??;
         let renderer = Renderer::with_gpu(gpu, WaveSynthesis::default())?;
-        Ok(Self { renderer, scene, state: FrameState::new(0.0), target, composite })
+        let state = FrameState::new(0.0).with_carried_boats();
+        Ok(Self { renderer, scene, state, target, composite })
     }
 
     /// The scene whose sea is drawn (its camera is replaced by the caller's each frame).
@@ -222,7 +223,7 @@ impl EmbeddedOcean {
     /// start again).
     pub fn set_scene(&mut self, scene: Scene) {
         self.scene = scene;
-        self.state = FrameState::new(0.0);
+        self.state = FrameState::new(0.0).with_carried_boats();
     }
 
     /// The renderer underneath (its device, adapter and wave source).

@@ -22,6 +22,13 @@
 //! size equally, and it fixes the cost: [`SETTLE_STEPS`] surfaces and 5 height queries on
 //! each, whatever the boat.
 //!
+//! # Live animations
+//!
+//! A live animation (the viewer, an embedding program: `crate::graph::FrameState::
+//! with_carried_boats`) does have a history, and re-running the settle window every frame
+//! would cost it [`SETTLE_STEPS`] sub-steps a frame: its first frame settles the boats, and
+//! each later one carries them on from the previous frame's time ([`ObjectPoses::carried`]).
+//!
 //! Every step is plain f64 arithmetic in a fixed order on one thread (boats are settled in
 //! parallel, each on its own), so the pose is bit-identical on every run and thread count.
 
@@ -79,6 +86,11 @@ pub fn settle(
     t: f64,
     steps: usize,
 ) -> crate::Result<BoatPose> {
+    Ok(settle_boat(o, sea, t, steps)?.pose())
+}
+
+/// [`settle`]'s boat itself, at time `t`, to be stepped on (a live animation's first frame).
+fn settle_boat(o: &Object, sea: &SurfaceSource<'_>, t: f64, steps: usize) -> crate::Result<Boat> {
     let Some((params, x, z, yaw)) = start(o) else {
         return Err(crate::Error::InvalidParameter {
             name: "object kind",
@@ -101,7 +113,7 @@ pub fn settle(
     for k in 1..n {
         boat.step(&sea.at(time(k))?, h);
     }
-    Ok(boat.pose())
+    Ok(boat)
 }
 
 /// Where each object of a scene is in one frame: the settled pose of every boat
@@ -148,9 +160,214 @@ impl ObjectPoses {
         self.poses.get(index).and_then(Option::as_ref)
     }
 
+    /// The poses of a live animation's frame at time `t`: `run`'s boats continued from the
+    /// time they are at to `t` when they ride this scene and plan and `t` is later by at most
+    /// the settle window, else (a first frame, a jump back or far ahead, another scene) the
+    /// boats settled as [`Self::at`] settles them; `run` keeps them for the next frame.
+    ///
+    /// Continuing takes ⌈Δt / h⌉ sub-steps of equal length (h the boat's longest,
+    /// [`BoatParams::max_substep_s`]), each on the surface at its start, as the settle run
+    /// steps: one or two at 60 frames a second, where a settle run takes [`SETTLE_STEPS`].
+    /// The poses so continued are those of one boat riding the frames' times, which a still
+    /// frame's settle run approaches (module doc) but does not equal.
+    ///
+    /// # Errors
+    /// As [`Self::at`].
+    pub fn carried(
+        scene: &Scene,
+        plan: &FramePlan,
+        t: f64,
+        run: &mut Option<BoatRun>,
+    ) -> crate::Result<Self> {
+        if !scene.objects.iter().any(|o| start(o).is_some()) {
+            *run = None;
+            return Ok(Self { poses: vec![None; scene.objects.len()] });
+        }
+        let key = BoatRun::key(scene, plan);
+        let current = run.as_mut().filter(|r| r.key == key);
+        if current.as_ref().is_some_and(|r| r.time_s == t) {
+            return Ok(current.expect("tested").poses());
+        }
+        let sea = SurfaceSource::new(scene, plan)?;
+        if let Some(r) = current {
+            let dt = t - r.time_s;
+            let window = r.boats.iter().flatten().map(|b| settle_window_s(b.params()));
+            if dt > 0.0 && window.fold(f64::INFINITY, f64::min) >= dt {
+                r.continue_to(&sea, t)?;
+                return Ok(r.poses());
+            }
+        }
+        let boats = scene
+            .objects
+            .par_iter()
+            .map(|o| start(o).map(|_| settle_boat(o, &sea, t, SETTLE_STEPS)).transpose())
+            .collect::<crate::Result<Vec<_>>>()?;
+        let fresh = BoatRun { key, time_s: t, boats };
+        let poses = fresh.poses();
+        *run = Some(fresh);
+        Ok(poses)
+    }
+
     /// The pose object `index` (that is `o`) is drawn at: its entry, else, for a boat, its
     /// [`resting_pose`]; `None` for the other kinds.
     pub fn of(&self, index: usize, o: &Object) -> Option<BoatPose> {
         self.get(index).copied().or_else(|| resting_pose(o))
+    }
+}
+
+/// The boats of a live animation, carried from one frame to the next
+/// ([`ObjectPoses::carried`]; `crate::graph::FrameState` holds one).
+pub struct BoatRun {
+    key: RunKey,
+    /// The time they are at, s.
+    time_s: f64,
+    /// Indexed as the scene's objects.
+    boats: Vec<Option<Boat>>,
+}
+
+/// What the boats of a [`BoatRun`] ride: the scene with its sea time and camera set aside
+/// (neither moves a boat) and its floor's relief compared by identity (comparing its texels
+/// every frame would cost more than the step it saves), and the plan's techniques.
+#[derive(PartialEq)]
+struct RunKey {
+    scene: Scene,
+    relief: crate::terrain::SameRelief,
+    techniques: crate::technique::Techniques,
+}
+
+impl BoatRun {
+    fn key(scene: &Scene, plan: &FramePlan) -> RunKey {
+        let mut s = scene.clone();
+        s.ocean.time_s = 0.0;
+        s.camera = Default::default();
+        let relief = s.terrain.as_mut().and_then(|t| t.relief.take());
+        RunKey { scene: s, relief: crate::terrain::SameRelief(relief), techniques: plan.techniques }
+    }
+
+    fn poses(&self) -> ObjectPoses {
+        ObjectPoses { poses: self.boats.iter().map(|b| b.as_ref().map(Boat::pose)).collect() }
+    }
+
+    /// Every boat stepped from `self.time_s` to `t` (> it) in equal sub-steps no longer than
+    /// the boat's longest, each on the surface at its start.
+    fn continue_to(&mut self, sea: &SurfaceSource<'_>, t: f64) -> crate::Result<()> {
+        let t0 = self.time_s;
+        let dt = t - t0;
+        for boat in self.boats.iter_mut().flatten() {
+            let n = (dt / boat.params().max_substep_s()).ceil().max(1.0) as usize;
+            let h = dt / n as f64;
+            for k in 0..n {
+                boat.step(&sea.at(t0 + k as f64 * h)?, h);
+            }
+        }
+        self.time_s = t;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::plan::OutputKind;
+    use crate::technique::System;
+
+    fn coastal() -> (Scene, FramePlan) {
+        let s = Scene::builtin_for(System::Coastal).with_system(System::Coastal).unwrap();
+        let plan = FramePlan::new(&s, OutputKind::Ldr);
+        assert!(s.objects.iter().any(|o| start(o).is_some()), "the coastal scene has a boat");
+        (s, plan)
+    }
+
+    fn boat_pose(p: &ObjectPoses) -> BoatPose {
+        *p.poses.iter().flatten().next().expect("a boat")
+    }
+
+    /// A live run's first frame is the still frame's settle run; the next frame is that
+    /// boat stepped on by Δt in sub-steps of at most h on the surface at each's start (the
+    /// same boat stepped here by hand), not a settle run of its own; a frame at the same time
+    /// is the same poses.
+    #[test]
+    fn a_live_frame_continues_the_previous_frames_boat() {
+        let (s, plan) = coastal();
+        let t0 = s.ocean.time_s;
+        let mut run = None;
+        let first = ObjectPoses::carried(&s, &plan, t0, &mut run).unwrap();
+        assert_eq!(first, ObjectPoses::at(&s, &plan, t0).unwrap());
+
+        let t1 = t0 + 1.0 / 60.0;
+        let second = ObjectPoses::carried(&s, &plan, t1, &mut run).unwrap();
+        let sea = SurfaceSource::new(&s, &plan).unwrap();
+        let o = s.objects.iter().find(|o| start(o).is_some()).unwrap();
+        let mut by_hand = settle_boat(o, &sea, t0, SETTLE_STEPS).unwrap();
+        let n = ((t1 - t0) / by_hand.params().max_substep_s()).ceil().max(1.0) as usize;
+        let h = (t1 - t0) / n as f64;
+        for k in 0..n {
+            by_hand.step(&sea.at(t0 + k as f64 * h).unwrap(), h);
+        }
+        assert_eq!(boat_pose(&second), by_hand.pose());
+        // The control: a settle run at t1 is another computation, and gives another pose.
+        let settled = boat_pose(&ObjectPoses::at(&s, &plan, t1).unwrap());
+        assert_ne!(boat_pose(&second), settled);
+        assert_eq!(ObjectPoses::carried(&s, &plan, t1, &mut run).unwrap(), second);
+    }
+
+    /// A jump back in time, a jump past the settle window, or another scene settles afresh:
+    /// the poses are the still frame's.
+    #[test]
+    fn a_jump_or_another_scene_settles_afresh() {
+        let (s, plan) = coastal();
+        let t0 = s.ocean.time_s;
+        let mut run = None;
+        ObjectPoses::carried(&s, &plan, t0, &mut run).unwrap();
+        ObjectPoses::carried(&s, &plan, t0 + 0.1, &mut run).unwrap();
+        let back = t0 + 0.05;
+        assert_eq!(
+            ObjectPoses::carried(&s, &plan, back, &mut run).unwrap(),
+            ObjectPoses::at(&s, &plan, back).unwrap()
+        );
+        let far = back + 60.0;
+        assert_eq!(
+            ObjectPoses::carried(&s, &plan, far, &mut run).unwrap(),
+            ObjectPoses::at(&s, &plan, far).unwrap()
+        );
+        let mut moved = s.clone();
+        moved.ocean.wind_speed *= 1.5;
+        let next = far + 1.0 / 60.0;
+        assert_eq!(
+            ObjectPoses::carried(&moved, &plan, next, &mut run).unwrap(),
+            ObjectPoses::at(&moved, &plan, next).unwrap()
+        );
+        // Another camera or sea time alone is the same run: it continues.
+        let mut looked = moved.clone();
+        looked.camera.position[0] += 5.0;
+        looked.ocean.time_s += 3.0;
+        let later = next + 1.0 / 60.0;
+        assert_ne!(
+            ObjectPoses::carried(&looked, &plan, later, &mut run).unwrap(),
+            ObjectPoses::at(&looked, &plan, later).unwrap()
+        );
+    }
+
+    /// Ten seconds of 60 frames a second: the carried boat stays finite, afloat and near
+    /// where a still frame's settle run puts it (the two differ by what no force restores,
+    /// the drift, and by the rest of the settle's start that has not decayed).
+    #[test]
+    fn ten_seconds_of_live_frames_stay_near_the_settled_boat() {
+        let (s, plan) = coastal();
+        let t0 = s.ocean.time_s;
+        let mut run = None;
+        let (mut worst, mut tilt) = (0.0f64, 0.0f64);
+        for n in 0..=600 {
+            let t = t0 + f64::from(n) / 60.0;
+            let live = boat_pose(&ObjectPoses::carried(&s, &plan, t, &mut run).unwrap());
+            assert!(live.position.is_finite() && live.up.is_finite(), "frame {n}");
+            if n % 100 == 0 {
+                let still = boat_pose(&ObjectPoses::at(&s, &plan, t).unwrap());
+                worst = worst.max((live.position - still.position).length());
+                tilt = tilt.max(live.up.dot(still.up).clamp(-1.0, 1.0).acos().to_degrees());
+            }
+        }
+        println!("carried against settled over 10 s: at most {worst:.4} m and {tilt:.3}° apart");
+        assert!(worst < 0.1 && tilt < 2.0, "{worst} m, {tilt}°");
     }
 }
