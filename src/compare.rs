@@ -25,8 +25,9 @@ pub struct Args {
     #[command(flatten)]
     memory: ocean::memory_arg::MemoryArg,
     /// Compare a folder in the layout of `ocean render --dump-passes` (from another engine,
-    /// or another run) with the CPU oracle's frame of the scene, resource by resource, with
-    /// docs/design.md's float tolerance; no GPU is used. The scene is SCENE, else the one in
+    /// or another run) with the CPU oracle's frame of the scene, resource by resource, under
+    /// `--tolerance` (by default the exact rule for a software adapter's dump, the envelope
+    /// for any other or an unknown one); no GPU is used. The scene is SCENE, else the one in
     /// DIR/manifest.json, else the default.
     #[arg(long, value_name = "DIR")]
     against: Option<PathBuf>,
@@ -40,8 +41,8 @@ pub struct Args {
     mutant: Option<String>,
     /// How the GPU's resources are held: `exact` (docs/design.md's float and picture rows,
     /// lavapipe's figures) or `envelope` (what any conformant GPU may produce:
-    /// docs/tolerances.md; today the 8-bit picture, the other resources reported as not
-    /// judged). Default: exact on a software adapter, the envelope on hardware — with
+    /// docs/tolerances.md: every float resource and the 8-bit picture; pixels or resources
+    /// without an envelope, such as the spray's sprites, are reported as not judged). Default: exact on a software adapter, the envelope on hardware — with
     /// --against, the dump's adapter, the envelope when the manifest does not say.
     #[arg(long, value_enum, conflicts_with = "mutants")]
     tolerance: Option<ToleranceArg>,

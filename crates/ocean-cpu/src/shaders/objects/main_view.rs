@@ -34,8 +34,9 @@ pub struct MainInputs<'a, R> {
     pub relief: &'a (dyn Fn([R; 3]) -> R + Sync),
 }
 
-/// `fs_main` over any [`Real`] after interpolation: the colour before it is stored.
-fn main_fragment<R: Real>(v: Varyings<R>, m: &MainInputs<'_, R>) -> [R; 4] {
+/// `shade_main` (what `fs_main` returns) over any [`Real`] after interpolation: the colour
+/// before it is stored.
+fn shade_main_r<R: Real>(v: Varyings<R>, m: &MainInputs<'_, R>) -> [R; 4] {
     let (normal, color, rel, world_y) = v;
     let sun = sun_reaches_r(rel, world_y, m.frame, m.shadow_dims, m.occluder, m.relief);
     let [r, g, b] = shade_r(m.frame, normal, color, sun);
@@ -82,7 +83,7 @@ pub fn main_envelope(
         })
         .collect();
     let shade = |k: usize, _: usize, interp: &raster::Interp| {
-        main_fragment(drawn.varyings(k, interp), m).map(|c| c.store(m.format))
+        shade_main_r(drawn.varyings(k, interp), m).map(|c| c.store(m.format))
     };
     Some(raster::color_pass_mesh(&tris, w, h, background, raster::SNAP_PX, shade))
 }
@@ -119,7 +120,7 @@ pub fn main_jitter(
         rules,
         raster::MIN_SUBPIXEL_BITS,
         |i, k, wts, z| {
-            let color = main_fragment(jitter_varyings(&verts[k], wts), &mj);
+            let color = shade_main_r(jitter_varyings(&verts[k], wts), &mj);
             // The pass shades only a sample that passes the depth test: the last one at a
             // pixel is what it stores.
             depth[i] = z;
