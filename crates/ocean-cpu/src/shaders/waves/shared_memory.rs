@@ -87,7 +87,7 @@ pub fn fft_lines_shared(
     read_at
 }
 
-/// `spectrum_rows_shared(group)`: row `group[0]`'s spectra of arrays group[1]·L … (L =
+/// `spectrum_rows_shared(group)`: row `group[0]`'s spectra of arrays `group[1]`·L … (L =
 /// [`fft_shared_lines`]), transformed along x, written into `dst` (4·N² values, array f at
 /// f·N²).
 pub fn spectrum_rows_shared(
