@@ -23,7 +23,9 @@
 // spectrum_rows_shared (→ pong) and columns_pack_shared (pong → the textures), two dispatches.
 // Conventions (unnormalised inverse DFT, bin (n mod N, m mod N), the multipliers,
 // λ = −choppiness, the pairs) are ocean-core's (waves::synthesis); the phase in integer turns
-// and the FFT stage formula are documented in ocean-core's waves::uniforms. CPU mirror: crates/ocean-cpu/src/shaders/waves.rs.
+// and the FFT stage formula are documented in ocean-core's waves::uniforms. CPU mirror:
+// crates/ocean-cpu/src/shaders/waves.rs, the shared-memory entry points in its
+// waves/shared_memory.rs.
 // Array layout: element (field f, bin) at f·N² + bin, bin = j·N + i (z row j, x column i).
 
 // #import shared/trig.wgsl

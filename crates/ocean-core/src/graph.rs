@@ -339,11 +339,9 @@ pub struct FrameState {
     pub foam_window: Option<[i64; 2]>,
     /// The CPU back end's foam field.
     pub foam: Option<FoamField>,
-    /// Whether the frames' boats are carried from one frame to the next
-    /// ([`Self::with_carried_boats`]) rather than settled afresh in each.
-    pub carry_boats: bool,
-    /// The carried boats, when `carry_boats` holds.
-    boats: std::sync::Mutex<Option<crate::frame::BoatRun>>,
+    /// The boats carried from one frame to the next ([`Self::with_carried_boats`]); `None`:
+    /// settled afresh in each frame.
+    boats: Option<std::sync::Mutex<Option<crate::frame::BoatRun>>>,
 }
 
 /// Foam `accumulated`'s field as the CPU back end carries it across frames.
@@ -410,8 +408,7 @@ impl FrameState {
             foam_steps: 0,
             foam_window: None,
             foam: None,
-            carry_boats: false,
-            boats: Default::default(),
+            boats: None,
         }
     }
 
@@ -423,7 +420,7 @@ impl FrameState {
     /// frames before it, so a still frame or an animation whose frames must each stand alone
     /// (`ocean render --frames`, sharded) keeps the default.
     pub fn with_carried_boats(mut self) -> Self {
-        self.carry_boats = true;
+        self.boats = Some(Default::default());
         self
     }
 
@@ -437,11 +434,11 @@ impl FrameState {
         plan: &FramePlan,
         time_s: f64,
     ) -> crate::Result<ObjectPoses> {
-        if !self.carry_boats {
+        let Some(boats) = &self.boats else {
             return ObjectPoses::at(scene, plan, time_s);
-        }
+        };
         // A poisoned lock only means a panic mid-step elsewhere: start the boats afresh.
-        let mut run = self.boats.lock().unwrap_or_else(|e| {
+        let mut run = boats.lock().unwrap_or_else(|e| {
             let mut g = e.into_inner();
             *g = None;
             g

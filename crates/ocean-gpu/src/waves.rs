@@ -6,8 +6,7 @@
 //! and the FFT stage formula: ocean-core's `waves::uniforms`. The CPU mirror, dispatch for
 //! dispatch: `ocean_cpu::shaders::waves`.
 //!
-//! N must be a power of two.
-//! The FFT ([`FftKernel`]): for N ≤ [`FFT_SHARED_MAX`] the whole frame in two dispatches
+//! N must be a power of two. The FFT ([`FftKernel`]): for N ≤ [`FFT_SHARED_MAX`] the whole frame in two dispatches
 //! (`spectrum_rows_shared`, `columns_pack_shared`: a workgroup per row, then per column,
 //! holds its lines in workgroup memory through every stage, two stages between barriers
 //! (radix 4), the spectrum computed as the rows are loaded and the textures packed as the

@@ -235,10 +235,13 @@ pub fn check_fft_size(resolution: usize) -> Result<()> {
 /// `spectrum_rows_shared`, `columns_pack_shared`): two lines of N complex f32 in workgroup
 /// memory, 16 KiB, the workgroup storage every WebGPU device offers.
 pub const FFT_SHARED_MAX: u32 = 1024;
+/// Threads per workgroup of the shared-memory FFT (`FFT_SHARED_THREADS`), WebGPU's default
+/// limit of invocations per workgroup.
+pub const FFT_SHARED_THREADS: u32 = 256;
 /// The elements of a line one thread of the shared-memory FFT keeps in registers between the
 /// columns' FFT and the packing (`FFT_KEPT_PER_ARRAY`): N / [`FFT_SHARED_THREADS`] at most.
 pub const FFT_KEPT_PER_ARRAY: u32 = FFT_SHARED_MAX / FFT_SHARED_THREADS;
-/// The complex arrays of a frame's wave synthesis (`ARRAYS` in `waves.wgsl`): eight real
+/// The complex arrays of a frame's wave synthesis (`WAVE_ARRAYS` in `waves.wgsl`): eight real
 /// fields, two per array.
 pub const WAVE_ARRAYS: u32 = 4;
 
@@ -248,9 +251,6 @@ pub const WAVE_ARRAYS: u32 = 4;
 pub fn fft_shared_lines(resolution: u32) -> u32 {
     WAVE_ARRAYS.min(FFT_SHARED_MAX / resolution.max(1))
 }
-/// Threads per workgroup of the shared-memory FFT (`FFT_SHARED_THREADS`), WebGPU's default
-/// limit of invocations per workgroup.
-pub const FFT_SHARED_THREADS: u32 = 256;
 
 /// The Stockham pass parameters of every FFT pass of one frame, rows then columns.
 pub fn fft_passes(resolution: usize) -> Vec<FftPassUniforms> {

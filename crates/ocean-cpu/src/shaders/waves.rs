@@ -13,8 +13,8 @@
 
 use ocean_core::waves::WaveModes;
 use ocean_core::waves::uniforms::{
-    FftPassUniforms, WaveModeData, WavesUniforms, check_fft_size, fft_passes, fft_twiddles,
-    wave_mode_table,
+    FftPassUniforms, WAVE_ARRAYS, WaveModeData, WavesUniforms, check_fft_size, fft_passes,
+    fft_twiddles, wave_mode_table,
 };
 
 use crate::envelope::{Iv, Jitter, JitterRules, Real};
@@ -32,8 +32,8 @@ pub type Cx<R> = [R; 2];
 /// `TURN_UNIT`: 2⁻²⁴.
 pub const TURN_UNIT: f32 = 5.960_464_5e-8;
 
-/// The four packed complex arrays of one frame, N² each.
-pub const ARRAYS: u32 = 4;
+/// The four packed complex arrays of one frame, N² each (ocean-core's [`WAVE_ARRAYS`]).
+pub const ARRAYS: u32 = WAVE_ARRAYS;
 
 /// `mul_hi(a, b)`: the high 32 bits of a·b from 16-bit halves.
 #[inline]
