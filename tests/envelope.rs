@@ -765,14 +765,10 @@ fn random_conformant_gpus_stay_inside_the_object_maps_envelope() {
                 ocean_core::frame::pass_triangles(&scene, &frame.poses, planned, frame.camera.eye);
             let (dw, dh, disp) = o.map(ResourceId::Displacement).unwrap_or((1, 1, &[[0.0; 4]]));
             let displacement = ocean_cpu::sampler::Texture2D::new(dw, dh, disp.to_vec());
-            // The relief's march: its hull for the envelope, the exact march for the GPUs.
+            // The relief's march: carried step by step for the envelope, each random GPU's
+            // own roundings and filter for the GPUs.
             let (fw, fh, floor) = ocean_core::terrain::relief_texels(scene.terrain.as_ref());
             let floor_map = ocean_cpu::sampler::Texture2D::new(fw, fh, floor);
-            let relief_bound = objects::relief_envelope(&u);
-            let relief_iv = |_: [Iv; 3]| relief_bound;
-            let relief = |p: [f32; 3]| {
-                ocean_cpu::shaders::shared::floor::relief_sun(p.into(), &u, &floor_map)
-            };
             let envelope_inputs = objects::MapInputs {
                 frame: &u,
                 size: r.size,
@@ -781,7 +777,7 @@ fn random_conformant_gpus_stay_inside_the_object_maps_envelope() {
                 shadow_dims: dims,
                 occluder: &occ_iv,
                 displacement: &displacement,
-                relief: &relief_iv,
+                floor_map: &floor_map,
             };
             let gpu_inputs = objects::MapInputs {
                 frame: &u,
@@ -791,7 +787,7 @@ fn random_conformant_gpus_stay_inside_the_object_maps_envelope() {
                 shadow_dims: dims,
                 occluder: &occ,
                 displacement: &displacement,
-                relief: &relief,
+                floor_map: &floor_map,
             };
             let (env, amb) = objects::map_envelope(map, &tris, &envelope_inputs);
             let (_, _, exact) = o.map(id).unwrap();

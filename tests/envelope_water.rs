@@ -292,18 +292,14 @@ fn random_conformant_gpus_stay_inside_the_water_envelope() {
         let (sw, sh, shadow) = o.map(ResourceId::ShadowMap).unwrap_or((1, 1, &[[1.0; 4]]));
         let occ = |x: u32, y: u32| shadow[y as usize * sw as usize + x as usize][0];
         let occ_iv = |x: u32, y: u32| Iv::point(occ(x, y));
-        let relief_bound = objects::relief_envelope(&u);
-        let relief_iv = |_: [Iv; 3]| relief_bound;
         let floor_map = owned.textures().floor_map;
-        let relief =
-            |p: [f32; 3]| ocean_cpu::shaders::shared::floor::relief_sun(p.into(), &u, floor_map);
         let main_iv = main_view::MainInputs {
             frame: &u,
             size: [w, h],
             format,
             shadow_dims: [sw, sh],
             occluder: &occ_iv,
-            relief: &relief_iv,
+            floor_map,
         };
         let main_f = main_view::MainInputs {
             frame: &u,
@@ -311,7 +307,7 @@ fn random_conformant_gpus_stay_inside_the_water_envelope() {
             format,
             shadow_dims: [sw, sh],
             occluder: &occ,
-            relief: &relief,
+            floor_map,
         };
         let object_env =
             objects.as_ref().and_then(|t| main_view::main_envelope(t, &main_iv, &bg_env));

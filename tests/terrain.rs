@@ -313,6 +313,63 @@ fn the_relief_shadows_itself_as_an_independent_march_finds() {
     assert!(r.plan.runs(Pass::RefractionMap) && u.terrain.floor[3] == 1.0);
 }
 
+#[test]
+fn the_relief_march_envelope_holds_every_conformant_march_and_decides_most_points() {
+    use floor::ReliefMarch;
+    use ocean_cpu::envelope::{Iv, Jitter, JitterRules};
+    let dir = tempfile::tempdir().expect("tempdir");
+    let scene = ridge_scene(dir.path());
+    let r = ocean_cpu::render_scene(&scene, OutputKind::Hdr, &mut |_| {}).expect("render");
+    let (u, map) = (&r.buffers.uniforms, &r.buffers.floor_map);
+    let t = scene.terrain.as_ref().expect("terrain");
+    let eye = Camera::from_scene(&scene.camera).expect("camera").eye;
+    // The same GPU marching towards a sun turned about the vertical: the negative control.
+    let turn = |deg: f32| {
+        let mut turned = *u;
+        let [x, y, z, w] = u.terrain.sun_under;
+        let (s, c) = deg.to_radians().sin_cos();
+        turned.terrain.sun_under = [x * c - z * s, y, x * s + z * c, w];
+        turned
+    };
+    let turned = [turn(10.0)];
+    let mut controls = [0usize; 2];
+    let (mut points, mut shadowed, mut undecided, mut outside) = (0, 0, 0, 0);
+    // The independent test's points, four times as dense across the ridge (along x).
+    for j in 0..40u32 {
+        for i in 0..160u32 {
+            let (x, z) = (-6.0 + f64::from(i) * 0.0503, -20.0 + f64::from(j) * 1.007);
+            let rel = (DVec3::new(x, t.height(x, z), z) - eye).as_vec3().to_array();
+            let env = Iv::relief_sun(rel.map(Iv::point), u, map);
+            let exact = <f32 as ReliefMarch>::relief_sun(rel, u, map);
+            assert!(env.contains(exact), "({x}, {z}): the oracle's {exact} outside {env:?}");
+            for seed in 0..8 {
+                Jitter::reseed(JitterRules { seed, scale: 1.0 }, u64::from(j * 160 + i));
+                let g = Jitter::relief_sun(rel.map(Jitter), u, map).0;
+                outside += usize::from(!env.contains(g));
+            }
+            for (k, f) in turned.iter().enumerate() {
+                controls[k] +=
+                    usize::from(!env.contains(<f32 as ReliefMarch>::relief_sun(rel, f, map)));
+            }
+            let lifted = [rel[0], rel[1] + 0.1, rel[2]];
+            controls[1] +=
+                usize::from(!env.contains(<f32 as ReliefMarch>::relief_sun(lifted, u, map)));
+            points += 1;
+            shadowed += usize::from(env.hi == 0.0);
+            undecided += usize::from(env.lo < env.hi);
+        }
+    }
+    println!(
+        "relief march envelope: {points} points, {shadowed} certainly shadowed, {undecided} \
+         either way; 8 random GPUs: {outside} outside; the sun turned 10°, the point 10 cm up: {controls:?} outside"
+    );
+    assert_eq!(outside, 0, "a conformant march left the envelope");
+    // Carried step by step, the march is decided almost everywhere (the hull of 0 and 1 that
+    // stood for it before decided nothing).
+    assert!(shadowed > 100 && undecided * 20 <= points, "{shadowed} {undecided} of {points}");
+    assert!(controls.iter().all(|&c| c > 0), "a march elsewhere stayed inside: {controls:?}");
+}
+
 // ---------------------------------------------------------------------------------------
 // `kind = "island"` (issue 15): the profile, the relief made from it, and its validation.
 

@@ -61,7 +61,7 @@ pub(super) fn water_verdict(
         get,
         plan.runs(Pass::WaveMips),
         runs,
-        ocean_cpu::sampler::Texture2D::new(fw, fh, floor),
+        ocean_cpu::sampler::Texture2D::new(fw, fh, floor.clone()),
     ) {
         Ok(o) => o,
         Err(name) => return Ok(Err(format!("its input {name} is not in the frame"))),
@@ -107,15 +107,14 @@ pub(super) fn water_verdict(
     // the frame holds it, else its envelope.
     let (dims, shadow) = shadow_occluder(scene, plan, &frame, gpu);
     let occluder = |x: u32, y: u32| shadow[y as usize * dims[0] as usize + x as usize];
-    let relief_bound = ocean_cpu::shaders::objects::relief_envelope(u);
-    let relief = |_: [Iv; 3]| relief_bound;
+    let floor_map = ocean_cpu::sampler::Texture2D::new(fw, fh, floor);
     let inputs = ocean_cpu::shaders::objects::main_view::MainInputs {
         frame: u,
         size: [w, h],
         format,
         shadow_dims: dims,
         occluder: &occluder,
-        relief: &relief,
+        floor_map: &floor_map,
     };
     let objects = tris.as_ref().and_then(|t| {
         ocean_cpu::shaders::objects::main_view::main_envelope(t, &inputs, &background)
@@ -412,8 +411,8 @@ pub(super) fn shadow_verdict(
 /// `objects::map_envelope`); the shadow map it reads is the GPU's own where the frame holds
 /// it, else its envelope. Also the share of texels whose coverage or discard is ambiguous.
 /// None where the frame holds no such map, or where shading `chiu` clips at a displacement
-/// map the frame does not hold. The floor's relief shadow march is taken as the hull of its
-/// two results (ocean-cpu `objects::relief_envelope`).
+/// map the frame does not hold. The floor's relief shadow march is carried step by step
+/// (ocean-cpu `floor::ReliefMarch`).
 pub(super) fn map_verdict(
     scene: &Scene,
     plan: &FramePlan,
@@ -444,8 +443,8 @@ pub(super) fn map_verdict(
         }
         None => return Ok(None),
     };
-    let relief_bound = ocean_cpu::shaders::objects::relief_envelope(&frame.uniforms);
-    let relief = |_: [Iv; 3]| relief_bound;
+    let (fw, fh, floor) = ocean_core::terrain::relief_texels(scene.terrain.as_ref());
+    let floor_map = ocean_cpu::sampler::Texture2D::new(fw, fh, floor);
     let inputs = ocean_cpu::shaders::objects::MapInputs {
         frame: &frame.uniforms,
         size: [w, h],
@@ -454,7 +453,7 @@ pub(super) fn map_verdict(
         shadow_dims: dims,
         occluder: &occluder,
         displacement: &displacement,
-        relief: &relief,
+        floor_map: &floor_map,
     };
     let (env, ambiguous) = ocean_cpu::shaders::objects::map_envelope(map, &tris, &inputs);
     if env.len() != texels.len() {

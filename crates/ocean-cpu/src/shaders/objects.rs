@@ -5,7 +5,7 @@ pub mod main_view;
 
 use ocean_core::frame::{FrameUniforms, ObjectVertex};
 
-use super::shared::floor::{FloorMaps, sun_reaches, sun_reaches_r};
+use super::shared::floor::{FloorMaps, ReliefMarch, sun_reaches, sun_reaches_r};
 use super::shared::frame::transform_point;
 use super::shared::optics::water_volume_colour_r;
 use super::water::WRAP_LINEAR;
@@ -219,19 +219,6 @@ pub fn refract_colour_r<R: Real>(
     [r, g, b, l(1.0)]
 }
 
-/// Whether `relief_sun` marches the floor's relief (a texture lookup per step).
-fn relief_marched(frame: &FrameUniforms) -> bool {
-    frame.terrain.floor[3] != 0.0 && frame.terrain.sun_under[3] != 0.0
-}
-
-/// The envelope of `relief_sun`: 1 where the frame marches no relief, else [0, 1]. The march
-/// (a texture lookup and a comparison per step) is not carried; its result is one of its two
-/// values, so their hull holds it. Points above the water never march (`sun_reaches` is 1
-/// there), so this widens only the colour of what lies under the water.
-pub fn relief_envelope(frame: &FrameUniforms) -> Iv {
-    if relief_marched(frame) { Iv::new(0.0, 1.0) } else { Iv::point(1.0) }
-}
-
 /// What the stage's vertex entry points output, over any [`Real`]: the clip position and the
 /// varyings.
 pub type ObjectOut<R> = ([R; 4], Varyings<R>);
@@ -293,14 +280,14 @@ pub struct MapInputs<'a, R> {
     pub occluder: &'a dyn Fn(u32, u32) -> R,
     /// The displacement map (binding 1), read by shading `chiu`'s clip height.
     pub displacement: &'a Texture2D,
-    /// `relief_sun` at a camera-relative point: 0 where the floor's relief hides the sun
-    /// from it, else 1; for an envelope, [`relief_envelope`].
-    pub relief: &'a dyn Fn([R; 3]) -> R,
+    /// The sea floor's relief (`ocean_core::terrain::relief_texels`), marched towards the
+    /// sun under the water by each scalar type's [`ReliefMarch`].
+    pub floor_map: &'a Texture2D,
 }
 
 /// A map's fragment shader over any [`Real`] after interpolation: whether it discards, and
 /// the colour; `sample` is the displacement map's `textureSampleLevel`.
-fn map_fragment<R: Real>(
+fn map_fragment<R: ReliefMarch>(
     map: ObjectMap,
     v: Varyings<R>,
     m: &MapInputs<'_, R>,
@@ -318,7 +305,8 @@ fn map_fragment<R: Real>(
             (world_y.lt(clip), [r, g, b, l(1.0)])
         }
         ObjectMap::Refraction => {
-            let sun = |at: [R; 3], wy: R| sun_reaches_r(at, wy, frame, dims, occluder, m.relief);
+            let relief = |p: [R; 3]| R::relief_sun(p, frame, m.floor_map);
+            let sun = |at: [R; 3], wy: R| sun_reaches_r(at, wy, frame, dims, occluder, &relief);
             (clip.lt(world_y), refract_colour_r(v, frame, &sun))
         }
     }
@@ -388,8 +376,8 @@ impl Drawn {
 /// The envelope of one of the stage's maps a conformant GPU draws of `triangles`
 /// (reversed-Z `Greater`): per texel its colour interval and whether its coverage or discard
 /// is ambiguous. Each fragment is shaded from its varyings' envelope at the sample, the
-/// displacement map filtered by the filter's envelope, the relief's shadow march by
-/// `m.relief` ([`relief_envelope`]).
+/// displacement map filtered by the filter's envelope, the relief's shadow march step by step
+/// ([`ReliefMarch`]).
 pub fn map_envelope(
     map: ObjectMap,
     triangles: &[[ObjectVertex; 3]],
@@ -431,7 +419,6 @@ pub fn map_jitter(
     };
     let (verts, clip) = jitter_vertices(triangles, frame, rules, vs);
     let occ = |x: u32, y: u32| Jitter((m.occluder)(x, y));
-    let relief = |p: [Jitter; 3]| Jitter((m.relief)(p.map(|x| x.0)));
     let mj = MapInputs {
         frame,
         size,
@@ -440,7 +427,7 @@ pub fn map_jitter(
         shadow_dims: m.shadow_dims,
         occluder: &occ,
         displacement: m.displacement,
-        relief: &relief,
+        floor_map: m.floor_map,
     };
     let sample = |uv: [Jitter; 2]| {
         crate::envelope::filter::sample_level0_jitter(m.displacement, &WRAP_LINEAR, uv)

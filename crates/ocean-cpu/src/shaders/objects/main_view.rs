@@ -11,10 +11,11 @@
 use ocean_core::frame::{FrameUniforms, ObjectVertex};
 use ocean_core::frame_format::FrameFormat;
 
-use super::super::shared::floor::sun_reaches_r;
+use super::super::shared::floor::{ReliefMarch, sun_reaches_r};
 use super::{Drawn, Varyings, jitter_varyings, jitter_vertices, shade_r, vs_main_r};
 use crate::envelope::raster::{self, MeshEnvelope};
 use crate::envelope::{Iv, Jitter, JitterRules, Real};
+use crate::sampler::Texture2D;
 
 /// What the main view's objects read besides their triangles, for a scalar `R`.
 pub struct MainInputs<'a, R> {
@@ -29,16 +30,17 @@ pub struct MainInputs<'a, R> {
     /// The shadow map's texel (x, y): the GPU's own, or for an envelope the interval its map
     /// may hold there.
     pub occluder: &'a (dyn Fn(u32, u32) -> R + Sync),
-    /// `relief_sun` at a camera-relative point: 0 where the floor's relief hides the sun
-    /// from it, else 1; for an envelope, [`super::relief_envelope`].
-    pub relief: &'a (dyn Fn([R; 3]) -> R + Sync),
+    /// The sea floor's relief (`ocean_core::terrain::relief_texels`), marched towards the
+    /// sun under the water by each scalar type's [`ReliefMarch`].
+    pub floor_map: &'a Texture2D,
 }
 
 /// `shade_main` (what `fs_main` returns) over any [`Real`] after interpolation: the colour
 /// before it is stored.
-fn shade_main_r<R: Real>(v: Varyings<R>, m: &MainInputs<'_, R>) -> [R; 4] {
+fn shade_main_r<R: ReliefMarch>(v: Varyings<R>, m: &MainInputs<'_, R>) -> [R; 4] {
     let (normal, color, rel, world_y) = v;
-    let sun = sun_reaches_r(rel, world_y, m.frame, m.shadow_dims, m.occluder, m.relief);
+    let relief = |p: [R; 3]| R::relief_sun(p, m.frame, m.floor_map);
+    let sun = sun_reaches_r(rel, world_y, m.frame, m.shadow_dims, m.occluder, &relief);
     let [r, g, b] = shade_r(m.frame, normal, color, sun);
     [r, g, b, R::lit(1.0)]
 }
@@ -90,8 +92,7 @@ pub fn main_envelope(
 
 /// The objects' pass in the main view as one random conformant GPU draws it (`rules.scale`
 /// times the rules) over `background` (its sky pass): the colour, and the depth stored at
-/// each pixel (0 where no object landed). `m.relief` is the march's own result (the exact
-/// mirror's `relief_sun`): 0 or 1, inside its envelope whatever a GPU's march rounds.
+/// each pixel (0 where no object landed).
 pub fn main_jitter(
     triangles: &[[ObjectVertex; 3]],
     m: &MainInputs<'_, f32>,
@@ -101,14 +102,13 @@ pub fn main_jitter(
     let [w, h] = m.size;
     let (verts, clip) = jitter_vertices(triangles, m.frame, rules, vs_main_r::<Jitter>);
     let occ = |x: u32, y: u32| Jitter((m.occluder)(x, y));
-    let relief = |p: [Jitter; 3]| Jitter((m.relief)(p.map(|x| x.0)));
     let mj = MainInputs {
         frame: m.frame,
         size: m.size,
         format: m.format,
         shadow_dims: m.shadow_dims,
         occluder: &occ,
-        relief: &relief,
+        floor_map: m.floor_map,
     };
     let mut depth = vec![0.0f32; background.len()];
     let out = raster::jitter_pass_at(

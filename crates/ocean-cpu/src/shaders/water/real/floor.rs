@@ -6,13 +6,8 @@ use crate::envelope::Real;
 
 /// `floor_height(x, z)`: the plane plus the relief map (bilinear, clamped to its edge).
 pub(super) fn floor_height<R: Real>(x: R, z: R, inp: &Inputs<'_, R>) -> R {
-    let l = R::lit;
-    let f = inp.frame.terrain.floor;
-    let r = inp.frame.terrain.relief;
-    let uv = [x * l(r[0]) + l(r[2]), z * l(r[1]) + l(r[3])];
-    let relief = (inp.sample)(Tex::FloorMap, uv, l(0.0))[0];
-    let terms = [l(f[2]), l(f[0]) * x, l(f[1]) * z, relief];
-    R::sum_as_written(&terms, |t| ((t[0] + t[1]) + t[2]) + t[3])
+    let relief_at = |uv: [R; 2]| (inp.sample)(Tex::FloorMap, uv, R::lit(0.0))[0];
+    crate::shaders::shared::floor::floor_height_r(x, z, inp.frame, &relief_at)
 }
 
 /// `shore_weight(x, z, inv)`: the share of the waves kept over the floor (1 for `inv` 0).
