@@ -125,9 +125,17 @@ fn vs_projected_grid(@builtin(vertex_index) k: u32) -> VertexOut {
         let rel = vec2<f32>(a.x * d + a.z * x, a.y * d + a.w * x);
         return water_vertex(rel - frame.tiling.mesh_offset, 1.0);
     }
-    let u = f32(quad % cols + di[corner]) / g.cols;
-    let v = f32(quad / cols + dj[corner]) / g.rows;
-    let h = (g.corners[0] * (1.0 - u) + g.corners[1] * u) * (1.0 - v) + (g.corners[2] * (1.0 - u) + g.corners[3] * u) * v;
+    let iu = quad % cols + di[corner];
+    let iv = quad / cols + dj[corner];
+    // Each weight and its complement from the integers, so that all four are ≥ 0 on any GPU
+    // and the far edge's complement is 0: 1 − v at v = rows/rows is −2 ULP where the division
+    // rounds up (WGSL allows 2.5 ULP), and that puts the horizon row's w = 6e-7 (of 3 at the
+    // near row) below 0, behind the eye.
+    let u = f32(iu) / g.cols;
+    let v = f32(iv) / g.rows;
+    let u1 = f32(cols - iu) / g.cols;
+    let v1 = f32(u32(g.rows) - iv) / g.rows;
+    let h = (g.corners[0] * u1 + g.corners[1] * u) * v1 + (g.corners[2] * u1 + g.corners[3] * u) * v;
     let inv_w = 1.0 / h.w;
     return water_vertex(vec2<f32>(h.x * inv_w, h.z * inv_w) - frame.tiling.mesh_offset, 1.0);
 }

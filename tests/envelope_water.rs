@@ -177,6 +177,7 @@ fn random_conformant_gpus_stay_inside_the_water_envelope() {
     let (mut objects_tight, mut objects_brighter, mut object_px, mut either_px) = (0, 0, 0, 0);
     let mut rel = Vec::new();
     let mut names = Vec::new();
+    let mut unjudged: Vec<String> = Vec::new();
     for (name, scene, plan) in &scenes {
         let oracle = Oracle::new(scene, plan);
         let (frame, o, u) = (&oracle.frame, &oracle.buffers, oracle.frame.uniforms);
@@ -377,6 +378,11 @@ fn random_conformant_gpus_stay_inside_the_water_envelope() {
             })
             .collect();
         water_px += water.len();
+        if water.is_empty() {
+            // `coastal_boat`'s, before the projected grid's weights were made ≥ 0 on any GPU:
+            // its horizon row could fall behind the eye, and the pass was anything.
+            unjudged.push(name.clone());
+        }
         judged += shows.iter().flatten().count();
         open += water.iter().filter(|&&i| amb[i]).count();
         let mut ratio: Vec<f64> = water
@@ -423,6 +429,7 @@ fn random_conformant_gpus_stay_inside_the_water_envelope() {
         q(0.99)
     );
     assert!(runs > 0 && water_px > 0, "no water pass judged");
+    assert!(unjudged.is_empty(), "no water pixel judged in {unjudged:?}");
     assert!(loose > 0, "a GPU twice as loose as the rules never left the water envelope");
     assert!(objects_tight > 0, "the objects' depth bound is 1 % loose or more at every pixel");
     assert!(object_px > 0, "no pixel judged by the objects' envelope");

@@ -199,10 +199,11 @@ pub fn vs_projected_grid(k: u32, b: &Bindings<'_>) -> VertexOut {
         let rel = vec2(a[0] * d + a[2] * x, a[1] * d + a[3] * x);
         return water_vertex(rel - Vec2::from(b.frame.tiling.mesh_offset), 1.0, b);
     }
-    let u = (quad % cols + di[corner]) as f32 / g.cols;
-    let v = (quad / cols + dj[corner]) as f32 / g.rows;
+    let (iu, iv) = (quad % cols + di[corner], quad / cols + dj[corner]);
+    let (u, v) = (iu as f32 / g.cols, iv as f32 / g.rows);
+    let (u1, v1) = ((cols - iu) as f32 / g.cols, (g.rows as u32 - iv) as f32 / g.rows);
     let c = g.corners.map(Vec4::from);
-    let h = (c[0] * (1.0 - u) + c[1] * u) * (1.0 - v) + (c[2] * (1.0 - u) + c[3] * u) * v;
+    let h = (c[0] * u1 + c[1] * u) * v1 + (c[2] * u1 + c[3] * u) * v;
     let inv_w = 1.0 / h.w;
     water_vertex(vec2(h.x * inv_w, h.z * inv_w) - Vec2::from(b.frame.tiling.mesh_offset), 1.0, b)
 }

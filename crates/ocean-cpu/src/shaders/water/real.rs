@@ -122,12 +122,14 @@ pub fn grid_vertex<R: Real>(i: u32, j: u32, inp: &Inputs<'_, R>) -> ([R; 4], Var
         // Surface `shore_grid`: rows at growing distances ahead of the eye.
         return water_vertex(coastal::shore_point(i, j, inp.frame), l(1.0), inp);
     }
+    // The weights' complements from the integers (`vs_projected_grid` says why).
     let u = l(i as f32) / l(g.cols);
     let v = l(j as f32) / l(g.rows);
+    let u1 = l((g.cols as u32 - i) as f32) / l(g.cols);
+    let v1 = l((g.rows as u32 - j) as f32) / l(g.rows);
     let c = g.corners;
     let h: [R; 4] = std::array::from_fn(|k| {
-        (l(c[0][k]) * (l(1.0) - u) + l(c[1][k]) * u) * (l(1.0) - v)
-            + (l(c[2][k]) * (l(1.0) - u) + l(c[3][k]) * u) * v
+        (l(c[0][k]) * u1 + l(c[1][k]) * u) * v1 + (l(c[2][k]) * u1 + l(c[3][k]) * u) * v
     });
     let inv_w = l(1.0) / h[3];
     let off = inp.frame.tiling.mesh_offset;
