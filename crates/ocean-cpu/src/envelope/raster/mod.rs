@@ -234,6 +234,18 @@ impl Span {
     fn widen(self, d: f64) -> Span {
         Span(self.0 - d, self.1 + d)
     }
+    /// `self / o` for a divisor of one sign (`None` where it may be 0), widened for f64's
+    /// roundings.
+    fn div(self, o: Span) -> Option<Span> {
+        if !(o.0 > 0.0 || o.1 < 0.0) {
+            return None;
+        }
+        let c = [self.0 / o.0, self.0 / o.1, self.1 / o.0, self.1 / o.1];
+        let lo = c.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = c.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let slack = (lo.abs().max(hi.abs())) * 1e-12;
+        (lo.is_finite() && hi.is_finite()).then_some(Span(lo - slack, hi + slack))
+    }
     fn of(v: Iv) -> Span {
         Span(v.lo, v.hi)
     }
@@ -568,10 +580,26 @@ impl Interp {
 /// The interpolation a conformant GPU may apply at a covered sample of `t` ([`Interp`]).
 fn barycentrics(t: &Setup, px: f64, py: f64) -> Interp {
     let e = t.extrapolation;
+    // λₖ is also the ratio of the sample's edge function to the doubled area, each bounded
+    // over the vertices' boxes: near a vertex other than the plane's anchor that is several
+    // times tighter than the plane's bound (whose gradient error grows with the distance from
+    // the anchor), so both are intersected.
+    let (p, q) = (Span(px, px), Span(py, py));
+    let quotient = |k: usize| {
+        let edge_k = match k {
+            1 => edge(t.x[2], t.y[2], t.x[0], t.y[0], p, q),
+            _ => edge(t.x[0], t.y[0], t.x[1], t.y[1], p, q),
+        };
+        edge_k.div(t.area)
+    };
     let lam = |k: usize| {
         let (mut lo, mut hi) = (-e, 1.0 + e);
         if let Some(p) = t.bary[k] {
             let (l, h) = p.at(px, py);
+            lo = lo.max(l);
+            hi = hi.min(h);
+        }
+        if let Some(Span(l, h)) = quotient(k) {
             lo = lo.max(l);
             hi = hi.min(h);
         }
@@ -682,6 +710,68 @@ mod tests {
     fn v(x: f64, y: f64, z: f64) -> ScreenIv {
         let p = |a: f64| Iv::point(a as f32);
         ScreenIv { x: p(x), y: p(y), z: p(z), inv_w: p(1.0) }
+    }
+
+    /// The barycentrics at a sample of a thin triangle (the projected grid's, 16 px² with
+    /// its least singular value 2 px) hold those of every triangle whose vertices lie in the
+    /// boxes, snapped or not; the edge functions' quotient makes them several times tighter
+    /// than the plane's bound alone, whose gradient error grows with the distance from its
+    /// anchor. Negative control: the bounds of boxes half as wide miss some.
+    #[test]
+    fn the_barycentrics_hold_every_triangle_in_the_boxes_and_are_tight() {
+        let c = [[52.377f64, 96.2535], [63.422, 89.127], [58.229, 89.530]];
+        let (half, snap) = (0.0024, 1.0 / 256.0);
+        let setup_with = |half: f64, snap: f64| {
+            let tri: [ScreenIv; 3] = std::array::from_fn(|k| ScreenIv {
+                x: Iv::new(c[k][0] - half, c[k][0] + half),
+                y: Iv::new(c[k][1] - half, c[k][1] + half),
+                z: Iv::point(0.002),
+                inv_w: Iv::point(0.03),
+            });
+            setup(&tri, 256, 144, snap).unwrap()
+        };
+        let (t, narrow) = (setup_with(half, snap), setup_with(half / 2.0, snap / 2.0));
+        let mut g = ocean_core::rng::SplitMix64::new(7);
+        let (mut samples, mut missed, mut widths) = (0, 0, [0.0; 2]);
+        for (sx, sy) in [(56.5, 92.5), (58.5, 90.5), (55.5, 93.5), (60.5, 90.5)] {
+            let (b, bn) = (barycentrics(&t, sx, sy), barycentrics(&narrow, sx, sy));
+            let plane = t.bary[1].map(|p| p.at(sx, sy)).unwrap();
+            let mut seen = [f64::INFINITY, f64::NEG_INFINITY];
+            for _ in 0..20_000 {
+                // Vertices anywhere in their boxes (half of them at the boxes' corners, where
+                // the extremes lie), snapped or not.
+                let corners = g.next_open_closed() < 0.5;
+                let mut at = |k: usize, d: usize| {
+                    let u = g.next_open_closed();
+                    let s = if corners { if u < 0.5 { -1.0 } else { 1.0 } } else { 2.0 * u - 1.0 };
+                    c[k][d] + s * (half + snap)
+                };
+                let v: [[f64; 2]; 3] = std::array::from_fn(|k| [at(k, 0), at(k, 1)]);
+                let area = |a: [f64; 2], b: [f64; 2], p: [f64; 2]| {
+                    (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0])
+                };
+                let whole = area(v[0], v[1], v[2]);
+                let l1 = area(v[2], v[0], [sx, sy]) / whole;
+                let l2 = area(v[0], v[1], [sx, sy]) / whole;
+                assert!((b.l1.0..=b.l1.1).contains(&l1), "λ₁ {l1} outside {:?}", b.l1);
+                assert!((b.l2.0..=b.l2.1).contains(&l2), "λ₂ {l2} outside {:?}", b.l2);
+                let inside = |r: (f64, f64), l: f64| (r.0..=r.1).contains(&l);
+                missed += usize::from(!inside(bn.l1, l1) || !inside(bn.l2, l2));
+                seen = [seen[0].min(l1), seen[1].max(l1)];
+                samples += 1;
+            }
+            println!(
+                "({sx}, {sy}): λ₁ over the boxes spans {:.4}, bound {:.4}, the plane's alone {:.4}",
+                seen[1] - seen[0],
+                b.l1.1 - b.l1.0,
+                plane.1 - plane.0
+            );
+            widths[0] += b.l1.1 - b.l1.0;
+            widths[1] += plane.1 - plane.0;
+        }
+        assert!(2.5 * widths[0] < widths[1], "{widths:?}: not tighter than the plane's bound");
+        println!("{samples} triangles; {missed} outside the bounds of boxes half as wide");
+        assert!(missed > 0, "the bounds of boxes half as wide held all {samples} triangles");
     }
 
     /// A large triangle: its interior certain, its outside not covered, a band along its
