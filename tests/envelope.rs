@@ -839,3 +839,25 @@ fn random_conformant_gpus_stay_inside_the_object_maps_envelope() {
     assert!(kinds[0] >= 3 && kinds[1] >= 3, "{kinds:?} maps the envelope judges");
     assert!(loose > 0, "a GPU twice as loose as the rules never left the envelope");
 }
+
+/// `length` of a vector whose components may be 0 (Preetham's |dir × sun| near the sun): each
+/// square is never negative, so the square root is bounded and holds every f32 length in the
+/// box. Negative control: the squares taken as products of two independent intervals reach
+/// below 0, and the root is anything (what made the reflected sky unbounded around the sun).
+#[test]
+fn a_length_through_zero_is_bounded_and_holds_every_f32_length() {
+    use ocean_cpu::envelope::{Af, Real, dot3, length3};
+    let b = [(-1e-3, 2e-3), (-5e-4, 5e-4), (-2e-3, 1e-3)];
+    let a = b.map(|(lo, hi)| Iv::new(lo, hi));
+    let len = length3(a);
+    assert!(!len.full && len.lo >= 0.0 && len.hi < 3.1e-3, "{len:?}");
+    let af = length3(a.map(Af::input));
+    assert!(af.least() >= 0.0 && af.most() < 3.1e-3, "{af:?}");
+    let mut g = ocean_core::rng::SplitMix64::new(3);
+    for _ in 0..10_000 {
+        let v = b.map(|(lo, hi)| (lo + (hi - lo) * g.next_open_closed()) as f32);
+        let exact = length3(v);
+        assert!(len.contains(exact) && af.to_iv().contains(exact), "{v:?}: {exact}");
+    }
+    assert!(dot3(a, a).sqrt().full, "the products' root was bounded: the control tests nothing");
+}

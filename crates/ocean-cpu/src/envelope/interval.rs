@@ -474,7 +474,12 @@ impl Real for Iv {
         if lo.is_nan() || hi.is_nan() {
             return Iv::FULL;
         }
-        Iv::stored((lo - u).next_down(), (hi + u).next_up())
+        // No order of the additions and no rounding changes the sign of a sum of terms of one
+        // sign: every partial sum keeps it (so the root of a sum of squares is defined).
+        let (l, h) = ((lo - u).next_down(), (hi + u).next_up());
+        let l = if terms.iter().all(|t| t.lo >= 0.0) { l.max(0.0) } else { l };
+        let h = if terms.iter().all(|t| t.hi <= 0.0) { h.min(0.0) } else { h };
+        Iv::stored(l, h)
     }
     fn sum_as_written(terms: &[Iv], _: impl FnOnce(&[Iv]) -> Iv) -> Iv {
         Self::sum(terms)

@@ -459,10 +459,13 @@ pub fn cross3<R: Real>(a: [R; 3], b: [R; 3]) -> [R; 3] {
     [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
 }
 
-/// `length(a)` = sqrt(dot(a, a)).
+/// `length(a)` = sqrt(dot(a, a)), each product a square ([`Real::sq`]): an interval that
+/// took `a.x · a.x` for a product of two values could reach below 0 where a.x may be 0, and
+/// the square root of that is anything (Preetham's sin γ near the sun was, on every
+/// reflected direction around it).
 #[inline]
 pub fn length3<R: Real>(a: [R; 3]) -> R {
-    dot3(a, a).sqrt()
+    R::sum(&[a[0].sq(), a[1].sq(), a[2].sq()]).sqrt()
 }
 
 /// `normalize(a)` = a / length(a).
