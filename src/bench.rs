@@ -13,7 +13,10 @@
 //!   paid before the timing, and the GPU is idle when the timed call starts), and
 //!   `encode_cpu_ms`, the calling thread's CPU time in that call (Unix): where a software
 //!   GPU shares the cores (lavapipe), the wall time also counts waiting for one, so the CPU
-//!   time is the figure to hold to a budget;
+//!   time is the figure to hold to a budget; `encode_split_ms`, where the median call's time
+//!   went (`ocean_gpu::EncodeSplit`): the frame's inputs (`prepare`),
+//!   the passes recorded (`record`), wgpu's `finish` and the `submit`, so that a driver's
+//!   share can be told from the renderer's;
 //! - `steady_ms` (GPU): what a real-time user sees, without read-back: [`STEADY_FRAMES`]
 //!   real-time frames recorded and submitted back to back, one wait at the end, the total
 //!   divided by their count (the GPU's and the CPU's work overlap as in a viewer);
@@ -101,6 +104,8 @@ pub struct Case {
     pub encode_ms: Option<f64>,
     /// GPU frames: the calling thread's median CPU time in that call, ms (Unix).
     pub encode_cpu_ms: Option<f64>,
+    /// GPU frames: the steps of that median call, ms.
+    pub encode_split_ms: Option<SplitMs>,
     /// GPU frames: median time per frame of [`STEADY_FRAMES`] submitted back to back without
     /// read-back and one wait, ms.
     pub steady_ms: Option<f64>,
@@ -113,6 +118,35 @@ pub struct Case {
     /// three maps written: 80·N² bytes) takes at the device's copy bandwidth, ms; `frame_ms`
     /// over this is how far from bandwidth-bound it runs.
     pub bandwidth_bound_ms: Option<f64>,
+}
+
+/// [`ocean_gpu::EncodeSplit`] of the median encode, ms.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct SplitMs {
+    /// The frame's inputs on the CPU.
+    pub prepare: f64,
+    /// The passes recorded.
+    pub record: f64,
+    /// wgpu's `CommandEncoder::finish`.
+    pub finish: f64,
+    /// `Queue::submit`.
+    pub submit: f64,
+}
+
+impl SplitMs {
+    /// The split of the run whose wall time is the median of `runs` (the one `median` picks),
+    /// so that its steps add up inside that run's `encode_ms`; `None` for no run.
+    fn of_median_run(runs: &[(f64, ocean_gpu::EncodeSplit)]) -> Option<Self> {
+        let mut sorted = runs.to_vec();
+        sorted.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let (_, s) = sorted.get(sorted.len() / 2)?;
+        Some(Self {
+            prepare: ms(s.prepare),
+            record: ms(s.record),
+            finish: ms(s.finish),
+            submit: ms(s.submit),
+        })
+    }
 }
 
 /// The whole run.
@@ -323,6 +357,7 @@ pub(crate) fn cpu_frame_of(
         frame_ms,
         encode_ms: None,
         encode_cpu_ms: None,
+        encode_split_ms: None,
         steady_ms: None,
         passes,
         peak_rss_mib: peak_rss_mib(),
@@ -355,7 +390,7 @@ pub(crate) fn gpu_frame_of(
     reset_peak();
     r.run_with(s, &plan, Readback::Output)?;
     let (mut timed, mut encodes, mut steady) = (Runs::default(), Vec::new(), Vec::new());
-    let mut encode_cpu = Vec::new();
+    let (mut encode_cpu, mut splits) = (Vec::new(), Vec::new());
     // The real-time frames run as the viewer's do: one state carried from frame to frame, so
     // the spray's and the foam's warm-up (which a still frame simulates in full) and the
     // boats' settle run are paid once, before the timing, and every timed frame steps them
@@ -369,6 +404,7 @@ pub(crate) fn gpu_frame_of(
         let cpu = thread_cpu();
         let f = r.run_frame(s, &plan, &mut live, Readback::None)?;
         encodes.push(ms(f.wall));
+        splits.push((ms(f.wall), f.encode));
         if let (Some(a), Some(b)) = (cpu, thread_cpu()) {
             encode_cpu.push(ms(b.saturating_sub(a)));
         }
@@ -390,6 +426,7 @@ pub(crate) fn gpu_frame_of(
         frame_ms,
         encode_ms: Some(median(encodes)),
         encode_cpu_ms: (!encode_cpu.is_empty()).then(|| median(encode_cpu)),
+        encode_split_ms: SplitMs::of_median_run(&splits),
         steady_ms: Some(median(steady)),
         passes,
         peak_rss_mib: peak_rss_mib(),
@@ -443,6 +480,7 @@ pub(crate) fn waves(
         frame_ms: median(times),
         encode_ms: None,
         encode_cpu_ms: None,
+        encode_split_ms: None,
         steady_ms: None,
         passes: Vec::new(),
         peak_rss_mib: peak_rss_mib(),
@@ -594,6 +632,12 @@ pub fn table(b: &Bench) -> String {
         };
         let opt = |v: Option<f64>, p: usize| v.map_or("—".to_owned(), |v| format!("{v:.p$}"));
         let mut passes: Vec<String> = c.passes.iter().map(|(p, v)| format!("{p} {v:.2}")).collect();
+        if let Some(e) = c.encode_split_ms {
+            passes.push(format!(
+                "encode: prepare {:.3}, record {:.3}, finish {:.3}, submit {:.3}",
+                e.prepare, e.record, e.finish, e.submit
+            ));
+        }
         if let Some(bound) = c.bandwidth_bound_ms {
             passes.push(format!("bandwidth bound {bound:.4} ms ({:.0}× it)", c.frame_ms / bound));
         }

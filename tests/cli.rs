@@ -414,6 +414,23 @@ fn bench_cases(json: &serde_json::Value) -> Vec<serde_json::Value> {
                     "CPU {cpu} ms, wall {wall} ms: {c}"
                 );
             }
+            // The median encode's steps are parts of its call, and most of it (the rest is
+            // the frame's bookkeeping after the submission).
+            if c["backend"] == "gpu" {
+                let split = &c["encode_split_ms"];
+                let parts: Vec<f64> = ["prepare", "record", "finish", "submit"]
+                    .iter()
+                    .map(|k| split[*k].as_f64().unwrap_or(f64::NAN))
+                    .collect();
+                let (sum, wall) = (parts.iter().sum::<f64>(), c["encode_ms"].as_f64().unwrap());
+                assert!(parts.iter().all(|p| *p >= 0.0) && parts[2] > 0.0, "{c}");
+                assert!(
+                    sum <= wall + 1e-6 && sum >= 0.5 * wall,
+                    "steps {sum} ms in {wall} ms: {c}"
+                );
+            } else {
+                assert!(c["encode_split_ms"].is_null(), "{c}");
+            }
             // The steady frame (no read-back, frames back to back) is a GPU frame's figure.
             assert_eq!(
                 c["backend"] == "gpu",

@@ -428,7 +428,7 @@ fn wave_mips_match_the_cpu_mirror_bit_for_bit() {
     let stage = WaveMipsStage::new(d).expect("the wave_mips pipelines");
     let mut encoder = d.create_command_encoder(&wgpu::CommandEncoderDescriptor::default());
     let kept = ocean_gpu::pool::FramePool::new(d, &gpu.queue);
-    stage.encode(&kept, &mut encoder, &slopes, &chain);
+    stage.encode(&kept, &mut encoder, &[(&slopes, &chain)]);
     let atlas = chain.pack(d, &mut encoder);
     let mut readback: Readbacks<()> = Readbacks::default();
     readback.copy(d, &mut encoder, (), "wave-mips-check", &atlas, MAP_FORMAT);

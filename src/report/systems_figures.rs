@@ -220,6 +220,7 @@ mod tests {
             frame_ms: passes.iter().map(|p| p.1).sum::<f64>() + 1.0,
             encode_ms: None,
             encode_cpu_ms: None,
+            encode_split_ms: None,
             steady_ms: None,
             passes: passes.iter().map(|(p, v)| ((*p).to_string(), *v)).collect(),
             peak_rss_mib: None,

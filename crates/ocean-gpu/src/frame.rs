@@ -113,6 +113,25 @@ pub struct GpuFrame {
     /// Passes whose results the renderer kept from an earlier frame because their inputs did
     /// not change (the Fresnel tables of the same η, size and mapping): not recorded again.
     pub reused: Vec<Pass>,
+    /// Where the CPU's share of the frame went, up to its submission.
+    pub encode: EncodeSplit,
+}
+
+/// The CPU's share of a frame up to its submission, in its four steps: what a real-time
+/// frame's encode budget is spent on, so that a driver's cost (in `finish` and `submit`)
+/// can be told from the renderer's own (in `prepare` and `record`).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct EncodeSplit {
+    /// The frame's inputs on the CPU (uniforms, meshes, the boats' poses; pipelines when the
+    /// plan's techniques changed).
+    pub prepare: Duration,
+    /// The passes recorded into the command encoder, and the uniforms written.
+    pub record: Duration,
+    /// `CommandEncoder::finish`: wgpu validates the recorded passes, tracks their resources'
+    /// states and encodes them into the driver's command buffer.
+    pub finish: Duration,
+    /// `Queue::submit`.
+    pub submit: Duration,
 }
 
 impl GpuFrame {
@@ -400,12 +419,15 @@ impl GpuBackend<'_> {
     /// `wave_mips`: the two chains from the slope maps, and the filtered Fresnel table when
     /// the plan sizes it (ocean-core's texels, uploaded: the CPU binds the same).
     fn mip_chains(&mut self, frame: &FrameInputs<'_>) {
-        for (src, dst) in ResourceId::SLOPE_CHAINS {
+        let made = ResourceId::SLOPE_CHAINS.map(|(src, dst)| {
             let slopes = self.map(src);
             let label = format!("ocean.{}", dst.name());
             let (w, h) = (slopes.width, slopes.height);
-            let chain = self.kept.chain(&label, w, h, mip_level_count(w, h), MAP_FORMAT);
-            self.stages.wave_mips.encode(self.kept, self.encoder, &slopes, &chain);
+            (dst, slopes, self.kept.chain(&label, w, h, mip_level_count(w, h), MAP_FORMAT))
+        });
+        let pairs = made.each_ref().map(|(_, slopes, chain)| (slopes, chain));
+        self.stages.wave_mips.encode(self.kept, self.encoder, &pairs);
+        for (dst, _, chain) in made {
             self.chains.retain(|(m, _)| *m != dst);
             self.chains.push((dst, chain));
         }
@@ -1092,6 +1114,7 @@ impl Renderer {
     ) -> Result<GpuFrame, Error> {
         let start = Instant::now();
         let inputs = self.prepare(scene, plan, state, camera)?;
+        let mut split = EncodeSplit { prepare: start.elapsed(), ..EncodeSplit::default() };
         let u: FrameUniforms = inputs.uniforms;
         let device = self.gpu.device.clone();
         let frame =
@@ -1131,7 +1154,14 @@ impl Renderer {
                 if let Some(ldr) = ldr.as_ref().filter(|_| output_back) {
                     readbacks.copy(device, &mut encoder, ResourceId::Ldr, "ldr", ldr, LDR_FORMAT);
                 }
-                gpu.queue.submit([encoder.finish()]);
+                // The read-back copies count as recorded with the passes.
+                split.record = start.elapsed().saturating_sub(split.prepare);
+                let finishing = Instant::now();
+                let commands = encoder.finish();
+                split.finish = finishing.elapsed();
+                let submitting = Instant::now();
+                gpu.queue.submit([commands]);
+                split.submit = submitting.elapsed();
                 let data = readbacks.finish(gpu)?;
                 // Reading nothing back, the frame does not wait for the GPU: its timestamps come
                 // later (`GpuFrame::pending_timings`).
@@ -1182,6 +1212,7 @@ impl Renderer {
             adapter: self.gpu.report.clone(),
             wave_source,
             reused,
+            encode: split,
         })
     }
 

@@ -56,7 +56,7 @@ pub mod waves;
 
 pub use device::{AdapterReport, Error, Gpu};
 pub use embed::EmbeddedOcean;
-pub use frame::{FrameMap, GpuFrame, Readback, Renderer};
+pub use frame::{EncodeSplit, FrameMap, GpuFrame, Readback, Renderer};
 /// The glam the embedding API's [`embed::CameraView`] takes its matrices in.
 pub use glam;
 pub use readback::FloatMap;

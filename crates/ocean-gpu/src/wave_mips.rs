@@ -1,7 +1,7 @@
 //! Stage `wave_mips` (`shaders/wave_mips.wgsl`): a slope map's mip chain with its second
-//! moments, one compute dispatch per level (`moments` for level 0, `downsample` for each
-//! level after), each reading the level below through a one-level view and writing its own
-//! through another. CPU mirror: `ocean-cpu/src/shaders/wave_mips.rs`.
+//! moments, one compute dispatch per level and one compute pass for all chains (`moments`
+//! for level 0, `downsample` for each level after), each reading the level below through a
+//! one-level view and writing its own through another. CPU mirror: `ocean-cpu/src/shaders/wave_mips.rs`.
 
 use crate::created::Counted;
 use ocean_core::far_field::mip_level_size;
@@ -53,45 +53,48 @@ impl WaveMipsStage {
         Ok(Self { moments: make("moments")?, downsample: make("downsample")?, layout })
     }
 
-    /// Records the dispatches filling every level of `chain` from the slope map `slopes`
-    /// (the same size as the chain's level 0).
+    /// Records the dispatches filling every level of each chain from its slope map (the same
+    /// size as the chain's level 0), all in one compute pass: wgpu orders a dispatch after the
+    /// one that wrote what it reads inside a pass as across passes, and a pass per level cost
+    /// more CPU encode than the dispatch it held (18 passes a frame with two chains).
     pub fn encode(
         &self,
         kept: &crate::pool::FramePool,
         encoder: &mut wgpu::CommandEncoder,
-        slopes: &GpuTexture,
-        chain: &GpuMipChain,
+        chains: &[(&GpuTexture, &GpuMipChain)],
     ) {
         let name = label("wave_mips");
-        let (w, h) = (chain.width, chain.height);
-        for k in 0..chain.levels.len() as u32 {
-            let dst = mip_level_size(w, h, k);
-            let (pipeline, src_view, src) = if k == 0 {
-                (&self.moments, &slopes.view, dst)
-            } else {
-                (&self.downsample, &chain.levels[k as usize - 1], mip_level_size(w, h, k - 1))
-            };
-            let uniforms = kept.uniform(&name, &WaveMipsUniforms::new(dst, src));
-            let group = kept.bind_group(
-                &name,
-                &self.layout,
-                &[
-                    uniforms.as_entire_binding(),
-                    wgpu::BindingResource::TextureView(src_view),
-                    wgpu::BindingResource::TextureView(&chain.levels[k as usize]),
-                ],
-            );
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some(&name),
-                timestamp_writes: None,
-            });
-            pass.set_pipeline(pipeline);
-            pass.set_bind_group(0, &group, &[]);
-            pass.dispatch_workgroups(
-                dst[0].div_ceil(WORKGROUP_SIZE),
-                dst[1].div_ceil(WORKGROUP_SIZE),
-                1,
-            );
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some(&name),
+            timestamp_writes: None,
+        });
+        for (slopes, chain) in chains {
+            let (w, h) = (chain.width, chain.height);
+            for k in 0..chain.levels.len() as u32 {
+                let dst = mip_level_size(w, h, k);
+                let (pipeline, src_view, src) = if k == 0 {
+                    (&self.moments, &slopes.view, dst)
+                } else {
+                    (&self.downsample, &chain.levels[k as usize - 1], mip_level_size(w, h, k - 1))
+                };
+                let uniforms = kept.uniform(&name, &WaveMipsUniforms::new(dst, src));
+                let group = kept.bind_group(
+                    &name,
+                    &self.layout,
+                    &[
+                        uniforms.as_entire_binding(),
+                        wgpu::BindingResource::TextureView(src_view),
+                        wgpu::BindingResource::TextureView(&chain.levels[k as usize]),
+                    ],
+                );
+                pass.set_pipeline(pipeline);
+                pass.set_bind_group(0, &group, &[]);
+                pass.dispatch_workgroups(
+                    dst[0].div_ceil(WORKGROUP_SIZE),
+                    dst[1].div_ceil(WORKGROUP_SIZE),
+                    1,
+                );
+            }
         }
     }
 }
