@@ -175,6 +175,7 @@ fn random_conformant_gpus_stay_inside_the_water_envelope() {
     let scenes = water_scenes((w, h));
     let (mut runs, mut loose, mut judged, mut open, mut water_px) = (0, 0, 0usize, 0usize, 0usize);
     let (mut objects_tight, mut objects_brighter, mut object_px, mut either_px) = (0, 0, 0, 0);
+    let mut reach_compared = 0;
     let mut rel = Vec::new();
     let mut names = Vec::new();
     let mut unjudged: Vec<String> = Vec::new();
@@ -312,6 +313,13 @@ fn random_conformant_gpus_stay_inside_the_water_envelope() {
         };
         let object_env =
             objects.as_ref().and_then(|t| main_view::main_envelope(t, &main_iv, &bg_env));
+        // The verdict reads the objects' reach from their envelope: the same bound as
+        // `depth_reach`'s own rasterisation, bit for bit.
+        if let Some(o) = &object_env {
+            let differ = o.reach.iter().zip(&near).filter(|(a, b)| a.to_bits() != b.to_bits());
+            assert_eq!(differ.count(), 0, "{name}: the envelope's reach is not depth_reach's");
+            reach_compared += 1;
+        }
         let composed = main_view::compose(&mesh, &near, object_env.as_ref());
         let shows: Vec<Option<main_view::Shows>> =
             composed.iter().map(|c| c.map(|(_, s)| s)).collect();
@@ -432,6 +440,7 @@ fn random_conformant_gpus_stay_inside_the_water_envelope() {
     assert!(unjudged.is_empty(), "no water pixel judged in {unjudged:?}");
     assert!(loose > 0, "a GPU twice as loose as the rules never left the water envelope");
     assert!(objects_tight > 0, "the objects' depth bound is 1 % loose or more at every pixel");
+    assert!(reach_compared > 5, "the objects' reach compared on {reach_compared} scenes");
     assert!(object_px > 0, "no pixel judged by the objects' envelope");
     assert!(objects_brighter > 0, "objects 2 % too bright never left their envelope");
 }

@@ -256,14 +256,34 @@ fn ridge_scene(dir: &Path) -> Scene {
     Scene::from_toml(&text, SceneSource::Text).expect("valid scene")
 }
 
+/// The ridge's oracle frame: the scene (its heightmap in a folder kept while it lives), the
+/// rendered frame (its uniforms and relief map) and the eye.
+struct Ridge {
+    _dir: tempfile::TempDir,
+    scene: Scene,
+    frame: ocean_cpu::Rendered,
+    eye: DVec3,
+}
+
+impl Ridge {
+    fn new() -> Self {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let scene = ridge_scene(dir.path());
+        let frame = ocean_cpu::render_scene(&scene, OutputKind::Hdr, &mut |_| {}).expect("render");
+        let eye = Camera::from_scene(&scene.camera).expect("camera").eye;
+        Self { _dir: dir, scene, frame, eye }
+    }
+
+    fn terrain(&self) -> &ocean_core::terrain::Terrain {
+        self.scene.terrain.as_ref().expect("terrain")
+    }
+}
+
 #[test]
 fn the_relief_shadows_itself_as_an_independent_march_finds() {
-    let dir = tempfile::tempdir().expect("tempdir");
-    let scene = ridge_scene(dir.path());
-    let r = ocean_cpu::render_scene(&scene, OutputKind::Hdr, &mut |_| {}).expect("render");
+    let ridge = Ridge::new();
+    let (r, t, eye) = (&ridge.frame, ridge.terrain(), ridge.eye);
     let (u, map) = (&r.buffers.uniforms, &r.buffers.floor_map);
-    let t = scene.terrain.as_ref().expect("terrain");
-    let eye = Camera::from_scene(&scene.camera).expect("camera").eye;
     let sun = DVec3::new(1.0, 0.2, 0.3).normalize();
     let texel = 64.0 / 63.0;
     let top = t.y_range().1;
@@ -317,12 +337,9 @@ fn the_relief_shadows_itself_as_an_independent_march_finds() {
 fn the_relief_march_envelope_holds_every_conformant_march_and_decides_most_points() {
     use floor::ReliefMarch;
     use ocean_cpu::envelope::{Iv, Jitter, JitterRules};
-    let dir = tempfile::tempdir().expect("tempdir");
-    let scene = ridge_scene(dir.path());
-    let r = ocean_cpu::render_scene(&scene, OutputKind::Hdr, &mut |_| {}).expect("render");
+    let ridge = Ridge::new();
+    let (r, t, eye) = (&ridge.frame, ridge.terrain(), ridge.eye);
     let (u, map) = (&r.buffers.uniforms, &r.buffers.floor_map);
-    let t = scene.terrain.as_ref().expect("terrain");
-    let eye = Camera::from_scene(&scene.camera).expect("camera").eye;
     // The same GPU marching towards a sun turned about the vertical: the negative control.
     let turn = |deg: f32| {
         let mut turned = *u;

@@ -25,8 +25,8 @@ pub(super) struct WaterWidths {
 /// The HDR frame's water and object pixels against the water pass's envelope (ocean-cpu
 /// `shaders::water::envelope`) composed with the objects' (`objects::main_view`), given the
 /// GPU's own input maps and the sky pass's envelope behind both: the water's where no object
-/// may show (none lands there, or the water is certainly drawn nearer: ocean-cpu
-/// `objects::depth_reach`), the objects' where no water fragment can pass them, the hull of
+/// may show (none lands there, or the water is certainly drawn nearer: the objects'
+/// envelope's `reach`, ocean-cpu `objects::depth_reach`), the objects' where no water fragment can pass them, the hull of
 /// both where either may show (`main_view::compose`); no sprite may land on a judged pixel.
 /// `Err(why)` where it is not judged: a configuration the envelope does not carry, a pass
 /// after the water that draws into the frame, a missing input.
@@ -99,10 +99,6 @@ pub(super) fn water_verdict(
     let planned = plan.pass(Pass::Objects).filter(|_| plan.runs(Pass::Objects));
     let tris = planned
         .map(|p| ocean_core::frame::pass_triangles(scene, &frame.poses, p, frame.camera.eye));
-    let objects_reach = match &tris {
-        Some(t) => ocean_cpu::shaders::objects::depth_reach(t, u, w, h),
-        None => vec![f64::NEG_INFINITY; mesh.color.len()],
-    };
     // The objects' colour over the sky, with the shadow map they read: the GPU's own where
     // the frame holds it, else its envelope.
     let (dims, shadow) = shadow_occluder(scene, plan, &frame, gpu);
@@ -119,6 +115,14 @@ pub(super) fn water_verdict(
     let objects = tris.as_ref().and_then(|t| {
         ocean_cpu::shaders::objects::main_view::main_envelope(t, &inputs, &background)
     });
+    // The nearest depth an object may have: the objects' envelope rasterised it already
+    // (`tests/envelope_water.rs` holds it to `objects::depth_reach` bit for bit); that alone
+    // where the envelope cannot be made (a vertex the clipper cannot place: +∞ everywhere).
+    let objects_reach = match (&tris, &objects) {
+        (_, Some(o)) => o.reach.clone(),
+        (Some(t), None) => ocean_cpu::shaders::objects::depth_reach(t, u, w, h),
+        (None, None) => vec![f64::NEG_INFINITY; mesh.color.len()],
+    };
     let composed =
         ocean_cpu::shaders::objects::main_view::compose(&mesh, &objects_reach, objects.as_ref());
     // The pixels judged: those whose envelope is carried (an object may show only where its
