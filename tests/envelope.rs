@@ -861,3 +861,61 @@ fn a_length_through_zero_is_bounded_and_holds_every_f32_length() {
     }
     assert!(dot3(a, a).sqrt().full, "the products' root was bounded: the control tests nothing");
 }
+
+/// The Preetham sky 90° from the sun: its angle γ = 2·atan2(|d × s|, 1 + d·s) keeps atan2's
+/// second argument near 1 there, inside the domain where WGSL bounds atan2 (|x| ≥ 2⁻¹²⁶), so
+/// boxes of directions across that circle have a bounded sky that holds the oracle's and 8
+/// random conformant GPUs' values at 200 points each. Negative control: the form it replaced,
+/// atan2(|d × s|, d·s), has a second argument that may be 0 in each box, and is anything.
+#[test]
+fn the_preetham_sky_is_bounded_ninety_degrees_from_the_sun() {
+    use ocean_cpu::envelope::{cross3, dot3, length3};
+    use ocean_cpu::shaders::shared::preetham::preetham_radiance_r;
+    let (_, scene) = reference_scenes()
+        .into_iter()
+        .find(|(name, _)| name == "underwater_object")
+        .expect("the scene");
+    let plan = FramePlan::new(&scene, OutputKind::Ldr);
+    assert_eq!(plan.techniques.sky(), ocean_core::plan::Sky::Preetham);
+    let frame = ocean_core::graph::FrameInputs::new(
+        &scene,
+        &plan,
+        &ocean_core::graph::FrameState::new(0.0),
+    )
+    .unwrap();
+    let sky = &frame.environment;
+    let sd = sky.sun_direction;
+    let s = glam::DVec3::new(f64::from(sd[0]), f64::from(sd[1]), f64::from(sd[2]));
+    let u = s.cross(glam::DVec3::Y).normalize();
+    let w = s.cross(u).normalize();
+    let (mut boxes, mut values, mut old_full) = (0, 0, 0);
+    let mut g = SplitMix64::new(11);
+    for k in 0..64u32 {
+        let phi = std::f64::consts::TAU * f64::from(k) / 64.0;
+        let d = u * phi.cos() + w * phi.sin();
+        if d.y < 0.05 {
+            continue;
+        }
+        let half = 2e-3;
+        let b = d.to_array().map(|c| Iv::new(c - half, c + half));
+        let env = preetham_radiance_r(sky, b);
+        assert!(env.iter().all(|c| !c.full), "φ = {phi}: {env:?}");
+        let sun = [sd[0], sd[1], sd[2]].map(Iv::point);
+        old_full += usize::from(length3(cross3(b, sun)).atan2(dot3(b, sun)).full);
+        boxes += 1;
+        for i in 0..200 {
+            let p = d.to_array().map(|c| (c + half * (2.0 * g.next_open_closed() - 1.0)) as f32);
+            let exact = preetham_radiance_r(sky, p);
+            assert!((0..3).all(|c| env[c].contains(exact[c])), "{p:?}: {exact:?} {env:?}");
+            for seed in 0..8 {
+                Jitter::reseed(JitterRules { seed, scale: 1.0 }, u64::from(k * 200 + i));
+                let j = preetham_radiance_r(sky, p.map(Jitter));
+                assert!((0..3).all(|c| env[c].contains(j[c].0)), "{p:?} seed {seed}: {env:?}");
+                values += 1;
+            }
+        }
+    }
+    println!("Preetham 90° from the sun: {boxes} boxes bounded, {values} GPU values inside");
+    assert!(boxes >= 16, "{boxes} boxes above the horizon");
+    assert_eq!(old_full, boxes, "atan2(sin γ, cos γ) was bounded: the control tests nothing");
+}

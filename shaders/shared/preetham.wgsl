@@ -60,13 +60,16 @@ fn xyz_to_linear_srgb(xyz: vec3<f32>) -> vec3<f32> {
 
 // Sky radiance without the sun disc in unit direction dir: linear sRGB, scene units.
 // Y(theta, gamma) = Y_z F(theta, gamma) / F(0, theta_s), likewise x and y (eq. 4), with
-// cos(theta) clamped below; gamma = atan2(|dir x sun|, dir . sun), accurate near the sun.
+// cos(theta) clamped below; gamma = 2 atan2(|dir x sun|, 1 + dir . sun), the half-angle
+// form: accurate near the sun, and its second argument stays away from 0 but opposite the
+// sun, where WGSL's atan2 is bounded (4096 ULP needs |x| >= 2^-126; atan2(sin, cos) had no
+// bound on the whole great circle 90 degrees from the sun).
 fn preetham_radiance(sky: SkyUniforms, dir: vec3<f32>) -> vec3<f32> {
     let sun = sky.sun_direction.xyz;
     let cos_theta = max(dir.y, sky.cos_theta_min);
     let cos_gamma = dot(dir, sun);
     let sin_gamma = length(cross(dir, sun));
-    let gamma = atan2(sin_gamma, cos_gamma);
+    let gamma = 2.0 * atan2(sin_gamma, 1.0 + cos_gamma);
     let f = perez(sky, cos_theta, gamma, cos_gamma);
     let yxy = sky.zenith.xyz * f / sky.perez_zenith.xyz;
     let big_y = yxy.x;

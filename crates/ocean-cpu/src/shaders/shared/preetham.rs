@@ -57,7 +57,8 @@ pub fn preetham_radiance_r<R: Real>(sky: &SkyUniforms, dir: [R; 3]) -> [R; 3] {
     let cos_theta = dir[1].max(l(sky.cos_theta_min));
     let cos_gamma = dot3(dir, sun);
     let sin_gamma = length3(cross3(dir, sun));
-    let gamma = sin_gamma.atan2(cos_gamma);
+    // The half-angle form (see the WGSL): atan2's x is 0 only opposite the sun.
+    let gamma = l(2.0) * sin_gamma.atan2(l(1.0) + cos_gamma);
     let f = perez_r(sky, cos_theta, gamma, cos_gamma);
     let yxy: [R; 3] = std::array::from_fn(|i| l(sky.zenith[i]) * f[i] / l(sky.perez_zenith[i]));
     let big_y = yxy[0];
