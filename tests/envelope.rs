@@ -846,7 +846,7 @@ fn random_conformant_gpus_stay_inside_the_object_maps_envelope() {
 /// below 0, and the root is anything (what made the reflected sky unbounded around the sun).
 #[test]
 fn a_length_through_zero_is_bounded_and_holds_every_f32_length() {
-    use ocean_cpu::envelope::{Af, Real, dot3, length3};
+    use ocean_cpu::envelope::{Af, Real, dot3, length2, length3};
     let b = [(-1e-3, 2e-3), (-5e-4, 5e-4), (-2e-3, 1e-3)];
     let a = b.map(|(lo, hi)| Iv::new(lo, hi));
     let len = length3(a);
@@ -860,6 +860,16 @@ fn a_length_through_zero_is_bounded_and_holds_every_f32_length() {
         assert!(len.contains(exact) && af.to_iv().contains(exact), "{v:?}: {exact}");
     }
     assert!(dot3(a, a).sqrt().full, "the products' root was bounded: the control tests nothing");
+    // The same for two components (the heuristic foam's slope, the sky table's azimuth).
+    let len2 = length2([a[0], a[1]]);
+    assert!(!len2.full && len2.lo >= 0.0 && len2.hi < 2.3e-3, "{len2:?}");
+    for _ in 0..10_000 {
+        let v = [b[0], b[1]].map(|(lo, hi)| (lo + (hi - lo) * g.next_open_closed()) as f32);
+        let exact = (v[0] * v[0] + v[1] * v[1]).sqrt();
+        assert_eq!(length2(v).to_bits(), exact.to_bits(), "{v:?}: the exact frame moved");
+        assert!(len2.contains(exact), "{v:?}: {exact}");
+    }
+    assert!((a[0] * a[0] + a[1] * a[1]).sqrt().full, "the 2-component control tests nothing");
 }
 
 /// The Preetham sky 90° from the sun: its angle γ = 2·atan2(|d × s|, 1 + d·s) keeps atan2's

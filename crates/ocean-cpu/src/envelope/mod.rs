@@ -468,6 +468,13 @@ pub fn length3<R: Real>(a: [R; 3]) -> R {
     R::sum(&[a[0].sq(), a[1].sq(), a[2].sq()]).sqrt()
 }
 
+/// `sqrt(a.x * a.x + a.y * a.y)` (WGSL's written form, or `length(a)` of a 2-vector), each
+/// product a square, as [`length3`].
+#[inline]
+pub fn length2<R: Real>(a: [R; 2]) -> R {
+    R::sum(&[a[0].sq(), a[1].sq()]).sqrt()
+}
+
 /// `normalize(a)` = a / length(a).
 #[inline]
 pub fn normalize3<R: Real>(a: [R; 3]) -> [R; 3] {

@@ -3,7 +3,7 @@
 
 use ocean_core::atmosphere::SkyLut;
 
-use crate::envelope::{Cond, Real, choose, on_floor};
+use crate::envelope::{Cond, Real, choose, length2, on_floor};
 use crate::shaders::wgsl::Vec3;
 
 /// `SKY_LUT_WIDTH`.
@@ -54,8 +54,8 @@ pub fn sky_lut_radiance_r<R: Real>(lut: &SkyLut, dir: [R; 3], sun: [R; 3]) -> [R
             let mz = dir[2] / dh - sun[2] / sh;
             let px = dir[0] / dh + sun[0] / sh;
             let pz = dir[2] / dh + sun[2] / sh;
-            let m = (mx * mx + mz * mz).sqrt();
-            let p = (px * px + pz * pz).sqrt();
+            let m = length2([mx, mz]);
+            let p = length2([px, pz]);
             m / (m + p)
         },
         || zero,

@@ -8,7 +8,7 @@ use ocean_core::frame::FrameUniforms;
 use ocean_core::switch::SWITCH_ON;
 
 use super::inputs::{Inputs, Tex, Varyings};
-use crate::envelope::{Real, choose_n, dot3, on_floor};
+use crate::envelope::{Real, choose_n, dot3, length2, on_floor};
 use crate::shaders::shared::gerstner::gerstner_jacobian_r;
 use crate::shaders::shared::shadow::sun_visibility_r;
 
@@ -88,7 +88,9 @@ pub(super) fn coverage<R: Real>(v: &Varyings<R>, slopes: [R; 3], inp: &Inputs<'_
         Foam::None => return l(0.0),
         Foam::Heuristic => {
             let h = v[1] + l(frame.view.eye_height);
-            let s = (slopes[0] * slopes[0] + slopes[1] * slopes[1]).sqrt();
+            // Squares (`length2`): a product of two independent intervals reached below 0
+            // where a slope may be 0, and its root was anything.
+            let s = length2([slopes[0], slopes[1]]);
             let j = surface_jacobian(v, inp);
             let slope = s / j.max(l(FOAM_MIN_JACOBIAN));
             let high = (h * l(f.inv_crest_height)).clamp(l(0.0), l(1.0));
@@ -106,7 +108,7 @@ pub(super) fn coverage<R: Real>(v: &Varyings<R>, slopes: [R; 3], inp: &Inputs<'_
             });
             let t = (inp.sample)(Tex::FoamField, uv, l(0.0))[0].clamp(l(0.0), l(1.0));
             if f.window_outer > 0.0 {
-                let d = (v[0] * v[0] + v[2] * v[2]).sqrt();
+                let d = length2([v[0], v[2]]);
                 t * ((l(f.window_outer) - d) * l(f.inv_window_band)).clamp(l(0.0), l(1.0))
             } else {
                 t
