@@ -26,8 +26,9 @@ pub(super) struct WaterWidths {
 /// `shaders::water::envelope`) composed with the objects' (`objects::main_view`), given the
 /// GPU's own input maps and the sky pass's envelope behind both: the water's where no object
 /// may show (none lands there, or the water is certainly drawn nearer: the objects'
-/// envelope's `reach`, ocean-cpu `objects::depth_reach`), the objects' where no water fragment can pass them, the hull of
-/// both where either may show (`main_view::compose`); no sprite may land on a judged pixel.
+/// envelope's `reach`, ocean-cpu `objects::depth_reach`), the objects' where no water
+/// fragment can pass them, the hull of both where either may show (`main_view::compose`); no
+/// sprite may land on a judged pixel.
 /// `Err(why)` where it is not judged: a configuration the envelope does not carry, a pass
 /// after the water that draws into the frame, a missing input.
 #[allow(clippy::type_complexity, reason = "a verdict, its open share, cost and widths, or why not")]

@@ -1,7 +1,8 @@
 //! Stage `wave_mips` (`shaders/wave_mips.wgsl`): a slope map's mip chain with its second
 //! moments, one compute dispatch per level and one compute pass for all chains (`moments`
 //! for level 0, `downsample` for each level after), each reading the level below through a
-//! one-level view and writing its own through another. CPU mirror: `ocean-cpu/src/shaders/wave_mips.rs`.
+//! one-level view and writing its own through another. CPU mirror:
+//! `ocean-cpu/src/shaders/wave_mips.rs`.
 
 use crate::created::Counted;
 use ocean_core::far_field::mip_level_size;

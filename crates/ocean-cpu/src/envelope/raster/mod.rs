@@ -78,6 +78,11 @@ pub fn to_screen_r<R: Real>(clip: [R; 4], width: u32, height: u32) -> [R; 3] {
 /// magnitude: an assumption, generous against f32's few roundings.
 pub const CLIP_SLACK: f64 = 1.0 / (1u64 << 20) as f64;
 
+/// The relative widening of a bound this module computes in f64 (a few operations on the
+/// boxes, each rounded within 2⁻⁵³ ≈ 1.1e-16): far above f64's own error, far below an f32
+/// ULP (6e-8), so it covers the bound's arithmetic without loosening what it bounds.
+const F64_SLACK: f64 = 1e-12;
+
 /// A vertex of a clipped triangle: its clip position, its barycentric coordinates in the
 /// original triangle (its varyings are the combination they name), and how far each of those
 /// may be off (the clipper's own crossing point).
@@ -243,7 +248,7 @@ impl Span {
         let c = [self.0 / o.0, self.0 / o.1, self.1 / o.0, self.1 / o.1];
         let lo = c.iter().copied().fold(f64::INFINITY, f64::min);
         let hi = c.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        let slack = (lo.abs().max(hi.abs())) * 1e-12;
+        let slack = (lo.abs().max(hi.abs())) * F64_SLACK;
         (lo.is_finite() && hi.is_finite()).then_some(Span(lo - slack, hi + slack))
     }
     fn of(v: Iv) -> Span {
@@ -300,7 +305,7 @@ impl Plane {
         let (dx, dy) = (px - self.v0[0], py - self.v0[1]);
         let v = self.z0 + self.g[0] * dx + self.g[1] * dy;
         let d = self.k1 * dx.hypot(dy) + self.k0;
-        let d = d + (v.abs() + d) * 1e-12;
+        let d = d + (v.abs() + d) * F64_SLACK;
         (v - d, v + d)
     }
 }
@@ -403,7 +408,7 @@ fn edge(ax: Span, ay: Span, bx: Span, by: Span, px: Span, py: Span) -> Span {
     // f64 rounds these to nearest: widened outward by far more than its error.
     let mag = |s: Span| s.0.abs().max(s.1.abs());
     let terms = mag(bx.sub(ax)) * mag(py.sub(ay)) + mag(by.sub(ay)) * mag(px.sub(ax));
-    e.widen((terms + mag(e)) * 1e-12)
+    e.widen((terms + mag(e)) * F64_SLACK)
 }
 
 /// What a triangle may do at one sample.
@@ -569,7 +574,7 @@ impl Interp {
         }
         let planes =
             VARYING_ULPS * (super::f32_ulp(tn) + vmag * super::f32_ulp(td)) / (den_min - den_err);
-        let slack = VARYING_ULPS * super::f32_ulp(terms) + terms * 1e-12 + planes;
+        let slack = VARYING_ULPS * super::f32_ulp(terms) + terms * F64_SLACK + planes;
         if !slack.is_finite() || !lo.is_finite() || !hi.is_finite() {
             return Iv::FULL;
         }
@@ -769,6 +774,8 @@ mod tests {
             widths[0] += b.l1.1 - b.l1.0;
             widths[1] += plane.1 - plane.0;
         }
+        // The claim is "several times tighter": at least 2.5× over the four samples (3.3–3.8×
+        // at each when this was written).
         assert!(2.5 * widths[0] < widths[1], "{widths:?}: not tighter than the plane's bound");
         println!("{samples} triangles; {missed} outside the bounds of boxes half as wide");
         assert!(missed > 0, "the bounds of boxes half as wide held all {samples} triangles");
