@@ -88,19 +88,18 @@ impl Form {
             n += usize::from(v != 0.0);
         };
         let (mut i, mut j) = (0, 0);
+        // The merge takes the smaller id, or both when equal, without a branch on which: the
+        // ids interleave unpredictably, and a mispredicted branch per step cost more than
+        // the step. A side not taken adds +0.0, which changes no coefficient that is kept (a
+        // −0.0 becomes +0.0, and neither is counted).
         while i < a.n && j < b.n {
             let (x, y) = (a.ids[i], b.ids[j]);
-            if x < y {
-                push(x, alpha * a.co[i]);
-                i += 1;
-            } else if y < x {
-                push(y, beta * b.co[j]);
-                j += 1;
-            } else {
-                push(x, alpha * a.co[i] + beta * b.co[j]);
-                i += 1;
-                j += 1;
-            }
+            let (take_a, take_b) = (x <= y, y <= x);
+            let va = if take_a { alpha * a.co[i] } else { 0.0 };
+            let vb = if take_b { beta * b.co[j] } else { 0.0 };
+            push(x.min(y), va + vb);
+            i += usize::from(take_a);
+            j += usize::from(take_b);
         }
         // One side is done; a literal's form has no symbol at all, the common case.
         for k in i..a.n {
@@ -119,21 +118,28 @@ impl Form {
     /// Keeps the [`TERMS`] largest coefficients (in id order), the rest added to the error.
     /// `ids` holds at most 2·[`TERMS`] (a combination of two forms).
     fn fold(c: f64, ids: &[u32], co: &[f64], mut e: f64) -> Form {
-        let mut out = Form::constant(c, 0.0);
+        // The kept terms go to arrays of their own and the form is built once at the end:
+        // filling a `Form` field by field and then moving it (`seal(self)`) made the copy
+        // read wider than the stores just made, a store-forwarding stall on every operation.
+        let mut out_ids = [0u32; TERMS];
+        let mut out_co = [0f64; TERMS];
         let k = ids.len();
-        if k <= TERMS {
-            out.ids[..k].copy_from_slice(ids);
-            out.co[..k].copy_from_slice(co);
-            out.n = k;
+        let n = if k <= TERMS {
+            out_ids[..k].copy_from_slice(ids);
+            out_co[..k].copy_from_slice(co);
+            k
         } else {
             // The TERMS-th largest magnitude, found on the stack (this runs per operation).
+            // Magnitudes are ≥ 0, where the bits order as the values do: the selection runs
+            // on integers, cheaper to compare than `f64::total_cmp`.
             let mut mags = [0f64; 2 * TERMS];
-            for (m, a) in mags.iter_mut().zip(co) {
+            let mut bits = [0u64; 2 * TERMS];
+            for ((m, b), a) in mags.iter_mut().zip(&mut bits).zip(co) {
                 *m = a.abs();
+                *b = m.to_bits();
             }
-            let mut sorted = mags;
-            let (_, &mut threshold, _) =
-                sorted[..k].select_nth_unstable_by(k - TERMS, f64::total_cmp);
+            bits[..k].sort_unstable();
+            let threshold = f64::from_bits(bits[k - TERMS]);
             let mut ties = TERMS - mags[..k].iter().filter(|&&m| m > threshold).count();
             let mut n = 0;
             for i in 0..k {
@@ -142,17 +148,17 @@ impl Form {
                     if mags[i] == threshold {
                         ties -= 1;
                     }
-                    out.ids[n] = ids[i];
-                    out.co[n] = co[i];
+                    out_ids[n] = ids[i];
+                    out_co[n] = co[i];
                     n += 1;
                 } else {
                     e += mags[i];
                 }
             }
-            out.n = n;
-        }
-        out.e = e;
-        out.seal()
+            n
+        };
+        let rad = out_co[..n].iter().map(|a| a.abs()).sum::<f64>() + e;
+        Form { c, ids: out_ids, co: out_co, n, e, rad }
     }
 
     /// The product (linear part exact; the symbols' product within radius × radius).
