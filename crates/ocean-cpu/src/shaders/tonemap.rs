@@ -262,12 +262,18 @@ pub fn envelope(
     tonemap: &TonemapUniforms,
 ) -> Vec<[(Iv, ByteRange); 3]> {
     assert_eq!(hdr.len(), width as usize * height as usize, "HDR frame is not {width}x{height}");
-    let bloom = bloom.unwrap_or(&NO_BLOOM);
+    // Without post `bloom` the binding is one zero texel, whose upsample is exactly 0 on any
+    // GPU (products and sums of zeros): the envelope takes that 0 without the twelve interval
+    // operations that find it (a sixth of the pass's envelope).
+    let glow = |i: usize| match bloom {
+        Some(b) => crate::shaders::bloom::upsample_at_r(b, texel_of(i, width)),
+        None => [Iv::point(0.0); 3],
+    };
     shade_frame(
         width,
         height,
         tonemap,
-        |i| (hdr[i], crate::shaders::bloom::upsample_at_r(bloom, texel_of(i, width))),
+        |i| (hdr[i], glow(i)),
         |_, v| v.map(|c| (c, c.store_unorm8())),
     )
 }
