@@ -110,53 +110,53 @@ impl Form {
         }
         let c = alpha * a.c + beta * b.c + gamma;
         let mut e = e;
-        let mag = c.abs() + co[..n].iter().map(|v| v.abs()).sum::<f64>() + e;
+        let terms = co[..n].iter().map(|v| v.abs()).sum::<f64>();
+        let mag = c.abs() + terms + e;
         e += mag * F64_REL;
-        Form::fold(c, &ids[..n], &co[..n], e)
+        Form::fold(c, &ids[..n], &co[..n], e, terms)
     }
 
     /// Keeps the [`TERMS`] largest coefficients (in id order), the rest added to the error.
-    /// `ids` holds at most 2·[`TERMS`] (a combination of two forms).
-    fn fold(c: f64, ids: &[u32], co: &[f64], mut e: f64) -> Form {
+    /// `ids` holds at most 2·[`TERMS`] (a combination of two forms); `terms` is Σ|co| in
+    /// their order, the radius's sum when all are kept (the same sum, so the same bits).
+    fn fold(c: f64, ids: &[u32], co: &[f64], mut e: f64, terms: f64) -> Form {
         // The kept terms go to arrays of their own and the form is built once at the end:
         // filling a `Form` field by field and then moving it (`seal(self)`) made the copy
         // read wider than the stores just made, a store-forwarding stall on every operation.
         let mut out_ids = [0u32; TERMS];
         let mut out_co = [0f64; TERMS];
         let k = ids.len();
-        let n = if k <= TERMS {
+        if k <= TERMS {
             out_ids[..k].copy_from_slice(ids);
             out_co[..k].copy_from_slice(co);
-            k
-        } else {
-            // The TERMS-th largest magnitude, found on the stack (this runs per operation).
-            // Magnitudes are ≥ 0, where the bits order as the values do: the selection runs
-            // on integers, cheaper to compare than `f64::total_cmp`.
-            let mut mags = [0f64; 2 * TERMS];
-            let mut bits = [0u64; 2 * TERMS];
-            for ((m, b), a) in mags.iter_mut().zip(&mut bits).zip(co) {
-                *m = a.abs();
-                *b = m.to_bits();
-            }
-            bits[..k].sort_unstable();
-            let threshold = f64::from_bits(bits[k - TERMS]);
-            let mut ties = TERMS - mags[..k].iter().filter(|&&m| m > threshold).count();
-            let mut n = 0;
-            for i in 0..k {
-                let keep = mags[i] > threshold || (mags[i] == threshold && ties > 0);
-                if keep {
-                    if mags[i] == threshold {
-                        ties -= 1;
-                    }
-                    out_ids[n] = ids[i];
-                    out_co[n] = co[i];
-                    n += 1;
-                } else {
-                    e += mags[i];
+            return Form { c, ids: out_ids, co: out_co, n: k, e, rad: terms + e };
+        }
+        // The TERMS-th largest magnitude, found on the stack (this runs per operation) by
+        // sorting the magnitudes' bits: they are ≥ 0, where the bits order as the values do,
+        // and integers compare cheaper than `f64::total_cmp` (a sort of 24 beat a selection).
+        let mut mags = [0f64; 2 * TERMS];
+        let mut bits = [0u64; 2 * TERMS];
+        for ((m, b), a) in mags.iter_mut().zip(&mut bits).zip(co) {
+            *m = a.abs();
+            *b = m.to_bits();
+        }
+        bits[..k].sort_unstable();
+        let threshold = f64::from_bits(bits[k - TERMS]);
+        let mut ties = TERMS - mags[..k].iter().filter(|&&m| m > threshold).count();
+        let mut n = 0;
+        for i in 0..k {
+            let keep = mags[i] > threshold || (mags[i] == threshold && ties > 0);
+            if keep {
+                if mags[i] == threshold {
+                    ties -= 1;
                 }
+                out_ids[n] = ids[i];
+                out_co[n] = co[i];
+                n += 1;
+            } else {
+                e += mags[i];
             }
-            n
-        };
+        }
         let rad = out_co[..n].iter().map(|a| a.abs()).sum::<f64>() + e;
         Form { c, ids: out_ids, co: out_co, n, e, rad }
     }
