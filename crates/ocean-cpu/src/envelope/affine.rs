@@ -131,30 +131,28 @@ impl Form {
             out_co[..k].copy_from_slice(co);
             return Form { c, ids: out_ids, co: out_co, n: k, e, rad: terms + e };
         }
-        // The TERMS-th largest magnitude, found on the stack (this runs per operation) by
-        // sorting the magnitudes' bits: they are ≥ 0, where the bits order as the values do,
-        // and integers compare cheaper than `f64::total_cmp` (a sort of 24 beat a selection).
-        let mut mags = [0f64; 2 * TERMS];
-        let mut bits = [0u64; 2 * TERMS];
-        for ((m, b), a) in mags.iter_mut().zip(&mut bits).zip(co) {
+        // Keep a term when fewer than TERMS others rank before it: larger, or as large and
+        // earlier (ties kept in id order). The ranks are counted over the whole stack-held
+        // list without a branch (padding at −1 never ranks before a magnitude ≥ 0): a sort
+        // of 24 was a fifth of every combination. A NaN magnitude ranks oddly, but a NaN
+        // coefficient leaves the form unbounded either way (its radius is NaN).
+        let mut mags = [-1.0f64; 2 * TERMS];
+        for (m, a) in mags.iter_mut().zip(co) {
             *m = a.abs();
-            *b = m.to_bits();
         }
-        bits[..k].sort_unstable();
-        let threshold = f64::from_bits(bits[k - TERMS]);
-        let mut ties = TERMS - mags[..k].iter().filter(|&&m| m > threshold).count();
         let mut n = 0;
         for i in 0..k {
-            let keep = mags[i] > threshold || (mags[i] == threshold && ties > 0);
-            if keep {
-                if mags[i] == threshold {
-                    ties -= 1;
-                }
+            let m = mags[i];
+            let mut rank = 0usize;
+            for (j, &o) in mags.iter().enumerate() {
+                rank += usize::from(o > m) + usize::from(o == m && j < i);
+            }
+            if rank < TERMS {
                 out_ids[n] = ids[i];
                 out_co[n] = co[i];
                 n += 1;
             } else {
-                e += mags[i];
+                e += m;
             }
         }
         let rad = out_co[..n].iter().map(|a| a.abs()).sum::<f64>() + e;
