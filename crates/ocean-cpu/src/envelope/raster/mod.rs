@@ -507,6 +507,10 @@ pub struct Interp {
     grad: f64,
     /// Σₖ |λₖ| at the sample.
     lam_sum: f64,
+    /// The vertices' screen boxes (the snap included): x, then y.
+    boxes: [[(f64, f64); 3]; 2],
+    /// The sample's position.
+    at: [f64; 2],
 }
 
 impl Interp {
@@ -578,7 +582,87 @@ impl Interp {
         if !slack.is_finite() || !lo.is_finite() || !hi.is_finite() {
             return Iv::FULL;
         }
+        let (lo, hi) = match self.moved_vertices(v) {
+            Some((l, h)) if l.max(lo) <= h.min(hi) => (l.max(lo), h.min(hi)),
+            _ => (lo, hi),
+        };
         Iv::new(lo - slack, hi + slack)
+    }
+
+    /// The exact interpolation's range by the vertices' moves rather than the barycentrics'
+    /// box, which forgets that λ₁ and λ₂ move with the same vertices (by centimetres on a
+    /// thin, distant triangle where a vertex's snap moves the varying by millimetres).
+    ///
+    /// With the vertices at x′ᵢ = x̄ᵢ + δᵢ (x̄ the boxes' midpoints) and any values
+    /// pᵢ = L(x̄ᵢ) + εᵢ on a plane L through the midpoints, Σλ′ᵢ = 1 and Σλ′ᵢx′ᵢ = p give
+    /// exactly Σλ′ᵢpᵢ = L(p) − ∇L·w + Σλ′ᵢεᵢ, w = Σλ′ᵢδᵢ, |w| ≤ Σ|λ′ᵢ|·(the boxes'
+    /// half-widths) per axis. The numerator (values qᵢmᵢ) and the denominator (qᵢ) of the
+    /// perspective interpolation share w, so their quotient is linear-fractional over the box
+    /// of (w, the numerator's ε share, the denominator's): extreme at one of its 16 corners
+    /// while the denominator stays positive. `None` where the midpoints' triangle is too
+    /// thin to give a plane, or a denominator may reach 0.
+    fn moved_vertices(&self, v: [Iv; 3]) -> Option<(f64, f64)> {
+        let [bx, by] = self.boxes;
+        let mid = |r: (f64, f64)| 0.5 * (r.0 + r.1);
+        let half = |r: (f64, f64)| 0.5 * (r.1 - r.0);
+        let (mx, my) = (bx.map(mid), by.map(mid));
+        let (e1, e2) = ((mx[1] - mx[0]) * (my[2] - my[0]), (mx[2] - mx[0]) * (my[1] - my[0]));
+        let a = e1 - e2;
+        // The plane's f64 arithmetic is trusted to 1e-9 of its terms (below): only where
+        // the midpoints' doubled area is not a cancellation of its two products.
+        if !a.is_finite() || a.abs() < 1e-6 * (e1.abs() + e2.abs()) || a == 0.0 {
+            return None;
+        }
+        // |λ′ᵢ| at most: λ₁, λ₂ within their bounds, λ₀ = 1 − λ₁ − λ₂.
+        let big = |r: (f64, f64)| r.0.abs().max(r.1.abs());
+        let l0 = (1.0 - self.l1.1 - self.l2.1, 1.0 - self.l1.0 - self.l2.0);
+        let lam = [big(l0), big(self.l1), big(self.l2)];
+        let reach = |axis: usize| (0..3).map(|i| lam[i] * half(self.boxes[axis][i])).sum::<f64>();
+        let w = [reach(0), reach(1)];
+        // The plane through the midpoints with values `p` there, at the sample, and its
+        // gradient.
+        let (sx, sy) = (self.at[0] - mx[0], self.at[1] - my[0]);
+        let plane = |p: [f64; 3]| {
+            let gx = ((p[1] - p[0]) * (my[2] - my[0]) - (p[2] - p[0]) * (my[1] - my[0])) / a;
+            let gy = ((p[2] - p[0]) * (mx[1] - mx[0]) - (p[1] - p[0]) * (mx[2] - mx[0])) / a;
+            let terms = p[0].abs() + gx.abs() * (sx.abs() + w[0]) + gy.abs() * (sy.abs() + w[1]);
+            (p[0] + gx * sx + gy * sy, gx, gy, terms)
+        };
+        // Midpoint values, and how far each vertex's true value may lie from them.
+        let (qm, qh) = (self.q.map(mid), self.q.map(half));
+        let n_mid: [f64; 3] = std::array::from_fn(|i| qm[i] * 0.5 * (v[i].lo + v[i].hi));
+        let n_err: [f64; 3] = std::array::from_fn(|i| {
+            let (q, x) = (self.q[i], v[i]);
+            [q.0 * x.lo, q.0 * x.hi, q.1 * x.lo, q.1 * x.hi]
+                .iter()
+                .map(|c| (c - n_mid[i]).abs())
+                .fold(0.0, f64::max)
+        });
+        let share = |e: [f64; 3]| (0..3).map(|i| lam[i] * e[i]).sum::<f64>();
+        let (en, ed) = (share(n_err), share(qh));
+        let (n_at, ngx, ngy, n_terms) = plane(n_mid);
+        let (d_at, dgx, dgy, d_terms) = plane(qm);
+        let (mut lo, mut hi, mut den_min) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY);
+        for corner in 0..16u32 {
+            let sign = |bit: u32| if corner >> bit & 1 == 0 { -1.0 } else { 1.0 };
+            let (wx, wy) = (sign(0) * w[0], sign(1) * w[1]);
+            let num = n_at - (ngx * wx + ngy * wy) + sign(2) * en;
+            let den = d_at - (dgx * wx + dgy * wy) + sign(3) * ed;
+            if den.is_nan() || den <= 0.0 || !num.is_finite() {
+                return None;
+            }
+            den_min = den_min.min(den);
+            lo = lo.min(num / den);
+            hi = hi.max(num / den);
+        }
+        // f64's roundings: the planes' terms to 1e-9 (the area is no cancellation, above),
+        // in the numerator and, times the quotient, in the denominator.
+        let value = lo.abs().max(hi.abs());
+        let margin = 1e-9 * (n_terms + en + value * (d_terms + ed)) / den_min;
+        if !margin.is_finite() {
+            return None;
+        }
+        Some((lo - margin, hi + margin))
     }
 }
 
@@ -613,14 +697,17 @@ fn barycentrics(t: &Setup, px: f64, py: f64) -> Interp {
     if t.inv_w.iter().any(|q| q.full || q.lo <= 0.0) {
         let any = (f64::NEG_INFINITY, f64::INFINITY);
         let (grad, lam_sum) = (f64::INFINITY, f64::INFINITY);
-        return Interp { l1: any, l2: any, q: [(1.0, 1.0); 3], grad, lam_sum };
+        let (boxes, at) = ([[any; 3]; 2], [px, py]);
+        return Interp { l1: any, l2: any, q: [(1.0, 1.0); 3], grad, lam_sum, boxes, at };
     }
     let (l1, l2) = (lam(1), lam(2));
     // Σ|λₖ| at the sample, λ₀ = 1 − λ₁ − λ₂.
     let l0 = (1.0 - l1.1 - l2.1, 1.0 - l1.0 - l2.0);
     let big = |r: (f64, f64)| r.0.abs().max(r.1.abs());
     let lam_sum = big(l0) + big(l1) + big(l2);
-    Interp { l1, l2, q: t.inv_w.map(|q| (q.lo, q.hi)), grad: t.anchor.iter().sum(), lam_sum }
+    let boxes = [t.x.map(|s| (s.0, s.1)), t.y.map(|s| (s.0, s.1))];
+    let q = t.inv_w.map(|q| (q.lo, q.hi));
+    Interp { l1, l2, q, grad: t.anchor.iter().sum(), lam_sum, boxes, at: [px, py] }
 }
 
 /// The sample's depth: on the plane through the vertices' boxes (within [`Plane`]'s bound),
@@ -709,166 +796,4 @@ pub fn depth_pass(
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn v(x: f64, y: f64, z: f64) -> ScreenIv {
-        let p = |a: f64| Iv::point(a as f32);
-        ScreenIv { x: p(x), y: p(y), z: p(z), inv_w: p(1.0) }
-    }
-
-    /// The barycentrics at a sample of a thin triangle (the projected grid's, 16 px² with
-    /// its least singular value 2 px) hold those of every triangle whose vertices lie in the
-    /// boxes, snapped or not; the edge functions' quotient makes them several times tighter
-    /// than the plane's bound alone, whose gradient error grows with the distance from its
-    /// anchor. Negative control: the bounds of boxes half as wide miss some.
-    #[test]
-    fn the_barycentrics_hold_every_triangle_in_the_boxes_and_are_tight() {
-        let c = [[52.377f64, 96.2535], [63.422, 89.127], [58.229, 89.530]];
-        let (half, snap) = (0.0024, 1.0 / 256.0);
-        let setup_with = |half: f64, snap: f64| {
-            let tri: [ScreenIv; 3] = std::array::from_fn(|k| ScreenIv {
-                x: Iv::new(c[k][0] - half, c[k][0] + half),
-                y: Iv::new(c[k][1] - half, c[k][1] + half),
-                z: Iv::point(0.002),
-                inv_w: Iv::point(0.03),
-            });
-            setup(&tri, 256, 144, snap).unwrap()
-        };
-        let (t, narrow) = (setup_with(half, snap), setup_with(half / 2.0, snap / 2.0));
-        let mut g = ocean_core::rng::SplitMix64::new(7);
-        let (mut samples, mut missed, mut widths) = (0, 0, [0.0; 2]);
-        for (sx, sy) in [(56.5, 92.5), (58.5, 90.5), (55.5, 93.5), (60.5, 90.5)] {
-            let (b, bn) = (barycentrics(&t, sx, sy), barycentrics(&narrow, sx, sy));
-            let plane = t.bary[1].map(|p| p.at(sx, sy)).unwrap();
-            let mut seen = [f64::INFINITY, f64::NEG_INFINITY];
-            for _ in 0..20_000 {
-                // Vertices anywhere in their boxes (half of them at the boxes' corners, where
-                // the extremes lie), snapped or not.
-                let corners = g.next_open_closed() < 0.5;
-                let mut at = |k: usize, d: usize| {
-                    let u = g.next_open_closed();
-                    let s = if corners { if u < 0.5 { -1.0 } else { 1.0 } } else { 2.0 * u - 1.0 };
-                    c[k][d] + s * (half + snap)
-                };
-                let v: [[f64; 2]; 3] = std::array::from_fn(|k| [at(k, 0), at(k, 1)]);
-                let area = |a: [f64; 2], b: [f64; 2], p: [f64; 2]| {
-                    (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0])
-                };
-                let whole = area(v[0], v[1], v[2]);
-                let l1 = area(v[2], v[0], [sx, sy]) / whole;
-                let l2 = area(v[0], v[1], [sx, sy]) / whole;
-                assert!((b.l1.0..=b.l1.1).contains(&l1), "λ₁ {l1} outside {:?}", b.l1);
-                assert!((b.l2.0..=b.l2.1).contains(&l2), "λ₂ {l2} outside {:?}", b.l2);
-                let inside = |r: (f64, f64), l: f64| (r.0..=r.1).contains(&l);
-                missed += usize::from(!inside(bn.l1, l1) || !inside(bn.l2, l2));
-                seen = [seen[0].min(l1), seen[1].max(l1)];
-                samples += 1;
-            }
-            println!(
-                "({sx}, {sy}): λ₁ over the boxes spans {:.4}, bound {:.4}, the plane's alone {:.4}",
-                seen[1] - seen[0],
-                b.l1.1 - b.l1.0,
-                plane.1 - plane.0
-            );
-            widths[0] += b.l1.1 - b.l1.0;
-            widths[1] += plane.1 - plane.0;
-        }
-        // The claim is "several times tighter": at least 2.5× over the four samples (3.3–3.8×
-        // at each when this was written).
-        assert!(2.5 * widths[0] < widths[1], "{widths:?}: not tighter than the plane's bound");
-        println!("{samples} triangles; {missed} outside the bounds of boxes half as wide");
-        assert!(missed > 0, "the bounds of boxes half as wide held all {samples} triangles");
-    }
-
-    /// A large triangle: its interior certain, its outside not covered, a band along its
-    /// edges possible, and the depth at an interior sample close to the plane's.
-    #[test]
-    fn a_triangle_is_certain_inside_possible_at_its_edges() {
-        let t = setup(&[v(1.0, 1.0, 0.2), v(30.0, 2.0, 0.4), v(5.0, 28.0, 0.6)], 32, 32, SNAP_PX)
-            .unwrap();
-        assert!(matches!(cover(&t, 8.5, 8.5), Cover::Certain(_)));
-        assert_eq!(cover(&t, 30.5, 30.5), Cover::No);
-        // On the edge from (1, 1) to (30, 2), well inside in x.
-        let y_edge = 1.0 + (15.5 - 1.0) / 29.0;
-        assert!(matches!(cover(&t, 15.5, y_edge + 0.01), Cover::Possible(_)));
-        let Cover::Certain(z) = cover(&t, 10.5, 10.5) else { panic!() };
-        assert!(z.lo > 0.2 && z.hi < 0.6 && z.hi - z.lo < 0.02, "{z:?}");
-    }
-
-    /// Beyond one side plane at every vertex for every value of the boxes: culled; a vertex
-    /// whose box reaches inside, or vertices beyond different planes: kept.
-    #[test]
-    fn a_triangle_beyond_one_side_plane_is_culled() {
-        let v = |x: f64, y: f64, w: f64| {
-            [Iv::new(x, x + 0.1), Iv::new(y, y), Iv::point(0.05), Iv::new(w, w)]
-        };
-        assert!(outside_a_side([v(5.0, 0.0, 2.0), v(9.0, 1.0, 3.0), v(37096.0, -34.0, -628.0)]));
-        assert!(outside_a_side([v(0.0, -5.0, 2.0), v(1.0, -9.0, 3.0), v(0.5, -700.0, -628.0)]));
-        assert!(!outside_a_side([v(1.95, 0.0, 2.0), v(9.0, 1.0, 3.0), v(8.0, 0.0, 1.0)]));
-        assert!(!outside_a_side([v(5.0, 0.0, 2.0), v(-9.0, 1.0, 3.0), v(8.0, 0.0, 1.0)]));
-    }
-
-    /// A depth-only pass of two overlapping triangles keeps the nearer where both certainly
-    /// cover, and the clear value outside.
-    #[test]
-    fn the_nearer_triangle_wins() {
-        let far = [v(0.0, 0.0, 0.8), v(16.0, 0.0, 0.8), v(0.0, 16.0, 0.8)];
-        let near = [v(0.0, 0.0, 0.3), v(16.0, 0.0, 0.3), v(0.0, 16.0, 0.3)];
-        let (env, amb) = depth_pass(&[far, near], 16, 16, 1.0);
-        let at = |x: usize, y: usize| env[y * 16 + x];
-        assert!(at(3, 3).contains(0.3) && !at(3, 3).contains(0.8));
-        assert!(at(15, 15).contains(1.0) && !at(15, 15).contains(0.3));
-        assert!(!amb[3 * 16 + 3] && amb.iter().any(|&a| a));
-    }
-
-    /// A varying interpolated as lavapipe does, by f32 plane equations of a·q and q anchored
-    /// at the target's origin and their quotient, at every sample of a small triangle far
-    /// from the origin (a 4096² target, lavapipe's 1/256-px snap): inside
-    /// [`Interp::varying`]; and outside the bound without the planes' allowance somewhere (the
-    /// negative control: the old bound, which a boat's triangle in the 256×144 reflection map
-    /// of `coastal_island` left on lavapipe).
-    #[test]
-    fn plane_equations_anchored_far_away_stay_inside_the_varying_bound() {
-        let (w, h) = (4096u32, 4096u32);
-        let p = [[4000.25f32, 3990.125], [4004.125, 3991.875], [4001.0, 3995.75]];
-        let q = [0.02f32, 0.03, 0.045];
-        let a = [0.866f32, 0.8662, 0.8658];
-        let tri: [ScreenIv; 3] = std::array::from_fn(|k| ScreenIv {
-            x: Iv::point(p[k][0]),
-            y: Iv::point(p[k][1]),
-            z: Iv::point(0.001),
-            inv_w: Iv::point(q[k]),
-        });
-        let t = setup(&tri, w, h, 1.0 / 256.0).unwrap();
-        // The plane through f32 values at the vertices, anchored at (0, 0), in f32.
-        let plane = |v: [f32; 3]| {
-            let (e1x, e1y) = (p[1][0] - p[0][0], p[1][1] - p[0][1]);
-            let (e2x, e2y) = (p[2][0] - p[0][0], p[2][1] - p[0][1]);
-            let det = e1x * e2y - e2x * e1y;
-            let (d1, d2) = (v[1] - v[0], v[2] - v[0]);
-            let dx = (d1 * e2y - d2 * e1y) / det;
-            let dy = (d2 * e1x - d1 * e2x) / det;
-            let a0 = v[0] - dx * p[0][0] - dy * p[0][1];
-            move |px: f32, py: f32| a0 + dx * px + dy * py
-        };
-        let (num, den) = (plane(std::array::from_fn(|k| a[k] * q[k])), plane(q));
-        let (mut samples, mut past_old) = (0, 0);
-        for py in 3988..3998 {
-            for px in 3998..4006 {
-                let (sx, sy) = (f64::from(px) + 0.5, f64::from(py) + 0.5);
-                if cover(&t, sx, sy) == Cover::No {
-                    continue;
-                }
-                let got = num(sx as f32, sy as f32) / den(sx as f32, sy as f32);
-                let interp = barycentrics(&t, sx, sy);
-                let bound = interp.varying(a.map(Iv::point));
-                assert!(bound.contains(got), "{got} at ({px}, {py}) outside {bound:?}");
-                let old = Interp { grad: 0.0, lam_sum: 0.0, ..interp }.varying(a.map(Iv::point));
-                past_old += usize::from(!old.contains(got));
-                samples += 1;
-            }
-        }
-        assert!(samples > 4 && past_old > 0, "{samples} samples, {past_old} past the old bound");
-    }
-}
+mod tests;
