@@ -106,6 +106,26 @@ pub fn pack_levels<T: Copy>(width: u32, height: u32, levels: &[&[T]], fill: T) -
     atlas
 }
 
+/// Writes level `k` of a chain whose level 0 is `width` × `height` into its rows of `atlas`
+/// (laid out as [`pack_levels`] lays it out), texel (i, j) from `texel([i, j])`: for levels
+/// made texel by texel, without a list of levels to pack afterwards.
+pub fn fill_level<T>(
+    atlas: &mut [T],
+    width: u32,
+    height: u32,
+    k: u32,
+    mut texel: impl FnMut([u32; 2]) -> T,
+) {
+    let [w, h] = level_size(width, height, k);
+    let row = level_row(height, k);
+    for j in 0..h {
+        let start = ((row + j) * width) as usize;
+        for (i, d) in atlas[start..start + w as usize].iter_mut().enumerate() {
+            *d = texel([i as u32, j]);
+        }
+    }
+}
+
 /// The bilinear sample of level `k` at `coords` (the sampler must filter linearly; a nearest
 /// sampler reads the texel under the point).
 fn sample_level(chain: &MipChain, sampler: &Sampler, coords: [f32; 2], k: u32) -> [f32; 4] {

@@ -108,18 +108,13 @@ pub fn atlas_of<const N: usize>(
 ) -> Vec<Option<[Iv; N]>> {
     // Packed straight from the levels: a copy of them as `Option`s first cost a third of the
     // wave_mips envelope in page faults (a 256² chain's levels are 8 MB).
-    use ocean_core::far_field::{mip_level_row, mip_level_size};
-    let w = width as usize;
-    let mut atlas = vec![None; w * mip_level_row(height, levels.len() as u32) as usize];
+    let rows = crate::mip::level_row(height, levels.len() as u32);
+    let mut atlas = vec![None; width as usize * rows as usize];
     for (k, level) in levels.iter().enumerate() {
-        let [lw, lh] = mip_level_size(width, height, k as u32).map(|v| v as usize);
-        let row = mip_level_row(height, k as u32) as usize;
-        for j in 0..lh {
-            let dst = &mut atlas[(row + j) * w..][..lw];
-            for (d, s) in dst.iter_mut().zip(&level[j * lw..(j + 1) * lw]) {
-                *d = Some(*s);
-            }
-        }
+        let lw = crate::mip::level_size(width, height, k as u32)[0] as usize;
+        crate::mip::fill_level(&mut atlas, width, height, k as u32, |[i, j]| {
+            Some(level[j as usize * lw + i as usize])
+        });
     }
     atlas
 }

@@ -4,7 +4,7 @@
 use ocean_core::frame::WaveMipsUniforms;
 
 use crate::envelope::{Iv, Jitter, JitterRules, Real};
-use crate::mip::{MipChain, level_count, level_row, level_size};
+use crate::mip::{MipChain, fill_level, level_count, level_row, level_size};
 use crate::sampler::Texture2D;
 
 /// `moments(id)`: texel `id` of level 0 from the slope map `src`.
@@ -51,22 +51,12 @@ pub fn envelope(slopes: &Texture2D, chain: &MipChain) -> Vec<Option<[Iv; 4]>> {
     // levels are independent: each goes straight to its rows of the atlas (a list of levels
     // packed afterwards cost a third of the pass in page faults: 8 MB at 256²).
     let mut atlas = vec![None; w as usize * level_row(h, chain.levels) as usize];
-    let mut rows = |k: u32, texel: &dyn Fn([u32; 2]) -> [Iv; 4]| {
-        let [lw, lh] = level_size(w, h, k);
-        let row = level_row(h, k);
-        for j in 0..lh {
-            let dst = &mut atlas[((row + j) * w) as usize..][..lw as usize];
-            for (i, d) in dst.iter_mut().enumerate() {
-                *d = Some(texel([i as u32, j]));
-            }
-        }
-    };
-    rows(0, &|p| moments_r(p, slopes));
+    fill_level(&mut atlas, w, h, 0, |p| Some(moments_r(p, slopes)));
     for k in 1..chain.levels {
         let [lw, lh] = level_size(w, h, k);
         let src = chain.level(k - 1);
         let params = WaveMipsUniforms::new([lw, lh], [src.width, src.height]);
-        rows(k, &|p| downsample_r(p, &params, &src));
+        fill_level(&mut atlas, w, h, k, |p| Some(downsample_r(p, &params, &src)));
     }
     atlas
 }

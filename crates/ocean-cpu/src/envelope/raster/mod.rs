@@ -310,6 +310,15 @@ impl Plane {
     }
 }
 
+/// The gradient of the plane through values `p` at the points (`mx`, `my`), whose doubled
+/// signed area is `a`.
+fn plane_gradient(mx: [f64; 3], my: [f64; 3], a: f64, p: [f64; 3]) -> [f64; 2] {
+    [
+        ((p[1] - p[0]) * (my[2] - my[0]) - (p[2] - p[0]) * (my[1] - my[0])) / a,
+        ((p[2] - p[0]) * (mx[1] - mx[0]) - (p[1] - p[0]) * (mx[2] - mx[0])) / a,
+    ]
+}
+
 fn setup(v: &[ScreenIv; 3], width: u32, height: u32, snap: f64) -> Option<Setup> {
     if v.iter().any(|v| v.x.full || v.y.full || v.z.full) {
         return None;
@@ -331,8 +340,7 @@ fn setup(v: &[ScreenIv; 3], width: u32, height: u32, snap: f64) -> Option<Setup>
     let mid = |s: Span| 0.5 * (s.0 + s.1);
     let (mx, my, mz) = (x.map(mid), y.map(mid), v.map(|v| 0.5 * (v.z.lo + v.z.hi)));
     let a = (mx[1] - mx[0]) * (my[2] - my[0]) - (mx[2] - mx[0]) * (my[1] - my[0]);
-    let dzdx = ((mz[1] - mz[0]) * (my[2] - my[0]) - (mz[2] - mz[0]) * (my[1] - my[0])) / a;
-    let dzdy = ((mz[2] - mz[0]) * (mx[1] - mx[0]) - (mz[1] - mz[0]) * (mx[2] - mx[0])) / a;
+    let [dzdx, dzdy] = plane_gradient(mx, my, a, mz);
     let wz = v.iter().map(|v| 0.5 * (v.z.hi - v.z.lo)).fold(0.0, f64::max);
     let z_max = v.iter().map(|v| v.z.magnitude()).fold(0.0, f64::max);
     let h = x.iter().chain(&y).map(|s| 0.5 * (s.1 - s.0)).fold(0.0, f64::max);
@@ -354,10 +362,7 @@ fn setup(v: &[ScreenIv; 3], width: u32, height: u32, snap: f64) -> Option<Setup>
         f64::INFINITY
     };
     let plane_of = |vals: [f64; 3], w: f64| -> Option<Plane> {
-        let gx =
-            ((vals[1] - vals[0]) * (my[2] - my[0]) - (vals[2] - vals[0]) * (my[1] - my[0])) / a;
-        let gy =
-            ((vals[2] - vals[0]) * (mx[1] - mx[0]) - (vals[1] - vals[0]) * (mx[2] - mx[0])) / a;
+        let [gx, gy] = plane_gradient(mx, my, a, vals);
         let g_norm = gx.hypot(gy);
         (r < 0.5 && a.is_finite() && g_norm.is_finite()).then(|| Plane {
             v0: [mx[0], my[0]],
@@ -608,8 +613,10 @@ impl Interp {
         let (mx, my) = (bx.map(mid), by.map(mid));
         let (e1, e2) = ((mx[1] - mx[0]) * (my[2] - my[0]), (mx[2] - mx[0]) * (my[1] - my[0]));
         let a = e1 - e2;
-        // The plane's f64 arithmetic is trusted to 1e-9 of its terms (below): only where
-        // the midpoints' doubled area is not a cancellation of its two products.
+        // Used only where the doubled area is no cancellation of its two products (at least
+        // 1e-6 of them): its relative error is then at most 2·2⁻⁵³/1e-6 ≈ 2.2e-10, and the
+        // gradients, planes and corners below add a few roundings of 2⁻⁵³ each, which the
+        // 1e-9 of their terms allowed at the end covers.
         if !a.is_finite() || a.abs() < 1e-6 * (e1.abs() + e2.abs()) || a == 0.0 {
             return None;
         }
@@ -623,8 +630,7 @@ impl Interp {
         // gradient.
         let (sx, sy) = (self.at[0] - mx[0], self.at[1] - my[0]);
         let plane = |p: [f64; 3]| {
-            let gx = ((p[1] - p[0]) * (my[2] - my[0]) - (p[2] - p[0]) * (my[1] - my[0])) / a;
-            let gy = ((p[2] - p[0]) * (mx[1] - mx[0]) - (p[1] - p[0]) * (mx[2] - mx[0])) / a;
+            let [gx, gy] = plane_gradient(mx, my, a, p);
             let terms = p[0].abs() + gx.abs() * (sx.abs() + w[0]) + gy.abs() * (sy.abs() + w[1]);
             (p[0] + gx * sx + gy * sy, gx, gy, terms)
         };
@@ -655,8 +661,8 @@ impl Interp {
             lo = lo.min(num / den);
             hi = hi.max(num / den);
         }
-        // f64's roundings: the planes' terms to 1e-9 (the area is no cancellation, above),
-        // in the numerator and, times the quotient, in the denominator.
+        // f64's roundings: 1e-9 of the planes' terms (the area's bound above), in the
+        // numerator and, times the quotient, in the denominator.
         let value = lo.abs().max(hi.abs());
         let margin = 1e-9 * (n_terms + en + value * (d_terms + ed)) / den_min;
         if !margin.is_finite() {
