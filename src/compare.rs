@@ -42,8 +42,10 @@ pub struct Args {
     /// How the GPU's resources are held: `exact` (docs/design.md's float and picture rows,
     /// lavapipe's figures) or `envelope` (what any conformant GPU may produce:
     /// docs/tolerances.md: every float resource and the 8-bit picture; pixels or resources
-    /// without an envelope, such as the spray's sprites, are reported as not judged). Default: exact on a software adapter, the envelope on hardware — with
-    /// --against, the dump's adapter, the envelope when the manifest does not say.
+    /// without an envelope, such as the spray's sprites where the pool the GPU drew is not
+    /// known, are reported as not judged). Default: exact on a software adapter, the envelope
+    /// on hardware — with --against, the dump's adapter, the envelope when the manifest does
+    /// not say.
     #[arg(long, value_enum, conflicts_with = "mutants")]
     tolerance: Option<ToleranceArg>,
     /// List the planted bugs (name, file, what each changes, the scene that runs it) and exit.

@@ -350,10 +350,17 @@ impl Verdict {
         match water_verdict(scene, plan, gpu)? {
             Ok((f, open, took, widths)) => {
                 let fmt = |x: Option<f64>| x.map_or("-".to_owned(), |x| format!("{x:.1e}"));
+                let sprites = match widths.sprites {
+                    Some(n) => format!("; {n} where a sprite may add light"),
+                    None if plan.runs(Pass::Spray) => {
+                        "; where a sprite may land left out (no pool read back)".to_owned()
+                    }
+                    None => String::new(),
+                };
                 let note = format!(
                     " ({} water pixels, rel half-width p50 {} / p99 {}; {} object pixels, p50 \
-                     {}; {} where either may show; {:.2} % open (the mesh's edges, or water or \
-                     object); {} unbounded, not judged; {}; envelope {took:.1?})",
+                     {}; {} where either may show{sprites}; {:.2} % open (the mesh's edges, or \
+                     water or object); {} unbounded, not judged; {}; envelope {took:.1?})",
                     widths.pixels,
                     fmt(widths.p50),
                     fmt(widths.p99),
@@ -376,6 +383,7 @@ impl Verdict {
                 j["object_rel_half_width_p50"] = json!(widths.objects_p50);
                 j["either_pixels"] = json!(widths.either);
                 j["unbounded_pixels"] = json!(widths.unbounded);
+                j["sprite_pixels"] = json!(widths.sprites);
                 j["open_share"] = json!(open);
                 j["precision"] = json!(gpu.precision.1);
                 self.json.push(j);

@@ -234,7 +234,8 @@ fn selftest_quick_judges_every_scene_and_catches_the_judged_passes_bugs() {
             "foam/jacobian.wgsl",
             "objects.wgsl",
             "shared/shadow.wgsl",
-            // The spray's step, from the pool the GPU held (its launch speed).
+            // The spray's step and sprites, from the pool the GPU held (its launch speed,
+            // the sprites' colour).
             "spray.wgsl",
         ];
         if judged_files.contains(&file) {

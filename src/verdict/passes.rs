@@ -20,6 +20,67 @@ pub(super) struct WaterWidths {
     pub(super) either: usize,
     /// Pixels left out because their colour's envelope is unbounded.
     pub(super) unbounded: usize,
+    /// Judged pixels where a sprite of the spray may add light (`None`: the sprites are not
+    /// carried, and where one may land is left out).
+    pub(super) sprites: Option<usize>,
+}
+
+/// What the main view's depth buffer may hold after the water pass: the water's and the
+/// objects' certain and farthest-reaching fragments.
+struct MainDepths<'a> {
+    water: &'a ocean_cpu::envelope::raster::MeshEnvelope,
+    objects: Option<&'a ocean_cpu::envelope::raster::MeshEnvelope>,
+    objects_reach: &'a [f64],
+}
+
+impl MainDepths<'_> {
+    /// Per pixel, the interval the stored depth (reversed Z, cleared to 0) lies in: at least
+    /// what a certain fragment guarantees, at most the largest depth any may have.
+    fn bounds(&self) -> Vec<ocean_cpu::envelope::Iv> {
+        let n = self.water.nearest.len();
+        (0..n)
+            .map(|i| {
+                let objects_near = self.objects.map_or(f64::NEG_INFINITY, |o| o.nearest[i]);
+                let lo = 0f64.max(self.water.nearest[i]).max(objects_near);
+                let hi = 0f64.max(self.water.reach[i]).max(self.objects_reach[i]);
+                if hi.is_finite() {
+                    ocean_cpu::envelope::Iv::new(lo, hi.max(lo))
+                } else {
+                    ocean_cpu::envelope::Iv::FULL
+                }
+            })
+            .collect()
+    }
+}
+
+/// Adds the spray's sprites to the main view's envelope `env`, drawn from the pool the GPU
+/// held (the spray probe's `before`, whose step uniforms are the frame's draw's: step k's
+/// uniforms are the draw after k steps) over the depth the main view may have left: per
+/// pixel, whether a sprite may add light there. `None` where the frame has no spray, no pool
+/// was read back, or a sprite may lie past the near or far plane (then where a sprite may
+/// land is left out).
+fn sprites_over(
+    plan: &FramePlan,
+    gpu: &GpuSide<'_>,
+    uniforms: &ocean_core::frame::FrameUniforms,
+    (w, h): (u32, u32),
+    depths: &MainDepths<'_>,
+    env: &mut [[ocean_cpu::envelope::Iv; 4]],
+) -> Option<Vec<bool>> {
+    let probe = gpu.spray.filter(|_| plan.runs(Pass::Spray))?;
+    let before = env.to_vec();
+    let drawn = ocean_cpu::shaders::spray::sprites_envelope(
+        &probe.before,
+        uniforms,
+        &probe.params,
+        [w, h],
+        plan.frame_format,
+        gpu.precision.0.snap_px(),
+        env,
+        &depths.bounds(),
+    );
+    drawn
+        .then(|| env.iter().zip(&before).map(|(a, b)| (0..3).any(|c| a[c].hi != b[c].hi)).collect())
 }
 
 /// The HDR frame's water and object pixels against the water pass's envelope (ocean-cpu
@@ -27,8 +88,9 @@ pub(super) struct WaterWidths {
 /// GPU's own input maps and the sky pass's envelope behind both: the water's where no object
 /// may show (none lands there, or the water is certainly drawn nearer: the objects'
 /// envelope's `reach`, ocean-cpu `objects::depth_reach`), the objects' where no water
-/// fragment can pass them, the hull of both where either may show (`main_view::compose`); no
-/// sprite may land on a judged pixel.
+/// fragment can pass them, the hull of both where either may show (`main_view::compose`); the
+/// spray's sprites added over it from the pool the GPU drew ([`sprites_over`]), or, where
+/// that pool is not known, no sprite may land on a judged pixel.
 /// `Err(why)` where it is not judged: a configuration the envelope does not carry, a pass
 /// after the water that draws into the frame, a missing input.
 #[allow(clippy::type_complexity, reason = "a verdict, its open share, cost and widths, or why not")]
@@ -126,58 +188,94 @@ pub(super) fn water_verdict(
     };
     let composed =
         ocean_cpu::shaders::objects::main_view::compose(&mesh, &objects_reach, objects.as_ref());
+    let mut env: Vec<[Iv; 4]> =
+        composed.iter().map(|c| c.map_or([Iv::FULL; 4], |(e, _)| e)).collect();
+    // The spray's sprites over it, from the pool the GPU drew; without that pool, the pixels
+    // where a sprite may land are left out.
+    let depths =
+        MainDepths { water: &mesh, objects: objects.as_ref(), objects_reach: &objects_reach };
+    let sprites = sprites_over(plan, gpu, &frame.uniforms, (w, h), &depths, &mut env);
+    let spray = match sprites {
+        Some(_) => vec![false; env.len()],
+        None => spray_reach(plan, &frame, (w, h), gpu),
+    };
     // The pixels judged: those whose envelope is carried (an object may show only where its
-    // colour is) where no sprite of the spray may land, on the quick verdict's lattice.
-    let spray = spray_reach(plan, &frame, (w, h), gpu);
+    // colour is) where the sprites' colour is carried or none may land, on the quick
+    // verdict's lattice.
     let every = gpu.water_every.max(1) as usize;
     let on =
         |i: usize| (i % w as usize).is_multiple_of(every) && (i / w as usize).is_multiple_of(every);
     // A pixel whose colour may be anything (a vertex the clipper's bounds cannot place, a
     // sub-pixel triangle whose varyings are unbounded) would be passed, not judged.
     let bounded = |e: &[Iv; 4]| e[..3].iter().any(|c| !c.full);
-    let candidates = |i: usize| composed[i].filter(|_| !spray[i] && on(i));
+    let candidates =
+        |i: usize| composed[i].map(|(_, s)| (env[i], s)).filter(|_| !spray[i] && on(i));
     let unbounded =
         (0..composed.len()).filter(|&i| candidates(i).is_some_and(|(e, _)| !bounded(&e)));
     let unbounded = unbounded.count();
     let shows: Vec<Option<Shows>> = (0..composed.len())
         .map(|i| candidates(i).filter(|(e, _)| bounded(e)).map(|(_, s)| s))
         .collect();
-    let env: Vec<[Iv; 4]> = composed.iter().map(|c| c.map_or([Iv::FULL; 4], |(e, _)| e)).collect();
+    let sprite_pixels =
+        sprites.map(|lit| (0..lit.len()).filter(|&i| lit[i] && shows[i].is_some()).count());
     let region: Vec<Option<bool>> = shows.iter().map(|s| s.map(|_| true)).collect();
     let judged = shows.iter().flatten().count();
     if judged == 0 {
-        let why = "no pixel has a bounded envelope where no sprite may land (the sprites have \
-                   no envelope yet; a vertex the clipper's bounds cannot place leaves the pass \
-                   unbounded)";
+        let why = "no pixel has a bounded envelope (a vertex the clipper's bounds cannot \
+                   place leaves the pass unbounded; without the pool the GPU drew, where a \
+                   sprite may land is left out)";
         return Ok(Err(why.into()));
     }
     let count = |s: Shows| shows.iter().filter(|x| **x == Some(s)).count();
     let open_water = (0..shows.len()).filter(|&i| shows[i] == Some(Shows::Water) && mesh.open[i]);
     let open_share = (open_water.count() + count(Shows::Either)) as f64 / judged as f64;
     let f = ocean_verify::envelope::judge_region("hdr (water, objects)", &env, &region, hdr, w);
-    // The widths where the water shows (the envelope is not the sky's alone).
-    let mut rel: Vec<f64> = (0..env.len())
-        .filter(|&i| shows[i] == Some(Shows::Water))
-        .filter(|&i| (0..3).any(|c| env[i][c] != background[i][c]))
-        .flat_map(|i| env[i][..3].iter().filter_map(|c| c.rel_half_width()).collect::<Vec<_>>())
-        .collect();
-    rel.sort_by(f64::total_cmp);
-    let q = |rel: &[f64], p: f64| rel.get(((rel.len().max(1) - 1) as f64 * p) as usize).copied();
-    let mut on_objects: Vec<f64> = (0..env.len())
-        .filter(|&i| shows[i] == Some(Shows::Objects))
-        .flat_map(|i| env[i][..3].iter().filter_map(|c| c.rel_half_width()).collect::<Vec<_>>())
-        .collect();
-    on_objects.sort_by(f64::total_cmp);
     let widths = WaterWidths {
-        pixels: rel.len() / 3,
-        p50: q(&rel, 0.5),
-        p99: q(&rel, 0.99),
-        objects: count(Shows::Objects),
-        objects_p50: q(&on_objects, 0.5),
-        either: count(Shows::Either),
         unbounded,
+        sprites: sprite_pixels,
+        ..WaterWidths::of(&env, &shows, &background)
     };
     Ok(Ok((f, open_share, took, widths)))
+}
+
+impl WaterWidths {
+    /// The widths of `env` where each pass shows (`shows`; the water's only where its
+    /// envelope is not the sky's alone, `background`), with no pixel unbounded or lit by a
+    /// sprite yet.
+    fn of(
+        env: &[[ocean_cpu::envelope::Iv; 4]],
+        shows: &[Option<ocean_cpu::shaders::objects::main_view::Shows>],
+        background: &[[ocean_cpu::envelope::Iv; 4]],
+    ) -> Self {
+        use ocean_cpu::shaders::objects::main_view::Shows;
+        let count = |s: Shows| shows.iter().filter(|x| **x == Some(s)).count();
+        let rel_of = |keep: &dyn Fn(usize) -> bool| {
+            let mut rel: Vec<f64> = (0..env.len())
+                .filter(|&i| keep(i))
+                .flat_map(|i| {
+                    env[i][..3].iter().filter_map(|c| c.rel_half_width()).collect::<Vec<_>>()
+                })
+                .collect();
+            rel.sort_by(f64::total_cmp);
+            rel
+        };
+        let rel = rel_of(&|i| {
+            shows[i] == Some(Shows::Water) && (0..3).any(|c| env[i][c] != background[i][c])
+        });
+        let on_objects = rel_of(&|i| shows[i] == Some(Shows::Objects));
+        let q =
+            |rel: &[f64], p: f64| rel.get(((rel.len().max(1) - 1) as f64 * p) as usize).copied();
+        WaterWidths {
+            pixels: rel.len() / 3,
+            p50: q(&rel, 0.5),
+            p99: q(&rel, 0.99),
+            objects: count(Shows::Objects),
+            objects_p50: q(&on_objects, 0.5),
+            either: count(Shows::Either),
+            unbounded: 0,
+            sprites: None,
+        }
+    }
 }
 
 /// The HDR frame's sky pixels against the sky pass's envelope: the pixels where the oracle's

@@ -1,8 +1,8 @@
 //! Pass `spray`'s step against its envelope, from the device's own inputs: the pool as a frame
 //! left it on the device, one more step run there on buffers of its own, and the envelope of
 //! that step (ocean-cpu `spray::step_envelope`) from the same pool and the frame's own
-//! displacement map. The sprites' colour in the frame has no envelope yet (where they may land
-//! is left out of the water's and the sky's verdicts); the step they are drawn from does.
+//! displacement map. The same pool is the one the frame's sprites were drawn from, so the
+//! water's verdict adds the sprites' envelope from it (`passes::sprites_over`).
 
 use ocean_core::plan::{FramePlan, Pass, ResourceId};
 use ocean_core::scene::Scene;

@@ -230,6 +230,14 @@ pub const MUTANTS: &[Mutant] = &[
         scene: "chiu_rock",
     },
     Mutant {
+        name: "spray-sprite-color-bgr",
+        file: "spray.wgsl",
+        find: "return vec4<f32>(draw.color.xyz * a, 0.0);",
+        replace: "return vec4<f32>(draw.color.zyx * a, 0.0);",
+        changes: "The sprites' colour has its red and blue swapped ((0.9, 0.95, 1.0) becomes (1.0, 0.95, 0.9)): the spray adds 11 % more red and 10 % less blue wherever it covers.",
+        scene: "chiu_rock",
+    },
+    Mutant {
         name: "gerstner-phase-z-sign",
         file: "shared/gerstner.wgsl",
         find: "let p = (a.x * pos.x + a.z) + a.y * pos.y;",

@@ -8,15 +8,18 @@ pub use ocean_core::spray::{Emitter, Particle, SprayUniforms, spray_random};
 use ocean_core::frame::FrameUniforms;
 use rayon::prelude::*;
 
-use super::shared::frame::transform_point;
 use super::water::WRAP_LINEAR;
 use super::water::envelope::Sampling;
-use super::wgsl::{Vec2, Vec3, Vec4, max, vec2};
+use super::wgsl::{Vec2, Vec4, vec2};
 use crate::envelope::{Cond, Iv, Jitter, JitterRules, Precision, Real, choose};
 use crate::raster::{
     self, BlendMode, CompareFunction, CullMode, FrontFace, RasterState, RenderTarget, Vertex,
 };
 use crate::sampler::Texture2D;
+
+mod sprites;
+
+pub use sprites::{QUAD, corner_clip_r, sprite_color_r, sprites_envelope, sprites_jitter};
 
 /// `water_height(x, z)`.
 pub fn water_height(x: f32, z: f32, params: &SprayUniforms, displacement: &Texture2D) -> f32 {
@@ -228,19 +231,13 @@ pub fn vs_main(
     if p.pos[3] == 0.0 {
         return SpriteOut { clip: Vec4::from([2.0, 2.0, 0.5, 1.0]), corner: c };
     }
-    let half = draw.sprite[0];
-    let rel = Vec4::from(p.pos).xyz()
-        + Vec4::from(draw.origin_rel).xyz()
-        + (Vec4::from(draw.right).xyz() * c.x + Vec4::from(draw.up).xyz() * c.y) * half;
-    SpriteOut { clip: transform_point(&frame.view.view_proj, rel), corner: c }
+    let clip = sprites::corner_clip_r::<f32>(&p, [c.x, c.y], frame, draw);
+    SpriteOut { clip: Vec4::from(clip), corner: c }
 }
 
 /// `fs_main(in)`.
 pub fn fs_main(corner: Vec2, draw: &SprayUniforms) -> [f32; 4] {
-    let r2 = corner.x * corner.x + corner.y * corner.y;
-    let a = max(1.0 - r2, 0.0) * draw.sprite[1];
-    let c: Vec3 = Vec4::from(draw.color).xyz() * a;
-    c.extend(0.0).into()
+    sprites::sprite_color_r([corner.x, corner.y], draw)
 }
 
 /// The draw's state: reversed-Z `Greater` against the frame's depth, no depth write, blend

@@ -55,38 +55,80 @@ pub fn jitter_pass_at(
     subpixel_bits: u32,
     mut fragment: impl FnMut(usize, usize, [f64; 3], f32) -> Option<[f32; 4]>,
 ) -> Vec<[f32; 4]> {
-    let mut draws = Draws(SplitMix64::new(rules.seed ^ 0x005e_ed0f_da7a));
     let n = (width as usize) * (height as usize);
     let mut target = Target {
         width,
         greater,
+        write_depth: true,
         out: vec![clear; n],
         depth: vec![if greater { 0.0 } else { 1.0 }; n],
     };
-    let drawn = clip(tris, &mut draws);
-    for (s_index, &(k, t, bary)) in drawn.iter().enumerate() {
-        let raw: [[f64; 3]; 3] = t.map(|v| {
-            Jitter::reseed(rules, vertex_hash(rules.seed, &v, 1));
-            to_screen_r(v.map(Jitter), width, height).map(|c| f64::from(c.0))
-        });
-        Jitter::reseed(rules, s_index as u64);
-        let inv_w = t.map(|v| 1.0 / f64::from(v[3]));
-        let snapped = snap(raw, &t, rules, subpixel_bits);
-        let area = (snapped[1][0] - snapped[0][0]) * (snapped[2][1] - snapped[0][1])
-            - (snapped[2][0] - snapped[0][0]) * (snapped[1][1] - snapped[0][1]);
-        if area == 0.0 {
-            continue;
-        }
-        let sign = area.signum();
-        let ties = edge_ties(snapped, sign, rules.seed);
-        // The depth plane and the barycentrics through the snapped or the unsnapped vertices.
-        let plane_of = if draws.unit() < 0.5 { snapped } else { raw };
-        let plane = DepthPlane::new(plane_of, rules, width, height);
-        let Some(bounds) = sample_bounds(snapped, width, height) else { continue };
-        let setup = Setup { k, bary, inv_w, snapped, sign, ties, plane };
-        target.draw(&setup, bounds, &mut draws, &mut fragment);
-    }
+    target.run(tris, height, rules, subpixel_bits, &mut fragment);
     target.out
+}
+
+/// A `Greater` pass over a depth buffer it does not write (`depth`, what the passes before
+/// left), as one random conformant GPU draws it (see [`jitter_pass`]): `fragment(pixel,
+/// triangle, barycentrics, depth)` is called for each sample that passes the test, in
+/// submission order, and blends into a target of its own.
+pub fn jitter_blend_pass(
+    tris: &[[[f32; 4]; 3]],
+    width: u32,
+    height: u32,
+    depth: &[f32],
+    rules: JitterRules,
+    subpixel_bits: u32,
+    mut fragment: impl FnMut(usize, usize, [f64; 3], f32),
+) {
+    let mut target = Target {
+        width,
+        greater: true,
+        write_depth: false,
+        out: vec![[0.0; 4]; depth.len()],
+        depth: depth.iter().map(|&d| f64::from(d)).collect(),
+    };
+    target.run(tris, height, rules, subpixel_bits, &mut |i, k, w, z| {
+        fragment(i, k, w, z);
+        Some([0.0; 4])
+    });
+}
+
+impl Target {
+    /// Clips, snaps and draws `tris` in order.
+    fn run(
+        &mut self,
+        tris: &[[[f32; 4]; 3]],
+        height: u32,
+        rules: JitterRules,
+        subpixel_bits: u32,
+        fragment: &mut impl FnMut(usize, usize, [f64; 3], f32) -> Option<[f32; 4]>,
+    ) {
+        let width = self.width;
+        let mut draws = Draws(SplitMix64::new(rules.seed ^ 0x005e_ed0f_da7a));
+        let drawn = clip(tris, &mut draws);
+        for (s_index, &(k, t, bary)) in drawn.iter().enumerate() {
+            let raw: [[f64; 3]; 3] = t.map(|v| {
+                Jitter::reseed(rules, vertex_hash(rules.seed, &v, 1));
+                to_screen_r(v.map(Jitter), width, height).map(|c| f64::from(c.0))
+            });
+            Jitter::reseed(rules, s_index as u64);
+            let inv_w = t.map(|v| 1.0 / f64::from(v[3]));
+            let snapped = snap(raw, &t, rules, subpixel_bits);
+            let area = (snapped[1][0] - snapped[0][0]) * (snapped[2][1] - snapped[0][1])
+                - (snapped[2][0] - snapped[0][0]) * (snapped[1][1] - snapped[0][1]);
+            if area == 0.0 {
+                continue;
+            }
+            let sign = area.signum();
+            let ties = edge_ties(snapped, sign, rules.seed);
+            // The depth plane and the barycentrics through the snapped or the unsnapped vertices.
+            let plane_of = if draws.unit() < 0.5 { snapped } else { raw };
+            let plane = DepthPlane::new(plane_of, rules, width, height);
+            let Some(bounds) = sample_bounds(snapped, width, height) else { continue };
+            let setup = Setup { k, bary, inv_w, snapped, sign, ties, plane };
+            self.draw(&setup, bounds, &mut draws, fragment);
+        }
+    }
 }
 
 /// The pass's own draws (the clipper's roundings, each triangle's choice of depth plane, each
@@ -320,6 +362,8 @@ struct Target {
     width: u32,
     /// `Greater` (else `Less`).
     greater: bool,
+    /// Whether a passing sample stores its depth.
+    write_depth: bool,
     out: Vec<[f32; 4]>,
     depth: Vec<f64>,
 }
@@ -354,7 +398,9 @@ impl Target {
                     continue;
                 }
                 let Some(color) = fragment(i, s.k, s.weights(sx, sy), stored) else { continue };
-                self.depth[i] = f64::from(stored);
+                if self.write_depth {
+                    self.depth[i] = f64::from(stored);
+                }
                 self.out[i] = color;
             }
         }

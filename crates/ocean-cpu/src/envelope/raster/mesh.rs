@@ -55,7 +55,7 @@ pub struct MeshTri {
 /// Where a sample lies against a triangle: its cover, and the one edge (opposite vertex i)
 /// whose side is undecided while the other two certainly hold it, for a triangle of certain
 /// orientation whose depth certainly lies in [0, 1] there.
-fn cover_edges(t: &Setup, orientation: f64, px: f64, py: f64) -> (Cover, Option<usize>) {
+pub(super) fn cover_edges(t: &Setup, orientation: f64, px: f64, py: f64) -> (Cover, Option<usize>) {
     let c = super::cover(t, px, py);
     let Cover::Possible(z) = c else { return (c, None) };
     if orientation == 0.0 || z.lo < 0.0 || z.hi > 1.0 {

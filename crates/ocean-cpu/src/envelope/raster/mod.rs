@@ -22,12 +22,14 @@
 //! fragments that reached it, or the clear value: the pixel's value lies in
 //! [min(clear, lo of every possible fragment), min(clear, hi of every certain fragment)].
 
+mod blend;
 mod color;
 mod jitter;
 mod mesh;
 
+pub use blend::additive_quads;
 pub use color::{Shaded, color_pass_greater};
-pub use jitter::{jitter_depth_pass, jitter_pass, jitter_pass_at};
+pub use jitter::{jitter_blend_pass, jitter_depth_pass, jitter_pass, jitter_pass_at};
 pub use mesh::{MeshEnvelope, MeshTri, color_pass_mesh};
 
 use super::{Iv, Real};
