@@ -29,6 +29,11 @@ fn folder(name: &str) -> PathBuf {
 
 /// Dumps `scene` (a reference scene's name) at 64×36 into a fresh folder.
 fn dump(scene: &str, name: &str) -> PathBuf {
+    dump_at(scene, name, "64x36")
+}
+
+/// [`dump`] at `size` (WIDTHxHEIGHT).
+fn dump_at(scene: &str, name: &str, size: &str) -> PathBuf {
     let dir = folder(name);
     let path = root().join("reference/scenes").join(format!("{scene}.toml"));
     let out = dir.join("picture.png");
@@ -36,7 +41,7 @@ fn dump(scene: &str, name: &str) -> PathBuf {
         "render",
         &path.to_string_lossy(),
         "--size",
-        "64x36",
+        size,
         "--time",
         "3.5",
         "--dump-passes",
@@ -303,4 +308,58 @@ fn a_dump_is_refused_with_frames_or_supersampling() {
         assert!(String::from_utf8_lossy(&o.stderr).contains("--dump-passes"));
     }
     assert!(!dir.join("dump").exists(), "a refused run dumps nothing");
+}
+
+/// `--against DIR --tolerance envelope` judges the water from the dump's own maps: what a
+/// dump does not hold, the GPU bound all the same (a map the plan does not write is a 1×1
+/// zero map, the Gerstner scene's wave maps; the Fresnel filter is the plan's upload). The
+/// oracle's own frames lie inside (at 160×90, at Vulkan's minimum precision: the oracle's
+/// dump names no GPU); the water's nearest rows 2 % brighter over Gerstner waves leave, and
+/// black over `calm`'s wave maps (whose envelope at that precision is ±90 % at the median).
+#[test]
+fn the_envelope_judges_the_water_of_a_dump() {
+    for (scene, gain) in [("gerstner_swell", 1.02), ("calm", 0.0)] {
+        let dir = dump_at(scene, &format!("envelope-{scene}"), "160x90");
+        let out = dir.parent().unwrap().join("cmp");
+        let judge = || {
+            let o = ocean(&[
+                "compare",
+                "--against",
+                &dir.to_string_lossy(),
+                "--tolerance",
+                "envelope",
+                "--out-dir",
+                &out.to_string_lossy(),
+            ]);
+            let text = String::from_utf8_lossy(&o.stdout).into_owned();
+            let water = text.lines().find(|l| l.contains("[water")).unwrap_or_default().to_owned();
+            (o.status.success(), water)
+        };
+        let (ok, water) = judge();
+        println!("{scene}: {water}");
+        assert!(ok && water.contains(" 0 of ") && water.contains(") ok ("), "{scene}: {water}");
+        // The nearest rows of water brighter (the lower quarter of the frame is sea).
+        let ((w, h), hdr) = ocean::dump::read(&dir, ResourceId::Hdr).unwrap();
+        let brighter: Vec<[f32; 4]> = hdr
+            .iter()
+            .enumerate()
+            .map(|(i, t)| {
+                let k = if i / w as usize > h as usize * 3 / 4 { gain } else { 1.0 };
+                [t[0] * k, t[1] * k, t[2] * k, t[3]]
+            })
+            .collect();
+        let channels = (0..4)
+            .map(|c| ocean::output::Channel {
+                name: ocean::dump::channels(ResourceId::Hdr)[c].0,
+                data: brighter.iter().map(|t| t[c]).collect(),
+            })
+            .collect();
+        let bytes = ocean::output::encode_exr(w as usize, h as usize, channels).unwrap();
+        std::fs::write(dir.join(ocean::dump::file_name(ResourceId::Hdr)), bytes).unwrap();
+        let (ok, water) = judge();
+        assert!(
+            !ok && water.contains("FAIL"),
+            "{scene}, the water {gain} times as bright: {water}"
+        );
+    }
 }

@@ -389,16 +389,23 @@ fn a_gpu_dump_holds_the_spray_step_and_compare_against_judges_it() {
             "--out-dir",
             &out.to_string_lossy(),
         ]);
-        let line = String::from_utf8_lossy(&o.stdout)
-            .lines()
-            .find(|l| l.contains("spray_particles"))
-            .unwrap_or_default()
-            .to_owned();
-        (o.status.success(), line)
+        let stdout = String::from_utf8_lossy(&o.stdout).into_owned();
+        let find =
+            |what: &str| stdout.lines().find(|l| l.contains(what)).unwrap_or_default().to_owned();
+        (o.status.success(), find("spray_particles"), find("[water"))
     };
-    let (ok, line) = against();
+    let (ok, line, water) = against();
     println!("{slots} slots: {line}");
     assert!(ok && line.contains(" 0 of ") && line.ends_with("ok"), "{line}");
+    // The water and the sprites over it, from the dump's own maps and pool (the Fresnel
+    // filter, an upload the dump does not hold, the plan's own).
+    println!("{water}");
+    assert!(
+        water.contains(" 0 of ")
+            && water.contains("where a sprite may add light")
+            && water.contains(") ok ("),
+        "{water}"
+    );
     // One velocity of the step's output 1 % off.
     let image = exr::prelude::read_all_flat_layers_from_file(d.join("spray_step.exr")).unwrap();
     let layer = &image.layer_data[0];
@@ -421,14 +428,14 @@ fn a_gpu_dump_holds_the_spray_step_and_compare_against_judges_it() {
         columns.iter().map(|(n, v)| Channel { name: n, data: v.clone() }).collect::<Vec<_>>();
     let bytes = encode_exr(4, slots as usize, channels).unwrap();
     std::fs::write(d.join("spray_step.exr"), bytes).unwrap();
-    let (ok, line) = against();
+    let (ok, line, _) = against();
     assert!(!ok && line.contains("FAIL") && line.contains(" 1 of "), "{line}");
     // The manifest's step one off: the step's random numbers are another step's.
     std::fs::write(d.join("spray_step.exr"), good).unwrap();
     let mut off = m.clone();
     off["spray_step"]["step"] = (m["spray_step"]["step"].as_u64().unwrap() + 1).into();
     std::fs::write(d.join("manifest.json"), serde_json::to_string_pretty(&off).unwrap()).unwrap();
-    let (ok, line) = against();
+    let (ok, line, _) = against();
     assert!(!ok && line.contains("FAIL"), "{line}");
     // Without the displacement map the step read, the step is not judged (never passed on a
     // map of zeros, which the GPU did not read).
@@ -436,7 +443,7 @@ fn a_gpu_dump_holds_the_spray_step_and_compare_against_judges_it() {
     without["resources"].as_array_mut().unwrap().retain(|r| r["name"] != "displacement");
     let text = serde_json::to_string_pretty(&without).unwrap();
     std::fs::write(d.join("manifest.json"), text).unwrap();
-    let (_, line) = against();
+    let (_, line, _) = against();
     assert!(line.contains("not judged: its input displacement is not in the frame"), "{line}");
 }
 

@@ -118,7 +118,24 @@ pub(super) fn water_verdict(
         return Ok(Err(why.into()));
     }
     let (fw, fh, floor) = ocean_core::terrain::relief_texels(scene.terrain.as_ref());
-    let get = |id: ResourceId| gpu.map(id).map(|((w, h), t)| (w, h, t));
+    // What a dump (`--dump-passes`) does not hold, the GPU bound all the same: a map the
+    // plan does not write is a 1×1 zero map (the waves' maps under Gerstner waves), and the
+    // far field's Fresnel filter is an upload, the plan's table bit for bit (`ocean compare`
+    // checks that on the device).
+    let filter = plan.fresnel_filter(scene);
+    const NONE: [[f32; 4]; 1] = [[0.0; 4]];
+    let get = |id: ResourceId| {
+        if let Some(((w, h), t)) = gpu.map(id) {
+            return Some((w, h, t));
+        }
+        if let (ResourceId::FresnelFilter, Some(f)) = (id, &filter) {
+            let (w, h) =
+                (ocean_core::far_field::FILTER_RADII, ocean_core::far_field::FILTER_SIGMAS);
+            return Some((w, h, &f.texels[..]));
+        }
+        let written = plan.resource(id).is_some_and(|r| r.written);
+        (!written).then_some((1, 1, &NONE[..]))
+    };
     let runs = |id: ResourceId| id.writer().is_some_and(|p| plan.runs(p));
     let owned = match water::envelope::OwnedTextures::from_resources(
         get,
