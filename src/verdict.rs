@@ -9,12 +9,14 @@ use ocean_core::scene::Scene;
 use ocean_cpu::shaders::objects::ObjectMap;
 use serde_json::{Value, json};
 
+mod main_view;
 mod passes;
 pub mod spray;
 
+use main_view::{sky_verdict, water_verdict};
 use passes::{
-    bloom_chain, bloom_verdicts, foam_verdict, map_verdict, shadow_verdict, sky_verdict,
-    water_verdict, wave_mips_verdict, waves_verdicts,
+    bloom_chain, bloom_verdicts, foam_verdict, map_verdict, shadow_verdict, wave_mips_verdict,
+    waves_verdicts,
 };
 
 /// A float frame as read back: (width, height) and its texels.

@@ -2,7 +2,7 @@
 //! left it on the device, one more step run there on buffers of its own, and the envelope of
 //! that step (ocean-cpu `spray::step_envelope`) from the same pool and the frame's own
 //! displacement map. The same pool is the one the frame's sprites were drawn from, so the
-//! water's verdict adds the sprites' envelope from it (`passes::sprites_over`).
+//! water's verdict adds the sprites' envelope from it (`main_view::sprites_over`).
 
 use ocean_core::plan::{FramePlan, Pass, ResourceId};
 use ocean_core::scene::Scene;
