@@ -12,6 +12,11 @@ use ocean_core::plan::{FramePlan, OutputKind, Pass, ResourceId};
 use ocean_cpu::envelope::{Iv, Jitter, JitterRules};
 use ocean_cpu::shaders::water::envelope as we;
 
+/// The device the main view is drawn on: lavapipe's sub-pixel bits (the water's
+/// [`Oracle::pass`] precision), and its snap in pixels.
+const BITS: u32 = ocean_cpu::envelope::Precision::LAVAPIPE.subpixel_bits;
+const SNAP: f64 = 1.0 / (1u32 << BITS) as f64;
+
 /// A scene's oracle frame and what its water pass reads.
 struct Oracle<'s> {
     frame: ocean_core::graph::FrameInputs<'s>,
@@ -145,14 +150,15 @@ fn object_depths_within(
                 t.each_ref().map(|v| objects::vs_main_r::<Jitter>(v, u).0.map(|x| x.0))
             })
             .collect();
-        let depth = ocean_cpu::envelope::raster::jitter_pass(
+        let depth = ocean_cpu::envelope::raster::jitter_pass_at(
             &clip,
             w,
             h,
             true,
             [0.0; 4],
             rules,
-            |_, _, z| Some([z, 0.0, 0.0, 0.0]),
+            BITS,
+            |_, _, _, z| Some([z, 0.0, 0.0, 0.0]),
         );
         for (i, d) in depth.iter().enumerate().filter(|(_, d)| d[0] > 0.0) {
             let z = f64::from(d[0]);
@@ -284,9 +290,9 @@ fn random_conformant_gpus_stay_inside_the_water_envelope() {
             .filter(|_| plan.runs(Pass::Objects))
             .map(|p| ocean_core::frame::pass_triangles(scene, &frame.poses, p, frame.camera.eye));
         // The nearest depth an object may have. Every random GPU's objects stay within it.
-        let near = objects
-            .as_ref()
-            .map_or(vec![f64::NEG_INFINITY; env.len()], |t| objects::depth_reach(t, &u, w, h));
+        let near = objects.as_ref().map_or(vec![f64::NEG_INFINITY; env.len()], |t| {
+            objects::depth_reach(t, &u, w, h, SNAP)
+        });
         if let Some(t) = &objects {
             objects_tight += object_depths_within(t, &u, (w, h), &near, name);
         }
@@ -299,6 +305,7 @@ fn random_conformant_gpus_stay_inside_the_water_envelope() {
             frame: &u,
             size: [w, h],
             format,
+            subpixel_bits: BITS,
             shadow_dims: [sw, sh],
             occluder: &occ_iv,
             floor_map,
@@ -307,6 +314,7 @@ fn random_conformant_gpus_stay_inside_the_water_envelope() {
             frame: &u,
             size: [w, h],
             format,
+            subpixel_bits: BITS,
             shadow_dims: [sw, sh],
             occluder: &occ,
             floor_map,

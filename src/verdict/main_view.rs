@@ -166,6 +166,7 @@ pub(super) fn water_verdict(
         frame: u,
         size: [w, h],
         format,
+        subpixel_bits: gpu.precision.0.subpixel_bits,
         shadow_dims: dims,
         occluder: &occluder,
         floor_map: &floor_map,
@@ -178,7 +179,9 @@ pub(super) fn water_verdict(
     // where the envelope cannot be made (a vertex the clipper cannot place: +∞ everywhere).
     let objects_reach = match (&tris, &objects) {
         (_, Some(o)) => o.reach.clone(),
-        (Some(t), None) => ocean_cpu::shaders::objects::depth_reach(t, u, w, h),
+        (Some(t), None) => {
+            ocean_cpu::shaders::objects::depth_reach(t, u, w, h, gpu.precision.0.snap_px())
+        }
         (None, None) => vec![f64::NEG_INFINITY; mesh.color.len()],
     };
     let composed =

@@ -500,8 +500,8 @@ pub fn may_show(objects: f64, water: f64) -> bool {
 /// any conformant GPU may give a fragment of the objects' `triangles` in the main view
 /// (`vs_main`): −∞ where none may land. Each vertex's clip position is carried as an
 /// interval ([`vs_main_r`]), clipped and rasterised by the rasteriser's envelope at the
-/// coarsest snap, so coverage and depth are bounds, not estimates. +∞ everywhere where a
-/// vertex cannot be bounded (w possibly ≤ 0 after the clipper).
+/// device's snap (`snap` px), so coverage and depth are bounds, not estimates. +∞ everywhere
+/// where a vertex cannot be bounded (w possibly ≤ 0 after the clipper).
 ///
 /// The water pass draws after the objects with the `Greater` test: where its certain
 /// fragment lies nearer than this bound, the objects cannot show, and the water's verdict
@@ -511,6 +511,7 @@ pub fn depth_reach(
     frame: &FrameUniforms,
     width: u32,
     height: u32,
+    snap: f64,
 ) -> Vec<f64> {
     let n = (width as usize) * (height as usize);
     let mut screen: Vec<[raster::ScreenIv; 3]> = Vec::with_capacity(triangles.len());
@@ -532,7 +533,7 @@ pub fn depth_reach(
         }
     }
     let mut near = vec![f64::NEG_INFINITY; n];
-    let bounded = raster::fragments(&screen, width, height, |i, _, c, _| {
+    let bounded = raster::fragments_at(&screen, width, height, snap, |i, _, c, _| {
         if let raster::Cover::Possible(z) | raster::Cover::Certain(z) = c {
             near[i] = near[i].max(z.hi);
         }

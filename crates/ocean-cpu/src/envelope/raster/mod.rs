@@ -747,6 +747,17 @@ pub fn fragments(
     tris: &[[ScreenIv; 3]],
     width: u32,
     height: u32,
+    visit: impl FnMut(usize, usize, Cover, &dyn Fn() -> Interp),
+) -> bool {
+    fragments_at(tris, width, height, SNAP_PX, visit)
+}
+
+/// [`fragments`] on a device whose snap is `snap` px.
+pub fn fragments_at(
+    tris: &[[ScreenIv; 3]],
+    width: u32,
+    height: u32,
+    snap: f64,
     mut visit: impl FnMut(usize, usize, Cover, &dyn Fn() -> Interp),
 ) -> bool {
     // A vertex that may be anything (an infinite or NaN input, an overflow): the triangle
@@ -755,7 +766,7 @@ pub fn fragments(
         return false;
     }
     for (k, t) in tris.iter().enumerate() {
-        let Some(t) = setup(t, width, height, SNAP_PX) else { continue };
+        let Some(t) = setup(t, width, height, snap) else { continue };
         let [x0, y0, x1, y1] = t.bbox;
         for py in y0..=y1 {
             for px in x0..=x1 {

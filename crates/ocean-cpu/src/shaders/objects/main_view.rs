@@ -25,6 +25,8 @@ pub struct MainInputs<'a, R> {
     pub size: [u32; 2],
     /// The HDR frame's format.
     pub format: FrameFormat,
+    /// The device's sub-pixel bits: the rasteriser's snap (the water pass's, the same device).
+    pub subpixel_bits: u32,
     /// The shadow map's size (binding 3).
     pub shadow_dims: [u32; 2],
     /// The shadow map's texel (x, y): the GPU's own, or for an envelope the interval its map
@@ -87,7 +89,8 @@ pub fn main_envelope(
     let shade = |k: usize, _: usize, interp: &raster::Interp| {
         shade_main_r(drawn.varyings(k, interp), m).map(|c| c.store(m.format))
     };
-    Some(raster::color_pass_mesh(&tris, w, h, background, raster::SNAP_PX, shade))
+    let snap = 1.0 / f64::from(1u32 << m.subpixel_bits);
+    Some(raster::color_pass_mesh(&tris, w, h, background, snap, shade))
 }
 
 /// The objects' pass in the main view as one random conformant GPU draws it (`rules.scale`
@@ -106,6 +109,7 @@ pub fn main_jitter(
         frame: m.frame,
         size: m.size,
         format: m.format,
+        subpixel_bits: m.subpixel_bits,
         shadow_dims: m.shadow_dims,
         occluder: &occ,
         floor_map: m.floor_map,
@@ -118,7 +122,7 @@ pub fn main_jitter(
         true,
         [f32::NAN; 4],
         rules,
-        raster::MIN_SUBPIXEL_BITS,
+        m.subpixel_bits,
         |i, k, wts, z| {
             let color = shade_main_r(jitter_varyings(&verts[k], wts), &mj);
             // The pass shades only a sample that passes the depth test: the last one at a
