@@ -12,10 +12,8 @@ use ocean_core::plan::{FramePlan, OutputKind, Pass, ResourceId};
 use ocean_cpu::envelope::{Iv, Jitter, JitterRules};
 use ocean_cpu::shaders::water::envelope as we;
 
-/// The device the main view is drawn on: lavapipe's sub-pixel bits (the water's
-/// [`Oracle::pass`] precision), and its snap in pixels.
-const BITS: u32 = ocean_cpu::envelope::Precision::LAVAPIPE.subpixel_bits;
-const SNAP: f64 = 1.0 / (1u32 << BITS) as f64;
+/// The device the main view is drawn on: lavapipe (the water's [`Oracle::pass`] precision).
+const DEVICE: ocean_cpu::envelope::Precision = ocean_cpu::envelope::Precision::LAVAPIPE;
 
 /// A scene's oracle frame and what its water pass reads.
 struct Oracle<'s> {
@@ -157,7 +155,7 @@ fn object_depths_within(
             true,
             [0.0; 4],
             rules,
-            BITS,
+            DEVICE.subpixel_bits,
             |_, _, _, z| Some([z, 0.0, 0.0, 0.0]),
         );
         for (i, d) in depth.iter().enumerate().filter(|(_, d)| d[0] > 0.0) {
@@ -291,7 +289,7 @@ fn random_conformant_gpus_stay_inside_the_water_envelope() {
             .map(|p| ocean_core::frame::pass_triangles(scene, &frame.poses, p, frame.camera.eye));
         // The nearest depth an object may have. Every random GPU's objects stay within it.
         let near = objects.as_ref().map_or(vec![f64::NEG_INFINITY; env.len()], |t| {
-            objects::depth_reach(t, &u, w, h, SNAP)
+            objects::depth_reach(t, &u, w, h, DEVICE.snap_px())
         });
         if let Some(t) = &objects {
             objects_tight += object_depths_within(t, &u, (w, h), &near, name);
@@ -305,7 +303,7 @@ fn random_conformant_gpus_stay_inside_the_water_envelope() {
             frame: &u,
             size: [w, h],
             format,
-            subpixel_bits: BITS,
+            precision: DEVICE,
             shadow_dims: [sw, sh],
             occluder: &occ_iv,
             floor_map,
@@ -314,7 +312,7 @@ fn random_conformant_gpus_stay_inside_the_water_envelope() {
             frame: &u,
             size: [w, h],
             format,
-            subpixel_bits: BITS,
+            precision: DEVICE,
             shadow_dims: [sw, sh],
             occluder: &occ,
             floor_map,

@@ -166,7 +166,7 @@ pub(super) fn water_verdict(
         frame: u,
         size: [w, h],
         format,
-        subpixel_bits: gpu.precision.0.subpixel_bits,
+        precision: gpu.precision.0,
         shadow_dims: dims,
         occluder: &occluder,
         floor_map: &floor_map,

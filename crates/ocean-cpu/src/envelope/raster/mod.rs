@@ -105,6 +105,13 @@ pub(crate) fn plane_distances(v: &[f64; 4]) -> [f64; 2] {
     [v[3] - v[2], v[2]]
 }
 
+/// Whether a clip position (intervals) certainly lies inside the near and far planes
+/// (0 ≤ z ≤ w, w > 0) for every value of its box: the clipper leaves such a vertex as it is.
+/// The bounds' differences need no slack: the sign of an f64 subtraction is exact.
+pub fn inside_near_far(v: &[Iv; 4]) -> bool {
+    !v[2].full && !v[3].full && v[3].lo > 0.0 && v[3].lo - v[2].hi > 0.0 && v[2].lo >= 0.0
+}
+
 /// A triangle of clip positions (intervals) as the rasteriser draws it after the near and
 /// far planes: itself where every vertex is inside both, else the fan of the polygon the
 /// clipper leaves, each new vertex on an edge from the midpoints, widened by the endpoints'
@@ -151,16 +158,12 @@ fn clip_near_far_deciding(
 ) -> Option<Vec<[ClipVertex; 3]>> {
     let mid = |v: &[Iv; 4]| v.map(|c| 0.5 * (c.lo + c.hi));
     let half = |v: &[Iv; 4]| v.map(|c| 0.5 * (c.hi - c.lo));
-    let inside_sure = |v: &[Iv; 4]| {
-        let (lo, hi) = (v.map(|c| c.lo), v.map(|c| c.hi));
-        v[3].lo > 0.0 && lo[3] - hi[2] > 0.0 && lo[2] >= 0.0
-    };
     let corner = |k: usize| {
         let mut b = [0.0; 3];
         b[k] = 1.0;
         ClipVertex { clip: tri[k], bary: b, bary_err: 0.0 }
     };
-    if tri.iter().all(inside_sure) {
+    if tri.iter().all(inside_near_far) {
         return Some(vec![[corner(0), corner(1), corner(2)]]);
     }
     let mut poly: Vec<ClipVertex> = (0..3).map(corner).collect();

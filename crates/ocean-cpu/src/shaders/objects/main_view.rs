@@ -14,7 +14,7 @@ use ocean_core::frame_format::FrameFormat;
 use super::super::shared::floor::{ReliefMarch, sun_reaches_r};
 use super::{Drawn, Varyings, jitter_varyings, jitter_vertices, shade_r, vs_main_r};
 use crate::envelope::raster::{self, MeshEnvelope};
-use crate::envelope::{Iv, Jitter, JitterRules, Real};
+use crate::envelope::{Iv, Jitter, JitterRules, Precision, Real};
 use crate::sampler::Texture2D;
 
 /// What the main view's objects read besides their triangles, for a scalar `R`.
@@ -25,8 +25,9 @@ pub struct MainInputs<'a, R> {
     pub size: [u32; 2],
     /// The HDR frame's format.
     pub format: FrameFormat,
-    /// The device's sub-pixel bits: the rasteriser's snap (the water pass's, the same device).
-    pub subpixel_bits: u32,
+    /// The device's precision: its snap is the rasteriser's (the water pass's: the same
+    /// device draws both).
+    pub precision: Precision,
     /// The shadow map's size (binding 3).
     pub shadow_dims: [u32; 2],
     /// The shadow map's texel (x, y): the GPU's own, or for an envelope the interval its map
@@ -89,7 +90,7 @@ pub fn main_envelope(
     let shade = |k: usize, _: usize, interp: &raster::Interp| {
         shade_main_r(drawn.varyings(k, interp), m).map(|c| c.store(m.format))
     };
-    let snap = 1.0 / f64::from(1u32 << m.subpixel_bits);
+    let snap = m.precision.snap_px();
     Some(raster::color_pass_mesh(&tris, w, h, background, snap, shade))
 }
 
@@ -109,7 +110,7 @@ pub fn main_jitter(
         frame: m.frame,
         size: m.size,
         format: m.format,
-        subpixel_bits: m.subpixel_bits,
+        precision: m.precision,
         shadow_dims: m.shadow_dims,
         occluder: &occ,
         floor_map: m.floor_map,
@@ -122,7 +123,7 @@ pub fn main_jitter(
         true,
         [f32::NAN; 4],
         rules,
-        m.subpixel_bits,
+        m.precision.subpixel_bits,
         |i, k, wts, z| {
             let color = shade_main_r(jitter_varyings(&verts[k], wts), &mj);
             // The pass shades only a sample that passes the depth test: the last one at a

@@ -74,12 +74,7 @@ pub fn sprites_envelope(
     let mut quads = Vec::new();
     for p in particles.iter().filter(|p| live(p)) {
         let clip = QUAD.map(|c| corner_clip_r::<Iv>(p, c, frame, draw));
-        // Certainly inside both planes (0 ≤ z ≤ w, w > 0), with room for f64's subtraction.
-        let inside = |c: &[Iv; 4]| {
-            let (z, w) = (c[2], c[3]);
-            !z.full && !w.full && w.lo > 0.0 && z.lo >= 0.0 && w.lo - z.hi > w.hi * 1e-12
-        };
-        if !clip.iter().all(inside) {
+        if !clip.iter().all(raster::inside_near_far) {
             return false;
         }
         let screen = clip.map(|c| raster::to_screen(c, width, height));
