@@ -115,6 +115,23 @@ impl Verdict {
         self.json.push(f.to_json());
         self.judged.push(name);
     }
+
+    /// [`Self::record`] for a map whose coverage may be ambiguous: the share of its texels
+    /// that are (`what` says of what) in the line and in the JSON's `ambiguous_share`.
+    fn record_ambiguous(
+        &mut self,
+        pass: &str,
+        name: &'static str,
+        f: &ocean_verify::envelope::FloatVerdict,
+        share: f64,
+        what: &str,
+    ) {
+        let note = format!(" ({:.2} % of texels' {what} ambiguous)", 100.0 * share);
+        self.record(pass, name, f, &note);
+        if let Some(j) = self.json.last_mut() {
+            j["ambiguous_share"] = json!(share);
+        }
+    }
 }
 
 /// The envelope's verdict on a frame as a GPU made it, each pass from the inputs the GPU
@@ -231,16 +248,13 @@ impl Verdict {
             self.record("foam", ResourceId::FoamField.name(), &f, "");
         }
         if let Some((f, ambiguous)) = shadow_verdict(scene, plan, gpu)? {
-            let note = format!(" ({:.2} % of texels' coverage ambiguous)", 100.0 * ambiguous);
-            self.record("shadow_map", ResourceId::ShadowMap.name(), &f, &note);
+            let name = ResourceId::ShadowMap.name();
+            self.record_ambiguous("shadow_map", name, &f, ambiguous, "coverage");
         }
         for map in [ObjectMap::Reflection, ObjectMap::Refraction] {
             if let Some((id, f, ambiguous)) = map_verdict(scene, plan, gpu, map)? {
-                let note = format!(
-                    " ({:.2} % of texels' coverage or discard ambiguous)",
-                    100.0 * ambiguous
-                );
-                self.record(id.name(), id.name(), &f, &note);
+                let what = "coverage or discard";
+                self.record_ambiguous(id.name(), id.name(), &f, ambiguous, what);
             }
         }
         Ok(())

@@ -96,6 +96,7 @@ fn shadow_envelope(
     scene: &Scene,
     plan: &FramePlan,
     frame: &ocean_core::graph::FrameInputs<'_>,
+    precision: ocean_cpu::envelope::Precision,
 ) -> Option<([u32; 2], Vec<ocean_cpu::envelope::Iv>, Vec<bool>)> {
     let pass = plan.pass(Pass::ShadowMap).filter(|_| plan.runs(Pass::ShadowMap))?;
     let size = plan.resource(ResourceId::ShadowMap)?.size;
@@ -104,7 +105,8 @@ fn shadow_envelope(
             .iter()
             .map(|t| t.map(|v| v.position))
             .collect();
-    let (env, ambiguous) = ocean_cpu::shaders::shadow::envelope(&tris, &frame.uniforms, size);
+    let (env, ambiguous) =
+        ocean_cpu::shaders::shadow::envelope(&tris, &frame.uniforms, size, precision);
     Some((size, env, ambiguous))
 }
 
@@ -117,7 +119,7 @@ pub(super) fn shadow_occluder(
     gpu: &GpuSide<'_>,
 ) -> ([u32; 2], Vec<ocean_cpu::envelope::Iv>) {
     use ocean_cpu::envelope::Iv;
-    match (gpu.map(ResourceId::ShadowMap), shadow_envelope(scene, plan, frame)) {
+    match (gpu.map(ResourceId::ShadowMap), shadow_envelope(scene, plan, frame, gpu.precision.0)) {
         (Some(((sw, sh), t)), _) => ([sw, sh], t.iter().map(|t| Iv::point(t[0])).collect()),
         (None, Some((size, env, _))) => (size, env),
         (None, None) => ([1, 1], vec![Iv::point(1.0)]),
@@ -134,7 +136,7 @@ pub(super) fn shadow_verdict(
     let Some(((w, _), texels)) = gpu.map(ResourceId::ShadowMap) else { return Ok(None) };
     let frame =
         ocean_core::graph::FrameInputs::new(scene, plan, &ocean_core::graph::FrameState::new(0.0))?;
-    let Some((_, env, ambiguous)) = shadow_envelope(scene, plan, &frame) else {
+    let Some((_, env, ambiguous)) = shadow_envelope(scene, plan, &frame, gpu.precision.0) else {
         return Ok(None);
     };
     if env.len() != texels.len() {
@@ -197,6 +199,7 @@ pub(super) fn map_verdict(
         occluder: &occluder,
         displacement: &displacement,
         floor_map: &floor_map,
+        precision: gpu.precision.0,
     };
     let (env, ambiguous) = ocean_cpu::shaders::objects::map_envelope(map, &tris, &inputs);
     if env.len() != texels.len() {

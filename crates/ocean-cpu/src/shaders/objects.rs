@@ -283,6 +283,8 @@ pub struct MapInputs<'a, R> {
     /// The sea floor's relief (`ocean_core::terrain::relief_texels`), marched towards the
     /// sun under the water by each scalar type's [`ReliefMarch`].
     pub floor_map: &'a Texture2D,
+    /// The device's precision: the rasteriser's snap.
+    pub precision: crate::envelope::Precision,
 }
 
 /// A map's fragment shader over any [`Real`] after interpolation: whether it discards, and
@@ -344,10 +346,9 @@ impl Drawn {
             let v = t.each_ref().map(|v| vs(v, frame));
             // Past the near or far plane: the clipper's polygon, each part with its
             // vertices' barycentrics in the original.
-            for part in raster::clip_near_far(v.map(|(clip, _)| clip))? {
-                let s = part.map(|p| raster::to_screen(p.clip, size[0], size[1]));
-                let [Some(a), Some(b), Some(c)] = s else { return None };
-                d.screen.push([a, b, c]);
+            let clip = v.map(|(clip, _)| clip);
+            for part in raster::clip_near_far(clip)? {
+                d.screen.push(raster::piece_to_screen(&part, &clip, size[0], size[1])?);
                 d.owner.push((d.verts.len(), part.map(|p| (p.bary, p.bary_err))));
             }
             d.verts.push(v.map(|(_, var)| var));
@@ -401,7 +402,8 @@ pub fn map_envelope(
         let kept = discard.decided().map(|d| !d);
         Shaded { color: color.map(|c| c.store(format)), kept }
     };
-    raster::color_pass_greater(&drawn.screen, size[0], size[1], clear, shade)
+    let snap = m.precision.snap_px();
+    raster::color_pass_greater(&drawn.screen, size[0], size[1], snap, clear, shade)
 }
 
 /// One of the stage's maps as one random conformant GPU draws it (`rules.scale` times the
@@ -428,11 +430,13 @@ pub fn map_jitter(
         occluder: &occ,
         displacement: m.displacement,
         floor_map: m.floor_map,
+        precision: m.precision,
     };
     let sample = |uv: [Jitter; 2]| {
         crate::envelope::filter::sample_level0_jitter(m.displacement, &WRAP_LINEAR, uv)
     };
-    raster::jitter_pass(&clip, size[0], size[1], true, clear, rules, |k, w, _| {
+    let bits = m.precision.subpixel_bits;
+    raster::jitter_pass_at(&clip, size[0], size[1], true, clear, rules, bits, |_, k, w, _| {
         let var = jitter_varyings(&verts[k], w);
         let (discard, color) = map_fragment(map, var, &mj, &sample);
         (!discard).then(|| color.map(|c| c.store(format).0))
@@ -524,12 +528,10 @@ pub fn depth_reach(
             return vec![f64::INFINITY; n];
         };
         for part in parts {
-            let [Some(a), Some(b), Some(c)] =
-                part.map(|p| raster::to_screen(p.clip, width, height))
-            else {
+            let Some(s) = raster::piece_to_screen(&part, &clip, width, height) else {
                 return vec![f64::INFINITY; n];
             };
-            screen.push([a, b, c]);
+            screen.push(s);
         }
     }
     let mut near = vec![f64::NEG_INFINITY; n];

@@ -5,7 +5,7 @@ use ocean_core::frame::FrameUniforms;
 use super::shared::frame::transform_point;
 use super::wgsl::{Vec4, vec4};
 use crate::envelope::raster::{self, ScreenIv};
-use crate::envelope::{Iv, Jitter, JitterRules, Real, mat4_mul_vec4};
+use crate::envelope::{Iv, Jitter, JitterRules, Precision, Real, mat4_mul_vec4};
 
 /// `vs_main(position)`: the clip position in the sun's orthographic view (`position` and
 /// the result are the rasterizer's arrays).
@@ -27,11 +27,13 @@ pub fn vs_main_r<R: Real>(position: [f32; 3], frame: &FrameUniforms) -> [R; 4] {
 
 /// The envelope of the shadow map a conformant GPU draws of `triangles` (object-space
 /// positions, as the pass submits them) into a `size` map cleared to 1: per texel its
-/// interval, and whether its coverage is ambiguous (envelope `raster`).
+/// interval, and whether its coverage is ambiguous (envelope `raster`), on a device of
+/// `precision` (its snap).
 pub fn envelope(
     triangles: &[[[f32; 3]; 3]],
     frame: &FrameUniforms,
     size: [u32; 2],
+    precision: Precision,
 ) -> (Vec<Iv>, Vec<bool>) {
     let mut screen: Vec<[ScreenIv; 3]> = Vec::with_capacity(triangles.len());
     let n = (size[0] as usize) * (size[1] as usize);
@@ -39,26 +41,28 @@ pub fn envelope(
         // Past the near or far plane (not today: the sun's view is fitted around the casters
         // with a margin), the clipper's parts; one it cannot bound, or a vertex whose w may be
         // ≤ 0: anything, everywhere.
-        let Some(parts) = raster::clip_near_far(t.map(|p| vs_main_r::<Iv>(p, frame))) else {
+        let clip = t.map(|p| vs_main_r::<Iv>(p, frame));
+        let Some(parts) = raster::clip_near_far(clip) else {
             return (vec![Iv::FULL; n], vec![true; n]);
         };
         for part in parts {
-            let v = part.map(|p| raster::to_screen(p.clip, size[0], size[1]));
-            let [Some(a), Some(b), Some(c)] = v else {
+            let Some(s) = raster::piece_to_screen(&part, &clip, size[0], size[1]) else {
                 return (vec![Iv::FULL; n], vec![true; n]);
             };
-            screen.push([a, b, c]);
+            screen.push(s);
         }
     }
-    raster::depth_pass(&screen, size[0], size[1], 1.0)
+    raster::depth_pass(&screen, size[0], size[1], 1.0, precision.snap_px())
 }
 
-/// The shadow map as one random conformant GPU draws it (`rules.scale` times the rules).
+/// The shadow map as one random conformant GPU of `precision` draws it (`rules.scale` times
+/// the rules).
 pub fn jitter(
     triangles: &[[[f32; 3]; 3]],
     frame: &FrameUniforms,
     size: [u32; 2],
     rules: JitterRules,
+    precision: Precision,
 ) -> Vec<f32> {
     // The vertex shader with random roundings too (a row of the matrix may be reassociated).
     let clip: Vec<[[f32; 4]; 3]> = triangles
@@ -69,5 +73,5 @@ pub fn jitter(
             t.map(|p| vs_main_r::<Jitter>(p, frame).map(|c| c.0))
         })
         .collect();
-    raster::jitter_depth_pass(&clip, size[0], size[1], 1.0, rules)
+    raster::jitter_depth_pass(&clip, size[0], size[1], 1.0, rules, precision.subpixel_bits)
 }

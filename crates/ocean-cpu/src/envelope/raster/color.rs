@@ -1,7 +1,7 @@
 //! The envelope of a colour pass of separate triangles (the objects' passes): reversed-Z
 //! `Greater`, depth cleared to 0, no blending, `discard` allowed.
 
-use super::{Cover, Interp, ScreenIv, fragments};
+use super::{Cover, Interp, ScreenIv, fragments_at};
 use crate::envelope::Iv;
 
 /// What a fragment writes in a colour pass: the stored colour, and whether the fragment
@@ -18,18 +18,20 @@ pub struct Shaded {
 /// blending: per texel the hull of every colour that may win the depth test (a fragment that
 /// may cover the texel, may be kept, and may lie nearer than every fragment certain to be
 /// there), with `clear` where no fragment is certain; and whether its coverage is ambiguous.
-/// `shade(triangle, interpolation)` is the fragment shader's envelope at a sample.
+/// `shade(triangle, interpolation)` is the fragment shader's envelope at a sample; `snap` is
+/// the device's snap (px).
 pub fn color_pass_greater(
     tris: &[[ScreenIv; 3]],
     width: u32,
     height: u32,
+    snap: f64,
     clear: [f32; 4],
     shade: impl Fn(usize, &Interp) -> Shaded,
 ) -> (Vec<[Iv; 4]>, Vec<bool>) {
     let n = (width as usize) * (height as usize);
     // The nearest depth a fragment certain to be drawn there guarantees (−∞: none).
     let mut sure = vec![f64::NEG_INFINITY; n];
-    let bounded = fragments(tris, width, height, |i, k, c, bary| {
+    let bounded = fragments_at(tris, width, height, snap, |i, k, c, bary| {
         if let Cover::Certain(z) = c
             && z.lo > sure[i]
             && z.lo > 0.0
@@ -43,7 +45,7 @@ pub fn color_pass_greater(
     }
     let mut env: Vec<Option<[Iv; 4]>> = vec![None; n];
     let mut ambiguous = vec![false; n];
-    fragments(tris, width, height, |i, k, c, bary| {
+    fragments_at(tris, width, height, snap, |i, k, c, bary| {
         let (z, certain) = match c {
             Cover::No => return,
             Cover::Possible(z) => (z, false),

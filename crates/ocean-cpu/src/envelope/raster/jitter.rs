@@ -14,9 +14,11 @@ pub fn jitter_depth_pass(
     height: u32,
     clear: f32,
     rules: JitterRules,
+    subpixel_bits: u32,
 ) -> Vec<f32> {
+    let clear = [clear, 0.0, 0.0, 0.0];
     let target =
-        jitter_pass(tris, width, height, false, [clear, 0.0, 0.0, 0.0], rules, |_, _, z| {
+        jitter_pass_at(tris, width, height, false, clear, rules, subpixel_bits, |_, _, _, z| {
             Some([z, 0.0, 0.0, 0.0])
         });
     target.into_iter().map(|t| t[0]).collect()

@@ -24,11 +24,13 @@
 
 mod blend;
 mod color;
+mod cut;
 mod jitter;
 mod mesh;
 
 pub use blend::additive_quads;
 pub use color::{Shaded, color_pass_greater};
+pub use cut::{OnPlane, piece_to_screen};
 pub use jitter::{jitter_blend_pass, jitter_depth_pass, jitter_pass, jitter_pass_at};
 pub use mesh::{MeshEnvelope, MeshTri, color_pass_mesh};
 
@@ -55,6 +57,9 @@ pub struct ScreenIv {
     pub z: Iv,
     /// 1/w: the weight of the vertex's varyings in perspective-correct interpolation.
     pub inv_w: Iv,
+    /// For a vertex of a clipper's piece, the plane of the triangle it was cut from
+    /// ([`piece_to_screen`]): the piece's depth is bounded from it where the boxes cannot.
+    pub on: Option<OnPlane>,
 }
 
 /// The perspective divide and wgpu's viewport transform (origin (0, H), extent (W, −H),
@@ -65,7 +70,7 @@ pub fn to_screen(clip: [Iv; 4], width: u32, height: u32) -> Option<ScreenIv> {
         return None;
     }
     let [x, y, z] = to_screen_r(clip, width, height);
-    Some(ScreenIv { x, y, z, inv_w: Iv::lit(1.0) / clip[3] })
+    Some(ScreenIv { x, y, z, inv_w: Iv::lit(1.0) / clip[3], on: None })
 }
 
 /// [`to_screen`] over any [`Real`]: (x, y, z) in the framebuffer, unsnapped.
@@ -96,6 +101,25 @@ pub struct ClipVertex {
     pub bary: [f64; 3],
     /// The largest error of `bary`'s components.
     pub bary_err: f64,
+    /// Per clip coordinate, how far the clipper's roundings may put the vertex off the span
+    /// of the original triangle's clip positions (0 for one of them).
+    pub off: [f64; 4],
+    /// Where on its edge the vertex may lie ([`Slide`]); `None` for a vertex cut from an edge
+    /// that was itself cut (its place is not one segment).
+    pub slide: Option<Slide>,
+}
+
+/// The clip positions (midpoints) at the two ends of the range of the clipper's crossing
+/// t ± dt along a cut edge, and the half-width of each coordinate about either end (the
+/// edge's endpoints' boxes and the clipper's roundings): every position the vertex may take
+/// lies in the convex hull of the two boxes (for a vertex of the original triangle, both
+/// ends are its box's midpoint).
+#[derive(Clone, Copy, Debug)]
+pub struct Slide {
+    /// The midpoints at t − dt and t + dt.
+    pub ends: [[f64; 4]; 2],
+    /// The half-width of each coordinate about either end.
+    pub half: [f64; 4],
 }
 
 /// The distances to the planes a triangle is clipped against for the envelope: near
@@ -161,7 +185,8 @@ fn clip_near_far_deciding(
     let corner = |k: usize| {
         let mut b = [0.0; 3];
         b[k] = 1.0;
-        ClipVertex { clip: tri[k], bary: b, bary_err: 0.0 }
+        let slide = Some(Slide { ends: [mid(&tri[k]); 2], half: half(&tri[k]) });
+        ClipVertex { clip: tri[k], bary: b, bary_err: 0.0, off: [0.0; 4], slide }
     };
     if tri.iter().all(inside_near_far) {
         return Some(vec![[corner(0), corner(1), corner(2)]]);
@@ -194,9 +219,20 @@ fn clip_near_far_deciding(
                 });
                 let bary: [f64; 3] =
                     std::array::from_fn(|k| a.bary[k] + t * (b.bary[k] - a.bary[k]));
-                // The clipper's own t may differ by dt: so may the weights.
+                // The clipper's own t may differ by dt: so may the weights. Its slide along
+                // the edge keeps the vertex on the original's plane; its roundings do not.
                 let bary_err = a.bary_err.max(b.bary_err) + dt;
-                out.push(ClipVertex { clip, bary, bary_err });
+                let off = std::array::from_fn(|c| {
+                    let m = ma[c] + t * (mb[c] - ma[c]);
+                    a.off[c].max(b.off[c]) + cut::clip_off(m, clip[c].hi - m, ma[c], mb[c])
+                });
+                let original = a.bary_err == 0.0 && b.bary_err == 0.0;
+                let slide = original.then(|| Slide {
+                    ends: [t - dt, t + dt]
+                        .map(|t| std::array::from_fn(|c| ma[c] + t * (mb[c] - ma[c]))),
+                    half: std::array::from_fn(|c| ha[c].max(hb[c]) + off[c]),
+                });
+                out.push(ClipVertex { clip, bary, bary_err, off, slide });
             }
         }
         poly = out;
@@ -286,6 +322,8 @@ struct Setup {
     /// Per vertex, the largest gradient terms of its barycentric's plane anchored anywhere in
     /// the target (∞: no plane bounds it): what a varying's plane equation scales with.
     anchor: [f64; 3],
+    /// For a clipper's piece, its depth from the plane of the triangle it was cut from.
+    cut: Option<cut::CutDepth>,
 }
 
 /// z(p) = z0 + g·(p − v0) through the midpoints, and the bound |Δz| ≤ k1·|p − v0| + k0 on
@@ -379,6 +417,8 @@ fn setup(v: &[ScreenIv; 3], width: u32, height: u32, snap: f64) -> Option<Setup>
     };
     // The z's share: their errors weighted by barycentrics that may dip to −e.
     let extrapolation = extrapolation_with(v, snap);
+    let cut = cut::CutDepth::new(v, [width, height], snap);
+    let plane_magnitude = cut.map_or(plane_magnitude, |c| plane_magnitude.min(c.magnitude));
     let z_share = if wz == 0.0 { 0.0 } else { wz * (1.0 + 4.0 * extrapolation) };
     let plane = plane_of(mz, z_share);
     let bary = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]].map(|b| plane_of(b, 0.0));
@@ -404,6 +444,7 @@ fn setup(v: &[ScreenIv; 3], width: u32, height: u32, snap: f64) -> Option<Setup>
         inv_w: v.map(|v| v.inv_w),
         extrapolation,
         anchor,
+        cut,
     })
 }
 
@@ -472,6 +513,18 @@ pub fn extrapolation(v: &[ScreenIv; 3]) -> f64 {
 
 /// [`extrapolation`] for a snap of `snap` px.
 pub fn extrapolation_with(v: &[ScreenIv; 3], snap: f64) -> f64 {
+    let (altitude, h) = altitude(v);
+    let s2 = std::f64::consts::SQRT_2;
+    if altitude.is_finite() && altitude > 8.0 * s2 * h {
+        s2 * snap / (altitude - 5.0 * s2 * h) * (1.0 + 1e-9)
+    } else {
+        f64::INFINITY
+    }
+}
+
+/// The smallest altitude (px) of the triangle through the midpoints of the vertices' boxes,
+/// and the boxes' largest half-width.
+fn altitude(v: &[ScreenIv; 3]) -> (f64, f64) {
     let mid = |i: Iv| 0.5 * (i.lo + i.hi);
     let h = v.iter().flat_map(|v| [v.x, v.y]).map(|i| 0.5 * (i.hi - i.lo)).fold(0.0, f64::max);
     let p = v.map(|v| [mid(v.x), mid(v.y)]);
@@ -481,13 +534,7 @@ pub fn extrapolation_with(v: &[ScreenIv; 3], snap: f64) -> f64 {
     let longest = (0..3)
         .map(|i| (p[(i + 1) % 3][0] - p[i][0]).hypot(p[(i + 1) % 3][1] - p[i][1]))
         .fold(0.0, f64::max);
-    let altitude = area2 / longest;
-    let s2 = std::f64::consts::SQRT_2;
-    if altitude.is_finite() && altitude > 8.0 * s2 * h {
-        s2 * snap / (altitude - 5.0 * s2 * h) * (1.0 + 1e-9)
-    } else {
-        f64::INFINITY
-    }
+    (area2 / longest, h)
 }
 
 /// [lo, hi] of three values, widened for barycentrics down to −`e` (Σλ = 1): the convex
@@ -736,6 +783,11 @@ fn depth(t: &Setup, px: f64, py: f64) -> Iv {
         lo = lo.max(l);
         hi = hi.min(h);
     }
+    if let Some(c) = t.cut {
+        let (l, h) = c.at(px, py);
+        lo = lo.max(l);
+        hi = hi.min(h);
+    }
     // The plane's f32 evaluation: ULP of its largest term (a near-degenerate plane's terms
     // are large, and so is its allowance).
     let slack = DEPTH_ULPS * super::f32_ulp(t.plane_magnitude.min(1e30));
@@ -785,21 +837,22 @@ pub fn fragments_at(
     true
 }
 
-/// The envelope of a depth-only pass with the `Less` test (no culling): per pixel, the
-/// interval its value lies in, and whether its coverage is ambiguous (some triangle may or
-/// may not cover it).
+/// The envelope of a depth-only pass with the `Less` test (no culling) on a device whose snap
+/// is `snap` px: per pixel, the interval its value lies in, and whether its coverage is
+/// ambiguous (some triangle may or may not cover it).
 pub fn depth_pass(
     tris: &[[ScreenIv; 3]],
     width: u32,
     height: u32,
     clear: f32,
+    snap: f64,
 ) -> (Vec<Iv>, Vec<bool>) {
     let n = (width as usize) * (height as usize);
     let clear = f64::from(clear);
     let mut lo = vec![clear; n];
     let mut hi = vec![clear; n];
     let mut ambiguous = vec![false; n];
-    let bounded = fragments(tris, width, height, |i, _, c, _| match c {
+    let bounded = fragments_at(tris, width, height, snap, |i, _, c, _| match c {
         Cover::No => {}
         Cover::Possible(z) => {
             lo[i] = lo[i].min(z.lo);

@@ -4,7 +4,7 @@ use super::*;
 
 fn v(x: f64, y: f64, z: f64) -> ScreenIv {
     let p = |a: f64| Iv::point(a as f32);
-    ScreenIv { x: p(x), y: p(y), z: p(z), inv_w: p(1.0) }
+    ScreenIv { x: p(x), y: p(y), z: p(z), inv_w: p(1.0), on: None }
 }
 
 /// The barycentrics at a sample of a thin triangle (the projected grid's, 16 px² with
@@ -22,6 +22,7 @@ fn the_barycentrics_hold_every_triangle_in_the_boxes_and_are_tight() {
             y: Iv::new(c[k][1] - half, c[k][1] + half),
             z: Iv::point(0.002),
             inv_w: Iv::point(0.03),
+            on: None,
         });
         setup(&tri, 256, 144, snap).unwrap()
     };
@@ -89,6 +90,7 @@ fn moving_vertices_bound_the_varying_tighter_than_the_barycentrics_box() {
             y: Iv::new(c[k][1] - half, c[k][1] + half),
             z: Iv::point(0.002),
             inv_w: Iv::new(q[k] - q_err, q[k] + q_err),
+            on: None,
         });
         setup(&tri, 256, 144, snap).unwrap()
     };
@@ -182,7 +184,7 @@ fn a_triangle_beyond_one_side_plane_is_culled() {
 fn the_nearer_triangle_wins() {
     let far = [v(0.0, 0.0, 0.8), v(16.0, 0.0, 0.8), v(0.0, 16.0, 0.8)];
     let near = [v(0.0, 0.0, 0.3), v(16.0, 0.0, 0.3), v(0.0, 16.0, 0.3)];
-    let (env, amb) = depth_pass(&[far, near], 16, 16, 1.0);
+    let (env, amb) = depth_pass(&[far, near], 16, 16, 1.0, SNAP_PX);
     let at = |x: usize, y: usize| env[y * 16 + x];
     assert!(at(3, 3).contains(0.3) && !at(3, 3).contains(0.8));
     assert!(at(15, 15).contains(1.0) && !at(15, 15).contains(0.3));
@@ -206,6 +208,7 @@ fn plane_equations_anchored_far_away_stay_inside_the_varying_bound() {
         y: Iv::point(p[k][1]),
         z: Iv::point(0.001),
         inv_w: Iv::point(q[k]),
+        on: None,
     });
     let t = setup(&tri, w, h, 1.0 / 256.0).unwrap();
     // The plane through f32 values at the vertices, anchored at (0, 0), in f32.
@@ -237,4 +240,98 @@ fn plane_equations_anchored_far_away_stay_inside_the_varying_bound() {
         }
     }
     assert!(samples > 4 && past_old > 0, "{samples} samples, {past_old} past the old bound");
+}
+
+/// A sea-floor triangle with a vertex far behind the camera (chiu_shallow's: w from 50 to
+/// −4·10⁴), cut by the near plane: the clipper's new vertices slide along the cut edge by
+/// hundreds of pixels within the bounds, and no plane through their boxes can be bounded,
+/// so from the boxes alone the pieces' depth is unbounded. From the original triangle's
+/// plane ([`piece_to_screen`]) it is known within 10⁻⁴ at every sample (z there is about
+/// 0.02; 6·10⁻⁵ measured), and holds the depth
+/// of a GPU whose new vertices lie anywhere on the edge (and off it by the clipper's
+/// roundings). Negative control: a GPU whose far vertex lies off the plane by 2 % of its w
+/// leaves the bound.
+#[test]
+fn a_clipped_piece_s_depth_comes_from_its_triangle_s_plane() {
+    let (w, h, snap) = (256u32, 144u32, 1.0 / 256.0);
+    // Reversed-Z with an infinite far plane: clip z is the near distance, w the view depth.
+    let exact =
+        [[-30.0, -20.0, 1.0, 50.0], [-5.0e4, -3.0e4, 1.0, -4.0e4], [40.0, -25.0, 1.0, 80.0]];
+    let rel = 3e-7;
+    let tri: [[Iv; 4]; 3] =
+        exact.map(|v| v.map(|c: f64| Iv::new(c - c.abs() * rel, c + c.abs() * rel)));
+    let parts = clip_near_far(tri).expect("decided");
+    assert!(!parts.is_empty());
+    // The GPU's piece: its vertices on the span of `exact` at the clipper's barycentrics
+    // (moved along the edge by t), with the far vertex moved off the plane by `lift`.
+    let gpu_depth = |part: &[ClipVertex; 3], slide: f64, lift: f64, px: f64, py: f64| {
+        let mut b_exact = exact;
+        b_exact[1][3] *= 1.0 + lift;
+        let pos: [[f64; 3]; 3] = part.map(|p| {
+            let mut b = p.bary;
+            if p.bary_err > 0.0 {
+                // Slide along the cut edge: move weight between the two vertices it mixes.
+                let (i, j) =
+                    ((0..3).find(|&k| b[k] > 0.0).unwrap(), (0..3).rfind(|&k| b[k] > 0.0).unwrap());
+                b[i] += slide * p.bary_err;
+                b[j] -= slide * p.bary_err;
+            }
+            let c: [f64; 4] = std::array::from_fn(|k| (0..3).map(|j| b[j] * b_exact[j][k]).sum());
+            [
+                (c[0] / c[3] + 1.0) * f64::from(w) / 2.0,
+                (1.0 - c[1] / c[3]) * f64::from(h) / 2.0,
+                c[2] / c[3],
+            ]
+        });
+        let area = (pos[1][0] - pos[0][0]) * (pos[2][1] - pos[0][1])
+            - (pos[2][0] - pos[0][0]) * (pos[1][1] - pos[0][1]);
+        let l1 = ((px - pos[0][0]) * (pos[2][1] - pos[0][1])
+            - (pos[2][0] - pos[0][0]) * (py - pos[0][1]))
+            / area;
+        let l2 = ((pos[1][0] - pos[0][0]) * (py - pos[0][1])
+            - (px - pos[0][0]) * (pos[1][1] - pos[0][1]))
+            / area;
+        let l0 = 1.0 - l1 - l2;
+        (l0.min(l1).min(l2) >= 0.0).then_some(l0 * pos[0][2] + l1 * pos[1][2] + l2 * pos[2][2])
+    };
+    let (mut judged, mut widest, mut unbounded_before, mut left) = (0, 0.0f64, 0, 0);
+    for part in &parts {
+        let s = piece_to_screen(part, &tri, w, h).expect("in front");
+        assert!(s.iter().all(|v| v.on.is_some()));
+        let (with, without) =
+            (setup(&s, w, h, snap), setup(&s.map(|v| ScreenIv { on: None, ..v }), w, h, snap));
+        let (Some(with), Some(without)) = (with, without) else { continue };
+        for py in 0..h {
+            for px in 0..w {
+                let (sx, sy) = (f64::from(px) + 0.5, f64::from(py) + 0.5);
+                if cover(&with, sx, sy) == Cover::No {
+                    continue;
+                }
+                let z = depth(&with, sx, sy);
+                let before = depth(&without, sx, sy);
+                let width = before.hi - before.lo;
+                unbounded_before += usize::from(width.is_nan() || width >= 1e-3);
+                for slide in [-1.0, 0.0, 1.0] {
+                    if let Some(d) = gpu_depth(part, slide, 0.0, sx, sy) {
+                        assert!(
+                            z.lo <= d && d <= z.hi,
+                            "({px}, {py}) slide {slide}: {d} outside {z:?}"
+                        );
+                        judged += 1;
+                        widest = widest.max(z.hi - z.lo);
+                    }
+                    if let Some(d) = gpu_depth(part, slide, 0.02, sx, sy) {
+                        left += usize::from(!(z.lo <= d && d <= z.hi));
+                    }
+                }
+            }
+        }
+    }
+    assert!(judged > 1000, "{judged} samples");
+    assert!(widest < 1e-4, "widest bound {widest}");
+    eprintln!(
+        "{judged} samples, widest {widest:.2e}, {unbounded_before} unbounded from the boxes, {left} left by the lifted GPU"
+    );
+    assert!(unbounded_before > 1000, "the boxes alone bounded all but {unbounded_before}");
+    assert!(left > 100, "a GPU off the plane left the bound at {left} samples");
 }

@@ -270,11 +270,10 @@ pub fn envelope(p: &WaterPass<'_>, background: &[[Iv; 4]]) -> raster::MeshEnvelo
                 };
                 let whole = drawn && parts.len() == 1 && parts[0].iter().all(|v| v.bary_err == 0.0);
                 for part in parts {
-                    let s = part.map(|v| raster::to_screen(v.clip, w, h));
-                    let [Some(a), Some(b), Some(c)] = s else {
+                    let Some(s) = raster::piece_to_screen(&part, &clip, w, h) else {
                         return raster::MeshEnvelope::anything((w as usize) * (h as usize));
                     };
-                    screen.push(MeshTri { screen: [a, b, c], ids: whole.then_some(*ids), drawn });
+                    screen.push(MeshTri { screen: s, ids: whole.then_some(*ids), drawn });
                     owner.push((t, part.map(|v| (v.bary, v.bary_err))));
                 }
             }
