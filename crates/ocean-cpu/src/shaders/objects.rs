@@ -356,6 +356,32 @@ impl Drawn {
         Some(d)
     }
 
+    /// Per piece, its triangle's vertex ids where it is drawn whole (two vertices at the same
+    /// position, bit for bit, have one id: the GPU transforms them alike, so an edge two
+    /// triangles share leaves no gap), `None` for a piece the clipper cut (its edges are the
+    /// clipper's own).
+    fn whole_ids(&self, triangles: &[[ObjectVertex; 3]]) -> Vec<Option<[u32; 3]>> {
+        let mut ids = std::collections::HashMap::new();
+        let mut id = |p: [f32; 3]| {
+            let next = ids.len() as u32;
+            *ids.entry(p.map(f32::to_bits)).or_insert(next)
+        };
+        let vertex_ids: Vec<[u32; 3]> =
+            triangles.iter().map(|t| t.each_ref().map(|v| id(v.position))).collect();
+        let mut pieces = vec![0u32; triangles.len()];
+        for (t, _) in &self.owner {
+            pieces[*t] += 1;
+        }
+        self.owner
+            .iter()
+            .map(|(t, bary)| {
+                let whole = pieces[*t] == 1
+                    && bary.iter().enumerate().all(|(i, (b, err))| *err == 0.0 && b[i] == 1.0);
+                whole.then_some(vertex_ids[*t])
+            })
+            .collect()
+    }
+
     /// Piece `k`'s varyings at a sample, as the rasteriser's envelope interpolates them.
     fn varyings(&self, k: usize, interp: &raster::Interp) -> Varyings<Iv> {
         let (t, bary) = self.owner[k];
@@ -402,8 +428,8 @@ pub fn map_envelope(
         let kept = discard.decided().map(|d| !d);
         Shaded { color: color.map(|c| c.store(format)), kept }
     };
-    let snap = m.precision.snap_px();
-    raster::color_pass_greater(&drawn.screen, size[0], size[1], snap, clear, shade)
+    let (ids, snap) = (drawn.whole_ids(triangles), m.precision.snap_px());
+    raster::color_pass_greater(&drawn.screen, &ids, size[0], size[1], snap, clear, shade)
 }
 
 /// One of the stage's maps as one random conformant GPU draws it (`rules.scale` times the

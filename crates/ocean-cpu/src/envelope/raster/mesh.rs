@@ -72,6 +72,45 @@ pub(super) fn cover_edges(t: &Setup, orientation: f64, px: f64, py: f64) -> (Cov
     (c, (undecided.len() == 1).then(|| undecided[0]))
 }
 
+/// Each triangle's orientation where its area's sign is certain (1 or −1), else 0.
+pub(super) fn orientations(setups: &[Option<Setup>]) -> Vec<f64> {
+    setups
+        .iter()
+        .map(|s| match s {
+            Some(s) if s.area.0 > 0.0 => 1.0,
+            Some(s) if s.area.1 < 0.0 => -1.0,
+            _ => 0.0,
+        })
+        .collect()
+}
+
+/// What [`each_sample`] visits: (pixel, triangle, sample x, sample y, cover, the one
+/// undecided edge).
+pub(super) type Visit<'a> = dyn FnMut(usize, usize, f64, f64, Cover, Option<usize>) + 'a;
+
+/// Every sample each set-up triangle may cover, triangle by triangle in submission order,
+/// with [`cover_edges`]' cover and undecided edge.
+pub(super) fn each_sample(
+    setups: &[Option<Setup>],
+    orientation: &[f64],
+    width: u32,
+    visit: &mut Visit<'_>,
+) {
+    for (k, s) in setups.iter().enumerate() {
+        let Some(s) = s else { continue };
+        let [x0, y0, x1, y1] = s.bbox;
+        for py in y0..=y1 {
+            for px in x0..=x1 {
+                let (sx, sy) = (f64::from(px) + 0.5, f64::from(py) + 0.5);
+                let (c, e) = cover_edges(s, orientation[k], sx, sy);
+                if c != Cover::No {
+                    visit(py as usize * width as usize + px as usize, k, sx, sy, c, e);
+                }
+            }
+        }
+    }
+}
+
 /// The envelope of a colour pass (reversed-Z `Greater`, depth cleared to 0, no blending, no
 /// discard) of one mesh over a `background` (what the target holds where no fragment
 /// lands): per texel the hull of every colour that may win, with the background where the
@@ -92,34 +131,13 @@ pub fn color_pass_mesh(
     }
     let setups: Vec<Option<Setup>> =
         tris.iter().map(|t| setup(&t.screen, width, height, snap)).collect();
-    let orientation: Vec<f64> = setups
-        .iter()
-        .map(|s| match s {
-            Some(s) if s.area.0 > 0.0 => 1.0,
-            Some(s) if s.area.1 < 0.0 => -1.0,
-            _ => 0.0,
-        })
-        .collect();
+    let orientation = orientations(&setups);
     let mut sure = vec![f64::NEG_INFINITY; n];
     // Samples by an undecided shared edge: (pixel, lower id, higher id) → (triangle, the
     // edge's direction in it times its orientation, its least depth).
     let mut pending: std::collections::HashMap<(usize, u32, u32), (usize, f64, f64)> =
         std::collections::HashMap::new();
-    let each = |visit: &mut dyn FnMut(usize, usize, f64, f64, Cover, Option<usize>)| {
-        for (k, s) in setups.iter().enumerate() {
-            let Some(s) = s else { continue };
-            let [x0, y0, x1, y1] = s.bbox;
-            for py in y0..=y1 {
-                for px in x0..=x1 {
-                    let (sx, sy) = (f64::from(px) + 0.5, f64::from(py) + 0.5);
-                    let (c, e) = cover_edges(s, orientation[k], sx, sy);
-                    if c != Cover::No {
-                        visit(py as usize * width as usize + px as usize, k, sx, sy, c, e);
-                    }
-                }
-            }
-        }
-    };
+    let each = |visit: &mut Visit<'_>| each_sample(&setups, &orientation, width, visit);
     each(&mut |i, k, _, _, c, e| match (c, e, tris[k].ids) {
         (Cover::Certain(z), _, _) if z.lo > 0.0 && tris[k].drawn => sure[i] = sure[i].max(z.lo),
         (Cover::Possible(z), Some(e), Some(ids)) => {

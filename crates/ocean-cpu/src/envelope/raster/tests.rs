@@ -335,3 +335,44 @@ fn a_clipped_piece_s_depth_comes_from_its_triangle_s_plane() {
     assert!(unbounded_before > 1000, "the boxes alone bounded all but {unbounded_before}");
     assert!(left > 100, "a GPU off the plane left the bound at {left} samples");
 }
+
+/// Two triangles of a square that share its diagonal (the same vertices, so the same ids):
+/// the samples on the diagonal, which the bounds give to neither, are certainly drawn by one
+/// of them (the clear colour cannot show there) and not ambiguous. Negative controls: without
+/// ids, or with a vertex of the diagonal a different one in each triangle, the diagonal is
+/// ambiguous and the clear colour in its envelope; a fragment whose discard is undecided keeps
+/// it ambiguous.
+#[test]
+fn a_shared_edge_of_a_colour_pass_leaves_no_gap() {
+    let (a, b, c, d) = (v(0.0, 0.0, 0.5), v(16.0, 0.0, 0.5), v(16.0, 16.0, 0.5), v(0.0, 16.0, 0.5));
+    let tris = [[a, b, c], [a, c, d]];
+    let pass = |ids: &[Option<[u32; 3]>], kept: Option<bool>| {
+        color_pass_greater(&tris, ids, 16, 16, SNAP_PX, [0.0; 4], |k, _| Shaded {
+            color: [
+                Iv::point(if k == 0 { 1.0 } else { 0.5 }),
+                Iv::point(0.0),
+                Iv::point(0.0),
+                Iv::point(1.0),
+            ],
+            kept: if k == 1 { kept } else { Some(true) },
+        })
+    };
+    let diagonal = |env: &[[Iv; 4]], amb: &[bool]| -> (usize, usize) {
+        let (mut open, mut amb_n) = (0, 0);
+        for i in 0..16 {
+            let p = i * 16 + i;
+            open += usize::from(env[p][3].contains(0.0));
+            amb_n += usize::from(amb[p]);
+        }
+        (open, amb_n)
+    };
+    let (env, amb) = pass(&[Some([0, 1, 2]), Some([0, 2, 3])], Some(true));
+    assert_eq!(diagonal(&env, &amb), (0, 0), "the shared diagonal");
+    assert!(env[16 + 1][0].contains(1.0) && env[16 + 1][0].contains(0.5));
+    let (env, amb) = pass(&[], Some(true));
+    assert_eq!(diagonal(&env, &amb), (16, 16), "no ids");
+    let (env, amb) = pass(&[Some([0, 1, 2]), Some([4, 2, 3])], Some(true));
+    assert_eq!(diagonal(&env, &amb), (16, 16), "not the same vertex");
+    let (env, amb) = pass(&[Some([0, 1, 2]), Some([0, 2, 3])], None);
+    assert_eq!(diagonal(&env, &amb).1, 16, "the discard undecided");
+}

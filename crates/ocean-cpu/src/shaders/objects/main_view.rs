@@ -64,28 +64,11 @@ pub fn main_envelope(
 ) -> Option<MeshEnvelope> {
     let [w, h] = m.size;
     let drawn = Drawn::new(triangles, m.frame, m.size, vs_main_r::<Iv>)?;
-    let mut ids = std::collections::HashMap::new();
-    let mut id = |p: [f32; 3]| {
-        let next = ids.len() as u32;
-        *ids.entry(p.map(f32::to_bits)).or_insert(next)
-    };
-    let vertex_ids: Vec<[u32; 3]> =
-        triangles.iter().map(|t| t.each_ref().map(|v| id(v.position))).collect();
-    let mut pieces = vec![0u32; triangles.len()];
-    for (t, _) in &drawn.owner {
-        pieces[*t] += 1;
-    }
     let tris: Vec<raster::MeshTri> = drawn
         .screen
         .iter()
-        .zip(&drawn.owner)
-        .map(|(s, (t, bary))| {
-            // A piece the clipper cut has edges of its own, not the mesh's: only a triangle
-            // drawn whole, its vertices in their order, keeps its vertices' ids.
-            let whole = pieces[*t] == 1
-                && bary.iter().enumerate().all(|(i, (b, err))| *err == 0.0 && b[i] == 1.0);
-            raster::MeshTri { screen: *s, ids: whole.then_some(vertex_ids[*t]), drawn: true }
-        })
+        .zip(drawn.whole_ids(triangles))
+        .map(|(s, ids)| raster::MeshTri { screen: *s, ids, drawn: true })
         .collect();
     let shade = |k: usize, _: usize, interp: &raster::Interp| {
         shade_main_r(drawn.varyings(k, interp), m).map(|c| c.store(m.format))
