@@ -329,7 +329,12 @@ impl FarFieldBlock {
     /// `sin_elevation`, under a Phong exponent `exponent`
     /// ([`crate::far_field::sun_lobe`], in f64, so both back ends read the same constants).
     pub fn with_sun(self, sin_elevation: f64, exponent: f64) -> Self {
-        let lobe = crate::far_field::sun_lobe(sin_elevation, exponent);
+        // Its 200-step bisection was a quarter of a steady `hu` frame's `prepare`, asked again every
+        // frame for the same sun.
+        static KEPT: crate::kept::Kept<[u64; 2], crate::far_field::SunLobe> =
+            crate::kept::Kept::new();
+        let key = [sin_elevation.to_bits(), exponent.to_bits()];
+        let lobe = KEPT.get(key, || crate::far_field::sun_lobe(sin_elevation, exponent));
         Self {
             sun_centre: lobe.centre as f32,
             sun_above: lobe.above as f32,

@@ -80,7 +80,7 @@ pub struct FrameInputs<'a> {
     pub environment: SkyUniforms,
     /// Sky `atmosphere`'s sky-view table of this frame (zeros under the other sky techniques,
     /// which do not read it).
-    pub sky_lut: Box<crate::atmosphere::SkyLut>,
+    pub sky_lut: std::sync::Arc<crate::atmosphere::SkyLut>,
     /// The `sky` stage's camera block.
     pub camera_uniforms: CameraUniforms,
     /// The `tonemap` stage's block, when the plan tonemaps.
@@ -176,7 +176,7 @@ impl<'a> FrameInputs<'a> {
         let sky_lut = if plan.techniques.sky().sky_view_table() {
             atmosphere_environment(scene, &camera, &mut uniforms, &mut environment)
         } else {
-            Box::new(bytemuck::Zeroable::zeroed())
+            crate::atmosphere::SkyLut::zero()
         };
         let camera_uniforms = CameraUniforms::new(
             camera.view_proj().to_cols_array_2d(),
@@ -239,7 +239,7 @@ fn atmosphere_environment(
     camera: &Camera,
     uniforms: &mut FrameUniforms,
     environment: &mut SkyUniforms,
-) -> Box<crate::atmosphere::SkyLut> {
+) -> std::sync::Arc<crate::atmosphere::SkyLut> {
     use crate::atmosphere::{SkyLut, sun_at_eye, top_irradiance};
     let (dir, sea) = match &scene.sun {
         Some(sun) => {

@@ -23,6 +23,8 @@
 //! coarsest texels are (a half-texel inset left everything above 70° to the last row's value,
 //! up to twice the zenith's radiance); between them the lookup is bilinear.
 
+use std::sync::{Arc, LazyLock};
+
 use bytemuck::{Pod, Zeroable};
 
 /// Texels along u (azimuth from the sun).
@@ -82,11 +84,18 @@ pub fn lut_direction(u: f64, v: f64, sun: [f64; 3]) -> [f64; 3] {
 }
 
 impl SkyLut {
-    /// [`Self::new`], made once per (altitude, sun, irradiance) and copied from then on: a
+    /// The all-zero table, shared: what a frame whose sky has no table binds in its place.
+    pub fn zero() -> Arc<Self> {
+        static ZERO: LazyLock<Arc<SkyLut>> = LazyLock::new(|| Arc::new(SkyLut::zeroed()));
+        Arc::clone(&ZERO)
+    }
+
+    /// [`Self::new`], made once per (altitude, sun, irradiance) and shared from then on: a
     /// steady frame with the same eye height and sun asks the same table (2 × 32² scattering
-    /// integrals, the bulk of a `welch` frame's CPU encode when it was made every frame).
-    pub fn kept(altitude_m: f64, sun: [f64; 3], sun_irradiance: [f64; 3]) -> Box<Self> {
-        static KEPT: crate::kept::Kept<[u64; 7], Box<SkyLut>> = crate::kept::Kept::new();
+    /// integrals, the bulk of a `welch` frame's CPU encode when it was made every frame; then
+    /// its 32 KiB copy, a tenth of that encode, when the kept table was copied out).
+    pub fn kept(altitude_m: f64, sun: [f64; 3], sun_irradiance: [f64; 3]) -> Arc<Self> {
+        static KEPT: crate::kept::Kept<[u64; 7], Arc<SkyLut>> = crate::kept::Kept::new();
         let key = [
             altitude_m.to_bits(),
             sun[0].to_bits(),
@@ -96,7 +105,7 @@ impl SkyLut {
             sun_irradiance[1].to_bits(),
             sun_irradiance[2].to_bits(),
         ];
-        KEPT.get(key, || Self::new(altitude_m, sun, sun_irradiance))
+        KEPT.get(key, || Self::new(altitude_m, sun, sun_irradiance).into())
     }
 
     /// The table of the sky seen from `altitude_m` above the sea with the sun along unit

@@ -205,6 +205,22 @@ impl ProjectedGridBlock {
     /// `wave_bound_m`, [`Self::BOUND_OVER_HS`] times H_s, and that times the choppiness),
     /// `cell_px` pixels between grid lines (at most 4096 quads a side).
     pub fn new(camera: &crate::camera::Camera, wave_bound: [f64; 2], cell_px: f64) -> Self {
+        // The corners' search (5 × 513 candidate points in a 60 KiB list) was two thirds of a
+        // steady `chiu` frame's `prepare`, asked again every frame for the same view.
+        static KEPT: crate::kept::Kept<Vec<u64>, ProjectedGridBlock> = crate::kept::Kept::new();
+        let c = camera;
+        let mut key: Vec<u64> = [c.eye, c.forward, c.right, c.up]
+            .iter()
+            .flat_map(|v| v.to_array())
+            .chain([c.fov_y, wave_bound[0], wave_bound[1], cell_px])
+            .map(f64::to_bits)
+            .collect();
+        key.extend([u64::from(c.width), u64::from(c.height)]);
+        KEPT.get(key, || Self::make(camera, wave_bound, cell_px))
+    }
+
+    /// [`Self::new`], made anew.
+    fn make(camera: &crate::camera::Camera, wave_bound: [f64; 2], cell_px: f64) -> Self {
         let Some(grid) = ProjectedGrid::new(camera, wave_bound[0], wave_bound[1]) else {
             return Self::zeroed();
         };
