@@ -25,7 +25,7 @@
 //! edge) + Σ rᵢrⱼ. A new vertex far from the screen (the large δ) then weighs little at a
 //! sample near the kept ones.
 
-use super::{CLIP_SLACK, F64_SLACK, ScreenIv, Span};
+use super::{CLIP_SLACK, F64_SLACK, ScreenIv, Span, cross, dist};
 use crate::envelope::{Iv, f32_ulp};
 
 /// The projective plane a vertex of a clipper's piece lies on (that of the triangle it was
@@ -137,15 +137,6 @@ pub fn piece_to_screen(
 struct Places {
     ends: [[[f64; 2]; 2]; 3],
     r: [f64; 3],
-}
-
-/// The cross product (b − a) × (c − a): twice the signed area of (a, b, c).
-fn cross(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
-    (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1])
-}
-
-fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
-    (b[0] - a[0]).hypot(b[1] - a[1])
 }
 
 impl Places {

@@ -361,13 +361,18 @@ fn altitude(v: &[ScreenIv; 3]) -> (f64, f64) {
     let mid = |i: Iv| 0.5 * (i.lo + i.hi);
     let h = v.iter().flat_map(|v| [v.x, v.y]).map(|i| 0.5 * (i.hi - i.lo)).fold(0.0, f64::max);
     let p = v.map(|v| [mid(v.x), mid(v.y)]);
-    let area2 = ((p[1][0] - p[0][0]) * (p[2][1] - p[0][1])
-        - (p[2][0] - p[0][0]) * (p[1][1] - p[0][1]))
-        .abs();
-    let longest = (0..3)
-        .map(|i| (p[(i + 1) % 3][0] - p[i][0]).hypot(p[(i + 1) % 3][1] - p[i][1]))
-        .fold(0.0, f64::max);
-    (area2 / longest, h)
+    let longest = (0..3).map(|i| dist(p[i], p[(i + 1) % 3])).fold(0.0, f64::max);
+    (cross(p[0], p[1], p[2]).abs() / longest, h)
+}
+
+/// The cross product (b − a) × (c − a): twice the signed area of (a, b, c).
+fn cross(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
+    (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1])
+}
+
+/// The distance from a to b.
+fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
+    (b[0] - a[0]).hypot(b[1] - a[1])
 }
 
 /// [lo, hi] of three values, widened for barycentrics down to −`e` (Σλ = 1): the convex
