@@ -326,6 +326,8 @@ struct Drawn {
     owner: Vec<(usize, [Barycentric; 3])>,
     /// Per triangle, its vertices' varyings.
     verts: Vec<[Varyings<Iv>; 3]>,
+    /// Per triangle, its vertices' clip positions (a piece's varyings are bounded from them).
+    clips: Vec<[[Iv; 4]; 3]>,
 }
 
 impl Drawn {
@@ -341,6 +343,7 @@ impl Drawn {
             screen: Vec::with_capacity(triangles.len()),
             owner: Vec::with_capacity(triangles.len()),
             verts: Vec::with_capacity(triangles.len()),
+            clips: Vec::with_capacity(triangles.len()),
         };
         for t in triangles {
             let v = t.each_ref().map(|v| vs(v, frame));
@@ -352,6 +355,7 @@ impl Drawn {
                 d.owner.push((d.verts.len(), part.map(|p| (p.bary, p.bary_err))));
             }
             d.verts.push(v.map(|(_, var)| var));
+            d.clips.push(clip);
         }
         Some(d)
     }
@@ -390,7 +394,14 @@ impl Drawn {
         let at = |f: &dyn Fn(usize) -> Iv| -> [Iv; 3] {
             bary.map(|(b, err)| raster::part_value([f(0), f(1), f(2)], b, err))
         };
-        let mix = |f: &dyn Fn(usize) -> Iv| interp.varying(at(f));
+        // A clipper's piece: also from the original triangle's values over a small box around
+        // the sample (its own vertices may slide along the cut edge by hundreds of pixels).
+        let clip = &self.clips[t];
+        let mix = |f: &dyn Fn(usize) -> Iv| {
+            let piece = at(f);
+            let original = interp.from_original(clip, [f(0), f(1), f(2)], piece);
+            raster::narrowed(interp.varying(piece), original)
+        };
         (
             std::array::from_fn(|c| mix(&|j| v[j].0[c])),
             std::array::from_fn(|c| mix(&|j| v[j].1[c])),

@@ -203,6 +203,15 @@ pub(super) struct CutDepth {
     /// The largest term of the GPU's depth plane for the piece anchored anywhere in the
     /// target (what its f32 evaluation's allowance scales with).
     pub(super) magnitude: f64,
+    /// Per vertex, how far (px, per axis) the GPU's position may lie from the exact
+    /// projection of its point on the original's span: the snap, the divide's and the
+    /// viewport's roundings, and the clipper's roundings seen on screen.
+    shift: [[f64; 2]; 3],
+    /// The largest relative error of a vertex's 1/w against its point on the span's (the
+    /// clipper's rounding of w, the divide's).
+    rho: f64,
+    /// The farthest a plane of the GPU's interpolation may be anchored (px, x plus y).
+    arm: f64,
 }
 
 impl CutDepth {
@@ -246,8 +255,51 @@ impl CutDepth {
             v.iter().fold((w, h), |(ax, ay), v| (ax.max(v.x.magnitude()), ay.max(v.y.magnitude())));
         let z_max = v.iter().map(|v| v.z.magnitude()).fold(0.0, f64::max);
         let magnitude = z_max + (gx + g_off) * arm_x + (gy + g_off) * arm_y;
-        let finite = delta.iter().all(|d| d.is_finite()) && magnitude.is_finite();
-        finite.then_some(CutDepth { normal, size: [w, h], places, delta, area, magnitude })
+        let shift: [[f64; 2]; 3] = std::array::from_fn(|k| {
+            let (v, o) = (&v[k], on[k]);
+            // x/w moves by (|εx| + |x/w|·|εw|)/w for a rounding ε of (x, w); NDC to px × W/2.
+            let axis = |m: f64, extent: f64, off: f64| {
+                let ndc = 2.0 * m / extent + 1.0;
+                snap + 8.0 * f32_ulp(m + extent) + (off + ndc * o.off[3]) / o.w_lo * 0.5 * extent
+            };
+            [axis(v.x.magnitude(), w, o.off[0]), axis(v.y.magnitude(), h, o.off[1])]
+        });
+        // 1/w of w + ε, then the divide's few ULP u: (1 + u)/(1 + ε/w) − 1 is within
+        // (|ε/w| + u)/(1 − |ε/w|).
+        let moved_w = on.iter().map(|o| o.off[3] / o.w_lo).fold(0.0, f64::max);
+        // (Past a half, no bound: the varyings then keep the piece's own.)
+        let rho = if moved_w < 0.5 {
+            (moved_w + 4.0 * f32_ulp(1.0)) / (1.0 - moved_w)
+        } else {
+            f64::INFINITY
+        };
+        let finite = delta.iter().all(|d| d.is_finite())
+            && magnitude.is_finite()
+            && shift.as_flattened().iter().all(|s| s.is_finite());
+        finite.then_some(CutDepth {
+            normal,
+            size: [w, h],
+            places,
+            delta,
+            area,
+            magnitude,
+            shift,
+            rho,
+            arm: arm_x + arm_y,
+        })
+    }
+
+    /// Where the GPU's interpolation at sample (px, py) takes its varyings from in the
+    /// original triangle ([`CutSample`]).
+    pub(super) fn sample(&self, px: f64, py: f64) -> CutSample {
+        let lam: [f64; 3] = std::array::from_fn(|k| {
+            self.places.most_area_with((k + 1) % 3, (k + 2) % 3, [px, py]) / self.area
+        });
+        let reach = [0, 1].map(|a| (0..3).map(|k| lam[k] * self.shift[k][a]).sum::<f64>());
+        let grad_arm = (0..3)
+            .map(|k| self.places.longest((k + 1) % 3, (k + 2) % 3) / self.area * self.arm)
+            .sum::<f64>();
+        CutSample { at: [px, py], reach, size: self.size, lam, grad_arm, rho: self.rho }
     }
 
     /// [lo, hi] of the piece's depth at sample (px, py), before the f32 evaluation's
@@ -273,4 +325,141 @@ impl CutDepth {
             .sum::<f64>();
         (-z.1 - off, -z.0 + off)
     }
+}
+
+/// Where a sample of a clipper's piece takes its varyings from in the original triangle. A
+/// piece's vertex holds the position and the values of one point of the original's span
+/// (the clipper interpolates both with its own t), so the GPU's perspective-correct
+/// interpolation at the sample is the original triangle's own at a screen point p*: its
+/// barycentrics at the sample, from its snapped and rounded positions, are the exact ones at
+/// p* = Σλ′ⱼ·(the exact projections), within Σ|λ′ⱼ|·(the moves) of the sample
+/// (docs/tolerances.md, "The device's precision").
+#[derive(Clone, Copy, Debug)]
+pub(super) struct CutSample {
+    at: [f64; 2],
+    /// How far p* may lie from the sample (px, per axis).
+    reach: [f64; 2],
+    size: [f64; 2],
+    /// |λ′ⱼ| at the sample, at most.
+    lam: [f64; 3],
+    /// Σⱼ|∇λ′ⱼ| times the farthest anchor: the interpolation planes' terms per unit value.
+    grad_arm: f64,
+    /// As [`CutDepth`]'s.
+    rho: f64,
+}
+
+/// (a × b) over spans, widened for f64's roundings.
+fn cross_span(a: [Span; 3], b: [Span; 3]) -> [Span; 3] {
+    let mag = |s: Span| s.0.abs().max(s.1.abs());
+    std::array::from_fn(|i| {
+        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+        let (p, q) = (a[j].mul(b[k]), a[k].mul(b[j]));
+        p.sub(q).widen((mag(p) + mag(q)) * F64_SLACK)
+    })
+}
+
+/// The values a varying of a clipper's piece may take at a sample, from the triangle it was
+/// cut from: its clip positions `clip` and its vertices' values `a` (both as the vertex stage
+/// left them); `piece` the piece's vertices' values and `q` their 1/w. `None` where the
+/// bound cannot be made (a value or position unbounded, the original's w may change sign
+/// near the sample).
+///
+/// The reference is the GPU's piece with its vertices moved to their points Sⱼ on the
+/// original's span (the clipper's own t) and the exact projection: its barycentrics at p*
+/// are the GPU's at the sample, and its perspective interpolation is the original's value
+/// at p*, Σeₖaₖ/Σeₖ with eₖ = (Hᵢ × Hⱼ)·(X, Y, 1) over the clip positions' (x, y, w):
+/// linear-fractional in (X, Y), so extreme at the corners of p*'s box. The GPU's differs
+/// from it by its 1/w (each weight scaled by 1 + ρⱼ: at most ρG(1 + G)/(1 − ρG) times half
+/// the piece's values' spread, G ≥ Σ|weights|), the clipper's rounding of the new vertices'
+/// values (G times it), and the interpolation's own arithmetic (as
+/// [`super::Interp::varying`]'s, its planes' terms bounded from the places).
+pub(super) fn original_value(
+    s: &CutSample,
+    clip: &[[Iv; 4]; 3],
+    a: [Iv; 3],
+    piece: [Iv; 3],
+    q: [(f64, f64); 3],
+) -> Option<Iv> {
+    use super::VARYING_ULPS;
+    let bad = |c: &Iv| c.full || !c.lo.is_finite() || !c.hi.is_finite();
+    if clip.iter().flatten().any(bad) || a.iter().chain(&piece).any(bad) {
+        return None;
+    }
+    let mag = |s: Span| s.0.abs().max(s.1.abs());
+    let sum3 = |t: [Span; 3]| {
+        let sum = Span(t[0].0 + t[1].0 + t[2].0, t[0].1 + t[1].1 + t[2].1);
+        sum.widen(t.iter().map(|&t| mag(t)).sum::<f64>() * 4.0 * F64_SLACK)
+    };
+    let h = clip.map(|c| [c[0], c[1], c[3]].map(Span::of));
+    let c = [cross_span(h[1], h[2]), cross_span(h[2], h[0]), cross_span(h[0], h[1])];
+    // det(H) = H₀·(H₁ × H₂): Σeₖ(P)/det is the original's 1/w at P.
+    let det = sum3(std::array::from_fn(|i| h[0][i].mul(c[0][i])));
+    if !(det.0 > 0.0 || det.1 < 0.0) {
+        return None;
+    }
+    let av = a.map(Span::of);
+    let (mut lo, mut hi, mut inv_w_min) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY);
+    for corner in 0..4u32 {
+        let d = |bit: u32| if corner >> bit & 1 == 0 { -1.0 } else { 1.0 };
+        let px = s.at[0] + d(0) * s.reach[0];
+        let py = s.at[1] + d(1) * s.reach[1];
+        // x and y carry f64's roundings: relative 2⁻⁵², inside the slack (+1 per term).
+        let (x, y) = (2.0 * px / s.size[0] - 1.0, 1.0 - 2.0 * py / s.size[1]);
+        let e = c.map(|c| {
+            let t = [c[0].mul(Span(x, x)), c[1].mul(Span(y, y)), c[2]];
+            sum3(t).widen((mag(t[0]) + mag(t[1])) * 4.0 * F64_SLACK)
+        });
+        let den = sum3(e);
+        // The original's 1/w there must be positive (so Σeₖ keeps one sign over the box,
+        // being linear in P): the piece lies in front of the eye.
+        let inv_w = den.div(det)?;
+        if inv_w.0 <= 0.0 {
+            return None;
+        }
+        inv_w_min = inv_w_min.min(inv_w.0);
+        let num = sum3([e[0].mul(av[0]), e[1].mul(av[1]), e[2].mul(av[2])]);
+        let v = num.div(den)?;
+        lo = lo.min(v.0);
+        hi = hi.max(v.1);
+    }
+    // The GPU's Σλ′q′ is the reference's (1/w at p*) but for each q′ⱼ off by ρ; the sum of
+    // the weights' magnitudes is then at most G.
+    let lq: f64 = (0..3).map(|j| s.lam[j] * q[j].1).sum();
+    let den_min = inv_w_min - s.rho * lq;
+    // NaN compares false: not bounded either.
+    if den_min.is_nan() || den_min <= 0.0 {
+        return None;
+    }
+    let g = lq * (1.0 + s.rho) / den_min;
+    let piece_max = piece.iter().map(|a| a.magnitude()).fold(0.0, f64::max);
+    let spread = piece.iter().map(|a| a.hi).fold(f64::NEG_INFINITY, f64::max)
+        - piece.iter().map(|a| a.lo).fold(f64::INFINITY, f64::min);
+    if s.rho * g >= 0.5 {
+        return None;
+    }
+    // With weights γ (Σγ = 1, Σ|γ| ≤ G) scaled by 1 + ρⱼ and renormalised, each moves by at
+    // most |γⱼ|·ρ(1 + G)/(1 − ρG), and the value by Σ|Δγⱼ|·|aⱼ − m| for any m (ΣΔγ = 0): the
+    // values' midpoint, half their spread away.
+    let rounded_w = s.rho * g * (1.0 + g) / (1.0 - s.rho * g) * 0.5 * spread;
+    // The clipper's rounding of a new vertex's values (as `part_value`'s).
+    let clipped = g * VARYING_ULPS * f32_ulp(piece_max);
+    // The interpolation's arithmetic: VARYING_ULPS of its terms, and of its planes' (anchored
+    // anywhere in the target), as in `Interp::varying`.
+    let terms = g * piece_max;
+    let lam_sum: f64 = s.lam.iter().sum();
+    let q_max = q.iter().map(|q| q.1).fold(0.0, f64::max);
+    let reach = lam_sum + s.grad_arm;
+    let (tn, td) = (q_max * piece_max * reach, q_max * reach);
+    let den_err = VARYING_ULPS * f32_ulp(td);
+    if den_min - den_err <= 0.0 {
+        return None;
+    }
+    let planes = VARYING_ULPS * (f32_ulp(tn) + terms * f32_ulp(td)) / (den_min - den_err);
+    let slack = rounded_w
+        + clipped
+        + VARYING_ULPS * f32_ulp(terms)
+        + terms * F64_SLACK
+        + planes
+        + (lo.abs().max(hi.abs())) * F64_SLACK;
+    (slack.is_finite() && lo.is_finite() && hi.is_finite()).then(|| Iv::new(lo - slack, hi + slack))
 }

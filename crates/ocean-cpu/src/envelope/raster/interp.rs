@@ -29,9 +29,20 @@ pub struct Interp {
     pub(super) boxes: [[(f64, f64); 3]; 2],
     /// The sample's position.
     pub(super) at: [f64; 2],
+    /// For a clipper's piece, where the sample takes its varyings from in the original.
+    pub(super) cut: Option<super::cut::CutSample>,
 }
 
 impl Interp {
+    /// A varying of a clipper's piece bounded from the triangle it was cut from: `clip` that
+    /// triangle's clip positions, `a` its vertices' values (both as its vertex stage left
+    /// them), `piece` the piece's own vertices' values. `None` for a whole triangle, or where the bound cannot be made; where it is
+    /// made, it holds as [`Self::varying`] of the piece's own values does, and the two may be
+    /// intersected ([`narrowed`]).
+    pub fn from_original(&self, clip: &[[Iv; 4]; 3], a: [Iv; 3], piece: [Iv; 3]) -> Option<Iv> {
+        super::cut::original_value(self.cut.as_ref()?, clip, a, piece, self.q)
+    }
+
     /// The values a varying whose vertices hold `v` may take. The share of vertex k,
     /// λₖqₖ/Σλⱼqⱼ, is linear-fractional along each of λ₁, λ₂, q₀, q₁, q₂ with the others
     /// fixed, hence monotone along each while the denominator (multilinear, so extreme at
@@ -216,7 +227,8 @@ pub(super) fn barycentrics(t: &Setup, px: f64, py: f64) -> Interp {
         let any = (f64::NEG_INFINITY, f64::INFINITY);
         let (grad, lam_sum) = (f64::INFINITY, f64::INFINITY);
         let (boxes, at) = ([[any; 3]; 2], [px, py]);
-        return Interp { l1: any, l2: any, q: [(1.0, 1.0); 3], grad, lam_sum, boxes, at };
+        let cut = None;
+        return Interp { l1: any, l2: any, q: [(1.0, 1.0); 3], grad, lam_sum, boxes, at, cut };
     }
     let (l1, l2) = (lam(1), lam(2));
     // Σ|λₖ| at the sample, λ₀ = 1 − λ₁ − λ₂.
@@ -225,5 +237,20 @@ pub(super) fn barycentrics(t: &Setup, px: f64, py: f64) -> Interp {
     let lam_sum = big(l0) + big(l1) + big(l2);
     let boxes = [t.x.map(|s| (s.0, s.1)), t.y.map(|s| (s.0, s.1))];
     let q = t.inv_w.map(|q| (q.lo, q.hi));
-    Interp { l1, l2, q, grad: t.anchor.iter().sum(), lam_sum, boxes, at: [px, py] }
+    let cut = t.cut.map(|c| c.sample(px, py));
+    Interp { l1, l2, q, grad: t.anchor.iter().sum(), lam_sum, boxes, at: [px, py], cut }
+}
+
+/// Two bounds of one value, intersected (`None`: the first alone). Both hold, so they meet;
+/// should they not, their hull is returned rather than a verdict from one of them.
+pub fn narrowed(bound: Iv, other: Option<Iv>) -> Iv {
+    match other {
+        None => bound,
+        Some(o) if bound.full => o,
+        Some(o) if o.full => bound,
+        Some(o) if o.lo.max(bound.lo) <= o.hi.min(bound.hi) => {
+            Iv::new(o.lo.max(bound.lo), o.hi.min(bound.hi))
+        }
+        Some(o) => bound.hull(o),
+    }
 }

@@ -39,7 +39,7 @@ pub use clip::{
 pub use color::{Shaded, color_pass_greater};
 pub use cut::{OnPlane, piece_to_screen};
 use interp::barycentrics;
-pub use interp::{Interp, VARYING_ULPS};
+pub use interp::{Interp, VARYING_ULPS, narrowed};
 pub use jitter::{jitter_blend_pass, jitter_depth_pass, jitter_pass, jitter_pass_at};
 pub use mesh::{MeshEnvelope, MeshTri, color_pass_mesh};
 

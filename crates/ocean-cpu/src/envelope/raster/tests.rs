@@ -242,6 +242,19 @@ fn plane_equations_anchored_far_away_stay_inside_the_varying_bound() {
     assert!(samples > 4 && past_old > 0, "{samples} samples, {past_old} past the old bound");
 }
 
+/// The barycentrics of (px, py) in the triangle of screen points `pos` (x, y first).
+fn screen_barycentrics(pos: &[[f64; 3]], px: f64, py: f64) -> [f64; 3] {
+    let area = (pos[1][0] - pos[0][0]) * (pos[2][1] - pos[0][1])
+        - (pos[2][0] - pos[0][0]) * (pos[1][1] - pos[0][1]);
+    let l1 = ((px - pos[0][0]) * (pos[2][1] - pos[0][1])
+        - (pos[2][0] - pos[0][0]) * (py - pos[0][1]))
+        / area;
+    let l2 = ((pos[1][0] - pos[0][0]) * (py - pos[0][1])
+        - (px - pos[0][0]) * (pos[1][1] - pos[0][1]))
+        / area;
+    [1.0 - l1 - l2, l1, l2]
+}
+
 /// A sea-floor triangle with a vertex far behind the camera (chiu_shallow's: w from 50 to
 /// −4·10⁴), cut by the near plane: the clipper's new vertices slide along the cut edge by
 /// hundreds of pixels within the bounds, and no plane through their boxes can be bounded,
@@ -283,15 +296,7 @@ fn a_clipped_piece_s_depth_comes_from_its_triangle_s_plane() {
                 c[2] / c[3],
             ]
         });
-        let area = (pos[1][0] - pos[0][0]) * (pos[2][1] - pos[0][1])
-            - (pos[2][0] - pos[0][0]) * (pos[1][1] - pos[0][1]);
-        let l1 = ((px - pos[0][0]) * (pos[2][1] - pos[0][1])
-            - (pos[2][0] - pos[0][0]) * (py - pos[0][1]))
-            / area;
-        let l2 = ((pos[1][0] - pos[0][0]) * (py - pos[0][1])
-            - (px - pos[0][0]) * (pos[1][1] - pos[0][1]))
-            / area;
-        let l0 = 1.0 - l1 - l2;
+        let [l0, l1, l2] = screen_barycentrics(&pos, px, py);
         (l0.min(l1).min(l2) >= 0.0).then_some(l0 * pos[0][2] + l1 * pos[1][2] + l2 * pos[2][2])
     };
     let (mut judged, mut widest, mut unbounded_before, mut left) = (0, 0.0f64, 0, 0);
@@ -334,6 +339,113 @@ fn a_clipped_piece_s_depth_comes_from_its_triangle_s_plane() {
     );
     assert!(unbounded_before > 1000, "the boxes alone bounded all but {unbounded_before}");
     assert!(left > 100, "a GPU off the plane left the bound at {left} samples");
+}
+
+/// The same cut floor triangle's varyings: from the piece's own vertices, whose boxes slide
+/// by hundreds of pixels, a varying is unbounded over most of the piece; from the original
+/// triangle's values over a small box around the sample ([`Interp::from_original`]) a test
+/// such as a clip plane's `value < 0` is decided at most of the piece's samples (75 %
+/// measured; none from the piece's vertices: what is left is the clipper's rounding of the new
+/// vertices' w, 4 % of it under `CLIP_SLACK`), and the bound holds the value of a GPU whose
+/// new vertices lie anywhere on the edge. Negative control: a GPU that interpolates
+/// without perspective (screen-linear weights) leaves the bound.
+#[test]
+fn a_clipped_piece_s_varyings_come_from_its_triangle() {
+    let (w, h, snap) = (256u32, 144u32, 1.0 / 256.0);
+    let exact =
+        [[-30.0, -20.0, 1.0, 50.0], [-5.0e4, -3.0e4, 1.0, -4.0e4], [40.0, -25.0, 1.0, 80.0]];
+    let values = [12.0, -4.0e4, 60.0];
+    let rel = 3e-7;
+    let tri: [[Iv; 4]; 3] =
+        exact.map(|v| v.map(|c: f64| Iv::new(c - c.abs() * rel, c + c.abs() * rel)));
+    let parts = clip_near_far(tri).expect("decided");
+    // The GPU's piece as in the depth test above; its vertices' values the clipper's mix of
+    // `vals`, interpolated with perspective at the sample.
+    let gpu_value = |part: &[ClipVertex; 3], slide: f64, perspective: bool, px: f64, py: f64| {
+        let (pos, val): (Vec<[f64; 3]>, Vec<f64>) = part
+            .iter()
+            .map(|p| {
+                let mut b = p.bary;
+                if p.bary_err > 0.0 {
+                    let (i, j) = (
+                        (0..3).find(|&k| b[k] > 0.0).unwrap(),
+                        (0..3).rfind(|&k| b[k] > 0.0).unwrap(),
+                    );
+                    b[i] += slide * p.bary_err;
+                    b[j] -= slide * p.bary_err;
+                }
+                let c: [f64; 4] = std::array::from_fn(|k| (0..3).map(|j| b[j] * exact[j][k]).sum());
+                let x = (c[0] / c[3] + 1.0) * f64::from(w) / 2.0;
+                let y = (1.0 - c[1] / c[3]) * f64::from(h) / 2.0;
+                let q = if perspective { 1.0 / c[3] } else { 1.0 };
+                ([x, y, q], (0..3).map(|j| b[j] * values[j]).sum::<f64>())
+            })
+            .unzip();
+        let l = screen_barycentrics(&pos, px, py);
+        if l.iter().any(|&l| l < 0.0) {
+            return None;
+        }
+        let den: f64 = (0..3).map(|j| l[j] * pos[j][2]).sum();
+        Some((0..3).map(|j| l[j] * pos[j][2] * val[j]).sum::<f64>() / den)
+    };
+    let a = values.map(|v| Iv::new(v, v));
+    let (mut judged, mut widest, mut unbounded_before, mut left) = (0, 0.0f64, 0, 0);
+    let (mut widths, mut sides) = (Vec::new(), [0usize; 3]);
+    for part in &parts {
+        let s = piece_to_screen(part, &tri, w, h).expect("in front");
+        let Some(t) = setup(&s, w, h, snap) else { continue };
+        let piece = part.map(|p| part_value(a, p.bary, p.bary_err));
+        for py in 0..h {
+            for px in 0..w {
+                let (sx, sy) = (f64::from(px) + 0.5, f64::from(py) + 0.5);
+                if cover(&t, sx, sy) == Cover::No {
+                    continue;
+                }
+                let interp = barycentrics(&t, sx, sy);
+                let before = interp.varying(piece);
+                unbounded_before += usize::from(before.full || before.hi - before.lo >= 40.0);
+                let Some(v) = interp.from_original(&tri, a, piece) else { continue };
+                // A discard such as `value < 0` (the maps' clip plane): decided or not.
+                let decided = |v: Iv| !v.full && (v.lo > 0.0 || v.hi < 0.0);
+                sides[0] += usize::from(decided(before));
+                sides[1] += usize::from(decided(narrowed(before, Some(v))));
+                sides[2] += 1;
+                for slide in [-1.0, 0.0, 1.0] {
+                    if let Some(g) = gpu_value(part, slide, true, sx, sy) {
+                        assert!(
+                            v.lo <= g && g <= v.hi,
+                            "({px}, {py}) slide {slide}: {g} outside {v:?}"
+                        );
+                        judged += 1;
+                        widest = widest.max(v.hi - v.lo);
+                        widths.push(v.hi - v.lo);
+                    }
+                    if let Some(g) = gpu_value(part, slide, false, sx, sy) {
+                        left += usize::from(!(v.lo <= g && g <= v.hi));
+                    }
+                }
+            }
+        }
+    }
+    widths.sort_by(f64::total_cmp);
+    eprintln!(
+        "{judged} samples, widest {widest:.3e}, median {:.3e}, {unbounded_before} wider than 40 from the piece's vertices, {left} left by the screen-linear GPU",
+        widths.get(widths.len() / 2).copied().unwrap_or(f64::NAN)
+    );
+    assert!(judged > 1000, "{judged} samples");
+    eprintln!(
+        "`value < 0` decided at {} of {} samples ({} from the piece's vertices)",
+        sides[1], sides[2], sides[0]
+    );
+    assert!(2 * sides[1] > sides[2], "decided at {} of {}", sides[1], sides[2]);
+    assert!(
+        2 * sides[0] < sides[2],
+        "the piece's vertices alone decided {} of {}",
+        sides[0],
+        sides[2]
+    );
+    assert!(unbounded_before > 1000, "the piece's vertices bounded all but {unbounded_before}");
+    assert!(left > 100, "a screen-linear GPU left the bound at {left} samples");
 }
 
 /// Two triangles of a square that share its diagonal (the same vertices, so the same ids):
