@@ -47,7 +47,6 @@ pub struct OnPlane {
 
 /// det of a 3×3 matrix of spans, widened for f64's roundings of its six triple products.
 fn det3(m: [[Span; 3]; 3]) -> Span {
-    let mag = |s: Span| s.0.abs().max(s.1.abs());
     let add = |a: Span, b: Span| Span(a.0 + b.0, a.1 + b.1);
     let mut sum = Span(0.0, 0.0);
     let mut terms = 0.0;
@@ -57,10 +56,10 @@ fn det3(m: [[Span; 3]; 3]) -> Span {
         ([1, 0, 2], -1.0),
     ]) {
         let t = m[0][p[0]].mul(m[1][p[1]]).mul(m[2][p[2]]);
-        terms += mag(t);
+        terms += t.magnitude();
         sum = add(sum, if sign > 0.0 { t } else { Span(-t.1, -t.0) });
     }
-    sum.widen((terms + mag(sum)) * F64_SLACK)
+    sum.widen((terms + sum.magnitude()) * F64_SLACK)
 }
 
 /// n for the clip positions `tri` (intervals): nⱼ = (−1)ʲ times the minor without column j,
@@ -180,6 +179,17 @@ impl Places {
         most * (1.0 + 1e-9)
     }
 
+    /// The most the edge (i, j) may extend along x and along y: |∂λₖ/∂y| and |∂λₖ/∂x| of
+    /// the third vertex k times twice the area.
+    fn extent(&self, i: usize, j: usize) -> [f64; 2] {
+        let mut most = [0.0f64; 2];
+        for (a, b) in [(0, 0), (0, 1), (1, 0), (1, 1)] {
+            let (p, q) = (self.ends[i][a], self.ends[j][b]);
+            most = [most[0].max((q[0] - p[0]).abs()), most[1].max((q[1] - p[1]).abs())];
+        }
+        most.map(|m| m + self.r[i] + self.r[j])
+    }
+
     /// The longest the edge (i, j) may be.
     fn longest(&self, i: usize, j: usize) -> f64 {
         let mut most = 0.0f64;
@@ -210,8 +220,8 @@ pub(super) struct CutDepth {
     /// The largest relative error of a vertex's 1/w against its point on the span's (the
     /// clipper's rounding of w, the divide's).
     rho: f64,
-    /// The farthest a plane of the GPU's interpolation may be anchored (px, x plus y).
-    arm: f64,
+    /// The farthest a plane of the GPU's interpolation may be anchored (px, along x and y).
+    arm: [f64; 2],
 }
 
 impl CutDepth {
@@ -230,15 +240,15 @@ impl CutDepth {
         };
         let area = places.least_area()?;
         let normal = first.normal.map(|(lo, hi)| Span(lo, hi));
-        let mag = |s: Span| s.0.abs().max(s.1.abs());
         let nz_min = normal[2].0.abs().min(normal[2].1.abs());
         let (w, h) = (f64::from(size[0]), f64::from(size[1]));
         // |∂Z_P/∂px|, |∂Z_P/∂py|: X = 2px/W − 1, Y = 1 − 2py/H.
-        let gx = mag(normal[0]) / nz_min * 2.0 / w;
-        let gy = mag(normal[1]) / nz_min * 2.0 / h;
+        let gx = normal[0].magnitude() / nz_min * 2.0 / w;
+        let gy = normal[1].magnitude() / nz_min * 2.0 / h;
         let delta: [f64; 3] = std::array::from_fn(|k| {
             let (v, o) = (&v[k], on[k]);
-            let off = (0..4).map(|c| mag(normal[c]) * o.off[c]).sum::<f64>() / (o.w_lo * nz_min);
+            let off =
+                (0..4).map(|c| normal[c].magnitude() * o.off[c]).sum::<f64>() / (o.w_lo * nz_min);
             // The divide and viewport transform's roundings (a few ULP of the result, and of
             // the viewport's offset), and the snap.
             let moved = |m: f64, extent: f64| snap + 8.0 * f32_ulp(m + extent);
@@ -285,7 +295,7 @@ impl CutDepth {
             magnitude,
             shift,
             rho,
-            arm: arm_x + arm_y,
+            arm: [arm_x, arm_y],
         })
     }
 
@@ -296,10 +306,14 @@ impl CutDepth {
             self.places.most_area_with((k + 1) % 3, (k + 2) % 3, [px, py]) / self.area
         });
         let reach = [0, 1].map(|a| (0..3).map(|k| lam[k] * self.shift[k][a]).sum::<f64>());
-        let grad_arm = (0..3)
-            .map(|k| self.places.longest((k + 1) % 3, (k + 2) % 3) / self.area * self.arm)
-            .sum::<f64>();
-        CutSample { at: [px, py], reach, size: self.size, lam, grad_arm, rho: self.rho }
+        // |∂λₖ/∂x| is the opposite edge's extent along y over twice the area, and the other
+        // way round: a piece 10⁵ px long and 40 px across has steep λ planes across it, and
+        // along x, where its far vertex lies, 14 times flatter.
+        let anchor: [f64; 3] = std::array::from_fn(|k| {
+            let [ex, ey] = self.places.extent((k + 1) % 3, (k + 2) % 3);
+            (ey * self.arm[0] + ex * self.arm[1]) / self.area
+        });
+        CutSample { at: [px, py], reach, size: self.size, lam, anchor, rho: self.rho }
     }
 
     /// [lo, hi] of the piece's depth at sample (px, py), before the f32 evaluation's
@@ -312,8 +326,9 @@ impl CutDepth {
             nx.mul(Span(x, x)).0 + ny.mul(Span(y, y)).0 + nw.0,
             nx.mul(Span(x, x)).1 + ny.mul(Span(y, y)).1 + nw.1,
         );
-        let mag = |s: Span| s.0.abs().max(s.1.abs());
-        let num = num.widen((mag(nx) * x.abs() + mag(ny) * y.abs() + mag(nw)) * F64_SLACK);
+        let num = num.widen(
+            (nx.magnitude() * x.abs() + ny.magnitude() * y.abs() + nw.magnitude()) * F64_SLACK,
+        );
         // n_z's span excludes 0 (span_normal), so the quotient exists.
         let Some(z) = num.div(nz) else { return (f64::NEG_INFINITY, f64::INFINITY) };
         let off = (0..3)
@@ -342,19 +357,28 @@ pub(super) struct CutSample {
     size: [f64; 2],
     /// |λ′ⱼ| at the sample, at most.
     lam: [f64; 3],
-    /// Σⱼ|∇λ′ⱼ| times the farthest anchor: the interpolation planes' terms per unit value.
-    grad_arm: f64,
+    /// Per vertex, |∇λ′ⱼ| times the farthest anchor: its interpolation planes' terms per
+    /// unit value.
+    anchor: [f64; 3],
     /// As [`CutDepth`]'s.
     rho: f64,
 }
 
+#[cfg(test)]
+impl CutSample {
+    /// The same sample with no allowance for the interpolation planes' gradients (a
+    /// negative control's).
+    pub(super) fn without_planes(self) -> CutSample {
+        CutSample { anchor: [0.0; 3], ..self }
+    }
+}
+
 /// (a × b) over spans, widened for f64's roundings.
 fn cross_span(a: [Span; 3], b: [Span; 3]) -> [Span; 3] {
-    let mag = |s: Span| s.0.abs().max(s.1.abs());
     std::array::from_fn(|i| {
         let (j, k) = ((i + 1) % 3, (i + 2) % 3);
         let (p, q) = (a[j].mul(b[k]), a[k].mul(b[j]));
-        p.sub(q).widen((mag(p) + mag(q)) * F64_SLACK)
+        p.sub(q).widen((p.magnitude() + q.magnitude()) * F64_SLACK)
     })
 }
 
@@ -385,10 +409,9 @@ pub(super) fn original_value(
     if clip.iter().flatten().any(bad) || a.iter().chain(&piece).any(bad) {
         return None;
     }
-    let mag = |s: Span| s.0.abs().max(s.1.abs());
     let sum3 = |t: [Span; 3]| {
         let sum = Span(t[0].0 + t[1].0 + t[2].0, t[0].1 + t[1].1 + t[2].1);
-        sum.widen(t.iter().map(|&t| mag(t)).sum::<f64>() * 4.0 * F64_SLACK)
+        sum.widen(t.iter().map(|&t| t.magnitude()).sum::<f64>() * 4.0 * F64_SLACK)
     };
     let h = clip.map(|c| [c[0], c[1], c[3]].map(Span::of));
     let c = [cross_span(h[1], h[2]), cross_span(h[2], h[0]), cross_span(h[0], h[1])];
@@ -407,7 +430,7 @@ pub(super) fn original_value(
         let (x, y) = (2.0 * px / s.size[0] - 1.0, 1.0 - 2.0 * py / s.size[1]);
         let e = c.map(|c| {
             let t = [c[0].mul(Span(x, x)), c[1].mul(Span(y, y)), c[2]];
-            sum3(t).widen((mag(t[0]) + mag(t[1])) * 4.0 * F64_SLACK)
+            sum3(t).widen((t[0].magnitude() + t[1].magnitude()) * 4.0 * F64_SLACK)
         });
         let den = sum3(e);
         // The original's 1/w there must be positive (so Σeₖ keeps one sign over the box,
@@ -444,12 +467,23 @@ pub(super) fn original_value(
     // The clipper's rounding of a new vertex's values (as `part_value`'s).
     let clipped = g * VARYING_ULPS * f32_ulp(piece_max);
     // The interpolation's arithmetic: VARYING_ULPS of its terms, and of its planes' (anchored
-    // anywhere in the target), as in `Interp::varying`.
+    // anywhere in the target), as in `Interp::varying`, each vertex's gradient with its own
+    // values (the far vertex's steep plane carries its own).
     let terms = g * piece_max;
-    let lam_sum: f64 = s.lam.iter().sum();
-    let q_max = q.iter().map(|q| q.1).fold(0.0, f64::max);
-    let reach = lam_sum + s.grad_arm;
-    let (tn, td) = (q_max * piece_max * reach, q_max * reach);
+    let aq: [(f64, f64); 3] = std::array::from_fn(|k| {
+        let c = [
+            piece[k].lo * q[k].0,
+            piece[k].lo * q[k].1,
+            piece[k].hi * q[k].0,
+            piece[k].hi * q[k].1,
+        ];
+        (
+            c.iter().copied().fold(f64::INFINITY, f64::min),
+            c.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        )
+    });
+    let tn = super::interp::plane_terms(aq, s.anchor, s.lam);
+    let td = super::interp::plane_terms(q, s.anchor, s.lam);
     let den_err = VARYING_ULPS * f32_ulp(td);
     if den_min - den_err <= 0.0 {
         return None;

@@ -21,10 +21,10 @@ pub struct Interp {
     pub(super) l2: (f64, f64),
     /// The vertices' 1/w.
     pub(super) q: [(f64, f64); 3],
-    /// Σₖ of the gradient terms of λₖ's plane anchored anywhere in the target ([`Setup`]).
-    pub(super) grad: f64,
-    /// Σₖ |λₖ| at the sample.
-    pub(super) lam_sum: f64,
+    /// Per vertex, the gradient terms of λₖ's plane anchored anywhere in the target ([`Setup`]).
+    pub(super) anchor: [f64; 3],
+    /// Per vertex, |λₖ| at the sample, at most.
+    pub(super) lam: [f64; 3],
     /// The vertices' screen boxes (the snap included): x, then y.
     pub(super) boxes: [[(f64, f64); 3]; 2],
     /// The sample's position.
@@ -82,15 +82,6 @@ impl Interp {
         // far from the anchor is far larger than the value.
         // |v| at most Σ|shares|·(max|m| + hw) (a share is negative past an edge).
         let vmag = terms;
-        // A plane through values pₖ at the vertices has the gradient Σ(pₖ − c)∇λₖ for any c
-        // (Σ∇λₖ = 0): at most half their spread times the λ planes' gradient terms; its own
-        // value at the sample at most Σ|λₖ| times the largest |pₖ|.
-        let term = |p: [(f64, f64); 3]| {
-            let lo = p.iter().map(|p| p.0).fold(f64::INFINITY, f64::min);
-            let hi = p.iter().map(|p| p.1).fold(f64::NEG_INFINITY, f64::max);
-            let spread = if hi > lo { 0.5 * (hi - lo) * self.grad } else { 0.0 };
-            spread + self.lam_sum * lo.abs().max(hi.abs())
-        };
         let aq: [(f64, f64); 3] = std::array::from_fn(|k| {
             let c = [m[k] - hw, m[k] + hw].map(|a| [a * self.q[k].0, a * self.q[k].1]);
             let c = c.as_flattened();
@@ -99,7 +90,8 @@ impl Interp {
                 c.iter().copied().fold(f64::NEG_INFINITY, f64::max),
             )
         });
-        let (tn, td) = (term(aq), term(self.q));
+        let (tn, td) =
+            (plane_terms(aq, self.anchor, self.lam), plane_terms(self.q, self.anchor, self.lam));
         // (N + εN)/(D + εD) − N/D = (εN − v·εD)/(D + εD), with D ≥ den_min.
         let den_err = VARYING_ULPS * f32_ulp(td);
         if den_min - den_err <= 0.0 {
@@ -225,20 +217,46 @@ pub(super) fn barycentrics(t: &Setup, px: f64, py: f64) -> Interp {
     };
     if t.inv_w.iter().any(|q| q.full || q.lo <= 0.0) {
         let any = (f64::NEG_INFINITY, f64::INFINITY);
-        let (grad, lam_sum) = (f64::INFINITY, f64::INFINITY);
+        let (anchor, lam) = ([f64::INFINITY; 3], [f64::INFINITY; 3]);
         let (boxes, at) = ([[any; 3]; 2], [px, py]);
         let cut = None;
-        return Interp { l1: any, l2: any, q: [(1.0, 1.0); 3], grad, lam_sum, boxes, at, cut };
+        return Interp { l1: any, l2: any, q: [(1.0, 1.0); 3], anchor, lam, boxes, at, cut };
     }
     let (l1, l2) = (lam(1), lam(2));
-    // Σ|λₖ| at the sample, λ₀ = 1 − λ₁ − λ₂.
+    // |λₖ| at the sample, λ₀ = 1 − λ₁ − λ₂.
     let l0 = (1.0 - l1.1 - l2.1, 1.0 - l1.0 - l2.0);
     let big = |r: (f64, f64)| r.0.abs().max(r.1.abs());
-    let lam_sum = big(l0) + big(l1) + big(l2);
+    let lam = [big(l0), big(l1), big(l2)];
     let boxes = [t.x.map(|s| (s.0, s.1)), t.y.map(|s| (s.0, s.1))];
     let q = t.inv_w.map(|q| (q.lo, q.hi));
     let cut = t.cut.map(|c| c.sample(px, py));
-    Interp { l1, l2, q, grad: t.anchor.iter().sum(), lam_sum, boxes, at: [px, py], cut }
+    Interp { l1, l2, q, anchor: t.anchor, lam, boxes, at: [px, py], cut }
+}
+
+/// The largest term of a GPU's f32 plane through values `p` at a triangle's vertices,
+/// anchored anywhere within the arm its gradients' terms `anchor` were made for, at a sample
+/// where |λₖ| ≤ `lam`ₖ: what its evaluation's rounding scales with.
+///
+/// A GPU sets the plane up from one base vertex b (lavapipe's and NVIDIA's plane equations,
+/// AMD's v₀ + i·(v₁ − v₀) + j·(v₂ − v₀)): its gradient Σₖ(pₖ − p_b)∇λₖ comes from the
+/// differences pₖ − p_b and the edges, so its rounding scales with Σₖ|pₖ − p_b|·|∇λₖ|, and
+/// then with the arm. Any vertex may be the base (a clipper's pieces are ordered as it
+/// pleases), so the largest over b. Each vertex's gradient counts with its own differences:
+/// on a clipper's piece whose new vertex lies 10⁵ px off screen at 1/w = 20 while the others
+/// are at 0.04, the two on-screen vertices' steep λ planes carry 1/w's small differences
+/// unless the far vertex is the base. The plane's value at the sample is at most
+/// Σₖ|λₖ|·max|pₖ|, and at an anchor on a vertex that vertex's.
+pub(super) fn plane_terms(p: [(f64, f64); 3], anchor: [f64; 3], lam: [f64; 3]) -> f64 {
+    let ok = |x: f64| x.is_finite();
+    if !p.iter().all(|p| ok(p.0) && ok(p.1)) || !anchor.iter().chain(&lam).copied().all(ok) {
+        return f64::INFINITY;
+    }
+    let apart = |k: usize, b: usize| (p[k].1 - p[b].0).abs().max((p[k].0 - p[b].1).abs());
+    let gradient =
+        (0..3).map(|b| (0..3).map(|k| anchor[k] * apart(k, b)).sum::<f64>()).fold(0.0, f64::max);
+    let big = p.map(|p| p.0.abs().max(p.1.abs()));
+    let value = (0..3).map(|k| lam[k] * big[k]).sum::<f64>();
+    gradient + value.max(big.iter().copied().fold(0.0, f64::max))
 }
 
 /// Two bounds of one value, intersected (`None`: the first alone). Both hold, so they meet;

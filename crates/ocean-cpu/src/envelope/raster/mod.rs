@@ -128,6 +128,10 @@ impl Span {
     fn of(v: Iv) -> Span {
         Span(v.lo, v.hi)
     }
+    /// The largest magnitude in the span.
+    fn magnitude(self) -> f64 {
+        self.0.abs().max(self.1.abs())
+    }
 }
 
 /// A triangle set up for the envelope: its snapped vertex boxes and depth intervals.
@@ -290,9 +294,9 @@ fn edge(ax: Span, ay: Span, bx: Span, by: Span, px: Span, py: Span) -> Span {
     let from_b = bx.sub(ax).mul(py.sub(by)).sub(by.sub(ay).mul(px.sub(bx)));
     let e = Span(from_a.0.max(from_b.0), from_a.1.min(from_b.1));
     // f64 rounds these to nearest: widened outward by far more than its error.
-    let mag = |s: Span| s.0.abs().max(s.1.abs());
-    let terms = mag(bx.sub(ax)) * mag(py.sub(ay)) + mag(by.sub(ay)) * mag(px.sub(ax));
-    e.widen((terms + mag(e)) * F64_SLACK)
+    let terms = bx.sub(ax).magnitude() * py.sub(ay).magnitude()
+        + by.sub(ay).magnitude() * px.sub(ax).magnitude();
+    e.widen((terms + e.magnitude()) * F64_SLACK)
 }
 
 /// What a triangle may do at one sample.

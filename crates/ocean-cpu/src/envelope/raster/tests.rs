@@ -211,18 +211,7 @@ fn plane_equations_anchored_far_away_stay_inside_the_varying_bound() {
         on: None,
     });
     let t = setup(&tri, w, h, 1.0 / 256.0).unwrap();
-    // The plane through f32 values at the vertices, anchored at (0, 0), in f32.
-    let plane = |v: [f32; 3]| {
-        let (e1x, e1y) = (p[1][0] - p[0][0], p[1][1] - p[0][1]);
-        let (e2x, e2y) = (p[2][0] - p[0][0], p[2][1] - p[0][1]);
-        let det = e1x * e2y - e2x * e1y;
-        let (d1, d2) = (v[1] - v[0], v[2] - v[0]);
-        let dx = (d1 * e2y - d2 * e1y) / det;
-        let dy = (d2 * e1x - d1 * e2x) / det;
-        let a0 = v[0] - dx * p[0][0] - dy * p[0][1];
-        move |px: f32, py: f32| a0 + dx * px + dy * py
-    };
-    let (num, den) = (plane(std::array::from_fn(|k| a[k] * q[k])), plane(q));
+    let (num, den) = (f32_plane(p, std::array::from_fn(|k| a[k] * q[k])), f32_plane(p, q));
     let (mut samples, mut past_old) = (0, 0);
     for py in 3988..3998 {
         for px in 3998..4006 {
@@ -234,7 +223,8 @@ fn plane_equations_anchored_far_away_stay_inside_the_varying_bound() {
             let interp = barycentrics(&t, sx, sy);
             let bound = interp.varying(a.map(Iv::point));
             assert!(bound.contains(got), "{got} at ({px}, {py}) outside {bound:?}");
-            let old = Interp { grad: 0.0, lam_sum: 0.0, ..interp }.varying(a.map(Iv::point));
+            let old =
+                Interp { anchor: [0.0; 3], lam: [0.0; 3], ..interp }.varying(a.map(Iv::point));
             past_old += usize::from(!old.contains(got));
             samples += 1;
         }
@@ -351,82 +341,46 @@ fn a_clipped_piece_s_depth_comes_from_its_triangle_s_plane() {
 /// without perspective (screen-linear weights) leaves the bound.
 #[test]
 fn a_clipped_piece_s_varyings_come_from_its_triangle() {
-    let (w, h, snap) = (256u32, 144u32, 1.0 / 256.0);
     let exact =
         [[-30.0, -20.0, 1.0, 50.0], [-5.0e4, -3.0e4, 1.0, -4.0e4], [40.0, -25.0, 1.0, 80.0]];
     let values = [12.0, -4.0e4, 60.0];
-    let rel = 3e-7;
-    let tri: [[Iv; 4]; 3] =
-        exact.map(|v| v.map(|c: f64| Iv::new(c - c.abs() * rel, c + c.abs() * rel)));
-    let parts = clip_near_far(tri).expect("decided");
+    let size = [256u32, 144];
     // The GPU's piece as in the depth test above; its vertices' values the clipper's mix of
     // `vals`, interpolated with perspective at the sample.
     let gpu_value = |part: &[ClipVertex; 3], slide: f64, perspective: bool, px: f64, py: f64| {
-        let (pos, val): (Vec<[f64; 3]>, Vec<f64>) = part
-            .iter()
-            .map(|p| {
-                let mut b = p.bary;
-                if p.bary_err > 0.0 {
-                    let (i, j) = (
-                        (0..3).find(|&k| b[k] > 0.0).unwrap(),
-                        (0..3).rfind(|&k| b[k] > 0.0).unwrap(),
-                    );
-                    b[i] += slide * p.bary_err;
-                    b[j] -= slide * p.bary_err;
-                }
-                let c: [f64; 4] = std::array::from_fn(|k| (0..3).map(|j| b[j] * exact[j][k]).sum());
-                let x = (c[0] / c[3] + 1.0) * f64::from(w) / 2.0;
-                let y = (1.0 - c[1] / c[3]) * f64::from(h) / 2.0;
-                let q = if perspective { 1.0 / c[3] } else { 1.0 };
-                ([x, y, q], (0..3).map(|j| b[j] * values[j]).sum::<f64>())
-            })
-            .unzip();
+        let v = clipped_gpu_piece(part, &exact, values, slide, perspective, size);
+        let pos = v.map(|v| v.0);
         let l = screen_barycentrics(&pos, px, py);
         if l.iter().any(|&l| l < 0.0) {
             return None;
         }
         let den: f64 = (0..3).map(|j| l[j] * pos[j][2]).sum();
-        Some((0..3).map(|j| l[j] * pos[j][2] * val[j]).sum::<f64>() / den)
+        Some((0..3).map(|j| l[j] * pos[j][2] * v[j].1).sum::<f64>() / den)
     };
-    let a = values.map(|v| Iv::new(v, v));
     let (mut judged, mut widest, mut unbounded_before, mut left) = (0, 0.0f64, 0, 0);
     let (mut widths, mut sides) = (Vec::new(), [0usize; 3]);
-    for part in &parts {
-        let s = piece_to_screen(part, &tri, w, h).expect("in front");
-        let Some(t) = setup(&s, w, h, snap) else { continue };
-        let piece = part.map(|p| part_value(a, p.bary, p.bary_err));
-        for py in 0..h {
-            for px in 0..w {
-                let (sx, sy) = (f64::from(px) + 0.5, f64::from(py) + 0.5);
-                if cover(&t, sx, sy) == Cover::No {
-                    continue;
-                }
-                let interp = barycentrics(&t, sx, sy);
-                let before = interp.varying(piece);
-                unbounded_before += usize::from(before.full || before.hi - before.lo >= 40.0);
-                let Some(v) = interp.from_original(&tri, a, piece) else { continue };
-                // A discard such as `value < 0` (the maps' clip plane): decided or not.
-                let decided = |v: Iv| !v.full && (v.lo > 0.0 || v.hi < 0.0);
-                sides[0] += usize::from(decided(before));
-                sides[1] += usize::from(decided(narrowed(before, Some(v))));
-                sides[2] += 1;
-                for slide in [-1.0, 0.0, 1.0] {
-                    if let Some(g) = gpu_value(part, slide, true, sx, sy) {
-                        assert!(
-                            v.lo <= g && g <= v.hi,
-                            "({px}, {py}) slide {slide}: {g} outside {v:?}"
-                        );
-                        judged += 1;
-                        widest = widest.max(v.hi - v.lo);
-                        widths.push(v.hi - v.lo);
-                    }
-                    if let Some(g) = gpu_value(part, slide, false, sx, sy) {
-                        left += usize::from(!(v.lo <= g && g <= v.hi));
-                    }
-                }
+    clipped_samples(&exact, values, size, |s| {
+        let before = s.interp.varying(s.piece);
+        unbounded_before += usize::from(before.full || before.hi - before.lo >= 40.0);
+        let Some(v) = s.interp.from_original(s.tri, s.a, s.piece) else { return };
+        // A discard such as `value < 0` (the maps' clip plane): decided or not.
+        let decided = |v: Iv| !v.full && (v.lo > 0.0 || v.hi < 0.0);
+        sides[0] += usize::from(decided(before));
+        sides[1] += usize::from(decided(narrowed(before, Some(v))));
+        sides[2] += 1;
+        let ([px, py], [sx, sy]) = (s.pixel, s.at);
+        for slide in [-1.0, 0.0, 1.0] {
+            if let Some(g) = gpu_value(s.part, slide, true, sx, sy) {
+                assert!(v.lo <= g && g <= v.hi, "({px}, {py}) slide {slide}: {g} outside {v:?}");
+                judged += 1;
+                widest = widest.max(v.hi - v.lo);
+                widths.push(v.hi - v.lo);
+            }
+            if let Some(g) = gpu_value(s.part, slide, false, sx, sy) {
+                left += usize::from(!(v.lo <= g && g <= v.hi));
             }
         }
-    }
+    });
     widths.sort_by(f64::total_cmp);
     eprintln!(
         "{judged} samples, widest {widest:.3e}, median {:.3e}, {unbounded_before} wider than 40 from the piece's vertices, {left} left by the screen-linear GPU",
@@ -446,6 +400,152 @@ fn a_clipped_piece_s_varyings_come_from_its_triangle() {
     );
     assert!(unbounded_before > 1000, "the piece's vertices bounded all but {unbounded_before}");
     assert!(left > 100, "a screen-linear GPU left the bound at {left} samples");
+}
+
+/// A covered sample of a clipper's piece ([`clipped_samples`]).
+struct ClippedSample<'a> {
+    /// The original triangle's clip positions (f32's rounding as boxes) and values.
+    tri: &'a [[Iv; 4]; 3],
+    a: [Iv; 3],
+    part: &'a [ClipVertex; 3],
+    /// The piece's vertices' values.
+    piece: [Iv; 3],
+    interp: &'a Interp,
+    pixel: [u32; 2],
+    at: [f64; 2],
+}
+
+/// Every sample the pieces of triangle `exact` (clip positions, within f32's rounding)
+/// that the near plane cuts may cover in a target of `size` at lavapipe's 1/256 px, its
+/// vertices holding `values`.
+fn clipped_samples(
+    exact: &[[f64; 4]; 3],
+    values: [f64; 3],
+    [w, h]: [u32; 2],
+    mut visit: impl FnMut(ClippedSample<'_>),
+) {
+    let rel = 3e-7;
+    let tri: [[Iv; 4]; 3] =
+        exact.map(|v| v.map(|c: f64| Iv::new(c - c.abs() * rel, c + c.abs() * rel)));
+    let a = values.map(|v| Iv::new(v, v));
+    for part in &clip_near_far(tri).expect("decided") {
+        let s = piece_to_screen(part, &tri, w, h).expect("in front");
+        let Some(t) = setup(&s, w, h, 1.0 / 256.0) else { continue };
+        let piece = part.map(|p| part_value(a, p.bary, p.bary_err));
+        for py in 0..h {
+            for px in 0..w {
+                let at = [f64::from(px) + 0.5, f64::from(py) + 0.5];
+                if cover(&t, at[0], at[1]) == Cover::No {
+                    continue;
+                }
+                let interp = barycentrics(&t, at[0], at[1]);
+                let (tri, pixel, interp) = (&tri, [px, py], &interp);
+                visit(ClippedSample { tri, a, part, piece, interp, pixel, at });
+            }
+        }
+    }
+}
+
+/// The GPU's piece of a clipper's `part` of the triangle `exact` (clip positions) whose
+/// vertices hold `values`: each new vertex slid along its edge by `slide` times the
+/// clipper's allowance; per vertex its screen position, 1/w (1 without `perspective`) and
+/// value, all exact.
+fn clipped_gpu_piece(
+    part: &[ClipVertex; 3],
+    exact: &[[f64; 4]; 3],
+    values: [f64; 3],
+    slide: f64,
+    perspective: bool,
+    [w, h]: [u32; 2],
+) -> [([f64; 3], f64); 3] {
+    part.map(|p| {
+        let mut b = p.bary;
+        if p.bary_err > 0.0 {
+            let i = (0..3).find(|&k| b[k] > 0.0).unwrap();
+            let j = (0..3).rfind(|&k| b[k] > 0.0).unwrap();
+            b[i] += slide * p.bary_err;
+            b[j] -= slide * p.bary_err;
+        }
+        let c: [f64; 4] = std::array::from_fn(|k| (0..3).map(|j| b[j] * exact[j][k]).sum());
+        let x = (c[0] / c[3] + 1.0) * f64::from(w) / 2.0;
+        let y = (1.0 - c[1] / c[3]) * f64::from(h) / 2.0;
+        let q = if perspective { 1.0 / c[3] } else { 1.0 };
+        ([x, y, q], (0..3).map(|j| b[j] * values[j]).sum::<f64>())
+    })
+}
+
+/// The varying at (px, py) as lavapipe interpolates it: f32 planes of a·q and q through the
+/// vertices of `v` (snapped to its 1/256 px), taking vertex `base`'s value and anchored at
+/// the target's origin, then their quotient. `None` outside the piece.
+fn f32_planes_value(v: &[([f64; 3], f64); 3], base: usize, px: f64, py: f64) -> Option<f64> {
+    let snapped = |c: f64| ((c * 256.0).round() / 256.0) as f32;
+    let order = [base, (base + 1) % 3, (base + 2) % 3];
+    let p = order.map(|k| [snapped(v[k].0[0]), snapped(v[k].0[1])]);
+    let (q, a) = (order.map(|k| v[k].0[2] as f32), order.map(|k| v[k].1 as f32));
+    let l = screen_barycentrics(&p.map(|p| [f64::from(p[0]), f64::from(p[1]), 0.0]), px, py);
+    if l.iter().any(|&l| l < 0.0) {
+        return None;
+    }
+    let (x, y) = (px as f32, py as f32);
+    let num = f32_plane(p, std::array::from_fn(|k| a[k] * q[k]))(x, y);
+    Some(f64::from(num / f32_plane(p, q)(x, y)))
+}
+
+/// The plane through values `v` at the f32 points `p`, as lavapipe sets it up: its gradient
+/// from the differences to vertex 0, anchored at the target's origin, all in f32.
+fn f32_plane(p: [[f32; 2]; 3], v: [f32; 3]) -> impl Fn(f32, f32) -> f32 {
+    let (e1x, e1y) = (p[1][0] - p[0][0], p[1][1] - p[0][1]);
+    let (e2x, e2y) = (p[2][0] - p[0][0], p[2][1] - p[0][1]);
+    let det = e1x * e2y - e2x * e1y;
+    let (d1, d2) = (v[1] - v[0], v[2] - v[0]);
+    let dx = (d1 * e2y - d2 * e1y) / det;
+    let dy = (d2 * e1x - d1 * e2x) / det;
+    let a0 = v[0] - dx * p[0][0] - dy * p[0][1];
+    move |px: f32, py: f32| a0 + dx * px + dy * py
+}
+
+/// chiu_shallow's case that held its maps' discards undecided: a nearly constant varying
+/// (the floor's height, 0.5 ‰ across) on the pieces of a floor triangle the near plane cuts,
+/// whose new vertex lies ~10⁵ px off screen at 1/w = 20 while the others are at 0.04. Its
+/// bound is then all the interpolation's arithmetic: lavapipe's f32 planes, anchored at the
+/// origin through each vertex in turn, stay inside it. Negative control: without the planes'
+/// term (each vertex's gradient times its arm) they leave it.
+#[test]
+fn f32_planes_on_a_clipped_piece_stay_inside_its_original_bound() {
+    // chiu_shallow's floor triangle (diagnostic dump), scaled out of f32's exact points.
+    let exact = [
+        [-40.520733, 2.765579, 0.05, 22.488653],
+        [-40.520733, -10.108689, 0.05, -14.476148],
+        [0.0, 2.765579, 0.05, 22.488653],
+    ];
+    let values = [-0.9982, -0.9987, -0.9979];
+    let size = [256u32, 144];
+    let (mut judged, mut left, mut widest, mut most_used) = (0, 0, 0.0f64, 0.0f64);
+    clipped_samples(&exact, values, size, |s| {
+        let Some(v) = s.interp.from_original(s.tri, s.a, s.piece) else { return };
+        let cut = s.interp.cut.expect("a piece");
+        let bare = Interp { cut: Some(cut.without_planes()), ..*s.interp };
+        let bare = bare.from_original(s.tri, s.a, s.piece).expect("bounded");
+        let ([px, py], [sx, sy]) = (s.pixel, s.at);
+        for slide in [-1.0, 0.0, 1.0] {
+            let gpu = clipped_gpu_piece(s.part, &exact, values, slide, true, size);
+            for base in 0..3 {
+                let Some(g) = f32_planes_value(&gpu, base, sx, sy) else { continue };
+                let inside = |b: Iv| b.lo <= g && g <= b.hi;
+                assert!(inside(v), "({px}, {py}) slide {slide} from {base}: {g} outside {v:?}");
+                judged += 1;
+                left += usize::from(!inside(bare));
+                widest = widest.max(v.hi - v.lo);
+                let used = (g - 0.5 * (v.lo + v.hi)).abs() / (0.5 * (v.hi - v.lo));
+                most_used = most_used.max(used);
+            }
+        }
+    });
+    eprintln!(
+        "{judged} f32 planes' samples inside (widest {widest:.2e}, at most {most_used:.2e} of a half-width used), {left} outside without the planes' term"
+    );
+    assert!(judged > 1000, "{judged} samples");
+    assert!(left > 0, "no sample left the bound without the planes' term");
 }
 
 /// Two triangles of a square that share its diagonal (the same vertices, so the same ids):

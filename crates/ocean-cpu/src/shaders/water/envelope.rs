@@ -280,9 +280,16 @@ pub fn envelope(p: &WaterPass<'_>, background: &[[Iv; 4]]) -> raster::MeshEnvelo
             let shade = |k: usize, pixel: usize, interp: &raster::Interp| -> [Iv; 4] {
                 let (t, bary) = owner[k];
                 let ids = tris[t];
+                let clip = ids.map(|i| verts[i as usize].0);
+                // A clipper's piece: also from the original triangle's values near the sample
+                // (its own vertices may slide along the cut edge by hundreds of pixels).
                 let v: Varyings<Iv> = std::array::from_fn(|c| {
                     let vals = ids.map(|i| verts[i as usize].1[c]);
-                    interp.varying(bary.map(|(b, err)| raster::part_value(vals, b, err)))
+                    let piece = bary.map(|(b, err)| raster::part_value(vals, b, err));
+                    raster::narrowed(
+                        interp.varying(piece),
+                        interp.from_original(&clip, vals, piece),
+                    )
                 });
                 let (x, y) = (pixel % w as usize, pixel / w as usize);
                 if p.every > 1 && (x % p.every as usize != 0 || y % p.every as usize != 0) {
