@@ -207,15 +207,20 @@ impl ProjectedGridBlock {
     pub fn new(camera: &crate::camera::Camera, wave_bound: [f64; 2], cell_px: f64) -> Self {
         // The corners' search (5 × 513 candidate points in a 60 KiB list) was two thirds of a
         // steady `chiu` frame's `prepare`, asked again every frame for the same view.
-        static KEPT: crate::kept::Kept<Vec<u64>, ProjectedGridBlock> = crate::kept::Kept::new();
+        static KEPT: crate::kept::Kept<[u64; 18], ProjectedGridBlock> = crate::kept::Kept::new();
         let c = camera;
-        let mut key: Vec<u64> = [c.eye, c.forward, c.right, c.up]
+        // The view's bits: 4 vectors of 3, the field of view, the bound, the cell, the size.
+        let mut key = [0u64; 18];
+        let vectors = [c.eye, c.forward, c.right, c.up];
+        let bits = vectors
             .iter()
             .flat_map(|v| v.to_array())
             .chain([c.fov_y, wave_bound[0], wave_bound[1], cell_px])
             .map(f64::to_bits)
-            .collect();
-        key.extend([u64::from(c.width), u64::from(c.height)]);
+            .chain([u64::from(c.width), u64::from(c.height)]);
+        for (k, b) in key.iter_mut().zip(bits) {
+            *k = b;
+        }
         KEPT.get(key, || Self::make(camera, wave_bound, cell_px))
     }
 
