@@ -7,6 +7,7 @@ use anyhow::bail;
 use ocean_core::plan::{FramePlan, Pass, ResourceId};
 use ocean_core::scene::Scene;
 use ocean_cpu::shaders::objects::ObjectMap;
+use ocean_verify::envelope::MAX_AMBIGUOUS_SHARE;
 use serde_json::{Value, json};
 
 mod main_view;
@@ -92,12 +93,29 @@ pub struct Verdict {
     pub judged: Vec<&'static str>,
     /// The resources not judged (their passes have no envelope yet, or an input is missing).
     pub not_judged: Vec<&'static str>,
+    /// Of `failures`, those with every value inside but more than [`MAX_AMBIGUOUS_SHARE`] of
+    /// the resource ambiguous: too little decided to judge, rather than a value outside.
+    pub too_ambiguous: usize,
 }
 
 impl Verdict {
     /// Whether something was judged, and everything judged is inside.
     pub fn passed(&self) -> bool {
         self.failures.is_empty() && !self.judged.is_empty()
+    }
+
+    /// Whether it failed only for too many ambiguous pixels or texels: no value outside.
+    pub fn only_too_ambiguous(&self) -> bool {
+        !self.failures.is_empty() && self.failures.len() == self.too_ambiguous
+    }
+
+    /// A region's failure (the sky's, the water's, the spray's): too ambiguous where every
+    /// judged value is inside.
+    fn fail_region(&mut self, f: &ocean_verify::envelope::RegionVerdict, line: String) {
+        if !f.passed() {
+            self.too_ambiguous += usize::from(f.inner.passed());
+            self.failures.push(line);
+        }
     }
 
     /// Records pass `pass`'s verdict on resource `name` (`note` appended to its line).
@@ -117,7 +135,8 @@ impl Verdict {
     }
 
     /// [`Self::record`] for a map whose coverage may be ambiguous: the share of its texels
-    /// that are (`what` says of what) in the line and in the JSON's `ambiguous_share`.
+    /// that are (`what` says of what) in the line and in the JSON's `ambiguous_share`, held
+    /// to [`MAX_AMBIGUOUS_SHARE`] as a screen resource's pixels are.
     fn record_ambiguous(
         &mut self,
         pass: &str,
@@ -126,12 +145,30 @@ impl Verdict {
         share: f64,
         what: &str,
     ) {
-        let note = format!(" ({:.2} % of texels' {what} ambiguous)", 100.0 * share);
+        let held = share_held(share);
+        let mut note = format!(
+            " ({:.2} % of texels' {what} ambiguous, at most {} %)",
+            100.0 * share,
+            100.0 * MAX_AMBIGUOUS_SHARE
+        );
+        if !held {
+            note.push_str(" — too many ambiguous texels FAIL");
+        }
         self.record(pass, name, f, &note);
+        if !held && f.passed() {
+            self.failures.push(format!("{name}: {}", note.trim_start()));
+            self.too_ambiguous += 1;
+        }
         if let Some(j) = self.json.last_mut() {
             j["ambiguous_share"] = json!(share);
+            j["passed"] = json!(f.passed() && held);
         }
     }
+}
+
+/// Whether a map's ambiguous share is within [`MAX_AMBIGUOUS_SHARE`] (NaN is not).
+fn share_held(share: f64) -> bool {
+    share <= MAX_AMBIGUOUS_SHARE
 }
 
 /// The envelope's verdict on a frame as a GPU made it, each pass from the inputs the GPU
@@ -181,9 +218,7 @@ fn judge_passes(
         && let Some(f) = sky_verdict(scene, plan, (w, h), (hdr, oracle), gpu)?
     {
         v.lines.push(format!("  [{:<14}] {}", "sky", f.line()));
-        if !f.passed() {
-            v.failures.push(f.line());
-        }
+        v.fail_region(&f, f.line());
         v.json.push(f.to_json());
         v.judged.push("hdr (sky)");
     }
@@ -290,9 +325,7 @@ impl Verdict {
         // A slot is two of the region's "pixels": its position and its velocity.
         let line = f.line().replacen(" pixels, ", " slot vec4s (two a slot), ", 1);
         self.lines.push(format!("  [{:<14}] {line}", "spray"));
-        if !f.passed() {
-            self.failures.push(line);
-        }
+        self.fail_region(&f, line);
         self.json.push(f.to_json());
         self.judged.push("spray_particles");
         Ok(())
@@ -388,9 +421,7 @@ impl Verdict {
                     gpu.precision.1
                 );
                 self.lines.push(format!("  [{:<14}] {}{note}", "water", f.line()));
-                if !f.passed() {
-                    self.failures.push(f.line());
-                }
+                self.fail_region(&f, f.line());
                 let mut j = f.to_json();
                 j["water_pixels"] = json!(widths.pixels);
                 j["water_rel_half_width_p50"] = json!(widths.p50);
@@ -476,5 +507,43 @@ impl Verdict {
         self.json.push(verdict.to_json());
         self.judged.push("ldr");
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use ocean_cpu::envelope::Iv;
+    use ocean_verify::envelope::judge_floats;
+
+    /// A map whose every texel lies inside its envelope passes with 1.9 % of its texels
+    /// ambiguous and fails with 2.1 % (the line, the failures and the JSON agree), as too
+    /// ambiguous rather than outside; NaN fails. A value outside as well: not only too
+    /// ambiguous.
+    #[test]
+    fn a_map_s_ambiguous_share_is_held_to_two_percent() {
+        let env = [Some([Iv::new(0.0, 1.0); 4])];
+        let f = judge_floats("reflection_map", &env, &[[0.5; 4]], 1);
+        assert!(f.passed());
+        let verdict = |share: f64| {
+            let mut v = Verdict::default();
+            v.record_ambiguous("reflection_map", "reflection_map", &f, share, "coverage");
+            v
+        };
+        let held = verdict(0.019);
+        assert!(held.passed() && !held.only_too_ambiguous(), "{:?}", held.failures);
+        assert_eq!(held.json[0]["passed"], json!(true));
+        assert!(held.lines[0].contains("1.90 % of texels' coverage ambiguous, at most 2 %"));
+        for share in [0.021, f64::NAN] {
+            let over = verdict(share);
+            assert!(!over.passed() && over.failures.len() == 1, "{share}: {:?}", over.lines);
+            assert!(over.only_too_ambiguous());
+            assert_eq!(over.json[0]["passed"], json!(false));
+            assert!(over.lines[0].contains("too many ambiguous texels FAIL"), "{}", over.lines[0]);
+        }
+        let out = judge_floats("reflection_map", &env, &[[1.5; 4]], 1);
+        let mut both = Verdict::default();
+        both.record_ambiguous("reflection_map", "reflection_map", &out, 0.5, "coverage");
+        assert!(!both.passed() && !both.only_too_ambiguous(), "{:?}", both.failures);
     }
 }
