@@ -488,7 +488,10 @@ pub(super) fn original_value(
     if den_min - den_err <= 0.0 {
         return None;
     }
-    let planes = VARYING_ULPS * (f32_ulp(tn) + terms * f32_ulp(td)) / (den_min - den_err);
+    // |v|, the GPU's exact quotient: the reference's value, moved by 1/w's and the
+    // clipper's roundings.
+    let vmag = lo.abs().max(hi.abs()) + rounded_w + clipped;
+    let planes = VARYING_ULPS * (f32_ulp(tn) + vmag * f32_ulp(td)) / (den_min - den_err);
     let slack = rounded_w
         + clipped
         + VARYING_ULPS * f32_ulp(terms)

@@ -80,8 +80,10 @@ impl Interp {
         // evaluates a·q and q as a0 + x·∂/∂x + y·∂/∂y, then their quotient): each plane's f32
         // evaluation is allowed VARYING_ULPS of its largest term, which for a small triangle
         // far from the anchor is far larger than the value.
-        // |v| at most Σ|shares|·(max|m| + hw) (a share is negative past an edge).
-        let vmag = terms;
+        // The exact quotient v = N/D at the GPU's barycentrics and 1/w lies within the
+        // corners' range (Σ|shares|·(max|m| + hw) bounds it too, but a horizon triangle's far
+        // vertex, 10⁷ m away, makes that 10³ times larger than the value at the sample).
+        let vmag = lo.abs().max(hi.abs());
         let aq: [(f64, f64); 3] = std::array::from_fn(|k| {
             let c = [m[k] - hw, m[k] + hw].map(|a| [a * self.q[k].0, a * self.q[k].1]);
             let c = c.as_flattened();

@@ -232,6 +232,58 @@ fn plane_equations_anchored_far_away_stay_inside_the_varying_bound() {
     assert!(samples > 4 && past_old > 0, "{samples} samples, {past_old} past the old bound");
 }
 
+/// A horizon triangle of `chiu_shallow`'s projected grid (diagnostic dump, 256×144): two
+/// vertices 170 m away at 1/w = 0.0057, the third 3.3·10⁶ m away at 1/w = 10⁻⁷, four pixels
+/// below it. Interpolated as lavapipe does (f32 planes of a·q and q, from each vertex as
+/// base, anchored at the origin), every sample lies inside [`Interp::varying`]; the quotient's
+/// error is now scaled by the value at the sample (|v| within the corners' range, −2400 m
+/// there), not by the far vertex's 3.3·10⁶ m, which made these pixels' envelope unbounded
+/// (`chiu_shallow`'s 1,030): the bound is now 190 m wide at most, the vertices' moves within
+/// the snap. Negative control: a GPU interpolating without perspective leaves it.
+#[test]
+fn a_horizon_triangle_s_varying_holds_f32_planes() {
+    let p = [[76.82f32, 59.23], [81.49, 59.38], [81.63, 55.40]];
+    let q = [0.005_666_85f32, 0.005_668_35, 1.007_174e-7];
+    let a = [-65.2941f32, -59.3255, -3_328_705.0];
+    let tri: [ScreenIv; 3] = std::array::from_fn(|k| ScreenIv {
+        x: Iv::point(p[k][0]),
+        y: Iv::point(p[k][1]),
+        z: Iv::point(0.001),
+        inv_w: Iv::point(q[k]),
+        on: None,
+    });
+    let t = setup(&tri, 256, 144, 1.0 / 256.0).unwrap();
+    let (mut samples, mut left, mut widest) = (0, 0, 0.0f64);
+    for py in 55..60 {
+        for px in 76..82 {
+            let (sx, sy) = (f64::from(px) + 0.5, f64::from(py) + 0.5);
+            if cover(&t, sx, sy) == Cover::No {
+                continue;
+            }
+            let interp = barycentrics(&t, sx, sy);
+            let bound = interp.varying(a.map(Iv::point));
+            let pos = p.map(|p| [f64::from(p[0]), f64::from(p[1]), 0.0]);
+            let l = screen_barycentrics(&pos, sx, sy);
+            let linear = (0..3).map(|k| l[k] * f64::from(a[k])).sum::<f64>();
+            left += usize::from(!(bound.lo <= linear && linear <= bound.hi));
+            assert!(bound.hi - bound.lo < 1e3, "({px}, {py}): {bound:?}");
+            widest = widest.max(bound.hi - bound.lo);
+            for base in 0..3 {
+                let order = [base, (base + 1) % 3, (base + 2) % 3];
+                let (pb, qb, ab) = (order.map(|k| p[k]), order.map(|k| q[k]), order.map(|k| a[k]));
+                let num = f32_plane(pb, std::array::from_fn(|k| ab[k] * qb[k]));
+                let got = num(sx as f32, sy as f32) / f32_plane(pb, qb)(sx as f32, sy as f32);
+                assert!(bound.contains(got), "{got} at ({px}, {py}) from {base} outside {bound:?}");
+                samples += 1;
+            }
+        }
+    }
+    eprintln!(
+        "{samples} f32 planes' samples inside (widest {widest:.1} m); {left} screen-linear outside"
+    );
+    assert!(samples > 10 && left > 0, "{samples} samples, {left} screen-linear outside");
+}
+
 /// The barycentrics of (px, py) in the triangle of screen points `pos` (x, y first).
 fn screen_barycentrics(pos: &[[f64; 3]], px: f64, py: f64) -> [f64; 3] {
     let area = (pos[1][0] - pos[0][0]) * (pos[2][1] - pos[0][1])
