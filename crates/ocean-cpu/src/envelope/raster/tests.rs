@@ -203,13 +203,7 @@ fn plane_equations_anchored_far_away_stay_inside_the_varying_bound() {
     let p = [[4000.25f32, 3990.125], [4004.125, 3991.875], [4001.0, 3995.75]];
     let q = [0.02f32, 0.03, 0.045];
     let a = [0.866f32, 0.8662, 0.8658];
-    let tri: [ScreenIv; 3] = std::array::from_fn(|k| ScreenIv {
-        x: Iv::point(p[k][0]),
-        y: Iv::point(p[k][1]),
-        z: Iv::point(0.001),
-        inv_w: Iv::point(q[k]),
-        on: None,
-    });
+    let tri = exact_triangle(p, q);
     let t = setup(&tri, w, h, 1.0 / 256.0).unwrap();
     let (num, den) = (f32_plane(p, std::array::from_fn(|k| a[k] * q[k])), f32_plane(p, q));
     let (mut samples, mut past_old) = (0, 0);
@@ -245,13 +239,7 @@ fn a_horizon_triangle_s_varying_holds_f32_planes() {
     let p = [[76.82f32, 59.23], [81.49, 59.38], [81.63, 55.40]];
     let q = [0.005_666_85f32, 0.005_668_35, 1.007_174e-7];
     let a = [-65.2941f32, -59.3255, -3_328_705.0];
-    let tri: [ScreenIv; 3] = std::array::from_fn(|k| ScreenIv {
-        x: Iv::point(p[k][0]),
-        y: Iv::point(p[k][1]),
-        z: Iv::point(0.001),
-        inv_w: Iv::point(q[k]),
-        on: None,
-    });
+    let tri = exact_triangle(p, q);
     let t = setup(&tri, 256, 144, 1.0 / 256.0).unwrap();
     let (mut samples, mut left, mut widest) = (0, 0, 0.0f64);
     for py in 55..60 {
@@ -282,6 +270,17 @@ fn a_horizon_triangle_s_varying_holds_f32_planes() {
         "{samples} f32 planes' samples inside (widest {widest:.1} m); {left} screen-linear outside"
     );
     assert!(samples > 10 && left > 0, "{samples} samples, {left} screen-linear outside");
+}
+
+/// A triangle known exactly: screen points `p`, 1/w `q`, depth 0.001.
+fn exact_triangle(p: [[f32; 2]; 3], q: [f32; 3]) -> [ScreenIv; 3] {
+    std::array::from_fn(|k| ScreenIv {
+        x: Iv::point(p[k][0]),
+        y: Iv::point(p[k][1]),
+        z: Iv::point(0.001),
+        inv_w: Iv::point(q[k]),
+        on: None,
+    })
 }
 
 /// The barycentrics of (px, py) in the triangle of screen points `pos` (x, y first).
